@@ -1,0 +1,73 @@
+#pragma once
+// Every user-facing knob of the AO pipeline, with its default, its range and its documentation, in one place. The
+// command line, the desktop viewer and the web page all set parameters through AoSettings::set, so they accept the
+// same names and the same ranges, and an out-of-range value never reaches a shader.
+#include <string>
+#include <vector>
+
+namespace obscura {
+
+// Per-tap distance falloff of the Alchemy estimator family (see SaoKernel.h for the equations).
+enum class Falloff {
+  Alchemy2011,  // McGuire et al., HPG 2011: a hard cut at the radius
+  Sao2012,      // McGuire, Mara, Luebke, HPG 2012 reference code: smooth (r^2 - v.v)^3 falloff
+};
+
+enum class QualityPreset { Low, Medium, High, Ultra };
+
+struct AoSettings {
+  bool enabled = true;
+
+  // --- Estimator (defaults from the SAO paper and its reference code; see SaoKernel.h) ---
+  float radius = 1.0f;     // r: world-space obscurance radius, metres
+  float bias = 0.012f;     // beta: ignores occluders closer than this to the tangent plane, metres
+  float intensity = 1.0f;  // sigma: scales the obscurance sum
+  float contrast = 1.0f;   // k: exponent on the final value
+  int samples = 11;        // s: taps per pixel, a compile-time constant of the shader variant
+  int spiralTurns = 3;     // tau: turns of the tap spiral, coprime with samples (SaoKernel::bestSpiralTurns)
+  Falloff falloff = Falloff::Sao2012;
+  float maxScreenRadius = 0.5f;  // clamp of the projected radius, as a fraction of the AO target's height
+
+  // --- Depth hierarchy and resolution ---
+  bool depthHierarchy = true;  // SAO's depth MIP: far taps read coarser levels (cost independent of radius)
+  bool halfResolution = false; // AO at half size, upsampled depth-aware to full size
+
+  // --- Bilateral blur ---
+  bool blur = true;
+  int blurRadius = 4;            // taps on each side of the centre, per direction (0 .. 8)
+  int blurStride = 1;            // pixels between taps (2 aliases with the interleaved-gradient rotation)
+  bool blurNormalAware = true;   // also weight by normals and by distance to the centre's tangent plane
+  float blurDepthSigma = 0.1f;   // metres: range weight exp(-(dz/sigma)^2)
+
+  // Applies a preset's samples, spiral turns, blur radius/stride and resolution, leaving the rest alone.
+  void applyPreset(QualityPreset preset);
+  // Sets `name` (the command-line spelling without "--", e.g. "radius") from text. Throws InputError naming the
+  // parameter, the value and the accepted range when the name is unknown or the value is out of range.
+  void set(const std::string& name, const std::string& value);
+  // Throws InputError if a field is out of range (for settings built in code).
+  void validate() const;
+};
+
+// Documentation of one parameter accepted by AoSettings::set.
+struct ParameterInfo {
+  const char* name;
+  const char* range;  // human-readable, e.g. "0.01 .. 100 (metres)"
+  const char* help;
+};
+const std::vector<ParameterInfo>& aoParameters();
+
+struct PresetInfo {
+  QualityPreset preset;
+  const char* name;
+  int samples;
+  int spiralTurns;
+  int blurRadius;
+  int blurStride;
+  bool halfResolution;
+};
+// The single table of quality presets used by the CLI, the viewer and the page.
+const std::vector<PresetInfo>& qualityPresets();
+QualityPreset parsePreset(const std::string& name);  // throws InputError
+const char* falloffName(Falloff falloff);
+
+}  // namespace obscura

@@ -1,0 +1,202 @@
+#include "core/GpuScene.h"
+
+#include <algorithm>
+
+#include <glm/gtc/matrix_inverse.hpp>
+
+#include "scene/ImageIo.h"
+#include "scene/MeshProcessing.h"
+
+namespace obscura {
+namespace {
+
+bool isPowerOfTwo(int v) { return v > 0 && (v & (v - 1)) == 0; }
+int nextPowerOfTwo(int v) {
+  int p = 1;
+  while (p < v) p *= 2;
+  return p;
+}
+bool usesMipmaps(int minFilter) {
+  return minFilter == GL_NEAREST_MIPMAP_NEAREST || minFilter == GL_LINEAR_MIPMAP_NEAREST ||
+         minFilter == GL_NEAREST_MIPMAP_LINEAR || minFilter == GL_LINEAR_MIPMAP_LINEAR;
+}
+GLint validWrap(int wrap) {
+  return wrap == GL_CLAMP_TO_EDGE || wrap == GL_MIRRORED_REPEAT ? wrap : GL_REPEAT;
+}
+GLint validFilter(int filter, bool min) {
+  switch (filter) {
+    case GL_NEAREST:
+    case GL_LINEAR: return filter;
+    case GL_NEAREST_MIPMAP_NEAREST:
+    case GL_LINEAR_MIPMAP_NEAREST:
+    case GL_NEAREST_MIPMAP_LINEAR:
+    case GL_LINEAR_MIPMAP_LINEAR: return min ? filter : GL_LINEAR;
+    default: return min ? GL_LINEAR_MIPMAP_LINEAR : GL_LINEAR;
+  }
+}
+
+gl::TextureHandle uploadTexture(const Image& source, const SamplerState& sampler, const gl::GlCaps& caps) {
+  const GLint minFilter = validFilter(sampler.minFilter, true);
+  const GLint magFilter = validFilter(sampler.magFilter, false);
+  const GLint wrapS = validWrap(sampler.wrapS), wrapT = validWrap(sampler.wrapT);
+  const bool needsPowerOfTwo = usesMipmaps(minFilter) || wrapS != GL_CLAMP_TO_EDGE || wrapT != GL_CLAMP_TO_EDGE;
+  int width = source.width, height = source.height;
+  if (needsPowerOfTwo) {
+    width = nextPowerOfTwo(width);
+    height = nextPowerOfTwo(height);
+  }
+  const int maxSize = std::max(caps.maxTextureSize, 1);
+  if (std::max(width, height) > maxSize) {
+    // Scale both sides by the same factor (halving keeps powers of two).
+    const int larger = std::max(width, height);
+    if (needsPowerOfTwo) {
+      while (std::max(width, height) > maxSize) {
+        width = std::max(1, width / 2);
+        height = std::max(1, height / 2);
+      }
+    } else {
+      width = std::max(1, static_cast<int>(static_cast<long long>(width) * maxSize / larger));
+      height = std::max(1, static_cast<int>(static_cast<long long>(height) * maxSize / larger));
+    }
+  }
+  const Image image = (width == source.width && height == source.height) ? source : resizeImage(source, width, height);
+
+  gl::TextureHandle texture = gl::TextureHandle::create();
+  glBindTexture(GL_TEXTURE_2D, texture.id());
+  glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
+  glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA, width, height, 0, GL_RGBA, GL_UNSIGNED_BYTE, image.rgba.data());
+  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, minFilter);
+  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, magFilter);
+  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, wrapS);
+  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, wrapT);
+  if (usesMipmaps(minFilter) && isPowerOfTwo(width) && isPowerOfTwo(height)) glGenerateMipmap(GL_TEXTURE_2D);
+  glBindTexture(GL_TEXTURE_2D, 0);
+  return texture;
+}
+
+}  // namespace
+
+GpuScene::GpuScene(const Scene& scene, const gl::GlCaps& caps, const Options& options) {
+  const bool uint32 = caps.elementIndexUint && options.allowUint32Indices;
+
+  for (size_t t = 0; t < scene.textures.size(); ++t) {
+    const Texture& texture = scene.textures[t];
+    if (texture.image >= 0 && scene.images[static_cast<size_t>(texture.image)].width > 0)
+      textures_.push_back(uploadTexture(scene.images[static_cast<size_t>(texture.image)], texture.sampler, caps));
+    else
+      textures_.emplace_back();
+  }
+  const std::uint8_t whitePixel[4] = {255, 255, 255, 255};
+  white_ = gl::TextureHandle::create();
+  glBindTexture(GL_TEXTURE_2D, white_.id());
+  glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA, 1, 1, 0, GL_RGBA, GL_UNSIGNED_BYTE, whitePixel);
+  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+  glBindTexture(GL_TEXTURE_2D, 0);
+
+  for (const Material& m : scene.materials) {
+    MaterialGpu gpu;
+    gpu.baseColorFactor = m.baseColorFactor;
+    gpu.texture = m.baseColorTexture >= 0 && textures_[static_cast<size_t>(m.baseColorTexture)] ? m.baseColorTexture
+                                                                                                 : -1;
+    gpu.alphaCutoff = m.alphaMode == AlphaMode::Mask ? m.alphaCutoff : -1.0f;
+    gpu.doubleSided = m.doubleSided;
+    materials_.push_back(gpu);
+  }
+  materials_.push_back(MaterialGpu{});  // the glTF default material
+
+  // Upload each mesh once (as one or more pieces), then point instances at the pieces.
+  std::vector<std::pair<int, int>> meshPieces;  // first piece, count
+  for (const Mesh& mesh : scene.meshes) {
+    const int first = static_cast<int>(pieces_.size());
+    for (const Mesh& part : uint32 ? std::vector<Mesh>{mesh} : splitForShortIndices(mesh)) {
+      std::vector<float> interleaved;
+      interleaved.reserve(part.positions.size() * 8);
+      for (size_t v = 0; v < part.positions.size(); ++v) {
+        const glm::vec2 uv = part.texcoords.empty() ? glm::vec2(0.0f) : part.texcoords[v];
+        interleaved.insert(interleaved.end(), {part.positions[v].x, part.positions[v].y, part.positions[v].z,
+                                               part.normals[v].x, part.normals[v].y, part.normals[v].z, uv.x, uv.y});
+      }
+      Piece piece;
+      piece.vertices = gl::BufferHandle::create();
+      glBindBuffer(GL_ARRAY_BUFFER, piece.vertices.id());
+      glBufferData(GL_ARRAY_BUFFER, static_cast<GLsizeiptr>(interleaved.size() * sizeof(float)), interleaved.data(),
+                   GL_STATIC_DRAW);
+      piece.indices = gl::BufferHandle::create();
+      glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, piece.indices.id());
+      if (part.positions.size() <= 65536) {
+        const std::vector<std::uint16_t> shorts(part.indices.begin(), part.indices.end());
+        glBufferData(GL_ELEMENT_ARRAY_BUFFER, static_cast<GLsizeiptr>(shorts.size() * 2), shorts.data(),
+                     GL_STATIC_DRAW);
+        piece.indexType = GL_UNSIGNED_SHORT;
+      } else {
+        glBufferData(GL_ELEMENT_ARRAY_BUFFER, static_cast<GLsizeiptr>(part.indices.size() * 4), part.indices.data(),
+                     GL_STATIC_DRAW);
+        piece.indexType = GL_UNSIGNED_INT;
+      }
+      piece.indexCount = static_cast<GLsizei>(part.indices.size());
+      pieces_.push_back(std::move(piece));
+    }
+    meshPieces.emplace_back(first, static_cast<int>(pieces_.size()) - first);
+  }
+  glBindBuffer(GL_ARRAY_BUFFER, 0);
+  glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, 0);
+
+  for (const Instance& instance : scene.instances) {
+    const Mesh& mesh = scene.meshes[static_cast<size_t>(instance.mesh)];
+    InstanceGpu gpu;
+    gpu.world = instance.world;
+    gpu.material = mesh.material >= 0 ? mesh.material : static_cast<int>(materials_.size()) - 1;
+    gpu.firstPiece = meshPieces[static_cast<size_t>(instance.mesh)].first;
+    gpu.pieceCount = meshPieces[static_cast<size_t>(instance.mesh)].second;
+    instances_.push_back(gpu);
+  }
+}
+
+bool GpuScene::usesUint32Indices() const {
+  return std::any_of(pieces_.begin(), pieces_.end(), [](const Piece& p) { return p.indexType == GL_UNSIGNED_INT; });
+}
+
+void GpuScene::draw(const gl::Program& program, const glm::mat4& view) const {
+  const GLsizei stride = 8 * sizeof(float);
+  glActiveTexture(GL_TEXTURE0);
+  program.set("u_baseColorTexture", 0);
+  for (GLuint slot : {gl::kAttribPosition, gl::kAttribNormal, gl::kAttribTexcoord}) glEnableVertexAttribArray(slot);
+
+  for (const InstanceGpu& instance : instances_) {
+    const glm::mat4 modelView = view * instance.world;
+    const glm::mat3 linear(modelView);
+    program.set("u_modelView", modelView);
+    program.set("u_normalMatrix", glm::inverseTranspose(linear));
+    // A mirroring transform flips the winding; keep "front" meaning the outside.
+    glFrontFace(glm::determinant(linear) < 0.0f ? GL_CW : GL_CCW);
+
+    const MaterialGpu& material = materials_[static_cast<size_t>(instance.material)];
+    program.set("u_baseColorFactor", material.baseColorFactor);
+    program.set("u_alphaCutoff", material.alphaCutoff);
+    glBindTexture(GL_TEXTURE_2D,
+                  material.texture >= 0 ? textures_[static_cast<size_t>(material.texture)].id() : white_.id());
+    if (material.doubleSided) glDisable(GL_CULL_FACE);
+    else glEnable(GL_CULL_FACE);
+
+    for (int p = instance.firstPiece; p < instance.firstPiece + instance.pieceCount; ++p) {
+      const Piece& piece = pieces_[static_cast<size_t>(p)];
+      glBindBuffer(GL_ARRAY_BUFFER, piece.vertices.id());
+      glVertexAttribPointer(gl::kAttribPosition, 3, GL_FLOAT, GL_FALSE, stride, nullptr);
+      glVertexAttribPointer(gl::kAttribNormal, 3, GL_FLOAT, GL_FALSE, stride,
+                            reinterpret_cast<const void*>(3 * sizeof(float)));
+      glVertexAttribPointer(gl::kAttribTexcoord, 2, GL_FLOAT, GL_FALSE, stride,
+                            reinterpret_cast<const void*>(6 * sizeof(float)));
+      glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, piece.indices.id());
+      glDrawElements(GL_TRIANGLES, piece.indexCount, piece.indexType, nullptr);
+    }
+  }
+  for (GLuint slot : {gl::kAttribPosition, gl::kAttribNormal, gl::kAttribTexcoord}) glDisableVertexAttribArray(slot);
+  glBindBuffer(GL_ARRAY_BUFFER, 0);
+  glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, 0);
+  glBindTexture(GL_TEXTURE_2D, 0);
+  glDisable(GL_CULL_FACE);
+  glFrontFace(GL_CCW);
+}
+
+}  // namespace obscura

@@ -1,0 +1,62 @@
+#pragma once
+// A Scene uploaded to GL: vertex/index buffers per mesh piece, textures per glTF texture, and the draw loop both
+// geometry passes (G-buffer and lighting) share, so they draw exactly the same triangles with the same state.
+//
+// WebGL 1 rules: without OES_element_index_uint, meshes over 65535 vertices are split into 16-bit pieces;
+// non-power-of-two images that need repeat wrapping or mipmaps are resized to a power of two; images larger than
+// the context's maximum texture size are scaled down.
+#include <vector>
+
+#include <glm/mat4x4.hpp>
+
+#include "gl/GlCaps.h"
+#include "gl/GlObjects.h"
+#include "gl/Program.h"
+#include "scene/Scene.h"
+
+namespace obscura {
+
+class GpuScene {
+ public:
+  struct Options {
+    bool allowUint32Indices = true;  // false simulates a context without OES_element_index_uint
+  };
+
+  GpuScene() = default;
+  GpuScene(const Scene& scene, const gl::GlCaps& caps, const Options& options);
+  GpuScene(const Scene& scene, const gl::GlCaps& caps) : GpuScene(scene, caps, Options{}) {}
+
+  // Draws every instance with `program` (already in use, u_projection already set): sets u_modelView,
+  // u_normalMatrix, the material uniforms of lib/material.glsl, face culling per material and winding per
+  // instance. Leaves the baseline pipeline state except for the program, depth and framebuffer state it was given.
+  void draw(const gl::Program& program, const glm::mat4& view) const;
+
+  std::size_t pieceCount() const { return pieces_.size(); }
+  bool usesUint32Indices() const;
+
+ private:
+  struct Piece {
+    gl::BufferHandle vertices, indices;
+    GLsizei indexCount = 0;
+    GLenum indexType = GL_UNSIGNED_SHORT;
+  };
+  struct MaterialGpu {
+    glm::vec4 baseColorFactor{1.0f};
+    int texture = -1;  // index into textures_, -1: white
+    float alphaCutoff = -1.0f;
+    bool doubleSided = false;
+  };
+  struct InstanceGpu {
+    glm::mat4 world{1.0f};
+    int material = 0;
+    int firstPiece = 0, pieceCount = 0;
+  };
+
+  std::vector<Piece> pieces_;
+  std::vector<MaterialGpu> materials_;  // last entry: the default material
+  std::vector<InstanceGpu> instances_;
+  std::vector<gl::TextureHandle> textures_;
+  gl::TextureHandle white_;
+};
+
+}  // namespace obscura

@@ -1,0 +1,81 @@
+#include "core/SaoKernel.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include <glm/geometric.hpp>
+#include <glm/gtc/constants.hpp>
+
+namespace obscura::SaoKernel {
+
+int greatestCommonDivisor(int a, int b) {
+  while (b != 0) {
+    const int t = a % b;
+    a = b;
+    b = t;
+  }
+  return a;
+}
+
+int bestSpiralTurns(int samples) {
+  if (samples <= 2) return 1;
+  // Tap i sits at (alpha_i, frac(tau alpha_i)) in (radius fraction, angle fraction): a rank-1 lattice. The best tau
+  // keeps the closest two taps farthest apart, with the angle measured around the circle (Fibonacci-like choices:
+  // 8 -> 3, 13 -> 5, 21 -> 8, as in the SAO reference code's tuned table).
+  int best = 1;
+  double bestSpacing = -1.0;
+  for (int turns = 1; turns < samples; ++turns) {
+    if (greatestCommonDivisor(turns, samples) != 1) continue;
+    double minDistance = 1e9;
+    for (int i = 0; i < samples; ++i) {
+      for (int j = i + 1; j < samples; ++j) {
+        const double dr = static_cast<double>(j - i) / samples;
+        double da = std::fmod(static_cast<double>(turns) * (j - i) / samples, 1.0);
+        da = std::min(da, 1.0 - da);
+        minDistance = std::min(minDistance, std::sqrt(dr * dr + da * da));
+      }
+    }
+    if (minDistance > bestSpacing + 1e-9) {
+      bestSpacing = minDistance;
+      best = turns;
+    }
+  }
+  return best;
+}
+
+float rotationAngle(float pixelX, float pixelY) {
+  const float inner = 0.06711056f * pixelX + 0.00583715f * pixelY;
+  const float noise = 52.9829189f * (inner - std::floor(inner));
+  return 6.28318530718f * (noise - std::floor(noise));
+}
+
+glm::vec2 tapDirection(int tapIndex, int samples, int spiralTurns, float rotation, float* radiusFraction) {
+  const float alpha = (static_cast<float>(tapIndex) + 0.5f) * (1.0f / static_cast<float>(samples));
+  const float angle = alpha * (static_cast<float>(spiralTurns) * 6.28318530718f) + rotation;
+  *radiusFraction = alpha;
+  return glm::vec2(std::cos(angle), std::sin(angle));
+}
+
+float diskRadiusPixels(float radius, float viewZ, float projScale, float maxRadiusPixels) {
+  return std::min(projScale * radius / -viewZ, maxRadiusPixels);
+}
+
+float tapObscurance(Falloff falloff, const glm::vec3& v, const glm::vec3& n, float radius, float bias) {
+  const float vv = glm::dot(v, v);
+  const float vn = glm::dot(v, n);
+  const float radius2 = radius * radius;
+  const float angular = std::max(vn - bias, 0.0f) / (vv + kEpsilon);
+  if (falloff == Falloff::Alchemy2011) return vv < radius2 ? angular : 0.0f;
+  const float f = std::max(radius2 - vv, 0.0f) / radius2;
+  return f * f * f * angular;
+}
+
+float intensityScale(Falloff falloff, float intensity, int samples) {
+  return intensity * (falloff == Falloff::Alchemy2011 ? 2.0f : 5.0f) / static_cast<float>(samples);
+}
+
+float ambientVisibility(Falloff falloff, float sum, int samples, float intensity, float contrast) {
+  return std::pow(std::max(0.0f, 1.0f - sum * intensityScale(falloff, intensity, samples)), contrast);
+}
+
+}  // namespace obscura::SaoKernel

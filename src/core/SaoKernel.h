@@ -1,0 +1,54 @@
+#pragma once
+// The SAO estimator in plain C++: the CPU mirror of shaders_es2/sao.frag. Tests run it over a G-buffer read back from
+// the GPU and compare with the shader's output.
+//
+// Taps (McGuire, Mara, Luebke 2012, sec. 3.2): tap i of s lies on a spiral,
+//   alpha_i = (i + 0.5) / s,   theta_i = 2 pi tau alpha_i + phi,   offset_i = alpha_i h (cos theta_i, sin theta_i),
+// where tau (spiral turns) is coprime with s so no two taps share an angle, phi is a per-pixel rotation and
+// h = min(projScale r / -z_C, maxScreenRadius * height) is the world-space radius r projected to pixels
+// (projScale = height / (2 tan(fovy / 2)): pixels per metre at 1 m).
+//
+// Per-pixel rotation: interleaved gradient noise (Jimenez 2014), phi = 2 pi fract(52.9829189 fract(0.06711056 x +
+// 0.00583715 y)) at integer pixel (x, y). Arithmetic only, since GLSL ES 1.00 has no bitwise operators (the SAO
+// reference uses (3x ^ y + xy) * 10); its low-discrepancy 3x3 neighbourhoods suit the bilateral blur.
+//
+// Estimator (v = Q - C from the centre C to the tap's point Q, n = centre normal, eps = 0.01 m^2, beta = bias):
+//   Alchemy 2011 (McGuire et al. HPG 2011, eq. 7, with SAO's metric bias):
+//       A = max(0, 1 - (2 sigma / s) sum_i [v.v < r^2] max(0, v.n - beta) / (v.v + eps))^k
+//   SAO 2012 (reference code's recommended falloff):
+//       A = max(0, 1 - (5 sigma / s) sum_i ((max(0, r^2 - v.v) / r^2)^3) max(0, v.n - beta) / (v.v + eps))^k
+// The SAO paper's eps = 0.01 ("large epsilon to avoid overdarkening within cracks") is used for both.
+#include <glm/vec2.hpp>
+#include <glm/vec3.hpp>
+
+#include "core/AoSettings.h"
+
+namespace obscura::SaoKernel {
+
+constexpr float kEpsilon = 0.01f;
+
+// The coprime tau in [1, s) that spreads the s taps best: as points (alpha_i, frac(tau alpha_i)) in (radius, angle)
+// fractions they form a rank-1 lattice, and the best tau maximises its smallest distance (angle wrapping around;
+// ties to the smaller tau).
+int bestSpiralTurns(int samples);
+int greatestCommonDivisor(int a, int b);
+
+// Per-pixel spiral rotation phi (radians) at integer pixel coordinates.
+float rotationAngle(float pixelX, float pixelY);
+
+// Unit direction of tap i and its radius as a fraction of the disk radius (alpha_i).
+glm::vec2 tapDirection(int tapIndex, int samples, int spiralTurns, float rotation, float* radiusFraction);
+
+// Projected disk radius in pixels for a centre at view-space depth viewZ (< 0).
+float diskRadiusPixels(float radius, float viewZ, float projScale, float maxRadiusPixels);
+
+// One tap's contribution to the obscurance sum.
+float tapObscurance(Falloff falloff, const glm::vec3& v, const glm::vec3& n, float radius, float bias);
+
+// The factor the tap sum is multiplied by: 5 sigma / s (SAO 2012) or 2 sigma / s (Alchemy 2011).
+float intensityScale(Falloff falloff, float intensity, int samples);
+
+// Final ambient visibility from the summed taps: max(0, 1 - sum * intensityScale)^k.
+float ambientVisibility(Falloff falloff, float sum, int samples, float intensity, float contrast);
+
+}  // namespace obscura::SaoKernel

@@ -1,0 +1,59 @@
+#include "core/SaoPass.h"
+
+#include "core/SaoKernel.h"
+#include "gl/PipelineState.h"
+
+namespace obscura {
+
+ProgramSpec SaoPass::programSpec(int samples, int spiralTurns, Falloff falloff) {
+  ProgramSpec spec;
+  spec.name = "sao[samples=" + std::to_string(samples) + ",turns=" + std::to_string(spiralTurns) +
+              ",falloff=" + falloffName(falloff) + "]";
+  spec.vertexFile = "fullscreen.vert";
+  spec.fragmentFile = "sao.frag";
+  spec.defines = {{"NUM_SAMPLES", std::to_string(samples)},
+                  {"NUM_SPIRAL_TURNS", std::to_string(spiralTurns)},
+                  {"FALLOFF_SAO2012", falloff == Falloff::Sao2012 ? "1" : "0"}};
+  return spec;
+}
+
+std::vector<ProgramSpec> SaoPass::programSpecs() {
+  std::vector<ProgramSpec> specs;
+  for (int samples : {4, 8, 11, 16, 24, 32})
+    for (Falloff falloff : {Falloff::Sao2012, Falloff::Alchemy2011})
+      specs.push_back(programSpec(samples, SaoKernel::bestSpiralTurns(samples), falloff));
+  return specs;
+}
+
+void SaoPass::resize(int width, int height) {
+  if (target_ && target_.width() == width && target_.height() == height) return;
+  target_ = gl::RenderTarget("SAO", width, height, GL_NEAREST, gl::RenderTarget::Depth::None, false);
+}
+
+const gl::Program& SaoPass::program(const AoSettings& settings) {
+  const auto key = std::make_tuple(settings.samples, settings.spiralTurns, settings.falloff);
+  auto it = programs_.find(key);
+  if (it == programs_.end())
+    it = programs_.emplace(key, programSpec(settings.samples, settings.spiralTurns, settings.falloff).build()).first;
+  return it->second;
+}
+
+void SaoPass::render(const gl::Texture2D& gbuffer, const FrameCamera& camera, const AoSettings& settings) {
+  const gl::Program& sao = program(settings);
+  target_.bindForDrawing();
+  sao.use();
+  gbuffer.bind(0);
+  sao.set("u_gbuffer", 0);
+  sao.set("u_gbufferSize", glm::vec2(gbuffer.width(), gbuffer.height()));
+  setReconstructionUniforms(sao, camera.reconstruction);
+  sao.set("u_projScale", camera.projScale(gbuffer.height()));
+  sao.set("u_radius", settings.radius);
+  sao.set("u_bias", settings.bias);
+  sao.set("u_intensityScale", SaoKernel::intensityScale(settings.falloff, settings.intensity, settings.samples));
+  sao.set("u_contrast", settings.contrast);
+  sao.set("u_maxRadiusPixels", settings.maxScreenRadius * static_cast<float>(gbuffer.height()));
+  triangle_.draw();
+  gl::restoreBaselineState();
+}
+
+}  // namespace obscura

@@ -1,0 +1,32 @@
+#pragma once
+// The one door to OpenGL ES 2.0 for all of Obscura.
+//
+// The core includes <GLES2/gl2.h> (and gl2ext.h for guarded extensions) and nothing else, so it cannot call a
+// desktop-GL entry point: the same code links for WebGL 1.
+//
+// On the web, Emscripten provides the GLES 2 functions directly. Natively, one process may hold an OSMesa context
+// or an EGL (GLES 2) context, each with its own dispatch, so the prototypes are switched off and the entry points are
+// function pointers in namespace obscura::gles, filled from the current context's GetProcAddress (loadGles2). Code
+// in namespace obscura calls glFoo(...) unqualified either way.
+#if defined(__EMSCRIPTEN__)
+#define OBSCURA_GL_DIRECT 1
+#include <GLES2/gl2.h>
+#include <GLES2/gl2ext.h>
+namespace obscura::gles {}
+#else
+#define OBSCURA_GL_DIRECT 0
+#define GL_GLES_PROTOTYPES 0
+#include <GLES2/gl2.h>
+#include <GLES2/gl2ext.h>
+namespace obscura::gles {
+#define OBSCURA_GL_FN(type, name) extern type name;
+#include "gl/GlFunctionList.inl"
+#undef OBSCURA_GL_FN
+}  // namespace obscura::gles
+#endif
+
+#include "gl/GlLoader.h"
+
+namespace obscura {
+using namespace gles;  // NOLINT: makes glFoo resolve to the dispatch table natively, to the prototypes on the web.
+}  // namespace obscura

@@ -1,0 +1,56 @@
+#include "gl/GlCaps.h"
+
+#include <algorithm>
+#include <sstream>
+
+namespace obscura::gl {
+namespace {
+std::string glString(GLenum name) {
+  const GLubyte* s = glGetString(name);
+  return s ? reinterpret_cast<const char*>(s) : "";
+}
+}  // namespace
+
+int GlCaps::maxRenderSize() const {
+  return std::min({maxTextureSize, maxRenderbufferSize, maxViewportWidth, maxViewportHeight});
+}
+
+GlCaps GlCaps::query() {
+  GlCaps caps;
+  caps.vendor = glString(GL_VENDOR);
+  caps.renderer = glString(GL_RENDERER);
+  caps.version = glString(GL_VERSION);
+  caps.shadingLanguage = glString(GL_SHADING_LANGUAGE_VERSION);
+  std::istringstream list(glString(GL_EXTENSIONS));
+  for (std::string ext; list >> ext;) {
+    // WebGL reports extensions without the GL_ prefix; normalise to the GLES spelling.
+    if (ext.rfind("GL_", 0) != 0) ext = "GL_" + ext;
+    caps.extensions.insert(ext);
+  }
+
+  GLint range[2] = {0, 0};
+  GLint precision = 0;
+  glGetShaderPrecisionFormat(GL_FRAGMENT_SHADER, GL_HIGH_FLOAT, range, &precision);
+  // GLSL ES 1.00 highp float is at least 2^-16 relative precision (precision >= 16); 0 means not supported.
+  caps.fragmentHighp = precision >= 16;
+
+  // Desktop GL (OSMesa) has these as core features but does not list the ES extension names.
+  const bool desktopGl = caps.version.find("OpenGL ES") == std::string::npos &&
+                         caps.version.find("WebGL") == std::string::npos;
+  caps.elementIndexUint = desktopGl || caps.has("GL_OES_element_index_uint");
+  caps.depth24 = desktopGl || caps.has("GL_OES_depth24");
+  caps.standardDerivatives = caps.has("GL_OES_standard_derivatives");
+  caps.shaderTextureLod = caps.has("GL_EXT_shader_texture_lod");
+  caps.fboRenderMipmap = caps.has("GL_OES_fbo_render_mipmap");
+  caps.timerQuery = caps.has("GL_EXT_disjoint_timer_query");
+
+  glGetIntegerv(GL_MAX_TEXTURE_SIZE, &caps.maxTextureSize);
+  glGetIntegerv(GL_MAX_RENDERBUFFER_SIZE, &caps.maxRenderbufferSize);
+  GLint viewport[2] = {0, 0};
+  glGetIntegerv(GL_MAX_VIEWPORT_DIMS, viewport);
+  caps.maxViewportWidth = viewport[0];
+  caps.maxViewportHeight = viewport[1];
+  return caps;
+}
+
+}  // namespace obscura::gl

@@ -1,0 +1,31 @@
+#pragma once
+// What a context can do, read once after it is made current and handed to the Renderer. Optional features are used
+// only through these flags, each with a tested fallback; tests switch flags off to exercise the fallbacks.
+#include <string>
+#include <unordered_set>
+
+#include "gl/GlApi.h"
+
+namespace obscura::gl {
+
+struct GlCaps {
+  std::string vendor, renderer, version, shadingLanguage;
+  std::unordered_set<std::string> extensions;
+
+  bool fragmentHighp = false;           // GL_HIGH_FLOAT in fragment shaders (needed by the 16-bit depth packing)
+  bool elementIndexUint = false;        // OES_element_index_uint: 32-bit indices
+  bool depth24 = false;                 // OES_depth24 renderbuffers
+  bool standardDerivatives = false;     // OES_standard_derivatives
+  bool shaderTextureLod = false;        // EXT_shader_texture_lod: texture2DLodEXT in fragment shaders
+  bool fboRenderMipmap = false;         // OES_fbo_render_mipmap: render into mip levels > 0
+  bool timerQuery = false;              // EXT_disjoint_timer_query
+  GLint maxTextureSize = 0, maxRenderbufferSize = 0, maxViewportWidth = 0, maxViewportHeight = 0;
+
+  bool has(const std::string& extension) const { return extensions.count(extension) != 0; }
+  // Largest render size this context accepts for a W x H target.
+  int maxRenderSize() const;
+
+  static GlCaps query();
+};
+
+}  // namespace obscura::gl

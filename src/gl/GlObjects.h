@@ -1,0 +1,90 @@
+#pragma once
+// Small RAII owners for raw GL object names. Each GL object has exactly one owner; owners move, never copy.
+#include <utility>
+
+#include "gl/GlApi.h"
+
+namespace obscura::gl {
+
+// Number of GL objects currently owned by these wrappers, per kind. Tests use it to check that a scene reload or a
+// context loss returns to the same baseline (nothing leaks, nothing is freed twice).
+struct LiveObjects {
+  int textures = 0, buffers = 0, framebuffers = 0, renderbuffers = 0, shaders = 0, programs = 0;
+  int total() const { return textures + buffers + framebuffers + renderbuffers + shaders + programs; }
+};
+const LiveObjects& liveObjects();
+
+namespace detail {
+struct TextureKind { static GLuint create(); static void destroy(GLuint); };
+struct BufferKind { static GLuint create(); static void destroy(GLuint); };
+struct FramebufferKind { static GLuint create(); static void destroy(GLuint); };
+struct RenderbufferKind { static GLuint create(); static void destroy(GLuint); };
+}  // namespace detail
+
+// A move-only owner of one GL name created by Kind::create() and deleted by Kind::destroy().
+template <typename Kind>
+class Handle {
+ public:
+  Handle() = default;
+  static Handle create() { return Handle(Kind::create()); }
+  ~Handle() { reset(); }
+  Handle(Handle&& other) noexcept : id_(std::exchange(other.id_, 0)) {}
+  Handle& operator=(Handle&& other) noexcept {
+    if (this != &other) {
+      reset();
+      id_ = std::exchange(other.id_, 0);
+    }
+    return *this;
+  }
+  Handle(const Handle&) = delete;
+  Handle& operator=(const Handle&) = delete;
+
+  GLuint id() const { return id_; }
+  explicit operator bool() const { return id_ != 0; }
+  void reset() {
+    if (id_ != 0) Kind::destroy(std::exchange(id_, 0));
+  }
+
+ private:
+  explicit Handle(GLuint id) : id_(id) {}
+  GLuint id_ = 0;
+};
+
+using TextureHandle = Handle<detail::TextureKind>;
+using BufferHandle = Handle<detail::BufferKind>;
+using FramebufferHandle = Handle<detail::FramebufferKind>;
+using RenderbufferHandle = Handle<detail::RenderbufferKind>;
+
+// Shader and program objects are created with arguments, so they get their own small owners.
+class ShaderHandle {
+ public:
+  ShaderHandle() = default;
+  explicit ShaderHandle(GLenum stage);
+  ~ShaderHandle();
+  ShaderHandle(ShaderHandle&& other) noexcept : id_(std::exchange(other.id_, 0)) {}
+  ShaderHandle& operator=(ShaderHandle&& other) noexcept;
+  ShaderHandle(const ShaderHandle&) = delete;
+  ShaderHandle& operator=(const ShaderHandle&) = delete;
+  GLuint id() const { return id_; }
+
+ private:
+  GLuint id_ = 0;
+};
+
+class ProgramHandle {
+ public:
+  ProgramHandle() = default;
+  static ProgramHandle create();
+  ~ProgramHandle();
+  ProgramHandle(ProgramHandle&& other) noexcept : id_(std::exchange(other.id_, 0)) {}
+  ProgramHandle& operator=(ProgramHandle&& other) noexcept;
+  ProgramHandle(const ProgramHandle&) = delete;
+  ProgramHandle& operator=(const ProgramHandle&) = delete;
+  GLuint id() const { return id_; }
+
+ private:
+  explicit ProgramHandle(GLuint id) : id_(id) {}
+  GLuint id_ = 0;
+};
+
+}  // namespace obscura::gl

@@ -1,0 +1,62 @@
+#include "gl/PipelineState.h"
+
+#include "gl/GlApi.h"
+
+namespace obscura::gl {
+namespace {
+constexpr int kTextureUnits = 4;
+constexpr GLuint kAttributeSlots = 3;
+}  // namespace
+
+void restoreBaselineState() {
+  glDisable(GL_DEPTH_TEST);
+  glDepthMask(GL_TRUE);
+  glDisable(GL_CULL_FACE);
+  glFrontFace(GL_CCW);
+  glDisable(GL_BLEND);
+  glUseProgram(0);
+  glBindBuffer(GL_ARRAY_BUFFER, 0);
+  glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, 0);
+  for (int unit = kTextureUnits - 1; unit >= 0; --unit) {
+    glActiveTexture(static_cast<GLenum>(GL_TEXTURE0 + unit));
+    glBindTexture(GL_TEXTURE_2D, 0);
+  }
+  for (GLuint slot = 0; slot < kAttributeSlots; ++slot) glDisableVertexAttribArray(slot);
+}
+
+std::string baselineStateDifferences() {
+  std::string out;
+  auto expect = [&](bool ok, const char* what) {
+    if (!ok) out += std::string(out.empty() ? "" : ", ") + what;
+  };
+  GLint value = 0;
+  expect(!glIsEnabled(GL_DEPTH_TEST), "depth test enabled");
+  expect(!glIsEnabled(GL_CULL_FACE), "face culling enabled");
+  expect(!glIsEnabled(GL_BLEND), "blending enabled");
+  GLboolean depthMask = GL_FALSE;
+  glGetBooleanv(GL_DEPTH_WRITEMASK, &depthMask);
+  expect(depthMask == GL_TRUE, "depth writes off");
+  glGetIntegerv(GL_FRONT_FACE, &value);
+  expect(value == GL_CCW, "front face not CCW");
+  glGetIntegerv(GL_CURRENT_PROGRAM, &value);
+  expect(value == 0, "a program is bound");
+  glGetIntegerv(GL_ARRAY_BUFFER_BINDING, &value);
+  expect(value == 0, "an array buffer is bound");
+  glGetIntegerv(GL_ELEMENT_ARRAY_BUFFER_BINDING, &value);
+  expect(value == 0, "an element buffer is bound");
+  glGetIntegerv(GL_ACTIVE_TEXTURE, &value);
+  expect(value == GL_TEXTURE0, "texture unit 0 not active");
+  for (int unit = 0; unit < kTextureUnits; ++unit) {
+    glActiveTexture(static_cast<GLenum>(GL_TEXTURE0 + unit));
+    glGetIntegerv(GL_TEXTURE_BINDING_2D, &value);
+    expect(value == 0, "a texture is bound");
+  }
+  glActiveTexture(GL_TEXTURE0);
+  for (GLuint slot = 0; slot < kAttributeSlots; ++slot) {
+    glGetVertexAttribiv(slot, GL_VERTEX_ATTRIB_ARRAY_ENABLED, &value);
+    expect(value == 0, "a vertex attribute array is enabled");
+  }
+  return out;
+}
+
+}  // namespace obscura::gl

@@ -1,0 +1,14 @@
+#pragma once
+// The baseline GL state every pass starts from and returns to, so no state leaks from one pass into the next:
+// depth test off with writes on, face culling off with CCW front faces, blending off, no program, buffers, textures
+// (units 0..3) or vertex attribute arrays (slots 0..2) bound, texture unit 0 active. Framebuffer and viewport are
+// not part of it: each pass binds its own target.
+#include <string>
+
+namespace obscura::gl {
+
+void restoreBaselineState();
+// Empty when the current state is the baseline; otherwise a list of what differs (used by tests).
+std::string baselineStateDifferences();
+
+}  // namespace obscura::gl

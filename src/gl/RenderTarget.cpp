@@ -1,0 +1,96 @@
+#include "gl/RenderTarget.h"
+
+#include <cstdio>
+#include <cstring>
+
+#include "core/Error.h"
+
+namespace obscura::gl {
+
+Texture2D::Texture2D(int width, int height, GLenum filter, const void* rgba)
+    : texture_(TextureHandle::create()), width_(width), height_(height) {
+  glBindTexture(GL_TEXTURE_2D, texture_.id());
+  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, static_cast<GLint>(filter));
+  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, static_cast<GLint>(filter));
+  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
+  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+  glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
+  glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA, width, height, 0, GL_RGBA, GL_UNSIGNED_BYTE, rgba);
+  glBindTexture(GL_TEXTURE_2D, 0);
+}
+
+void Texture2D::bind(int unit) const {
+  glActiveTexture(static_cast<GLenum>(GL_TEXTURE0 + unit));
+  glBindTexture(GL_TEXTURE_2D, texture_.id());
+}
+
+void Texture2D::upload(const void* rgba) {
+  glBindTexture(GL_TEXTURE_2D, texture_.id());
+  glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
+  glTexSubImage2D(GL_TEXTURE_2D, 0, 0, 0, width_, height_, GL_RGBA, GL_UNSIGNED_BYTE, rgba);
+  glBindTexture(GL_TEXTURE_2D, 0);
+}
+
+void checkFramebufferComplete(const std::string& what) {
+  const GLenum status = glCheckFramebufferStatus(GL_FRAMEBUFFER);
+  if (status == GL_FRAMEBUFFER_COMPLETE) return;
+  const char* reason = "unknown status";
+  switch (status) {
+    case GL_FRAMEBUFFER_INCOMPLETE_ATTACHMENT: reason = "an attachment is incomplete"; break;
+    case GL_FRAMEBUFFER_INCOMPLETE_MISSING_ATTACHMENT: reason = "no image is attached"; break;
+    case GL_FRAMEBUFFER_INCOMPLETE_DIMENSIONS: reason = "attachments differ in size"; break;
+    case GL_FRAMEBUFFER_UNSUPPORTED: reason = "this combination of formats is unsupported"; break;
+    default: break;
+  }
+  char code[16];
+  std::snprintf(code, sizeof code, "0x%04X", status);
+  throw GlError("framebuffer '" + what + "' is incomplete: " + reason + " (status " + code + ")");
+}
+
+RenderTarget::RenderTarget(const std::string& name, int width, int height, GLenum filter, Depth depth, bool depth24)
+    : name_(name), color_(width, height, filter), framebuffer_(FramebufferHandle::create()) {
+  glBindFramebuffer(GL_FRAMEBUFFER, framebuffer_.id());
+  glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, color_.id(), 0);
+  if (depth == Depth::Renderbuffer) {
+    depth_ = RenderbufferHandle::create();
+    glBindRenderbuffer(GL_RENDERBUFFER, depth_.id());
+    // Core GLES 2 guarantees only 16-bit depth renderbuffers; OES_depth24 gives 24.
+    glRenderbufferStorage(GL_RENDERBUFFER, depth24 ? GL_DEPTH_COMPONENT24_OES : GL_DEPTH_COMPONENT16, width, height);
+    glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_RENDERBUFFER, depth_.id());
+    glBindRenderbuffer(GL_RENDERBUFFER, 0);
+  }
+  try {
+    checkFramebufferComplete(name);
+  } catch (...) {
+    glBindFramebuffer(GL_FRAMEBUFFER, 0);
+    throw;
+  }
+  glBindFramebuffer(GL_FRAMEBUFFER, 0);
+}
+
+void RenderTarget::bindForDrawing() const {
+  glBindFramebuffer(GL_FRAMEBUFFER, framebuffer_.id());
+  glViewport(0, 0, width(), height());
+}
+
+std::vector<std::uint8_t> RenderTarget::readRgba() const {
+  GLint previous = 0;
+  glGetIntegerv(GL_FRAMEBUFFER_BINDING, &previous);
+  glBindFramebuffer(GL_FRAMEBUFFER, framebuffer_.id());
+  std::vector<std::uint8_t> pixels = readPixelsTopDown(width(), height());
+  glBindFramebuffer(GL_FRAMEBUFFER, static_cast<GLuint>(previous));
+  return pixels;
+}
+
+std::vector<std::uint8_t> readPixelsTopDown(int width, int height) {
+  const size_t row = static_cast<size_t>(width) * 4;
+  std::vector<std::uint8_t> bottomUp(row * static_cast<size_t>(height));
+  glPixelStorei(GL_PACK_ALIGNMENT, 1);
+  glReadPixels(0, 0, width, height, GL_RGBA, GL_UNSIGNED_BYTE, bottomUp.data());
+  std::vector<std::uint8_t> topDown(bottomUp.size());
+  for (int y = 0; y < height; ++y)
+    std::memcpy(&topDown[static_cast<size_t>(y) * row], &bottomUp[static_cast<size_t>(height - 1 - y) * row], row);
+  return topDown;
+}
+
+}  // namespace obscura::gl

@@ -1,0 +1,68 @@
+#include "TestSupport.h"
+
+#include <cstdlib>
+#include <memory>
+
+namespace obscura::test {
+
+HeadlessContext& context() {
+  static std::unique_ptr<HeadlessContext> instance = [] {
+    const char* backend = std::getenv("OBSCURA_TEST_BACKEND");
+    return std::make_unique<HeadlessContext>(parseBackend(backend ? backend : "osmesa"));
+  }();
+  return *instance;
+}
+
+Renderer makeRenderer(const RendererOptions& options) {
+  RendererOptions checked = options;
+  checked.checkGlErrors = true;
+  return Renderer(context().caps(), checked);
+}
+
+RenderedImage render(Renderer& renderer, const Camera& camera, const AoSettings& settings, View view) {
+  const gl::RenderTarget output("test output", camera.width, camera.height, GL_NEAREST,
+                                gl::RenderTarget::Depth::Renderbuffer, context().caps().depth24);
+  renderer.render(camera, settings, view, OutputTarget{output.framebuffer(), camera.width, camera.height, 0.0f});
+  RenderedImage image;
+  image.width = camera.width;
+  image.height = camera.height;
+  image.rgba = output.readRgba();
+  return image;
+}
+
+Scene sceneOf(std::vector<Mesh> meshes) {
+  Scene scene;
+  for (Mesh& mesh : meshes) {
+    scene.meshes.push_back(std::move(mesh));
+    scene.instances.push_back({static_cast<int>(scene.meshes.size()) - 1, glm::mat4(1.0f)});
+  }
+  return scene;
+}
+
+Mesh makeRectangle(const glm::vec3& origin, const glm::vec3& u, const glm::vec3& v) {
+  Mesh mesh;
+  const glm::vec3 n = glm::normalize(glm::cross(u, v));
+  mesh.positions = {origin, origin + u, origin + u + v, origin + v};
+  mesh.normals = {n, n, n, n};
+  mesh.texcoords = {{0, 0}, {1, 0}, {1, 1}, {0, 1}};
+  mesh.indices = {0, 1, 2, 0, 2, 3};
+  return mesh;
+}
+
+Camera makeCamera(const glm::vec3& eye, const glm::vec3& target, int width, int height, float near, float far,
+                  float fovyDegrees) {
+  Camera camera;
+  camera.eye = eye;
+  camera.target = target;
+  camera.width = width;
+  camera.height = height;
+  camera.near = near;
+  camera.far = far;
+  camera.fovyDegrees = fovyDegrees;
+  return camera;
+}
+
+std::string sourceDir() { return OBSCURA_SOURCE_DIR; }
+std::string assimpModels() { return "/usr/share/assimp/models/glTF2"; }
+
+}  // namespace obscura::test

@@ -1,0 +1,45 @@
+#pragma once
+// Shared helpers for the GPU tests: one headless context per test binary (backend from OBSCURA_TEST_BACKEND,
+// "osmesa" by default; ctest runs the GPU suite once per backend), synthetic scenes and image statistics.
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include <gtest/gtest.h>
+
+#include "core/AoSettings.h"
+#include "core/Renderer.h"
+#include "gl/RenderTarget.h"
+#include "platform/HeadlessContext.h"
+#include "scene/Camera.h"
+#include "scene/Scene.h"
+
+namespace obscura::test {
+
+HeadlessContext& context();
+
+// A renderer for the test context with GL error checks after every pass.
+Renderer makeRenderer(const RendererOptions& options = {});
+
+// Renders `view` into an offscreen RGBA8 target and reads it back (rows top to bottom).
+struct RenderedImage {
+  int width = 0, height = 0;
+  std::vector<std::uint8_t> rgba;
+  std::uint8_t channel(int x, int y, int c) const { return rgba[(static_cast<size_t>(y) * width + x) * 4 + c]; }
+  float red(int x, int y) const { return channel(x, y, 0) / 255.0f; }
+};
+RenderedImage render(Renderer& renderer, const Camera& camera, const AoSettings& settings, View view);
+
+// Scenes made of one material-less mesh placed with an identity transform.
+Scene sceneOf(std::vector<Mesh> meshes);
+// A rectangle in the plane through `origin` spanned by `u` and `v` (normal u x v), one quad.
+Mesh makeRectangle(const glm::vec3& origin, const glm::vec3& u, const glm::vec3& v);
+
+// Camera looking from eye to target, with explicit size and planes.
+Camera makeCamera(const glm::vec3& eye, const glm::vec3& target, int width, int height, float near = 0.1f,
+                  float far = 100.0f, float fovyDegrees = 50.0f);
+
+std::string sourceDir();  // the repository root (for assets and goldens)
+std::string assimpModels();  // /usr/share/assimp/models/glTF2
+
+}  // namespace obscura::test

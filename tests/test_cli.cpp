@@ -1,0 +1,108 @@
+// obscura-render end to end: bad input exits with status 2 and one line saying what and where; good input writes
+// the image. Runs the real binary.
+#include <gtest/gtest.h>
+
+#include <sys/wait.h>
+
+#include <cstdio>
+#include <fstream>
+#include <sstream>
+
+#include "TestSupport.h"
+#include "scene/ImageIo.h"
+
+namespace {
+
+struct Result {
+  int status = -1;
+  std::string out, err;
+};
+
+std::string slurp(const std::string& path) {
+  std::ifstream file(path);
+  std::stringstream text;
+  text << file.rdbuf();
+  return text.str();
+}
+
+Result run(const std::string& args) {
+  const std::string out = ::testing::TempDir() + "cli.out", err = ::testing::TempDir() + "cli.err";
+  const std::string command = std::string(OBSCURA_RENDER_BINARY) + " " + args + " >" + out + " 2>" + err;
+  const int raw = std::system(command.c_str());
+  Result result;
+  result.status = WIFEXITED(raw) ? WEXITSTATUS(raw) : 128 + WTERMSIG(raw);
+  result.out = slurp(out);
+  result.err = slurp(err);
+  return result;
+}
+
+std::string writeFile(const std::string& name, const std::string& text) {
+  const std::string path = ::testing::TempDir() + name;
+  std::ofstream(path) << text;
+  return path;
+}
+
+}  // namespace
+
+TEST(Cli, BadInputExitsWithStatusTwoAndOneLine) {
+  const std::string badJson = writeFile("bad.json", R"({"eye":[1,2,3],"target":)");
+  const std::string badCamera = writeFile("near.json", R"({"eye":[0,0,5],"target":[0,0,0],"near":-1})");
+  const std::string notGltf = writeFile("garbage.glb", "glTF this is not a binary glTF at all");
+  const std::pair<std::string, std::string> cases[] = {
+      {"--scene /nonexistent/scene.glb", "/nonexistent/scene.glb: cannot open"},
+      {"--camera " + badJson, badJson + ": malformed JSON at byte"},
+      {"--camera " + badCamera, badCamera + ": near: must be > 0"},
+      {"--camera /nonexistent/cam.json", "/nonexistent/cam.json: cannot open"},
+      {"--scene " + notGltf, notGltf + ": "},
+      {"--frobnicate", "unknown option '--frobnicate'"},
+      {"--radius -1", "--radius: -1 is out of range"},
+      {"--radius", "--radius: missing value"},
+      {"--samples 0", "--samples: 0 is out of range"},
+      {"--size 10x", "--size: expected WxH"},
+      {"--size 0x10", "--size: 0x10 is out of range"},
+      {"--view sideways", "--view: expected final, ao, ao-raw, normals or depth"},
+      {"--bench many", "--bench: expected a whole number"},
+      {"--backend vulkan", "--backend: expected osmesa or egl"},
+      {"--fit --camera x.json", "--camera and --fit exclude each other"},
+      {"--scene " + obscura::test::assimpModels() + "/IndexOutOfRange/IndexOutOfRange.gltf", "index 255"},
+  };
+  for (const auto& [args, expect] : cases) {
+    const Result r = run("--out " + ::testing::TempDir() + "never.png " + args);
+    EXPECT_EQ(r.status, 2) << args << "\n" << r.err;
+    EXPECT_NE(r.err.find(expect), std::string::npos) << args << " -> " << r.err;
+    EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << args << " -> " << r.err;
+  }
+}
+
+TEST(Cli, RendersEveryViewOfTheBuiltinScene) {
+  for (const char* view : {"final", "ao", "ao-raw", "normals", "depth"}) {
+    const std::string out = ::testing::TempDir() + "view-" + view + ".png";
+    const Result r = run(std::string("--size 96x64 --view ") + view + " --out " + out);
+    ASSERT_EQ(r.status, 0) << view << ": " << r.err;
+    const obscura::Image image = obscura::readPng(out);
+    EXPECT_EQ(image.width, 96);
+    EXPECT_EQ(image.height, 64);
+  }
+}
+
+TEST(Cli, RendersAGltfFileWithFitAndBenchPrintsEveryPass) {
+  const std::string out = ::testing::TempDir() + "engine.png";
+  const Result r = run("--scene " + obscura::test::assimpModels() +
+                       "/2CylinderEngine-glTF-Binary/2CylinderEngine.glb --fit --size 160x90 --bench 2 --out " + out);
+  ASSERT_EQ(r.status, 0) << r.err;
+  for (const char* pass : {"gbuffer", "sao", "blur-h", "blur-v", "composite", "total"})
+    EXPECT_NE(r.out.find(pass), std::string::npos) << r.out;
+  const obscura::Image image = obscura::readPng(out);
+  // Not blank: the engine covers part of the frame in colours other than the background.
+  std::set<std::uint32_t> colours;
+  for (size_t i = 0; i < image.rgba.size(); i += 4)
+    colours.insert(image.rgba[i] << 16 | image.rgba[i + 1] << 8 | image.rgba[i + 2]);
+  EXPECT_GT(colours.size(), 50u);
+}
+
+TEST(Cli, HelpListsEveryAoParameter) {
+  const Result r = run("--help");
+  EXPECT_EQ(r.status, 0);
+  for (const char* name : {"--radius", "--bias", "--intensity", "--contrast", "--samples", "--blur-radius", "--no-blur"})
+    EXPECT_NE(r.out.find(name), std::string::npos) << name;
+}

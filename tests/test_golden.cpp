@@ -1,0 +1,50 @@
+// Golden image of the built-in scene at its fixed camera. Regenerate (after an intended change) with
+//   OBSCURA_UPDATE_GOLDEN=1 ctest --test-dir build -R Golden      (or: tools/update-golden.sh)
+// and commit tests/golden/*.png together with the change that explains it.
+#include <gtest/gtest.h>
+
+#include <cstdlib>
+
+#include "TestSupport.h"
+#include "scene/BuiltinScene.h"
+#include "scene/ImageIo.h"
+
+using namespace obscura;
+
+namespace {
+
+void compareWithGolden(View view, const std::string& file) {
+  Renderer renderer = test::makeRenderer();
+  renderer.setScene(makeBuiltinScene());
+  const Camera camera = builtinSceneCamera(640, 360);
+  const test::RenderedImage image = test::render(renderer, camera, AoSettings{}, view);
+  Image rendered;
+  rendered.width = image.width;
+  rendered.height = image.height;
+  rendered.rgba = image.rgba;
+  const std::string path = test::sourceDir() + "/tests/golden/" + file;
+  if (std::getenv("OBSCURA_UPDATE_GOLDEN")) {
+    writePng(path, rendered);
+    GTEST_SKIP() << "wrote " << path;
+  }
+  const Image golden = readPng(path);
+  ASSERT_EQ(golden.width, rendered.width);
+  ASSERT_EQ(golden.height, rendered.height);
+  double sum = 0.0;
+  size_t large = 0;
+  for (size_t i = 0; i < golden.rgba.size(); ++i) {
+    const int diff = std::abs(golden.rgba[i] - rendered.rgba[i]);
+    sum += diff;
+    large += diff > 24;
+  }
+  const double mean = sum / static_cast<double>(golden.rgba.size());
+  // llvmpipe is deterministic for one build; the tolerance absorbs other rasterisers (edge pixels, rounding).
+  EXPECT_LE(mean, 1.0) << "mean absolute difference " << mean << " (of 255); see " << path;
+  EXPECT_LE(large, golden.rgba.size() / 500) << large << " channel values differ by more than 24";
+  if (::testing::Test::HasFailure()) writePng("golden-actual-" + file, rendered);  // next to the test binary, for inspection
+}
+
+}  // namespace
+
+TEST(Golden, BuiltinSceneFinal) { compareWithGolden(View::Final, "builtin_final.png"); }
+TEST(Golden, BuiltinSceneAo) { compareWithGolden(View::Ao, "builtin_ao.png"); }

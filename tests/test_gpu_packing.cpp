@@ -1,0 +1,228 @@
+// The real shaders_es2/lib/packing.glsl on the GPU against its CPU mirror, through RGBA8 render targets:
+// shader writes -> read back -> CPU decode (bit-exact), and CPU-packed texture -> shader decode.
+#include <gtest/gtest.h>
+
+#include <random>
+
+#include "TestSupport.h"
+#include "core/LinearDepthPacking.h"
+#include "core/NormalEncoding.h"
+#include "core/ShaderLibrary.h"
+#include "gl/PipelineState.h"
+
+using namespace obscura;
+namespace ldp = obscura::LinearDepthPacking;
+
+namespace {
+
+constexpr int kSide = 256;  // 65536 pixels: one per depth code
+
+const char* kPointVertex = R"(
+attribute vec2 a_position;
+attribute vec3 a_normal;   // the value under test: a normal, or (depth, 0, 0)
+varying vec3 v_value;
+void main() {
+  v_value = a_normal;
+  gl_Position = vec4(a_position, 0.0, 1.0);
+  gl_PointSize = 1.0;
+}
+)";
+
+gl::Program buildProgram(const char* name, const std::string& vertex, const std::string& fragment) {
+  return gl::Program(name, ShaderLibrary::composeText(vertex, {}, {}), ShaderLibrary::composeText(fragment, {}, {}));
+}
+
+// Draws one point per value at pixel i (row-major from the bottom), with `values` in attribute slot 1.
+std::vector<std::uint8_t> drawPoints(const gl::Program& program, const std::vector<glm::vec3>& values) {
+  const gl::RenderTarget target("points", kSide, kSide, GL_NEAREST, gl::RenderTarget::Depth::None, false);
+  target.bindForDrawing();
+  glClearColor(0, 0, 0, 0);
+  glClear(GL_COLOR_BUFFER_BIT);
+  std::vector<float> vertices;
+  for (size_t i = 0; i < values.size(); ++i) {
+    const float x = (static_cast<float>(i % kSide) + 0.5f) / kSide * 2.0f - 1.0f;
+    const float y = (static_cast<float>(i / kSide) + 0.5f) / kSide * 2.0f - 1.0f;
+    vertices.insert(vertices.end(), {x, y, values[i].x, values[i].y, values[i].z});
+  }
+  gl::BufferHandle buffer = gl::BufferHandle::create();
+  glBindBuffer(GL_ARRAY_BUFFER, buffer.id());
+  glBufferData(GL_ARRAY_BUFFER, static_cast<GLsizeiptr>(vertices.size() * 4), vertices.data(), GL_STATIC_DRAW);
+  glEnableVertexAttribArray(gl::kAttribPosition);
+  glEnableVertexAttribArray(gl::kAttribNormal);
+  glVertexAttribPointer(gl::kAttribPosition, 2, GL_FLOAT, GL_FALSE, 20, nullptr);
+  glVertexAttribPointer(gl::kAttribNormal, 3, GL_FLOAT, GL_FALSE, 20, reinterpret_cast<const void*>(8));
+  program.use();
+  glDrawArrays(GL_POINTS, 0, static_cast<GLsizei>(values.size()));
+  gl::restoreBaselineState();
+  std::vector<std::uint8_t> topDown = target.readRgba();
+  // Back to bottom-up order, so pixel i is index i.
+  std::vector<std::uint8_t> bottomUp(topDown.size());
+  for (int y = 0; y < kSide; ++y)
+    std::copy_n(&topDown[static_cast<size_t>(kSide - 1 - y) * kSide * 4], kSide * 4,
+                &bottomUp[static_cast<size_t>(y) * kSide * 4]);
+  glBindFramebuffer(GL_FRAMEBUFFER, 0);
+  return bottomUp;
+}
+
+}  // namespace
+
+TEST(GpuPacking, EveryDepthCodeWrittenByTheShaderDecodesExactlyOnTheCpu) {
+  test::context();
+  const gl::Program program = buildProgram("pack all codes", R"(
+attribute vec2 a_position;
+void main() { gl_Position = vec4(a_position, 0.0, 1.0); }
+)", R"(
+#include "lib/precision.glsl"
+#include "lib/packing.glsl"
+void main() {
+  // gl_FragCoord is mediump in GLSL ES 1.00: copy it into highp variables before doing 16-bit arithmetic.
+  float x = floor(gl_FragCoord.x);
+  float y = floor(gl_FragCoord.y);
+  float code = y * 256.0 + x;
+  gl_FragColor = vec4(0.0, 0.0, packLinearDepth(code / 65535.0));
+}
+)");
+  const gl::RenderTarget target("codes", kSide, kSide, GL_NEAREST, gl::RenderTarget::Depth::None, false);
+  target.bindForDrawing();
+  const FullscreenTriangle triangle;
+  program.use();
+  triangle.draw();
+  gl::restoreBaselineState();
+  const std::vector<std::uint8_t> pixels = target.readRgba();
+  glBindFramebuffer(GL_FRAMEBUFFER, 0);
+  int mismatches = 0;
+  for (int y = 0; y < kSide; ++y) {
+    for (int x = 0; x < kSide; ++x) {
+      const auto code = static_cast<std::uint16_t>((kSide - 1 - y) * kSide + x);
+      const std::uint8_t* p = &pixels[(static_cast<size_t>(y) * kSide + x) * 4];
+      const auto expected = ldp::bytesFromCode(code);
+      if (p[2] != expected[0] || p[3] != expected[1] || ldp::codeFromBytes(p[2], p[3]) != code) {
+        if (++mismatches <= 5 || (mismatches % 5000) == 0)
+          ADD_FAILURE() << "code " << code << ": GPU bytes " << int(p[2]) << "," << int(p[3]) << ", CPU "
+                        << int(expected[0]) << "," << int(expected[1]);
+      }
+    }
+  }
+  EXPECT_EQ(mismatches, 0);
+}
+
+TEST(GpuPacking, ArbitraryDepthsPackLikeTheCpuMirror) {
+  test::context();
+  std::vector<glm::vec3> values;
+  for (float d : {0.0f, 1.0f, 1e-9f, 1.0f - 1e-7f, 0.5f, 0.25f, 0.75f, 1.0f / 3.0f}) values.emplace_back(d, 0, 0);
+  std::mt19937 rng(7);
+  std::uniform_real_distribution<float> uniform(0.0f, 1.0f);
+  while (values.size() < kSide * kSide) {
+    const float d = uniform(rng);
+    // Skip values within a hair of a rounding boundary, where float evaluation order may legitimately differ.
+    const float scaled = d * 65535.0f;
+    if (std::abs(scaled - std::floor(scaled) - 0.5f) < 1e-3f) continue;
+    values.emplace_back(d, 0, 0);
+  }
+  const gl::Program program = buildProgram("pack depths", kPointVertex, R"(
+#include "lib/precision.glsl"
+#include "lib/packing.glsl"
+varying vec3 v_value;
+void main() { gl_FragColor = vec4(0.0, 0.0, packLinearDepth(v_value.x)); }
+)");
+  const std::vector<std::uint8_t> pixels = drawPoints(program, values);
+  int mismatches = 0;
+  for (size_t i = 0; i < values.size(); ++i) {
+    const auto expected = ldp::bytesFromCode(ldp::codeFromDepth(values[i].x));
+    if (pixels[i * 4 + 2] != expected[0] || pixels[i * 4 + 3] != expected[1]) {
+      if (++mismatches < 5) ADD_FAILURE() << "depth " << values[i].x << ": GPU " << int(pixels[i * 4 + 2]) << ","
+                                          << int(pixels[i * 4 + 3]) << " CPU " << int(expected[0]) << ","
+                                          << int(expected[1]);
+    }
+  }
+  EXPECT_EQ(mismatches, 0);
+}
+
+TEST(GpuPacking, NormalsEncodedByTheShaderMatchTheCpuMirror) {
+  test::context();
+  std::vector<glm::vec3> dirs = encodingTestDirections(50000);
+  dirs.resize(std::min<size_t>(dirs.size(), kSide * kSide));
+  const gl::Program program = buildProgram("encode normals", kPointVertex, R"(
+#include "lib/precision.glsl"
+#include "lib/packing.glsl"
+varying vec3 v_value;
+void main() { gl_FragColor = vec4(encodeNormal(v_value), 0.0, 0.0); }
+)");
+  const std::vector<std::uint8_t> pixels = drawPoints(program, dirs);
+  int exact = 0, offByOne = 0, worse = 0;
+  double maxError = 0.0;
+  for (size_t i = 0; i < dirs.size(); ++i) {
+    const auto cpu = encodeNormal(dirs[i]);
+    const int dx = std::abs(pixels[i * 4] - cpu[0]), dy = std::abs(pixels[i * 4 + 1] - cpu[1]);
+    if (dx == 0 && dy == 0) ++exact;
+    else if (dx <= 1 && dy <= 1) ++offByOne;
+    else ++worse;
+    maxError = std::max(maxError, angleBetweenDegrees(dirs[i], decodeNormal(pixels[i * 4], pixels[i * 4 + 1])));
+  }
+  // The division and abs() in the encoder may round differently on a GPU than on the CPU, landing a value that sits
+  // on a quantisation boundary in the neighbouring code; the decoded error bound must hold regardless.
+  EXPECT_EQ(worse, 0);
+  EXPECT_GE(exact, static_cast<int>(dirs.size() * 999 / 1000)) << offByOne << " off by one";
+  EXPECT_LT(maxError, 0.95);
+  RecordProperty("exact", exact);
+  RecordProperty("off_by_one", offByOne);
+}
+
+TEST(GpuPacking, CpuPackedTexelsDecodeInTheShader) {
+  test::context();
+  // Texel (x, y): depth code y * 256 + x in BA; normal bytes (x, y) clamped to the encoder's 0..254 range in RG.
+  std::vector<std::uint8_t> texels(kSide * kSide * 4);
+  for (int y = 0; y < kSide; ++y) {
+    for (int x = 0; x < kSide; ++x) {
+      std::uint8_t* t = &texels[(static_cast<size_t>(y) * kSide + x) * 4];
+      const auto code = static_cast<std::uint16_t>(y * kSide + x);
+      const auto bytes = ldp::bytesFromCode(code);
+      t[0] = static_cast<std::uint8_t>(std::min(x, 254));
+      t[1] = static_cast<std::uint8_t>(std::min(y, 254));
+      t[2] = bytes[0];
+      t[3] = bytes[1];
+    }
+  }
+  const gl::Texture2D input(kSide, kSide, GL_NEAREST, texels.data());
+  const gl::Program program = buildProgram("decode", R"(
+attribute vec2 a_position;
+void main() { gl_Position = vec4(a_position, 0.0, 1.0); }
+)", R"(
+#include "lib/precision.glsl"
+#include "lib/packing.glsl"
+uniform sampler2D u_input;
+void main() {
+  vec4 texel = texture2D(u_input, gl_FragCoord.xy / 256.0);
+  float x = floor(gl_FragCoord.x);
+  float y = floor(gl_FragCoord.y);
+  float expectedCode = y * 256.0 + x;
+  float decoded = unpackLinearDepth(texel.ba);
+  // R: the code decodes exactly; GB: the decoded depth re-packed; A: unused.
+  float exact = unpackDepthCode(texel.ba) == expectedCode && floor(decoded * 65535.0 + 0.5) == expectedCode ? 1.0 : 0.0;
+  vec2 normalBytes = encodeNormal(decodeNormal(texel.rg));
+  gl_FragColor = vec4(exact, normalBytes, 1.0);
+}
+)");
+  const gl::RenderTarget target("decoded", kSide, kSide, GL_NEAREST, gl::RenderTarget::Depth::None, false);
+  target.bindForDrawing();
+  const FullscreenTriangle triangle;
+  program.use();
+  input.bind(0);
+  program.set("u_input", 0);
+  triangle.draw();
+  gl::restoreBaselineState();
+  const std::vector<std::uint8_t> pixels = target.readRgba();
+  glBindFramebuffer(GL_FRAMEBUFFER, 0);
+  int depthFailures = 0, normalMismatches = 0;
+  for (int y = 0; y < kSide; ++y) {
+    for (int x = 0; x < kSide; ++x) {
+      const std::uint8_t* p = &pixels[(static_cast<size_t>(kSide - 1 - y) * kSide + x) * 4];
+      if (p[0] != 255) ++depthFailures;
+      const std::uint8_t* t = &texels[(static_cast<size_t>(y) * kSide + x) * 4];
+      const auto cpu = encodeNormal(decodeNormal(t[0], t[1]));
+      if (std::abs(p[1] - cpu[0]) > 1 || std::abs(p[2] - cpu[1]) > 1) ++normalMismatches;
+    }
+  }
+  EXPECT_EQ(depthFailures, 0);
+  EXPECT_EQ(normalMismatches, 0);
+}

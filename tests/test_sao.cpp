@@ -1,0 +1,216 @@
+// SAO behaviour on synthetic scenes, and the shader against its CPU mirror (core/SaoKernel.h).
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+
+#include <glm/gtc/matrix_transform.hpp>
+
+#include "TestSupport.h"
+#include "core/FrameContext.h"
+#include "core/LinearDepthPacking.h"
+#include "core/NormalEncoding.h"
+#include "core/SaoKernel.h"
+#include "scene/Primitives.h"
+
+using namespace obscura;
+
+namespace {
+
+AoSettings rawAoSettings() {
+  AoSettings settings;
+  settings.blur = false;
+  return settings;
+}
+
+float minOverGeometry(const test::RenderedImage& ao, const test::RenderedImage& depth) {
+  float lowest = 1.0f;
+  for (int y = 0; y < ao.height; ++y)
+    for (int x = 0; x < ao.width; ++x)
+      if (depth.channel(x, y, 0) < 255) lowest = std::min(lowest, ao.red(x, y));
+  return lowest;
+}
+
+// Mean AO over a small window.
+float meanAo(const test::RenderedImage& ao, int cx, int cy, int half = 2) {
+  float sum = 0.0f;
+  int count = 0;
+  for (int y = cy - half; y <= cy + half; ++y)
+    for (int x = cx - half; x <= cx + half; ++x) {
+      sum += ao.red(x, y);
+      ++count;
+    }
+  return sum / static_cast<float>(count);
+}
+
+Mesh floorMesh(float half = 50.0f) {
+  return test::makeRectangle(glm::vec3(-half, 0.0f, half), glm::vec3(2 * half, 0, 0), glm::vec3(0, 0, -2 * half));
+}
+
+}  // namespace
+
+TEST(Sao, FlatPlaneFacingTheCameraIsUnoccluded) {
+  Renderer renderer = test::makeRenderer();
+  renderer.setScene(test::sceneOf({test::makeRectangle({-20, -20, 0}, {40, 0, 0}, {0, 40, 0})}));
+  const Camera camera = test::makeCamera({0.3f, -0.2f, 4.0f}, {0.3f, -0.2f, 0.0f}, 200, 150);
+  const auto ao = test::render(renderer, camera, rawAoSettings(), View::AoRaw);
+  const auto depth = test::render(renderer, camera, rawAoSettings(), View::Depth);
+  EXPECT_GE(minOverGeometry(ao, depth), 0.98f);
+}
+
+TEST(Sao, PlaneAtAGrazingAngleIsUnoccluded) {
+  Renderer renderer = test::makeRenderer();
+  renderer.setScene(test::sceneOf({floorMesh()}));
+  // Eye 0.5 m above an endless floor, looking at a point 12 m ahead: the floor is seen at 2 to 20 degrees.
+  const Camera camera = test::makeCamera({0.0f, 0.5f, 0.0f}, {0.0f, 0.0f, -12.0f}, 200, 150, 0.05f, 60.0f);
+  for (Falloff falloff : {Falloff::Sao2012, Falloff::Alchemy2011}) {
+    AoSettings settings = rawAoSettings();
+    settings.falloff = falloff;
+    const auto ao = test::render(renderer, camera, settings, View::AoRaw);
+    const auto depth = test::render(renderer, camera, settings, View::Depth);
+    EXPECT_GE(minOverGeometry(ao, depth), 0.98f) << falloffName(falloff);
+  }
+}
+
+TEST(Sao, InsideCornerIsDarkerThanOpenFloor) {
+  Renderer renderer = test::makeRenderer();
+  // Floor y = 0 and a wall z = -3 facing +z.
+  renderer.setScene(test::sceneOf({floorMesh(), test::makeRectangle({-50, 0, -3}, {100, 0, 0}, {0, 10, 0})}));
+  const Camera camera = test::makeCamera({0.0f, 1.5f, 2.0f}, {0.0f, 0.5f, -3.0f}, 240, 180);
+  const auto ao = test::render(renderer, camera, AoSettings{}, View::Ao);
+  // Project the corner point (0, 0.05, -2.95) and an open floor point (0, 0, 0.5) into the image.
+  const FrameCamera frame = FrameCamera::from(camera, camera.width, camera.height);
+  auto pixelOf = [&](glm::vec3 p) {
+    const glm::vec4 clip = frame.projection * frame.view * glm::vec4(p, 1.0f);
+    const glm::vec2 ndc = glm::vec2(clip) / clip.w;
+    return glm::ivec2(static_cast<int>((ndc.x * 0.5f + 0.5f) * static_cast<float>(camera.width)),
+                      static_cast<int>((0.5f - ndc.y * 0.5f) * static_cast<float>(camera.height)));
+  };
+  const glm::ivec2 corner = pixelOf({0.0f, 0.05f, -2.95f});
+  const glm::ivec2 open = pixelOf({0.0f, 0.0f, -0.8f});  // 2.2 m from the wall, more than the 1 m radius
+  ASSERT_TRUE(corner.y > 2 && corner.y < camera.height - 3 && open.y > 2 && open.y < camera.height - 3);
+  const float cornerAo = meanAo(ao, corner.x, corner.y);
+  const float openAo = meanAo(ao, open.x, open.y);
+  EXPECT_GE(openAo, 0.98f);
+  EXPECT_LT(cornerAo, openAo - 0.2f) << "corner " << cornerAo << ", open floor " << openAo;
+}
+
+TEST(Sao, SphereOnTheFloorCastsAContactShadow) {
+  Renderer renderer = test::makeRenderer();
+  Mesh sphere = makeSphere(0.5f, 64, 32);
+  for (glm::vec3& p : sphere.positions) p += glm::vec3(0.0f, 0.5f, 0.0f);
+  renderer.setScene(test::sceneOf({floorMesh(), std::move(sphere)}));
+  // Looking down at the sphere from the front and above.
+  const Camera camera = test::makeCamera({0.0f, 2.5f, 3.0f}, {0.0f, 0.0f, 0.0f}, 240, 180);
+  const auto ao = test::render(renderer, camera, AoSettings{}, View::Ao);
+  const FrameCamera frame = FrameCamera::from(camera, camera.width, camera.height);
+  auto aoAt = [&](glm::vec3 p) {
+    const glm::vec4 clip = frame.projection * frame.view * glm::vec4(p, 1.0f);
+    const glm::vec2 ndc = glm::vec2(clip) / clip.w;
+    return meanAo(ao, static_cast<int>((ndc.x * 0.5f + 0.5f) * static_cast<float>(camera.width)),
+                  static_cast<int>((0.5f - ndc.y * 0.5f) * static_cast<float>(camera.height)), 1);
+  };
+  // Floor beside the contact point (left of the sphere, 0.15 m from where it touches) vs open floor 2 m away.
+  const float contact = aoAt({-0.32f, 0.0f, 0.1f});
+  const float open = aoAt({-2.0f, 0.0f, 0.5f});
+  EXPECT_GE(open, 0.97f);
+  EXPECT_LT(contact, open - 0.25f) << "contact " << contact << ", open " << open;
+}
+
+TEST(Sao, NearAndFarPlanesDoNotChangeTheAo) {
+  Renderer renderer = test::makeRenderer();
+  Mesh sphere = makeSphere(0.5f, 64, 32);
+  for (glm::vec3& p : sphere.positions) p += glm::vec3(0.3f, 0.5f, -0.5f);
+  renderer.setScene(test::sceneOf({floorMesh(20.0f), test::makeRectangle({-20, 0, -3}, {40, 0, 0}, {0, 6, 0}),
+                                   makeBox({-1.8f, 0, -1.5f}, {-0.8f, 0.8f, -0.5f}), std::move(sphere)}));
+  const Camera a = test::makeCamera({1.0f, 1.6f, 3.5f}, {-0.2f, 0.4f, -1.0f}, 240, 180, 0.1f, 40.0f);
+  Camera b = a;
+  b.near = 0.5f;
+  b.far = 120.0f;
+  // The blurred AO (what the image uses) agrees everywhere within 2/255.
+  {
+    const auto first = test::render(renderer, a, AoSettings{}, View::Ao);
+    const auto second = test::render(renderer, b, AoSettings{}, View::Ao);
+    int worst = 0;
+    for (size_t i = 0; i < first.rgba.size(); i += 4)
+      worst = std::max(worst, std::abs(first.rgba[i] - second.rgba[i]));
+    EXPECT_LE(worst, 2) << "blurred AO: max difference " << worst << "/255";
+  }
+  // The raw AO agrees almost everywhere: a depth quantised differently can move a tap across a silhouette, which
+  // changes that one pixel's estimate until the blur averages it with its neighbours.
+  {
+    const auto first = test::render(renderer, a, AoSettings{}, View::AoRaw);
+    const auto second = test::render(renderer, b, AoSettings{}, View::AoRaw);
+    size_t outside = 0, pixels = first.rgba.size() / 4;
+    double sum = 0.0;
+    for (size_t i = 0; i < first.rgba.size(); i += 4) {
+      const int diff = std::abs(first.rgba[i] - second.rgba[i]);
+      sum += diff;
+      outside += diff > 2;
+    }
+    EXPECT_LE(sum / static_cast<double>(pixels), 0.25) << "raw AO mean difference (of 255)";
+    EXPECT_LE(outside, pixels / 500) << outside << " raw AO pixels differ by more than 2/255";
+  }
+}
+
+// The shader against the CPU mirror: both evaluate SAO over the same G-buffer.
+TEST(Sao, ShaderMatchesTheCpuMirror) {
+  Renderer renderer = test::makeRenderer();
+  Mesh sphere = makeSphere(0.5f, 48, 24);
+  for (glm::vec3& p : sphere.positions) p += glm::vec3(0.0f, 0.5f, 0.0f);
+  renderer.setScene(test::sceneOf({floorMesh(20.0f), std::move(sphere),
+                                   test::makeRectangle({-20, 0, -2}, {40, 0, 0}, {0, 6, 0})}));
+  const Camera camera = test::makeCamera({0.8f, 1.4f, 3.0f}, {0.0f, 0.4f, -0.5f}, 160, 120);
+  for (Falloff falloff : {Falloff::Sao2012, Falloff::Alchemy2011}) {
+    AoSettings settings = rawAoSettings();
+    settings.falloff = falloff;
+    settings.samples = 16;
+    settings.spiralTurns = SaoKernel::bestSpiralTurns(16);
+    const auto gpu = test::render(renderer, camera, settings, View::AoRaw);
+    const std::vector<std::uint8_t> gbuffer = renderer.gbuffer().readRgba();
+    const FrameCamera frame = FrameCamera::from(camera, camera.width, camera.height);
+    const int w = camera.width, h = camera.height;
+    // G-buffer texel at integer pixel (x, y) counted from the bottom, as the shader addresses it.
+    auto texel = [&](int x, int y) { return &gbuffer[(static_cast<size_t>(h - 1 - y) * w + x) * 4]; };
+    auto position = [&](int x, int y) {
+      const std::uint8_t* g = texel(x, y);
+      const glm::vec2 uv((static_cast<float>(x) + 0.5f) / static_cast<float>(w),
+                         (static_cast<float>(y) + 0.5f) / static_cast<float>(h));
+      return frame.reconstruction.viewPosition(
+          uv, LinearDepthPacking::depthFromCode(LinearDepthPacking::codeFromBytes(g[2], g[3])));
+    };
+    double sumDiff = 0.0;
+    int count = 0, large = 0;
+    for (int y = 0; y < h; ++y) {
+      for (int x = 0; x < w; ++x) {
+        const std::uint8_t* g = texel(x, y);
+        if (LinearDepthPacking::codeFromBytes(g[2], g[3]) == LinearDepthPacking::kBackgroundCode) continue;
+        const glm::vec3 c = position(x, y);
+        const glm::vec3 n = decodeNormal(g[0], g[1]);
+        const float disk = SaoKernel::diskRadiusPixels(settings.radius, c.z, frame.projScale(h),
+                                                       settings.maxScreenRadius * static_cast<float>(h));
+        const float spin = SaoKernel::rotationAngle(static_cast<float>(x), static_cast<float>(y));
+        float sum = 0.0f;
+        for (int i = 0; i < settings.samples; ++i) {
+          float alpha = 0.0f;
+          const glm::vec2 dir = SaoKernel::tapDirection(i, settings.samples, settings.spiralTurns, spin, &alpha);
+          const glm::vec2 tap = glm::floor(glm::vec2(x, y) + 0.5f + alpha * disk * dir);
+          const int tx = std::clamp(static_cast<int>(tap.x), 0, w - 1);
+          const int ty = std::clamp(static_cast<int>(tap.y), 0, h - 1);
+          sum += SaoKernel::tapObscurance(falloff, position(tx, ty) - c, n, settings.radius, settings.bias);
+        }
+        const float cpu = SaoKernel::ambientVisibility(falloff, sum, settings.samples, settings.intensity,
+                                                       settings.contrast);
+        const float diff = std::abs(cpu * 255.0f - gpu.channel(x, h - 1 - y, 0));
+        sumDiff += diff;
+        large += diff > 4.0f;
+        ++count;
+      }
+    }
+    ASSERT_GT(count, w * h / 2);
+    // Float evaluation differs a little (cos/sin, fused multiply-add), which can move a tap to the neighbouring
+    // texel; the mean agrees to well under one code and almost every pixel within four codes.
+    EXPECT_LE(sumDiff / count, 1.0) << falloffName(falloff);
+    EXPECT_LE(large, count / 100) << falloffName(falloff);
+  }
+}

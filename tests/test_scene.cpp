@@ -1,0 +1,189 @@
+// CPU tests of the scene side: glTF loading (Debian's assimp-testmodels), the built-in scene, 16-bit index splitting
+// and camera files.
+#include <gtest/gtest.h>
+
+#include <fstream>
+#include <set>
+
+#include "TestSupport.h"
+#include "core/Error.h"
+#include "scene/BuiltinScene.h"
+#include "scene/Camera.h"
+#include "scene/GltfLoader.h"
+#include "scene/MeshProcessing.h"
+#include "scene/Primitives.h"
+
+using namespace obscura;
+
+namespace {
+std::string model(const std::string& relative) { return test::assimpModels() + "/" + relative; }
+
+std::string refusal(const std::function<void()>& load) {
+  try {
+    load();
+  } catch (const InputError& e) {
+    return e.what();
+  }
+  return "";
+}
+}  // namespace
+
+TEST(GltfLoader, LoadsTheSameBoxFromGltfEmbeddedAndGlb) {
+  const char* variants[] = {"BoxTextured-glTF/BoxTextured.gltf", "BoxTextured-glTF-Embedded/BoxTextured.gltf",
+                            "BoxTextured-glTF-Binary/BoxTextured.glb"};
+  for (const char* variant : variants) {
+    GltfLoadReport report;
+    const Scene scene = loadGltfFile(model(variant), &report);
+    ASSERT_EQ(scene.instances.size(), 1u) << variant;
+    EXPECT_EQ(scene.triangleCount(), 12u) << variant;
+    ASSERT_EQ(scene.materials.size(), 1u) << variant;
+    ASSERT_GE(scene.materials[0].baseColorTexture, 0) << variant;
+    const Texture& texture = scene.textures[static_cast<size_t>(scene.materials[0].baseColorTexture)];
+    ASSERT_GE(texture.image, 0) << variant;
+    EXPECT_GT(scene.images[static_cast<size_t>(texture.image)].width, 0) << variant;
+    EXPECT_EQ(scene.meshes[0].texcoords.size(), scene.meshes[0].positions.size()) << variant;
+    // The box is a unit cube, rotated and scaled by its node hierarchy.
+    const Bounds bounds = scene.worldBounds();
+    EXPECT_NEAR(bounds.radius(), std::sqrt(3.0f) / 2.0f, 1e-3f) << variant;
+  }
+}
+
+TEST(GltfLoader, LoadsTheTwoCylinderEngineHierarchy) {
+  const Scene scene = loadGltfFile(model("2CylinderEngine-glTF-Binary/2CylinderEngine.glb"));
+  EXPECT_GT(scene.instances.size(), 20u);
+  EXPECT_GT(scene.triangleCount(), 50000u);
+  for (const Mesh& mesh : scene.meshes) {
+    ASSERT_EQ(mesh.normals.size(), mesh.positions.size());
+    for (const glm::vec3& n : mesh.normals) ASSERT_NEAR(glm::length(n), 1.0f, 1e-3f);
+  }
+}
+
+TEST(GltfLoader, RefusesMissingAndMalformedFilesWithOneLineNamingTheFile) {
+  struct Case {
+    std::string path;
+    std::string expect;  // a fragment of the message
+  };
+  const Case cases[] = {
+      {"/nonexistent/scene.gltf", "cannot open"},
+      {model("MissingBin/BoxTextured.gltf"), "BoxTextured0.bin"},
+      {model("IndexOutOfRange/IndexOutOfRange.gltf"), "index 255 but only 24 vertices"},
+      {model("RecursiveNodes/RecursiveNodes.gltf"), "cycle"},
+      {model("draco/2CylinderEngine.gltf"), "KHR_draco_mesh_compression"},
+  };
+  for (const Case& c : cases) {
+    const std::string message = refusal([&] { loadGltfFile(c.path); });
+    ASSERT_FALSE(message.empty()) << c.path << " was accepted";
+    EXPECT_EQ(message.find('\n'), std::string::npos) << message;
+    EXPECT_EQ(message.rfind(c.path, 0), 0u) << message;
+    if (!c.expect.empty()) {
+      EXPECT_NE(message.find(c.expect), std::string::npos) << message;
+    }
+  }
+}
+
+TEST(GltfLoader, LoadsFromMemoryWithSideFiles) {
+  auto read = [](const std::string& path) {
+    std::ifstream file(path, std::ios::binary);
+    return std::vector<std::uint8_t>(std::istreambuf_iterator<char>(file), {});
+  };
+  const std::string dir = model("BoxTextured-glTF/");
+  const std::map<std::string, std::vector<std::uint8_t>> sideFiles = {
+      {"BoxTextured0.bin", read(dir + "BoxTextured0.bin")}, {"CesiumLogoFlat.png", read(dir + "CesiumLogoFlat.png")}};
+  const Scene scene = loadGltfMemory(read(dir + "BoxTextured.gltf"), "BoxTextured.gltf", sideFiles);
+  EXPECT_EQ(scene.triangleCount(), 12u);
+  // Without its buffer, the same file is refused (not crashed on).
+  const std::string message = refusal([&] { loadGltfMemory(read(dir + "BoxTextured.gltf"), "dropped.gltf"); });
+  EXPECT_EQ(message.rfind("dropped.gltf: ", 0), 0u) << message;
+}
+
+TEST(GltfLoader, GeneratesFlatNormalsWhenMissing) {
+  Mesh mesh;
+  mesh.positions = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {1, 1, 0}};
+  mesh.indices = {0, 1, 2, 2, 1, 3};
+  generateFlatNormals(mesh);
+  ASSERT_EQ(mesh.positions.size(), 6u);
+  for (const glm::vec3& n : mesh.normals) EXPECT_EQ(n, glm::vec3(0, 0, 1));
+}
+
+TEST(MeshProcessing, SplitsLargeMeshesIntoSixteenBitPieces) {
+  Mesh big = makeSphere(1.0f, 400, 200);  // 80 k vertices
+  ASSERT_GT(big.positions.size(), 65535u);
+  const std::vector<Mesh> pieces = splitForShortIndices(big);
+  ASSERT_GT(pieces.size(), 1u);
+  size_t triangles = 0;
+  std::multiset<std::tuple<float, float, float>> original, split;
+  for (size_t t = 0; t < big.indices.size(); ++t) {
+    const glm::vec3 p = big.positions[big.indices[t]];
+    original.insert({p.x, p.y, p.z});
+  }
+  for (const Mesh& piece : pieces) {
+    EXPECT_LE(piece.positions.size(), 65535u);
+    for (std::uint32_t index : piece.indices) {
+      ASSERT_LT(index, piece.positions.size());
+      const glm::vec3 p = piece.positions[index];
+      split.insert({p.x, p.y, p.z});
+    }
+    triangles += piece.indices.size() / 3;
+  }
+  EXPECT_EQ(triangles, big.indices.size() / 3);
+  EXPECT_TRUE(original == split) << "the pieces must draw exactly the original triangles";
+}
+
+TEST(BuiltinScene, IsRichAndSitsOnTheFloor) {
+  const Scene scene = makeBuiltinScene();
+  EXPECT_GE(scene.instances.size(), 20u);
+  EXPECT_GT(scene.triangleCount(), 10000u);
+  const Bounds bounds = scene.worldBounds();
+  EXPECT_NEAR(bounds.min.y, -0.2f, 1e-4f);  // the floor slab's underside
+  EXPECT_GT(bounds.max.y, 3.5f);
+}
+
+TEST(CameraJson, ParsesAllFieldsAndRoundTrips) {
+  const Camera camera = Camera::fromJson(
+      R"({"eye":[1,2,3],"target":[0,1,0],"up":[0,1,0],"fovy_deg":45,"near":0.2,"far":80,"width":320,"height":200})",
+      "cam.json");
+  EXPECT_EQ(camera.eye, glm::vec3(1, 2, 3));
+  EXPECT_EQ(camera.width, 320);
+  EXPECT_FLOAT_EQ(camera.near, 0.2f);
+  const Camera again = Camera::fromJson(camera.toJson(), "again");
+  EXPECT_EQ(again.eye, camera.eye);
+  EXPECT_EQ(again.target, camera.target);
+  EXPECT_FLOAT_EQ(again.fovyDegrees, camera.fovyDegrees);
+}
+
+TEST(CameraJson, RefusesBadInputSayingWhatAndWhere) {
+  const std::pair<const char*, const char*> cases[] = {
+      {R"({"eye":[1,2,3],"target":[0,1,0],)", "malformed JSON at byte"},
+      {R"({"target":[0,1,0]})", "eye: missing"},
+      {R"({"eye":[1,2],"target":[0,1,0]})", "eye: expected an array of three numbers"},
+      {R"({"eye":[0,0,0],"target":[0,0,0]})", "target: must differ from eye"},
+      {R"({"eye":[0,5,0],"target":[0,0,0]})", "up: must not be parallel"},
+      {R"({"eye":[0,0,5],"target":[0,0,0],"near":0})", "near: must be > 0"},
+      {R"({"eye":[0,0,5],"target":[0,0,0],"near":1,"far":0.5})", "far: must be greater than near"},
+      {R"({"eye":[0,0,5],"target":[0,0,0],"fovy_deg":200})", "fovy_deg: must be in"},
+      {R"({"eye":[0,0,5],"target":[0,0,0],"width":0})", "width: must be in"},
+      {R"({"eye":[0,0,5],"target":[0,0,0],"fov":50})", "unknown field 'fov'"},
+  };
+  for (const auto& [text, expect] : cases) {
+    const std::string message = refusal([&] { Camera::fromJson(text, "cam.json"); });
+    EXPECT_EQ(message.rfind("cam.json: ", 0), 0u) << text << " -> " << message;
+    EXPECT_NE(message.find(expect), std::string::npos) << text << " -> " << message;
+  }
+}
+
+TEST(CameraFit, FramesTheBoundsInsideTheFrustum) {
+  Bounds bounds;
+  bounds.add({-3, 0, -1});
+  bounds.add({5, 2, 4});
+  const Camera camera = Camera::fit(bounds, 640, 360);
+  camera.validate("fit");
+  const glm::mat4 viewProjection = camera.projection() * camera.view();
+  for (int corner = 0; corner < 8; ++corner) {
+    const glm::vec3 p((corner & 1) ? bounds.max.x : bounds.min.x, (corner & 2) ? bounds.max.y : bounds.min.y,
+                      (corner & 4) ? bounds.max.z : bounds.min.z);
+    const glm::vec4 clip = viewProjection * glm::vec4(p, 1.0f);
+    EXPECT_LE(std::abs(clip.x), clip.w * 1.0001f);
+    EXPECT_LE(std::abs(clip.y), clip.w * 1.0001f);
+    EXPECT_LE(std::abs(clip.z), clip.w * 1.0001f);
+  }
+}

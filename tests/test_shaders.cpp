@@ -1,0 +1,49 @@
+// Every program variant the renderer can build compiles and links on the headless context; a broken shader is
+// reported with the program's name and the driver's log. (tests/check_shaders_glslang.sh validates the same text
+// with glslangValidator as GLSL ES 1.00.)
+#include <gtest/gtest.h>
+
+#include "TestSupport.h"
+#include "core/Error.h"
+#include "core/ShaderLibrary.h"
+
+using namespace obscura;
+
+TEST(Shaders, EveryVariantCompilesAndLinks) {
+  test::context();
+  const std::vector<ProgramSpec> specs = Renderer::allProgramSpecs();
+  EXPECT_GE(specs.size(), 20u);
+  for (const ProgramSpec& spec : specs) {
+    try {
+      const gl::Program program = spec.build();
+      EXPECT_NE(program.id(), 0u) << spec.name;
+    } catch (const GlError& e) {
+      ADD_FAILURE() << e.what();
+    }
+  }
+}
+
+TEST(Shaders, CompileFailureNamesTheProgramAndQuotesTheLog) {
+  test::context();
+  try {
+    gl::Program("broken[test]", ShaderLibrary::composeText("void main() { gl_Position = vec4(0.0); }", {}, {}),
+                ShaderLibrary::composeText("void main() { gl_FragColor = undefined_symbol; }", {}, {}));
+    FAIL() << "a broken shader compiled";
+  } catch (const GlError& e) {
+    const std::string message = e.what();
+    EXPECT_NE(message.find("broken[test]"), std::string::npos) << message;
+    EXPECT_NE(message.find("fragment"), std::string::npos) << message;
+    EXPECT_NE(message.find("undefined_symbol"), std::string::npos) << message;
+  }
+}
+
+TEST(Shaders, SourcesAreGlslEs100WithoutForbiddenFeatures) {
+  for (const ProgramSpec& spec : Renderer::allProgramSpecs()) {
+    for (const std::string& source : {spec.vertexSource(), spec.fragmentSource()}) {
+      EXPECT_EQ(source.rfind("#version 100\n", 0), 0u) << spec.name;
+      // No bitwise operators, no texelFetch, no integer textures: GLSL ES 1.00 has none of them.
+      for (const char* forbidden : {"texelFetch", "textureSize", "<<", ">>", " ^ ", " | ", " & ", "uint", "flat "})
+        EXPECT_EQ(source.find(forbidden), std::string::npos) << spec.name << " uses '" << forbidden << "'";
+    }
+  }
+}

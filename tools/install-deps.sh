@@ -1,0 +1,39 @@
+#!/usr/bin/env bash
+# Installs what Obscura needs on a fresh Debian 12 machine, and nothing that is already there.
+# Debian packages only (apt); the browser tests' npm packages are installed by tools/test.sh into tests/browser.
+set -euo pipefail
+
+packages=(
+  # build
+  cmake g++ make pkg-config git python3
+  # headless GL (OSMesa and Mesa EGL surfaceless), window GL (GLFW), GLES 2 headers
+  libosmesa6-dev libegl-dev libegl-mesa0 libgles-dev libglfw3-dev
+  # header-only libraries
+  libglm-dev libtinygltf-dev libstb-dev nlohmann-json3-dev
+  # tests and tools
+  libgtest-dev glslang-tools assimp-testmodels gnuplot-nox
+  # sanitizers and fuzzing (clang's runtime)
+  clang libclang-rt-14-dev
+  # web build, browser tests, desktop viewer test
+  emscripten nodejs npm chromium xvfb xauth
+  # reference ray tracer
+  libembree-dev
+)
+
+missing=()
+for package in "${packages[@]}"; do
+  if ! dpkg-query -W -f='${Status}' "$package" 2>/dev/null | grep -q "install ok installed"; then
+    missing+=("$package")
+  fi
+done
+
+if [ ${#missing[@]} -eq 0 ]; then
+  echo "install-deps: all ${#packages[@]} packages present"
+  exit 0
+fi
+
+echo "install-deps: installing ${missing[*]}"
+sudo=""
+if [ "$(id -u)" -ne 0 ]; then sudo="sudo"; fi
+$sudo apt-get update -q
+DEBIAN_FRONTEND=noninteractive $sudo apt-get install -y -q --no-install-recommends "${missing[@]}"
