@@ -14,10 +14,11 @@
 #include "lib/precision.glsl"
 #include "lib/packing.glsl"
 #include "lib/reconstruct.glsl"
+#include "lib/ao_resolution.glsl"
 
 uniform sampler2D u_ao;
 uniform vec2 u_aoSize;        // pixels
-uniform vec2 u_stepPixels;    // blur direction times stride, in pixels
+uniform vec2 u_stepPixels;    // blur direction times stride, in AO pixels
 uniform float u_gaussianK;    // 1 / (2 s^2)
 uniform float u_invSigma2;    // 1 / sigma^2, metres^-2
 #if NORMAL_AWARE
@@ -28,9 +29,18 @@ uniform float u_depthRange;   // far - near
 #endif
 
 varying vec2 v_uv;
-varying vec3 v_farRay;
+
+#if NORMAL_AWARE
+// View position and normal of the surface AO pixel `aoPixel` stands for, given its depth code.
+vec3 surfacePoint(vec2 aoPixel, float code, out vec3 normal) {
+  vec2 uv = (gbufferPixelOf(aoPixel) + 0.5) / u_gbufferSize;
+  normal = decodeNormal(texture2D(u_gbuffer, uv).rg);
+  return viewPositionOnRay(farPlaneRay(uv), code * (1.0 / 65535.0));
+}
+#endif
 
 void main() {
+  vec2 aoPixel = floor(v_uv * u_aoSize);
   vec4 centre = texture2D(u_ao, v_uv);
   float code = unpackDepthCode(centre.gb);
   vec2 key = bytesToChannels(channelsToBytes(centre.gb));
@@ -38,33 +48,33 @@ void main() {
     gl_FragColor = vec4(1.0, key, 1.0);
     return;
   }
-  float depth = code * (1.0 / 65535.0);
 #if NORMAL_AWARE
-  vec3 P = viewPositionOnRay(v_farRay, depth);
-  vec3 n = decodeNormal(texture2D(u_gbuffer, v_uv).rg);
+  vec3 n;
+  vec3 P = surfacePoint(aoPixel, code, n);
 #else
-  float z = u_near + depth * u_depthRange;
+  float z = u_near + code * (1.0 / 65535.0) * u_depthRange;
 #endif
 
   float sum = centre.r;
   float weightSum = 1.0;
   for (int i = -BLUR_RADIUS; i <= BLUR_RADIUS; ++i) {
     if (i == 0) continue;
-    vec2 uv = v_uv + u_stepPixels * float(i) / u_aoSize;
-    vec4 tap = texture2D(u_ao, uv);
+    vec2 tapPixel = aoPixel + u_stepPixels * float(i);
+    vec4 tap = texture2D(u_ao, (tapPixel + 0.5) / u_aoSize);
     float tapCode = unpackDepthCode(tap.gb);
-    float tapDepth = tapCode * (1.0 / 65535.0);
 #if NORMAL_AWARE
-    vec3 tapP = viewPositionOnRay(farPlaneRay(uv), tapDepth);
+    vec3 tapNormal;
+    vec3 tapP = surfacePoint(tapPixel, tapCode, tapNormal);
     float delta = dot(n, tapP - P);
-    float normalWeight = pow(max(0.0, dot(n, decodeNormal(texture2D(u_gbuffer, uv).rg)) * 0.5 + 0.5), 10.0);
+    float normalWeight = pow(max(dot(n, tapNormal) * 0.5 + 0.5, 0.0), 10.0);
 #else
-    float delta = u_near + tapDepth * u_depthRange - z;
+    float delta = u_near + tapCode * (1.0 / 65535.0) * u_depthRange - z;
     float normalWeight = 1.0;
 #endif
     float weight = exp(-float(i * i) * u_gaussianK - delta * delta * u_invSigma2) * normalWeight;
     // Taps on the background or outside the image contribute nothing.
-    if (isBackgroundCode(tapCode) || uv.x < 0.0 || uv.y < 0.0 || uv.x > 1.0 || uv.y > 1.0) weight = 0.0;
+    bool outside = tapPixel.x < 0.0 || tapPixel.y < 0.0 || tapPixel.x >= u_aoSize.x || tapPixel.y >= u_aoSize.y;
+    if (isBackgroundCode(tapCode) || outside) weight = 0.0;
     sum += tap.r * weight;
     weightSum += weight;
   }

@@ -5,20 +5,35 @@
 //   NUM_SAMPLES        taps per pixel (s)
 //   NUM_SPIRAL_TURNS   turns of the tap spiral (tau), coprime with NUM_SAMPLES
 //   FALLOFF_SAO2012    1: SAO's smooth (r^2 - v.v)^3 falloff; 0: Alchemy 2011's hard cut at r
+//   DEPTH_HIERARCHY    0: every tap reads the G-buffer
+//                      1: far taps read levels 1..MAX_MIP_LEVEL, each its own texture (core GLES 2)
+//                      2: far taps read levels of one mipmapped texture with texture2DLodEXT (extension path)
+//   MAX_MIP_LEVEL, LOG_MAX_OFFSET   the hierarchy's depth and the SAO paper's level choice (see tapDepthCode)
 //
 // Output: R = ambient visibility A, GB = the centre's 16-bit depth code (the blur's key), A = 1.
 #include "lib/precision.glsl"
 #include "lib/packing.glsl"
 #include "lib/reconstruct.glsl"
+#include "lib/ao_resolution.glsl"
 
 uniform sampler2D u_gbuffer;
-uniform vec2 u_gbufferSize;     // G-buffer size in pixels
-uniform float u_projScale;      // pixels per metre at 1 m: height / (2 tan(fovy / 2))
+uniform vec2 u_aoSize;          // this pass's target size: the G-buffer's, or half of it (floor)
+uniform float u_projScale;      // pixels per metre at 1 m: height / (2 tan(fovy / 2)), at G-buffer resolution
 uniform float u_radius;         // r, metres
 uniform float u_bias;           // beta, metres
 uniform float u_intensityScale; // sigma * 5 / s (SAO 2012) or sigma * 2 / s (Alchemy 2011)
 uniform float u_contrast;       // k
 uniform float u_maxRadiusPixels;
+#if DEPTH_HIERARCHY == 1
+uniform sampler2D u_level1;
+uniform sampler2D u_level2;
+uniform sampler2D u_level3;
+uniform sampler2D u_level4;
+uniform sampler2D u_level5;
+#elif DEPTH_HIERARCHY == 2
+uniform sampler2D u_depthMips;  // mip level j holds hierarchy level j + 1
+uniform vec2 u_depthMipsSize;   // size of its mip level 0 (a power of two)
+#endif
 
 varying vec2 v_uv;
 varying vec3 v_farRay;
@@ -33,10 +48,42 @@ float rotationAngle(vec2 pixel) {
   return kTwoPi * (noise - floor(noise));
 }
 
-// View-space position of the surface seen through G-buffer pixel `pixel` (integer coordinates).
-vec3 tapPosition(vec2 pixel) {
-  vec2 uv = (pixel + 0.5) / u_gbufferSize;
-  return viewPositionOnRay(farPlaneRay(uv), unpackLinearDepth(texture2D(u_gbuffer, uv).ba));
+vec2 levelSize(float level) { return max(floor(u_gbufferSize / exp2(level)), vec2(1.0)); }
+
+// The surface point a tap at G-buffer pixel `tapPixel`, `tapDistance` pixels from the centre, reads.
+// SAO paper, sec. 3.3: a tap at distance h reads level m = clamp(floor(log2 h) - LOG_MAX_OFFSET, 0, MAX_MIP_LEVEL),
+// so taps within 2^(LOG_MAX_OFFSET + 1) pixels read full resolution and each farther octave reads a level half as
+// fine. Neighbouring pixels' far taps then land in the same few texels (cache hits), and the cost per pixel stops
+// growing with the projected radius. Level m holds the real depth of one pixel per 2^m x 2^m block (no averaging)
+// and that pixel's place in the block, so the point is rebuilt on that pixel's own ray.
+vec3 tapPoint(vec2 tapPixel, float tapDistance) {
+  vec2 pixel = tapPixel;
+  vec4 texel;
+#if DEPTH_HIERARCHY == 0
+  texel = texture2D(u_gbuffer, (pixel + 0.5) / u_gbufferSize);
+#else
+  float level = clamp(floor(log2(max(tapDistance, 1.0))) - float(LOG_MAX_OFFSET), 0.0, float(MAX_MIP_LEVEL));
+  if (level < 0.5) {
+    texel = texture2D(u_gbuffer, (pixel + 0.5) / u_gbufferSize);
+  } else {
+    vec2 size = levelSize(level);
+    // SAO: ssP >> mipLevel, clamped to the level.
+    vec2 levelPixel = min(floor(tapPixel / exp2(level)), size - 1.0);
+    vec2 uv = (levelPixel + 0.5) / size;
+#if DEPTH_HIERARCHY == 1
+    if (level < 1.5) texel = texture2D(u_level1, uv);
+    else if (level < 2.5) texel = texture2D(u_level2, uv);
+    else if (level < 3.5) texel = texture2D(u_level3, uv);
+    else if (level < 4.5) texel = texture2D(u_level4, uv);
+    else texel = texture2D(u_level5, uv);
+#else
+    // Mip level j of a power-of-two texture is u_depthMipsSize / 2^j texels; hierarchy level j + 1 fills its corner.
+    texel = texture2DLodEXT(u_depthMips, uv * size * exp2(level - 1.0) / u_depthMipsSize, level - 1.0);
+#endif
+    pixel = levelPixel * exp2(level) + channelsToBytes(texel.rg);
+  }
+#endif
+  return viewPositionOnRay(farPlaneRay((pixel + 0.5) / u_gbufferSize), unpackLinearDepth(texel.ba));
 }
 
 float tapObscurance(vec3 v, vec3 n) {
@@ -53,28 +100,31 @@ float tapObscurance(vec3 v, vec3 n) {
 
 void main() {
   // Integer pixel coordinates from the highp varying: gl_FragCoord is only mediump in GLSL ES 1.00 (exact to 2048).
-  vec2 pixel = floor(v_uv * u_gbufferSize);
-  vec4 centre = texture2D(u_gbuffer, v_uv);
+  vec2 aoPixel = floor(v_uv * u_aoSize);
+  vec2 pixel = gbufferPixelOf(aoPixel);
+  vec2 uv = (pixel + 0.5) / u_gbufferSize;
+  vec4 centre = texture2D(u_gbuffer, uv);
   float code = unpackDepthCode(centre.ba);
   if (isBackgroundCode(code)) {
     gl_FragColor = vec4(1.0);
     return;
   }
-  vec3 C = viewPositionOnRay(v_farRay, code * (1.0 / 65535.0));
+  vec3 C = viewPositionOnRay(farPlaneRay(uv), code * (1.0 / 65535.0));
   vec3 n = decodeNormal(centre.rg);
 
   // The world-space radius projected to pixels at the centre's depth, clamped (paper sec. 3.2).
   float diskRadius = min(u_projScale * u_radius / -C.z, u_maxRadiusPixels);
-  float spin = rotationAngle(pixel);
+  float spin = rotationAngle(aoPixel);
 
   float sum = 0.0;
   for (int i = 0; i < NUM_SAMPLES; ++i) {
     float alpha = (float(i) + 0.5) * (1.0 / float(NUM_SAMPLES));
     float angle = alpha * (float(NUM_SPIRAL_TURNS) * kTwoPi) + spin;
+    float tapDistance = alpha * diskRadius;
     // The texel holding the tap point; taps leaving the image read its edge, as in the SAO reference code.
-    vec2 tapPixel = floor(pixel + 0.5 + alpha * diskRadius * vec2(cos(angle), sin(angle)));
-    tapPixel = clamp(tapPixel, vec2(0.0), u_gbufferSize - 1.0);
-    sum += tapObscurance(tapPosition(tapPixel) - C, n);
+    vec2 tapPixel = clamp(floor(pixel + 0.5 + tapDistance * vec2(cos(angle), sin(angle))), vec2(0.0),
+                          u_gbufferSize - 1.0);
+    sum += tapObscurance(tapPoint(tapPixel, tapDistance) - C, n);
   }
   float visibility = pow(max(0.0, 1.0 - sum * u_intensityScale), u_contrast);
   gl_FragColor = vec4(visibility, bytesToChannels(channelsToBytes(centre.ba)), 1.0);

@@ -45,8 +45,8 @@ std::vector<float> blur(const SyntheticFrame& frame, const AoSettings& settings)
   const gl::Texture2D ao(kWidth, kHeight, GL_NEAREST, frame.ao.data());
   const gl::Texture2D gbuffer(kWidth, kHeight, GL_NEAREST, frame.gbuffer.data());
   const FrameCamera camera = FrameCamera::from(frame.camera, kWidth, kHeight);
-  pass.render(BilateralBlurPass::Direction::Horizontal, ao, gbuffer, camera, settings);
-  pass.render(BilateralBlurPass::Direction::Vertical, ao, gbuffer, camera, settings);
+  pass.render(BilateralBlurPass::Direction::Horizontal, ao, gbuffer, camera, settings, 1);
+  pass.render(BilateralBlurPass::Direction::Vertical, ao, gbuffer, camera, settings, 1);
   const std::vector<std::uint8_t> topDown = pass.output().readRgba();
   glBindFramebuffer(GL_FRAMEBUFFER, 0);
   std::vector<float> out(kWidth * kHeight);

@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <sys/wait.h>
+#include <unistd.h>
 
 #include <cstdio>
 #include <fstream>
@@ -26,18 +27,23 @@ std::string slurp(const std::string& path) {
 }
 
 Result run(const std::string& args) {
-  const std::string out = ::testing::TempDir() + "cli.out", err = ::testing::TempDir() + "cli.err";
+  // ctest runs the CLI tests in parallel processes: name the capture files per process and call.
+  static int call = 0;
+  const std::string stem = ::testing::TempDir() + "cli-" + std::to_string(getpid()) + "-" + std::to_string(++call);
+  const std::string out = stem + ".out", err = stem + ".err";
   const std::string command = std::string(OBSCURA_RENDER_BINARY) + " " + args + " >" + out + " 2>" + err;
   const int raw = std::system(command.c_str());
   Result result;
   result.status = WIFEXITED(raw) ? WEXITSTATUS(raw) : 128 + WTERMSIG(raw);
   result.out = slurp(out);
   result.err = slurp(err);
+  std::remove(out.c_str());
+  std::remove(err.c_str());
   return result;
 }
 
 std::string writeFile(const std::string& name, const std::string& text) {
-  const std::string path = ::testing::TempDir() + name;
+  const std::string path = ::testing::TempDir() + std::to_string(getpid()) + "-" + name;
   std::ofstream(path) << text;
   return path;
 }
@@ -76,7 +82,7 @@ TEST(Cli, BadInputExitsWithStatusTwoAndOneLine) {
 
 TEST(Cli, RendersEveryViewOfTheBuiltinScene) {
   for (const char* view : {"final", "ao", "ao-raw", "normals", "depth"}) {
-    const std::string out = ::testing::TempDir() + "view-" + view + ".png";
+    const std::string out = ::testing::TempDir() + std::to_string(getpid()) + "-view-" + view + ".png";
     const Result r = run(std::string("--size 96x64 --view ") + view + " --out " + out);
     ASSERT_EQ(r.status, 0) << view << ": " << r.err;
     const obscura::Image image = obscura::readPng(out);
@@ -86,7 +92,7 @@ TEST(Cli, RendersEveryViewOfTheBuiltinScene) {
 }
 
 TEST(Cli, RendersAGltfFileWithFitAndBenchPrintsEveryPass) {
-  const std::string out = ::testing::TempDir() + "engine.png";
+  const std::string out = ::testing::TempDir() + std::to_string(getpid()) + "-engine.png";
   const Result r = run("--scene " + obscura::test::assimpModels() +
                        "/2CylinderEngine-glTF-Binary/2CylinderEngine.glb --fit --size 160x90 --bench 2 --out " + out);
   ASSERT_EQ(r.status, 0) << r.err;

@@ -153,7 +153,7 @@ TEST(Sao, NearAndFarPlanesDoNotChangeTheAo) {
   }
 }
 
-// The shader against the CPU mirror: both evaluate SAO over the same G-buffer.
+// The shader against the CPU mirror: both evaluate SAO over the same G-buffer, with and without the hierarchy.
 TEST(Sao, ShaderMatchesTheCpuMirror) {
   Renderer renderer = test::makeRenderer();
   Mesh sphere = makeSphere(0.5f, 48, 24);
@@ -161,56 +161,68 @@ TEST(Sao, ShaderMatchesTheCpuMirror) {
   renderer.setScene(test::sceneOf({floorMesh(20.0f), std::move(sphere),
                                    test::makeRectangle({-20, 0, -2}, {40, 0, 0}, {0, 6, 0})}));
   const Camera camera = test::makeCamera({0.8f, 1.4f, 3.0f}, {0.0f, 0.4f, -0.5f}, 160, 120);
-  for (Falloff falloff : {Falloff::Sao2012, Falloff::Alchemy2011}) {
-    AoSettings settings = rawAoSettings();
-    settings.falloff = falloff;
-    settings.samples = 16;
-    settings.spiralTurns = SaoKernel::bestSpiralTurns(16);
-    const auto gpu = test::render(renderer, camera, settings, View::AoRaw);
-    const std::vector<std::uint8_t> gbuffer = renderer.gbuffer().readRgba();
-    const FrameCamera frame = FrameCamera::from(camera, camera.width, camera.height);
-    const int w = camera.width, h = camera.height;
-    // G-buffer texel at integer pixel (x, y) counted from the bottom, as the shader addresses it.
-    auto texel = [&](int x, int y) { return &gbuffer[(static_cast<size_t>(h - 1 - y) * w + x) * 4]; };
-    auto position = [&](int x, int y) {
-      const std::uint8_t* g = texel(x, y);
-      const glm::vec2 uv((static_cast<float>(x) + 0.5f) / static_cast<float>(w),
-                         (static_cast<float>(y) + 0.5f) / static_cast<float>(h));
-      return frame.reconstruction.viewPosition(
-          uv, LinearDepthPacking::depthFromCode(LinearDepthPacking::codeFromBytes(g[2], g[3])));
-    };
-    double sumDiff = 0.0;
-    int count = 0, large = 0;
-    for (int y = 0; y < h; ++y) {
-      for (int x = 0; x < w; ++x) {
-        const std::uint8_t* g = texel(x, y);
-        if (LinearDepthPacking::codeFromBytes(g[2], g[3]) == LinearDepthPacking::kBackgroundCode) continue;
-        const glm::vec3 c = position(x, y);
-        const glm::vec3 n = decodeNormal(g[0], g[1]);
-        const float disk = SaoKernel::diskRadiusPixels(settings.radius, c.z, frame.projScale(h),
-                                                       settings.maxScreenRadius * static_cast<float>(h));
-        const float spin = SaoKernel::rotationAngle(static_cast<float>(x), static_cast<float>(y));
-        float sum = 0.0f;
-        for (int i = 0; i < settings.samples; ++i) {
-          float alpha = 0.0f;
-          const glm::vec2 dir = SaoKernel::tapDirection(i, settings.samples, settings.spiralTurns, spin, &alpha);
-          const glm::vec2 tap = glm::floor(glm::vec2(x, y) + 0.5f + alpha * disk * dir);
-          const int tx = std::clamp(static_cast<int>(tap.x), 0, w - 1);
-          const int ty = std::clamp(static_cast<int>(tap.y), 0, h - 1);
-          sum += SaoKernel::tapObscurance(falloff, position(tx, ty) - c, n, settings.radius, settings.bias);
+  for (bool hierarchy : {false, true}) {
+    for (Falloff falloff : {Falloff::Sao2012, Falloff::Alchemy2011}) {
+      AoSettings settings = rawAoSettings();
+      settings.falloff = falloff;
+      settings.samples = 16;
+      settings.spiralTurns = SaoKernel::bestSpiralTurns(16);
+      settings.depthHierarchy = hierarchy;
+      settings.radius = 2.0f;  // far taps reach hierarchy levels 1 and 2 at this size
+      const auto gpu = test::render(renderer, camera, settings, View::AoRaw);
+      const std::vector<std::uint8_t> gbuffer = renderer.gbuffer().readRgba();
+      const FrameCamera frame = FrameCamera::from(camera, camera.width, camera.height);
+      const int w = camera.width, h = camera.height;
+      const glm::ivec2 size(w, h);
+      // G-buffer texel at integer pixel (x, y) counted from the bottom, as the shader addresses it.
+      auto texel = [&](glm::ivec2 p) { return &gbuffer[(static_cast<size_t>(h - 1 - p.y) * w + p.x) * 4]; };
+      auto code = [&](glm::ivec2 p) { return LinearDepthPacking::codeFromBytes(texel(p)[2], texel(p)[3]); };
+      auto position = [&](glm::ivec2 p, std::uint16_t depthCode) {
+        const glm::vec2 uv((static_cast<float>(p.x) + 0.5f) / static_cast<float>(w),
+                           (static_cast<float>(p.y) + 0.5f) / static_cast<float>(h));
+        return frame.reconstruction.viewPosition(uv, LinearDepthPacking::depthFromCode(depthCode));
+      };
+      double sumDiff = 0.0;
+      int count = 0, large = 0;
+      for (int y = 0; y < h; ++y) {
+        for (int x = 0; x < w; ++x) {
+          const glm::ivec2 pixel(x, y);
+          if (code(pixel) == LinearDepthPacking::kBackgroundCode) continue;
+          const glm::vec3 c = position(pixel, code(pixel));
+          const glm::vec3 n = decodeNormal(texel(pixel)[0], texel(pixel)[1]);
+          const float disk = SaoKernel::diskRadiusPixels(settings.radius, c.z, frame.projScale(h),
+                                                         settings.maxScreenRadius * static_cast<float>(h));
+          const float spin = SaoKernel::rotationAngle(static_cast<float>(x), static_cast<float>(y));
+          float sum = 0.0f;
+          for (int i = 0; i < settings.samples; ++i) {
+            float alpha = 0.0f;
+            const glm::vec2 dir = SaoKernel::tapDirection(i, settings.samples, settings.spiralTurns, spin, &alpha);
+            const float distance = alpha * disk;
+            const glm::ivec2 tap =
+                glm::clamp(glm::ivec2(glm::floor(glm::vec2(pixel) + 0.5f + distance * dir)), glm::ivec2(0), size - 1);
+            // The pixel whose surface point the tap reads: itself, or the hierarchy level's pick for its block.
+            glm::ivec2 source = tap;
+            if (hierarchy) {
+              const int level = SaoKernel::hierarchyLevel(distance);
+              source = SaoKernel::hierarchySourcePixel(
+                  glm::min(tap / (1 << level), SaoKernel::hierarchyLevelSize(size, level) - 1), level, size);
+            }
+            sum += SaoKernel::tapObscurance(falloff, position(source, code(source)) - c, n, settings.radius,
+                                            settings.bias);
+          }
+          const float cpu = SaoKernel::ambientVisibility(falloff, sum, settings.samples, settings.intensity,
+                                                         settings.contrast);
+          const float diff = std::abs(cpu * 255.0f - static_cast<float>(gpu.channel(x, h - 1 - y, 0)));
+          sumDiff += diff;
+          large += diff > 4.0f;
+          ++count;
         }
-        const float cpu = SaoKernel::ambientVisibility(falloff, sum, settings.samples, settings.intensity,
-                                                       settings.contrast);
-        const float diff = std::abs(cpu * 255.0f - gpu.channel(x, h - 1 - y, 0));
-        sumDiff += diff;
-        large += diff > 4.0f;
-        ++count;
       }
+      ASSERT_GT(count, w * h / 2);
+      // Float evaluation differs a little (cos/sin, fused multiply-add), which can move a tap to the neighbouring
+      // texel; the mean agrees to well under one code and almost every pixel within four codes.
+      EXPECT_LE(sumDiff / count, 1.0) << falloffName(falloff) << " hierarchy " << hierarchy;
+      EXPECT_LE(large, count / 100) << falloffName(falloff) << " hierarchy " << hierarchy;
     }
-    ASSERT_GT(count, w * h / 2);
-    // Float evaluation differs a little (cos/sin, fused multiply-add), which can move a tap to the neighbouring
-    // texel; the mean agrees to well under one code and almost every pixel within four codes.
-    EXPECT_LE(sumDiff / count, 1.0) << falloffName(falloff);
-    EXPECT_LE(large, count / 100) << falloffName(falloff);
   }
 }

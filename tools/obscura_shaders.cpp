@@ -8,9 +8,17 @@
 #include <fstream>
 #include <string>
 
+#include "core/FetchFloorPass.h"
 #include "core/Renderer.h"
 
 namespace {
+// The renderer's programs and the benchmark's floor pass.
+std::vector<obscura::ProgramSpec> everyProgram() {
+  std::vector<obscura::ProgramSpec> specs = obscura::Renderer::allProgramSpecs();
+  for (const obscura::ProgramSpec& spec : obscura::FetchFloorPass::programSpecs()) specs.push_back(spec);
+  return specs;
+}
+
 std::string fileName(const std::string& name) {
   std::string out;
   for (char c : name) out += (std::isalnum(static_cast<unsigned char>(c)) || c == '-' || c == '.') ? c : '_';
@@ -21,12 +29,12 @@ std::string fileName(const std::string& name) {
 int main(int argc, char** argv) {
   const std::string mode = argc > 1 ? argv[1] : "";
   if (mode == "--list" && argc == 2) {
-    for (const obscura::ProgramSpec& spec : obscura::Renderer::allProgramSpecs()) std::printf("%s\n", spec.name.c_str());
+    for (const obscura::ProgramSpec& spec : everyProgram()) std::printf("%s\n", spec.name.c_str());
     return 0;
   }
   if (mode == "--dump" && argc == 3) {
     const std::string dir = argv[2];
-    for (const obscura::ProgramSpec& spec : obscura::Renderer::allProgramSpecs()) {
+    for (const obscura::ProgramSpec& spec : everyProgram()) {
       const std::string base = dir + "/" + fileName(spec.name);
       std::ofstream(base + ".vert") << spec.vertexSource();
       std::ofstream(base + ".frag") << spec.fragmentSource();

@@ -34,7 +34,7 @@ const gl::Program& BilateralBlurPass::program(int radius, bool normalAware) {
 }
 
 void BilateralBlurPass::render(Direction direction, const gl::Texture2D& ao, const gl::Texture2D& gbuffer,
-                               const FrameCamera& camera, const AoSettings& settings) {
+                               const FrameCamera& camera, const AoSettings& settings, int aoScale) {
   const gl::Program& blur = program(settings.blurRadius, settings.blurNormalAware);
   const bool horizontal = direction == Direction::Horizontal;
   const gl::Texture2D& input = horizontal ? ao : horizontal_.color();
@@ -50,6 +50,8 @@ void BilateralBlurPass::render(Direction direction, const gl::Texture2D& ao, con
   blur.set("u_gaussianK", 1.0f / (2.0f * s * s));
   blur.set("u_invSigma2", 1.0f / (settings.blurDepthSigma * settings.blurDepthSigma));
   setReconstructionUniforms(blur, camera.reconstruction);
+  blur.set("u_gbufferSize", glm::vec2(gbuffer.width(), gbuffer.height()));
+  blur.set("u_aoScale", static_cast<float>(aoScale));
   if (settings.blurNormalAware) {
     gbuffer.bind(1);
     blur.set("u_gbuffer", 1);

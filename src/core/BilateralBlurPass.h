@@ -22,8 +22,9 @@ class BilateralBlurPass {
   explicit BilateralBlurPass(const FullscreenTriangle& triangle) : triangle_(triangle) {}
   void resize(int width, int height);
   // Horizontal reads `ao` and writes the intermediate target; vertical reads that and writes output().
+  // `aoScale`: 1, or 2 when the AO is at half the G-buffer's resolution.
   void render(Direction direction, const gl::Texture2D& ao, const gl::Texture2D& gbuffer, const FrameCamera& camera,
-              const AoSettings& settings);
+              const AoSettings& settings, int aoScale);
   const gl::RenderTarget& intermediate() const { return horizontal_; }
   const gl::RenderTarget& output() const { return vertical_; }
 

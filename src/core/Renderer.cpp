@@ -3,6 +3,7 @@
 #include <cstdio>
 
 #include "core/Error.h"
+#include "core/SaoKernel.h"
 
 namespace obscura {
 namespace {
@@ -47,9 +48,11 @@ const char* viewName(View view) {
 const char* passName(Pass pass) {
   switch (pass) {
     case Pass::GBuffer: return "gbuffer";
+    case Pass::Hierarchy: return "hierarchy";
     case Pass::Sao: return "sao";
     case Pass::BlurHorizontal: return "blur-h";
     case Pass::BlurVertical: return "blur-v";
+    case Pass::Upsample: return "upsample";
     case Pass::Composite: return "composite";
     case Pass::Count: break;
   }
@@ -60,15 +63,18 @@ Renderer::Renderer(const gl::GlCaps& caps, const RendererOptions& options)
     : caps_(requireUsable(caps)),
       options_(options),
       gbuffer_(caps.depth24),
+      hierarchy_(triangle_, DepthHierarchyPass::storageFor(caps, options.allowDepthMipExtensions)),
       sao_(triangle_),
       blur_(triangle_),
+      upsample_(triangle_),
       debugView_(triangle_),
       white_(1, 1, GL_NEAREST, std::vector<std::uint8_t>{255, 255, 255, 255}.data()) {}
 
 std::vector<ProgramSpec> Renderer::allProgramSpecs() {
   std::vector<ProgramSpec> specs;
-  for (auto list : {GBufferPass::programSpecs(), SaoPass::programSpecs(), BilateralBlurPass::programSpecs(),
-                    LightingPass::programSpecs(), DebugViewPass::programSpecs()})
+  for (auto list : {GBufferPass::programSpecs(), DepthHierarchyPass::programSpecs(), SaoPass::programSpecs(),
+                    BilateralBlurPass::programSpecs(), AoUpsamplePass::programSpecs(), LightingPass::programSpecs(),
+                    DebugViewPass::programSpecs()})
     specs.insert(specs.end(), list.begin(), list.end());
   return specs;
 }
@@ -105,25 +111,47 @@ void Renderer::render(const Camera& camera, const AoSettings& settings, View vie
 
   finalAo_ = &white_;
   if (needAo) {
-    sao_.resize(output.width, output.height);
+    // Half resolution: AO at floor(size / 2), AO pixel p standing for G-buffer pixel 2p.
+    const int aoScale = settings.halfResolution ? 2 : 1;
+    const glm::ivec2 aoSize =
+        SaoKernel::hierarchyLevelSize(glm::ivec2(output.width, output.height), settings.halfResolution ? 1 : 0);
+    const gl::Texture2D& gbuffer = gbuffer_.target().color();
+    if (settings.depthHierarchy) {
+      hierarchy_.resize(output.width, output.height);
+      {
+        ScopedPass scoped(timer, Pass::Hierarchy);
+        hierarchy_.render(gbuffer);
+      }
+      checkErrors(Pass::Hierarchy);
+    }
+    sao_.resize(aoSize.x, aoSize.y);
     {
       ScopedPass scoped(timer, Pass::Sao);
-      sao_.render(gbuffer_.target().color(), frame, settings);
+      sao_.render(gbuffer, settings.depthHierarchy ? &hierarchy_ : nullptr, frame, settings, aoScale);
     }
     checkErrors(Pass::Sao);
     finalAo_ = &sao_.target().color();
     if (settings.blur && settings.blurRadius > 0) {
-      blur_.resize(output.width, output.height);
+      blur_.resize(aoSize.x, aoSize.y);
       for (Pass pass : {Pass::BlurHorizontal, Pass::BlurVertical}) {
         {
           ScopedPass scoped(timer, pass);
           blur_.render(pass == Pass::BlurHorizontal ? BilateralBlurPass::Direction::Horizontal
                                                     : BilateralBlurPass::Direction::Vertical,
-                       sao_.target().color(), gbuffer_.target().color(), frame, settings);
+                       sao_.target().color(), gbuffer, frame, settings, aoScale);
         }
         checkErrors(pass);
       }
       finalAo_ = &blur_.output().color();
+    }
+    if (aoScale == 2) {
+      upsample_.resize(output.width, output.height);
+      {
+        ScopedPass scoped(timer, Pass::Upsample);
+        upsample_.render(*finalAo_, gbuffer, frame, settings);
+      }
+      checkErrors(Pass::Upsample);
+      finalAo_ = &upsample_.target().color();
     }
   }
 

@@ -1,14 +1,17 @@
 #pragma once
 // The AO pipeline of one frame, the same on every platform:
-//   G-buffer -> SAO -> bilateral blur (H, V) -> forward lighting with AO on the ambient term (or a diagnostic view).
+//   G-buffer -> depth hierarchy -> SAO -> bilateral blur (H, V) -> [upsample, at half resolution]
+//            -> forward lighting with AO on the ambient term (or a diagnostic view).
 // The platform layer owns the context and the output framebuffer; the Renderer owns every GL object it creates.
 #include <memory>
 #include <string>
 #include <vector>
 
 #include "core/AoSettings.h"
+#include "core/AoUpsamplePass.h"
 #include "core/BilateralBlurPass.h"
 #include "core/DebugViewPass.h"
+#include "core/DepthHierarchyPass.h"
 #include "core/FrameContext.h"
 #include "core/GBufferPass.h"
 #include "core/GpuScene.h"
@@ -24,7 +27,7 @@ enum class View { Final, Ao, AoRaw, Normals, Depth };
 View parseView(const std::string& name);  // final | ao | ao-raw | normals | depth; throws InputError
 const char* viewName(View view);
 
-enum class Pass { GBuffer, Sao, BlurHorizontal, BlurVertical, Composite, Count };
+enum class Pass { GBuffer, Hierarchy, Sao, BlurHorizontal, BlurVertical, Upsample, Composite, Count };
 const char* passName(Pass pass);
 
 // Receives the start and end of each pass (per-pass timings: glFinish-bounded natively, timer queries on the web).
@@ -44,6 +47,7 @@ struct OutputTarget {
 struct RendererOptions {
   bool checkGlErrors = false;        // glGetError after every pass; a GL error throws GlError naming the pass
   bool allowUint32Indices = true;    // false simulates a context without OES_element_index_uint
+  bool allowDepthMipExtensions = true;  // false forces the core-GLES 2 depth hierarchy (separate textures)
 };
 
 class Renderer {
@@ -65,7 +69,8 @@ class Renderer {
   const GpuScene& gpuScene() const { return scene_; }
   // The textures of the last frame, for tests and tools.
   const gl::RenderTarget& gbuffer() const { return gbuffer_.target(); }
-  const gl::RenderTarget& rawAo() const { return sao_.target(); }
+  const gl::RenderTarget& rawAo() const { return sao_.target(); }  // half size at half resolution
+  DepthHierarchyPass::Storage hierarchyStorage() const { return hierarchy_.storage(); }
   // The AO the lighting pass used: blurred, or raw when the blur is off.
   const gl::Texture2D& finalAo() const { return *finalAo_; }
 
@@ -77,8 +82,10 @@ class Renderer {
   FullscreenTriangle triangle_;
   GpuScene scene_;
   GBufferPass gbuffer_;
+  DepthHierarchyPass hierarchy_;
   SaoPass sao_;
   BilateralBlurPass blur_;
+  AoUpsamplePass upsample_;
   LightingPass lighting_;
   DebugViewPass debugView_;
   gl::Texture2D white_;  // AO = 1 when AO is off

@@ -43,6 +43,25 @@ int bestSpiralTurns(int samples) {
   return best;
 }
 
+int hierarchyLevel(float tapDistance) {
+  const int octave = static_cast<int>(std::floor(std::log2(std::max(tapDistance, 1.0f))));
+  return std::clamp(octave - kLogMaxOffset, 0, kMaxMipLevel);
+}
+
+glm::ivec2 hierarchyLevelSize(glm::ivec2 levelZeroSize, int level) {
+  return glm::max(levelZeroSize / (1 << level), glm::ivec2(1));
+}
+
+glm::ivec2 hierarchySourcePixel(glm::ivec2 p, int level, glm::ivec2 levelZeroSize) {
+  for (int k = level; k >= 1; --k)
+    p = glm::min(2 * p + glm::ivec2(p.y % 2, p.x % 2), hierarchyLevelSize(levelZeroSize, k - 1) - 1);
+  return p;
+}
+
+glm::ivec2 aoCentrePixel(glm::ivec2 aoPixel, int aoScale, glm::ivec2 levelZeroSize) {
+  return glm::min(aoPixel * aoScale, levelZeroSize - 1);
+}
+
 float rotationAngle(float pixelX, float pixelY) {
   const float inner = 0.06711056f * pixelX + 0.00583715f * pixelY;
   const float noise = 52.9829189f * (inner - std::floor(inner));

@@ -19,6 +19,7 @@
 //       A = max(0, 1 - (5 sigma / s) sum_i ((max(0, r^2 - v.v) / r^2)^3) max(0, v.n - beta) / (v.v + eps))^k
 // The SAO paper's eps = 0.01 ("large epsilon to avoid overdarkening within cracks") is used for both.
 #include <glm/vec2.hpp>
+#include <glm/ext/vector_int2.hpp>
 #include <glm/vec3.hpp>
 
 #include "core/AoSettings.h"
@@ -32,6 +33,20 @@ constexpr float kEpsilon = 0.01f;
 // ties to the smaller tau).
 int bestSpiralTurns(int samples);
 int greatestCommonDivisor(int a, int b);
+
+// Depth hierarchy (SAO paper sec. 3.3): how many levels above the G-buffer, and the paper's level choice for a tap
+// `tapDistance` pixels from the centre: m = clamp(floor(log2 h) - LOG_MAX_OFFSET, 0, MAX_MIP_LEVEL).
+constexpr int kMaxMipLevel = 5;
+constexpr int kLogMaxOffset = 3;
+int hierarchyLevel(float tapDistance);
+// Size of hierarchy level m for a level-0 size: floor(size / 2^m), at least 1.
+glm::ivec2 hierarchyLevelSize(glm::ivec2 levelZeroSize, int level);
+// The level-0 (G-buffer) pixel whose depth hierarchy level m keeps at texel p: the rotated-grid pick
+// p_(k-1) = min(2 p_k + (p_k.y mod 2, p_k.x mod 2), size_(k-1) - 1), followed from level m down to 0.
+glm::ivec2 hierarchySourcePixel(glm::ivec2 p, int level, glm::ivec2 levelZeroSize);
+// The G-buffer pixel an AO pixel stands for at AO scale 1 (itself) or 2 (half resolution: 2p, the same corner of
+// every block; see shaders_es2/lib/ao_resolution.glsl for why not the rotated grid).
+glm::ivec2 aoCentrePixel(glm::ivec2 aoPixel, int aoScale, glm::ivec2 levelZeroSize);
 
 // Per-pixel spiral rotation phi (radians) at integer pixel coordinates.
 float rotationAngle(float pixelX, float pixelY);

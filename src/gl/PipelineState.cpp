@@ -4,7 +4,7 @@
 
 namespace obscura::gl {
 namespace {
-constexpr int kTextureUnits = 4;
+constexpr int kTextureUnits = 8;  // the GLES 2 minimum for fragment shaders
 constexpr GLuint kAttributeSlots = 3;
 }  // namespace
 

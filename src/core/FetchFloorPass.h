@@ -1,0 +1,28 @@
+#pragma once
+// The benchmark's floor for the SAO pass (shaders_es2/fetch_floor.frag): as many G-buffer fetches per pixel as SAO
+// makes, with no arithmetic. Used by obscura-bench only.
+#include <map>
+#include <vector>
+
+#include "core/FrameContext.h"
+#include "core/ShaderLibrary.h"
+#include "gl/RenderTarget.h"
+
+namespace obscura {
+
+class FetchFloorPass {
+ public:
+  static ProgramSpec programSpec(int samples);
+  static std::vector<ProgramSpec> programSpecs();  // the sample counts SaoPass::programSpecs() covers
+
+  explicit FetchFloorPass(const FullscreenTriangle& triangle) : triangle_(triangle) {}
+  // Fetches at the spiral offsets of a `diskRadiusPixels` disk (SaoKernel::tapDirection, rotation 0).
+  void render(const gl::Texture2D& gbuffer, int samples, int spiralTurns, float diskRadiusPixels);
+
+ private:
+  const FullscreenTriangle& triangle_;
+  gl::RenderTarget target_;
+  std::map<int, gl::Program> programs_;
+};
+
+}  // namespace obscura
