@@ -6,3 +6,5 @@ cd "$(dirname "$0")/.."
 tools/install-deps.sh
 tools/build.sh
 ctest --test-dir build --output-on-failure -j"$(nproc 2>/dev/null || echo 2)"
+tools/test-sanitizers.sh
+tools/fuzz-gltf.sh 60

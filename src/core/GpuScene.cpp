@@ -4,72 +4,24 @@
 
 #include <glm/gtc/matrix_inverse.hpp>
 
-#include "scene/ImageIo.h"
 #include "scene/MeshProcessing.h"
+#include "scene/TexturePreparation.h"
 
 namespace obscura {
 namespace {
 
-bool isPowerOfTwo(int v) { return v > 0 && (v & (v - 1)) == 0; }
-int nextPowerOfTwo(int v) {
-  int p = 1;
-  while (p < v) p *= 2;
-  return p;
-}
-bool usesMipmaps(int minFilter) {
-  return minFilter == GL_NEAREST_MIPMAP_NEAREST || minFilter == GL_LINEAR_MIPMAP_NEAREST ||
-         minFilter == GL_NEAREST_MIPMAP_LINEAR || minFilter == GL_LINEAR_MIPMAP_LINEAR;
-}
-GLint validWrap(int wrap) {
-  return wrap == GL_CLAMP_TO_EDGE || wrap == GL_MIRRORED_REPEAT ? wrap : GL_REPEAT;
-}
-GLint validFilter(int filter, bool min) {
-  switch (filter) {
-    case GL_NEAREST:
-    case GL_LINEAR: return filter;
-    case GL_NEAREST_MIPMAP_NEAREST:
-    case GL_LINEAR_MIPMAP_NEAREST:
-    case GL_NEAREST_MIPMAP_LINEAR:
-    case GL_LINEAR_MIPMAP_LINEAR: return min ? filter : GL_LINEAR;
-    default: return min ? GL_LINEAR_MIPMAP_LINEAR : GL_LINEAR;
-  }
-}
-
 gl::TextureHandle uploadTexture(const Image& source, const SamplerState& sampler, const gl::GlCaps& caps) {
-  const GLint minFilter = validFilter(sampler.minFilter, true);
-  const GLint magFilter = validFilter(sampler.magFilter, false);
-  const GLint wrapS = validWrap(sampler.wrapS), wrapT = validWrap(sampler.wrapT);
-  const bool needsPowerOfTwo = usesMipmaps(minFilter) || wrapS != GL_CLAMP_TO_EDGE || wrapT != GL_CLAMP_TO_EDGE;
-  int width = source.width, height = source.height;
-  if (needsPowerOfTwo) {
-    width = nextPowerOfTwo(width);
-    height = nextPowerOfTwo(height);
-  }
-  const int maxSize = std::max(caps.maxTextureSize, 1);
-  if (std::max(width, height) > maxSize) {
-    // Scale both sides by the same factor (halving keeps powers of two).
-    const int larger = std::max(width, height);
-    if (needsPowerOfTwo) {
-      while (std::max(width, height) > maxSize) {
-        width = std::max(1, width / 2);
-        height = std::max(1, height / 2);
-      }
-    } else {
-      width = std::max(1, static_cast<int>(static_cast<long long>(width) * maxSize / larger));
-      height = std::max(1, static_cast<int>(static_cast<long long>(height) * maxSize / larger));
-    }
-  }
-  const Image image = (width == source.width && height == source.height) ? source : resizeImage(source, width, height);
-
+  const PreparedTexture prepared = prepareTextureForGles2(source, sampler, caps.maxTextureSize);
   gl::TextureHandle texture = gl::TextureHandle::create();
   glBindTexture(GL_TEXTURE_2D, texture.id());
   glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
-  glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA, width, height, 0, GL_RGBA, GL_UNSIGNED_BYTE, image.rgba.data());
-  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, minFilter);
-  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, magFilter);
-  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, wrapS);
-  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, wrapT);
-  if (usesMipmaps(minFilter) && isPowerOfTwo(width) && isPowerOfTwo(height)) glGenerateMipmap(GL_TEXTURE_2D);
+  glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA, prepared.image.width, prepared.image.height, 0, GL_RGBA, GL_UNSIGNED_BYTE,
+               prepared.image.rgba.data());
+  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, prepared.sampler.minFilter);
+  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, prepared.sampler.magFilter);
+  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, prepared.sampler.wrapS);
+  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, prepared.sampler.wrapT);
+  if (prepared.mipmaps) glGenerateMipmap(GL_TEXTURE_2D);
   glBindTexture(GL_TEXTURE_2D, 0);
   return texture;
 }

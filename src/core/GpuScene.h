@@ -2,9 +2,8 @@
 // A Scene uploaded to GL: vertex/index buffers per mesh piece, textures per glTF texture, and the draw loop both
 // geometry passes (G-buffer and lighting) share, so they draw exactly the same triangles with the same state.
 //
-// WebGL 1 rules: without OES_element_index_uint, meshes over 65535 vertices are split into 16-bit pieces;
-// non-power-of-two images that need repeat wrapping or mipmaps are resized to a power of two; images larger than
-// the context's maximum texture size are scaled down.
+// WebGL 1 rules: without OES_element_index_uint, meshes over 65535 vertices are split into 16-bit pieces
+// (scene/MeshProcessing.h); textures follow the non-power-of-two and size rules of scene/TexturePreparation.h.
 #include <vector>
 
 #include <glm/mat4x4.hpp>

@@ -92,13 +92,20 @@ void Renderer::checkErrors(Pass after) const {
   if (error == GL_NO_ERROR) return;
   char code[16];
   std::snprintf(code, sizeof code, "0x%04X", error);
-  throw GlError(std::string("GL error ") + code + " after " +
-                (after == Pass::Count ? std::string("scene upload") : std::string("pass ") + passName(after)));
+  throw GlError(std::string("GL error ") + code + " " +
+                (after == Pass::Count ? std::string("outside the passes (pending before the frame or from the scene "
+                                                    "upload)")
+                                      : std::string("after pass ") + passName(after)));
 }
 
 void Renderer::render(const Camera& camera, const AoSettings& settings, View view, const OutputTarget& output,
                       PassTimer* timer) {
+  checkErrors(Pass::Count);  // an error the application left pending is reported as such, not blamed on a pass
   settings.validate();
+  const int limit = caps_.maxRenderSize();
+  if (output.width < 1 || output.height < 1 || output.width > limit || output.height > limit)
+    throw InputError("output size " + std::to_string(output.width) + "x" + std::to_string(output.height) +
+                     " is outside what this context can render (1 .. " + std::to_string(limit) + " per side)");
   const FrameCamera frame = FrameCamera::from(camera, output.width, output.height);
   const bool needAo = settings.enabled || view == View::Ao || view == View::AoRaw;
 

@@ -28,6 +28,9 @@ OsMesaContext::OsMesaContext() {
   }
 }
 
-OsMesaContext::~OsMesaContext() { OSMesaDestroyContext(static_cast<OSMesaContext>(context_)); }
+OsMesaContext::~OsMesaContext() {
+  OSMesaMakeCurrent(nullptr, nullptr, 0, 0, 0);  // release the framebuffer OSMesa made for the context
+  OSMesaDestroyContext(static_cast<OSMesaContext>(context_));
+}
 
 }  // namespace obscura

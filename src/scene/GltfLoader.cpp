@@ -442,6 +442,7 @@ void loadNodes(const LoaderContext& ctx, Scene& scene) {
   // Each glTF (mesh, primitive) becomes one Mesh; remember where each glTF mesh's primitives start.
   std::vector<std::vector<int>> primitiveMeshes(model.meshes.size());
   std::vector<bool> loaded(model.meshes.size(), false);
+  int skippedPrimitives = 0;  // points and lines
   auto meshPieces = [&](int meshIndex) -> const std::vector<int>& {
     if (!loaded[static_cast<size_t>(meshIndex)]) {
       loaded[static_cast<size_t>(meshIndex)] = true;
@@ -450,6 +451,7 @@ void loadNodes(const LoaderContext& ctx, Scene& scene) {
         bool skipped = false;
         Mesh mesh = loadPrimitive(ctx, source.primitives[p],
                                   "mesh " + std::to_string(meshIndex) + " primitive " + std::to_string(p), &skipped);
+        if (skipped) ++skippedPrimitives;
         if (skipped || mesh.indices.empty()) continue;
         primitiveMeshes[static_cast<size_t>(meshIndex)].push_back(static_cast<int>(scene.meshes.size()));
         scene.meshes.push_back(std::move(mesh));
@@ -503,6 +505,9 @@ void loadNodes(const LoaderContext& ctx, Scene& scene) {
       if (!isChild[i]) roots.push_back(static_cast<int>(i));
   }
   for (int root : roots) visit(root, glm::mat4(1.0f));
+  if (scene.instances.empty() && skippedPrimitives > 0)
+    ctx.refuse("has only point or line primitives (" + std::to_string(skippedPrimitives) +
+               "), which have no surfaces to shade");
 }
 
 // tinygltf image callback: decodes to RGBA8 after checking the size, so a huge image header cannot exhaust memory.

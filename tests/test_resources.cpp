@@ -1,0 +1,142 @@
+// Resources and limits: GL objects return to their baseline after scene reloads, every pass leaves the baseline GL
+// state, a GL error is caught and named, sizes from 1x1 to the context's limit, 16-bit index splitting, and a
+// context without fragment highp.
+#include <gtest/gtest.h>
+
+#include "TestSupport.h"
+#include "core/Error.h"
+#include "gl/GlObjects.h"
+#include "gl/PipelineState.h"
+#include "scene/BuiltinScene.h"
+#include "scene/GltfLoader.h"
+#include "scene/Primitives.h"
+
+using namespace obscura;
+
+TEST(Resources, SceneReloadsReturnToTheBaselineObjectCount) {
+  Renderer renderer = test::makeRenderer();
+  const Camera camera = builtinSceneCamera(96, 64);
+  const std::vector<Scene> scenes = {
+      makeBuiltinScene(),
+      loadGltfFile(test::assimpModels() + "/2CylinderEngine-glTF-Binary/2CylinderEngine.glb"),
+      loadGltfFile(test::assimpModels() + "/BoxTextured-glTF/BoxTextured.gltf")};
+  renderer.setScene(scenes[0]);
+  test::render(renderer, camera, AoSettings{}, View::Final);  // allocates every target and program once
+  const gl::LiveObjects baseline = gl::liveObjects();
+  for (int reload = 0; reload < 10; ++reload) {
+    renderer.setScene(scenes[static_cast<size_t>(reload) % scenes.size()]);
+    renderer.setScene(scenes[0]);
+    test::render(renderer, camera, AoSettings{}, View::Final);
+    EXPECT_EQ(gl::liveObjects().total(), baseline.total()) << "after reload " << reload;
+    EXPECT_EQ(gl::liveObjects().buffers, baseline.buffers);
+    EXPECT_EQ(gl::liveObjects().textures, baseline.textures);
+  }
+}
+
+TEST(Resources, EveryPassLeavesTheBaselineGlState) {
+  Renderer renderer = test::makeRenderer();
+  renderer.setScene(makeBuiltinScene());
+  AoSettings settings;
+  for (bool half : {false, true}) {
+    settings.halfResolution = half;
+    for (View view : {View::Final, View::Ao, View::AoRaw, View::Normals, View::Depth}) {
+      test::render(renderer, builtinSceneCamera(64, 48), settings, view);
+      EXPECT_EQ(gl::baselineStateDifferences(), "") << viewName(view);
+    }
+  }
+}
+
+TEST(Resources, AGlErrorIsCaughtAndAttributed) {
+  Renderer renderer = test::makeRenderer();
+  renderer.setScene(makeBuiltinScene());
+  glEnable(0x1234);  // not a capability: GL_INVALID_ENUM, pending until someone asks
+  try {
+    test::render(renderer, builtinSceneCamera(32, 24), AoSettings{}, View::Final);
+    FAIL() << "the GL error went unnoticed";
+  } catch (const GlError& e) {
+    EXPECT_NE(std::string(e.what()).find("pending before the frame"), std::string::npos) << e.what();
+  }
+  EXPECT_EQ(glGetError(), static_cast<GLenum>(GL_NO_ERROR));
+  EXPECT_NO_THROW(test::render(renderer, builtinSceneCamera(32, 24), AoSettings{}, View::Final));
+}
+
+TEST(Limits, RendersAtOneByOne) {
+  Renderer renderer = test::makeRenderer();
+  renderer.setScene(makeBuiltinScene());
+  for (bool half : {false, true}) {
+    AoSettings settings;
+    settings.halfResolution = half;
+    for (View view : {View::Final, View::Ao, View::AoRaw, View::Normals, View::Depth}) {
+      const test::RenderedImage image = test::render(renderer, builtinSceneCamera(1, 1), settings, view);
+      EXPECT_EQ(image.rgba.size(), 4u);
+    }
+  }
+}
+
+TEST(Limits, SizesBeyondTheContextAreRefused) {
+  Renderer renderer = test::makeRenderer();
+  renderer.setScene(makeBuiltinScene());
+  const int limit = test::context().caps().maxRenderSize();
+  try {
+    renderer.render(builtinSceneCamera(), AoSettings{}, View::Final, OutputTarget{0, limit + 1, 16, 0.0f});
+    FAIL() << "accepted " << limit + 1;
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("outside what this context can render"), std::string::npos) << e.what();
+  }
+}
+
+// The largest size the context allows (16384 on llvmpipe): every target allocates and the pipeline runs. Heavy
+// (about a minute and 6 GB on llvmpipe), so ctest runs it once, on the EGL (true GLES 2) context.
+TEST(Limits, RendersAtTheLargestSizeTheContextAllows) {
+  if (!std::getenv("OBSCURA_TEST_LARGEST_SIZE")) GTEST_SKIP() << "run by the limits.largest_size ctest entry";
+  Renderer renderer = test::makeRenderer();
+  renderer.setScene(makeBuiltinScene());
+  const int size = test::context().caps().maxRenderSize();
+  AoSettings settings;
+  settings.samples = 4;
+  settings.spiralTurns = 1;
+  settings.blur = false;
+  const gl::RenderTarget output("largest", size, size, GL_NEAREST, gl::RenderTarget::Depth::Renderbuffer,
+                                test::context().caps().depth24);
+  renderer.render(builtinSceneCamera(size, size), settings, View::AoRaw, {output.framebuffer(), size, size, 0.0f});
+  // Read a band across the middle, where the floor and walls are: geometry with AO in range, not background.
+  std::vector<std::uint8_t> band(static_cast<size_t>(size) * 4);
+  glBindFramebuffer(GL_FRAMEBUFFER, output.framebuffer());
+  glReadPixels(0, size / 3, size, 1, GL_RGBA, GL_UNSIGNED_BYTE, band.data());
+  glBindFramebuffer(GL_FRAMEBUFFER, 0);
+  int occluded = 0;
+  for (size_t i = 0; i < band.size(); i += 4) occluded += band[i] < 250;
+  EXPECT_GT(occluded, 0) << "no AO anywhere along the row at " << size << "x" << size;
+}
+
+TEST(Limits, MeshesOverSixteenBitsAreSplitWithoutOesElementIndexUint) {
+  Mesh big = makeSphere(1.0f, 400, 200);  // 80 k vertices
+  ASSERT_GT(big.positions.size(), 65535u);
+  Scene scene = test::sceneOf({std::move(big)});
+  const Camera camera = test::makeCamera({0, 0.5f, 3.0f}, {0, 0, 0}, 128, 96);
+  Renderer withUint = test::makeRenderer();
+  RendererOptions webgl1;
+  webgl1.allowUint32Indices = false;
+  Renderer without = test::makeRenderer(webgl1);
+  withUint.setScene(scene);
+  without.setScene(scene);
+  EXPECT_FALSE(without.gpuScene().usesUint32Indices());
+  EXPECT_GT(without.gpuScene().pieceCount(), 1u);
+  // The same triangles are drawn either way: the images agree exactly.
+  for (View view : {View::Normals, View::Final}) {
+    const test::RenderedImage a = test::render(withUint, camera, AoSettings{}, view);
+    const test::RenderedImage b = test::render(without, camera, AoSettings{}, view);
+    EXPECT_EQ(a.rgba, b.rgba) << viewName(view);
+  }
+}
+
+TEST(Limits, AContextWithoutFragmentHighpIsRefusedClearly) {
+  gl::GlCaps caps = test::context().caps();
+  caps.fragmentHighp = false;  // as on a mediump-only mobile GPU
+  try {
+    Renderer renderer(caps);
+    FAIL() << "accepted a context without fragment highp";
+  } catch (const GlError& e) {
+    EXPECT_NE(std::string(e.what()).find("no highp float in fragment shaders"), std::string::npos) << e.what();
+  }
+}

@@ -1,0 +1,18 @@
+#!/usr/bin/env bash
+# Fuzzes scene loading with libFuzzer (clang), seeded with Debian's assimp-testmodels glTF files.
+#   tools/fuzz-gltf.sh [SECONDS]      default 60; the test suite runs the default, docs/robustness.md a longer run
+# The corpus grows in build-fuzz/corpus (kept between runs); crashes land in build-fuzz/ as crash-* files.
+set -euo pipefail
+cd "$(dirname "$0")/.."
+seconds="${1:-60}"
+jobs=$(nproc 2>/dev/null || echo 2)
+CC=clang CXX=clang++ cmake -S . -B build-fuzz -DCMAKE_BUILD_TYPE=RelWithDebInfo -DOBSCURA_FUZZ=ON \
+  -DOBSCURA_BUILD_TESTS=OFF >/dev/null
+cmake --build build-fuzz --target obscura-gltf-fuzzer -j"$jobs"
+
+corpus=build-fuzz/corpus
+mkdir -p "$corpus"
+find /usr/share/assimp/models/glTF2 -type f \( -name '*.gltf' -o -name '*.glb' \) -exec cp -n {} "$corpus/" \;
+cd build-fuzz
+./tests/fuzz/obscura-gltf-fuzzer -max_total_time="$seconds" -timeout=10 -rss_limit_mb=4096 -print_final_stats=1 \
+  corpus 2>&1 | tail -n 12
