@@ -156,3 +156,20 @@ TEST(TexturePreparation, FollowsWebGl1NonPowerOfTwoRules) {
   EXPECT_EQ(p.sampler.minFilter, 0x2703);
   EXPECT_EQ(p.sampler.wrapS, 0x2901);
 }
+
+// Inputs the fuzzer (tests/fuzz, tools/fuzz-gltf.sh) once broke the loader with; each must now be refused cleanly.
+// Under the sanitizer leg (tools/test-sanitizers.sh) a memory error here fails the suite.
+TEST(GltfCorpus, FuzzerRegressionsAreRefusedCleanly) {
+  int count = 0;
+  for (const auto& entry :
+       std::filesystem::directory_iterator(test::sourceDir() + "/tests/fuzz/regressions")) {
+    const std::string file = entry.path().string();
+    try {
+      loadGltfFile(file);
+    } catch (const InputError& e) {
+      EXPECT_EQ(std::string(e.what()).rfind(file + ": ", 0), 0u) << e.what();
+    }
+    ++count;
+  }
+  EXPECT_GE(count, 1);
+}

@@ -13,6 +13,7 @@ cmake --build build-fuzz --target obscura-gltf-fuzzer -j"$jobs"
 corpus=build-fuzz/corpus
 mkdir -p "$corpus"
 find /usr/share/assimp/models/glTF2 -type f \( -name '*.gltf' -o -name '*.glb' \) -exec cp -n {} "$corpus/" \;
+cp -n tests/fuzz/regressions/* "$corpus/"
 cd build-fuzz
 ./tests/fuzz/obscura-gltf-fuzzer -max_total_time="$seconds" -timeout=10 -rss_limit_mb=4096 -print_final_stats=1 \
   corpus 2>&1 | tail -n 12

@@ -510,10 +510,37 @@ void loadNodes(const LoaderContext& ctx, Scene& scene) {
                "), which have no surfaces to shade");
 }
 
+struct ImageLoadContext {
+  const GltfLimits* limits;
+  const tinygltf::Model* model;  // being filled by tinygltf: its buffers and buffer views are loaded before images
+};
+
 // tinygltf image callback: decodes to RGBA8 after checking the size, so a huge image header cannot exhaust memory.
 bool loadImageRgba8(tinygltf::Image* image, const int index, std::string* err, std::string*, int, int,
                     const unsigned char* bytes, int size, void* userData) {
-  const auto* limits = static_cast<const GltfLimits*>(userData);
+  const auto* context = static_cast<const ImageLoadContext*>(userData);
+  const GltfLimits* limits = context->limits;
+  // tinygltf 2.7 hands over an image's buffer view without checking that it lies inside its buffer (found by
+  // fuzzing: a heap overflow in the PNG decoder). Check it here, before any byte is read.
+  if (image->bufferView >= 0) {
+    const auto& views = context->model->bufferViews;
+    const auto& buffers = context->model->buffers;
+    const bool inside = static_cast<size_t>(image->bufferView) < views.size() &&
+                        views[static_cast<size_t>(image->bufferView)].buffer >= 0 &&
+                        static_cast<size_t>(views[static_cast<size_t>(image->bufferView)].buffer) < buffers.size() &&
+                        std::uint64_t(views[static_cast<size_t>(image->bufferView)].byteOffset) +
+                                views[static_cast<size_t>(image->bufferView)].byteLength <=
+                            buffers[static_cast<size_t>(views[static_cast<size_t>(image->bufferView)].buffer)]
+                                .data.size();
+    if (!inside) {
+      if (err) *err += "image " + std::to_string(index) + ": its bufferView lies outside its buffer\n";
+      return false;
+    }
+  }
+  if (size <= 0) {
+    if (err) *err += "image " + std::to_string(index) + ": no image data\n";
+    return false;
+  }
   int width = 0, height = 0, channels = 0;
   if (!stbi_info_from_memory(bytes, size, &width, &height, &channels)) {
     if (err) *err += "image " + std::to_string(index) + ": unknown or corrupt image format\n";
@@ -631,9 +658,10 @@ Scene loadWithResolver(const std::vector<std::uint8_t>& bytes, const std::string
   tinygltf::TinyGLTF gltf;
   resolver.maxBytes = limits.maxFileBytes;
   gltf.SetFsCallbacks({&fileExists, &expandPath, &readWholeFile, &writeWholeFile, &resolver});
-  gltf.SetImageLoader(&loadImageRgba8, const_cast<GltfLimits*>(&limits));
-
   tinygltf::Model model;
+  ImageLoadContext imageContext{&limits, &model};
+  gltf.SetImageLoader(&loadImageRgba8, &imageContext);
+
   std::string err, warn;
   const bool binary = bytes.size() >= 4 && std::memcmp(bytes.data(), "glTF", 4) == 0;
   bool ok = false;
