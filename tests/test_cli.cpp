@@ -26,7 +26,10 @@ std::string slurp(const std::string& path) {
 }
 
 Result run(const std::string& args) {
-  const std::string out = ::testing::TempDir() + "cli.out", err = ::testing::TempDir() + "cli.err";
+  // Per-test names: ctest runs the tests of this binary as parallel processes sharing TempDir().
+  const std::string stem = ::testing::TempDir() + "cli-" +
+                           ::testing::UnitTest::GetInstance()->current_test_info()->name();
+  const std::string out = stem + ".out", err = stem + ".err";
   const std::string command = std::string(OBSCURA_RENDER_BINARY) + " " + args + " >" + out + " 2>" + err;
   const int raw = std::system(command.c_str());
   Result result;
@@ -60,7 +63,7 @@ TEST(Cli, BadInputExitsWithStatusTwoAndOneLine) {
       {"--samples 0", "--samples: 0 is out of range"},
       {"--size 10x", "--size: expected WxH"},
       {"--size 0x10", "--size: 0x10 is out of range"},
-      {"--view sideways", "--view: expected final, ao, ao-raw, normals or depth"},
+      {"--view sideways", "--view: expected final, ao, ao-raw, normals, depth or mask"},
       {"--bench many", "--bench: expected a whole number"},
       {"--backend vulkan", "--backend: expected osmesa or egl"},
       {"--fit --camera x.json", "--camera and --fit exclude each other"},
@@ -75,7 +78,7 @@ TEST(Cli, BadInputExitsWithStatusTwoAndOneLine) {
 }
 
 TEST(Cli, RendersEveryViewOfTheBuiltinScene) {
-  for (const char* view : {"final", "ao", "ao-raw", "normals", "depth"}) {
+  for (const char* view : {"final", "ao", "ao-raw", "normals", "depth", "mask"}) {
     const std::string out = ::testing::TempDir() + "view-" + view + ".png";
     const Result r = run(std::string("--size 96x64 --view ") + view + " --out " + out);
     ASSERT_EQ(r.status, 0) << view << ": " << r.err;

@@ -169,6 +169,7 @@ TEST(Sao, ShaderMatchesTheCpuMirror) {
     const auto gpu = test::render(renderer, camera, settings, View::AoRaw);
     const std::vector<std::uint8_t> gbuffer = renderer.gbuffer().readRgba();
     const FrameCamera frame = FrameCamera::from(camera, camera.width, camera.height);
+    const EstimatorParameters estimator = settings.estimator();
     const int w = camera.width, h = camera.height;
     // G-buffer texel at integer pixel (x, y) counted from the bottom, as the shader addresses it.
     auto texel = [&](int x, int y) { return &gbuffer[(static_cast<size_t>(h - 1 - y) * w + x) * 4]; };
@@ -197,10 +198,10 @@ TEST(Sao, ShaderMatchesTheCpuMirror) {
           const glm::vec2 tap = glm::floor(glm::vec2(x, y) + 0.5f + alpha * disk * dir);
           const int tx = std::clamp(static_cast<int>(tap.x), 0, w - 1);
           const int ty = std::clamp(static_cast<int>(tap.y), 0, h - 1);
-          sum += SaoKernel::tapObscurance(falloff, position(tx, ty) - c, n, settings.radius, settings.bias);
+          sum += SaoKernel::tapObscurance(falloff, position(tx, ty) - c, n, settings.radius, estimator.bias);
         }
-        const float cpu = SaoKernel::ambientVisibility(falloff, sum, settings.samples, settings.intensity,
-                                                       settings.contrast);
+        const float cpu = SaoKernel::ambientVisibility(falloff, sum, settings.samples, estimator.intensity,
+                                                       estimator.contrast);
         const float diff = std::abs(cpu * 255.0f - gpu.channel(x, h - 1 - y, 0));
         sumDiff += diff;
         large += diff > 4.0f;
