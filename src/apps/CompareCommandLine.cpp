@@ -95,8 +95,9 @@ int runCompare(const CompareOptions& options) {
       depth = GreyImage::fromRed(depthImage);
     }
     const GreyImage greyA = GreyImage::fromRed(a), greyB = GreyImage::fromRed(b);
-    const AoComparison c =
-        compareAo(greyA, greyB, mask, options.depthPath.empty() ? nullptr : &depth, options.discontinuities);
+    const std::vector<std::uint8_t> band =
+        options.depthPath.empty() ? std::vector<std::uint8_t>() : discontinuityBand(depth, options.discontinuities);
+    const AoComparison c = compareAo(greyA, greyB, mask, band);
 
     if (!options.diffPath.empty() || !options.sideBySidePath.empty()) {
       const Image diff = differenceImage(greyA, greyB, mask);

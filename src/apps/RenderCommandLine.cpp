@@ -7,31 +7,10 @@
 
 #include "core/Error.h"
 #include "gl/RenderTarget.h"
+#include "platform/FinishPassTimer.h"
 #include "scene/ImageIo.h"
 
 namespace obscura {
-namespace {
-
-// Per-pass wall time, bounded by glFinish on both sides so each pass is measured alone.
-class FinishTimer : public PassTimer {
- public:
-  void begin(Pass) override {
-    glFinish();
-    start_ = std::chrono::steady_clock::now();
-  }
-  void end(Pass pass) override {
-    glFinish();
-    const double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start_).count();
-    samples_[static_cast<size_t>(pass)].push_back(ms);
-  }
-  const std::vector<double>& samples(Pass pass) const { return samples_[static_cast<size_t>(pass)]; }
-
- private:
-  std::chrono::steady_clock::time_point start_;
-  std::vector<double> samples_[static_cast<size_t>(Pass::Count)];
-};
-
-}  // namespace
 
 std::string renderUsage() {
   std::string usage =
@@ -128,7 +107,7 @@ int runRender(const RenderOptions& options) {
 
     renderer.render(camera, options.ao, options.view, target);  // also warms up shader compilation
     if (options.benchFrames > 0) {
-      FinishTimer timer;
+      FinishPassTimer timer;
       const auto start = std::chrono::steady_clock::now();
       for (int frame = 0; frame < options.benchFrames; ++frame)
         renderer.render(camera, options.ao, options.view, target, &timer);

@@ -11,22 +11,23 @@ namespace {
 std::string sizeText(int width, int height) { return std::to_string(width) + "x" + std::to_string(height); }
 
 // Separable convolution with a normalised kernel, renormalised where it leaves the image (no padding values).
-std::vector<float> gaussianFilter(const std::vector<float>& values, int width, int height,
-                                  const std::vector<float>& kernel) {
+// Double precision: SSIM takes variances as E[x^2] - E[x]^2, which cancels badly in float.
+std::vector<double> gaussianFilter(const std::vector<double>& values, int width, int height,
+                                   const std::vector<double>& kernel) {
   const int half = static_cast<int>(kernel.size() / 2);
-  std::vector<float> rows(values.size()), out(values.size());
-  auto filter = [&](const std::vector<float>& in, std::vector<float>& result, bool horizontal) {
+  std::vector<double> rows(values.size()), out(values.size());
+  auto filter = [&](const std::vector<double>& in, std::vector<double>& result, bool horizontal) {
     for (int y = 0; y < height; ++y) {
       for (int x = 0; x < width; ++x) {
         double sum = 0.0, weight = 0.0;
         for (int k = -half; k <= half; ++k) {
           const int sx = horizontal ? x + k : x, sy = horizontal ? y : y + k;
           if (sx < 0 || sy < 0 || sx >= width || sy >= height) continue;
-          const float w = kernel[static_cast<size_t>(k + half)];
+          const double w = kernel[static_cast<size_t>(k + half)];
           sum += w * in[static_cast<size_t>(sy) * width + sx];
           weight += w;
         }
-        result[static_cast<size_t>(y) * width + x] = static_cast<float>(sum / weight);
+        result[static_cast<size_t>(y) * width + x] = sum / weight;
       }
     }
   };
@@ -59,6 +60,7 @@ std::vector<std::uint8_t> maskFromImage(const Image& image) {
 
 std::vector<std::uint8_t> discontinuityBand(const GreyImage& depth, const DiscontinuityOptions& options) {
   const int w = depth.width, h = depth.height;
+  auto at = [w](int x, int y) { return static_cast<size_t>(y) * static_cast<size_t>(w) + static_cast<size_t>(x); };
   std::vector<std::uint8_t> edge(static_cast<size_t>(w) * h, 0);
   auto jump = [&](float d1, float d2) {
     return std::abs(d1 - d2) > options.relativeJump * std::min(d1, d2) + options.quantisationSlack;
@@ -67,14 +69,8 @@ std::vector<std::uint8_t> discontinuityBand(const GreyImage& depth, const Discon
   for (int y = 0; y < h; ++y) {
     for (int x = 0; x < w; ++x) {
       const float d = depth.at(x, y);
-      if (x + 1 < w && jump(d, depth.at(x + 1, y))) {
-        edge[static_cast<size_t>(y) * w + x] = 1;
-        edge[static_cast<size_t>(y) * w + x + 1] = 1;
-      }
-      if (y + 1 < h && jump(d, depth.at(x, y + 1))) {
-        edge[static_cast<size_t>(y) * w + x] = 1;
-        edge[static_cast<size_t>(y + 1) * w + x] = 1;
-      }
+      if (x + 1 < w && jump(d, depth.at(x + 1, y))) edge[at(x, y)] = edge[at(x + 1, y)] = 1;
+      if (y + 1 < h && jump(d, depth.at(x, y + 1))) edge[at(x, y)] = edge[at(x, y + 1)] = 1;
     }
   }
   // Square dilation, separably: first along rows, then along columns.
@@ -82,54 +78,51 @@ std::vector<std::uint8_t> discontinuityBand(const GreyImage& depth, const Discon
   std::vector<std::uint8_t> rows(edge.size(), 0), band(edge.size(), 0);
   for (int y = 0; y < h; ++y)
     for (int x = 0; x < w; ++x)
-      for (int dx = -k; dx <= k && !rows[static_cast<size_t>(y) * w + x]; ++dx)
-        if (x + dx >= 0 && x + dx < w && edge[static_cast<size_t>(y) * w + x + dx]) rows[static_cast<size_t>(y) * w + x] = 1;
+      for (int sx = std::max(0, x - k); sx <= std::min(w - 1, x + k) && !rows[at(x, y)]; ++sx)
+        rows[at(x, y)] = edge[at(sx, y)];
   for (int y = 0; y < h; ++y)
     for (int x = 0; x < w; ++x)
-      for (int dy = -k; dy <= k && !band[static_cast<size_t>(y) * w + x]; ++dy)
-        if (y + dy >= 0 && y + dy < h && rows[static_cast<size_t>(y + dy) * w + x]) band[static_cast<size_t>(y) * w + x] = 1;
+      for (int sy = std::max(0, y - k); sy <= std::min(h - 1, y + k) && !band[at(x, y)]; ++sy)
+        band[at(x, y)] = rows[at(x, sy)];
   return band;
 }
 
 std::vector<float> ssimMap(const GreyImage& a, const GreyImage& b) {
   // Wang et al. 2004, sec. III-C: 11x11 circular-symmetric Gaussian, standard deviation 1.5 samples.
-  std::vector<float> kernel(11);
-  for (int i = 0; i < 11; ++i) kernel[static_cast<size_t>(i)] = std::exp(-0.5f * float((i - 5) * (i - 5)) / (1.5f * 1.5f));
+  std::vector<double> kernel(11);
+  for (int i = 0; i < 11; ++i) kernel[static_cast<size_t>(i)] = std::exp(-0.5 * (i - 5) * (i - 5) / (1.5 * 1.5));
   const int w = a.width, h = a.height;
   const size_t n = a.values.size();
-  std::vector<float> aa(n), bb(n), ab(n);
+  std::vector<double> va(a.values.begin(), a.values.end()), vb(b.values.begin(), b.values.end()), aa(n), bb(n), ab(n);
   for (size_t i = 0; i < n; ++i) {
-    aa[i] = a.values[i] * a.values[i];
-    bb[i] = b.values[i] * b.values[i];
-    ab[i] = a.values[i] * b.values[i];
+    aa[i] = va[i] * va[i];
+    bb[i] = vb[i] * vb[i];
+    ab[i] = va[i] * vb[i];
   }
-  const std::vector<float> muA = gaussianFilter(a.values, w, h, kernel), muB = gaussianFilter(b.values, w, h, kernel);
-  const std::vector<float> meanAA = gaussianFilter(aa, w, h, kernel), meanBB = gaussianFilter(bb, w, h, kernel),
-                           meanAB = gaussianFilter(ab, w, h, kernel);
+  const std::vector<double> muA = gaussianFilter(va, w, h, kernel), muB = gaussianFilter(vb, w, h, kernel);
+  const std::vector<double> meanAA = gaussianFilter(aa, w, h, kernel), meanBB = gaussianFilter(bb, w, h, kernel),
+                            meanAB = gaussianFilter(ab, w, h, kernel);
   constexpr double c1 = 0.01 * 0.01, c2 = 0.03 * 0.03;  // K1 = 0.01, K2 = 0.03, L = 1
   std::vector<float> map(n);
   for (size_t i = 0; i < n; ++i) {
     const double ma = muA[i], mb = muB[i];
-    const double varA = std::max(0.0, meanAA[i] - ma * ma), varB = std::max(0.0, meanBB[i] - mb * mb);
+    const double varA = meanAA[i] - ma * ma, varB = meanBB[i] - mb * mb;
     const double cov = meanAB[i] - ma * mb;
-    map[i] = static_cast<float>(((2 * ma * mb + c1) * (2 * cov + c2)) / ((ma * ma + mb * mb + c1) * (varA + varB + c2)));
+    const double numerator = (2 * ma * mb + c1) * (2 * cov + c2);
+    map[i] = static_cast<float>(numerator / ((ma * ma + mb * mb + c1) * (varA + varB + c2)));
   }
   return map;
 }
 
 AoComparison compareAo(const GreyImage& a, const GreyImage& b, const std::vector<std::uint8_t>& mask,
-                       const GreyImage* depth, const DiscontinuityOptions& options) {
-  auto sameSize = [&](int w, int h, const char* what) {
-    if (w != a.width || h != a.height)
-      throw InputError(std::string(what) + ": " + sizeText(w, h) + " differs from " + sizeText(a.width, a.height));
-  };
-  sameSize(b.width, b.height, "second image");
-  if (depth) sameSize(depth->width, depth->height, "depth");
+                       const std::vector<std::uint8_t>& haloBand, bool computeSsim) {
+  if (b.width != a.width || b.height != a.height)
+    throw InputError("second image: " + sizeText(b.width, b.height) + " differs from " + sizeText(a.width, a.height));
   const size_t n = a.values.size();
   if (!mask.empty() && mask.size() != n) throw InputError("mask: size differs from the images");
+  if (!haloBand.empty() && haloBand.size() != n) throw InputError("halo band: size differs from the images");
 
-  const std::vector<std::uint8_t> band = depth ? discontinuityBand(*depth, options) : std::vector<std::uint8_t>();
-  const std::vector<float> ssim = ssimMap(a, b);
+  const std::vector<float> ssim = computeSsim ? ssimMap(a, b) : std::vector<float>(n, 0.0f);
   AoComparison result;
   double sumAbs = 0, sumSq = 0, sumSigned = 0, sumSsim = 0, haloAbs = 0;
   for (size_t i = 0; i < n; ++i) {
@@ -140,7 +133,7 @@ AoComparison compareAo(const GreyImage& a, const GreyImage& b, const std::vector
     sumSq += d * d;
     sumSigned += d;
     sumSsim += ssim[i];
-    if (!band.empty() && band[i]) {
+    if (!haloBand.empty() && haloBand[i]) {
       ++result.haloPixels;
       haloAbs += std::abs(d);
     }

@@ -52,10 +52,11 @@ struct AoComparison {
   double haloMae = 0, interiorMae = 0;  // MAE inside / outside the band
 };
 
-// Compares B against A over mask pixels (mask: 1 geometry; empty: every pixel). `depth` may be null (no halo
-// figures). Throws InputError if the sizes differ or no pixel is selected.
+// Compares B against A over mask pixels (mask: 1 geometry; empty: every pixel). `haloBand` (discontinuityBand of
+// the depth view) may be empty: no halo figures. `computeSsim` false leaves ssim 0 and saves most of the time (the
+// fit's objective does not always need it). Throws InputError if the sizes differ or no pixel is selected.
 AoComparison compareAo(const GreyImage& a, const GreyImage& b, const std::vector<std::uint8_t>& mask,
-                       const GreyImage* depth, const DiscontinuityOptions& options = {});
+                       const std::vector<std::uint8_t>& haloBand = {}, bool computeSsim = true);
 
 // Pixels whose red channel is at least 128 (the mask view: geometry 255, background 0).
 std::vector<std::uint8_t> maskFromImage(const Image& image);

@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <atomic>
 #include <cmath>
-#include <limits>
 #include <stdexcept>
 #include <string>
 #include <thread>
@@ -242,8 +241,8 @@ Image greyImage(int width, int height, const std::vector<float>& values) {
   image.height = height;
   image.rgba.resize(values.size() * 4);
   for (size_t i = 0; i < values.size(); ++i) {
-    // Rounded to nearest, as the GL conversion of a float colour to an 8-bit channel.
-    const std::uint8_t grey = LinearDepthPacking::byteFromChannel(values[i]);
+    // Rounded to nearest, as GL converts a float colour to an 8-bit channel.
+    const auto grey = static_cast<std::uint8_t>(std::lround(std::clamp(values[i], 0.0f, 1.0f) * 255.0f));
     image.rgba[4 * i + 0] = image.rgba[4 * i + 1] = image.rgba[4 * i + 2] = grey;
     image.rgba[4 * i + 3] = 255;
   }

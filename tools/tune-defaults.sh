@@ -1,0 +1,20 @@
+#!/usr/bin/env bash
+# Fits SAO's intensity, bias and contrast per quality preset and radius to the ray-traced reference, makes them the
+# defaults, and regenerates the accuracy report. One command, deterministic; re-run it after any change to the AO
+# pipeline (passes, presets, shaders) and commit what it rewrites:
+#   src/core/TunedDefaults.inc   the fitted table AoSettings reads
+#   docs/accuracy.md             the generated tables (between the obscura-tune markers)
+#   docs/images/accuracy-*.png   reference | SAO | difference
+#   tests/golden/*.png           the golden images, which show the default (tuned) AO
+# Reference images are cached in build/tuning-cache (traced once per view and radius). About 10-15 minutes on two
+# cores. Usage: tools/tune-defaults.sh
+set -euo pipefail
+cd "$(dirname "$0")/.."
+
+tools/build.sh
+build/obscura-tune --views tools/tuning-views.json --fit src/core/TunedDefaults.inc
+tools/build.sh  # the core now reads the new table
+build/obscura-tune --views tools/tuning-views.json --report docs/accuracy.md --images docs/images
+OBSCURA_UPDATE_GOLDEN=1 ctest --test-dir build -R 'gpu\.osmesa\.Golden' >/dev/null
+echo "tune-defaults: rewrote src/core/TunedDefaults.inc, docs/accuracy.md, docs/images/accuracy-*.png and"
+echo "tune-defaults: tests/golden/*.png; run tools/test.sh (the accuracy test's bounds are in tests/test_accuracy.cpp)"
