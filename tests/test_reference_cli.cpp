@@ -30,7 +30,7 @@ TEST(ReferenceCli, BadInputExitsWithStatusTwoAndOneLine) {
       {"--scene /nonexistent/scene.glb", "/nonexistent/scene.glb: cannot open"},
       {"--camera " + badCamera, badCamera + ": near: must be > 0"},
       {"--radius 0", "--radius: 0 is out of range (0.01 .. 100 metres)"},
-      {"--rays 100", "--rays: 100 is not a power of two"},
+      {"--rays 100", "--rays: 100 must be a power of two"},
       {"--rays 0", "--rays: 0 is out of range"},
       {"--threads x", "--threads: expected a whole number"},
       {"--view normals", "--view: expected ao, depth or mask"},

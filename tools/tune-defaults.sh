@@ -6,8 +6,9 @@
 #   docs/accuracy.md             the generated tables (between the obscura-tune markers)
 #   docs/images/accuracy-*.png   reference | SAO | difference
 #   tests/golden/*.png           the golden images, which show the default (tuned) AO
-# Reference images are cached in build/tuning-cache (traced once per view and radius). About 10-15 minutes on two
-# cores. Usage: tools/tune-defaults.sh
+#   docs/images/builtin_*.png    the README's pictures (tools/render-docs-images.sh), likewise
+# Reference images are cached in build/tuning-cache (traced once per view and radius). About 5-10 minutes on two
+# cores, plus a few minutes the first time to trace the references. Usage: tools/tune-defaults.sh
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
@@ -16,5 +17,6 @@ build/obscura-tune --views tools/tuning-views.json --fit src/core/TunedDefaults.
 tools/build.sh  # the core now reads the new table
 build/obscura-tune --views tools/tuning-views.json --report docs/accuracy.md --images docs/images
 OBSCURA_UPDATE_GOLDEN=1 ctest --test-dir build -R 'gpu\.osmesa\.Golden' >/dev/null
-echo "tune-defaults: rewrote src/core/TunedDefaults.inc, docs/accuracy.md, docs/images/accuracy-*.png and"
-echo "tune-defaults: tests/golden/*.png; run tools/test.sh (the accuracy test's bounds are in tests/test_accuracy.cpp)"
+tools/render-docs-images.sh
+echo "tune-defaults: rewrote src/core/TunedDefaults.inc, docs/accuracy.md, docs/images/*.png and tests/golden/*.png;"
+echo "tune-defaults: now run tools/test.sh (the accuracy guard's bounds are in tests/test_accuracy.cpp)"

@@ -53,11 +53,8 @@ ReferenceOptions parseReferenceCommandLine(const std::vector<std::string>& args)
         throw InputError(std::string("--") + e.what());
       }
       options.trace.radius = settings.radius;
-    } else if (arg == "--rays") {
-      options.trace.rays = parseCount(arg, value(), 65536);
-      if (options.trace.rays & (options.trace.rays - 1))
-        throw InputError("--rays: " + args[i] + " is not a power of two (the sample set is a base-2 net)");
-    } else if (arg == "--threads") options.trace.threads = parseCount(arg, value(), 256);
+    } else if (arg == "--rays") options.trace.rays = parseCount(arg, value(), 65536);
+    else if (arg == "--threads") options.trace.threads = parseCount(arg, value(), 256);
     else if (arg == "--view") {
       const std::string& view = value();
       if (view == "ao") options.view = ReferenceView::Ao;
@@ -70,6 +67,11 @@ ReferenceOptions parseReferenceCommandLine(const std::vector<std::string>& args)
     else throw InputError("unknown option '" + arg + "' (see --help)");
   }
   options.input.check();
+  try {
+    validateReferenceSettings(options.trace);  // e.g. rays not a power of two
+  } catch (const InputError& e) {
+    throw InputError(std::string("--") + e.what());
+  }
   return options;
 }
 
