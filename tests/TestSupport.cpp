@@ -1,6 +1,7 @@
 #include "TestSupport.h"
 
 #include <sys/wait.h>
+#include <unistd.h>
 
 #include <cstdlib>
 #include <fstream>
@@ -76,8 +77,8 @@ std::string slurp(const std::string& path) {
 }  // namespace
 
 ProcessResult runProcess(const std::string& binary, const std::string& args) {
-  const std::string stem = ::testing::TempDir() + "process-" +
-                           ::testing::UnitTest::GetInstance()->current_test_info()->name();
+  const std::string stem = tempPath(std::string("process-") +
+                                    ::testing::UnitTest::GetInstance()->current_test_info()->name());
   const std::string out = stem + ".out", err = stem + ".err";
   const std::string command = binary + " " + args + " >" + out + " 2>" + err;
   const int raw = std::system(command.c_str());
@@ -88,8 +89,12 @@ ProcessResult runProcess(const std::string& binary, const std::string& args) {
   return result;
 }
 
+std::string tempPath(const std::string& name) {
+  return ::testing::TempDir() + "obscura-" + std::to_string(getpid()) + "-" + name;
+}
+
 std::string writeTempFile(const std::string& name, const std::string& text) {
-  const std::string path = ::testing::TempDir() + name;
+  const std::string path = tempPath(name);
   std::ofstream(path) << text;
   return path;
 }

@@ -64,7 +64,7 @@ TEST(Cli, RendersEveryViewOfTheBuiltinScene) {
 }
 
 TEST(Cli, MaskViewMarksExactlyTheGeometry) {
-  const std::string mask = ::testing::TempDir() + "mask.png", depth = ::testing::TempDir() + "mask-depth.png";
+  const std::string mask = obscura::test::tempPath("mask.png"), depth = obscura::test::tempPath("mask-depth.png");
   ASSERT_EQ(run("--size 96x64 --view mask --out " + mask).status, 0);
   ASSERT_EQ(run("--size 96x64 --view depth --out " + depth).status, 0);
   const obscura::Image m = obscura::readPng(mask), d = obscura::readPng(depth);

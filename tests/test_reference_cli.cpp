@@ -42,11 +42,11 @@ TEST(ReferenceCli, BadInputExitsWithStatusTwoAndOneLine) {
       {"--scene " + obscura::test::assimpModels() + "/IndexOutOfRange/IndexOutOfRange.gltf", "index 255"},
   };
   for (const auto& [args, expect] : cases)
-    expectOneLineError(reference("--out " + ::testing::TempDir() + "never.png " + args), args, expect);
+    expectOneLineError(reference("--out " + obscura::test::tempPath("never.png") + " " + args), args, expect);
 }
 
 TEST(ReferenceCli, WritesTheSameViewsAsObscuraRender) {
-  const std::string dir = ::testing::TempDir();
+  const std::string dir = obscura::test::tempPath("");  // a per-process prefix
   const ProcessResult traced = reference("--size 96x54 --rays 16 --out " + dir + "ref-ao.png --depth-out " + dir +
                                          "ref-depth.png --mask-out " + dir + "ref-mask.png");
   ASSERT_EQ(traced.status, 0) << traced.err;
@@ -67,7 +67,7 @@ TEST(ReferenceCli, WritesTheSameViewsAsObscuraRender) {
 }
 
 TEST(CompareCli, BadInputExitsWithStatusTwoAndOneLine) {
-  const std::string dir = ::testing::TempDir();
+  const std::string dir = obscura::test::tempPath("");  // a per-process prefix
   ASSERT_EQ(render("--size 32x20 --view ao --out " + dir + "cmp-a.png").status, 0);
   ASSERT_EQ(render("--size 30x20 --view ao --out " + dir + "cmp-small.png").status, 0);
   const std::string a = dir + "cmp-a.png", small = dir + "cmp-small.png";
@@ -85,7 +85,7 @@ TEST(CompareCli, BadInputExitsWithStatusTwoAndOneLine) {
 }
 
 TEST(CompareCli, ReportsFiguresAndWritesThePictures) {
-  const std::string dir = ::testing::TempDir();
+  const std::string dir = obscura::test::tempPath("");  // a per-process prefix
   ASSERT_EQ(render("--size 64x36 --view ao --out " + dir + "cmp-ao.png").status, 0);
   ASSERT_EQ(render("--size 64x36 --view ao --radius 2 --out " + dir + "cmp-ao2.png").status, 0);
   ASSERT_EQ(render("--size 64x36 --view mask --out " + dir + "cmp-mask.png").status, 0);
