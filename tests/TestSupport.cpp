@@ -1,7 +1,12 @@
 #include "TestSupport.h"
 
+#include <sys/wait.h>
+#include <unistd.h>
+
 #include <cstdlib>
+#include <fstream>
 #include <memory>
+#include <sstream>
 
 namespace obscura::test {
 
@@ -60,6 +65,38 @@ Camera makeCamera(const glm::vec3& eye, const glm::vec3& target, int width, int 
   camera.far = far;
   camera.fovyDegrees = fovyDegrees;
   return camera;
+}
+
+namespace {
+std::string slurp(const std::string& path) {
+  std::ifstream file(path);
+  std::stringstream text;
+  text << file.rdbuf();
+  return text.str();
+}
+}  // namespace
+
+ProcessResult runProcess(const std::string& binary, const std::string& args) {
+  const std::string stem = tempPath(std::string("process-") +
+                                    ::testing::UnitTest::GetInstance()->current_test_info()->name());
+  const std::string out = stem + ".out", err = stem + ".err";
+  const std::string command = binary + " " + args + " >" + out + " 2>" + err;
+  const int raw = std::system(command.c_str());
+  ProcessResult result;
+  result.status = WIFEXITED(raw) ? WEXITSTATUS(raw) : 128 + WTERMSIG(raw);
+  result.out = slurp(out);
+  result.err = slurp(err);
+  return result;
+}
+
+std::string tempPath(const std::string& name) {
+  return ::testing::TempDir() + "obscura-" + std::to_string(getpid()) + "-" + name;
+}
+
+std::string writeTempFile(const std::string& name, const std::string& text) {
+  const std::string path = tempPath(name);
+  std::ofstream(path) << text;
+  return path;
 }
 
 std::string sourceDir() { return OBSCURA_SOURCE_DIR; }

@@ -39,6 +39,18 @@ Mesh makeRectangle(const glm::vec3& origin, const glm::vec3& u, const glm::vec3&
 Camera makeCamera(const glm::vec3& eye, const glm::vec3& target, int width, int height, float near = 0.1f,
                   float far = 100.0f, float fovyDegrees = 50.0f);
 
+// Runs `binary args` through the shell, capturing stdout and stderr (in files named after the process and the test:
+// ctest runs the tests of one binary as parallel processes).
+struct ProcessResult {
+  int status = -1;  // exit status, or 128 + signal
+  std::string out, err;
+};
+ProcessResult runProcess(const std::string& binary, const std::string& args);
+// TempDir()/obscura-<pid>-<name>: unique per process, since several test runs may share the machine's TempDir().
+std::string tempPath(const std::string& name);
+// Writes `text` to tempPath(name) and returns the path.
+std::string writeTempFile(const std::string& name, const std::string& text);
+
 std::string sourceDir();  // the repository root (for assets and goldens)
 std::string assimpModels();  // /usr/share/assimp/models/glTF2
 

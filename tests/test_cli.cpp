@@ -2,50 +2,20 @@
 // the image. Runs the real binary.
 #include <gtest/gtest.h>
 
-#include <sys/wait.h>
-#include <unistd.h>
-
-#include <cstdio>
-#include <fstream>
-#include <sstream>
+#include <algorithm>
+#include <set>
 
 #include "TestSupport.h"
 #include "scene/ImageIo.h"
 
 namespace {
 
-struct Result {
-  int status = -1;
-  std::string out, err;
-};
-
-std::string slurp(const std::string& path) {
-  std::ifstream file(path);
-  std::stringstream text;
-  text << file.rdbuf();
-  return text.str();
-}
-
-Result run(const std::string& args) {
-  // ctest runs the CLI tests in parallel processes: name the capture files per process and call.
-  static int call = 0;
-  const std::string stem = ::testing::TempDir() + "cli-" + std::to_string(getpid()) + "-" + std::to_string(++call);
-  const std::string out = stem + ".out", err = stem + ".err";
-  const std::string command = std::string(OBSCURA_RENDER_BINARY) + " " + args + " >" + out + " 2>" + err;
-  const int raw = std::system(command.c_str());
-  Result result;
-  result.status = WIFEXITED(raw) ? WEXITSTATUS(raw) : 128 + WTERMSIG(raw);
-  result.out = slurp(out);
-  result.err = slurp(err);
-  std::remove(out.c_str());
-  std::remove(err.c_str());
-  return result;
+obscura::test::ProcessResult run(const std::string& args) {
+  return obscura::test::runProcess(OBSCURA_RENDER_BINARY, args);
 }
 
 std::string writeFile(const std::string& name, const std::string& text) {
-  const std::string path = ::testing::TempDir() + std::to_string(getpid()) + "-" + name;
-  std::ofstream(path) << text;
-  return path;
+  return obscura::test::writeTempFile(name, text);
 }
 
 }  // namespace
@@ -66,14 +36,16 @@ TEST(Cli, BadInputExitsWithStatusTwoAndOneLine) {
       {"--samples 0", "--samples: 0 is out of range"},
       {"--size 10x", "--size: expected WxH"},
       {"--size 0x10", "--size: 0x10 is out of range"},
-      {"--view sideways", "--view: expected final, ao, ao-raw, normals or depth"},
+      {"--view sideways", "--view: expected final, ao, ao-raw, normals, depth or mask"},
       {"--bench many", "--bench: expected a whole number"},
       {"--backend vulkan", "--backend: expected osmesa or egl"},
       {"--fit --camera x.json", "--camera and --fit exclude each other"},
+      {"--scene-scale 0", "--scene-scale: 0 is out of range"},
+      {"--scene-scale big", "--scene-scale: expected a number"},
       {"--scene " + obscura::test::assimpModels() + "/IndexOutOfRange/IndexOutOfRange.gltf", "index 255"},
   };
   for (const auto& [args, expect] : cases) {
-    const Result r = run("--out " + ::testing::TempDir() + "never.png " + args);
+    const obscura::test::ProcessResult r = run("--out " + ::testing::TempDir() + "never.png " + args);
     EXPECT_EQ(r.status, 2) << args << "\n" << r.err;
     EXPECT_NE(r.err.find(expect), std::string::npos) << args << " -> " << r.err;
     EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << args << " -> " << r.err;
@@ -81,9 +53,9 @@ TEST(Cli, BadInputExitsWithStatusTwoAndOneLine) {
 }
 
 TEST(Cli, RendersEveryViewOfTheBuiltinScene) {
-  for (const char* view : {"final", "ao", "ao-raw", "normals", "depth"}) {
-    const std::string out = ::testing::TempDir() + std::to_string(getpid()) + "-view-" + view + ".png";
-    const Result r = run(std::string("--size 96x64 --view ") + view + " --out " + out);
+  for (const char* view : {"final", "ao", "ao-raw", "normals", "depth", "mask"}) {
+    const std::string out = obscura::test::tempPath(std::string("view-") + view + ".png");
+    const obscura::test::ProcessResult r = run(std::string("--size 96x64 --view ") + view + " --out " + out);
     ASSERT_EQ(r.status, 0) << view << ": " << r.err;
     const obscura::Image image = obscura::readPng(out);
     EXPECT_EQ(image.width, 96);
@@ -91,9 +63,26 @@ TEST(Cli, RendersEveryViewOfTheBuiltinScene) {
   }
 }
 
+TEST(Cli, MaskViewMarksExactlyTheGeometry) {
+  const std::string mask = obscura::test::tempPath("mask.png"), depth = obscura::test::tempPath("mask-depth.png");
+  ASSERT_EQ(run("--size 96x64 --view mask --out " + mask).status, 0);
+  ASSERT_EQ(run("--size 96x64 --view depth --out " + depth).status, 0);
+  const obscura::Image m = obscura::readPng(mask), d = obscura::readPng(depth);
+  size_t geometry = 0;
+  for (size_t i = 0; i < m.rgba.size(); i += 4) {
+    ASSERT_TRUE(m.rgba[i] == 0 || m.rgba[i] == 255) << int(m.rgba[i]);
+    geometry += m.rgba[i] == 255;
+    // Background is white in the depth view; geometry of the built-in scene's camera lies well before the far plane.
+    EXPECT_EQ(m.rgba[i] == 0, d.rgba[i] == 255) << "pixel " << i / 4;
+  }
+  const size_t pixels = m.rgba.size() / 4;
+  EXPECT_GT(geometry, pixels / 2);  // the built-in scene fills most of its camera's view
+  EXPECT_LT(geometry, pixels);      // ... with sky above the walls
+}
+
 TEST(Cli, RendersAGltfFileWithFitAndBenchPrintsEveryPass) {
-  const std::string out = ::testing::TempDir() + std::to_string(getpid()) + "-engine.png";
-  const Result r = run("--scene " + obscura::test::assimpModels() +
+  const std::string out = obscura::test::tempPath("engine.png");
+  const obscura::test::ProcessResult r = run("--scene " + obscura::test::assimpModels() +
                        "/2CylinderEngine-glTF-Binary/2CylinderEngine.glb --fit --size 160x90 --bench 2 --out " + out);
   ASSERT_EQ(r.status, 0) << r.err;
   for (const char* pass : {"gbuffer", "sao", "blur-h", "blur-v", "composite", "total"})
@@ -107,7 +96,7 @@ TEST(Cli, RendersAGltfFileWithFitAndBenchPrintsEveryPass) {
 }
 
 TEST(Cli, HelpListsEveryAoParameter) {
-  const Result r = run("--help");
+  const obscura::test::ProcessResult r = run("--help");
   EXPECT_EQ(r.status, 0);
   for (const char* name : {"--radius", "--bias", "--intensity", "--contrast", "--samples", "--blur-radius", "--no-blur"})
     EXPECT_NE(r.out.find(name), std::string::npos) << name;

@@ -169,6 +169,7 @@ TEST(Sao, ShaderMatchesTheCpuMirror) {
       settings.spiralTurns = SaoKernel::bestSpiralTurns(16);
       settings.depthHierarchy = hierarchy;
       settings.radius = 2.0f;  // far taps reach hierarchy levels 1 and 2 at this size
+      const EstimatorParameters estimator = settings.estimator();
       const auto gpu = test::render(renderer, camera, settings, View::AoRaw);
       const std::vector<std::uint8_t> gbuffer = renderer.gbuffer().readRgba();
       const FrameCamera frame = FrameCamera::from(camera, camera.width, camera.height);
@@ -208,10 +209,10 @@ TEST(Sao, ShaderMatchesTheCpuMirror) {
                   glm::min(tap / (1 << level), SaoKernel::hierarchyLevelSize(size, level) - 1), level, size);
             }
             sum += SaoKernel::tapObscurance(falloff, position(source, code(source)) - c, n, settings.radius,
-                                            settings.bias);
+                                            estimator.bias);
           }
-          const float cpu = SaoKernel::ambientVisibility(falloff, sum, settings.samples, settings.intensity,
-                                                         settings.contrast);
+          const float cpu = SaoKernel::ambientVisibility(falloff, sum, settings.samples, estimator.intensity,
+                                                         estimator.contrast);
           const float diff = std::abs(cpu * 255.0f - static_cast<float>(gpu.channel(x, h - 1 - y, 0)));
           sumDiff += diff;
           large += diff > 4.0f;

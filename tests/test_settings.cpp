@@ -1,6 +1,9 @@
 // AO parameters: one table of names and ranges for the CLI, viewer and page; presets; spiral turns.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <cmath>
+
 #include "core/AoSettings.h"
 #include "core/Error.h"
 #include "core/SaoKernel.h"
@@ -71,4 +74,80 @@ TEST(AoSettings, EveryDocumentedParameterIsAccepted) {
   EXPECT_FLOAT_EQ(settings.radius, 2.5f);
   EXPECT_EQ(settings.falloff, Falloff::Alchemy2011);
   EXPECT_EQ(settings.blurRadius, 0);
+}
+
+TEST(AoSettings, DefaultsAreTheMediumPreset) {
+  // The tuned estimator parameters are looked up for `preset`, so the default fields must be that preset's.
+  const AoSettings defaults;
+  AoSettings medium;
+  medium.applyPreset(QualityPreset::Medium);
+  EXPECT_EQ(defaults.preset, QualityPreset::Medium);
+  EXPECT_EQ(defaults.samples, medium.samples);
+  EXPECT_EQ(defaults.spiralTurns, medium.spiralTurns);
+  EXPECT_EQ(defaults.blurRadius, medium.blurRadius);
+  EXPECT_EQ(defaults.blurStride, medium.blurStride);
+  EXPECT_EQ(defaults.halfResolution, medium.halfResolution);
+}
+
+TEST(AoSettings, EstimatorParametersAreTunedUnlessSetExplicitly) {
+  AoSettings settings;
+  settings.set("preset", "high");
+  EXPECT_EQ(settings.preset, QualityPreset::High);
+  settings.set("radius", "2");
+  const EstimatorParameters tuned = tunedEstimatorParameters(QualityPreset::High, 2.0f);
+  EXPECT_FLOAT_EQ(settings.estimator().intensity, tuned.intensity);
+  EXPECT_FLOAT_EQ(settings.estimator().bias, tuned.bias);
+  EXPECT_FLOAT_EQ(settings.estimator().contrast, tuned.contrast);
+
+  settings.set("intensity", "2.5");
+  settings.set("bias", "0.03");
+  settings.set("contrast", "1.5");
+  EXPECT_FLOAT_EQ(settings.estimator().intensity, 2.5f);
+  EXPECT_FLOAT_EQ(settings.estimator().bias, 0.03f);
+  EXPECT_FLOAT_EQ(settings.estimator().contrast, 1.5f);
+  settings.set("radius", "0.5");  // an explicit value stays explicit whatever the radius
+  EXPECT_FLOAT_EQ(settings.estimator().intensity, 2.5f);
+
+  settings.set("intensity", "auto");
+  EXPECT_FLOAT_EQ(settings.estimator().intensity, tunedEstimatorParameters(QualityPreset::High, 0.5f).intensity);
+  EXPECT_FLOAT_EQ(settings.estimator().bias, 0.03f);
+}
+
+TEST(AoSettings, TunedParametersAreValidAndContinuousOverTheWholeRadiusRange) {
+  for (const PresetInfo& preset : qualityPresets()) {
+    EstimatorParameters previous = tunedEstimatorParameters(preset.preset, 0.01f);
+    // Radii 0.01 .. 100 m in steps of 2^(1/16): interpolation in log(radius) moves a little per step.
+    for (int step = 1; step <= 213; ++step) {
+      const float radius = 0.01f * std::pow(2.0f, static_cast<float>(step) / 16.0f);
+      AoSettings settings;
+      settings.applyPreset(preset.preset);
+      settings.radius = std::min(radius, 100.0f);
+      EXPECT_NO_THROW(settings.validate()) << preset.name << " r = " << radius;
+      const EstimatorParameters e = settings.estimator();
+      EXPECT_LT(std::abs(e.intensity - previous.intensity), 0.5f) << preset.name << " r = " << radius;
+      EXPECT_LT(std::abs(e.bias - previous.bias), 0.05f) << preset.name << " r = " << radius;
+      EXPECT_LT(std::abs(e.contrast - previous.contrast), 0.5f) << preset.name << " r = " << radius;
+      previous = e;
+    }
+  }
+}
+
+TEST(AoSettings, ExplicitEstimatorParametersKeepTheirRanges) {
+  AoSettings settings;
+  const std::pair<std::pair<const char*, const char*>, const char*> cases[] = {
+      {{"intensity", "25"}, "intensity: 25 is out of range (0 .. 20)"},
+      {{"bias", "-0.1"}, "bias: -0.1 is out of range (0 .. 1 metres)"},
+      {{"contrast", "0"}, "contrast: 0 is out of range (0.1 .. 10)"},
+      {{"contrast", "automatic"}, "contrast: expected a number"},
+  };
+  for (const auto& [input, expect] : cases) {
+    try {
+      settings.set(input.first, input.second);
+      ADD_FAILURE() << input.first << "=" << input.second << " was accepted";
+    } catch (const InputError& e) {
+      EXPECT_NE(std::string(e.what()).find(expect), std::string::npos) << e.what();
+    }
+  }
+  settings.intensity = 30.0f;  // set in code, out of range
+  EXPECT_THROW(settings.validate(), InputError);
 }

@@ -8,47 +8,20 @@
 #include "core/Error.h"
 #include "gl/RenderTarget.h"
 #include "platform/FinishPassTimer.h"
-#include "scene/BuiltinScene.h"
-#include "scene/GltfLoader.h"
 #include "scene/ImageIo.h"
 
 namespace obscura {
-namespace {
-
-void parseSize(const std::string& text, int* width, int* height) {
-  int w = 0, h = 0;
-  char x = 0, extra = 0;
-  if (std::sscanf(text.c_str(), "%d%c%d%c", &w, &x, &h, &extra) != 3 || (x != 'x' && x != 'X'))
-    throw InputError("--size: expected WxH (e.g. 1280x720), got '" + text + "'");
-  if (w < 1 || h < 1 || w > Camera::kMaxSize || h > Camera::kMaxSize)
-    throw InputError("--size: " + text + " is out of range (1 .. " + std::to_string(Camera::kMaxSize) + " per side)");
-  *width = w;
-  *height = h;
-}
-
-int parseCount(const std::string& option, const std::string& text, int max) {
-  char* end = nullptr;
-  const long value = std::strtol(text.c_str(), &end, 10);
-  if (text.empty() || *end != '\0') throw InputError(option + ": expected a whole number, got '" + text + "'");
-  if (value < 1 || value > max)
-    throw InputError(option + ": " + text + " is out of range (1 .. " + std::to_string(max) + ")");
-  return static_cast<int>(value);
-}
-
-}  // namespace
 
 std::string renderUsage() {
   std::string usage =
-      "usage: obscura-render [--scene FILE] [--camera CAM.json | --fit] [--size WxH] [--view V] [--out FILE.png]\n"
+      "usage: obscura-render [--scene FILE [--scene-scale S]] [--camera CAM.json | --fit] [--size WxH] [--view V]\n"
+      "                      [--out FILE.png]\n"
       "                      [--radius R --bias B --intensity I --contrast K --samples N --blur-radius R --no-blur]\n"
       "                      [--preset P] [--no-ao] [--bench N] [--backend osmesa|egl]\n"
       "\n"
       "Renders a glTF 2.0 scene (default: the built-in scene) headless with Scalable Ambient Obscurance.\n"
-      "  --scene FILE      .gltf or .glb; default: the built-in scene\n"
-      "  --camera FILE     camera JSON {eye, target, up, fovy_deg, near, far, width, height}\n"
-      "  --fit             frame the scene's bounds (the default for --scene without --camera)\n"
-      "  --size WxH        output size (overrides the camera's width and height; default 1280x720)\n"
-      "  --view V          final | ao | ao-raw | normals | depth   (default final)\n"
+      + sceneInputUsage() +
+      "  --view V          final | ao | ao-raw | normals | depth | mask   (default final)\n"
       "  --out FILE        output PNG (default obscura.png)\n"
       "  --bench N         render N frames and print per-pass milliseconds (glFinish-bounded)\n"
       "  --backend B       osmesa (default) or egl (Mesa EGL surfaceless, a true GLES 2 context)\n"
@@ -75,10 +48,7 @@ RenderOptions parseRenderCommandLine(const std::vector<std::string>& args) {
       return args[++i];
     };
     if (arg == "--help" || arg == "-h") options.help = true;
-    else if (arg == "--scene") options.scenePath = value();
-    else if (arg == "--camera") options.cameraPath = value();
-    else if (arg == "--fit") options.fit = true;
-    else if (arg == "--size") parseSize(value(), &options.width, &options.height);
+    else if (options.input.parseOption(args, i)) continue;
     else if (arg == "--view") {
       try {
         options.view = parseView(value());
@@ -108,7 +78,7 @@ RenderOptions parseRenderCommandLine(const std::vector<std::string>& args) {
       throw InputError("unknown option '" + arg + "' (see --help)");
     }
   }
-  if (options.fit && !options.cameraPath.empty()) throw InputError("--camera and --fit exclude each other");
+  options.input.check();
   return options;
 }
 
@@ -119,18 +89,8 @@ int runRender(const RenderOptions& options) {
   }
   try {
     // Input first, so a bad file is reported before any GL work.
-    GltfLoadReport report;
-    const Scene scene = options.scenePath.empty() ? makeBuiltinScene() : loadGltfFile(options.scenePath, &report);
-    for (const std::string& warning : report.warnings)
-      std::cerr << "obscura-render: warning: " << options.scenePath << ": " << warning << "\n";
-    Camera camera;
-    if (!options.cameraPath.empty()) camera = Camera::fromJsonFile(options.cameraPath);
-    else if (options.fit || !options.scenePath.empty()) camera = Camera::fit(scene.worldBounds(), 1280, 720);
-    else camera = builtinSceneCamera();
-    if (options.width > 0) {
-      camera.width = options.width;
-      camera.height = options.height;
-    }
+    const Scene scene = options.input.loadScene("obscura-render");
+    const Camera camera = options.input.camera(scene);
 
     HeadlessContext context(options.backend);
     if (std::max(camera.width, camera.height) > context.caps().maxRenderSize())

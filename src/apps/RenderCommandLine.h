@@ -4,6 +4,7 @@
 #include <string>
 #include <vector>
 
+#include "apps/SceneInput.h"
 #include "core/AoSettings.h"
 #include "core/Renderer.h"
 #include "platform/HeadlessContext.h"
@@ -11,10 +12,7 @@
 namespace obscura {
 
 struct RenderOptions {
-  std::string scenePath;   // empty: the built-in scene
-  std::string cameraPath;  // empty: the built-in scene's camera, or --fit for a file
-  bool fit = false;
-  int width = 0, height = 0;  // 0: from the camera (default 1280 x 720)
+  SceneInput input;  // --scene, --scene-scale, --camera, --fit, --size
   View view = View::Final;
   std::string outPath = "obscura.png";
   AoSettings ao;

@@ -30,6 +30,13 @@ int parseInteger(const std::string& name, const std::string& text, int min, int 
   return static_cast<int>(value);
 }
 
+// An estimator parameter that defaults to its tuned value: a number in range, or "auto" for the tuned value.
+std::optional<float> parseTunable(const std::string& name, const std::string& text, double min, double max,
+                                  const char* unit) {
+  if (text == "auto") return std::nullopt;
+  return parseNumber(name, text, min, max, unit);
+}
+
 bool parseSwitch(const std::string& name, const std::string& text) {
   if (text == "on" || text == "1" || text == "true") return true;
   if (text == "off" || text == "0" || text == "false") return false;
@@ -49,12 +56,12 @@ const std::vector<Parameter>& parameterTable() {
        [](AoSettings& s, const std::string&, const std::string& v) { s.applyPreset(parsePreset(v)); }},
       {{"radius", "0.01 .. 100 (metres)", "world-space obscurance radius r"},
        [](AoSettings& s, const std::string& n, const std::string& v) { s.radius = parseNumber(n, v, 0.01, 100, "metres"); }},
-      {{"bias", "0 .. 1 (metres)", "tangent-plane bias beta against self-occlusion"},
-       [](AoSettings& s, const std::string& n, const std::string& v) { s.bias = parseNumber(n, v, 0, 1, "metres"); }},
-      {{"intensity", "0 .. 20", "intensity sigma"},
-       [](AoSettings& s, const std::string& n, const std::string& v) { s.intensity = parseNumber(n, v, 0, 20, ""); }},
-      {{"contrast", "0.1 .. 10", "contrast exponent k"},
-       [](AoSettings& s, const std::string& n, const std::string& v) { s.contrast = parseNumber(n, v, 0.1, 10, ""); }},
+      {{"bias", "0 .. 1 (metres)", "tangent-plane bias beta against self-occlusion (default: tuned; auto)"},
+       [](AoSettings& s, const std::string& n, const std::string& v) { s.bias = parseTunable(n, v, 0, 1, "metres"); }},
+      {{"intensity", "0 .. 20", "intensity sigma (default: tuned to the reference for preset and radius; auto)"},
+       [](AoSettings& s, const std::string& n, const std::string& v) { s.intensity = parseTunable(n, v, 0, 20, ""); }},
+      {{"contrast", "0.1 .. 10", "contrast exponent k (default: tuned; auto)"},
+       [](AoSettings& s, const std::string& n, const std::string& v) { s.contrast = parseTunable(n, v, 0.1, 10, ""); }},
       {{"samples", "1 .. 64", "taps per pixel (also picks the best spiral turns)"},
        [](AoSettings& s, const std::string& n, const std::string& v) {
          s.samples = parseInteger(n, v, 1, 64);
@@ -117,9 +124,10 @@ QualityPreset parsePreset(const std::string& name) {
 
 const char* falloffName(Falloff falloff) { return falloff == Falloff::Sao2012 ? "sao2012" : "alchemy2011"; }
 
-void AoSettings::applyPreset(QualityPreset preset) {
+void AoSettings::applyPreset(QualityPreset which) {
   for (const PresetInfo& p : qualityPresets()) {
-    if (p.preset != preset) continue;
+    if (p.preset != which) continue;
+    preset = which;
     samples = p.samples;
     spiralTurns = p.spiralTurns;
     blurRadius = p.blurRadius;
@@ -143,9 +151,11 @@ void AoSettings::validate() const {
     if (!ok) throw InputError("invalid AO settings: " + what);
   };
   check(radius >= 0.01f && radius <= 100.0f, "radius must be in 0.01 .. 100 m");
-  check(bias >= 0.0f && bias <= 1.0f, "bias must be in 0 .. 1 m");
-  check(intensity >= 0.0f && intensity <= 20.0f, "intensity must be in 0 .. 20");
-  check(contrast >= 0.1f && contrast <= 10.0f, "contrast must be in 0.1 .. 10");
+  // Checked as resolved, so a tuned table entry out of range is caught as well.
+  const EstimatorParameters e = estimator();
+  check(e.bias >= 0.0f && e.bias <= 1.0f, "bias must be in 0 .. 1 m");
+  check(e.intensity >= 0.0f && e.intensity <= 20.0f, "intensity must be in 0 .. 20");
+  check(e.contrast >= 0.1f && e.contrast <= 10.0f, "contrast must be in 0.1 .. 10");
   check(samples >= 1 && samples <= 64, "samples must be in 1 .. 64");
   check(spiralTurns >= 1 && SaoKernel::greatestCommonDivisor(spiralTurns, samples) == 1,
         "spiral turns must be coprime with samples");
@@ -153,6 +163,51 @@ void AoSettings::validate() const {
   check(blurRadius >= 0 && blurRadius <= 8, "blur radius must be in 0 .. 8");
   check(blurStride >= 1 && blurStride <= 8, "blur stride must be in 1 .. 8");
   check(blurDepthSigma >= 0.001f && blurDepthSigma <= 10.0f, "blur depth sigma must be in 0.001 .. 10 m");
+}
+
+namespace {
+
+struct TunedEntry {
+  QualityPreset preset;
+  float radius;
+  EstimatorParameters parameters;
+};
+
+// Rows ordered by preset, then by increasing radius.
+constexpr TunedEntry kTunedTable[] = {
+#include "core/TunedDefaults.inc"
+};
+
+}  // namespace
+
+EstimatorParameters tunedEstimatorParameters(QualityPreset preset, float radius) {
+  const TunedEntry* first = nullptr;
+  const TunedEntry* last = nullptr;
+  for (const TunedEntry& entry : kTunedTable) {
+    if (entry.preset != preset) continue;
+    if (!first) first = &entry;
+    last = &entry;
+  }
+  if (!first) return kPaperEstimatorParameters;
+  if (radius <= first->radius) return first->parameters;
+  if (radius >= last->radius) return last->parameters;
+  const TunedEntry* upper = first + 1;
+  while (upper->radius < radius) ++upper;
+  const TunedEntry& lower = *(upper - 1);
+  // The fitted radii are spaced by factors of two, so interpolate in log(radius).
+  const float t = std::log(radius / lower.radius) / std::log(upper->radius / lower.radius);
+  auto mix = [t](float a, float b) { return a + (b - a) * t; };
+  return {mix(lower.parameters.intensity, upper->parameters.intensity),
+          mix(lower.parameters.bias, upper->parameters.bias),
+          mix(lower.parameters.contrast, upper->parameters.contrast)};
+}
+
+EstimatorParameters AoSettings::estimator() const {
+  EstimatorParameters e = tunedEstimatorParameters(preset, radius);
+  if (intensity) e.intensity = *intensity;
+  if (bias) e.bias = *bias;
+  if (contrast) e.contrast = *contrast;
+  return e;
 }
 
 const std::vector<ParameterInfo>& aoParameters() {

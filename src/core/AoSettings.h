@@ -2,6 +2,7 @@
 // Every user-facing knob of the AO pipeline, with its default, its range and its documentation, in one place. The
 // command line, the desktop viewer and the web page all set parameters through AoSettings::set, so they accept the
 // same names and the same ranges, and an out-of-range value never reaches a shader.
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -15,14 +16,31 @@ enum class Falloff {
 
 enum class QualityPreset { Low, Medium, High, Ultra };
 
+// The estimator parameters SAO's pass uses (SaoKernel.h).
+struct EstimatorParameters {
+  float intensity = 1.0f;  // sigma
+  float bias = 0.012f;     // beta, metres
+  float contrast = 1.0f;   // k
+};
+// The SAO paper's and reference code's values (sigma 1, beta 0.012 m, k 1): what obscura used before tuning, and the
+// fallback for a preset the tuned table does not cover.
+constexpr EstimatorParameters kPaperEstimatorParameters{};
+
+// The parameters fitted to the ray-traced reference (src/core/TunedDefaults.inc, written by tools/tune-defaults.sh)
+// for `preset` at `radius`: linear in log(radius) between the fitted radii, held at the ends of the fitted range.
+EstimatorParameters tunedEstimatorParameters(QualityPreset preset, float radius);
+
 struct AoSettings {
   bool enabled = true;
 
-  // --- Estimator (defaults from the SAO paper and its reference code; see SaoKernel.h) ---
-  float radius = 1.0f;     // r: world-space obscurance radius, metres
-  float bias = 0.012f;     // beta: ignores occluders closer than this to the tangent plane, metres
-  float intensity = 1.0f;  // sigma: scales the obscurance sum
-  float contrast = 1.0f;   // k: exponent on the final value
+  // --- Estimator (see SaoKernel.h) ---
+  float radius = 1.0f;  // r: world-space obscurance radius, metres
+  // beta (ignores occluders closer than this to the tangent plane, metres), sigma (scales the obscurance sum) and k
+  // (exponent on the final value): explicit values when set; unset, estimator() resolves them to the values fitted
+  // to the ray-traced reference for `preset` and `radius` (tunedEstimatorParameters, docs/accuracy.md), so that a
+  // radius means the obscurance of that radius.
+  std::optional<float> bias, intensity, contrast;
+  QualityPreset preset = QualityPreset::Medium;  // the preset these settings came from (applyPreset sets it)
   int samples = 11;        // s: taps per pixel, a compile-time constant of the shader variant
   int spiralTurns = 3;     // tau: turns of the tap spiral, coprime with samples (SaoKernel::bestSpiralTurns)
   Falloff falloff = Falloff::Sao2012;
@@ -39,11 +57,15 @@ struct AoSettings {
   bool blurNormalAware = true;   // also weight by normals and by distance to the centre's tangent plane
   float blurDepthSigma = 0.1f;   // metres: range weight exp(-(dz/sigma)^2)
 
-  // Applies a preset's samples, spiral turns, blur radius/stride and resolution, leaving the rest alone.
-  void applyPreset(QualityPreset preset);
+  // Applies a preset's samples, spiral turns, blur radius/stride and resolution, and remembers the preset (for the
+  // tuned estimator parameters), leaving the rest alone.
+  void applyPreset(QualityPreset which);
   // Sets `name` (the command-line spelling without "--", e.g. "radius") from text. Throws InputError naming the
   // parameter, the value and the accepted range when the name is unknown or the value is out of range.
+  // "auto" for bias, intensity or contrast returns that parameter to its tuned value.
   void set(const std::string& name, const std::string& value);
+  // sigma, beta and k as the SAO pass uses them: the explicit values where set, the tuned ones elsewhere.
+  EstimatorParameters estimator() const;
   // Throws InputError if a field is out of range (for settings built in code).
   void validate() const;
 };

@@ -5,14 +5,14 @@
 namespace obscura {
 namespace {
 ProgramSpec spec(DebugViewPass::Mode mode) {
-  static const char* names[] = {"view[ao]", "view[normals]", "view[depth]"};
+  static const char* names[] = {"view[ao]", "view[normals]", "view[depth]", "view[mask]"};
   const int index = static_cast<int>(mode);
   return ProgramSpec{names[index], "fullscreen.vert", "debug_view.frag", {{"VIEW_MODE", std::to_string(index)}}, {}};
 }
 }  // namespace
 
 std::vector<ProgramSpec> DebugViewPass::programSpecs() {
-  return {spec(Mode::Ao), spec(Mode::Normals), spec(Mode::Depth)};
+  return {spec(Mode::Ao), spec(Mode::Normals), spec(Mode::Depth), spec(Mode::Mask)};
 }
 
 void DebugViewPass::render(Mode mode, const gl::Texture2D& source, const FrameCamera& camera) {

@@ -1,5 +1,6 @@
 #pragma once
-// The diagnostic views (shaders_es2/debug_view.frag): AO as grey, G-buffer normals as colour, linear depth as grey.
+// The diagnostic views (shaders_es2/debug_view.frag): AO as grey, G-buffer normals as colour, linear depth as grey,
+// and the geometry mask (which pixels hold geometry; what obscura-compare measures over).
 #include <map>
 #include <vector>
 
@@ -11,7 +12,7 @@ namespace obscura {
 
 class DebugViewPass {
  public:
-  enum class Mode { Ao = 0, Normals = 1, Depth = 2 };
+  enum class Mode { Ao = 0, Normals = 1, Depth = 2, Mask = 3 };
 
   static std::vector<ProgramSpec> programSpecs();
 

@@ -29,9 +29,9 @@ struct ScopedPass {
 }  // namespace
 
 View parseView(const std::string& name) {
-  for (View v : {View::Final, View::Ao, View::AoRaw, View::Normals, View::Depth})
+  for (View v : {View::Final, View::Ao, View::AoRaw, View::Normals, View::Depth, View::Mask})
     if (name == viewName(v)) return v;
-  throw InputError("view: expected final, ao, ao-raw, normals or depth, got '" + name + "'");
+  throw InputError("view: expected final, ao, ao-raw, normals, depth or mask, got '" + name + "'");
 }
 
 const char* viewName(View view) {
@@ -41,6 +41,7 @@ const char* viewName(View view) {
     case View::AoRaw: return "ao-raw";
     case View::Normals: return "normals";
     case View::Depth: return "depth";
+    case View::Mask: return "mask";
   }
   return "?";
 }
@@ -174,6 +175,7 @@ void Renderer::render(const Camera& camera, const AoSettings& settings, View vie
       case View::AoRaw: debugView_.render(DebugViewPass::Mode::Ao, sao_.target().color(), frame); break;
       case View::Normals: debugView_.render(DebugViewPass::Mode::Normals, gbuffer_.target().color(), frame); break;
       case View::Depth: debugView_.render(DebugViewPass::Mode::Depth, gbuffer_.target().color(), frame); break;
+      case View::Mask: debugView_.render(DebugViewPass::Mode::Mask, gbuffer_.target().color(), frame); break;
     }
   }
   checkErrors(Pass::Composite);

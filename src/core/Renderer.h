@@ -23,8 +23,8 @@
 
 namespace obscura {
 
-enum class View { Final, Ao, AoRaw, Normals, Depth };
-View parseView(const std::string& name);  // final | ao | ao-raw | normals | depth; throws InputError
+enum class View { Final, Ao, AoRaw, Normals, Depth, Mask };
+View parseView(const std::string& name);  // final | ao | ao-raw | normals | depth | mask; throws InputError
 const char* viewName(View view);
 
 enum class Pass { GBuffer, Hierarchy, Sao, BlurHorizontal, BlurVertical, Upsample, Composite, Count };

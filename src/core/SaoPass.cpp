@@ -63,9 +63,10 @@ void SaoPass::render(const gl::Texture2D& gbuffer, const DepthHierarchyPass* hie
   setReconstructionUniforms(sao, camera.reconstruction);
   sao.set("u_projScale", camera.projScale(gbuffer.height()));
   sao.set("u_radius", settings.radius);
-  sao.set("u_bias", settings.bias);
-  sao.set("u_intensityScale", SaoKernel::intensityScale(settings.falloff, settings.intensity, settings.samples));
-  sao.set("u_contrast", settings.contrast);
+  const EstimatorParameters estimator = settings.estimator();
+  sao.set("u_bias", estimator.bias);
+  sao.set("u_intensityScale", SaoKernel::intensityScale(settings.falloff, estimator.intensity, settings.samples));
+  sao.set("u_contrast", estimator.contrast);
   sao.set("u_maxRadiusPixels", settings.maxScreenRadius * static_cast<float>(gbuffer.height()));
   triangle_.draw();
   gl::restoreBaselineState();

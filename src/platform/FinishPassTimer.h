@@ -1,6 +1,6 @@
 #pragma once
 // Per-pass wall time on native contexts, bounded by glFinish on both sides so each pass is measured alone.
-// (The web page uses EXT_disjoint_timer_query instead.)
+// (obscura-render --bench, obscura-bench, obscura-tune; the web page uses EXT_disjoint_timer_query instead.)
 #include <array>
 #include <chrono>
 #include <vector>

@@ -1,0 +1,100 @@
+#include "apps/SceneInput.h"
+
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <iostream>
+
+#include <glm/gtc/matrix_transform.hpp>
+
+#include "core/Error.h"
+#include "scene/BuiltinScene.h"
+#include "scene/GltfLoader.h"
+
+namespace obscura {
+
+void parseSize(const std::string& text, int* width, int* height) {
+  int w = 0, h = 0;
+  char x = 0, extra = 0;
+  if (std::sscanf(text.c_str(), "%d%c%d%c", &w, &x, &h, &extra) != 3 || (x != 'x' && x != 'X'))
+    throw InputError("--size: expected WxH (e.g. 1280x720), got '" + text + "'");
+  if (w < 1 || h < 1 || w > Camera::kMaxSize || h > Camera::kMaxSize)
+    throw InputError("--size: " + text + " is out of range (1 .. " + std::to_string(Camera::kMaxSize) + " per side)");
+  *width = w;
+  *height = h;
+}
+
+int parseCount(const std::string& option, const std::string& text, int max) {
+  char* end = nullptr;
+  const long value = std::strtol(text.c_str(), &end, 10);
+  if (text.empty() || *end != '\0') throw InputError(option + ": expected a whole number, got '" + text + "'");
+  if (value < 1 || value > max)
+    throw InputError(option + ": " + text + " is out of range (1 .. " + std::to_string(max) + ")");
+  return static_cast<int>(value);
+}
+
+namespace {
+float parseScale(const std::string& text) {
+  char* end = nullptr;
+  const double value = std::strtod(text.c_str(), &end);
+  if (text.empty() || *end != '\0' || !std::isfinite(value))
+    throw InputError("--scene-scale: expected a number, got '" + text + "'");
+  if (value < 1e-6 || value > 1e6) throw InputError("--scene-scale: " + text + " is out of range (1e-06 .. 1e+06)");
+  return static_cast<float>(value);
+}
+}  // namespace
+
+bool SceneInput::parseOption(const std::vector<std::string>& args, size_t& i) {
+  const std::string& arg = args[i];
+  auto value = [&]() -> const std::string& {
+    if (i + 1 >= args.size()) throw InputError(arg + ": missing value");
+    return args[++i];
+  };
+  if (arg == "--scene") scenePath = value();
+  else if (arg == "--scene-scale") sceneScale = parseScale(value());
+  else if (arg == "--camera") cameraPath = value();
+  else if (arg == "--fit") fit = true;
+  else if (arg == "--size") parseSize(value(), &width, &height);
+  else return false;
+  return true;
+}
+
+void SceneInput::check() const {
+  if (fit && !cameraPath.empty()) throw InputError("--camera and --fit exclude each other");
+}
+
+Scene SceneInput::loadScene(const char* tool) const {
+  GltfLoadReport report;
+  Scene scene = scenePath.empty() ? makeBuiltinScene() : loadGltfFile(scenePath, &report);
+  for (const std::string& warning : report.warnings)
+    std::cerr << tool << ": warning: " << scenePath << ": " << warning << "\n";
+  if (sceneScale != 1.0f) scaleScene(scene, sceneScale);
+  return scene;
+}
+
+Camera SceneInput::camera(const Scene& scene) const {
+  Camera camera;
+  if (!cameraPath.empty()) camera = Camera::fromJsonFile(cameraPath);
+  else if (fit || !scenePath.empty()) camera = Camera::fit(scene.worldBounds(), 1280, 720);
+  else camera = builtinSceneCamera();
+  if (width > 0) {
+    camera.width = width;
+    camera.height = height;
+  }
+  return camera;
+}
+
+std::string sceneInputUsage() {
+  return "  --scene FILE      .gltf or .glb; default: the built-in scene\n"
+         "  --scene-scale S   multiply the scene's positions by S (e.g. 0.001 for a model in millimetres)\n"
+         "  --camera FILE     camera JSON {eye, target, up, fovy_deg, near, far, width, height}\n"
+         "  --fit             frame the scene's bounds (the default for --scene without --camera)\n"
+         "  --size WxH        output size (overrides the camera's width and height; default 1280x720)\n";
+}
+
+void scaleScene(Scene& scene, float scale) {
+  const glm::mat4 scaling = glm::scale(glm::mat4(1.0f), glm::vec3(scale));
+  for (Instance& instance : scene.instances) instance.world = scaling * instance.world;
+}
+
+}  // namespace obscura

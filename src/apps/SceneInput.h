@@ -1,0 +1,49 @@
+#pragma once
+// What the command-line tools (obscura-render, obscura-reference, obscura-tune) share: the scene and the camera they
+// are asked for, so every tool reads the same options the same way and sees the same pixels.
+//
+//   --scene FILE       glTF 2.0 (.gltf or .glb); default: the built-in scene
+//   --scene-scale S    multiplies the scene's world positions (a model authored in millimetres: 0.001)
+//   --camera FILE      camera JSON (scene/Camera.h)
+//   --fit              frame the scene's bounds (the default for --scene without --camera)
+//   --size WxH         output size, overriding the camera's
+#include <string>
+#include <vector>
+
+#include "scene/Camera.h"
+#include "scene/Scene.h"
+
+namespace obscura {
+
+struct SceneInput {
+  std::string scenePath;   // empty: the built-in scene
+  std::string cameraPath;  // empty: the built-in scene's camera, or --fit for a file
+  bool fit = false;
+  float sceneScale = 1.0f;
+  int width = 0, height = 0;  // 0: from the camera (default 1280 x 720)
+
+  // If args[i] is one of the options above, consumes it (and its value, advancing i) and returns true.
+  // Throws InputError("--option: problem") on a bad value.
+  bool parseOption(const std::vector<std::string>& args, size_t& i);
+  // Throws InputError if the options contradict each other (--camera with --fit).
+  void check() const;
+
+  // Loads the scene (scaled), printing the loader's warnings to stderr as "<tool>: warning: <file>: ...".
+  // Throws InputError naming the file on a bad one.
+  Scene loadScene(const char* tool) const;
+  // The camera for `scene`: the JSON file, the fitted one, or the built-in scene's; --size applied.
+  Camera camera(const Scene& scene) const;
+};
+
+// The usage lines of the options above, for --help texts.
+std::string sceneInputUsage();
+
+// Multiplies every instance's world transform by a uniform scale.
+void scaleScene(Scene& scene, float scale);
+
+// "WxH" with both sides in 1 .. Camera::kMaxSize. Throws InputError("--size: ...").
+void parseSize(const std::string& text, int* width, int* height);
+// A whole number in 1 .. max. Throws InputError("<option>: ...").
+int parseCount(const std::string& option, const std::string& text, int max);
+
+}  // namespace obscura

@@ -1,0 +1,106 @@
+// obscura-reference and obscura-compare end to end: bad input exits with status 2 and one line; good input writes
+// the views obscura-render writes, and the compare tool's figures agree with the images. Runs the real binaries.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+
+#include "TestSupport.h"
+#include "scene/ImageIo.h"
+
+namespace {
+
+using obscura::test::ProcessResult;
+
+ProcessResult reference(const std::string& args) { return obscura::test::runProcess(OBSCURA_REFERENCE_BINARY, args); }
+ProcessResult compare(const std::string& args) { return obscura::test::runProcess(OBSCURA_COMPARE_BINARY, args); }
+ProcessResult render(const std::string& args) { return obscura::test::runProcess(OBSCURA_RENDER_BINARY, args); }
+
+void expectOneLineError(const ProcessResult& r, const std::string& args, const std::string& expect) {
+  EXPECT_EQ(r.status, 2) << args << "\n" << r.err;
+  EXPECT_NE(r.err.find(expect), std::string::npos) << args << " -> " << r.err;
+  EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << args << " -> " << r.err;
+}
+
+}  // namespace
+
+TEST(ReferenceCli, BadInputExitsWithStatusTwoAndOneLine) {
+  const std::string badCamera =
+      obscura::test::writeTempFile("ref-near.json", R"({"eye":[0,0,5],"target":[0,0,0],"near":-1})");
+  const std::pair<std::string, std::string> cases[] = {
+      {"--scene /nonexistent/scene.glb", "/nonexistent/scene.glb: cannot open"},
+      {"--camera " + badCamera, badCamera + ": near: must be > 0"},
+      {"--radius 0", "--radius: 0 is out of range (0.01 .. 100 metres)"},
+      {"--rays 100", "--rays: 100 must be a power of two"},
+      {"--rays 0", "--rays: 0 is out of range"},
+      {"--threads x", "--threads: expected a whole number"},
+      {"--view normals", "--view: expected ao, depth or mask"},
+      {"--size 5", "--size: expected WxH"},
+      {"--scene-scale -2", "--scene-scale: -2 is out of range"},
+      {"--fit --camera c.json", "--camera and --fit exclude each other"},
+      {"--out", "--out: missing value"},
+      {"--frobnicate", "unknown option '--frobnicate'"},
+      {"--scene " + obscura::test::assimpModels() + "/IndexOutOfRange/IndexOutOfRange.gltf", "index 255"},
+  };
+  for (const auto& [args, expect] : cases)
+    expectOneLineError(reference("--out " + obscura::test::tempPath("never.png") + " " + args), args, expect);
+}
+
+TEST(ReferenceCli, WritesTheSameViewsAsObscuraRender) {
+  const std::string dir = obscura::test::tempPath("");  // a per-process prefix
+  const ProcessResult traced = reference("--size 96x54 --rays 16 --out " + dir + "ref-ao.png --depth-out " + dir +
+                                         "ref-depth.png --mask-out " + dir + "ref-mask.png");
+  ASSERT_EQ(traced.status, 0) << traced.err;
+  EXPECT_NE(traced.out.find("16 rays per pixel"), std::string::npos) << traced.out;
+  for (const char* view : {"depth", "mask"}) {
+    const std::string out = dir + "sao-" + view + ".png";
+    const ProcessResult r = render(std::string("--size 96x54 --view ") + view + " --out " + out);
+    ASSERT_EQ(r.status, 0) << r.err;
+    const obscura::Image a = obscura::readPng(dir + "ref-" + view + ".png");
+    const obscura::Image b = obscura::readPng(out);
+    ASSERT_EQ(a.width, b.width);
+    ASSERT_EQ(a.height, b.height);
+    // The same projection, clipping and encoding: equal except where a triangle edge crosses a pixel centre.
+    size_t differing = 0;
+    for (size_t i = 0; i < a.rgba.size(); i += 4) differing += std::abs(a.rgba[i] - b.rgba[i]) > 1;
+    EXPECT_LE(differing, a.rgba.size() / 4 / 100) << view;
+  }
+}
+
+TEST(CompareCli, BadInputExitsWithStatusTwoAndOneLine) {
+  const std::string dir = obscura::test::tempPath("");  // a per-process prefix
+  ASSERT_EQ(render("--size 32x20 --view ao --out " + dir + "cmp-a.png").status, 0);
+  ASSERT_EQ(render("--size 30x20 --view ao --out " + dir + "cmp-small.png").status, 0);
+  const std::string a = dir + "cmp-a.png", small = dir + "cmp-small.png";
+  const std::pair<std::string, std::string> cases[] = {
+      {a, "expected two images A.png B.png, got 1"},
+      {a + " /nonexistent/b.png", "/nonexistent/b.png: cannot read image"},
+      {a + " " + small, small + ": 30x20 differs from 32x20"},
+      {a + " " + a + " --mask " + small, small + ": 30x20 differs from 32x20"},
+      {a + " " + a + " --depth /nonexistent/d.png", "/nonexistent/d.png: cannot read image"},
+      {a + " " + a + " --halo-width 2.5", "--halo-width: expected a whole number"},
+      {a + " " + a + " --halo-jump -1", "--halo-jump: -1 is out of range"},
+      {a + " " + a + " --wobble", "unknown option '--wobble'"},
+  };
+  for (const auto& [args, expect] : cases) expectOneLineError(compare(args), args, expect);
+}
+
+TEST(CompareCli, ReportsFiguresAndWritesThePictures) {
+  const std::string dir = obscura::test::tempPath("");  // a per-process prefix
+  ASSERT_EQ(render("--size 64x36 --view ao --out " + dir + "cmp-ao.png").status, 0);
+  ASSERT_EQ(render("--size 64x36 --view ao --radius 2 --out " + dir + "cmp-ao2.png").status, 0);
+  ASSERT_EQ(render("--size 64x36 --view mask --out " + dir + "cmp-mask.png").status, 0);
+  ASSERT_EQ(render("--size 64x36 --view depth --out " + dir + "cmp-depth.png").status, 0);
+  const std::string common = " --mask " + dir + "cmp-mask.png --depth " + dir + "cmp-depth.png --json";
+  const ProcessResult same = compare(dir + "cmp-ao.png " + dir + "cmp-ao.png" + common);
+  ASSERT_EQ(same.status, 0) << same.err;
+  EXPECT_NE(same.out.find("\"mae\": 0.000000"), std::string::npos) << same.out;
+  EXPECT_NE(same.out.find("\"ssim\": 1.000000"), std::string::npos) << same.out;
+  const ProcessResult different = compare(dir + "cmp-ao.png " + dir + "cmp-ao2.png" + common + " --side-by-side " +
+                                          dir + "cmp-sbs.png");
+  ASSERT_EQ(different.status, 0) << different.err;
+  EXPECT_EQ(different.out.find("\"mae\": 0.000000"), std::string::npos) << different.out;
+  EXPECT_NE(different.out.find("\"halo_mae\""), std::string::npos) << different.out;
+  const obscura::Image sbs = obscura::readPng(dir + "cmp-sbs.png");
+  EXPECT_EQ(sbs.width, 3 * 64 + 2 * 4);
+  EXPECT_EQ(sbs.height, 36);
+}

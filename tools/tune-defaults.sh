@@ -1,0 +1,22 @@
+#!/usr/bin/env bash
+# Fits SAO's intensity, bias and contrast per quality preset and radius to the ray-traced reference, makes them the
+# defaults, and regenerates the accuracy report. One command, deterministic; re-run it after any change to the AO
+# pipeline (passes, presets, shaders) and commit what it rewrites:
+#   src/core/TunedDefaults.inc   the fitted table AoSettings reads
+#   docs/accuracy.md             the generated tables (between the obscura-tune markers)
+#   docs/images/accuracy-*.png   reference | SAO | difference
+#   tests/golden/*.png           the golden images, which show the default (tuned) AO
+#   docs/images/builtin_*.png    the README's pictures (tools/render-docs-images.sh), likewise
+# Reference images are cached in build/tuning-cache (traced once per view and radius). About 5-10 minutes on two
+# cores, plus a few minutes the first time to trace the references. Usage: tools/tune-defaults.sh
+set -euo pipefail
+cd "$(dirname "$0")/.."
+
+tools/build.sh
+build/obscura-tune --views tools/tuning-views.json --fit src/core/TunedDefaults.inc
+tools/build.sh  # the core now reads the new table
+build/obscura-tune --views tools/tuning-views.json --report docs/accuracy.md --images docs/images
+OBSCURA_UPDATE_GOLDEN=1 ctest --test-dir build -R 'gpu\.osmesa\.Golden' >/dev/null
+tools/render-docs-images.sh
+echo "tune-defaults: rewrote src/core/TunedDefaults.inc, docs/accuracy.md, docs/images/*.png and tests/golden/*.png;"
+echo "tune-defaults: now run tools/test.sh (the accuracy guard's bounds are in tests/test_accuracy.cpp)"
