@@ -44,15 +44,30 @@ struct AoSettings {
   // Sets `name` (the command-line spelling without "--", e.g. "radius") from text. Throws InputError naming the
   // parameter, the value and the accepted range when the name is unknown or the value is out of range.
   void set(const std::string& name, const std::string& value);
+  // The current value of `name` as text that set() accepts (numbers in their shortest exact form), so settings
+  // round-trip through text (the web page's URL, the viewers' key bindings). For "preset": the preset whose values
+  // the settings hold, or "" when they match none. Throws InputError for an unknown name.
+  std::string get(const std::string& name) const;
   // Throws InputError if a field is out of range (for settings built in code).
   void validate() const;
+};
+
+// What kind of value a parameter takes, so a user interface can offer the right control.
+enum class ParameterKind {
+  Switch,   // "on" | "off"
+  Number,   // a real number in min .. max
+  Integer,  // a whole number in min .. max
+  Choice,   // one of `choices`
 };
 
 // Documentation of one parameter accepted by AoSettings::set.
 struct ParameterInfo {
   const char* name;
-  const char* range;  // human-readable, e.g. "0.01 .. 100 (metres)"
+  std::string range;  // human-readable, made from the fields below, e.g. "0.01 .. 100 (metres)"
   const char* help;
+  ParameterKind kind;
+  double min = 0.0, max = 0.0;       // Number and Integer
+  std::vector<std::string> choices;  // Switch and Choice, in the order to offer them
 };
 const std::vector<ParameterInfo>& aoParameters();
 
