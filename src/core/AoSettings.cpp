@@ -37,16 +37,6 @@ bool parseSwitch(const std::string& name, const std::string& text) {
   throw InputError(name + ": expected on or off, got '" + text + "'");
 }
 
-// The shortest decimal text that reads back as exactly `value`.
-std::string formatNumber(float value) {
-  char text[32];
-  for (int digits = 1; digits <= 9; ++digits) {
-    std::snprintf(text, sizeof text, "%.*g", digits, static_cast<double>(value));
-    if (std::strtof(text, nullptr) == value) break;
-  }
-  return text;
-}
-
 std::string numericRange(double min, double max, const char* unit, const char* constraint) {
   char text[160];
   std::snprintf(text, sizeof text, "%g .. %g%s%s%s%s%s", min, max, *unit ? " (" : "", unit, *unit ? ")" : "",
@@ -75,7 +65,7 @@ Parameter numberParameter(const char* name, double min, double max, const char* 
                           float AoSettings::*field) {
   Parameter p{{name, numericRange(min, max, unit, ""), help, ParameterKind::Number, min, max, {}}, {}, {}, {}};
   p.set = [=](AoSettings& s, const std::string& v) { s.*field = parseNumber(name, v, min, max, unit); };
-  p.get = [field](const AoSettings& s) { return formatNumber(s.*field); };
+  p.get = [field](const AoSettings& s) { return formatShortest(s.*field); };
   p.valid = [=](const AoSettings& s) { return s.*field >= static_cast<float>(min) && s.*field <= static_cast<float>(max); };
   return p;
 }
@@ -197,6 +187,22 @@ QualityPreset parsePreset(const std::string& name) {
   for (const PresetInfo& p : qualityPresets())
     if (name == p.name) return p.preset;
   throw InputError("preset: expected low, medium, high or ultra, got '" + name + "'");
+}
+
+std::string formatShortest(float value) {
+  char text[48];
+  // Plain decimals where they are short ("50", "0.012"), else the shortest exponent form.
+  if (std::fabs(value) < 1e7f) {
+    for (int decimals = 0; decimals <= 9; ++decimals) {
+      std::snprintf(text, sizeof text, "%.*f", decimals, static_cast<double>(value));
+      if (std::strtof(text, nullptr) == value) return text;
+    }
+  }
+  for (int digits = 1; digits <= 9; ++digits) {
+    std::snprintf(text, sizeof text, "%.*g", digits, static_cast<double>(value));
+    if (std::strtof(text, nullptr) == value) break;
+  }
+  return text;
 }
 
 const char* falloffName(Falloff falloff) { return falloff == Falloff::Sao2012 ? "sao2012" : "alchemy2011"; }

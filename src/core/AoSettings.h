@@ -85,4 +85,8 @@ const std::vector<PresetInfo>& qualityPresets();
 QualityPreset parsePreset(const std::string& name);  // throws InputError
 const char* falloffName(Falloff falloff);
 
+// The shortest decimal text that reads back as exactly `value`: how get() writes numbers (and the viewers' state
+// text writes camera coordinates), so "0.3" stays "0.3" rather than "0.300000012".
+std::string formatShortest(float value);
+
 }  // namespace obscura
