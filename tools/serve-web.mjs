@@ -16,7 +16,8 @@ const TYPES = {
   '.json': 'application/json',
 };
 
-// Resolves to the listening server; port 0 picks a free one (server.address().port).
+// Resolves to the listening server; port 0 picks a free one (server.address().port). server.stop() closes it
+// together with the browser's idle keep-alive connections, which would otherwise hold the process open.
 export function startServer(root, port = 0) {
   const base = path.resolve(root);
   const server = http.createServer((request, response) => {
@@ -38,6 +39,10 @@ export function startServer(root, port = 0) {
   });
   return new Promise((resolve, reject) => {
     server.once('error', reject);
+    server.stop = () => {
+      server.close();
+      server.closeAllConnections();
+    };
     server.listen(port, '127.0.0.1', () => resolve(server));
   });
 }

@@ -30,18 +30,25 @@ function setStatus(message) { $('#status').textContent = message; }
 
 // --- Parameter controls ------------------------------------------------------------------------------------------
 
-// Wide positive ranges (radius 0.01 .. 100 m) get a logarithmic slider, so small values stay reachable.
+// Slider positions: whole numbers step through their range; real numbers get SLIDER_STEPS positions, on a
+// logarithmic scale for wide positive ranges (radius 0.01 .. 100 m) so small values stay reachable.
 function sliderScale(parameter) {
-  if (parameter.kind === 'number' && parameter.min > 0 && parameter.max / parameter.min >= 100) {
+  if (parameter.kind === 'integer') {
+    return { min: parameter.min, max: parameter.max, toSlider: (v) => v, fromSlider: (t) => t };
+  }
+  if (parameter.min > 0 && parameter.max / parameter.min >= 100) {
     const ratio = Math.log(parameter.max / parameter.min);
     return {
+      min: 0,
+      max: SLIDER_STEPS,
       toSlider: (v) => Math.round(SLIDER_STEPS * Math.log(v / parameter.min) / ratio),
       fromSlider: (t) => Number((parameter.min * Math.exp(ratio * t / SLIDER_STEPS)).toPrecision(3)),
     };
   }
   const span = parameter.max - parameter.min;
-  if (parameter.kind === 'integer') return { toSlider: (v) => v - parameter.min, fromSlider: (t) => parameter.min + t, steps: span };
   return {
+    min: 0,
+    max: SLIDER_STEPS,
     toSlider: (v) => Math.round(SLIDER_STEPS * (v - parameter.min) / span),
     fromSlider: (t) => Number((parameter.min + span * t / SLIDER_STEPS).toPrecision(4)),
   };
@@ -79,7 +86,7 @@ function parameterControl(obscura, parameter) {
     return { row, update: () => { select.value = obscura.get(parameter.name); } };
   }
   const scale = sliderScale(parameter);
-  const slider = element('input', { type: 'range', id, min: 0, max: scale.steps ?? SLIDER_STEPS, step: 1,
+  const slider = element('input', { type: 'range', id, min: scale.min, max: scale.max, step: 1,
                                     title: parameter.range });
   const number = element('input', { type: 'number', min: parameter.min, max: parameter.max,
                                     step: parameter.kind === 'integer' ? 1 : 'any', title: parameter.range,
