@@ -65,8 +65,8 @@ function parameterControl(obscura, parameter) {
       showError('');
     } catch (e) {
       showError(e.message);
+      refreshControls(obscura);  // back to the value the core kept
     }
-    refreshControls(obscura);
   };
 
   if (parameter.kind === 'switch') {
@@ -118,10 +118,7 @@ function buildControls(obscura) {
 
   for (const view of obscura.views) {
     const radio = element('input', { type: 'radio', name: 'view', value: view, id: `view-${view}` });
-    radio.addEventListener('change', () => {
-      obscura.setView(view);
-      refreshControls(obscura);
-    });
+    radio.addEventListener('change', () => obscura.setView(view));
     $('#views').append(element('label', {}, radio, ` ${VIEW_LABELS[view] ?? view}`));
   }
 
@@ -188,7 +185,6 @@ async function loadFiles(obscura, files) {
   } finally {
     progress.hidden = true;
     delete document.body.dataset.loading;
-    refreshControls(obscura);
   }
 }
 
@@ -200,7 +196,6 @@ function wireScenes(obscura) {
   $('#builtin-scene').addEventListener('click', () => {
     showScene(obscura.loadBuiltinScene());
     showError('');
-    refreshControls(obscura);
   });
 
   // Drag and drop anywhere on the page; the counter tracks enter/leave pairs of nested elements.
@@ -244,7 +239,6 @@ function wireKeys(obscura) {
       } catch (error) {
         showError(error.message);
       }
-      refreshControls(obscura);
     }
     e.preventDefault();
   });
@@ -289,7 +283,9 @@ async function main() {
     }
   }
   showScene(obscura.scene());
+  // Controls follow every change, whoever made it: the panel, a key, the pointer, a script through the API.
   refreshControls(obscura);
+  obscura.addEventListener('change', () => refreshControls(obscura));
   wireScenes(obscura);
   wireKeys(obscura);
   wireUrl(obscura);
