@@ -20,9 +20,15 @@ packages=(
   libembree-dev
 )
 
+# Names that installed packages provide count as present: NodeSource's nodejs, for one, provides (and conflicts
+# with) Debian's npm, which apt would otherwise try, and fail, to install beside it.
+provided=$(dpkg-query -W -f='${db:Status-Abbrev}|${Provides}\n' 2>/dev/null |
+           awk -F'|' '$1 ~ /^ii/ { print $2 }' | tr ',' '\n' | sed -e 's/(.*)//' -e 's/ //g' | sort -u)
+
 missing=()
 for package in "${packages[@]}"; do
-  if ! dpkg-query -W -f='${Status}' "$package" 2>/dev/null | grep -q "install ok installed"; then
+  if ! dpkg-query -W -f='${Status}' "$package" 2>/dev/null | grep -q "install ok installed" &&
+     ! grep -qx -- "$package" <<<"$provided"; then
     missing+=("$package")
   fi
 done
