@@ -142,7 +142,8 @@ function refreshControls(obscura) {
 function showStats(obscura) {
   const s = obscura.stats();
   const fps = s.frameMs > 0 ? ` (${(1000 / s.frameMs).toFixed(0)} fps)` : '';
-  const lines = [`${s.width} x ${s.height} px`, `frame  ${s.frameMs.toFixed(1)} ms${fps}`,
+  const frame = s.frameMs > 0 ? `${s.frameMs.toFixed(1)} ms${fps}` : '- (needs frames back to back: redraw continuously)';
+  const lines = [`${s.width} x ${s.height} px, ${s.frames} frames drawn`, `frame  ${frame}`,
                  `CPU    ${s.cpuMs.toFixed(2)} ms in the renderer`];
   if (s.passMs) {
     lines.push('GPU per pass (EXT_disjoint_timer_query):');
@@ -289,6 +290,7 @@ async function main() {
   wireScenes(obscura);
   wireKeys(obscura);
   wireUrl(obscura);
+  $('#continuous').addEventListener('change', (e) => obscura.setContinuous(e.target.checked));
   setInterval(() => showStats(obscura), 250);
   document.body.dataset.ready = 'true';
 }

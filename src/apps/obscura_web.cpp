@@ -5,13 +5,15 @@
 // strings stay valid until the next call into the module.
 //
 // Frames are drawn on requestAnimationFrame into the canvas the JS API handed over (platform/WebCanvas), through the
-// same Viewer session obscura-view uses.
+// same Viewer session obscura-view uses: only when something changed (a parameter, the view, the camera, the scene,
+// the canvas size, a restored context), or on every animation frame in continuous mode, which the timings need.
 #include <emscripten/emscripten.h>
 #include <emscripten/html5.h>
 
 #include <array>
 #include <cstdint>
 #include <exception>
+#include <utility>
 #include <map>
 #include <memory>
 #include <string>
@@ -46,8 +48,15 @@ class WebApp {
   Viewer& viewer() { return viewer_; }
   WebCanvas& canvas() { return canvas_; }
 
-  // Something the user changed: a frame that failed may succeed now.
-  void changed() { renderError_.clear(); }
+  // Something the user changed: draw it on the next animation frame (a frame that failed may succeed now).
+  void changed() {
+    renderError_.clear();
+    frameWanted_ = true;
+  }
+  void setContinuous(bool continuous) {
+    continuous_ = continuous;
+    frameWanted_ = true;
+  }
 
   // Draws one frame at the canvas's display size; returns false (and keeps the message) if the renderer failed.
   bool draw(GpuPassTimer* timer) {
@@ -75,6 +84,8 @@ class WebApp {
     const gl::LiveObjects& live = gl::liveObjects();
     return Json{{"width", width_},
                 {"height", height_},
+                {"continuous", continuous_},
+                {"pending", frameWanted_},
                 {"frameMs", frameMs_},
                 {"cpuMs", cpuMs_},
                 {"frames", frames_},
@@ -98,7 +109,16 @@ class WebApp {
   }
 
   void frame(double timeMs) {
+    if (canvas_.lost()) return;
     GpuPassTimer* timer = timer_ && timer_->available() ? timer_.get() : nullptr;
+    if (timer) timer->collectResults();
+    int width = 0, height = 0;
+    if (canvas_.fitToDisplay(viewer_.caps().maxRenderSize(), &width, &height)) frameWanted_ = true;
+    if (!frameWanted_ && !continuous_) {
+      lastFrameTime_ = 0.0;  // the next drawn frame does not follow this one
+      return;
+    }
+    frameWanted_ = false;
     if (timer) timer->beginFrame();
     const double start = emscripten_get_now();
     const bool drawn = draw(timer);
@@ -109,6 +129,7 @@ class WebApp {
     }
     const double cpu = emscripten_get_now() - start;
     cpuMs_ = frames_ == 0 ? cpu : cpuMs_ + kSmoothing * (cpu - cpuMs_);
+    // The frame time is the interval between animation frames drawn back to back (continuous mode, or a drag).
     if (lastFrameTime_ > 0.0) {
       const double interval = timeMs - lastFrameTime_;
       frameMs_ = frameMs_ == 0.0 ? interval : frameMs_ + kSmoothing * (interval - frameMs_);
@@ -127,7 +148,7 @@ class WebApp {
       viewer_.contextRestored(gl::GlCaps::query());
       timer_ = std::make_unique<GpuPassTimer>(viewer_.caps(), &WebCanvas::procAddress);
       ++restores_;
-      renderError_.clear();
+      changed();
     } catch (const std::exception& e) {
       renderError_ = std::string("cannot rebuild after the context was restored: ") + e.what();
       emscripten_log(EM_LOG_ERROR, "obscura: %s", renderError_.c_str());
@@ -137,6 +158,8 @@ class WebApp {
   WebCanvas canvas_;
   Viewer viewer_;
   std::unique_ptr<GpuPassTimer> timer_;
+  bool frameWanted_ = true;  // something changed since the last drawn frame
+  bool continuous_ = false;
   int width_ = 0, height_ = 0;
   double lastFrameTime_ = 0.0, frameMs_ = 0.0, cpuMs_ = 0.0;
   long frames_ = 0;
@@ -156,12 +179,19 @@ template <typename Body>
 int attempt(Body&& body) {
   try {
     body();
-    if (g_app) g_app->changed();
     return 1;
   } catch (const std::exception& e) {
     g_error = e.what();
     return 0;
   }
+}
+
+// attempt() for a call that changes what is shown: a frame is drawn for it if it succeeds.
+template <typename Body>
+int change(Body&& body) {
+  const int ok = attempt(std::forward<Body>(body));
+  if (ok) g_app->changed();
+  return ok;
 }
 
 const char* returned(std::string text) {
@@ -226,7 +256,7 @@ EMSCRIPTEN_KEEPALIVE const char* obscura_describe() {
 }
 
 EMSCRIPTEN_KEEPALIVE int obscura_set(const char* name, const char* value) {
-  return attempt([&] { g_app->viewer().state().settings.set(name, value); });
+  return change([&] { g_app->viewer().state().settings.set(name, value); });
 }
 
 EMSCRIPTEN_KEEPALIVE const char* obscura_get(const char* name) {
@@ -236,7 +266,7 @@ EMSCRIPTEN_KEEPALIVE const char* obscura_get(const char* name) {
 }
 
 EMSCRIPTEN_KEEPALIVE int obscura_set_view(const char* mode) {
-  return attempt([&] { g_app->viewer().state().setViewMode(mode); });
+  return change([&] { g_app->viewer().state().setViewMode(mode); });
 }
 
 EMSCRIPTEN_KEEPALIVE const char* obscura_view() { return returned(g_app->viewer().state().viewMode()); }
@@ -244,7 +274,7 @@ EMSCRIPTEN_KEEPALIVE const char* obscura_view() { return returned(g_app->viewer(
 EMSCRIPTEN_KEEPALIVE const char* obscura_state() { return returned(g_app->viewer().state().toQuery()); }
 
 EMSCRIPTEN_KEEPALIVE int obscura_set_state(const char* query) {
-  return attempt([&] { g_app->viewer().state().applyQuery(query); });
+  return change([&] { g_app->viewer().state().applyQuery(query); });
 }
 
 EMSCRIPTEN_KEEPALIVE void obscura_orbit(float dx, float dy, int viewportHeight) {
@@ -271,7 +301,9 @@ EMSCRIPTEN_KEEPALIVE void obscura_reset_camera() {
 EMSCRIPTEN_KEEPALIVE int obscura_handle_key(const char* key) {
   bool bound = false;
   g_error.clear();
-  return attempt([&] { bound = g_app->viewer().handleKey(key); }) && bound;
+  if (!attempt([&] { bound = g_app->viewer().handleKey(key); }) || !bound) return 0;
+  g_app->changed();
+  return 1;
 }
 
 // Side files (a .gltf's buffers and images, by the URI it uses) for the next obscura_load_scene.
@@ -284,7 +316,7 @@ EMSCRIPTEN_KEEPALIVE void obscura_add_side_file(const char* uri, const std::uint
 EMSCRIPTEN_KEEPALIVE int obscura_load_scene(const char* name, const std::uint8_t* bytes, int size) {
   std::map<std::string, std::vector<std::uint8_t>> sideFiles;
   sideFiles.swap(g_sideFiles);
-  return attempt([&] {
+  return change([&] {
     const GltfLoadReport report = g_app->viewer().loadGltf(std::vector<std::uint8_t>(bytes, bytes + size), name,
                                                            sideFiles);
     g_sceneWarnings = report.warnings;
@@ -292,7 +324,7 @@ EMSCRIPTEN_KEEPALIVE int obscura_load_scene(const char* name, const std::uint8_t
 }
 
 EMSCRIPTEN_KEEPALIVE int obscura_load_builtin_scene() {
-  return attempt([] {
+  return change([] {
     g_app->viewer().loadBuiltinScene();
     g_sceneWarnings.clear();
   });
@@ -305,6 +337,9 @@ EMSCRIPTEN_KEEPALIVE const char* obscura_scene() {
 }
 
 EMSCRIPTEN_KEEPALIVE const char* obscura_stats() { return returned(g_app->stats().dump()); }
+
+// Continuous mode draws on every animation frame (for live timings); otherwise only after a change.
+EMSCRIPTEN_KEEPALIVE void obscura_set_continuous(int continuous) { g_app->setContinuous(continuous != 0); }
 
 // Draws a frame now and reads it back: {"width", "height", "pointer"} to width * height RGBA8 pixels, rows top to
 // bottom, valid until the next snapshot. 0 if no frame could be drawn (context lost, renderer failure).

@@ -60,8 +60,7 @@ bool GpuPassTimer::collect(Frame& frame) {
   return true;
 }
 
-void GpuPassTimer::beginFrame() {
-  recording_ = false;
+void GpuPassTimer::collectResults() {
   if (!available_) return;
   // Reading GPU_DISJOINT_EXT also clears it; a disjoint event makes every result in flight meaningless.
   GLint disjoint = 0;
@@ -72,6 +71,12 @@ void GpuPassTimer::beginFrame() {
     if (disjoint) frame.pending = false;
     else if (!collect(frame)) break;  // later frames cannot be ready before this one
   }
+}
+
+void GpuPassTimer::beginFrame() {
+  recording_ = false;
+  if (!available_) return;
+  collectResults();
   current_ = (current_ + 1) % kFramesInFlight;
   Frame& frame = frames_[current_];
   if (frame.pending) return;  // results of this slot have not come back yet: skip measuring this frame

@@ -28,8 +28,11 @@ class GpuPassTimer : public PassTimer {
 
   bool available() const { return available_; }
 
-  // Around each frame: beginFrame() collects the results that have come back; the passes of the frame are measured
-  // only if the query slot of that frame is free again.
+  // Reads the results that have come back (oldest frame first). A viewer that skips drawing while nothing changes
+  // calls it on every tick anyway, so the last drawn frame's times still arrive.
+  void collectResults();
+  // Around each drawn frame: beginFrame() collects results, then measures the frame's passes if its query slot is
+  // free again.
   void beginFrame();
   void endFrame();
   void begin(Pass pass) override;

@@ -71,7 +71,7 @@ EM_BOOL WebCanvas::contextRestored(int, const void*, void* self) {
   return EM_TRUE;
 }
 
-void WebCanvas::fitToDisplay(int maxSize, int* width, int* height) {
+bool WebCanvas::fitToDisplay(int maxSize, int* width, int* height) {
   double cssWidth = 0.0, cssHeight = 0.0;
   emscripten_get_element_css_size(kCanvas, &cssWidth, &cssHeight);
   const double ratio = emscripten_get_device_pixel_ratio();
@@ -79,9 +79,11 @@ void WebCanvas::fitToDisplay(int maxSize, int* width, int* height) {
   const int h = std::clamp(static_cast<int>(std::lround(cssHeight * ratio)), 1, std::max(maxSize, 1));
   int current[2] = {0, 0};
   emscripten_get_canvas_element_size(kCanvas, &current[0], &current[1]);
-  if (current[0] != w || current[1] != h) emscripten_set_canvas_element_size(kCanvas, w, h);
   *width = w;
   *height = h;
+  if (current[0] == w && current[1] == h) return false;
+  emscripten_set_canvas_element_size(kCanvas, w, h);
+  return true;
 }
 
 void* WebCanvas::procAddress(const char* name) { return emscripten_webgl1_get_proc_address(name); }

@@ -23,8 +23,8 @@ class WebCanvas {
 
   bool lost() const { return lost_; }
   // Sizes the drawing buffer to the canvas's CSS size times devicePixelRatio, each side at most `maxSize`, and
-  // returns that size.
-  void fitToDisplay(int maxSize, int* width, int* height);
+  // returns that size; true if it changed.
+  bool fitToDisplay(int maxSize, int* width, int* height);
 
   // Resolves WebGL 1 and extension entry points (GpuPassTimer's loader).
   static void* procAddress(const char* name);

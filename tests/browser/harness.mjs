@@ -44,8 +44,9 @@ export async function startBrowser() {
   };
 }
 
-// Opens the page at `url` and waits until Obscura has drawn frames. Console errors and uncaught exceptions are
-// collected in page.errors (warnings, e.g. SwiftShader's "GPU stall due to ReadPixels", are not errors).
+// Opens the page at `url` and waits until Obscura has drawn its first frame. Console errors, uncaught exceptions and
+// failed requests are collected in page.errors (warnings, e.g. SwiftShader's "GPU stall due to ReadPixels", are not
+// errors).
 export async function openPage(context, url) {
   const page = await context.newPage();
   page.errors = [];
@@ -56,15 +57,17 @@ export async function openPage(context, url) {
   });
   await page.goto(url);
   await page.waitForFunction(() => document.body.dataset.ready === 'true', null, { timeout: 60000 });
-  await waitForFrames(page, 2);
+  await waitForDrawn(page);
   return page;
 }
 
-// Waits until `count` more frames have been drawn on requestAnimationFrame.
-export async function waitForFrames(page, count) {
-  const start = await page.evaluate(() => window.obscura.stats().frames);
-  await page.waitForFunction((target) => window.obscura.stats().frames >= target, start + count,
-                             { timeout: 60000, polling: 50 });
+// Waits until the page has drawn the frame of its latest change (frames are drawn on requestAnimationFrame only
+// after a change, outside continuous mode).
+export async function waitForDrawn(page) {
+  await page.waitForFunction(() => {
+    const stats = window.obscura.stats();
+    return stats.frames > 0 && !stats.pending;
+  }, null, { timeout: 60000, polling: 50 });
 }
 
 export async function snapshot(page) {

@@ -6,16 +6,11 @@ import fs from 'node:fs';
 import path from 'node:path';
 import { after, before, describe, test } from 'node:test';
 import { artifactDir, assimpModels, compareImages, fractionUnlike, luminanceStats, openPage, readModel, snapshot,
-         sourceDir, startBrowser, waitForFrames } from './harness.mjs';
+         sourceDir, startBrowser, waitForDrawn } from './harness.mjs';
 
 let session;
 let context;
 let page;
-
-// Sets a control the way a user does and waits for a frame drawn with it.
-async function settle(target = page) {
-  await waitForFrames(target, 1);
-}
 
 describe('demo page', () => {
   before(async () => {
@@ -61,29 +56,26 @@ describe('demo page', () => {
     fs.writeFileSync(path.join(artifactDir, 'page-composited.png'), composited);
     assert.ok(composited.length > 5000, 'a screenshot with content compresses to more than a flat colour');
 
+    // A resize alone brings a new frame at the new size.
     await page.setViewportSize({ width: 500, height: 300 });
-    await waitForFrames(page, 2);
-    assert.deepEqual(await page.evaluate(() => [window.obscura.stats().width, window.obscura.stats().height]), [250, 150]);
+    await page.waitForFunction(() => window.obscura.stats().width === 250 && window.obscura.stats().height === 150);
+    await waitForDrawn(page);
     await page.setViewportSize({ width: 640, height: 360 });
-    await waitForFrames(page, 2);
+    await page.waitForFunction(() => window.obscura.stats().width === 320);
   });
 
   test('the AO view differs from AO off, and AO only darkens', { timeout: 120000 }, async () => {
     await page.locator('#view-ao').check();
-    await settle();
     const aoView = await snapshot(page);
     const aoStats = luminanceStats(aoView);
     assert.ok(aoStats.min < 0.5, `the AO view has occluded pixels (min ${aoStats.min})`);
     assert.ok(aoStats.max > 0.95, 'and open ones');
 
     await page.locator('#view-final').check();
-    await settle();
     const withAo = await snapshot(page);
     await page.locator('#param-ao').uncheck();
-    await settle();
     const withoutAo = await snapshot(page);
     await page.locator('#param-ao').check();
-    await settle();
 
     const difference = compareImages(withAo, withoutAo);
     assert.ok(difference.r.differing > 0.1, `AO changes ${difference.r.differing} of the pixels`);
@@ -93,12 +85,10 @@ describe('demo page', () => {
 
   test('moving the radius slider changes the AO image', { timeout: 120000 }, async () => {
     await page.locator('#view-ao').check();
-    await settle();
     const before = await snapshot(page);
     const slider = page.locator('#param-radius');
     const position = Number(await slider.inputValue());
     await slider.fill(String(position + 75));  // logarithmic, 1000 steps over 0.01 .. 100: x2 in radius
-    await settle();
     const radius = Number(await page.evaluate(() => window.obscura.get('radius')));
     assert.ok(radius > 1.5 && radius < 3, `radius now ${radius}`);
     assert.equal(Number(await page.locator('#param-radius + input').inputValue()), radius, 'the number box follows');
@@ -134,9 +124,18 @@ describe('demo page', () => {
     } else {
       await page.waitForFunction(() => document.querySelector('#stats').textContent.includes('needs EXT_disjoint'));
     }
+    // Frames are drawn on change only; continuous mode draws back to back, which gives the frame time.
+    const drawn = await page.evaluate(() => window.obscura.stats().frames);
+    await page.locator('#continuous').check();
+    await page.waitForFunction((before) => window.obscura.stats().frames >= before + 3, drawn, { timeout: 60000 });
+    await page.locator('#continuous').uncheck();
     const stats = await page.evaluate(() => window.obscura.stats());
     assert.ok(stats.frameMs > 0, 'frame time measured');
-    assert.match(await page.locator('#stats').textContent(), /frame +\d+\.\d ms/);
+    await page.waitForFunction(() => /frame +\d+\.\d ms \(\d+ fps\)/.test(document.querySelector('#stats').textContent));
+    await waitForDrawn(page);
+    const idle = await page.evaluate(() => window.obscura.stats().frames);
+    await page.waitForTimeout(500);
+    assert.equal(await page.evaluate(() => window.obscura.stats().frames), idle, 'no frames drawn without a change');
   });
 
   test('a malformed file shows an error and leaves the previous scene on screen', { timeout: 120000 }, async () => {
@@ -147,7 +146,6 @@ describe('demo page', () => {
     assert.match(await page.locator('#error').textContent(),
                  /BoxWithInfinites\.glb: mesh 0 primitive 0 POSITION 0 is not finite/);
     assert.match(await page.locator('#scene-name').textContent(), /^built-in scene/);
-    await settle();
     assert.deepEqual((await snapshot(page)).pixels, before.pixels, 'the previous scene is still drawn');
 
     // The same by drag and drop, with a .gltf and its buffer dropped together (indices out of range).
@@ -166,7 +164,6 @@ describe('demo page', () => {
                                null, { timeout: 30000 });
     assert.match(await page.locator('#error').textContent(), /index 255 but only 24 vertices/);
     assert.equal(await page.locator('#drop-overlay').isVisible(), false);
-    await settle();
     assert.deepEqual((await snapshot(page)).pixels, before.pixels, 'still the built-in scene');
   });
 
@@ -181,7 +178,6 @@ describe('demo page', () => {
     const scene = await page.evaluate(() => window.obscura.scene());
     assert.ok(scene.triangles > 100000, `${scene.triangles} triangles`);
     await page.locator('#view-final').check();
-    await settle();
     const engine = await snapshot(page);
     assert.notDeepEqual(engine.pixels, builtin.pixels);
     // The engine fills a good part of the frame: pixels unlike the background (the top-left corner).
@@ -191,7 +187,6 @@ describe('demo page', () => {
 
     // Back to the built-in scene (the error line clears, and SwiftShader need not draw 120k triangles any more).
     await page.locator('#builtin-scene').click();
-    await settle();
     assert.equal(await page.locator('#error').isVisible(), false);
     assert.match(await page.locator('#scene-name').textContent(), /^built-in scene/);
   });
@@ -251,7 +246,7 @@ describe('demo page', () => {
                                    ['split', 'view=split']]) {
         await large.evaluate((query) => window.obscura.setState(query), state);
         pictures[name] = await snapshot(large);
-        await waitForFrames(large, 1);
+        await waitForDrawn(large);
         const png = await large.screenshot();
         fs.writeFileSync(path.join(artifactDir, `web_${name}.png`), png);
         if (process.env.OBSCURA_UPDATE_SCREENSHOTS) {
