@@ -115,7 +115,8 @@ TEST(CameraControls, PanKeepsTheTargetUnderTheCursorAndZoomScalesTheDistance) {
   panCamera(camera, 0.0f, 180.0f, 180);  // a full-height drag moves the view by its height at the target's depth
   const float viewHeight = 2.0f * distance * std::tan(start.fovyRadians() * 0.5f);
   EXPECT_NEAR(glm::length(camera.target - start.target), viewHeight, 1e-3f * viewHeight);
-  EXPECT_LT(glm::length((camera.eye - start.eye) - (camera.target - start.target)), 1e-5f) << "eye and target move together";
+  EXPECT_LT(glm::length((camera.eye - start.eye) - (camera.target - start.target)), 1e-5f)
+      << "eye and target move together";
 
   camera = start;
   zoomCamera(camera, 0.5f, 10.0f);

@@ -142,7 +142,8 @@ function refreshControls(obscura) {
 function showStats(obscura) {
   const s = obscura.stats();
   const fps = s.frameMs > 0 ? ` (${(1000 / s.frameMs).toFixed(0)} fps)` : '';
-  const frame = s.frameMs > 0 ? `${s.frameMs.toFixed(1)} ms${fps}` : '- (needs frames back to back: redraw continuously)';
+  const frame = s.frameMs > 0 ? `${s.frameMs.toFixed(1)} ms${fps}`
+                              : '- (needs frames back to back: redraw continuously)';
   const lines = [`${s.width} x ${s.height} px, ${s.frames} frames drawn`, `frame  ${frame}`,
                  `CPU    ${s.cpuMs.toFixed(2)} ms in the renderer`];
   if (s.passMs) {

@@ -137,7 +137,8 @@ export class Obscura extends EventTarget {
   // live (at the cost of keeping the GPU busy).
   setContinuous(continuous) { this.core._obscura_set_continuous(continuous ? 1 : 0); }
 
-  // {width, height (drawing-buffer pixels), continuous, pending (a change waits for its frame), frameMs (between frames drawn back to back, smoothed), cpuMs
+  // {width, height (drawing-buffer pixels), continuous, pending (a change waits for its frame), frameMs (between
+  //  frames drawn back to back, smoothed), cpuMs
   //  (time in the renderer, smoothed), frames (drawn so far), timerQueries (EXT_disjoint_timer_query in use), passMs
   //  ({gbuffer: ms, ...} of a recent frame, null per pass not run; null without timer queries or before the first
   //  result), contextLost, contextRestores, glObjects: {textures, buffers, ...} (live GL objects), error (why frames

@@ -58,7 +58,8 @@ Options parseOptions(int argc, char** argv) {
     };
     if (arg == "--help" || arg == "-h") {
       std::cout << kUsage;
-      for (const Viewer::KeyBinding& k : Viewer::keyBindings()) std::cout << "  " << k.key << "  " << k.description << "\n";
+      for (const Viewer::KeyBinding& k : Viewer::keyBindings())
+        std::cout << "  " << k.key << "  " << k.description << "\n";
       std::exit(0);
     } else if (arg == "--size") {
       const std::string text = value();
@@ -66,7 +67,8 @@ Options parseOptions(int argc, char** argv) {
       if (std::sscanf(text.c_str(), "%d%c%d%c", &options.width, &x, &options.height, &extra) != 3 || x != 'x' ||
           options.width < 1 || options.height < 1 || options.width > Camera::kMaxSize ||
           options.height > Camera::kMaxSize)
-        throw InputError("--size: expected WxH within 1 .. " + std::to_string(Camera::kMaxSize) + ", got '" + text + "'");
+        throw InputError("--size: expected WxH within 1 .. " + std::to_string(Camera::kMaxSize) + ", got '" + text +
+                         "'");
     } else if (arg == "--state") {
       options.state = value();
     } else if (arg == "--screenshot") {

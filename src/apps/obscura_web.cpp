@@ -10,18 +10,16 @@
 #include <emscripten/emscripten.h>
 #include <emscripten/html5.h>
 
-#include <array>
 #include <cstdint>
 #include <exception>
-#include <utility>
 #include <map>
 #include <memory>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include <nlohmann/json.hpp>
 
-#include "core/Error.h"
 #include "gl/GlObjects.h"
 #include "gl/RenderTarget.h"
 #include "platform/GpuPassTimer.h"

@@ -66,7 +66,9 @@ Parameter numberParameter(const char* name, double min, double max, const char* 
   Parameter p{{name, numericRange(min, max, unit, ""), help, ParameterKind::Number, min, max, {}}, {}, {}, {}};
   p.set = [=](AoSettings& s, const std::string& v) { s.*field = parseNumber(name, v, min, max, unit); };
   p.get = [field](const AoSettings& s) { return formatShortest(s.*field); };
-  p.valid = [=](const AoSettings& s) { return s.*field >= static_cast<float>(min) && s.*field <= static_cast<float>(max); };
+  p.valid = [=](const AoSettings& s) {
+    return s.*field >= static_cast<float>(min) && s.*field <= static_cast<float>(max);
+  };
   return p;
 }
 
@@ -74,7 +76,8 @@ Parameter numberParameter(const char* name, double min, double max, const char* 
 Parameter integerParameter(const char* name, int min, int max, const char* unit, const char* constraint,
                            const char* help, int AoSettings::*field,
                            std::function<void(AoSettings&, const std::string& value)> also = {}) {
-  Parameter p{{name, numericRange(min, max, unit, constraint), help, ParameterKind::Integer, double(min), double(max), {}},
+  Parameter p{{name, numericRange(min, max, unit, constraint), help, ParameterKind::Integer, double(min), double(max),
+               {}},
               {}, {}, {}};
   p.set = [=](AoSettings& s, const std::string& v) {
     const int value = parseInteger(name, v, min, max, unit);
@@ -101,8 +104,10 @@ const std::vector<Parameter>& parameterTable() {
 
     std::vector<std::string> presetNames;
     for (const PresetInfo& preset : qualityPresets()) presetNames.push_back(preset.name);
-    Parameter preset{{"preset", joinChoices(presetNames, " | "), "quality preset: samples, spiral turns, blur, resolution",
-                      ParameterKind::Choice, 0.0, 0.0, presetNames}, {}, {}, {}};
+    Parameter preset{{"preset", joinChoices(presetNames, " | "),
+                      "quality preset: samples, spiral turns, blur, resolution", ParameterKind::Choice, 0.0, 0.0,
+                      presetNames},
+                     {}, {}, {}};
     preset.set = [](AoSettings& s, const std::string& v) { s.applyPreset(parsePreset(v)); };
     preset.get = [](const AoSettings& s) {
       for (const PresetInfo& p : qualityPresets())
@@ -154,7 +159,8 @@ const std::vector<Parameter>& parameterTable() {
     t.push_back(switchParameter("blur", "bilateral blur", &AoSettings::blur));
     t.push_back(integerParameter("blur-radius", 0, 8, "taps each side", "", "blur radius; 0 turns the blur off",
                                  &AoSettings::blurRadius));
-    t.push_back(integerParameter("blur-stride", 1, 8, "pixels", "", "pixels between blur taps", &AoSettings::blurStride));
+    t.push_back(integerParameter("blur-stride", 1, 8, "pixels", "", "pixels between blur taps",
+                                 &AoSettings::blurStride));
     t.push_back(switchParameter("blur-normals", "normal-aware blur weights", &AoSettings::blurNormalAware));
     t.push_back(numberParameter("blur-depth-sigma", 0.001, 10, "metres",
                                 "depth difference at which blur weights fall to 1/e", &AoSettings::blurDepthSigma));

@@ -4,7 +4,6 @@
 #include <cmath>
 #include <cstdlib>
 
-#include "core/Error.h"
 #include "gl/GlObjects.h"
 #include "platform/CameraControls.h"
 #include "scene/BuiltinScene.h"
@@ -119,7 +118,8 @@ void Viewer::resetCamera() { state_.camera = sceneCamera_; }
 void Viewer::adjustParameter(const std::string& name, const std::function<double(double)>& change) {
   const auto& params = aoParameters();
   const auto info = std::find_if(params.begin(), params.end(), [&](const ParameterInfo& p) { return name == p.name; });
-  const double value = std::clamp(change(std::strtod(state_.settings.get(name).c_str(), nullptr)), info->min, info->max);
+  const double current = std::strtod(state_.settings.get(name).c_str(), nullptr);
+  const double value = std::clamp(change(current), info->min, info->max);
   state_.settings.set(name, info->kind == ParameterKind::Integer ? std::to_string(std::lround(value))
                                                                  : formatShortest(static_cast<float>(value)));
 }

@@ -105,7 +105,9 @@ void ViewerState::setViewMode(const std::string& name) {
 
 std::string ViewerState::toQuery() const {
   std::string query = "view=" + viewMode();
-  auto add = [&](const std::string& key, const std::string& value) { query += "&" + key + "=" + encodeComponent(value); };
+  auto add = [&](const std::string& key, const std::string& value) {
+    query += "&" + key + "=" + encodeComponent(value);
+  };
   const AoSettings defaults;
   for (const ParameterInfo& p : aoParameters()) {
     const std::string value = settings.get(p.name);

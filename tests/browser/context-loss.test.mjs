@@ -46,8 +46,10 @@ describe('WebGL context loss', () => {
 
     const framesWhileLost = whileLost.stats.frames;
     await page.evaluate(() => window.loseContext.restoreContext());
-    await page.waitForFunction(() => window.obscura.stats().contextRestores === 1 && !window.obscura.stats().contextLost,
-                               null, { timeout: 30000 });
+    await page.waitForFunction(() => {
+      const stats = window.obscura.stats();
+      return stats.contextRestores === 1 && !stats.contextLost;
+    }, null, { timeout: 30000 });
     // The restored context draws by itself, without any change asked for.
     await page.waitForFunction((before) => window.obscura.stats().frames > before, framesWhileLost);
     await waitForDrawn(page);

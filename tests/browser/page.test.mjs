@@ -105,7 +105,8 @@ describe('demo page', () => {
     const radius = Number(await page.evaluate(() => window.obscura.get('radius')));
     await page.locator('#view').click({ position: { x: 100, y: 100 } });
     await page.keyboard.press(']');
-    assert.equal(Number(await page.evaluate(() => window.obscura.get('radius'))), Number((radius * 1.25).toPrecision(7)));
+    const larger = Number(await page.evaluate(() => window.obscura.get('radius')));
+    assert.equal(larger, Number((radius * 1.25).toPrecision(7)));
     await page.keyboard.press('1');
     assert.equal(await page.locator('#view-final').isChecked(), true);
     await page.keyboard.press('h');
@@ -114,7 +115,8 @@ describe('demo page', () => {
     assert.equal(await page.locator('#panel-body').isVisible(), true);
   });
 
-  test('stats show frame times, and per-pass GPU times where EXT_disjoint_timer_query exists', { timeout: 120000 }, async () => {
+  test('stats show frame times, and per-pass GPU times where EXT_disjoint_timer_query exists',
+       { timeout: 120000 }, async () => {
     const timerQuery = await page.evaluate(() => window.obscura.context.timerQuery);
     if (timerQuery) {
       await page.waitForFunction(() => window.obscura.stats().passMs !== null, null, { timeout: 30000 });
@@ -131,7 +133,8 @@ describe('demo page', () => {
     await page.locator('#continuous').uncheck();
     const stats = await page.evaluate(() => window.obscura.stats());
     assert.ok(stats.frameMs > 0, 'frame time measured');
-    await page.waitForFunction(() => /frame +\d+\.\d ms \(\d+ fps\)/.test(document.querySelector('#stats').textContent));
+    await page.waitForFunction(() => /frame +\d+\.\d ms \(\d+ fps\)/
+      .test(document.querySelector('#stats').textContent));
     await waitForDrawn(page);
     const idle = await page.evaluate(() => window.obscura.stats().frames);
     await page.waitForTimeout(500);
@@ -171,8 +174,9 @@ describe('demo page', () => {
     const builtin = await snapshot(page);
     await page.locator('#file-input').setInputFiles(path.join(assimpModels, '2CylinderEngine-glTF-Binary',
                                                               '2CylinderEngine.glb'));
-    await page.waitForFunction(() => document.querySelector('#scene-name').textContent.startsWith('2CylinderEngine.glb'),
-                               null, { timeout: 60000 });
+    await page.waitForFunction(
+      () => document.querySelector('#scene-name').textContent.startsWith('2CylinderEngine.glb'), null,
+      { timeout: 60000 });
     assert.equal(await page.locator('#error').isVisible(), false);
     assert.equal(await page.locator('#load-progress').isVisible(), false, 'the progress bar is gone when done');
     const scene = await page.evaluate(() => window.obscura.scene());
@@ -210,7 +214,8 @@ describe('demo page', () => {
 
     const shared = await openPage(context, url);
     try {
-      assert.equal(await shared.evaluate(() => window.obscura.state()), await page.evaluate(() => window.obscura.state()));
+      const state = await page.evaluate(() => window.obscura.state());
+      assert.equal(await shared.evaluate(() => window.obscura.state()), state);
       assert.equal(await shared.locator('#view-split').isChecked(), true);
       assert.equal(await shared.locator('#param-samples + input').inputValue(), '16');
       const reproduced = await snapshot(shared);
