@@ -227,6 +227,40 @@ describe('demo page', () => {
     }
   });
 
+  test('touch: two fingers pinch to zoom, one finger orbits', { timeout: 120000 }, async () => {
+    const touchContext = await session.newContext({ hasTouch: true });
+    try {
+      const touchPage = await openPage(touchContext, session.baseUrl);
+      // Real touch input through the DevTools protocol: the browser turns it into touch pointer events.
+      const cdp = await touchContext.newCDPSession(touchPage);
+      const touch = (type, points) => cdp.send('Input.dispatchTouchEvent',
+                                               { type, touchPoints: points.map(([x, y], id) => ({ x, y, id })) });
+      const camera = () => touchPage.evaluate(() => {
+        const state = new URLSearchParams(window.obscura.state());
+        const [eye, target] = ['eye', 'target'].map((key) => state.get(key).split(',').map(Number));
+        return { eye, target, distance: Math.hypot(...eye.map((e, i) => e - target[i])) };
+      });
+      const start = await camera();
+      await touch('touchStart', [[200, 180], [260, 180]]);
+      for (let i = 1; i <= 5; ++i) await touch('touchMove', [[200 - 10 * i, 180], [260 + 10 * i, 180]]);
+      await touch('touchEnd', []);
+      const pinched = await camera();
+      // Fingers spread from 60 to 160 pixels apart: the eye comes 160/60 times closer.
+      assert.ok(Math.abs(start.distance / pinched.distance - 160 / 60) < 0.05,
+                `distance ${start.distance} -> ${pinched.distance}`);
+      await touch('touchStart', [[200, 180]]);
+      for (let i = 1; i <= 5; ++i) await touch('touchMove', [[200 + 10 * i, 180]]);
+      await touch('touchEnd', []);
+      const orbited = await camera();
+      assert.notDeepEqual(orbited.eye, pinched.eye, 'one finger moved the eye');
+      assert.deepEqual(orbited.target, pinched.target, 'around the same target');
+      assert.ok(Math.abs(orbited.distance - pinched.distance) < 1e-3 * pinched.distance);
+      assert.deepEqual(touchPage.errors, []);
+    } finally {
+      await touchContext.close();
+    }
+  });
+
   test('a bad URL is reported and the default view shown', { timeout: 120000 }, async () => {
     const bad = await openPage(context, `${session.baseUrl}?radius=-4&view=ao`);
     try {
