@@ -1,4 +1,6 @@
 // AO parameters: one table of names and ranges for the CLI, viewer and page; presets; spiral turns.
+#include <cstdio>
+
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -113,6 +115,16 @@ TEST(AoSettings, EstimatorParametersAreTunedUnlessSetExplicitly) {
   EXPECT_FLOAT_EQ(settings.estimator().bias, 0.03f);
 }
 
+TEST(AoSettings, EffectiveValuesResolveAuto) {
+  AoSettings settings;
+  settings.set("radius", "2");
+  EXPECT_EQ(settings.get("intensity"), "auto");
+  EXPECT_FLOAT_EQ(std::stof(settings.effective("intensity")), settings.estimator().intensity);
+  settings.set("intensity", "1.25");
+  EXPECT_EQ(settings.effective("intensity"), "1.25");
+  EXPECT_EQ(settings.effective("radius"), settings.get("radius"));
+}
+
 TEST(AoSettings, TunedParametersAreValidAndContinuousOverTheWholeRadiusRange) {
   for (const PresetInfo& preset : qualityPresets()) {
     EstimatorParameters previous = tunedEstimatorParameters(preset.preset, 0.01f);
@@ -128,6 +140,60 @@ TEST(AoSettings, TunedParametersAreValidAndContinuousOverTheWholeRadiusRange) {
       EXPECT_LT(std::abs(e.bias - previous.bias), 0.05f) << preset.name << " r = " << radius;
       EXPECT_LT(std::abs(e.contrast - previous.contrast), 0.5f) << preset.name << " r = " << radius;
       previous = e;
+    }
+  }
+}
+
+TEST(AoSettings, EveryParameterRoundTripsThroughText) {
+  AoSettings changed;
+  changed.set("radius", "0.3");
+  changed.set("bias", "0.0125");
+  changed.set("samples", "13");
+  changed.set("turns", "5");
+  changed.set("falloff", "alchemy2011");
+  changed.set("blur", "off");
+  changed.set("blur-depth-sigma", "0.007");
+  for (const AoSettings& original : {AoSettings{}, changed}) {
+    AoSettings copy;
+    for (const ParameterInfo& p : aoParameters()) {
+      const std::string text = original.get(p.name);
+      if (text.empty()) continue;  // "preset" when the values match no preset
+      copy.set(p.name, text);
+    }
+    for (const ParameterInfo& p : aoParameters()) EXPECT_EQ(copy.get(p.name), original.get(p.name)) << p.name;
+  }
+  EXPECT_EQ(changed.get("radius"), "0.3");  // shortest exact text, not 0.300000012
+  EXPECT_EQ(changed.get("blur"), "off");
+  EXPECT_THROW(changed.get("colour"), InputError);
+}
+
+TEST(AoSettings, ParameterMetadataDescribesTheAcceptedValues) {
+  for (const ParameterInfo& p : aoParameters()) {
+    AoSettings settings;
+    switch (p.kind) {
+      case ParameterKind::Number:
+      case ParameterKind::Integer: {
+        ASSERT_LT(p.min, p.max) << p.name;
+        char bounds[64];
+        std::snprintf(bounds, sizeof bounds, "%g .. %g", p.min, p.max);
+        EXPECT_EQ(p.range.rfind(bounds, 0), 0u) << p.name << ": " << p.range;
+        if (std::string(p.name) == "turns") continue;  // also needs to be coprime with samples
+        char text[32];
+        std::snprintf(text, sizeof text, "%g", p.max);
+        EXPECT_NO_THROW(settings.set(p.name, text)) << p.name;
+        std::snprintf(text, sizeof text, "%g", p.max + 1.0);
+        EXPECT_THROW(settings.set(p.name, text), InputError) << p.name;
+        break;
+      }
+      case ParameterKind::Switch:
+      case ParameterKind::Choice:
+        ASSERT_FALSE(p.choices.empty()) << p.name;
+        for (const std::string& choice : p.choices) {
+          EXPECT_NO_THROW(settings.set(p.name, choice)) << p.name << "=" << choice;
+          EXPECT_EQ(settings.get(p.name), choice) << p.name;
+        }
+        EXPECT_THROW(settings.set(p.name, "no-such-choice"), InputError) << p.name;
+        break;
     }
   }
 }
@@ -149,5 +215,28 @@ TEST(AoSettings, ExplicitEstimatorParametersKeepTheirRanges) {
     }
   }
   settings.intensity = 30.0f;  // set in code, out of range
+  EXPECT_THROW(settings.validate(), InputError);
+}
+
+TEST(AoSettings, PresetReadsBackOnlyWhileTheValuesMatchIt) {
+  AoSettings settings;
+  EXPECT_EQ(settings.get("preset"), "medium");  // the defaults are the medium preset
+  settings.set("preset", "ultra");
+  EXPECT_EQ(settings.get("preset"), "ultra");
+  settings.set("samples", "13");
+  EXPECT_EQ(settings.get("preset"), "");
+}
+
+TEST(AoSettings, ValidateNamesTheParameterOutOfRange) {
+  AoSettings settings;
+  settings.radius = 0.0f;
+  try {
+    settings.validate();
+    ADD_FAILURE() << "radius 0 passed validate()";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("radius = 0 is outside 0.01 .. 100"), std::string::npos) << e.what();
+  }
+  settings = AoSettings{};
+  settings.spiralTurns = 11;  // shares a factor with 11 samples
   EXPECT_THROW(settings.validate(), InputError);
 }

@@ -1,5 +1,6 @@
 #!/usr/bin/env bash
-# Renders the pictures in README.md and docs/ with obscura-render (run tools/build.sh first).
+# Renders the pictures in README.md and docs/: the built-in scene with obscura-render, and the demo page in headless
+# Chromium (AO off / on / split) with the browser tests' tooling. Run tools/build.sh and tools/build-web.sh first.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 out=docs/images
@@ -11,3 +12,7 @@ build/obscura-render --size 960x540 --view ao-raw --out "$out/builtin_ao_raw.png
 build/obscura-render --size 960x540 --view normals --out "$out/builtin_normals.png"
 build/obscura-render --size 960x540 --view depth --out "$out/builtin_depth.png"
 echo "render-docs-images: wrote $out/builtin_*.png"
+
+(cd tests/browser && npm ci --no-audit --no-fund --loglevel=error)
+OBSCURA_UPDATE_SCREENSHOTS=1 node --test --test-name-pattern="page screenshots" tests/browser/page.test.mjs >/dev/null
+echo "render-docs-images: wrote $out/web_ao_off.png, web_ao_on.png, web_split.png"

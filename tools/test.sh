@@ -1,10 +1,14 @@
 #!/usr/bin/env bash
-# Runs every test on a fresh Debian machine: installs what is missing, builds, then runs the whole suite.
+# Runs every test on a fresh Debian machine: installs what is missing, builds the native and the web versions,
+# installs the browser tests' npm packages (tests/browser, from its package-lock.json), then runs the whole suite:
+# CPU and GPU unit tests, the command line, the desktop viewer under Xvfb, and the web page in headless Chromium.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
 tools/install-deps.sh
 tools/build.sh
+tools/build-web.sh
+(cd tests/browser && npm ci --no-audit --no-fund --loglevel=error)
 ctest --test-dir build --output-on-failure -j"$(nproc 2>/dev/null || echo 2)"
 tools/test-sanitizers.sh
 tools/fuzz-gltf.sh 60

@@ -29,7 +29,7 @@ std::string renderUsage() {
       "\nAO parameters (--NAME VALUE):\n";
   for (const ParameterInfo& p : aoParameters()) {
     char line[200];
-    std::snprintf(line, sizeof line, "  --%-18s %-32s %s\n", p.name, p.range, p.help);
+    std::snprintf(line, sizeof line, "  --%-18s %-32s %s\n", p.name, p.range.c_str(), p.help);
     usage += line;
   }
   return usage;

@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <cstdlib>
+#include <cstdio>
 #include <functional>
 
 #include "core/Error.h"
@@ -24,8 +25,8 @@ float parseNumber(const std::string& name, const std::string& text, double min, 
   return static_cast<float>(value);
 }
 
-int parseInteger(const std::string& name, const std::string& text, int min, int max) {
-  const float value = parseNumber(name, text, min, max, "");
+int parseInteger(const std::string& name, const std::string& text, double min, double max, const char* unit) {
+  const float value = parseNumber(name, text, min, max, unit);
   if (value != std::floor(value)) throw InputError(name + ": expected a whole number, got '" + text + "'");
   return static_cast<int>(value);
 }
@@ -43,62 +44,160 @@ bool parseSwitch(const std::string& name, const std::string& text) {
   throw InputError(name + ": expected on or off, got '" + text + "'");
 }
 
+std::string numericRange(double min, double max, const char* unit, const char* constraint) {
+  char text[160];
+  std::snprintf(text, sizeof text, "%g .. %g%s%s%s%s%s", min, max, *unit ? " (" : "", unit, *unit ? ")" : "",
+                *constraint ? ", " : "", constraint);
+  return text;
+}
+
+// One row of the parameter table: its documentation, how text becomes a value (range-checked), how the value
+// becomes text again, and the check validate() applies to settings built in code.
 struct Parameter {
   ParameterInfo info;
-  std::function<void(AoSettings&, const std::string& name, const std::string& value)> apply;
+  std::function<void(AoSettings&, const std::string& value)> set;
+  std::function<std::string(const AoSettings&)> get;
+  std::function<bool(const AoSettings&)> valid;
 };
 
-const std::vector<Parameter>& parameterTable() {
-  static const std::vector<Parameter> table = {
-      {{"ao", "on | off", "ambient obscurance on or off"},
-       [](AoSettings& s, const std::string& n, const std::string& v) { s.enabled = parseSwitch(n, v); }},
-      {{"preset", "low | medium | high | ultra", "quality preset: samples, spiral turns, blur, resolution"},
-       [](AoSettings& s, const std::string&, const std::string& v) { s.applyPreset(parsePreset(v)); }},
-      {{"radius", "0.01 .. 100 (metres)", "world-space obscurance radius r"},
-       [](AoSettings& s, const std::string& n, const std::string& v) { s.radius = parseNumber(n, v, 0.01, 100, "metres"); }},
-      {{"bias", "0 .. 1 (metres)", "tangent-plane bias beta against self-occlusion (default: tuned; auto)"},
-       [](AoSettings& s, const std::string& n, const std::string& v) { s.bias = parseTunable(n, v, 0, 1, "metres"); }},
-      {{"intensity", "0 .. 20", "intensity sigma (default: tuned to the reference for preset and radius; auto)"},
-       [](AoSettings& s, const std::string& n, const std::string& v) { s.intensity = parseTunable(n, v, 0, 20, ""); }},
-      {{"contrast", "0.1 .. 10", "contrast exponent k (default: tuned; auto)"},
-       [](AoSettings& s, const std::string& n, const std::string& v) { s.contrast = parseTunable(n, v, 0.1, 10, ""); }},
-      {{"samples", "1 .. 64", "taps per pixel (also picks the best spiral turns)"},
-       [](AoSettings& s, const std::string& n, const std::string& v) {
-         s.samples = parseInteger(n, v, 1, 64);
-         s.spiralTurns = SaoKernel::bestSpiralTurns(s.samples);
-       }},
-      {{"turns", "1 .. 63, coprime with samples", "spiral turns tau"},
-       [](AoSettings& s, const std::string& n, const std::string& v) {
-         const int turns = parseInteger(n, v, 1, 63);
-         if (SaoKernel::greatestCommonDivisor(turns, s.samples) != 1)
-           throw InputError(n + ": " + v + " shares a factor with samples = " + std::to_string(s.samples) +
-                            "; taps would line up");
-         s.spiralTurns = turns;
-       }},
-      {{"falloff", "sao2012 | alchemy2011", "distance falloff of the estimator"},
-       [](AoSettings& s, const std::string& n, const std::string& v) {
-         if (v == "sao2012") s.falloff = Falloff::Sao2012;
-         else if (v == "alchemy2011") s.falloff = Falloff::Alchemy2011;
-         else throw InputError(n + ": expected sao2012 or alchemy2011, got '" + v + "'");
-       }},
-      {{"max-screen-radius", "0.01 .. 1 (fraction of height)", "clamp of the projected radius"},
-       [](AoSettings& s, const std::string& n, const std::string& v) { s.maxScreenRadius = parseNumber(n, v, 0.01, 1, ""); }},
-      {{"hierarchy", "on | off", "depth hierarchy for far taps"},
-       [](AoSettings& s, const std::string& n, const std::string& v) { s.depthHierarchy = parseSwitch(n, v); }},
-      {{"half-res", "on | off", "AO at half resolution, upsampled depth-aware"},
-       [](AoSettings& s, const std::string& n, const std::string& v) { s.halfResolution = parseSwitch(n, v); }},
-      {{"blur", "on | off", "bilateral blur"},
-       [](AoSettings& s, const std::string& n, const std::string& v) { s.blur = parseSwitch(n, v); }},
-      {{"blur-radius", "0 .. 8 (taps each side)", "blur radius; 0 turns the blur off"},
-       [](AoSettings& s, const std::string& n, const std::string& v) { s.blurRadius = parseInteger(n, v, 0, 8); }},
-      {{"blur-stride", "1 .. 8 (pixels)", "pixels between blur taps"},
-       [](AoSettings& s, const std::string& n, const std::string& v) { s.blurStride = parseInteger(n, v, 1, 8); }},
-      {{"blur-normals", "on | off", "normal-aware blur weights"},
-       [](AoSettings& s, const std::string& n, const std::string& v) { s.blurNormalAware = parseSwitch(n, v); }},
-      {{"blur-depth-sigma", "0.001 .. 10 (metres)", "depth difference at which blur weights fall to 1/e"},
-       [](AoSettings& s, const std::string& n, const std::string& v) { s.blurDepthSigma = parseNumber(n, v, 0.001, 10, "metres"); }},
+Parameter switchParameter(const char* name, const char* help, bool AoSettings::*field) {
+  Parameter p{{name, "on | off", help, ParameterKind::Switch, 0.0, 0.0, {"on", "off"}}, {}, {}, {}};
+  p.set = [name, field](AoSettings& s, const std::string& v) { s.*field = parseSwitch(name, v); };
+  p.get = [field](const AoSettings& s) { return std::string(s.*field ? "on" : "off"); };
+  p.valid = [](const AoSettings&) { return true; };
+  return p;
+}
+
+Parameter numberParameter(const char* name, double min, double max, const char* unit, const char* help,
+                          float AoSettings::*field) {
+  Parameter p{{name, numericRange(min, max, unit, ""), help, ParameterKind::Number, min, max, {}}, {}, {}, {}};
+  p.set = [=](AoSettings& s, const std::string& v) { s.*field = parseNumber(name, v, min, max, unit); };
+  p.get = [field](const AoSettings& s) { return formatShortest(s.*field); };
+  p.valid = [=](const AoSettings& s) {
+    return s.*field >= static_cast<float>(min) && s.*field <= static_cast<float>(max);
   };
+  return p;
+}
+
+// An estimator parameter that defaults to the value fitted to the reference (AoSettings::estimator): a number in
+// range, or "auto" to return to the fitted value.
+Parameter tunableParameter(const char* name, double min, double max, const char* unit, const char* help,
+                           std::optional<float> AoSettings::*field) {
+  Parameter p{{name, numericRange(min, max, unit, "or auto"), help, ParameterKind::Number, min, max, {"auto"}},
+              {}, {}, {}};
+  p.set = [=](AoSettings& s, const std::string& v) { s.*field = parseTunable(name, v, min, max, unit); };
+  p.get = [field](const AoSettings& s) { return (s.*field) ? formatShortest(*(s.*field)) : std::string("auto"); };
+  p.valid = [=](const AoSettings& s) {
+    return !(s.*field) || (*(s.*field) >= static_cast<float>(min) && *(s.*field) <= static_cast<float>(max));
+  };
+  return p;
+}
+
+// `constraint` documents a rule beyond the range; `also` applies a consequence of the new value (or throws).
+Parameter integerParameter(const char* name, int min, int max, const char* unit, const char* constraint,
+                           const char* help, int AoSettings::*field,
+                           std::function<void(AoSettings&, const std::string& value)> also = {}) {
+  Parameter p{{name, numericRange(min, max, unit, constraint), help, ParameterKind::Integer, double(min), double(max),
+               {}},
+              {}, {}, {}};
+  p.set = [=](AoSettings& s, const std::string& v) {
+    const int value = parseInteger(name, v, min, max, unit);
+    AoSettings changed = s;
+    changed.*field = value;
+    if (also) also(changed, v);
+    s = changed;
+  };
+  p.get = [field](const AoSettings& s) { return std::to_string(s.*field); };
+  p.valid = [=](const AoSettings& s) { return s.*field >= min && s.*field <= max; };
+  return p;
+}
+
+std::string joinChoices(const std::vector<std::string>& choices, const char* separator) {
+  std::string out;
+  for (const std::string& c : choices) out += (out.empty() ? "" : separator) + c;
+  return out;
+}
+
+const std::vector<Parameter>& parameterTable() {
+  static const std::vector<Parameter> table = [] {
+    std::vector<Parameter> t;
+    t.push_back(switchParameter("ao", "ambient obscurance on or off", &AoSettings::enabled));
+
+    std::vector<std::string> presetNames;
+    for (const PresetInfo& preset : qualityPresets()) presetNames.push_back(preset.name);
+    Parameter preset{{"preset", joinChoices(presetNames, " | "),
+                      "quality preset: samples, spiral turns, blur, resolution", ParameterKind::Choice, 0.0, 0.0,
+                      presetNames},
+                     {}, {}, {}};
+    preset.set = [](AoSettings& s, const std::string& v) { s.applyPreset(parsePreset(v)); };
+    // The preset the settings came from, while they still hold its values ("" once they differ).
+    preset.get = [](const AoSettings& s) {
+      for (const PresetInfo& p : qualityPresets())
+        if (p.preset == s.preset && s.samples == p.samples && s.spiralTurns == p.spiralTurns &&
+            s.blurRadius == p.blurRadius && s.blurStride == p.blurStride && s.halfResolution == p.halfResolution)
+          return std::string(p.name);
+      return std::string();
+    };
+    preset.valid = [](const AoSettings&) { return true; };
+    t.push_back(preset);
+
+    t.push_back(numberParameter("radius", 0.01, 100, "metres", "world-space obscurance radius r", &AoSettings::radius));
+    t.push_back(tunableParameter("bias", 0, 1, "metres",
+                                 "tangent-plane bias beta against self-occlusion (auto: fitted to the reference)",
+                                 &AoSettings::bias));
+    t.push_back(tunableParameter("intensity", 0, 20, "", "intensity sigma (auto: fitted to the reference)",
+                                 &AoSettings::intensity));
+    t.push_back(tunableParameter("contrast", 0.1, 10, "", "contrast exponent k (auto: fitted to the reference)",
+                                 &AoSettings::contrast));
+    t.push_back(integerParameter("samples", 1, 64, "", "", "taps per pixel (also picks the best spiral turns)",
+                                 &AoSettings::samples, [](AoSettings& s, const std::string&) {
+                                   s.spiralTurns = SaoKernel::bestSpiralTurns(s.samples);
+                                 }));
+    Parameter turns = integerParameter(
+        "turns", 1, 63, "", "coprime with samples", "spiral turns tau", &AoSettings::spiralTurns,
+        [](AoSettings& s, const std::string& v) {
+          if (SaoKernel::greatestCommonDivisor(s.spiralTurns, s.samples) != 1)
+            throw InputError("turns: " + v + " shares a factor with samples = " + std::to_string(s.samples) +
+                             "; taps would line up");
+        });
+    turns.valid = [](const AoSettings& s) {
+      return s.spiralTurns >= 1 && SaoKernel::greatestCommonDivisor(s.spiralTurns, s.samples) == 1;
+    };
+    t.push_back(turns);
+
+    Parameter falloff{{"falloff", "sao2012 | alchemy2011", "distance falloff of the estimator", ParameterKind::Choice,
+                       0.0, 0.0, {"sao2012", "alchemy2011"}}, {}, {}, {}};
+    falloff.set = [](AoSettings& s, const std::string& v) {
+      if (v == "sao2012") s.falloff = Falloff::Sao2012;
+      else if (v == "alchemy2011") s.falloff = Falloff::Alchemy2011;
+      else throw InputError("falloff: expected sao2012 or alchemy2011, got '" + v + "'");
+    };
+    falloff.get = [](const AoSettings& s) { return std::string(falloffName(s.falloff)); };
+    falloff.valid = [](const AoSettings&) { return true; };
+    t.push_back(falloff);
+
+    t.push_back(numberParameter("max-screen-radius", 0.01, 1, "fraction of height", "clamp of the projected radius",
+                                &AoSettings::maxScreenRadius));
+    t.push_back(switchParameter("hierarchy", "depth hierarchy for far taps", &AoSettings::depthHierarchy));
+    t.push_back(switchParameter("half-res", "AO at half resolution, upsampled depth-aware",
+                                &AoSettings::halfResolution));
+    t.push_back(switchParameter("blur", "bilateral blur", &AoSettings::blur));
+    t.push_back(integerParameter("blur-radius", 0, 8, "taps each side", "", "blur radius; 0 turns the blur off",
+                                 &AoSettings::blurRadius));
+    t.push_back(integerParameter("blur-stride", 1, 8, "pixels", "", "pixels between blur taps",
+                                 &AoSettings::blurStride));
+    t.push_back(switchParameter("blur-normals", "normal-aware blur weights", &AoSettings::blurNormalAware));
+    t.push_back(numberParameter("blur-depth-sigma", 0.001, 10, "metres",
+                                "depth difference at which blur weights fall to 1/e", &AoSettings::blurDepthSigma));
+    return t;
+  }();
   return table;
+}
+
+const Parameter& findParameter(const std::string& name) {
+  for (const Parameter& p : parameterTable())
+    if (name == p.info.name) return p;
+  throw InputError("unknown parameter '" + name + "'");
 }
 
 }  // namespace
@@ -122,6 +221,22 @@ QualityPreset parsePreset(const std::string& name) {
   throw InputError("preset: expected low, medium, high or ultra, got '" + name + "'");
 }
 
+std::string formatShortest(float value) {
+  char text[48];
+  // Plain decimals where they are short ("50", "0.012"), else the shortest exponent form.
+  if (std::fabs(value) < 1e7f) {
+    for (int decimals = 0; decimals <= 9; ++decimals) {
+      std::snprintf(text, sizeof text, "%.*f", decimals, static_cast<double>(value));
+      if (std::strtof(text, nullptr) == value) return text;
+    }
+  }
+  for (int digits = 1; digits <= 9; ++digits) {
+    std::snprintf(text, sizeof text, "%.*g", digits, static_cast<double>(value));
+    if (std::strtof(text, nullptr) == value) break;
+  }
+  return text;
+}
+
 const char* falloffName(Falloff falloff) { return falloff == Falloff::Sao2012 ? "sao2012" : "alchemy2011"; }
 
 void AoSettings::applyPreset(QualityPreset which) {
@@ -136,33 +251,28 @@ void AoSettings::applyPreset(QualityPreset which) {
   }
 }
 
-void AoSettings::set(const std::string& name, const std::string& value) {
-  for (const Parameter& p : parameterTable()) {
-    if (name == p.info.name) {
-      p.apply(*this, name, value);
-      return;
-    }
-  }
-  throw InputError("unknown parameter '" + name + "'");
+void AoSettings::set(const std::string& name, const std::string& value) { findParameter(name).set(*this, value); }
+
+std::string AoSettings::get(const std::string& name) const { return findParameter(name).get(*this); }
+
+std::string AoSettings::effective(const std::string& name) const {
+  const EstimatorParameters e = estimator();
+  if (name == "bias") return formatShortest(e.bias);
+  if (name == "intensity") return formatShortest(e.intensity);
+  if (name == "contrast") return formatShortest(e.contrast);
+  return get(name);
 }
 
 void AoSettings::validate() const {
-  auto check = [](bool ok, const std::string& what) {
-    if (!ok) throw InputError("invalid AO settings: " + what);
-  };
-  check(radius >= 0.01f && radius <= 100.0f, "radius must be in 0.01 .. 100 m");
-  // Checked as resolved, so a tuned table entry out of range is caught as well.
+  for (const Parameter& p : parameterTable())
+    if (!p.valid(*this))
+      throw InputError(std::string("invalid AO settings: ") + p.info.name + " = " + p.get(*this) + " is outside " +
+                       p.info.range);
+  // The estimator parameters are also checked as resolved, so a tuned table entry out of range is caught too.
   const EstimatorParameters e = estimator();
-  check(e.bias >= 0.0f && e.bias <= 1.0f, "bias must be in 0 .. 1 m");
-  check(e.intensity >= 0.0f && e.intensity <= 20.0f, "intensity must be in 0 .. 20");
-  check(e.contrast >= 0.1f && e.contrast <= 10.0f, "contrast must be in 0.1 .. 10");
-  check(samples >= 1 && samples <= 64, "samples must be in 1 .. 64");
-  check(spiralTurns >= 1 && SaoKernel::greatestCommonDivisor(spiralTurns, samples) == 1,
-        "spiral turns must be coprime with samples");
-  check(maxScreenRadius >= 0.01f && maxScreenRadius <= 1.0f, "max screen radius must be in 0.01 .. 1");
-  check(blurRadius >= 0 && blurRadius <= 8, "blur radius must be in 0 .. 8");
-  check(blurStride >= 1 && blurStride <= 8, "blur stride must be in 1 .. 8");
-  check(blurDepthSigma >= 0.001f && blurDepthSigma <= 10.0f, "blur depth sigma must be in 0.001 .. 10 m");
+  if (!(e.bias >= 0.0f && e.bias <= 1.0f && e.intensity >= 0.0f && e.intensity <= 20.0f && e.contrast >= 0.1f &&
+        e.contrast <= 10.0f))
+    throw InputError("invalid AO settings: the tuned estimator parameters for this preset and radius are out of range");
 }
 
 namespace {

@@ -66,15 +66,35 @@ struct AoSettings {
   void set(const std::string& name, const std::string& value);
   // sigma, beta and k as the SAO pass uses them: the explicit values where set, the tuned ones elsewhere.
   EstimatorParameters estimator() const;
+  // The current value of `name` as text that set() accepts (numbers in their shortest exact form), so settings
+  // round-trip through text (the web page's URL, the viewers' key bindings). "auto" for bias, intensity or
+  // contrast left to their tuned values. For "preset": the preset whose values the settings hold, or "" when they
+  // match none. Throws InputError for an unknown name.
+  std::string get(const std::string& name) const;
+  // The value in use, as text: get(name), except that bias, intensity and contrast left on "auto" read as the
+  // values estimator() resolves them to (for sliders and the viewers' +/- keys).
+  std::string effective(const std::string& name) const;
   // Throws InputError if a field is out of range (for settings built in code).
   void validate() const;
+};
+
+// What kind of value a parameter takes, so a user interface can offer the right control.
+enum class ParameterKind {
+  Switch,   // "on" | "off"
+  Number,   // a real number in min .. max
+  Integer,  // a whole number in min .. max
+  Choice,   // one of `choices`
 };
 
 // Documentation of one parameter accepted by AoSettings::set.
 struct ParameterInfo {
   const char* name;
-  const char* range;  // human-readable, e.g. "0.01 .. 100 (metres)"
+  std::string range;  // human-readable, made from the fields below, e.g. "0.01 .. 100 (metres)"
   const char* help;
+  ParameterKind kind;
+  double min = 0.0, max = 0.0;       // Number and Integer
+  std::vector<std::string> choices;  // Switch and Choice, in the order to offer them; for a Number, words accepted
+                                     // besides numbers ("auto": bias, intensity and contrast)
 };
 const std::vector<ParameterInfo>& aoParameters();
 
@@ -91,5 +111,9 @@ struct PresetInfo {
 const std::vector<PresetInfo>& qualityPresets();
 QualityPreset parsePreset(const std::string& name);  // throws InputError
 const char* falloffName(Falloff falloff);
+
+// The shortest decimal text that reads back as exactly `value`: how get() writes numbers (and the viewers' state
+// text writes camera coordinates), so "0.3" stays "0.3" rather than "0.300000012".
+std::string formatShortest(float value);
 
 }  // namespace obscura

@@ -3,9 +3,13 @@
 namespace obscura::gl {
 namespace {
 LiveObjects g_live;
-}
+std::uint32_t g_generation = 0;
+}  // namespace
 
 const LiveObjects& liveObjects() { return g_live; }
+
+void abandonContextObjects() { ++g_generation; }
+std::uint32_t contextGeneration() { return g_generation; }
 
 namespace detail {
 GLuint TextureKind::create() {
@@ -14,8 +18,8 @@ GLuint TextureKind::create() {
   ++g_live.textures;
   return id;
 }
-void TextureKind::destroy(GLuint id) {
-  glDeleteTextures(1, &id);
+void TextureKind::destroy(GLuint id, bool deleteName) {
+  if (deleteName) glDeleteTextures(1, &id);
   --g_live.textures;
 }
 GLuint BufferKind::create() {
@@ -24,8 +28,8 @@ GLuint BufferKind::create() {
   ++g_live.buffers;
   return id;
 }
-void BufferKind::destroy(GLuint id) {
-  glDeleteBuffers(1, &id);
+void BufferKind::destroy(GLuint id, bool deleteName) {
+  if (deleteName) glDeleteBuffers(1, &id);
   --g_live.buffers;
 }
 GLuint FramebufferKind::create() {
@@ -34,8 +38,8 @@ GLuint FramebufferKind::create() {
   ++g_live.framebuffers;
   return id;
 }
-void FramebufferKind::destroy(GLuint id) {
-  glDeleteFramebuffers(1, &id);
+void FramebufferKind::destroy(GLuint id, bool deleteName) {
+  if (deleteName) glDeleteFramebuffers(1, &id);
   --g_live.framebuffers;
 }
 GLuint RenderbufferKind::create() {
@@ -44,8 +48,8 @@ GLuint RenderbufferKind::create() {
   ++g_live.renderbuffers;
   return id;
 }
-void RenderbufferKind::destroy(GLuint id) {
-  glDeleteRenderbuffers(1, &id);
+void RenderbufferKind::destroy(GLuint id, bool deleteName) {
+  if (deleteName) glDeleteRenderbuffers(1, &id);
   --g_live.renderbuffers;
 }
 }  // namespace detail
@@ -55,7 +59,7 @@ ShaderHandle::ShaderHandle(GLenum stage) : id_(glCreateShader(stage)) {
 }
 ShaderHandle::~ShaderHandle() {
   if (id_ != 0) {
-    glDeleteShader(id_);
+    if (generation_ == contextGeneration()) glDeleteShader(id_);
     --g_live.shaders;
   }
 }
@@ -63,6 +67,7 @@ ShaderHandle& ShaderHandle::operator=(ShaderHandle&& other) noexcept {
   if (this != &other) {
     ShaderHandle old(std::move(*this));
     id_ = std::exchange(other.id_, 0);
+    generation_ = other.generation_;
   }
   return *this;
 }
@@ -74,7 +79,7 @@ ProgramHandle ProgramHandle::create() {
 }
 ProgramHandle::~ProgramHandle() {
   if (id_ != 0) {
-    glDeleteProgram(id_);
+    if (generation_ == contextGeneration()) glDeleteProgram(id_);
     --g_live.programs;
   }
 }
@@ -82,6 +87,7 @@ ProgramHandle& ProgramHandle::operator=(ProgramHandle&& other) noexcept {
   if (this != &other) {
     ProgramHandle old(std::move(*this));
     id_ = std::exchange(other.id_, 0);
+    generation_ = other.generation_;
   }
   return *this;
 }

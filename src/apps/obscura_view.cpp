@@ -1,0 +1,245 @@
+// obscura-view: the desktop viewer. A GLFW window with an OpenGL ES 2.0 context running the same Viewer session as
+// the web page: same defaults, same keys, same camera gestures; a glTF file dropped on the window is loaded (a bad
+// one leaves the current scene and says why in the title bar and on stderr). Timings are shown in the title bar.
+//
+// usage: obscura-view [FILE.glb|FILE.gltf] [--size WxH] [--state QUERY] [--screenshot OUT.png [--frames N]]
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <iostream>
+#include <string>
+#include <vector>
+
+#define GLFW_INCLUDE_NONE
+#include <GLFW/glfw3.h>
+
+#include "core/Error.h"
+#include "gl/RenderTarget.h"
+#include "platform/GlfwWindow.h"
+#include "platform/GpuPassTimer.h"
+#include "platform/Viewer.h"
+#include "scene/ImageIo.h"
+
+using namespace obscura;
+
+namespace {
+
+constexpr double kTitleInterval = 0.25;  // seconds between title-bar updates
+constexpr double kSmoothing = 0.1;       // weight of the newest frame in the displayed frame time
+constexpr float kZoomPerWheelStep = 0.15f;  // exp(0.15) per step, as the web page's 100-pixel wheel step
+
+struct Options {
+  std::string scene;
+  int width = 1280, height = 720;
+  std::string state;
+  std::string screenshot;
+  int frames = 3;
+};
+
+const char* kUsage =
+    "usage: obscura-view [FILE.glb|FILE.gltf] [--size WxH] [--state QUERY] [--screenshot OUT.png [--frames N]]\n"
+    "\n"
+    "Shows a glTF 2.0 scene (default: the built-in scene) with Scalable Ambient Obscurance in an OpenGL ES 2.0\n"
+    "window. Drop a .glb or .gltf on the window to load it.\n"
+    "  --size WxH         window size (default 1280x720)\n"
+    "  --state QUERY      view, parameters and camera as the web page's URL query, e.g. 'view=ao&radius=2'\n"
+    "  --screenshot FILE  draw --frames frames (default 3), write the last one as PNG and exit\n"
+    "\n"
+    "Mouse: left drag orbits, right/middle or shift + left drag pans, the wheel zooms. Esc quits.\n"
+    "Keys:\n";
+
+Options parseOptions(int argc, char** argv) {
+  Options options;
+  for (int i = 1; i < argc; ++i) {
+    const std::string arg = argv[i];
+    auto value = [&]() -> std::string {
+      if (i + 1 >= argc) throw InputError(arg + ": missing value");
+      return argv[++i];
+    };
+    if (arg == "--help" || arg == "-h") {
+      std::cout << kUsage;
+      for (const Viewer::KeyBinding& k : Viewer::keyBindings())
+        std::cout << "  " << k.key << "  " << k.description << "\n";
+      std::exit(0);
+    } else if (arg == "--size") {
+      const std::string text = value();
+      char x = 0, extra = 0;
+      if (std::sscanf(text.c_str(), "%d%c%d%c", &options.width, &x, &options.height, &extra) != 3 || x != 'x' ||
+          options.width < 1 || options.height < 1 || options.width > Camera::kMaxSize ||
+          options.height > Camera::kMaxSize)
+        throw InputError("--size: expected WxH within 1 .. " + std::to_string(Camera::kMaxSize) + ", got '" + text +
+                         "'");
+    } else if (arg == "--state") {
+      options.state = value();
+    } else if (arg == "--screenshot") {
+      options.screenshot = value();
+    } else if (arg == "--frames") {
+      const std::string text = value();
+      options.frames = std::atoi(text.c_str());
+      if (options.frames < 1) throw InputError("--frames: expected a count of at least 1, got '" + text + "'");
+    } else if (!arg.empty() && arg[0] != '-' && options.scene.empty()) {
+      options.scene = arg;
+    } else {
+      throw InputError("unknown option '" + arg + "' (see --help)");
+    }
+  }
+  return options;
+}
+
+// Mouse and keyboard for one window, forwarded to the Viewer.
+class Input {
+ public:
+  Input(GLFWwindow* window, Viewer& viewer) : viewer_(viewer) {
+    glfwSetWindowUserPointer(window, this);
+    glfwSetCharCallback(window, [](GLFWwindow* w, unsigned int codepoint) { self(w).character(codepoint); });
+    glfwSetKeyCallback(window, [](GLFWwindow* w, int key, int, int action, int) {
+      if (key == GLFW_KEY_ESCAPE && action == GLFW_PRESS) glfwSetWindowShouldClose(w, GLFW_TRUE);
+    });
+    glfwSetMouseButtonCallback(window, [](GLFWwindow* w, int button, int action, int mods) {
+      self(w).button(w, button, action, mods);
+    });
+    glfwSetCursorPosCallback(window, [](GLFWwindow* w, double x, double y) { self(w).move(w, x, y); });
+    glfwSetScrollCallback(window, [](GLFWwindow* w, double, double dy) {
+      self(w).viewer_.zoom(std::exp(-kZoomPerWheelStep * static_cast<float>(dy)));
+    });
+    glfwSetDropCallback(window, [](GLFWwindow* w, int count, const char** paths) {
+      if (count > 0) self(w).load(paths[0]);
+    });
+  }
+
+  void load(const std::string& path) {
+    try {
+      const GltfLoadReport report = viewer_.loadGltfFile(path);
+      for (const std::string& warning : report.warnings)
+        std::cerr << "obscura-view: warning: " << path << ": " << warning << "\n";
+      message_.clear();
+    } catch (const std::exception& e) {
+      // The previous scene stays on screen.
+      std::cerr << "obscura-view: " << e.what() << "\n";
+      message_ = e.what();
+    }
+  }
+
+  const std::string& message() const { return message_; }
+
+ private:
+  enum class Drag { None, Orbit, Pan };
+
+  static Input& self(GLFWwindow* window) { return *static_cast<Input*>(glfwGetWindowUserPointer(window)); }
+
+  void character(unsigned int codepoint) {
+    if (codepoint >= 128) return;  // every binding is ASCII
+    try {
+      viewer_.handleKey(std::string(1, static_cast<char>(codepoint)));
+      message_.clear();
+    } catch (const std::exception& e) {
+      message_ = e.what();
+    }
+  }
+
+  void button(GLFWwindow* window, int button, int action, int mods) {
+    if (action == GLFW_RELEASE) {
+      drag_ = Drag::None;
+      return;
+    }
+    const bool pan = button == GLFW_MOUSE_BUTTON_RIGHT || button == GLFW_MOUSE_BUTTON_MIDDLE || (mods & GLFW_MOD_SHIFT);
+    drag_ = pan ? Drag::Pan : Drag::Orbit;
+    glfwGetCursorPos(window, &x_, &y_);
+  }
+
+  void move(GLFWwindow* window, double x, double y) {
+    if (drag_ != Drag::None) {
+      int width = 0, height = 0;
+      glfwGetWindowSize(window, &width, &height);
+      const float dx = static_cast<float>(x - x_), dy = static_cast<float>(y - y_);
+      if (drag_ == Drag::Orbit) viewer_.orbit(dx, dy, height);
+      else viewer_.pan(dx, dy, height);
+    }
+    x_ = x;
+    y_ = y;
+  }
+
+  Viewer& viewer_;
+  Drag drag_ = Drag::None;
+  double x_ = 0.0, y_ = 0.0;
+  std::string message_;
+};
+
+std::string title(const Viewer& viewer, double frameMs, const GpuPassTimer& timer, const std::string& message) {
+  char text[512];
+  std::snprintf(text, sizeof text, "Obscura - %s - %s - %.1f ms (%.0f fps)", viewer.sceneName().c_str(),
+                viewer.state().viewMode().c_str(), frameMs, frameMs > 0.0 ? 1000.0 / frameMs : 0.0);
+  std::string out = text;
+  if (timer.hasResult()) {
+    out += " - GPU";
+    for (int p = 0; p < GpuPassTimer::kPassCount; ++p) {
+      const double ms = timer.lastResult()[static_cast<size_t>(p)];
+      if (ms < 0.0) continue;
+      std::snprintf(text, sizeof text, " %s %.2f", passName(static_cast<Pass>(p)), ms);
+      out += text;
+    }
+    out += " ms";
+  }
+  if (!message.empty()) out += " - error: " + message;
+  return out;
+}
+
+int run(const Options& options) {
+  GlfwWindow window("Obscura", options.width, options.height);
+  std::cout << "obscura-view: " << window.caps().version << " on " << window.caps().renderer << std::endl;
+  RendererOptions rendererOptions;
+  rendererOptions.checkGlErrors = !options.screenshot.empty();  // a screenshot run doubles as a check
+  Viewer viewer(window.caps(), rendererOptions);
+  Input input(window.handle(), viewer);
+  if (!options.scene.empty()) {
+    input.load(options.scene);
+    if (!input.message().empty()) return 2;
+  }
+  if (!options.state.empty()) viewer.state().applyQuery(options.state);
+  GpuPassTimer timer(window.caps(), &GlfwWindow::procAddress);
+
+  double last = glfwGetTime(), lastTitle = 0.0, frameMs = 0.0;
+  for (int frame = 1; !glfwWindowShouldClose(window.handle()); ++frame) {
+    glfwPollEvents();
+    int width = 0, height = 0;
+    glfwGetFramebufferSize(window.handle(), &width, &height);
+    if (width > 0 && height > 0) {  // 0 x 0 while minimised
+      timer.beginFrame();
+      viewer.render(0, width, height, timer.available() ? &timer : nullptr);
+      timer.endFrame();
+    }
+    if (!options.screenshot.empty() && frame >= options.frames) {
+      Image image;
+      image.width = width;
+      image.height = height;
+      image.rgba = gl::readPixelsTopDown(width, height);
+      writePng(options.screenshot, image);
+      return 0;
+    }
+    glfwSwapBuffers(window.handle());
+
+    const double now = glfwGetTime();
+    const double ms = (now - last) * 1000.0;
+    frameMs = frameMs == 0.0 ? ms : frameMs + kSmoothing * (ms - frameMs);
+    last = now;
+    if (now - lastTitle >= kTitleInterval) {
+      glfwSetWindowTitle(window.handle(), title(viewer, frameMs, timer, input.message()).c_str());
+      lastTitle = now;
+    }
+  }
+  return 0;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  try {
+    return run(parseOptions(argc, argv));
+  } catch (const InputError& e) {
+    std::cerr << "obscura-view: " << e.what() << "\n";
+    return 2;
+  } catch (const GlError& e) {
+    std::cerr << "obscura-view: GL error: " << e.what() << "\n";
+    return 1;
+  }
+}

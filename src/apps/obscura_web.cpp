@@ -1,0 +1,361 @@
+// obscura-core.wasm: the Obscura core behind the JS API of web/obscura.js (documented in web/README.md).
+//
+// Each function below is exported under its C name and wrapped by web/obscura.js; none is meant to be called
+// directly by a page. Functions that can fail return 0 and leave a one-line message for obscura_error(). Returned
+// strings stay valid until the next call into the module.
+//
+// Frames are drawn on requestAnimationFrame into the canvas the JS API handed over (platform/WebCanvas), through the
+// same Viewer session obscura-view uses: only when something changed (a parameter, the view, the camera, the scene,
+// the canvas size, a restored context), or on every animation frame in continuous mode, which the timings need.
+#include <emscripten/emscripten.h>
+#include <emscripten/html5.h>
+
+#include <cstdint>
+#include <exception>
+#include <map>
+#include <memory>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "gl/GlObjects.h"
+#include "gl/RenderTarget.h"
+#include "platform/GpuPassTimer.h"
+#include "platform/Viewer.h"
+#include "platform/WebCanvas.h"
+
+using namespace obscura;
+using Json = nlohmann::json;
+
+namespace {
+
+// Exponential moving average weight of the newest frame in the displayed timings.
+constexpr double kSmoothing = 0.1;
+
+class WebApp {
+ public:
+  WebApp()
+      : canvas_([this] { contextLost(); }, [this] { contextRestored(); }),
+        viewer_(gl::GlCaps::query()),
+        timer_(std::make_unique<GpuPassTimer>(viewer_.caps(), &WebCanvas::procAddress)) {
+    emscripten_request_animation_frame_loop(&WebApp::animationFrame, this);
+  }
+
+  Viewer& viewer() { return viewer_; }
+  WebCanvas& canvas() { return canvas_; }
+
+  // Something the user changed: draw it on the next animation frame (a frame that failed may succeed now).
+  void changed() {
+    renderError_.clear();
+    frameWanted_ = true;
+  }
+  void setContinuous(bool continuous) {
+    continuous_ = continuous;
+    frameWanted_ = true;
+  }
+
+  // Draws one frame at the canvas's display size; returns false (and keeps the message) if the renderer failed.
+  bool draw(GpuPassTimer* timer) {
+    if (canvas_.lost() || !renderError_.empty()) return false;
+    canvas_.fitToDisplay(viewer_.caps().maxRenderSize(), &width_, &height_);
+    try {
+      viewer_.render(0, width_, height_, timer);
+      return true;
+    } catch (const std::exception& e) {
+      renderError_ = e.what();
+      emscripten_log(EM_LOG_ERROR, "obscura: cannot render: %s", e.what());
+      return false;
+    }
+  }
+
+  Json stats() const {
+    Json passes = nullptr;
+    if (timer_ && timer_->hasResult()) {
+      passes = Json::object();
+      for (int p = 0; p < GpuPassTimer::kPassCount; ++p) {
+        const double ms = timer_->lastResult()[static_cast<size_t>(p)];
+        passes[passName(static_cast<Pass>(p))] = ms >= 0.0 ? Json(ms) : Json(nullptr);
+      }
+    }
+    const gl::LiveObjects& live = gl::liveObjects();
+    return Json{{"width", width_},
+                {"height", height_},
+                {"continuous", continuous_},
+                {"pending", frameWanted_},
+                {"frameMs", frameMs_},
+                {"cpuMs", cpuMs_},
+                {"frames", frames_},
+                {"timerQueries", timer_ && timer_->available()},
+                {"passMs", passes},
+                {"contextLost", canvas_.lost()},
+                {"contextRestores", restores_},
+                {"glObjects", {{"textures", live.textures},
+                               {"buffers", live.buffers},
+                               {"framebuffers", live.framebuffers},
+                               {"renderbuffers", live.renderbuffers},
+                               {"shaders", live.shaders},
+                               {"programs", live.programs}}},
+                {"error", renderError_}};
+  }
+
+ private:
+  static EM_BOOL animationFrame(double timeMs, void* self) {
+    static_cast<WebApp*>(self)->frame(timeMs);
+    return EM_TRUE;  // keep the loop going; frames are simply skipped while the context is lost
+  }
+
+  void frame(double timeMs) {
+    if (canvas_.lost()) return;
+    GpuPassTimer* timer = timer_ && timer_->available() ? timer_.get() : nullptr;
+    if (timer) timer->collectResults();
+    int width = 0, height = 0;
+    if (canvas_.fitToDisplay(viewer_.caps().maxRenderSize(), &width, &height)) frameWanted_ = true;
+    if (!frameWanted_ && !continuous_) {
+      lastFrameTime_ = 0.0;  // the next drawn frame does not follow this one
+      return;
+    }
+    frameWanted_ = false;
+    if (timer) timer->beginFrame();
+    const double start = emscripten_get_now();
+    const bool drawn = draw(timer);
+    if (timer) timer->endFrame();
+    if (!drawn) {
+      lastFrameTime_ = 0.0;
+      return;
+    }
+    const double cpu = emscripten_get_now() - start;
+    cpuMs_ = frames_ == 0 ? cpu : cpuMs_ + kSmoothing * (cpu - cpuMs_);
+    // The frame time is the interval between animation frames drawn back to back (continuous mode, or a drag).
+    if (lastFrameTime_ > 0.0) {
+      const double interval = timeMs - lastFrameTime_;
+      frameMs_ = frameMs_ == 0.0 ? interval : frameMs_ + kSmoothing * (interval - frameMs_);
+    }
+    lastFrameTime_ = timeMs;
+    ++frames_;
+  }
+
+  void contextLost() {
+    timer_.reset();  // its queries belong to the lost context: viewer_.contextLost() abandons them with the rest
+    viewer_.contextLost();
+  }
+
+  void contextRestored() {
+    try {
+      viewer_.contextRestored(gl::GlCaps::query());
+      timer_ = std::make_unique<GpuPassTimer>(viewer_.caps(), &WebCanvas::procAddress);
+      ++restores_;
+      changed();
+    } catch (const std::exception& e) {
+      renderError_ = std::string("cannot rebuild after the context was restored: ") + e.what();
+      emscripten_log(EM_LOG_ERROR, "obscura: %s", renderError_.c_str());
+    }
+  }
+
+  WebCanvas canvas_;
+  Viewer viewer_;
+  std::unique_ptr<GpuPassTimer> timer_;
+  bool frameWanted_ = true;  // something changed since the last drawn frame
+  bool continuous_ = false;
+  int width_ = 0, height_ = 0;
+  double lastFrameTime_ = 0.0, frameMs_ = 0.0, cpuMs_ = 0.0;
+  long frames_ = 0;
+  int restores_ = 0;
+  std::string renderError_;
+};
+
+std::unique_ptr<WebApp> g_app;
+std::string g_error;     // the message of the last failed call
+std::string g_returned;  // the text of the last call that returns one
+std::vector<std::uint8_t> g_snapshot;
+std::map<std::string, std::vector<std::uint8_t>> g_sideFiles;  // gathered for the next obscura_load_scene
+std::vector<std::string> g_sceneWarnings;                      // what the loader repaired or ignored
+
+// Runs `body`, turning an exception into 0 and its message into obscura_error()'s text.
+template <typename Body>
+int attempt(Body&& body) {
+  try {
+    body();
+    return 1;
+  } catch (const std::exception& e) {
+    g_error = e.what();
+    return 0;
+  }
+}
+
+// attempt() for a call that changes what is shown: a frame is drawn for it if it succeeds.
+template <typename Body>
+int change(Body&& body) {
+  const int ok = attempt(std::forward<Body>(body));
+  if (ok) g_app->changed();
+  return ok;
+}
+
+const char* returned(std::string text) {
+  g_returned = std::move(text);
+  return g_returned.c_str();
+}
+
+const char* kindName(ParameterKind kind) {
+  switch (kind) {
+    case ParameterKind::Switch: return "switch";
+    case ParameterKind::Number: return "number";
+    case ParameterKind::Integer: return "integer";
+    case ParameterKind::Choice: return "choice";
+  }
+  return "?";
+}
+
+}  // namespace
+
+extern "C" {
+
+EMSCRIPTEN_KEEPALIVE int obscura_create() {
+  return attempt([] { g_app = std::make_unique<WebApp>(); });
+}
+
+EMSCRIPTEN_KEEPALIVE const char* obscura_error() { return g_error.c_str(); }
+
+// Everything a user interface needs to build its controls, read from the core's tables.
+EMSCRIPTEN_KEEPALIVE const char* obscura_describe() {
+  Json parameters = Json::array();
+  for (const ParameterInfo& p : aoParameters()) {
+    Json item{{"name", p.name}, {"kind", kindName(p.kind)}, {"range", p.range}, {"help", p.help},
+              {"default", AoSettings{}.get(p.name)}};
+    if (p.kind == ParameterKind::Number || p.kind == ParameterKind::Integer) {
+      item["min"] = p.min;
+      item["max"] = p.max;
+    }
+    if (!p.choices.empty()) item["choices"] = p.choices;  // for a number: words accepted besides numbers ("auto")
+    parameters.push_back(item);
+  }
+  Json presets = Json::array();
+  for (const PresetInfo& p : qualityPresets())
+    presets.push_back({{"name", p.name}, {"samples", p.samples}, {"turns", p.spiralTurns},
+                       {"blurRadius", p.blurRadius}, {"blurStride", p.blurStride},
+                       {"halfResolution", p.halfResolution}});
+  Json keys = Json::array();
+  for (const Viewer::KeyBinding& k : Viewer::keyBindings())
+    keys.push_back({{"key", k.key}, {"description", k.description}});
+  Json passes = Json::array();
+  for (int p = 0; p < static_cast<int>(Pass::Count); ++p) passes.push_back(passName(static_cast<Pass>(p)));
+  Json context = nullptr;
+  if (g_app) {
+    const gl::GlCaps& caps = g_app->viewer().caps();
+    context = {{"version", caps.version}, {"renderer", caps.renderer}, {"vendor", caps.vendor},
+               {"shadingLanguage", caps.shadingLanguage}, {"maxRenderSize", caps.maxRenderSize()},
+               {"depth24", caps.depth24}, {"elementIndexUint", caps.elementIndexUint},
+               {"timerQuery", caps.timerQuery}};
+  }
+  return returned(Json{{"parameters", parameters}, {"presets", presets}, {"views", ViewerState::viewModes()},
+                       {"keys", keys}, {"passes", passes}, {"context", context}}.dump());
+}
+
+EMSCRIPTEN_KEEPALIVE int obscura_set(const char* name, const char* value) {
+  return change([&] { g_app->viewer().state().settings.set(name, value); });
+}
+
+EMSCRIPTEN_KEEPALIVE const char* obscura_get(const char* name) {
+  std::string value;
+  if (!attempt([&] { value = g_app->viewer().state().settings.get(name); })) return nullptr;
+  return returned(value);
+}
+
+EMSCRIPTEN_KEEPALIVE const char* obscura_get_effective(const char* name) {
+  std::string value;
+  if (!attempt([&] { value = g_app->viewer().state().settings.effective(name); })) return nullptr;
+  return returned(value);
+}
+
+EMSCRIPTEN_KEEPALIVE int obscura_set_view(const char* mode) {
+  return change([&] { g_app->viewer().state().setViewMode(mode); });
+}
+
+EMSCRIPTEN_KEEPALIVE const char* obscura_view() { return returned(g_app->viewer().state().viewMode()); }
+
+EMSCRIPTEN_KEEPALIVE const char* obscura_state() { return returned(g_app->viewer().state().toQuery()); }
+
+EMSCRIPTEN_KEEPALIVE int obscura_set_state(const char* query) {
+  return change([&] { g_app->viewer().state().applyQuery(query); });
+}
+
+EMSCRIPTEN_KEEPALIVE void obscura_orbit(float dx, float dy, int viewportHeight) {
+  g_app->viewer().orbit(dx, dy, viewportHeight);
+  g_app->changed();
+}
+
+EMSCRIPTEN_KEEPALIVE void obscura_pan(float dx, float dy, int viewportHeight) {
+  g_app->viewer().pan(dx, dy, viewportHeight);
+  g_app->changed();
+}
+
+EMSCRIPTEN_KEEPALIVE void obscura_zoom(float factor) {
+  g_app->viewer().zoom(factor);
+  g_app->changed();
+}
+
+EMSCRIPTEN_KEEPALIVE void obscura_reset_camera() {
+  g_app->viewer().resetCamera();
+  g_app->changed();
+}
+
+// 1: the key is bound and acted; 0 with an empty obscura_error(): not bound; 0 with a message: refused.
+EMSCRIPTEN_KEEPALIVE int obscura_handle_key(const char* key) {
+  bool bound = false;
+  g_error.clear();
+  if (!attempt([&] { bound = g_app->viewer().handleKey(key); }) || !bound) return 0;
+  g_app->changed();
+  return 1;
+}
+
+// Side files (a .gltf's buffers and images, by the URI it uses) for the next obscura_load_scene.
+EMSCRIPTEN_KEEPALIVE void obscura_add_side_file(const char* uri, const std::uint8_t* bytes, int size) {
+  g_sideFiles[uri].assign(bytes, bytes + size);
+}
+
+// Loads a .gltf or .glb from memory with the side files added before; on failure the current scene stays.
+// The scene's name, triangle count and the loader's warnings are then in obscura_scene().
+EMSCRIPTEN_KEEPALIVE int obscura_load_scene(const char* name, const std::uint8_t* bytes, int size) {
+  std::map<std::string, std::vector<std::uint8_t>> sideFiles;
+  sideFiles.swap(g_sideFiles);
+  return change([&] {
+    const GltfLoadReport report = g_app->viewer().loadGltf(std::vector<std::uint8_t>(bytes, bytes + size), name,
+                                                           sideFiles);
+    g_sceneWarnings = report.warnings;
+  });
+}
+
+EMSCRIPTEN_KEEPALIVE int obscura_load_builtin_scene() {
+  return change([] {
+    g_app->viewer().loadBuiltinScene();
+    g_sceneWarnings.clear();
+  });
+}
+
+EMSCRIPTEN_KEEPALIVE const char* obscura_scene() {
+  return returned(Json{{"name", g_app->viewer().sceneName()},
+                       {"triangles", g_app->viewer().sceneTriangles()},
+                       {"warnings", g_sceneWarnings}}.dump());
+}
+
+EMSCRIPTEN_KEEPALIVE const char* obscura_stats() { return returned(g_app->stats().dump()); }
+
+// Continuous mode draws on every animation frame (for live timings); otherwise only after a change.
+EMSCRIPTEN_KEEPALIVE void obscura_set_continuous(int continuous) { g_app->setContinuous(continuous != 0); }
+
+// Draws a frame now and reads it back: {"width", "height", "pointer"} to width * height RGBA8 pixels, rows top to
+// bottom, valid until the next snapshot. 0 if no frame could be drawn (context lost, renderer failure).
+EMSCRIPTEN_KEEPALIVE const char* obscura_snapshot() {
+  if (!g_app->draw(nullptr)) {
+    g_error = g_app->canvas().lost() ? "the WebGL context is lost" : g_app->stats()["error"].get<std::string>();
+    return nullptr;
+  }
+  const Json stats = g_app->stats();
+  const int width = stats["width"], height = stats["height"];
+  g_snapshot = gl::readPixelsTopDown(width, height);
+  return returned(Json{{"width", width}, {"height", height},
+                       {"pointer", reinterpret_cast<std::uintptr_t>(g_snapshot.data())}}.dump());
+}
+
+}  // extern "C"

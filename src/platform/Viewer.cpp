@@ -1,0 +1,161 @@
+#include "platform/Viewer.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdlib>
+
+#include "gl/GlObjects.h"
+#include "platform/CameraControls.h"
+#include "scene/BuiltinScene.h"
+
+namespace obscura {
+
+struct Viewer::KeyAction {
+  const char* key;
+  const char* description;
+  std::function<void(Viewer&)> apply;
+};
+
+const std::vector<Viewer::KeyAction>& Viewer::keyActions() {
+  auto view = [](const char* mode) { return [mode](Viewer& v) { v.state_.setViewMode(mode); }; };
+  auto toggle = [](const char* name) {
+    return [name](Viewer& v) { v.state_.settings.set(name, v.state_.settings.get(name) == "on" ? "off" : "on"); };
+  };
+  auto scale = [](const char* name, double factor) {
+    return [name, factor](Viewer& v) { v.adjustParameter(name, [factor](double x) { return x * factor; }); };
+  };
+  auto step = [](const char* name, double delta) {
+    return [name, delta](Viewer& v) { v.adjustParameter(name, [delta](double x) { return x + delta; }); };
+  };
+  static const std::vector<KeyAction> actions = {
+      {"1", "final image", view("final")},
+      {"2", "AO (blurred)", view("ao")},
+      {"3", "raw AO", view("ao-raw")},
+      {"4", "normals", view("normals")},
+      {"5", "depth", view("depth")},
+      {"6", "split screen: AO off | on", view("split")},
+      {"a", "AO on / off", toggle("ao")},
+      {"b", "blur on / off", toggle("blur")},
+      {"p", "next quality preset",
+       [](Viewer& v) {
+         const std::vector<PresetInfo>& presets = qualityPresets();
+         const std::string current = v.state_.settings.get("preset");
+         size_t next = 0;
+         for (size_t i = 0; i < presets.size(); ++i)
+           if (current == presets[i].name) next = (i + 1) % presets.size();
+         v.state_.settings.set("preset", presets[next].name);
+       }},
+      {"[", "radius / 1.25", scale("radius", 1.0 / 1.25)},
+      {"]", "radius x 1.25", scale("radius", 1.25)},
+      {"-", "intensity - 0.1", step("intensity", -0.1)},
+      {"=", "intensity + 0.1", step("intensity", 0.1)},
+      {",", "one sample fewer", step("samples", -1)},
+      {".", "one sample more", step("samples", 1)},
+      {"r", "reset the camera", [](Viewer& v) { v.resetCamera(); }},
+  };
+  return actions;
+}
+
+std::vector<Viewer::KeyBinding> Viewer::keyBindings() {
+  std::vector<KeyBinding> out;
+  for (const KeyAction& a : keyActions()) out.push_back({a.key, a.description});
+  return out;
+}
+
+Viewer::Viewer(const gl::GlCaps& caps, const RendererOptions& options)
+    : caps_(caps), options_(options), renderer_(std::make_unique<Renderer>(caps, options)) {
+  loadBuiltinScene();
+}
+
+Viewer::~Viewer() = default;
+
+void Viewer::showScene(Scene scene, const std::string& name, const Camera& camera) {
+  if (renderer_) renderer_->setScene(scene);  // first: if the upload fails, nothing has changed
+  scene_ = std::move(scene);
+  sceneName_ = name;
+  sceneBounds_ = scene_.worldBounds();
+  sceneCamera_ = camera;
+  state_.camera = camera;
+}
+
+void Viewer::loadBuiltinScene() { showScene(makeBuiltinScene(), "built-in scene", builtinSceneCamera()); }
+
+GltfLoadReport Viewer::loadGltf(const std::vector<std::uint8_t>& bytes, const std::string& name,
+                                const std::map<std::string, std::vector<std::uint8_t>>& sideFiles) {
+  GltfLoadReport report;
+  Scene scene = loadGltfMemory(bytes, name, sideFiles, &report);
+  const Camera camera = Camera::fit(scene.worldBounds(), state_.camera.width, state_.camera.height);
+  showScene(std::move(scene), name, camera);
+  return report;
+}
+
+GltfLoadReport Viewer::loadGltfFile(const std::string& path) {
+  GltfLoadReport report;
+  Scene scene = obscura::loadGltfFile(path, &report);
+  const Camera camera = Camera::fit(scene.worldBounds(), state_.camera.width, state_.camera.height);
+  const size_t slash = path.find_last_of('/');
+  showScene(std::move(scene), slash == std::string::npos ? path : path.substr(slash + 1), camera);
+  return report;
+}
+
+void Viewer::orbit(float dxPixels, float dyPixels, int viewportHeight) {
+  orbitCamera(state_.camera, dxPixels, dyPixels, viewportHeight);
+  fitDepthRange(state_.camera, sceneBounds_);
+}
+
+void Viewer::pan(float dxPixels, float dyPixels, int viewportHeight) {
+  panCamera(state_.camera, dxPixels, dyPixels, viewportHeight);
+  fitDepthRange(state_.camera, sceneBounds_);
+}
+
+void Viewer::zoom(float factor) {
+  zoomCamera(state_.camera, factor, sceneBounds_.empty() ? 1.0f : sceneBounds_.radius());
+  fitDepthRange(state_.camera, sceneBounds_);
+}
+
+void Viewer::resetCamera() { state_.camera = sceneCamera_; }
+
+void Viewer::adjustParameter(const std::string& name, const std::function<double(double)>& change) {
+  const auto& params = aoParameters();
+  const auto info = std::find_if(params.begin(), params.end(), [&](const ParameterInfo& p) { return name == p.name; });
+  // From the value in use: an "auto" intensity steps from the value fitted for the preset and radius.
+  const double current = std::strtod(state_.settings.effective(name).c_str(), nullptr);
+  const double value = std::clamp(change(current), info->min, info->max);
+  state_.settings.set(name, info->kind == ParameterKind::Integer ? std::to_string(std::lround(value))
+                                                                 : formatShortest(static_cast<float>(value)));
+}
+
+bool Viewer::handleKey(const std::string& key) {
+  for (const KeyAction& a : keyActions()) {
+    if (key == a.key) {
+      a.apply(*this);
+      return true;
+    }
+  }
+  return false;
+}
+
+void Viewer::render(GLuint framebuffer, int width, int height, PassTimer* timer) {
+  // The size is remembered so a scene loaded next is framed for this aspect ratio.
+  state_.camera.width = width;
+  state_.camera.height = height;
+  if (!renderer_) return;
+  AoSettings settings = state_.settings;
+  if (state_.split) settings.enabled = true;  // the right half shows AO whatever the AO switch says
+  const OutputTarget target{framebuffer, width, height, state_.split ? 0.5f * static_cast<float>(width) : 0.0f};
+  renderer_->render(state_.camera, settings, state_.view, target, timer);
+}
+
+void Viewer::contextLost() {
+  gl::abandonContextObjects();
+  renderer_.reset();
+}
+
+void Viewer::contextRestored(const gl::GlCaps& caps) {
+  caps_ = caps;
+  auto renderer = std::make_unique<Renderer>(caps_, options_);
+  renderer->setScene(scene_);
+  renderer_ = std::move(renderer);
+}
+
+}  // namespace obscura

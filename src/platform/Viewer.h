@@ -1,0 +1,88 @@
+#pragma once
+// One interactive session, shared by obscura-view (GLFW window) and the web page (WebGL canvas): the scene kept on
+// the CPU, the Renderer built from it, what is shown (ViewerState), the camera moves and the key bindings. The
+// platform layer owns the window or canvas and its context, forwards input and calls render() each frame; both
+// front-ends therefore start from the same defaults (the built-in scene, its camera, default parameters, the final
+// view) and answer the same keys the same way.
+#include <cstdint>
+#include <functional>
+#include <map>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "core/Renderer.h"
+#include "gl/GlCaps.h"
+#include "platform/ViewerState.h"
+#include "scene/GltfLoader.h"
+#include "scene/Scene.h"
+
+namespace obscura {
+
+class Viewer {
+ public:
+  // Builds the Renderer for the current context and shows the built-in scene. Throws GlError if the context cannot
+  // run Obscura.
+  explicit Viewer(const gl::GlCaps& caps, const RendererOptions& options = {});
+  ~Viewer();
+  Viewer(const Viewer&) = delete;
+  Viewer& operator=(const Viewer&) = delete;
+
+  // --- Scenes. Each resets the camera to the scene's own view. A scene that fails to load throws (InputError for a
+  // bad file, GlError if the context refuses it) and leaves the current scene on screen.
+  void loadBuiltinScene();
+  GltfLoadReport loadGltf(const std::vector<std::uint8_t>& bytes, const std::string& name,
+                          const std::map<std::string, std::vector<std::uint8_t>>& sideFiles = {});
+  GltfLoadReport loadGltfFile(const std::string& path);
+  const std::string& sceneName() const { return sceneName_; }
+  std::size_t sceneTriangles() const { return scene_.triangleCount(); }
+
+  // --- What is shown. Parameters and the view are set through the state (AoSettings::set, setViewMode, applyQuery).
+  ViewerState& state() { return state_; }
+  const ViewerState& state() const { return state_; }
+
+  // --- Camera moves (see CameraControls.h); each refits near/far to the scene.
+  void orbit(float dxPixels, float dyPixels, int viewportHeight);
+  void pan(float dxPixels, float dyPixels, int viewportHeight);
+  void zoom(float factor);
+  void resetCamera();
+
+  // --- Keys. One character each (what the keyboard types, e.g. "]"), the same on the desktop and on the web.
+  struct KeyBinding {
+    std::string key;
+    std::string description;
+  };
+  static std::vector<KeyBinding> keyBindings();
+  // Applies the key's action; false if the key is not bound. Throws InputError if the action is refused.
+  bool handleKey(const std::string& key);
+
+  // Draws one frame of the current state into `framebuffer` (0: the window's or canvas's own) at width x height.
+  // Does nothing while the context is lost.
+  void render(GLuint framebuffer, int width, int height, PassTimer* timer = nullptr);
+
+  // --- Context loss. contextLost() drops every GL object without deleting it (its names belong to the lost context,
+  // see gl::abandonContextObjects); contextRestored() rebuilds the Renderer and the GPU scene from the CPU scene for
+  // the new context. State, camera and scene are kept, so the same image comes back.
+  void contextLost();
+  void contextRestored(const gl::GlCaps& caps);
+  bool hasContext() const { return renderer_ != nullptr; }
+  const gl::GlCaps& caps() const { return caps_; }
+
+ private:
+  struct KeyAction;
+  static const std::vector<KeyAction>& keyActions();
+  void showScene(Scene scene, const std::string& name, const Camera& camera);
+  // Sets a numeric parameter to change(current value), clamped to the parameter's range.
+  void adjustParameter(const std::string& name, const std::function<double(double)>& change);
+
+  gl::GlCaps caps_;
+  RendererOptions options_;
+  std::unique_ptr<Renderer> renderer_;
+  Scene scene_;
+  std::string sceneName_;
+  Bounds sceneBounds_;
+  Camera sceneCamera_;  // the scene's own view, for resetCamera()
+  ViewerState state_;
+};
+
+}  // namespace obscura

@@ -1,0 +1,176 @@
+#include "platform/ViewerState.h"
+
+#include <cctype>
+#include <cmath>
+#include <cstdlib>
+#include <map>
+
+#include "core/Error.h"
+
+namespace obscura {
+namespace {
+
+constexpr const char* kCameraKeys[] = {"eye", "target", "up", "fovy", "near", "far"};
+
+int hexDigit(char c) {
+  if (c >= '0' && c <= '9') return c - '0';
+  if (c >= 'a' && c <= 'f') return c - 'a' + 10;
+  if (c >= 'A' && c <= 'F') return c - 'A' + 10;
+  return -1;
+}
+
+// Percent-encodes all but unreserved characters and the comma of vectors (an exponent's '+' would read as a space).
+std::string encodeComponent(const std::string& text) {
+  static const char* hex = "0123456789ABCDEF";
+  std::string out;
+  for (unsigned char c : text) {
+    if (std::isalnum(c) || c == '-' || c == '_' || c == '.' || c == '~' || c == ',') {
+      out += static_cast<char>(c);
+    } else {
+      out += '%';
+      out += hex[c >> 4];
+      out += hex[c & 15];
+    }
+  }
+  return out;
+}
+
+std::string decodeComponent(const std::string& text) {
+  std::string out;
+  for (size_t i = 0; i < text.size(); ++i) {
+    if (text[i] == '+') {
+      out += ' ';
+    } else if (text[i] == '%' && i + 2 < text.size() && hexDigit(text[i + 1]) >= 0 && hexDigit(text[i + 2]) >= 0) {
+      out += static_cast<char>(hexDigit(text[i + 1]) * 16 + hexDigit(text[i + 2]));
+      i += 2;
+    } else {
+      out += text[i];
+    }
+  }
+  return out;
+}
+
+float parseFloat(const std::string& key, const std::string& text) {
+  char* end = nullptr;
+  const float value = std::strtof(text.c_str(), &end);
+  if (text.empty() || *end != '\0' || !std::isfinite(value))
+    throw InputError("state: " + key + ": expected a number, got '" + text + "'");
+  return value;
+}
+
+glm::vec3 parseVector(const std::string& key, const std::string& text) {
+  glm::vec3 v;
+  size_t start = 0;
+  for (int i = 0; i < 3; ++i) {
+    const size_t comma = text.find(',', start);
+    if ((i < 2) != (comma != std::string::npos))
+      throw InputError("state: " + key + ": expected x,y,z, got '" + text + "'");
+    v[i] = parseFloat(key, text.substr(start, i < 2 ? comma - start : std::string::npos));
+    start = comma + 1;
+  }
+  return v;
+}
+
+std::string formatVector(const glm::vec3& v) {
+  return formatShortest(v.x) + "," + formatShortest(v.y) + "," + formatShortest(v.z);
+}
+
+}  // namespace
+
+const std::vector<std::string>& ViewerState::viewModes() {
+  static const std::vector<std::string> modes = [] {
+    std::vector<std::string> out;
+    for (View v : {View::Final, View::Ao, View::AoRaw, View::Normals, View::Depth}) out.push_back(viewName(v));
+    out.push_back("split");
+    return out;
+  }();
+  return modes;
+}
+
+std::string ViewerState::viewMode() const { return split ? "split" : viewName(view); }
+
+void ViewerState::setViewMode(const std::string& name) {
+  if (name == "split") {
+    view = View::Final;
+    split = true;
+    return;
+  }
+  try {
+    view = parseView(name);
+  } catch (const InputError&) {
+    throw InputError("view: expected final, ao, ao-raw, normals, depth or split, got '" + name + "'");
+  }
+  split = false;
+}
+
+std::string ViewerState::toQuery() const {
+  std::string query = "view=" + viewMode();
+  auto add = [&](const std::string& key, const std::string& value) {
+    query += "&" + key + "=" + encodeComponent(value);
+  };
+  const AoSettings defaults;
+  for (const ParameterInfo& p : aoParameters()) {
+    const std::string value = settings.get(p.name);
+    if (!value.empty() && value != defaults.get(p.name)) add(p.name, value);
+  }
+  add("eye", formatVector(camera.eye));
+  add("target", formatVector(camera.target));
+  add("up", formatVector(camera.up));
+  add("fovy", formatShortest(camera.fovyDegrees));
+  add("near", formatShortest(camera.near));
+  add("far", formatShortest(camera.far));
+  return query;
+}
+
+bool ViewerState::applyQuery(const std::string& query) {
+  std::map<std::string, std::string> values;
+  size_t start = !query.empty() && query[0] == '?' ? 1 : 0;
+  while (start < query.size()) {
+    size_t end = query.find('&', start);
+    if (end == std::string::npos) end = query.size();
+    const std::string item = query.substr(start, end - start);
+    start = end + 1;
+    if (item.empty()) continue;
+    const size_t equals = item.find('=');
+    if (equals == std::string::npos) throw InputError("state: '" + decodeComponent(item) + "' has no value");
+    const std::string key = decodeComponent(item.substr(0, equals));
+    if (!values.emplace(key, decodeComponent(item.substr(equals + 1))).second)
+      throw InputError("state: " + key + " is given twice");
+  }
+
+  ViewerState next = *this;
+  auto take = [&](const std::string& key, std::string* out) {
+    auto it = values.find(key);
+    if (it == values.end()) return false;
+    *out = it->second;
+    values.erase(it);
+    return true;
+  };
+  std::string text;
+  try {
+    if (take("view", &text)) next.setViewMode(text);
+    for (const ParameterInfo& p : aoParameters())
+      if (take(p.name, &text)) next.settings.set(p.name, text);
+  } catch (const InputError& e) {
+    throw InputError(std::string("state: ") + e.what());
+  }
+
+  bool cameraGiven = false;
+  for (const char* key : kCameraKeys) {
+    if (!take(key, &text)) continue;
+    cameraGiven = true;
+    const std::string name = key;
+    if (name == "eye") next.camera.eye = parseVector(name, text);
+    else if (name == "target") next.camera.target = parseVector(name, text);
+    else if (name == "up") next.camera.up = parseVector(name, text);
+    else if (name == "fovy") next.camera.fovyDegrees = parseFloat(name, text);
+    else if (name == "near") next.camera.near = parseFloat(name, text);
+    else next.camera.far = parseFloat(name, text);
+  }
+  if (!values.empty()) throw InputError("state: unknown key '" + values.begin()->first + "'");
+  if (cameraGiven) next.camera.validate("state");
+  *this = next;
+  return cameraGiven;
+}
+
+}  // namespace obscura

@@ -1,0 +1,41 @@
+#pragma once
+// The page's <canvas> as a WebGL 1 context (Emscripten only). The canvas is the one the JS API hands to the module
+// as Module.canvas, addressed as the "!canvas" target, so a page may use any element (and several pages' worth of
+// modules may coexist).
+//
+// WebGL 1 only (the build links with MIN/MAX_WEBGL_VERSION=1): the back buffer is requested antialiased, with depth
+// (the lighting pass draws the scene into it), opaque and not preserved. Context loss is reported through callbacks:
+// on loss the event is accepted (preventDefault) so the browser may restore the context; on restore the extensions
+// are enabled again, since a restored context starts with none.
+#include <functional>
+
+#include <emscripten/html5_webgl.h>
+
+namespace obscura {
+
+class WebCanvas {
+ public:
+  // Creates the context and makes it current. Throws GlError if the browser offers no WebGL 1.
+  WebCanvas(std::function<void()> onLost, std::function<void()> onRestored);
+  ~WebCanvas();
+  WebCanvas(const WebCanvas&) = delete;
+  WebCanvas& operator=(const WebCanvas&) = delete;
+
+  bool lost() const { return lost_; }
+  // Sizes the drawing buffer to the canvas's CSS size times devicePixelRatio, each side at most `maxSize`, and
+  // returns that size; true if it changed.
+  bool fitToDisplay(int maxSize, int* width, int* height);
+
+  // Resolves WebGL 1 and extension entry points (GpuPassTimer's loader).
+  static void* procAddress(const char* name);
+
+ private:
+  static EM_BOOL contextLost(int eventType, const void* reserved, void* self);
+  static EM_BOOL contextRestored(int eventType, const void* reserved, void* self);
+
+  EMSCRIPTEN_WEBGL_CONTEXT_HANDLE context_ = 0;
+  std::function<void()> onLost_, onRestored_;
+  bool lost_ = false;
+};
+
+}  // namespace obscura

@@ -1,0 +1,71 @@
+// WebGL context loss and restore, triggered with WEBGL_lose_context: on loss the core drops every GL object without
+// deleting it (the names belong to the dead context), on restore it rebuilds the renderer and the scene's buffers
+// and textures from the scene it kept on the CPU, and the page keeps drawing the same image.
+import assert from 'node:assert/strict';
+import { after, before, describe, test } from 'node:test';
+import { compareImages, openPage, snapshot, startBrowser, waitForDrawn } from './harness.mjs';
+
+let session;
+let page;
+
+describe('WebGL context loss', () => {
+  before(async () => {
+    session = await startBrowser();
+    // Split view: the G-buffer, SAO, both blur passes and the lighting pass all run.
+    page = await openPage(await session.newContext(), `${session.baseUrl}?view=split&radius=1.5`);
+  });
+  after(async () => {
+    if (page) assert.deepEqual(page.errors, []);
+    await session?.close();
+  });
+
+  test('lose and restore: every GL object is rebuilt and the same image comes back', { timeout: 120000 }, async () => {
+    const before = await snapshot(page);
+    const statsBefore = await page.evaluate(() => window.obscura.stats());
+    const objectsBefore = Object.values(statsBefore.glObjects).reduce((a, b) => a + b, 0);
+    assert.ok(objectsBefore > 10, `${objectsBefore} live GL objects while running`);
+
+    await page.evaluate(() => {
+      window.loseContext = document.querySelector('#view').getContext('webgl').getExtension('WEBGL_lose_context');
+      window.loseContext.loseContext();
+    });
+    await page.waitForFunction(() => window.obscura.stats().contextLost, null, { timeout: 30000 });
+    const whileLost = await page.evaluate(() => {
+      let snapshotError = '';
+      try {
+        window.obscura.snapshot();
+      } catch (e) {
+        snapshotError = e.message;
+      }
+      window.obscura.set('radius', '1.5');  // parameters may still change while the context is away
+      return { stats: window.obscura.stats(), snapshotError };
+    });
+    assert.deepEqual(Object.values(whileLost.stats.glObjects), [0, 0, 0, 0, 0, 0], 'every object was dropped');
+    assert.match(whileLost.snapshotError, /context is lost/);
+    await page.waitForFunction(() => document.querySelector('#stats').textContent.includes('context lost'));
+
+    const framesWhileLost = whileLost.stats.frames;
+    await page.evaluate(() => window.loseContext.restoreContext());
+    await page.waitForFunction(() => {
+      const stats = window.obscura.stats();
+      return stats.contextRestores === 1 && !stats.contextLost;
+    }, null, { timeout: 30000 });
+    // The restored context draws by itself, without any change asked for.
+    await page.waitForFunction((before) => window.obscura.stats().frames > before, framesWhileLost);
+    await waitForDrawn(page);
+    const statsAfter = await page.evaluate(() => window.obscura.stats());
+    assert.deepEqual(statsAfter.glObjects, statsBefore.glObjects, 'as many objects of each kind as before');
+    assert.equal(statsAfter.error, '');
+
+    const after = await snapshot(page);
+    const difference = compareImages(before, after);
+    assert.equal(difference.max, 0, `the restored context draws the same pixels (max difference ${difference.max})`);
+
+    if (statsBefore.timerQueries) {
+      // The timer went with the lost context (no pass times while lost); a new one measures the restored frames.
+      assert.equal(whileLost.stats.passMs, null);
+      await page.waitForFunction(() => window.obscura.stats().timerQueries && window.obscura.stats().passMs !== null,
+                                 null, { timeout: 30000 });
+    }
+  });
+});

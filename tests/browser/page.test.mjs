@@ -1,0 +1,315 @@
+// The demo page end to end in headless Chromium (WebGL 1 on SwiftShader): start-up without console errors, a WebGL 1
+// context, a picture that is not blank, the AO controls changing the image, loading a glTF file (and refusing a
+// malformed one while keeping the previous scene), the URL reproducing a view, and the page screenshots.
+import assert from 'node:assert/strict';
+import fs from 'node:fs';
+import path from 'node:path';
+import { after, before, describe, test } from 'node:test';
+import { artifactDir, assimpModels, compareImages, fractionUnlike, luminanceStats, openPage, readModel, snapshot,
+         sourceDir, startBrowser, waitForDrawn } from './harness.mjs';
+
+let session;
+let context;
+let page;
+
+describe('demo page', () => {
+  before(async () => {
+    session = await startBrowser();
+    context = await session.newContext();
+    page = await openPage(context, session.baseUrl);
+  });
+  after(async () => {
+    if (page) assert.deepEqual(page.errors, [], 'console errors during the page tests');
+    await session?.close();
+  });
+
+  test('starts without console errors on a WebGL 1 context', { timeout: 120000 }, async () => {
+    const context = await page.evaluate(() => {
+      const canvas = document.querySelector('#view');
+      const gl = canvas.getContext('webgl');  // the context Obscura created, returned again
+      return {
+        api: window.obscura.context.version,
+        isWebGl1: gl instanceof WebGLRenderingContext,
+        isWebGl2: typeof WebGL2RenderingContext !== 'undefined' && gl instanceof WebGL2RenderingContext,
+        version: gl.getParameter(gl.VERSION),
+        antialias: gl.getContextAttributes().antialias,
+        samples: gl.getParameter(gl.SAMPLES),
+      };
+    });
+    assert.equal(context.isWebGl1, true);
+    assert.equal(context.isWebGl2, false);
+    assert.match(context.version, /^WebGL 1\.0/);
+    assert.match(context.api, /WebGL 1\.0/);
+    assert.equal(context.antialias, true, 'the back buffer was requested antialiased');
+    assert.deepEqual(page.errors, []);
+  });
+
+  test('the canvas is not blank and follows the window size and devicePixelRatio', { timeout: 120000 }, async () => {
+    const shot = await snapshot(page);
+    assert.equal(shot.width, 320);
+    assert.equal(shot.height, 180);
+    const stats = luminanceStats(shot);
+    assert.ok(stats.deviation > 0.05, `luminance deviation ${stats.deviation}`);
+    assert.ok(stats.max - stats.min > 0.3, 'a range of tones');
+    // What the browser composites (not only what the core reads back) is the scene too.
+    const composited = await page.locator('#view').screenshot({ clip: { x: 0, y: 0, width: 300, height: 360 } });
+    fs.writeFileSync(path.join(artifactDir, 'page-composited.png'), composited);
+    assert.ok(composited.length > 5000, 'a screenshot with content compresses to more than a flat colour');
+
+    // A resize alone brings a new frame at the new size.
+    await page.setViewportSize({ width: 500, height: 300 });
+    await page.waitForFunction(() => window.obscura.stats().width === 250 && window.obscura.stats().height === 150);
+    await waitForDrawn(page);
+    await page.setViewportSize({ width: 640, height: 360 });
+    await page.waitForFunction(() => window.obscura.stats().width === 320);
+  });
+
+  test('the AO view differs from AO off, and AO only darkens', { timeout: 120000 }, async () => {
+    await page.locator('#view-ao').check();
+    const aoView = await snapshot(page);
+    const aoStats = luminanceStats(aoView);
+    assert.ok(aoStats.min < 0.5, `the AO view has occluded pixels (min ${aoStats.min})`);
+    assert.ok(aoStats.max > 0.95, 'and open ones');
+
+    await page.locator('#view-final').check();
+    const withAo = await snapshot(page);
+    await page.locator('#param-ao').uncheck();
+    const withoutAo = await snapshot(page);
+    await page.locator('#param-ao').check();
+
+    const difference = compareImages(withAo, withoutAo);
+    assert.ok(difference.r.differing > 0.1, `AO changes ${difference.r.differing} of the pixels`);
+    assert.ok(luminanceStats(withoutAo).mean - luminanceStats(withAo).mean > 0.01, 'AO darkens the image');
+    assert.notDeepEqual(aoView.pixels, withAo.pixels);
+  });
+
+  test('moving the radius slider changes the AO image', { timeout: 120000 }, async () => {
+    await page.locator('#view-ao').check();
+    const before = await snapshot(page);
+    const slider = page.locator('#param-radius');
+    const position = Number(await slider.inputValue());
+    await slider.fill(String(position + 75));  // logarithmic, 1000 steps over 0.01 .. 100: x2 in radius
+    const radius = Number(await page.evaluate(() => window.obscura.get('radius')));
+    assert.ok(radius > 1.5 && radius < 3, `radius now ${radius}`);
+    assert.equal(Number(await page.locator('#param-radius + input').inputValue()), radius, 'the number box follows');
+    const after = await snapshot(page);
+    const difference = compareImages(before, after);
+    assert.ok(difference.r.differing > 0.05, `${difference.r.differing} of the pixels changed`);
+    assert.ok(luminanceStats(after).mean < luminanceStats(before).mean, 'a larger radius finds more occluders');
+  });
+
+  test('keyboard shortcuts are listed and act', { timeout: 120000 }, async () => {
+    const listed = await page.locator('#shortcuts td:first-child').allTextContents();
+    const bindings = await page.evaluate(() => window.obscura.keyBindings.map((b) => b.key));
+    for (const key of [...bindings, 'h', 'o']) assert.ok(listed.includes(key), `shortcut ${key} is listed`);
+    const radius = Number(await page.evaluate(() => window.obscura.get('radius')));
+    await page.locator('#view').click({ position: { x: 100, y: 100 } });
+    await page.keyboard.press(']');
+    const larger = Number(await page.evaluate(() => window.obscura.get('radius')));
+    assert.equal(larger, Number((radius * 1.25).toPrecision(7)));
+    await page.keyboard.press('1');
+    assert.equal(await page.locator('#view-final').isChecked(), true);
+    await page.keyboard.press('h');
+    assert.equal(await page.locator('#panel-body').isVisible(), false);
+    await page.keyboard.press('h');
+    assert.equal(await page.locator('#panel-body').isVisible(), true);
+  });
+
+  test('stats show frame times, and per-pass GPU times where EXT_disjoint_timer_query exists',
+       { timeout: 120000 }, async () => {
+    const timerQuery = await page.evaluate(() => window.obscura.context.timerQuery);
+    if (timerQuery) {
+      await page.waitForFunction(() => window.obscura.stats().passMs !== null, null, { timeout: 30000 });
+      const passes = await page.evaluate(() => window.obscura.stats().passMs);
+      for (const pass of ['gbuffer', 'sao', 'composite']) assert.ok(passes[pass] > 0, `${pass}: ${passes[pass]} ms`);
+      await page.waitForFunction(() => document.querySelector('#stats').textContent.includes('gbuffer'));
+    } else {
+      await page.waitForFunction(() => document.querySelector('#stats').textContent.includes('needs EXT_disjoint'));
+    }
+    // Frames are drawn on change only; continuous mode draws back to back, which gives the frame time.
+    const drawn = await page.evaluate(() => window.obscura.stats().frames);
+    await page.locator('#continuous').check();
+    await page.waitForFunction((before) => window.obscura.stats().frames >= before + 3, drawn, { timeout: 60000 });
+    await page.locator('#continuous').uncheck();
+    const stats = await page.evaluate(() => window.obscura.stats());
+    assert.ok(stats.frameMs > 0, 'frame time measured');
+    await page.waitForFunction(() => /frame +\d+\.\d ms \(\d+ fps\)/
+      .test(document.querySelector('#stats').textContent));
+    await waitForDrawn(page);
+    const idle = await page.evaluate(() => window.obscura.stats().frames);
+    await page.waitForTimeout(500);
+    assert.equal(await page.evaluate(() => window.obscura.stats().frames), idle, 'no frames drawn without a change');
+  });
+
+  test('a malformed file shows an error and leaves the previous scene on screen', { timeout: 120000 }, async () => {
+    const before = await snapshot(page);
+    await page.locator('#file-input').setInputFiles(path.join(assimpModels, 'BoxWithInfinites-glTF-Binary',
+                                                              'BoxWithInfinites.glb'));
+    await page.locator('#error').waitFor({ state: 'visible', timeout: 30000 });
+    assert.match(await page.locator('#error').textContent(),
+                 /BoxWithInfinites\.glb: mesh 0 primitive 0 POSITION 0 is not finite/);
+    assert.match(await page.locator('#scene-name').textContent(), /^built-in scene/);
+    assert.deepEqual((await snapshot(page)).pixels, before.pixels, 'the previous scene is still drawn');
+
+    // The same by drag and drop, with a .gltf and its buffer dropped together (indices out of range).
+    const files = ['IndexOutOfRange.gltf', 'IndexOutOfRange.bin'].map((name) => ({
+      name, base64: readModel(`IndexOutOfRange/${name}`).toString('base64') }));
+    await page.evaluate((list) => {
+      const transfer = new DataTransfer();
+      for (const { name, base64 } of list) {
+        transfer.items.add(new File([Uint8Array.from(atob(base64), (c) => c.charCodeAt(0))], name));
+      }
+      for (const type of ['dragenter', 'dragover', 'drop']) {
+        window.dispatchEvent(new DragEvent(type, { dataTransfer: transfer, bubbles: true, cancelable: true }));
+      }
+    }, files);
+    await page.waitForFunction(() => document.querySelector('#error').textContent.includes('IndexOutOfRange.gltf'),
+                               null, { timeout: 30000 });
+    assert.match(await page.locator('#error').textContent(), /index 255 but only 24 vertices/);
+    assert.equal(await page.locator('#drop-overlay').isVisible(), false);
+    assert.deepEqual((await snapshot(page)).pixels, before.pixels, 'still the built-in scene');
+  });
+
+  test('loading 2CylinderEngine.glb with the file picker shows it', { timeout: 120000 }, async () => {
+    const builtin = await snapshot(page);
+    await page.locator('#file-input').setInputFiles(path.join(assimpModels, '2CylinderEngine-glTF-Binary',
+                                                              '2CylinderEngine.glb'));
+    await page.waitForFunction(
+      () => document.querySelector('#scene-name').textContent.startsWith('2CylinderEngine.glb'), null,
+      { timeout: 60000 });
+    assert.equal(await page.locator('#error').isVisible(), false);
+    assert.equal(await page.locator('#load-progress').isVisible(), false, 'the progress bar is gone when done');
+    const scene = await page.evaluate(() => window.obscura.scene());
+    assert.ok(scene.triangles > 100000, `${scene.triangles} triangles`);
+    await page.locator('#view-final').check();
+    const engine = await snapshot(page);
+    assert.notDeepEqual(engine.pixels, builtin.pixels);
+    // The engine fills a good part of the frame: pixels unlike the background (the top-left corner).
+    const corner = Array.from(engine.pixels.subarray(0, 3));
+    const covered = fractionUnlike(engine, corner, 6);
+    assert.ok(covered > 0.1 && covered < 0.95, `${covered} of the frame is engine`);
+
+    // Back to the built-in scene (the error line clears, and SwiftShader need not draw 120k triangles any more).
+    await page.locator('#builtin-scene').click();
+    assert.equal(await page.locator('#error').isVisible(), false);
+    assert.match(await page.locator('#scene-name').textContent(), /^built-in scene/);
+  });
+
+  test('a URL with camera and parameters reproduces the same image', { timeout: 120000 }, async () => {
+    await page.locator('#view-split').check();
+    await page.locator('#param-samples').fill('16');
+    await page.locator('#param-intensity').fill('650');  // 0 .. 20 linear: 13
+    // Orbit and zoom with the mouse, as a user would.
+    await page.mouse.move(100, 200);
+    await page.mouse.down();
+    await page.mouse.move(140, 185, { steps: 4 });
+    await page.mouse.up();
+    await page.mouse.wheel(0, -200);
+    await page.waitForFunction(() => location.search.includes('samples=16') && location.search.includes('view=split'));
+    await page.waitForTimeout(300);  // the URL follows changes within 150 ms
+    const url = await page.evaluate(() => location.href);
+    assert.match(url, /eye=[-\d.]+,[-\d.]+,[-\d.]+/);
+    assert.doesNotMatch(url, /eye=3\.2,2\.6,6\.2&/, 'the camera moved');
+    const original = await snapshot(page);
+
+    const shared = await openPage(context, url);
+    try {
+      const state = await page.evaluate(() => window.obscura.state());
+      assert.equal(await shared.evaluate(() => window.obscura.state()), state);
+      assert.equal(await shared.locator('#view-split').isChecked(), true);
+      assert.equal(await shared.locator('#param-samples + input').inputValue(), '16');
+      const reproduced = await snapshot(shared);
+      const difference = compareImages(original, reproduced);
+      assert.equal(difference.max, 0, `the shared URL draws the same pixels (max difference ${difference.max})`);
+      assert.deepEqual(shared.errors, []);
+    } finally {
+      await shared.close();
+    }
+  });
+
+  test('touch: two fingers pinch to zoom, one finger orbits', { timeout: 120000 }, async () => {
+    const touchContext = await session.newContext({ hasTouch: true });
+    try {
+      const touchPage = await openPage(touchContext, session.baseUrl);
+      // Real touch input through the DevTools protocol: the browser turns it into touch pointer events.
+      const cdp = await touchContext.newCDPSession(touchPage);
+      const touch = (type, points) => cdp.send('Input.dispatchTouchEvent',
+                                               { type, touchPoints: points.map(([x, y], id) => ({ x, y, id })) });
+      const camera = () => touchPage.evaluate(() => {
+        const state = new URLSearchParams(window.obscura.state());
+        const [eye, target] = ['eye', 'target'].map((key) => state.get(key).split(',').map(Number));
+        return { eye, target, distance: Math.hypot(...eye.map((e, i) => e - target[i])) };
+      });
+      const start = await camera();
+      await touch('touchStart', [[200, 180], [260, 180]]);
+      for (let i = 1; i <= 5; ++i) await touch('touchMove', [[200 - 10 * i, 180], [260 + 10 * i, 180]]);
+      await touch('touchEnd', []);
+      const pinched = await camera();
+      // Fingers spread from 60 to 160 pixels apart: the eye comes 160/60 times closer.
+      assert.ok(Math.abs(start.distance / pinched.distance - 160 / 60) < 0.05,
+                `distance ${start.distance} -> ${pinched.distance}`);
+      await touch('touchStart', [[200, 180]]);
+      for (let i = 1; i <= 5; ++i) await touch('touchMove', [[200 + 10 * i, 180]]);
+      await touch('touchEnd', []);
+      const orbited = await camera();
+      assert.notDeepEqual(orbited.eye, pinched.eye, 'one finger moved the eye');
+      assert.deepEqual(orbited.target, pinched.target, 'around the same target');
+      assert.ok(Math.abs(orbited.distance - pinched.distance) < 1e-3 * pinched.distance);
+      assert.deepEqual(touchPage.errors, []);
+    } finally {
+      await touchContext.close();
+    }
+  });
+
+  test('a bad URL is reported and the default view shown', { timeout: 120000 }, async () => {
+    const bad = await openPage(context, `${session.baseUrl}?radius=-4&view=ao`);
+    try {
+      assert.match(await bad.locator('#error').textContent(), /radius: -4 is out of range/);
+      assert.equal(await bad.evaluate(() => window.obscura.view), 'final', 'nothing of the bad link was applied');
+      bad.errors.length = 0;
+    } finally {
+      await bad.close();
+    }
+  });
+
+  test('page screenshots: AO off, AO on and split', { timeout: 180000 }, async () => {
+    // At devicePixelRatio 1, and README-sized when they are to replace docs/images/web_*.png (slow on SwiftShader,
+    // hence only then). Either way the split halves must match the AO-off and AO-on images exactly.
+    const size = process.env.OBSCURA_UPDATE_SCREENSHOTS ? { width: 960, height: 540 } : { width: 480, height: 270 };
+    const largeContext = await session.newContext({ viewport: size, deviceScaleFactor: 1 });
+    try {
+      const large = await openPage(largeContext, session.baseUrl);
+      await large.evaluate(() => document.querySelector('#shortcuts-section').removeAttribute('open'));
+      const pictures = {};
+      for (const [name, state] of [['ao_off', 'view=final&ao=off'], ['ao_on', 'view=final&ao=on'],
+                                   ['split', 'view=split']]) {
+        await large.evaluate((query) => window.obscura.setState(query), state);
+        pictures[name] = await snapshot(large);
+        await waitForDrawn(large);
+        const png = await large.screenshot();
+        fs.writeFileSync(path.join(artifactDir, `web_${name}.png`), png);
+        if (process.env.OBSCURA_UPDATE_SCREENSHOTS) {
+          fs.writeFileSync(path.join(sourceDir, 'docs', 'images', `web_${name}.png`), png);
+        }
+      }
+      const { ao_off: off, ao_on: on, split } = pictures;
+      assert.equal(split.width, size.width);
+      let left = 0, right = 0;
+      const half = split.width / 2;
+      for (let y = 0; y < split.height; ++y) {
+        for (let x = 0; x < split.width; ++x) {
+          const i = (y * split.width + x) * 4;
+          for (let c = 0; c < 3; ++c) {
+            if (x < half - 1) left += split.pixels[i + c] !== off.pixels[i + c];
+            if (x > half) right += split.pixels[i + c] !== on.pixels[i + c];
+          }
+        }
+      }
+      assert.equal(left, 0, `${left} channel values differ from AO off on the left half`);
+      assert.equal(right, 0, `${right} channel values differ from AO on on the right half`);
+      assert.deepEqual(large.errors, []);
+    } finally {
+      await largeContext.close();
+    }
+  });
+});

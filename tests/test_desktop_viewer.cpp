@@ -1,0 +1,128 @@
+// obscura-view end to end under Xvfb: a real window with an OpenGL ES context renders the built-in scene, the AO
+// view matches the headless renderer's, and AO visibly darkens the final image. The viewer's --screenshot option
+// reads its own back buffer after the last frame.
+#include <gtest/gtest.h>
+
+#include <sys/wait.h>
+
+#include <cmath>
+#include <cstdlib>
+#include <fstream>
+#include <sstream>
+
+#include "TestSupport.h"
+#include "scene/ImageIo.h"
+
+using namespace obscura;
+
+namespace {
+
+constexpr const char* kSize = "320x180";
+
+struct Result {
+  int status = -1;
+  std::string output;
+};
+
+// Runs a command line under its own Xvfb server (xvfb-run -a picks a free display number).
+Result runUnderXvfb(const std::string& command) {
+  const std::string log = ::testing::TempDir() + "obscura-view.log";
+  const std::string full = "xvfb-run -a -s '-screen 0 640x480x24' " + command + " >" + log + " 2>&1";
+  const int raw = std::system(full.c_str());
+  Result result;
+  result.status = WIFEXITED(raw) ? WEXITSTATUS(raw) : 128 + WTERMSIG(raw);
+  std::ifstream file(log);
+  std::stringstream text;
+  text << file.rdbuf();
+  result.output = text.str();
+  return result;
+}
+
+Image viewerScreenshot(const std::string& name, const std::string& state) {
+  const std::string path = ::testing::TempDir() + name;
+  std::remove(path.c_str());
+  const Result r = runUnderXvfb(std::string(OBSCURA_VIEW_BINARY) + " --size " + kSize + " --state '" + state +
+                                "' --screenshot " + path);
+  EXPECT_EQ(r.status, 0) << r.output;
+  return readPng(path);
+}
+
+Image headlessRender(const std::string& name, const std::string& args) {
+  const std::string path = ::testing::TempDir() + name;
+  const std::string command = std::string(OBSCURA_RENDER_BINARY) + " --size " + kSize + " " + args + " --out " + path;
+  EXPECT_EQ(std::system(command.c_str()), 0) << command;
+  return readPng(path);
+}
+
+double luminance(const Image& image, size_t pixel) {
+  const std::uint8_t* p = &image.rgba[pixel * 4];
+  return (0.2126 * p[0] + 0.7152 * p[1] + 0.0722 * p[2]) / 255.0;
+}
+
+}  // namespace
+
+TEST(DesktopViewer, OpensAnOpenGlEsWindow) {
+  const Result r = runUnderXvfb(std::string(OBSCURA_VIEW_BINARY) + " --size " + kSize + " --screenshot " +
+                                ::testing::TempDir() + "view-context.png --frames 1");
+  ASSERT_EQ(r.status, 0) << r.output;
+  EXPECT_NE(r.output.find("obscura-view: OpenGL ES "), std::string::npos) << r.output;
+}
+
+TEST(DesktopViewer, AoViewMatchesTheHeadlessRenderer) {
+  const Image window = viewerScreenshot("view-ao.png", "view=ao");
+  const Image headless = headlessRender("render-ao.png", "--view ao");
+  ASSERT_EQ(window.width, 320);
+  ASSERT_EQ(window.height, 180);
+  ASSERT_EQ(window.rgba.size(), headless.rgba.size());
+  double sum = 0.0;
+  int largest = 0;
+  for (size_t i = 0; i < window.rgba.size(); ++i) {
+    const int diff = std::abs(window.rgba[i] - headless.rgba[i]);
+    sum += diff;
+    largest = std::max(largest, diff);
+  }
+  // The same shaders on the same rasteriser (llvmpipe), in a window's back buffer instead of an offscreen target:
+  // the full-screen AO view may differ only by rounding.
+  EXPECT_LE(sum / static_cast<double>(window.rgba.size()), 0.5) << "mean absolute difference (of 255)";
+  EXPECT_LE(largest, 8);
+}
+
+TEST(DesktopViewer, FinalFrameIsNotBlankAndShowsAo) {
+  const Image withAo = viewerScreenshot("view-final.png", "view=final");
+  const Image withoutAo = viewerScreenshot("view-final-no-ao.png", "view=final&ao=off");
+  ASSERT_EQ(withAo.rgba.size(), withoutAo.rgba.size());
+  const size_t pixels = withAo.rgba.size() / 4;
+
+  // Not blank: the frame is not one colour, and most of it is scene rather than the clear colour of the sky.
+  double mean = 0.0, squares = 0.0;
+  for (size_t i = 0; i < pixels; ++i) {
+    const double l = luminance(withAo, i);
+    mean += l;
+    squares += l * l;
+  }
+  mean /= static_cast<double>(pixels);
+  const double deviation = std::sqrt(squares / static_cast<double>(pixels) - mean * mean);
+  EXPECT_GT(deviation, 0.05) << "luminance standard deviation";
+
+  // Visible AO: never brighter than without it, clearly darker in the creases.
+  size_t darker = 0, brighter = 0;
+  double darkening = 0.0;
+  for (size_t i = 0; i < pixels; ++i) {
+    const double d = luminance(withoutAo, i) - luminance(withAo, i);
+    darker += d > 0.02;
+    brighter += d < -0.02;
+    darkening += d;
+  }
+  EXPECT_GT(darker, pixels / 20) << "pixels darkened by AO";
+  EXPECT_EQ(brighter, 0u) << "AO only ever darkens";
+  EXPECT_GT(darkening / static_cast<double>(pixels), 0.01) << "mean darkening";
+}
+
+TEST(DesktopViewer, ABadSceneFileExitsWithStatusTwoAndSaysWhy) {
+  const Result r = runUnderXvfb(std::string(OBSCURA_VIEW_BINARY) + " " + test::assimpModels() +
+                                "/BoxWithInfinites-glTF-Binary/BoxWithInfinites.glb --screenshot " +
+                                ::testing::TempDir() + "never.png");
+  EXPECT_EQ(r.status, 2) << r.output;
+  EXPECT_NE(r.output.find("BoxWithInfinites.glb: mesh 0 primitive 0 POSITION 0 is not finite"), std::string::npos)
+      << r.output;
+}

@@ -1,0 +1,160 @@
+// The interactive session both viewers share (platform/Viewer): key bindings, scene loading that keeps the previous
+// scene on failure, split screen, and context loss (every GL object dropped without deletion, then rebuilt from the
+// CPU scene to the same image).
+#include <fstream>
+#include <set>
+#include <iterator>
+
+#include <gtest/gtest.h>
+
+#include "TestSupport.h"
+#include "core/Error.h"
+#include "gl/GlObjects.h"
+#include "platform/Viewer.h"
+
+using namespace obscura;
+
+namespace {
+
+constexpr int kWidth = 160, kHeight = 90;
+
+test::RenderedImage renderViewer(Viewer& viewer) {
+  const gl::RenderTarget output("viewer output", kWidth, kHeight, GL_NEAREST, gl::RenderTarget::Depth::Renderbuffer,
+                                test::context().caps().depth24);
+  viewer.render(output.framebuffer(), kWidth, kHeight);
+  EXPECT_EQ(glGetError(), static_cast<GLenum>(GL_NO_ERROR));
+  test::RenderedImage image;
+  image.width = kWidth;
+  image.height = kHeight;
+  image.rgba = output.readRgba();
+  return image;
+}
+
+std::vector<std::uint8_t> readBytes(const std::string& path) {
+  std::ifstream file(path, std::ios::binary);
+  return std::vector<std::uint8_t>(std::istreambuf_iterator<char>(file), {});
+}
+
+bool sameLiveObjects(const gl::LiveObjects& a, const gl::LiveObjects& b) {
+  return a.textures == b.textures && a.buffers == b.buffers && a.framebuffers == b.framebuffers &&
+         a.renderbuffers == b.renderbuffers && a.shaders == b.shaders && a.programs == b.programs;
+}
+
+}  // namespace
+
+TEST(GlObjects, AbandonedNamesAreForgottenNotDeleted) {
+  test::context();
+  const int textures = gl::liveObjects().textures;
+  gl::TextureHandle old = gl::TextureHandle::create();
+  const GLuint name = old.id();
+  glBindTexture(GL_TEXTURE_2D, name);  // a name becomes a texture object when first bound
+  glBindTexture(GL_TEXTURE_2D, 0);
+  gl::abandonContextObjects();
+  gl::TextureHandle fresh = gl::TextureHandle::create();
+  glBindTexture(GL_TEXTURE_2D, fresh.id());
+  glBindTexture(GL_TEXTURE_2D, 0);
+  const GLuint freshName = fresh.id();
+  EXPECT_EQ(gl::liveObjects().textures, textures + 2);
+
+  old.reset();
+  EXPECT_EQ(gl::liveObjects().textures, textures + 1) << "the counter goes down";
+  EXPECT_TRUE(glIsTexture(name)) << "but the name of the abandoned context is never passed to glDeleteTextures";
+  fresh.reset();
+  EXPECT_FALSE(glIsTexture(freshName)) << "names created after the loss are deleted as usual";
+  EXPECT_EQ(gl::liveObjects().textures, textures);
+  glDeleteTextures(1, &name);  // this context was not really lost: free the name the test leaked on purpose
+}
+
+TEST(Viewer, ContextLossRebuildsEveryObjectAndTheSameImage) {
+  const gl::LiveObjects baseline = gl::liveObjects();
+  Viewer viewer(test::context().caps());
+  viewer.state().applyQuery("view=split&radius=1.5");
+  const test::RenderedImage before = renderViewer(viewer);
+  const gl::LiveObjects running = gl::liveObjects();
+  ASSERT_GT(running.total(), baseline.total());
+
+  viewer.contextLost();
+  EXPECT_FALSE(viewer.hasContext());
+  EXPECT_TRUE(sameLiveObjects(gl::liveObjects(), baseline)) << "every GL object of the lost context was dropped";
+  viewer.render(0, kWidth, kHeight);  // while lost: nothing to draw with, and no GL call on dead names
+
+  viewer.contextRestored(test::context().caps());
+  const test::RenderedImage after = renderViewer(viewer);
+  EXPECT_TRUE(sameLiveObjects(gl::liveObjects(), running)) << "the rebuild holds as many objects as before";
+  EXPECT_EQ(after.rgba, before.rgba) << "the restored context renders the same image";
+}
+
+TEST(Viewer, SplitScreenShowsAoOffLeftAndOnRight) {
+  Viewer viewer(test::context().caps());
+  viewer.state().settings.set("ao", "off");
+  const test::RenderedImage off = renderViewer(viewer);
+  viewer.state().settings.set("ao", "on");
+  const test::RenderedImage on = renderViewer(viewer);
+  viewer.state().settings.set("ao", "off");  // split shows AO on its right half whatever the switch says
+  viewer.state().setViewMode("split");
+  const test::RenderedImage split = renderViewer(viewer);
+  ASSERT_NE(off.rgba, on.rgba);
+  size_t leftDiffers = 0, rightDiffers = 0;
+  for (int y = 0; y < kHeight; ++y) {
+    for (int x = 0; x < kWidth; ++x) {
+      for (int c = 0; c < 3; ++c) {
+        if (x < kWidth / 2 - 1) leftDiffers += split.channel(x, y, c) != off.channel(x, y, c);
+        if (x > kWidth / 2) rightDiffers += split.channel(x, y, c) != on.channel(x, y, c);
+      }
+    }
+  }
+  EXPECT_EQ(leftDiffers, 0u);
+  EXPECT_EQ(rightDiffers, 0u);
+}
+
+TEST(Viewer, KeysActThroughTheParameterTable) {
+  Viewer viewer(test::context().caps());
+  ViewerState& state = viewer.state();
+  EXPECT_TRUE(viewer.handleKey("]"));
+  EXPECT_FLOAT_EQ(state.settings.radius, 1.25f);
+  for (int i = 0; i < 100; ++i) viewer.handleKey("]");
+  EXPECT_FLOAT_EQ(state.settings.radius, 100.0f) << "clamped to the parameter's range";
+  for (int i = 0; i < 100; ++i) viewer.handleKey(",");
+  EXPECT_EQ(state.settings.samples, 1);
+  EXPECT_TRUE(viewer.handleKey("p"));
+  EXPECT_EQ(state.settings.get("preset"), "low") << "from no preset, p starts at the first";
+  viewer.handleKey("p");
+  EXPECT_EQ(state.settings.get("preset"), "medium");
+  viewer.handleKey("a");
+  EXPECT_FALSE(state.settings.enabled);
+  viewer.handleKey("6");
+  EXPECT_EQ(state.viewMode(), "split");
+  EXPECT_FALSE(viewer.handleKey("?"));
+
+  const Camera original = state.camera;
+  viewer.orbit(40.0f, 10.0f, kHeight);
+  EXPECT_NE(state.camera.eye, original.eye);
+  viewer.handleKey("r");
+  EXPECT_EQ(state.camera.eye, original.eye);
+
+  std::set<std::string> keys;
+  for (const Viewer::KeyBinding& binding : Viewer::keyBindings()) {
+    EXPECT_TRUE(keys.insert(binding.key).second) << "key " << binding.key << " bound twice";
+    EXPECT_EQ(binding.key.size(), 1u);
+    EXPECT_FALSE(binding.description.empty());
+  }
+}
+
+TEST(Viewer, ABadFileLeavesThePreviousSceneOnScreen) {
+  Viewer viewer(test::context().caps());
+  const test::RenderedImage builtin = renderViewer(viewer);
+  const std::string bad = test::assimpModels() + "/BoxWithInfinites-glTF-Binary/BoxWithInfinites.glb";
+  EXPECT_THROW(viewer.loadGltf(readBytes(bad), "BoxWithInfinites.glb"), InputError);
+  EXPECT_EQ(viewer.sceneName(), "built-in scene");
+  EXPECT_EQ(renderViewer(viewer).rgba, builtin.rgba);
+
+  // A .gltf whose buffer comes as a side file, as the page passes files dropped together.
+  const std::string dir = test::assimpModels() + "/BoxTextured-glTF/";
+  EXPECT_THROW(viewer.loadGltf(readBytes(dir + "BoxTextured.gltf"), "BoxTextured.gltf"), InputError);
+  viewer.loadGltf(readBytes(dir + "BoxTextured.gltf"), "BoxTextured.gltf",
+                  {{"BoxTextured0.bin", readBytes(dir + "BoxTextured0.bin")},
+                   {"CesiumLogoFlat.png", readBytes(dir + "CesiumLogoFlat.png")}});
+  EXPECT_EQ(viewer.sceneName(), "BoxTextured.gltf");
+  EXPECT_EQ(viewer.sceneTriangles(), 12u);
+  EXPECT_NE(renderViewer(viewer).rgba, builtin.rgba);
+}

@@ -1,0 +1,143 @@
+// The viewers' shared state text (the web page's URL, obscura-view --state) and camera controls. No GL needed.
+#include <cmath>
+
+#include <glm/geometric.hpp>
+#include <gtest/gtest.h>
+
+#include "core/Error.h"
+#include "platform/CameraControls.h"
+#include "platform/ViewerState.h"
+#include "scene/BuiltinScene.h"
+
+using namespace obscura;
+
+namespace {
+bool sameCamera(const Camera& a, const Camera& b) {
+  return a.eye == b.eye && a.target == b.target && a.up == b.up && a.fovyDegrees == b.fovyDegrees &&
+         a.near == b.near && a.far == b.far;
+}
+}  // namespace
+
+TEST(ViewerState, RoundTripsThroughQueryTextExactly) {
+  ViewerState changed;
+  changed.camera = builtinSceneCamera();
+  changed.setViewMode("split");
+  changed.settings.set("radius", "2.5");
+  changed.settings.set("preset", "high");
+  changed.settings.set("blur", "off");
+  changed.camera.eye = glm::vec3(1.0f / 3.0f, 2.7182817f, -6.1f);
+  changed.camera.fovyDegrees = 47.5f;
+  changed.camera.near = 30.0f;
+  changed.camera.far = 2.5e7f;  // exponent form with a '+', which must survive URL decoding
+  for (const ViewerState& original : {ViewerState{}, changed}) {
+    ViewerState copy;
+    EXPECT_TRUE(copy.applyQuery(original.toQuery()));
+    EXPECT_EQ(copy.toQuery(), original.toQuery());
+    EXPECT_TRUE(sameCamera(copy.camera, original.camera)) << copy.toQuery();
+    EXPECT_EQ(copy.viewMode(), original.viewMode());
+    for (const ParameterInfo& p : aoParameters()) EXPECT_EQ(copy.settings.get(p.name), original.settings.get(p.name));
+  }
+  const std::string text = changed.toQuery();
+  EXPECT_EQ(text.rfind("view=split&preset=high&radius=2.5&", 0), 0u) << text;
+  EXPECT_EQ(text.find("bias="), std::string::npos) << "defaults are left out: " << text;
+}
+
+TEST(ViewerState, AcceptsKeysInAnyOrderAndEncodedText) {
+  ViewerState state;
+  // "turns" before "samples" in the text: parameters apply in table order, so 5 is checked against 32 samples.
+  EXPECT_FALSE(state.applyQuery("?turns=5&samples=32&view=ao-raw"));
+  EXPECT_EQ(state.settings.samples, 32);
+  EXPECT_EQ(state.settings.spiralTurns, 5);
+  EXPECT_EQ(state.viewMode(), "ao-raw");
+  EXPECT_TRUE(state.applyQuery("eye=1%2C2%2C3&target=0,0,0&view=split"));
+  EXPECT_EQ(state.camera.eye, glm::vec3(1, 2, 3));
+  EXPECT_TRUE(state.split);
+  EXPECT_EQ(state.view, View::Final);
+}
+
+TEST(ViewerState, RefusesBadTextAndKeepsTheState) {
+  const std::pair<const char*, const char*> cases[] = {
+      {"colour=red", "unknown key 'colour'"},
+      {"radius=0", "state: radius: 0 is out of range"},
+      {"view=wireframe", "state: view: expected final, ao, ao-raw, normals, depth or split"},
+      {"eye=1,2", "eye: expected x,y,z"},
+      {"eye=1,2,x", "eye: expected a number"},
+      {"eye=0,0,0&target=0,0,0", "target: must differ from eye"},
+      {"near=5&far=1", "far: must be greater than near"},
+      {"radius=2&radius=3", "radius is given twice"},
+      {"radius", "'radius' has no value"},
+  };
+  ViewerState state;
+  const std::string before = state.toQuery();
+  for (const auto& [text, expect] : cases) {
+    try {
+      state.applyQuery(text);
+      ADD_FAILURE() << text << " was accepted";
+    } catch (const InputError& e) {
+      EXPECT_NE(std::string(e.what()).find(expect), std::string::npos) << text << ": " << e.what();
+    }
+    EXPECT_EQ(state.toQuery(), before) << text;
+  }
+}
+
+TEST(CameraControls, OrbitTurnsAboutTheTargetLikeGrabbingTheScene) {
+  const Camera start = builtinSceneCamera(320, 180);
+  const float distance = glm::length(start.eye - start.target);
+  const glm::vec3 right = glm::normalize(glm::cross(start.target - start.eye, start.up));
+
+  Camera camera = start;
+  orbitCamera(camera, 10.0f, 0.0f, 180);
+  EXPECT_NEAR(glm::length(camera.eye - camera.target), distance, 1e-4f * distance);
+  EXPECT_LT(glm::dot(camera.eye - start.eye, right), 0.0f) << "dragging right carries the eye left";
+  EXPECT_NEAR(camera.eye.y, start.eye.y, 1e-4f) << "a horizontal drag turns about the up axis";
+
+  camera = start;
+  orbitCamera(camera, 0.0f, 10.0f, 180);
+  EXPECT_GT(camera.eye.y, start.eye.y) << "dragging down lifts the eye";
+  EXPECT_NEAR(glm::length(camera.eye - camera.target), distance, 1e-4f * distance);
+
+  // A drag across the full height turns half a turn about up; a huge vertical drag stops short of the pole.
+  camera = start;
+  orbitCamera(camera, 180.0f, 0.0f, 180);
+  const glm::vec2 before(start.eye.x - start.target.x, start.eye.z - start.target.z);
+  const glm::vec2 after(camera.eye.x - camera.target.x, camera.eye.z - camera.target.z);
+  EXPECT_NEAR(glm::dot(glm::normalize(before), glm::normalize(after)), -1.0f, 1e-4f);
+  orbitCamera(camera, 0.0f, 1e5f, 180);
+  const float fromUp = std::acos(glm::dot(glm::normalize(camera.eye - camera.target), glm::vec3(0, 1, 0)));
+  EXPECT_NEAR(fromUp, 0.05f, 1e-3f);
+  EXPECT_NO_THROW(camera.validate("orbited camera"));
+}
+
+TEST(CameraControls, PanKeepsTheTargetUnderTheCursorAndZoomScalesTheDistance) {
+  const Camera start = builtinSceneCamera(320, 180);
+  const float distance = glm::length(start.eye - start.target);
+  Camera camera = start;
+  panCamera(camera, 0.0f, 180.0f, 180);  // a full-height drag moves the view by its height at the target's depth
+  const float viewHeight = 2.0f * distance * std::tan(start.fovyRadians() * 0.5f);
+  EXPECT_NEAR(glm::length(camera.target - start.target), viewHeight, 1e-3f * viewHeight);
+  EXPECT_LT(glm::length((camera.eye - start.eye) - (camera.target - start.target)), 1e-5f)
+      << "eye and target move together";
+
+  camera = start;
+  zoomCamera(camera, 0.5f, 10.0f);
+  EXPECT_NEAR(glm::length(camera.eye - camera.target), 0.5f * distance, 1e-4f * distance);
+  zoomCamera(camera, 1e-9f, 10.0f);
+  EXPECT_NEAR(glm::length(camera.eye - camera.target), 10.0f * 1e-3f, 1e-6f) << "clamped near the target";
+  EXPECT_NO_THROW(camera.validate("zoomed camera"));
+}
+
+TEST(CameraControls, FitDepthRangeHugsTheSceneWithBoundedRatio) {
+  Bounds bounds;
+  bounds.add(glm::vec3(-1.0f));
+  bounds.add(glm::vec3(1.0f));
+  Camera camera = builtinSceneCamera();
+  camera.target = glm::vec3(0.0f);
+  camera.eye = glm::vec3(0.0f, 0.0f, 10.0f);
+  fitDepthRange(camera, bounds);
+  EXPECT_LE(camera.near, 10.0f - bounds.radius());
+  EXPECT_GE(camera.far, 10.0f + bounds.radius());
+  EXPECT_GT(camera.near, 10.0f - 1.1f * bounds.radius());
+  camera.eye = glm::vec3(0.1f, 0.0f, 0.0f);  // inside the bounds: near is limited by the depth ratio
+  fitDepthRange(camera, bounds);
+  EXPECT_FLOAT_EQ(camera.far / camera.near, kMaxDepthRatio);
+}

@@ -1,0 +1,54 @@
+#!/usr/bin/env node
+// A static file server for the demo page (build-web/site), bound to 127.0.0.1 only. Used by tools/run.sh and by the
+// browser tests (which import startServer). Usage: node tools/serve-web.mjs [root] [port]
+import http from 'node:http';
+import fs from 'node:fs';
+import path from 'node:path';
+import { fileURLToPath } from 'node:url';
+
+const TYPES = {
+  '.html': 'text/html; charset=utf-8',
+  '.js': 'text/javascript; charset=utf-8',
+  '.mjs': 'text/javascript; charset=utf-8',
+  '.css': 'text/css; charset=utf-8',
+  '.wasm': 'application/wasm',  // needed for WebAssembly.instantiateStreaming
+  '.png': 'image/png',
+  '.json': 'application/json',
+};
+
+// Resolves to the listening server; port 0 picks a free one (server.address().port). server.stop() closes it
+// together with the browser's idle keep-alive connections, which would otherwise hold the process open.
+export function startServer(root, port = 0) {
+  const base = path.resolve(root);
+  const server = http.createServer((request, response) => {
+    const url = new URL(request.url, 'http://127.0.0.1');
+    const file = path.join(base, decodeURIComponent(url.pathname === '/' ? '/index.html' : url.pathname));
+    if (!file.startsWith(base + path.sep)) {
+      response.writeHead(403).end();
+      return;
+    }
+    fs.readFile(file, (error, data) => {
+      if (error) {
+        response.writeHead(404, { 'Content-Type': 'text/plain' }).end(`not found: ${url.pathname}\n`);
+        return;
+      }
+      response.writeHead(200, { 'Content-Type': TYPES[path.extname(file)] ?? 'application/octet-stream',
+                                'Cache-Control': 'no-store' });
+      response.end(data);
+    });
+  });
+  return new Promise((resolve, reject) => {
+    server.once('error', reject);
+    server.stop = () => {
+      server.close();
+      server.closeAllConnections();
+    };
+    server.listen(port, '127.0.0.1', () => resolve(server));
+  });
+}
+
+if (process.argv[1] === fileURLToPath(import.meta.url)) {
+  const root = process.argv[2] ?? path.join(path.dirname(fileURLToPath(import.meta.url)), '..', 'build-web', 'site');
+  const server = await startServer(root, Number(process.argv[3] ?? 8080));
+  console.log(`serving ${path.resolve(root)} at http://127.0.0.1:${server.address().port}/  (Ctrl+C stops)`);
+}

@@ -1,0 +1,309 @@
+// The demo page: a full-window canvas and a controls panel over the JS API of obscura.js. The controls are built
+// from the parameter table the core exports (names, kinds, ranges, presets); this file only decides their layout.
+import { createObscura, ObscuraError } from './obscura.js';
+
+// Parameters shown up front, in this order; every other parameter of the core's table goes under "More parameters".
+const MAIN_PARAMETERS = ['ao', 'preset', 'radius', 'intensity', 'bias', 'contrast', 'samples', 'blur', 'blur-radius'];
+const VIEW_LABELS = { final: 'Final', ao: 'AO', 'ao-raw': 'Raw AO', normals: 'Normals', depth: 'Depth',
+                      split: 'Split: AO off | on' };
+// Keys of the page itself (the core's bindings come from obscura.keyBindings).
+const PAGE_KEYS = [['h', 'hide / show the controls'], ['o', 'open a scene file']];
+const POINTER_HELP = [['left drag', 'orbit'], ['right drag, shift + drag', 'pan'], ['wheel', 'zoom'],
+                      ['one finger', 'orbit'], ['two fingers', 'pinch to zoom, move to pan']];
+const SLIDER_STEPS = 1000;
+
+const $ = (selector) => document.querySelector(selector);
+const controls = [];  // {name, update()} per parameter control
+
+function element(tag, properties = {}, ...children) {
+  const node = Object.assign(document.createElement(tag), properties);
+  node.append(...children);
+  return node;
+}
+
+function showError(message) {
+  $('#error').textContent = message;
+  $('#error').hidden = !message;
+}
+
+function setStatus(message) { $('#status').textContent = message; }
+
+// --- Parameter controls ------------------------------------------------------------------------------------------
+
+// Slider positions: whole numbers step through their range; real numbers get SLIDER_STEPS positions, on a
+// logarithmic scale for wide positive ranges (radius 0.01 .. 100 m) so small values stay reachable.
+function sliderScale(parameter) {
+  if (parameter.kind === 'integer') {
+    return { min: parameter.min, max: parameter.max, toSlider: (v) => v, fromSlider: (t) => t };
+  }
+  if (parameter.min > 0 && parameter.max / parameter.min >= 100) {
+    const ratio = Math.log(parameter.max / parameter.min);
+    return {
+      min: 0,
+      max: SLIDER_STEPS,
+      toSlider: (v) => Math.round(SLIDER_STEPS * Math.log(v / parameter.min) / ratio),
+      fromSlider: (t) => Number((parameter.min * Math.exp(ratio * t / SLIDER_STEPS)).toPrecision(3)),
+    };
+  }
+  const span = parameter.max - parameter.min;
+  return {
+    min: 0,
+    max: SLIDER_STEPS,
+    toSlider: (v) => Math.round(SLIDER_STEPS * (v - parameter.min) / span),
+    fromSlider: (t) => Number((parameter.min + span * t / SLIDER_STEPS).toPrecision(4)),
+  };
+}
+
+function parameterControl(obscura, parameter) {
+  const id = `param-${parameter.name}`;
+  const label = element('label', { htmlFor: id, textContent: parameter.name.replace(/-/g, ' '),
+                                   title: `${parameter.help} (${parameter.range})` });
+  const row = element('div', { className: `parameter ${parameter.kind}` }, label);
+  const apply = (value) => {
+    try {
+      obscura.set(parameter.name, value);
+      showError('');
+    } catch (e) {
+      showError(e.message);
+      refreshControls(obscura);  // back to the value the core kept
+    }
+  };
+
+  if (parameter.kind === 'switch') {
+    const box = element('input', { type: 'checkbox', id });
+    box.addEventListener('change', () => apply(box.checked ? 'on' : 'off'));
+    row.append(box);
+    return { row, update: () => { box.checked = obscura.get(parameter.name) === 'on'; } };
+  }
+  if (parameter.kind === 'choice') {
+    const select = element('select', { id });
+    for (const choice of parameter.choices) select.append(element('option', { value: choice, textContent: choice }));
+    // A preset the current values no longer match reads as "custom".
+    const custom = element('option', { value: '', textContent: 'custom', disabled: true });
+    select.append(custom);
+    select.addEventListener('change', () => apply(select.value));
+    row.append(select);
+    return { row, update: () => { select.value = obscura.get(parameter.name); } };
+  }
+  const scale = sliderScale(parameter);
+  const slider = element('input', { type: 'range', id, min: scale.min, max: scale.max, step: 1,
+                                    title: parameter.range });
+  const number = element('input', { type: 'number', min: parameter.min, max: parameter.max,
+                                    step: parameter.kind === 'integer' ? 1 : 'any', title: parameter.range,
+                                    ariaLabel: `${parameter.name} value` });
+  slider.addEventListener('input', () => apply(scale.fromSlider(Number(slider.value))));
+  number.addEventListener('change', () => apply(number.value));
+  row.append(slider, number);
+  // Bias, intensity and contrast default to 'auto' (fitted to the ray-traced reference for the preset and radius):
+  // the controls then show the fitted value, and the checkbox returns to it.
+  const auto = (parameter.choices || []).includes('auto')
+    ? element('input', { type: 'checkbox', id: `${id}-auto`, title: 'fitted to the ray-traced reference' })
+    : null;
+  if (auto) {
+    auto.addEventListener('change', () => apply(auto.checked ? 'auto' : obscura.effective(parameter.name)));
+    row.append(element('label', { htmlFor: `${id}-auto`, className: 'auto', textContent: 'auto' }, auto));
+  }
+  return {
+    row,
+    update: () => {
+      const value = obscura.effective(parameter.name);
+      slider.value = scale.toSlider(Number(value));
+      if (document.activeElement !== number) number.value = value;
+      if (auto) auto.checked = obscura.get(parameter.name) === 'auto';
+    },
+  };
+}
+
+function buildControls(obscura) {
+  for (const parameter of obscura.parameters) {
+    const control = parameterControl(obscura, parameter);
+    $(MAIN_PARAMETERS.includes(parameter.name) ? '#main-parameters' : '#more-parameters').append(control.row);
+    controls.push(control);
+  }
+  // Keep the up-front parameters in MAIN_PARAMETERS order.
+  for (const name of MAIN_PARAMETERS) {
+    const row = document.getElementById(`param-${name}`)?.closest('.parameter');
+    if (row) $('#main-parameters').append(row);
+  }
+
+  for (const view of obscura.views) {
+    const radio = element('input', { type: 'radio', name: 'view', value: view, id: `view-${view}` });
+    radio.addEventListener('change', () => obscura.setView(view));
+    $('#views').append(element('label', {}, radio, ` ${VIEW_LABELS[view] ?? view}`));
+  }
+
+  const rows = [...obscura.keyBindings.map((b) => [b.key, b.description]), ...PAGE_KEYS, ...POINTER_HELP];
+  for (const [key, description] of rows) {
+    $('#shortcuts').append(element('tr', {}, element('td', { textContent: key }),
+                                   element('td', { textContent: description })));
+  }
+}
+
+function refreshControls(obscura) {
+  for (const control of controls) control.update();
+  const view = obscura.view;
+  const radio = document.getElementById(`view-${view}`);
+  if (radio) radio.checked = true;
+  $('#split-divider').hidden = view !== 'split';
+}
+
+// --- Stats -------------------------------------------------------------------------------------------------------
+
+function showStats(obscura) {
+  const s = obscura.stats();
+  const fps = s.frameMs > 0 ? ` (${(1000 / s.frameMs).toFixed(0)} fps)` : '';
+  const frame = s.frameMs > 0 ? `${s.frameMs.toFixed(1)} ms${fps}`
+                              : '- (needs frames back to back: redraw continuously)';
+  const lines = [`${s.width} x ${s.height} px, ${s.frames} frames drawn`, `frame  ${frame}`,
+                 `CPU    ${s.cpuMs.toFixed(2)} ms in the renderer`];
+  if (s.passMs) {
+    lines.push('GPU per pass (EXT_disjoint_timer_query):');
+    let total = 0;
+    for (const pass of obscura.passes) {
+      const ms = s.passMs[pass];
+      if (ms !== null) total += ms;
+      lines.push(`  ${pass.padEnd(10)} ${ms === null ? '   -' : ms.toFixed(2)} ms`);
+    }
+    lines.push(`  ${'total'.padEnd(10)} ${total.toFixed(2)} ms`);
+  } else {
+    lines.push(s.timerQueries ? 'GPU per pass: waiting for the first results'
+                              : 'GPU per pass: needs EXT_disjoint_timer_query (not offered here)');
+  }
+  if (s.contextLost) lines.push('WebGL context lost: waiting for the browser to restore it');
+  if (s.error) lines.push(`stopped: ${s.error}`);
+  $('#stats').textContent = lines.join('\n');
+}
+
+// --- Scenes ------------------------------------------------------------------------------------------------------
+
+function showScene(scene) {
+  $('#scene-name').textContent = `${scene.name}: ${scene.triangles.toLocaleString('en')} triangles`;
+  setStatus(scene.warnings.length ? `${scene.warnings.length} warning(s): ${scene.warnings.join('; ')}` : '');
+}
+
+async function loadFiles(obscura, files) {
+  const progress = $('#load-progress');
+  progress.value = 0;
+  progress.hidden = false;
+  document.body.dataset.loading = 'true';
+  showError('');
+  setStatus(`Loading ${Array.from(files).map((f) => f.name).join(', ')}…`);
+  try {
+    showScene(await obscura.loadFiles(files, { onProgress: (fraction) => { progress.value = fraction; } }));
+  } catch (e) {
+    // The core keeps the previous scene on screen; say why this one was refused.
+    setStatus('');
+    showError(e instanceof ObscuraError ? e.message : `cannot load: ${e.message}`);
+  } finally {
+    progress.hidden = true;
+    delete document.body.dataset.loading;
+  }
+}
+
+function wireScenes(obscura) {
+  $('#file-input').addEventListener('change', (e) => {
+    if (e.target.files.length) loadFiles(obscura, e.target.files);
+    e.target.value = '';  // choosing the same file again loads it again
+  });
+  $('#builtin-scene').addEventListener('click', () => {
+    showScene(obscura.loadBuiltinScene());
+    showError('');
+  });
+
+  // Drag and drop anywhere on the page; the counter tracks enter/leave pairs of nested elements.
+  let dragDepth = 0;
+  const carriesFiles = (e) => Array.from(e.dataTransfer?.types ?? []).includes('Files');
+  window.addEventListener('dragenter', (e) => {
+    if (!carriesFiles(e)) return;
+    dragDepth += 1;
+    $('#drop-overlay').hidden = false;
+    e.preventDefault();
+  });
+  window.addEventListener('dragover', (e) => { if (carriesFiles(e)) e.preventDefault(); });
+  window.addEventListener('dragleave', () => {
+    dragDepth = Math.max(0, dragDepth - 1);
+    if (dragDepth === 0) $('#drop-overlay').hidden = true;
+  });
+  window.addEventListener('drop', (e) => {
+    e.preventDefault();
+    dragDepth = 0;
+    $('#drop-overlay').hidden = true;
+    if (e.dataTransfer?.files.length) loadFiles(obscura, e.dataTransfer.files);
+  });
+}
+
+// --- Keyboard, panel, URL ----------------------------------------------------------------------------------------
+
+function wireKeys(obscura) {
+  window.addEventListener('keydown', (e) => {
+    if (e.ctrlKey || e.metaKey || e.altKey) return;
+    const target = e.target;
+    if (target instanceof HTMLSelectElement ||
+        (target instanceof HTMLInputElement && !['range', 'checkbox', 'radio'].includes(target.type))) return;
+    if (e.key === 'h') {
+      togglePanel();
+    } else if (e.key === 'o') {
+      $('#file-input').click();
+    } else {
+      try {
+        if (!obscura.handleKey(e.key)) return;
+        showError('');
+      } catch (error) {
+        showError(error.message);
+      }
+    }
+    e.preventDefault();
+  });
+}
+
+function togglePanel() {
+  const collapsed = $('#panel').classList.toggle('collapsed');
+  $('#panel-toggle').textContent = collapsed ? 'Show' : 'Hide';
+  $('#panel-toggle').setAttribute('aria-expanded', String(!collapsed));
+}
+
+// The URL follows every change (replaceState, so the back button is not flooded), at most a few times a second.
+function wireUrl(obscura) {
+  let pending = null;
+  obscura.addEventListener('change', () => {
+    if (pending) return;
+    pending = setTimeout(() => {
+      pending = null;
+      history.replaceState(null, '', `${location.pathname}?${obscura.state()}`);
+    }, 150);
+  });
+}
+
+async function main() {
+  let obscura;
+  try {
+    obscura = await createObscura($('#view'));
+  } catch (e) {
+    showError(`Obscura cannot start here: ${e.message}`);
+    $('#stats').textContent = '';
+    return;
+  }
+  window.obscura = obscura;  // for the console and for tests
+
+  buildControls(obscura);
+  $('#panel-toggle').addEventListener('click', togglePanel);
+  if (location.search.length > 1) {
+    try {
+      obscura.setState(location.search);
+    } catch (e) {
+      showError(`This link's view was not applied: ${e.message}`);
+    }
+  }
+  showScene(obscura.scene());
+  // Controls follow every change, whoever made it: the panel, a key, the pointer, a script through the API.
+  refreshControls(obscura);
+  obscura.addEventListener('change', () => refreshControls(obscura));
+  wireScenes(obscura);
+  wireKeys(obscura);
+  wireUrl(obscura);
+  $('#continuous').addEventListener('change', (e) => obscura.setContinuous(e.target.checked));
+  setInterval(() => showStats(obscura), 250);
+  document.body.dataset.ready = 'true';
+}
+
+main();

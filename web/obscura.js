@@ -1,0 +1,248 @@
+// Obscura's JavaScript API: Scalable Ambient Obscurance on a WebGL 1 canvas, driven by the same C++ core as the
+// native renderer. Documented in web/README.md; the demo page (app.js) uses nothing else.
+//
+//   import { createObscura } from './obscura.js';
+//   const obscura = await createObscura(document.querySelector('canvas'));
+//   obscura.set('radius', 1.5);
+//   obscura.setView('ao');
+//
+// Everything that describes parameters (names, kinds, ranges, presets, views, keys) comes from the core, so a page
+// never repeats the core's tables.
+import createObscuraCore from './obscura-core.js';
+
+// A refused call: an unknown parameter, a value out of range, a file that is not valid glTF. `message` is one line
+// meant for the user.
+export class ObscuraError extends Error {
+  constructor(message) {
+    super(message);
+    this.name = 'ObscuraError';
+  }
+}
+
+// Starts the core on `canvas` and resolves to an Obscura instance once the first frames are scheduled.
+// Options:
+//   pointerControls (default true): orbit / pan / zoom with mouse, touch and wheel on the canvas.
+export async function createObscura(canvas, { pointerControls = true } = {}) {
+  const core = await createObscuraCore({ canvas });
+  const obscura = new Obscura(core, canvas);
+  if (!core._obscura_create()) throw new ObscuraError(core.UTF8ToString(core._obscura_error()));
+  obscura.description = obscura.json('obscura_describe');
+  if (pointerControls) obscura.attachPointerControls();
+  return obscura;
+}
+
+// Fires 'change' after every call that changes what is shown (parameters, view, camera, scene).
+export class Obscura extends EventTarget {
+  constructor(core, canvas) {
+    super();
+    this.core = core;
+    this.canvas = canvas;
+  }
+
+  // --- What the core offers (read once at start) ---------------------------------------------------------------
+  // [{name, kind: 'switch'|'number'|'integer'|'choice', range, help, default, min?, max?, choices?}]
+  // (a number's choices are words it accepts besides numbers: 'auto' for bias, intensity and contrast)
+  get parameters() { return this.description.parameters; }
+  // [{name, samples, turns, blurRadius, blurStride, halfResolution}]
+  get presets() { return this.description.presets; }
+  // ['final', 'ao', 'ao-raw', 'normals', 'depth', 'split']
+  get views() { return this.description.views; }
+  // [{key, description}]: the keys handleKey() understands (the same as obscura-view's)
+  get keyBindings() { return this.description.keys; }
+  // ['gbuffer', 'sao', 'blur-h', 'blur-v', 'composite']: the keys of stats().passMs
+  get passes() { return this.description.passes; }
+  // {version, renderer, vendor, shadingLanguage, maxRenderSize, depth24, elementIndexUint, timerQuery}
+  get context() { return this.description.context; }
+
+  // --- Parameters and view -----------------------------------------------------------------------------------------
+  // The current value of a parameter, as text ('1.5', 'on', 'medium'; '' for a preset the values no longer match).
+  get(name) { return this.text('obscura_get', ['string'], [name]); }
+  // The value in use: get(name), except that bias, intensity and contrast on 'auto' read as the values fitted to
+  // the ray-traced reference for the current preset and radius.
+  effective(name) { return this.text('obscura_get_effective', ['string'], [name]); }
+  // Sets a parameter from a string or number; throws ObscuraError with the core's message if refused.
+  set(name, value) { this.call('obscura_set', ['string', 'string'], [name, String(value)]); }
+  get view() { return this.text('obscura_view', [], []); }
+  setView(mode) { this.call('obscura_set_view', ['string'], [mode]); }
+
+  // The whole state (view, parameters that differ from their defaults, camera) as query-string text, and back.
+  // setState applies only what the text names and throws (changing nothing) on anything unknown or invalid.
+  state() { return this.text('obscura_state', [], []); }
+  setState(query) { this.call('obscura_set_state', ['string'], [query]); }
+
+  // --- Camera (pixel deltas in the same units as viewportHeight; CSS pixels of the canvas by default) -------------
+  orbit(dx, dy, viewportHeight = this.canvas.clientHeight) { this.move('obscura_orbit', dx, dy, viewportHeight); }
+  pan(dx, dy, viewportHeight = this.canvas.clientHeight) { this.move('obscura_pan', dx, dy, viewportHeight); }
+  // factor > 1 moves away from the target.
+  zoom(factor) { this.move('obscura_zoom', factor); }
+  resetCamera() { this.move('obscura_reset_camera'); }
+
+  // Applies a key binding (event.key of a keydown); false if the key is not bound.
+  handleKey(key) {
+    const done = this.core.ccall('obscura_handle_key', 'number', ['string'], [key]);
+    if (!done) {
+      const message = this.core.UTF8ToString(this.core._obscura_error());
+      if (message) throw new ObscuraError(message);
+      return false;
+    }
+    this.changed();
+    return true;
+  }
+
+  // --- Scenes ------------------------------------------------------------------------------------------------------
+  // Loads a .glb or .gltf from bytes (ArrayBuffer or Uint8Array). A .gltf's external buffers and images come in
+  // sideFiles, keyed by the URI the file uses: {'scene.bin': bytes, ...}. Resolves to scene(); on a bad file it
+  // rejects with ObscuraError and the previous scene stays on screen.
+  async loadScene(bytes, name, sideFiles = {}) {
+    // Let the page paint its progress indicator before the (synchronous) parse and upload.
+    await new Promise((resolve) => requestAnimationFrame(() => setTimeout(resolve, 0)));
+    for (const [uri, data] of Object.entries(sideFiles)) {
+      this.withBytes(data, (pointer, size) => this.core.ccall('obscura_add_side_file', null,
+                                                             ['string', 'number', 'number'], [uri, pointer, size]));
+    }
+    const ok = this.withBytes(bytes, (pointer, size) =>
+      this.core.ccall('obscura_load_scene', 'number', ['string', 'number', 'number'], [name, pointer, size]));
+    if (!ok) throw new ObscuraError(this.core.UTF8ToString(this.core._obscura_error()));
+    this.changed();
+    return this.scene();
+  }
+
+  // Reads File objects (from a file picker or a drop) and loads the one .glb or .gltf among them, the others being
+  // its side files. onProgress(fraction) follows the reading.
+  async loadFiles(files, { onProgress = () => {} } = {}) {
+    files = Array.from(files);
+    const scenes = files.filter((f) => /\.(glb|gltf)$/i.test(f.name));
+    if (scenes.length !== 1) {
+      throw new ObscuraError(scenes.length === 0
+        ? `no .glb or .gltf among ${files.map((f) => f.name).join(', ') || 'the files'}`
+        : `choose one scene at a time (got ${scenes.map((f) => f.name).join(', ')})`);
+    }
+    const total = files.reduce((sum, f) => sum + f.size, 0) || 1;
+    const loaded = new Map();
+    const contents = await Promise.all(files.map((file) => readFile(file, (bytes) => {
+      loaded.set(file, bytes);
+      onProgress([...loaded.values()].reduce((a, b) => a + b, 0) / total);
+    })));
+    const sideFiles = {};
+    files.forEach((file, i) => { if (file !== scenes[0]) sideFiles[file.name] = contents[i]; });
+    return this.loadScene(contents[files.indexOf(scenes[0])], scenes[0].name, sideFiles);
+  }
+
+  loadBuiltinScene() {
+    this.call('obscura_load_builtin_scene', [], []);
+    return this.scene();
+  }
+
+  // {name, triangles, warnings: [what the loader repaired or ignored]}
+  scene() { return this.json('obscura_scene'); }
+
+  // --- Measurements ------------------------------------------------------------------------------------------------
+  // Frames are drawn when something changed; continuous mode draws on every animation frame, so the timings stay
+  // live (at the cost of keeping the GPU busy).
+  setContinuous(continuous) { this.core._obscura_set_continuous(continuous ? 1 : 0); }
+
+  // {width, height (drawing-buffer pixels), continuous, pending (a change waits for its frame), frameMs (between
+  //  frames drawn back to back, smoothed), cpuMs
+  //  (time in the renderer, smoothed), frames (drawn so far), timerQueries (EXT_disjoint_timer_query in use), passMs
+  //  ({gbuffer: ms, ...} of a recent frame, null per pass not run; null without timer queries or before the first
+  //  result), contextLost, contextRestores, glObjects: {textures, buffers, ...} (live GL objects), error (why frames
+  //  stopped, or '')}
+  stats() { return this.json('obscura_stats'); }
+
+  // Draws a frame now and returns it: {width, height, pixels: Uint8Array RGBA, rows top to bottom}.
+  snapshot() {
+    const pointer = this.core._obscura_snapshot();
+    if (!pointer) throw new ObscuraError(this.core.UTF8ToString(this.core._obscura_error()));
+    const { width, height, pointer: data } = JSON.parse(this.core.UTF8ToString(pointer));
+    return { width, height, pixels: this.core.HEAPU8.slice(data, data + width * height * 4) };
+  }
+
+  // --- Pointer controls ----------------------------------------------------------------------------------------------
+  // Left drag: orbit. Right or middle drag, or shift + left drag: pan. Wheel: zoom. Touch: one finger orbits, two
+  // fingers pinch to zoom and move together to pan.
+  attachPointerControls() {
+    const canvas = this.canvas;
+    const pointers = new Map();  // pointerId -> {x, y, pan}
+    canvas.style.touchAction = 'none';
+    canvas.addEventListener('contextmenu', (e) => e.preventDefault());
+    canvas.addEventListener('pointerdown', (e) => {
+      canvas.setPointerCapture(e.pointerId);
+      pointers.set(e.pointerId, { x: e.clientX, y: e.clientY, pan: e.button === 1 || e.button === 2 || e.shiftKey });
+      e.preventDefault();
+    });
+    const release = (e) => pointers.delete(e.pointerId);
+    canvas.addEventListener('pointerup', release);
+    canvas.addEventListener('pointercancel', release);
+    canvas.addEventListener('pointermove', (e) => {
+      const pointer = pointers.get(e.pointerId);
+      if (!pointer) return;
+      if (pointers.size === 1) {
+        const dx = e.clientX - pointer.x, dy = e.clientY - pointer.y;
+        if (pointer.pan) this.pan(dx, dy);
+        else this.orbit(dx, dy);
+      } else if (pointers.size === 2) {
+        const [a, b] = [...pointers.values()];
+        const before = Math.hypot(a.x - b.x, a.y - b.y);
+        const other = a === pointer ? b : a;
+        const after = Math.hypot(e.clientX - other.x, e.clientY - other.y);
+        if (before > 0 && after > 0) this.zoom(before / after);
+        this.pan((e.clientX - pointer.x) / 2, (e.clientY - pointer.y) / 2);
+      }
+      pointer.x = e.clientX;
+      pointer.y = e.clientY;
+    });
+    canvas.addEventListener('wheel', (e) => {
+      const pixels = e.deltaMode === 1 ? e.deltaY * 33 : e.deltaMode === 2 ? e.deltaY * canvas.clientHeight : e.deltaY;
+      this.zoom(Math.exp(pixels * 0.0015));
+      e.preventDefault();
+    }, { passive: false });
+  }
+
+  // --- Plumbing ----------------------------------------------------------------------------------------------------
+  call(name, types, values) {
+    if (!this.core.ccall(name, 'number', types, values)) {
+      throw new ObscuraError(this.core.UTF8ToString(this.core._obscura_error()));
+    }
+    this.changed();
+  }
+
+  text(name, types, values) {
+    const pointer = this.core.ccall(name, 'number', types, values);
+    if (!pointer) throw new ObscuraError(this.core.UTF8ToString(this.core._obscura_error()));
+    return this.core.UTF8ToString(pointer);
+  }
+
+  json(name) { return JSON.parse(this.text(name, [], [])); }
+
+  move(name, ...args) {
+    this.core['_' + name](...args);
+    this.changed();
+  }
+
+  // Copies bytes into the module's memory for the duration of `use(pointer, size)`.
+  withBytes(bytes, use) {
+    const view = bytes instanceof Uint8Array ? bytes : new Uint8Array(bytes);
+    const pointer = this.core._malloc(Math.max(view.length, 1));
+    try {
+      this.core.HEAPU8.set(view, pointer);
+      return use(pointer, view.length);
+    } finally {
+      this.core._free(pointer);
+    }
+  }
+
+  changed() { this.dispatchEvent(new Event('change')); }
+}
+
+function readFile(file, onProgress) {
+  return new Promise((resolve, reject) => {
+    const reader = new FileReader();
+    reader.onprogress = (e) => onProgress(e.loaded);
+    reader.onload = () => {
+      onProgress(file.size);
+      resolve(new Uint8Array(reader.result));
+    };
+    reader.onerror = () => reject(new ObscuraError(`${file.name}: cannot be read (${reader.error})`));
+    reader.readAsArrayBuffer(file);
+  });
+}
