@@ -51,8 +51,7 @@ void main() {
       vec3 candidateN = decodeNormal(texture2D(u_gbuffer, candidateUv).rg);
       float delta = abs(dot(n, candidateP - P));
       vec2 bilinear = mix(1.0 - f, f, offset);
-      float weight = bilinear.x * bilinear.y * exp(-delta * delta * u_invSigma2) *
-                     pow(max(dot(n, candidateN) * 0.5 + 0.5, 0.0), 10.0);
+      float weight = bilinear.x * bilinear.y * exp(-delta * delta * u_invSigma2) * normalSimilarity(n, candidateN);
       sum += candidate.r * weight;
       weightSum += weight;
       if (delta < nearestDelta) {

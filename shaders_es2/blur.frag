@@ -66,7 +66,7 @@ void main() {
     vec3 tapNormal;
     vec3 tapP = surfacePoint(tapPixel, tapCode, tapNormal);
     float delta = dot(n, tapP - P);
-    float normalWeight = pow(max(dot(n, tapNormal) * 0.5 + 0.5, 0.0), 10.0);
+    float normalWeight = normalSimilarity(n, tapNormal);
 #else
     float delta = u_near + tapCode * (1.0 / 65535.0) * u_depthRange - z;
     float normalWeight = 1.0;

@@ -48,27 +48,26 @@ float rotationAngle(vec2 pixel) {
   return kTwoPi * (noise - floor(noise));
 }
 
-vec2 levelSize(float level) { return max(floor(u_gbufferSize / exp2(level)), vec2(1.0)); }
-
-// The surface point a tap at G-buffer pixel `tapPixel`, `tapDistance` pixels from the centre, reads.
+// The surface point a tap at G-buffer pixel `tapPixel`, 2^log2TapDistance pixels from the centre, reads.
 // SAO paper, sec. 3.3: a tap at distance h reads level m = clamp(floor(log2 h) - LOG_MAX_OFFSET, 0, MAX_MIP_LEVEL),
 // so taps within 2^(LOG_MAX_OFFSET + 1) pixels read full resolution and each farther octave reads a level half as
 // fine. Neighbouring pixels' far taps then land in the same few texels (cache hits), and the cost per pixel stops
 // growing with the projected radius. Level m holds the real depth of one pixel per 2^m x 2^m block (no averaging)
 // and that pixel's place in the block, so the point is rebuilt on that pixel's own ray.
-vec3 tapPoint(vec2 tapPixel, float tapDistance) {
+vec3 tapPoint(vec2 tapPixel, float log2TapDistance) {
   vec2 pixel = tapPixel;
   vec4 texel;
 #if DEPTH_HIERARCHY == 0
   texel = texture2D(u_gbuffer, (pixel + 0.5) / u_gbufferSize);
 #else
-  float level = clamp(floor(log2(max(tapDistance, 1.0))) - float(LOG_MAX_OFFSET), 0.0, float(MAX_MIP_LEVEL));
+  float level = clamp(floor(log2TapDistance) - float(LOG_MAX_OFFSET), 0.0, float(MAX_MIP_LEVEL));
   if (level < 0.5) {
     texel = texture2D(u_gbuffer, (pixel + 0.5) / u_gbufferSize);
   } else {
-    vec2 size = levelSize(level);
+    float scale = exp2(level);
+    vec2 size = max(floor(u_gbufferSize / scale), vec2(1.0));  // floor(size0 / 2^m), at least 1
     // SAO: ssP >> mipLevel, clamped to the level.
-    vec2 levelPixel = min(floor(tapPixel / exp2(level)), size - 1.0);
+    vec2 levelPixel = min(floor(tapPixel / scale), size - 1.0);
     vec2 uv = (levelPixel + 0.5) / size;
 #if DEPTH_HIERARCHY == 1
     if (level < 1.5) texel = texture2D(u_level1, uv);
@@ -78,9 +77,9 @@ vec3 tapPoint(vec2 tapPixel, float tapDistance) {
     else texel = texture2D(u_level5, uv);
 #else
     // Mip level j of a power-of-two texture is u_depthMipsSize / 2^j texels; hierarchy level j + 1 fills its corner.
-    texel = texture2DLodEXT(u_depthMips, uv * size * exp2(level - 1.0) / u_depthMipsSize, level - 1.0);
+    texel = texture2DLodEXT(u_depthMips, uv * size * (0.5 * scale) / u_depthMipsSize, level - 1.0);
 #endif
-    pixel = levelPixel * exp2(level) + channelsToBytes(texel.rg);
+    pixel = levelPixel * scale + channelsToBytes(texel.rg);
   }
 #endif
   return viewPositionOnRay(farPlaneRay((pixel + 0.5) / u_gbufferSize), unpackLinearDepth(texel.ba));
@@ -114,6 +113,7 @@ void main() {
 
   // The world-space radius projected to pixels at the centre's depth, clamped (paper sec. 3.2).
   float diskRadius = min(u_projScale * u_radius / -C.z, u_maxRadiusPixels);
+  float log2DiskRadius = log2(max(diskRadius, 1e-3));
   float spin = rotationAngle(aoPixel);
 
   float sum = 0.0;
@@ -124,7 +124,8 @@ void main() {
     // The texel holding the tap point; taps leaving the image read its edge, as in the SAO reference code.
     vec2 tapPixel = clamp(floor(pixel + 0.5 + tapDistance * vec2(cos(angle), sin(angle))), vec2(0.0),
                           u_gbufferSize - 1.0);
-    sum += tapObscurance(tapPoint(tapPixel, tapDistance) - C, n);
+    // log2 of the tap distance from per-pixel and per-tap parts (the loop is unrolled: log2(alpha) folds away).
+    sum += tapObscurance(tapPoint(tapPixel, log2(alpha) + log2DiskRadius) - C, n);
   }
   float visibility = pow(max(0.0, 1.0 - sum * u_intensityScale), u_contrast);
   gl_FragColor = vec4(visibility, bytesToChannels(channelsToBytes(centre.ba)), 1.0);

@@ -41,3 +41,13 @@ vec3 decodeNormal(vec2 channels) {
   if (n.z < 0.0) n.xy = (1.0 - abs(p.yx)) * signNotZero(p);
   return normalize(n);
 }
+
+// Gravas 2013, eq. 3.2.2: the normal weight ((n_a . n_b + 1) / 2)^10 of the blur and the upsampler, by squaring
+// (three multiplies instead of pow's log and exp).
+float normalSimilarity(vec3 a, vec3 b) {
+  float w = max(dot(a, b) * 0.5 + 0.5, 0.0);
+  float w2 = w * w;
+  float w8 = w2 * w2;
+  w8 *= w8;
+  return w8 * w2;
+}
