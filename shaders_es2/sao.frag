@@ -8,6 +8,7 @@
 //   DEPTH_HIERARCHY    0: every tap reads the G-buffer
 //                      1: far taps read levels 1..MAX_MIP_LEVEL, each its own texture (core GLES 2)
 //                      2: far taps read levels of one mipmapped texture with texture2DLodEXT (extension path)
+//                      3: every tap reads levels 0..5, regions of one atlas texture (one fetch, no branch)
 //   MAX_MIP_LEVEL, LOG_MAX_OFFSET   the hierarchy's depth and the SAO paper's level choice (see tapDepthCode)
 //
 // Output: R = ambient visibility A, GB = the centre's 16-bit depth code (the blur's key), A = 1.
@@ -33,6 +34,10 @@ uniform sampler2D u_level5;
 #elif DEPTH_HIERARCHY == 2
 uniform sampler2D u_depthMips;  // mip level j holds hierarchy level j + 1
 uniform vec2 u_depthMipsSize;   // size of its mip level 0 (a power of two)
+#elif DEPTH_HIERARCHY == 3
+uniform sampler2D u_depthAtlas;  // level 0 at the origin, levels 1 .. 5 in a column right of it
+uniform vec2 u_depthAtlasSize;
+uniform vec4 u_atlasLevelRows;   // first rows of levels 2 .. 5 (level 1 starts at row 0)
 #endif
 
 varying vec2 v_uv;
@@ -61,13 +66,19 @@ vec3 tapPoint(vec2 tapPixel, float log2TapDistance) {
   texel = texture2D(u_gbuffer, (pixel + 0.5) / u_gbufferSize);
 #else
   float level = clamp(floor(log2TapDistance) - float(LOG_MAX_OFFSET), 0.0, float(MAX_MIP_LEVEL));
+  float scale = exp2(level);
+  vec2 size = max(floor(u_gbufferSize / scale), vec2(1.0));  // floor(size0 / 2^m), at least 1
+  // SAO: ssP >> mipLevel, clamped to the level.
+  vec2 levelPixel = min(floor(tapPixel / scale), size - 1.0);
+#if DEPTH_HIERARCHY == 3
+  // Branch-free: the level's region of the atlas (x: 0 for level 0, else the G-buffer's width; y: its first row).
+  vec2 origin = vec2(step(0.5, level) * u_gbufferSize.x,
+                     dot(u_atlasLevelRows, vec4(equal(vec4(level), vec4(2.0, 3.0, 4.0, 5.0)))));
+  texel = texture2D(u_depthAtlas, (origin + levelPixel + 0.5) / u_depthAtlasSize);
+#else
   if (level < 0.5) {
-    texel = texture2D(u_gbuffer, (pixel + 0.5) / u_gbufferSize);
+    texel = vec4(0.0, 0.0, texture2D(u_gbuffer, (pixel + 0.5) / u_gbufferSize).ba);  // RG: no offset in the block
   } else {
-    float scale = exp2(level);
-    vec2 size = max(floor(u_gbufferSize / scale), vec2(1.0));  // floor(size0 / 2^m), at least 1
-    // SAO: ssP >> mipLevel, clamped to the level.
-    vec2 levelPixel = min(floor(tapPixel / scale), size - 1.0);
     vec2 uv = (levelPixel + 0.5) / size;
 #if DEPTH_HIERARCHY == 1
     if (level < 1.5) texel = texture2D(u_level1, uv);
@@ -79,8 +90,10 @@ vec3 tapPoint(vec2 tapPixel, float log2TapDistance) {
     // Mip level j of a power-of-two texture is u_depthMipsSize / 2^j texels; hierarchy level j + 1 fills its corner.
     texel = texture2DLodEXT(u_depthMips, uv * size * (0.5 * scale) / u_depthMipsSize, level - 1.0);
 #endif
-    pixel = levelPixel * scale + channelsToBytes(texel.rg);
   }
+#endif
+  // The picked pixel: its block's corner plus its place in the block (0 at level 0).
+  pixel = levelPixel * scale + channelsToBytes(texel.rg);
 #endif
   return viewPositionOnRay(farPlaneRay((pixel + 0.5) / u_gbufferSize), unpackLinearDepth(texel.ba));
 }

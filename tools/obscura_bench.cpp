@@ -22,6 +22,7 @@
 
 #include "core/AoSettings.h"
 #include "core/Error.h"
+#include "core/DepthHierarchyPass.h"
 #include "core/FetchFloorPass.h"
 #include "core/Renderer.h"
 #include "core/SaoKernel.h"
@@ -41,7 +42,7 @@ constexpr Pass kPasses[] = {Pass::GBuffer, Pass::Hierarchy, Pass::Sao, Pass::Blu
 
 struct Options {
   std::string outDir = "bench-results";
-  int frames = 12;
+  int frames = 15;
   HeadlessBackend backend = HeadlessBackend::OSMesa;
   bool quick = false;
 };
@@ -58,6 +59,12 @@ class Bench {
  public:
   Bench(const Options& options, HeadlessContext& context)
       : options_(options), context_(context), renderer_(context.caps()), csv_(options.outDir + "/bench.csv") {
+    for (DepthHierarchyPass::Storage storage :
+         {DepthHierarchyPass::Storage::SeparateTextures, DepthHierarchyPass::Storage::Atlas}) {
+      RendererOptions forced;
+      forced.hierarchyStorage = storage;
+      storageRenderers_.push_back(std::make_unique<Renderer>(context.caps(), forced));
+    }
     if (!csv_) throw InputError(options.outDir + "/bench.csv: cannot write");
     csv_ << "section,scene,width,height,preset,samples,radius_m,hierarchy,half_res,pass,median_ms\n";
   }
@@ -65,12 +72,13 @@ class Bench {
   void useScene(const BenchScene& scene) {
     if (current_ == &scene) return;
     renderer_.setScene(scene.scene);
+    for (auto& r : storageRenderers_) r->setScene(scene.scene);
     current_ = &scene;
   }
 
-  // Median per-pass times of `frames` frames of the final view (after one warm-up frame).
-  PassTimes measure(const std::string& section, const BenchScene& scene, int width, int height,
-                    const AoSettings& settings, const std::string& preset) {
+  // SAO pass medians for the same settings with the hierarchy stored as separate textures and as an atlas, taking
+  // turns frame by frame: {separate, atlas}.
+  std::pair<double, double> measureStorages(const BenchScene& scene, int width, int height, const AoSettings& settings) {
     useScene(scene);
     Camera camera = scene.camera;
     camera.width = width;
@@ -78,36 +86,86 @@ class Bench {
     const gl::RenderTarget output("bench output", width, height, GL_NEAREST, gl::RenderTarget::Depth::Renderbuffer,
                                   context_.caps().depth24);
     const OutputTarget target{output.framebuffer(), width, height, 0.0f};
-    renderer_.render(camera, settings, View::Final, target);
-    FinishPassTimer timer;
-    for (int frame = 0; frame < options_.frames; ++frame) renderer_.render(camera, settings, View::Final, target, &timer);
-    PassTimes times{};
-    for (Pass pass : kPasses) {
-      times[static_cast<size_t>(pass)] = timer.medianMs(pass);
-      if (timer.samples(pass).empty()) continue;
-      csv_ << section << "," << scene.name << "," << width << "," << height << "," << preset << ","
-           << settings.samples << "," << settings.radius << "," << (settings.depthHierarchy ? 1 : 0) << ","
-           << (settings.halfResolution ? 1 : 0) << "," << passName(pass) << "," << times[static_cast<size_t>(pass)]
-           << "\n";
-    }
-    return times;
+    std::vector<FinishPassTimer> timers(storageRenderers_.size());
+    for (auto& r : storageRenderers_) r->render(camera, settings, View::Final, target);
+    for (int frame = 0; frame < options_.frames; ++frame)
+      for (size_t i = 0; i < storageRenderers_.size(); ++i)
+        storageRenderers_[i]->render(camera, settings, View::Final, target, &timers[i]);
+    for (size_t i = 0; i < storageRenderers_.size(); ++i)
+      csv_ << "storage," << scene.name << "," << width << "," << height << ","
+           << DepthHierarchyPass::storageName(storageRenderers_[i]->hierarchyStorage()) << "," << settings.samples
+           << "," << settings.radius << ",1,0,sao," << timers[i].medianMs(Pass::Sao) << "\n";
+    return {timers[0].medianMs(Pass::Sao), timers[1].medianMs(Pass::Sao)};
   }
 
-  // The floor pass at the same size, sample count and a disk of `diskRadius` pixels.
-  double measureFloor(const BenchScene& scene, int width, int height, const AoSettings& settings, float diskRadius) {
-    measure("floor-setup", scene, width, height, settings, "medium");  // leaves the G-buffer of this view
-    FetchFloorPass floor(triangle_);
-    floor.render(renderer_.gbuffer().color(), settings.samples, settings.spiralTurns, diskRadius);  // warm-up
-    FinishPassTimer timer;
-    for (int frame = 0; frame < options_.frames; ++frame) {
-      timer.begin(Pass::Sao);
-      floor.render(renderer_.gbuffer().color(), settings.samples, settings.spiralTurns, diskRadius);
-      timer.end(Pass::Sao);
+  // Median per-pass times of `frames` frames of the final view for each of `configurations`, after one warm-up
+  // frame each. The configurations take turns frame by frame, so a slow spell of the machine (other processes,
+  // frequency changes) falls on all of them alike and the ratios between them stay sound.
+  std::vector<PassTimes> measure(const std::string& section, const BenchScene& scene, int width, int height,
+                                 const std::vector<AoSettings>& configurations) {
+    useScene(scene);
+    Camera camera = scene.camera;
+    camera.width = width;
+    camera.height = height;
+    const gl::RenderTarget output("bench output", width, height, GL_NEAREST, gl::RenderTarget::Depth::Renderbuffer,
+                                  context_.caps().depth24);
+    const OutputTarget target{output.framebuffer(), width, height, 0.0f};
+    for (const AoSettings& settings : configurations) renderer_.render(camera, settings, View::Final, target);
+    std::vector<FinishPassTimer> timers(configurations.size());
+    for (int frame = 0; frame < options_.frames; ++frame)
+      for (size_t c = 0; c < configurations.size(); ++c)
+        renderer_.render(camera, configurations[c], View::Final, target, &timers[c]);
+    std::vector<PassTimes> results;
+    for (size_t c = 0; c < configurations.size(); ++c) {
+      const AoSettings& settings = configurations[c];
+      PassTimes times{};
+      for (Pass pass : kPasses) {
+        times[static_cast<size_t>(pass)] = timers[c].medianMs(pass);
+        if (timers[c].samples(pass).empty()) continue;
+        const std::string presetName = settings.get("preset");
+        csv_ << section << "," << scene.name << "," << width << "," << height << ","
+             << (presetName.empty() ? "custom" : presetName) << ","
+             << settings.samples << "," << settings.radius << "," << (settings.depthHierarchy ? 1 : 0) << ","
+             << (settings.halfResolution ? 1 : 0) << "," << passName(pass) << ","
+             << times[static_cast<size_t>(pass)] << "\n";
+      }
+      results.push_back(times);
     }
-    const double ms = timer.medianMs(Pass::Sao);
+    return results;
+  }
+
+  PassTimes measure(const std::string& section, const BenchScene& scene, int width, int height,
+                    const AoSettings& settings) {
+    return measure(section, scene, width, height, std::vector<AoSettings>{settings}).front();
+  }
+
+  // The SAO pass and the floor pass at the same size and sample count (a disk of `diskRadius` pixels), taking turns
+  // frame by frame. Returns {SAO median ms, floor median ms}.
+  std::pair<double, double> measureAgainstFloor(const BenchScene& scene, int width, int height,
+                                                const AoSettings& settings, float diskRadius) {
+    useScene(scene);
+    Camera camera = scene.camera;
+    camera.width = width;
+    camera.height = height;
+    const gl::RenderTarget output("bench output", width, height, GL_NEAREST, gl::RenderTarget::Depth::Renderbuffer,
+                                  context_.caps().depth24);
+    const OutputTarget target{output.framebuffer(), width, height, 0.0f};
+    FetchFloorPass floor(triangle_);
+    renderer_.render(camera, settings, View::Final, target);
+    floor.render(renderer_.gbuffer().color(), settings.samples, settings.spiralTurns, diskRadius);  // warm-up
+    FinishPassTimer saoTimer, floorTimer;
+    for (int frame = 0; frame < options_.frames; ++frame) {
+      renderer_.render(camera, settings, View::Final, target, &saoTimer);
+      floorTimer.begin(Pass::Sao);
+      floor.render(renderer_.gbuffer().color(), settings.samples, settings.spiralTurns, diskRadius);
+      floorTimer.end(Pass::Sao);
+    }
+    const double sao = saoTimer.medianMs(Pass::Sao), floorMs = floorTimer.medianMs(Pass::Sao);
     csv_ << "floor," << scene.name << "," << width << "," << height << ",medium," << settings.samples << ","
-         << settings.radius << ",0,0,fetch-floor," << ms << "\n";
-    return ms;
+         << settings.radius << "," << (settings.depthHierarchy ? 1 : 0) << ",0,sao," << sao << "\n";
+    csv_ << "floor," << scene.name << "," << width << "," << height << ",medium," << settings.samples << ","
+         << settings.radius << ",0,0,fetch-floor," << floorMs << "\n";
+    return {sao, floorMs};
   }
 
   const Renderer& renderer() const { return renderer_; }
@@ -115,7 +173,8 @@ class Bench {
  private:
   const Options& options_;
   HeadlessContext& context_;
-  Renderer renderer_;
+  Renderer renderer_;  // the default storage (the atlas here: the headless contexts lack the mip-chain extensions)
+  std::vector<std::unique_ptr<Renderer>> storageRenderers_;  // forced: separate textures, atlas
   FullscreenTriangle triangle_;
   std::ofstream csv_;
   const BenchScene* current_ = nullptr;
@@ -208,58 +267,82 @@ int main(int argc, char** argv) {
         options.quick ? std::vector<std::pair<int, int>>{{640, 360}}
                       : std::vector<std::pair<int, int>>{{640, 360}, {1280, 720}, {1920, 1080}};
     for (const BenchScene& scene : scenes)
-      for (auto [w, h] : sizes) printPassRow(scene.name, w, h, bench.measure("passes", scene, w, h, defaults, "medium"));
+      for (auto [w, h] : sizes) printPassRow(scene.name, w, h, bench.measure("passes", scene, w, h, defaults));
 
     const int w = options.quick ? 640 : 1280, h = options.quick ? 360 : 720;
     std::printf("\n2. Radius sweep, built-in scene %dx%d: SAO pass ms (hierarchy pass ms)\n", w, h);
     std::printf("%10s %18s %18s\n", "radius m", "hierarchy on", "hierarchy off");
     std::ofstream sweep(options.outDir + "/radius_sweep.csv");
     sweep << "radius_m,sao_ms_hierarchy,sao_ms_no_hierarchy\n";
+    // Every radius and both hierarchy settings take turns frame by frame (see Bench::measure).
+    const std::vector<float> radii = {0.25f, 0.5f, 1.0f, 2.0f, 3.0f, 4.0f};
+    std::vector<AoSettings> sweepSettings;
+    for (float radius : radii) {
+      for (bool hierarchy : {true, false}) {
+        AoSettings settings = defaults;
+        settings.radius = radius;
+        settings.depthHierarchy = hierarchy;
+        sweepSettings.push_back(settings);
+      }
+    }
+    const std::vector<PassTimes> sweepTimes = bench.measure("radius", builtin, w, h, sweepSettings);
     double saoAt[2][2] = {};  // [hierarchy][r=0.5, r=4]
-    for (float radius : {0.25f, 0.5f, 1.0f, 2.0f, 3.0f, 4.0f}) {
-      AoSettings settings = defaults;
-      settings.radius = radius;
-      settings.depthHierarchy = true;
-      const PassTimes on = bench.measure("radius", builtin, w, h, settings, "medium");
-      settings.depthHierarchy = false;
-      const PassTimes off = bench.measure("radius", builtin, w, h, settings, "medium");
+    for (size_t r = 0; r < radii.size(); ++r) {
+      const PassTimes& on = sweepTimes[2 * r];
+      const PassTimes& off = sweepTimes[2 * r + 1];
       const double saoOn = on[static_cast<size_t>(Pass::Sao)], saoOff = off[static_cast<size_t>(Pass::Sao)];
-      std::printf("%10.2f %11.2f (%4.2f) %18.2f\n", radius, saoOn, on[static_cast<size_t>(Pass::Hierarchy)], saoOff);
-      sweep << radius << "," << saoOn << "," << saoOff << "\n";
-      if (radius == 0.5f) saoAt[1][0] = saoOn, saoAt[0][0] = saoOff;
-      if (radius == 4.0f) saoAt[1][1] = saoOn, saoAt[0][1] = saoOff;
+      std::printf("%10.2f %11.2f (%4.2f) %18.2f\n", radii[r], saoOn, on[static_cast<size_t>(Pass::Hierarchy)], saoOff);
+      sweep << radii[r] << "," << saoOn << "," << saoOff << "\n";
+      if (radii[r] == 0.5f) saoAt[1][0] = saoOn, saoAt[0][0] = saoOff;
+      if (radii[r] == 4.0f) saoAt[1][1] = saoOn, saoAt[0][1] = saoOff;
     }
     sweep.close();
     writePlot(options.outDir);
 
+    std::printf("\n2b. Hierarchy storage, built-in scene %dx%d: SAO pass ms\n", w, h);
+    std::printf("%10s %18s %18s\n", "radius m", "separate textures", "atlas");
+    for (float radius : {0.5f, 4.0f}) {
+      AoSettings settings = defaults;
+      settings.radius = radius;
+      const auto [separate, atlas] = bench.measureStorages(builtin, w, h, settings);
+      std::printf("%10.2f %18.2f %18.2f\n", radius, separate, atlas);
+    }
+
     std::printf("\n3. Sample-count sweep, built-in scene %dx%d: SAO pass ms\n", w, h);
-    for (int samples : {4, 8, 11, 16, 24, 32}) {
+    const std::vector<int> sampleCounts = {4, 8, 11, 16, 24, 32};
+    std::vector<AoSettings> sampleSettings;
+    for (int samples : sampleCounts) {
       AoSettings settings = defaults;
       settings.samples = samples;
       settings.spiralTurns = SaoKernel::bestSpiralTurns(samples);
-      const PassTimes t = bench.measure("samples", builtin, w, h, settings, "custom");
-      std::printf("%10d samples %9.2f ms\n", samples, t[static_cast<size_t>(Pass::Sao)]);
+      sampleSettings.push_back(settings);
     }
+    const std::vector<PassTimes> sampleTimes = bench.measure("samples", builtin, w, h, sampleSettings);
+    for (size_t i = 0; i < sampleCounts.size(); ++i)
+      std::printf("%10d samples %9.2f ms\n", sampleCounts[i], sampleTimes[i][static_cast<size_t>(Pass::Sao)]);
 
     std::printf("\n4. Quality presets, built-in scene %dx%d\n", w, h);
     printPassHeader();
+    std::vector<AoSettings> presetSettings;
     for (const PresetInfo& preset : qualityPresets()) {
       AoSettings settings = defaults;
       settings.applyPreset(preset.preset);
-      printPassRow(preset.name, w, h, bench.measure("presets", builtin, w, h, settings, preset.name));
+      presetSettings.push_back(settings);
     }
+    const std::vector<PassTimes> presetTimes = bench.measure("presets", builtin, w, h, presetSettings);
+    for (size_t i = 0; i < presetTimes.size(); ++i) printPassRow(qualityPresets()[i].name, w, h, presetTimes[i]);
 
     std::printf("\n5. Ratios (this run, built-in scene %dx%d)\n", w, h);
-    const PassTimes base = bench.measure("ratios", builtin, w, h, defaults, "medium");
-    const double sao = base[static_cast<size_t>(Pass::Sao)];
+    const PassTimes base = bench.measure("ratios", builtin, w, h, defaults);
     const Camera& camera = builtin.camera;
     const float distance = glm::length(camera.target - camera.eye);
     const float disk = std::min(static_cast<float>(h) / (2.0f * std::tan(camera.fovyRadians() * 0.5f)) *
                                     defaults.radius / distance,
                                 defaults.maxScreenRadius * static_cast<float>(h));
-    const double floor = bench.measureFloor(builtin, w, h, defaults, disk);
+    const auto [sao, floor] = bench.measureAgainstFloor(builtin, w, h, defaults, disk);
     std::printf("  SAO / G-buffer                         %6.2f   (%.2f / %.2f ms)\n",
-                sao / base[static_cast<size_t>(Pass::GBuffer)], sao, base[static_cast<size_t>(Pass::GBuffer)]);
+                base[static_cast<size_t>(Pass::Sao)] / base[static_cast<size_t>(Pass::GBuffer)],
+                base[static_cast<size_t>(Pass::Sao)], base[static_cast<size_t>(Pass::GBuffer)]);
     std::printf("  SAO(r=4 m) / SAO(r=0.5 m), hierarchy   %6.2f   (goal <= 1.15)\n", saoAt[1][1] / saoAt[1][0]);
     std::printf("  SAO(r=4 m) / SAO(r=0.5 m), no hierarchy%6.2f\n", saoAt[0][1] / saoAt[0][0]);
     std::printf("  SAO / fetch floor (%d fetches, disk %.0f px)  %6.2f   (%.2f / %.2f ms)\n", defaults.samples + 1,

@@ -63,6 +63,14 @@ export class Obscura extends EventTarget {
   // Sets a parameter from a string or number; throws ObscuraError with the core's message if refused.
   set(name, value) { this.call('obscura_set', ['string', 'string'], [name, String(value)]); }
   get view() { return this.text('obscura_view', [], []); }
+  // Forces how the depth hierarchy is stored: 'separate', 'atlas', 'mipchain' (needs EXT_shader_texture_lod and
+  // OES_fbo_render_mipmap) or 'auto' (the best the context offers; the default). Returns the storage now in use.
+  // The AO is the same whichever is used; they differ in speed.
+  setHierarchyStorage(name) {
+    const used = this.text('obscura_set_hierarchy_storage', ['string'], [name]);
+    this.changed();
+    return used;
+  }
   setView(mode) { this.call('obscura_set_view', ['string'], [mode]); }
 
   // The whole state (view, parameters that differ from their defaults, camera) as query-string text, and back.

@@ -20,6 +20,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "core/Error.h"
 #include "gl/GlObjects.h"
 #include "gl/RenderTarget.h"
 #include "platform/GpuPassTimer.h"
@@ -266,6 +267,25 @@ EMSCRIPTEN_KEEPALIVE const char* obscura_get_effective(const char* name) {
   std::string value;
   if (!attempt([&] { value = g_app->viewer().state().settings.effective(name); })) return nullptr;
   return returned(value);
+}
+
+// Forces how the depth hierarchy is stored ("separate", "atlas", "mipchain"; "auto": the best this context offers)
+// and returns the storage now in use; the page's tests compare the storages' AO on WebGL 1.
+EMSCRIPTEN_KEEPALIVE const char* obscura_set_hierarchy_storage(const char* name) {
+  std::string used;
+  if (!attempt([&] {
+        RendererOptions options;
+        const std::string wanted = name;
+        if (wanted == "separate") options.hierarchyStorage = DepthHierarchyPass::Storage::SeparateTextures;
+        else if (wanted == "atlas") options.hierarchyStorage = DepthHierarchyPass::Storage::Atlas;
+        else if (wanted == "mipchain") options.hierarchyStorage = DepthHierarchyPass::Storage::MipChain;
+        else if (wanted != "auto")
+          throw InputError("hierarchy storage: expected auto, separate, atlas or mipchain, got '" + wanted + "'");
+        used = DepthHierarchyPass::storageName(g_app->viewer().setRendererOptions(options));
+      }))
+    return nullptr;
+  g_app->changed();
+  return returned(used);
 }
 
 EMSCRIPTEN_KEEPALIVE int obscura_set_view(const char* mode) {

@@ -64,7 +64,7 @@ Renderer::Renderer(const gl::GlCaps& caps, const RendererOptions& options)
     : caps_(requireUsable(caps)),
       options_(options),
       gbuffer_(caps.depth24),
-      hierarchy_(triangle_, DepthHierarchyPass::storageFor(caps, options.allowDepthMipExtensions)),
+      hierarchy_(triangle_, caps, DepthHierarchyPass::storageFor(caps, options.hierarchyStorage)),
       sao_(triangle_),
       blur_(triangle_),
       upsample_(triangle_),

@@ -4,6 +4,7 @@
 //            -> forward lighting with AO on the ambient term (or a diagnostic view).
 // The platform layer owns the context and the output framebuffer; the Renderer owns every GL object it creates.
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -47,7 +48,9 @@ struct OutputTarget {
 struct RendererOptions {
   bool checkGlErrors = false;        // glGetError after every pass; a GL error throws GlError naming the pass
   bool allowUint32Indices = true;    // false simulates a context without OES_element_index_uint
-  bool allowDepthMipExtensions = true;  // false forces the core-GLES 2 depth hierarchy (separate textures)
+  // How the depth hierarchy is stored; unset: the extension mip chain where available, else the atlas
+  // (DepthHierarchyPass.h). Tests and benchmarks force each storage to compare them.
+  std::optional<DepthHierarchyPass::Storage> hierarchyStorage;
 };
 
 class Renderer {

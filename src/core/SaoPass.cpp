@@ -6,7 +6,7 @@
 namespace obscura {
 
 ProgramSpec SaoPass::programSpec(int samples, int spiralTurns, Falloff falloff, DepthSource source) {
-  static const char* sourceNames[] = {"gbuffer", "separate", "mipchain"};
+  static const char* sourceNames[] = {"gbuffer", "separate", "mipchain", "atlas"};
   ProgramSpec spec;
   spec.name = "sao[samples=" + std::to_string(samples) + ",turns=" + std::to_string(spiralTurns) +
               ",falloff=" + falloffName(falloff) + ",depth=" + sourceNames[static_cast<int>(source)] + "]";
@@ -26,7 +26,8 @@ std::vector<ProgramSpec> SaoPass::programSpecs() {
   std::vector<ProgramSpec> specs;
   for (int samples : {4, 8, 11, 16, 24, 32})
     for (Falloff falloff : {Falloff::Sao2012, Falloff::Alchemy2011})
-      for (DepthSource source : {DepthSource::GBufferOnly, DepthSource::SeparateTextures, DepthSource::MipChain})
+      for (DepthSource source : {DepthSource::GBufferOnly, DepthSource::SeparateTextures, DepthSource::MipChain,
+                                 DepthSource::Atlas})
         specs.push_back(programSpec(samples, SaoKernel::bestSpiralTurns(samples), falloff, source));
   return specs;
 }
@@ -48,9 +49,13 @@ const gl::Program& SaoPass::program(const AoSettings& settings, DepthSource sour
 void SaoPass::render(const gl::Texture2D& gbuffer, const DepthHierarchyPass* hierarchy, const FrameCamera& camera,
                      const AoSettings& settings, int aoScale) {
   DepthSource source = DepthSource::GBufferOnly;
-  if (hierarchy)
-    source = hierarchy->storage() == DepthHierarchyPass::Storage::MipChain ? DepthSource::MipChain
-                                                                            : DepthSource::SeparateTextures;
+  if (hierarchy) {
+    switch (hierarchy->storage()) {
+      case DepthHierarchyPass::Storage::SeparateTextures: source = DepthSource::SeparateTextures; break;
+      case DepthHierarchyPass::Storage::Atlas: source = DepthSource::Atlas; break;
+      case DepthHierarchyPass::Storage::MipChain: source = DepthSource::MipChain; break;
+    }
+  }
   const gl::Program& sao = program(settings, source);
   target_.bindForDrawing();
   sao.use();

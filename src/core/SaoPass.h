@@ -17,7 +17,7 @@ namespace obscura {
 class SaoPass {
  public:
   // How far taps reach their depth: the G-buffer only, or the hierarchy in one of its two storages.
-  enum class DepthSource { GBufferOnly = 0, SeparateTextures = 1, MipChain = 2 };
+  enum class DepthSource { GBufferOnly = 0, SeparateTextures = 1, MipChain = 2, Atlas = 3 };
 
   // The program variant for a sample count, spiral turns, falloff and depth source (compile-time constants).
   static ProgramSpec programSpec(int samples, int spiralTurns, Falloff falloff, DepthSource source);

@@ -151,6 +151,14 @@ void Viewer::contextLost() {
   renderer_.reset();
 }
 
+DepthHierarchyPass::Storage Viewer::setRendererOptions(const RendererOptions& options) {
+  auto renderer = std::make_unique<Renderer>(caps_, options);  // first: if it fails, nothing has changed
+  renderer->setScene(scene_);
+  options_ = options;
+  renderer_ = std::move(renderer);
+  return renderer_->hierarchyStorage();
+}
+
 void Viewer::contextRestored(const gl::GlCaps& caps) {
   caps_ = caps;
   auto renderer = std::make_unique<Renderer>(caps_, options_);

@@ -68,6 +68,11 @@ class Viewer {
   bool hasContext() const { return renderer_ != nullptr; }
   const gl::GlCaps& caps() const { return caps_; }
 
+  // Rebuilds the Renderer with other options (e.g. a forced depth-hierarchy storage, to compare the storages on
+  // this context); the scene, state and camera stay. Returns the storage now in use.
+  DepthHierarchyPass::Storage setRendererOptions(const RendererOptions& options);
+  const Renderer* renderer() const { return renderer_.get(); }
+
  private:
   struct KeyAction;
   static const std::vector<KeyAction>& keyActions();

@@ -1,0 +1,46 @@
+// The depth hierarchy's three storages on WebGL 1 (src/core/DepthHierarchyPass.h): separate textures and the atlas
+// (core WebGL 1) and the mip chain (OES_fbo_render_mipmap + EXT_shader_texture_lod) hold the same bytes, so the raw
+// AO must agree within 1/255 whichever one the shader reads.
+import assert from 'node:assert/strict';
+import { after, before, describe, test } from 'node:test';
+import { compareImages, openPage, snapshot, startBrowser, waitForDrawn } from './harness.mjs';
+
+let session;
+let page;
+
+describe('depth hierarchy storages on WebGL 1', () => {
+  before(async () => {
+    session = await startBrowser();
+    // A 3 m radius sends far taps to levels 3 to 5.
+    page = await openPage(await session.newContext(), `${session.baseUrl}?view=ao-raw&radius=3`);
+  });
+  after(async () => {
+    if (page) assert.deepEqual(page.errors, []);
+    await session?.close();
+  });
+
+  test('separate textures, atlas and mip chain give the same AO', { timeout: 180000 }, async () => {
+    const images = {};
+    for (const storage of ['separate', 'atlas', 'mipchain']) {
+      const used = await page.evaluate((s) => window.obscura.setHierarchyStorage(s), storage);
+      if (used !== storage) {
+        // Only the mip chain can be unavailable (it needs two extensions); the core paths always are.
+        assert.equal(storage, 'mipchain', `asked for ${storage}, got ${used}`);
+        console.log(`note: this WebGL 1 context lacks the mip-chain extensions; ${used} is used instead`);
+        continue;
+      }
+      await waitForDrawn(page);
+      images[storage] = await snapshot(page);
+    }
+    assert.ok(images.separate && images.atlas);
+    const names = Object.keys(images);
+    for (const other of names.slice(1)) {
+      const difference = compareImages(images[names[0]], images[other]);
+      console.log(`${other} vs ${names[0]}: mean ${difference.mean.toFixed(4)}, max ${difference.max}`);
+      assert.ok(difference.max <= 1, `${other} differs from ${names[0]} by up to ${difference.max}/255`);
+    }
+    // Back to the context's own choice, which the rest of the page uses.
+    const chosen = await page.evaluate(() => window.obscura.setHierarchyStorage('auto'));
+    assert.ok(['atlas', 'mipchain'].includes(chosen), chosen);
+  });
+});
