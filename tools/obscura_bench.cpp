@@ -69,6 +69,25 @@ class Bench {
     csv_ << "section,scene,width,height,preset,samples,radius_m,hierarchy,half_res,pass,median_ms\n";
   }
 
+  // The scene set on every renderer, its camera at the given size, and an offscreen target to draw into.
+  struct BenchView {
+    BenchView(Bench& bench, const BenchScene& scene, int width, int height)
+        : camera(sized(scene.camera, width, height)),
+          output("bench output", width, height, GL_NEAREST, gl::RenderTarget::Depth::Renderbuffer,
+                 bench.context_.caps().depth24),
+          target{output.framebuffer(), width, height, 0.0f} {
+      bench.useScene(scene);
+    }
+    static Camera sized(Camera camera, int width, int height) {
+      camera.width = width;
+      camera.height = height;
+      return camera;
+    }
+    Camera camera;
+    gl::RenderTarget output;
+    OutputTarget target;
+  };
+
   void useScene(const BenchScene& scene) {
     if (current_ == &scene) return;
     renderer_.setScene(scene.scene);
@@ -79,13 +98,9 @@ class Bench {
   // SAO pass medians for the same settings with the hierarchy stored as separate textures and as an atlas, taking
   // turns frame by frame: {separate, atlas}.
   std::pair<double, double> measureStorages(const BenchScene& scene, int width, int height, const AoSettings& settings) {
-    useScene(scene);
-    Camera camera = scene.camera;
-    camera.width = width;
-    camera.height = height;
-    const gl::RenderTarget output("bench output", width, height, GL_NEAREST, gl::RenderTarget::Depth::Renderbuffer,
-                                  context_.caps().depth24);
-    const OutputTarget target{output.framebuffer(), width, height, 0.0f};
+    const BenchView view(*this, scene, width, height);
+    const Camera& camera = view.camera;
+    const OutputTarget& target = view.target;
     std::vector<FinishPassTimer> timers(storageRenderers_.size());
     for (auto& r : storageRenderers_) r->render(camera, settings, View::Final, target);
     for (int frame = 0; frame < options_.frames; ++frame)
@@ -103,13 +118,9 @@ class Bench {
   // frequency changes) falls on all of them alike and the ratios between them stay sound.
   std::vector<PassTimes> measure(const std::string& section, const BenchScene& scene, int width, int height,
                                  const std::vector<AoSettings>& configurations) {
-    useScene(scene);
-    Camera camera = scene.camera;
-    camera.width = width;
-    camera.height = height;
-    const gl::RenderTarget output("bench output", width, height, GL_NEAREST, gl::RenderTarget::Depth::Renderbuffer,
-                                  context_.caps().depth24);
-    const OutputTarget target{output.framebuffer(), width, height, 0.0f};
+    const BenchView view(*this, scene, width, height);
+    const Camera& camera = view.camera;
+    const OutputTarget& target = view.target;
     for (const AoSettings& settings : configurations) renderer_.render(camera, settings, View::Final, target);
     std::vector<FinishPassTimer> timers(configurations.size());
     for (int frame = 0; frame < options_.frames; ++frame)
@@ -143,13 +154,9 @@ class Bench {
   // frame by frame. Returns {SAO median ms, floor median ms}.
   std::pair<double, double> measureAgainstFloor(const BenchScene& scene, int width, int height,
                                                 const AoSettings& settings, float diskRadius) {
-    useScene(scene);
-    Camera camera = scene.camera;
-    camera.width = width;
-    camera.height = height;
-    const gl::RenderTarget output("bench output", width, height, GL_NEAREST, gl::RenderTarget::Depth::Renderbuffer,
-                                  context_.caps().depth24);
-    const OutputTarget target{output.framebuffer(), width, height, 0.0f};
+    const BenchView view(*this, scene, width, height);
+    const Camera& camera = view.camera;
+    const OutputTarget& target = view.target;
     FetchFloorPass floor(triangle_);
     renderer_.render(camera, settings, View::Final, target);
     floor.render(renderer_.gbuffer().color(), settings.samples, settings.spiralTurns, diskRadius);  // warm-up
