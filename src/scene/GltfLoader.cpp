@@ -610,7 +610,7 @@ bool readWholeFile(std::vector<unsigned char>* out, std::string* err, const std:
   }
   out->resize(static_cast<size_t>(size));
   file.seekg(0);
-  file.read(reinterpret_cast<char*>(out->data()), size);
+  file.read(reinterpret_cast<char*>(out->data()), static_cast<std::streamsize>(size));
   return file.good() || file.eof();
 }
 
@@ -705,7 +705,7 @@ Scene loadGltfFile(const std::string& path, GltfLoadReport* report, const GltfLi
     throw InputError(path + ": file is larger than " + std::to_string(limits.maxFileBytes) + " bytes");
   std::vector<std::uint8_t> bytes(static_cast<size_t>(size));
   file.seekg(0);
-  file.read(reinterpret_cast<char*>(bytes.data()), size);
+  file.read(reinterpret_cast<char*>(bytes.data()), static_cast<std::streamsize>(size));
   if (!file) throw InputError(path + ": cannot read file");
   FileResolver resolver;
   const size_t slash = path.find_last_of('/');
