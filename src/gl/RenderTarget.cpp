@@ -54,9 +54,21 @@ RenderTarget::RenderTarget(const std::string& name, int width, int height, GLenu
   if (depth == Depth::Renderbuffer) {
     depth_ = RenderbufferHandle::create();
     glBindRenderbuffer(GL_RENDERBUFFER, depth_.id());
-    // Core GLES 2 guarantees only 16-bit depth renderbuffers; OES_depth24 gives 24.
-    glRenderbufferStorage(GL_RENDERBUFFER, depth24 ? GL_DEPTH_COMPONENT24_OES : GL_DEPTH_COMPONENT16, width, height);
-    glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_RENDERBUFFER, depth_.id());
+    // Core GLES 2 guarantees only 16-bit depth renderbuffers; OES_depth24 gives 24. WebGL 1 has no OES_depth24 but
+    // has a core DEPTH_STENCIL renderbuffer (24-bit depth in practice): with 16 bits, a face seen edge-on at a
+    // crease wins the odd pixel and SAO finds it fully occluded (dark dots in the browser, see README's parity).
+#if defined(__EMSCRIPTEN__)
+    constexpr GLenum kWebGlDepthStencil = 0x84F9, kWebGlDepthStencilAttachment = 0x821A;  // WebGL 1 constants
+    if (!depth24) {
+      glRenderbufferStorage(GL_RENDERBUFFER, kWebGlDepthStencil, width, height);
+      glFramebufferRenderbuffer(GL_FRAMEBUFFER, kWebGlDepthStencilAttachment, GL_RENDERBUFFER, depth_.id());
+    } else
+#endif
+    {
+      glRenderbufferStorage(GL_RENDERBUFFER, depth24 ? GL_DEPTH_COMPONENT24_OES : GL_DEPTH_COMPONENT16, width,
+                            height);
+      glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_RENDERBUFFER, depth_.id());
+    }
     glBindRenderbuffer(GL_RENDERBUFFER, 0);
   }
   try {
