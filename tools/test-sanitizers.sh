@@ -6,7 +6,10 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 jobs=$(nproc 2>/dev/null || echo 2)
-cmake -S . -B build-asan -DCMAKE_BUILD_TYPE=RelWithDebInfo -DOBSCURA_SANITIZE=ON >/dev/null
+# -O1 -g1, as the AddressSanitizer docs suggest: line tables are enough for symbolised reports, and the build takes
+# half the time of -O2 -g (3 against 6 minutes on 2 cores), which is most of this leg.
+cmake -S . -B build-asan -DCMAKE_BUILD_TYPE=Debug "-DCMAKE_C_FLAGS_DEBUG=-O1 -g1" "-DCMAKE_CXX_FLAGS_DEBUG=-O1 -g1" \
+  -DOBSCURA_SANITIZE=ON >/dev/null
 cmake --build build-asan --target obscura_cpu_tests obscura_gpu_tests obscura-render -j"$jobs"
 
 export ASAN_OPTIONS="detect_leaks=1:abort_on_error=0:halt_on_error=1:strict_string_checks=1"
