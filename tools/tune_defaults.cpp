@@ -615,8 +615,10 @@ int main(int argc, char** argv) {
     for (size_t i = 0; i < views.size(); ++i) {
       TuningView& view = views[i];
       view.spec = config.views[i];
-      const Scene scene = view.spec.input.loadScene("obscura-tune");
-      view.camera = view.spec.input.camera(scene);
+      SceneInput::Loaded input = view.spec.input.load();
+      view.spec.input.printWarnings("obscura-tune", input.warnings);
+      const Scene scene = std::move(input.scene);
+      view.camera = input.camera;
       loadReferences(view, scene, config, cache, threads);
       view.renderer = std::make_unique<Renderer>(context.caps());
       view.renderer->setScene(scene);

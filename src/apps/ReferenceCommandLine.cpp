@@ -82,8 +82,10 @@ int runReference(const ReferenceOptions& options) {
   }
   try {
     validateReferenceSettings(options.trace);
-    const Scene scene = options.input.loadScene("obscura-reference");
-    const Camera camera = options.input.camera(scene);
+    const SceneInput::Loaded input = options.input.load();
+    options.input.printWarnings("obscura-reference", input.warnings);
+    const Scene& scene = input.scene;
+    const Camera& camera = input.camera;
 
     const auto start = std::chrono::steady_clock::now();
     const AoReferenceTracer tracer(scene, options.trace.threads);

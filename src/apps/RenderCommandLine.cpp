@@ -89,14 +89,16 @@ int runRender(const RenderOptions& options) {
   }
   try {
     // Input first, so a bad file is reported before any GL work.
-    const Scene scene = options.input.loadScene("obscura-render");
-    const Camera camera = options.input.camera(scene);
+    const SceneInput::Loaded input = options.input.load();
+    const Scene& scene = input.scene;
+    const Camera& camera = input.camera;
 
     HeadlessContext context(options.backend);
     if (std::max(camera.width, camera.height) > context.caps().maxRenderSize())
       throw InputError("--size: " + std::to_string(camera.width) + "x" + std::to_string(camera.height) +
                        " exceeds this context's limit of " + std::to_string(context.caps().maxRenderSize()) +
                        " per side");
+    options.input.printWarnings("obscura-render", input.warnings);  // every input checked: a refusal stays one line
     RendererOptions rendererOptions;
     rendererOptions.checkGlErrors = true;
     Renderer renderer(context.caps(), rendererOptions);

@@ -63,25 +63,29 @@ void SceneInput::check() const {
   if (fit && !cameraPath.empty()) throw InputError("--camera and --fit exclude each other");
 }
 
-Scene SceneInput::loadScene(const char* tool) const {
+SceneInput::Loaded SceneInput::load() const {
+  Loaded loaded;
+  if (!cameraPath.empty()) loaded.camera = Camera::fromJsonFile(cameraPath);
   GltfLoadReport report;
-  Scene scene = scenePath.empty() ? makeBuiltinScene() : loadGltfFile(scenePath, &report);
-  for (const std::string& warning : report.warnings)
-    std::cerr << tool << ": warning: " << scenePath << ": " << warning << "\n";
-  if (sceneScale != 1.0f) scaleScene(scene, sceneScale);
-  return scene;
+  loaded.scene = scenePath.empty() ? makeBuiltinScene() : loadGltfFile(scenePath, &report);
+  loaded.warnings = std::move(report.warnings);
+  if (sceneScale != 1.0f) scaleScene(loaded.scene, sceneScale);
+  if (cameraPath.empty()) {
+    // Fitted at the output size: the frustum's aspect decides how much room the bounds need.
+    if (fit || !scenePath.empty())
+      loaded.camera = Camera::fit(loaded.scene.worldBounds(), width > 0 ? width : 1280, height > 0 ? height : 720);
+    else
+      loaded.camera = builtinSceneCamera();
+  }
+  if (width > 0) {
+    loaded.camera.width = width;
+    loaded.camera.height = height;
+  }
+  return loaded;
 }
 
-Camera SceneInput::camera(const Scene& scene) const {
-  Camera camera;
-  if (!cameraPath.empty()) camera = Camera::fromJsonFile(cameraPath);
-  else if (fit || !scenePath.empty()) camera = Camera::fit(scene.worldBounds(), 1280, 720);
-  else camera = builtinSceneCamera();
-  if (width > 0) {
-    camera.width = width;
-    camera.height = height;
-  }
-  return camera;
+void SceneInput::printWarnings(const char* tool, const std::vector<std::string>& warnings) const {
+  for (const std::string& warning : warnings) std::cerr << tool << ": warning: " << scenePath << ": " << warning << "\n";
 }
 
 std::string sceneInputUsage() {

@@ -28,11 +28,18 @@ struct SceneInput {
   // Throws InputError if the options contradict each other (--camera with --fit).
   void check() const;
 
-  // Loads the scene (scaled), printing the loader's warnings to stderr as "<tool>: warning: <file>: ...".
-  // Throws InputError naming the file on a bad one.
-  Scene loadScene(const char* tool) const;
-  // The camera for `scene`: the JSON file, the fitted one, or the built-in scene's; --size applied.
-  Camera camera(const Scene& scene) const;
+  // What load() returns: the scene (scaled), its camera (the JSON file's, the one fitted to the scene at the
+  // output size, or the built-in scene's; --size applied) and the loader's warnings, not yet printed.
+  struct Loaded {
+    Scene scene;
+    Camera camera;
+    std::vector<std::string> warnings;
+  };
+  // Reads the camera file, then the scene. Throws InputError naming the file on a bad one. The warnings are left to
+  // the caller to print (printWarnings) once every input has been checked, so that a refusal stays one line.
+  Loaded load() const;
+  // Prints `warnings` to stderr as "<tool>: warning: <file>: ...".
+  void printWarnings(const char* tool, const std::vector<std::string>& warnings) const;
 };
 
 // The usage lines of the options above, for --help texts.
