@@ -39,8 +39,8 @@ void main() {
 
   float sum = 0.0, weightSum = 0.0;
   float nearestAo = 1.0, nearestDelta = 1e20;
-  for (int j = 0; j < 2; ++j) {
-    for (int i = 0; i < 2; ++i) {
+  for (int j = 0; j < 2; j++) {
+    for (int i = 0; i < 2; i++) {
       vec2 offset = vec2(float(i), float(j));
       vec2 aoPixel = clamp(base + offset, vec2(0.0), u_aoSize - 1.0);
       vec4 candidate = texture2D(u_ao, (aoPixel + 0.5) / u_aoSize);

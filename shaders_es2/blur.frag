@@ -57,7 +57,7 @@ void main() {
 
   float sum = centre.r;
   float weightSum = 1.0;
-  for (int i = -BLUR_RADIUS; i <= BLUR_RADIUS; ++i) {
+  for (int i = -BLUR_RADIUS; i <= BLUR_RADIUS; i++) {
     if (i == 0) continue;
     vec2 tapPixel = aoPixel + u_stepPixels * float(i);
     vec4 tap = texture2D(u_ao, (tapPixel + 0.5) / u_aoSize);

@@ -29,7 +29,7 @@ void main() {
   // The output is the viewport of level m; v_uv spans it.
   vec2 levelPixel = floor(v_uv * levelSize(u_level));
   vec2 p = levelPixel;
-  for (int step = 0; step < MAX_MIP_LEVEL; ++step) {
+  for (int step = 0; step < MAX_MIP_LEVEL; step++) {
     float k = u_level - float(step);  // going from level k to level k - 1
     if (k < 0.5) break;
     p = min(2.0 * p + vec2(mod(p.y, 2.0), mod(p.x, 2.0)), levelSize(k - 1.0) - 1.0);

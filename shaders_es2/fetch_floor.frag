@@ -11,6 +11,6 @@ varying vec2 v_uv;
 
 void main() {
   vec4 sum = texture2D(u_gbuffer, v_uv);
-  for (int i = 0; i < NUM_SAMPLES; ++i) sum += texture2D(u_gbuffer, v_uv + u_offsets[i]);
+  for (int i = 0; i < NUM_SAMPLES; i++) sum += texture2D(u_gbuffer, v_uv + u_offsets[i]);
   gl_FragColor = sum;
 }

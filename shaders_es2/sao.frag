@@ -130,7 +130,7 @@ void main() {
   float spin = rotationAngle(aoPixel);
 
   float sum = 0.0;
-  for (int i = 0; i < NUM_SAMPLES; ++i) {
+  for (int i = 0; i < NUM_SAMPLES; i++) {
     float alpha = (float(i) + 0.5) * (1.0 / float(NUM_SAMPLES));
     float angle = alpha * (float(NUM_SPIRAL_TURNS) * kTwoPi) + spin;
     float tapDistance = alpha * diskRadius;

@@ -1,18 +1,26 @@
 #!/usr/bin/env bash
 # Validates every program variant, exactly as the renderer composes it, with glslangValidator (GLSL ES 1.00 because
 # each source starts with "#version 100"). Usage: check_shaders_glslang.sh <obscura-shaders binary>
+#
+# glslang-gles2-limits.conf is glslangValidator's default resource file (glslangValidator -c) with two changes:
+# - the limitations of GLSL ES 1.00 Appendix A switched on (glslang waives them by default): for loops whose index
+#   is initialised, compared and stepped only as "i++, i--, i += c, i -= c" with constants (so "++i" is refused),
+#   no while / do-while, and no dynamic indexing beyond what Appendix A requires of every implementation;
+# - OpenGL ES 2.0's minimum texture units, vertex attributes and draw buffers (ES 2.0 spec, table 6.20), so a
+#   shader that only runs where a driver offers more is caught.
 set -euo pipefail
+limits="$(dirname "$0")/glslang-gles2-limits.conf"
 dump=$(mktemp -d)
 trap 'rm -rf "$dump"' EXIT
 "$1" --dump "$dump"
 count=0
 for file in "$dump"/*.vert "$dump"/*.frag; do
-  if ! out=$(glslangValidator "$file" 2>&1); then
+  if ! out=$(glslangValidator "$limits" "$file" 2>&1); then
     echo "glslangValidator rejected $(basename "$file"):"
     echo "$out"
     exit 1
   fi
   count=$((count + 1))
 done
-echo "glslangValidator accepted $count shader stages as GLSL ES 1.00"
+echo "glslangValidator accepted $count shader stages as GLSL ES 1.00 under Appendix A and GLES 2 minimum limits"
 [ "$count" -ge 40 ]
