@@ -1,5 +1,6 @@
 // View-space positions rebuilt from the packed G-buffer of a known plane match the true ones within the depth
-// quantisation (CPU mirror core/ViewReconstruction.h over the G-buffer the GPU wrote).
+// quantisation: by the CPU mirror (core/ViewReconstruction.h) over the G-buffer the GPU wrote, and by the shaders'
+// own lib/reconstruct.glsl, with the far-plane ray interpolated by fullscreen.vert as the passes use it.
 #include <gtest/gtest.h>
 
 #include <glm/geometric.hpp>
@@ -7,6 +8,8 @@
 #include "TestSupport.h"
 #include "core/FrameContext.h"
 #include "core/LinearDepthPacking.h"
+#include "core/ShaderLibrary.h"
+#include "gl/PipelineState.h"
 
 using namespace obscura;
 
@@ -17,6 +20,64 @@ struct Case {
   glm::vec3 eye, target;
   float near, far;
 };
+
+// The same check in the shader: for each G-buffer pixel, R = 1 where geometry was drawn, G = (error / bound) / 2 of
+// the position lib/reconstruct.glsl rebuilds from the interpolated far-plane ray and the packed depth.
+const char* kShaderCheck = R"(
+#include "lib/precision.glsl"
+#include "lib/packing.glsl"
+#include "lib/reconstruct.glsl"
+uniform sampler2D u_gbuffer;
+uniform vec2 u_size;
+uniform vec3 u_planeNormal;    // view space
+uniform float u_planeOffset;   // dot(point on the plane, normal)
+uniform float u_halfDepthStep; // half a depth code, metres
+varying vec2 v_uv;
+varying vec3 v_farRay;
+void main() {
+  vec4 g = texture2D(u_gbuffer, (floor(v_uv * u_size) + 0.5) / u_size);
+  if (isBackgroundCode(unpackDepthCode(g.ba))) {
+    gl_FragColor = vec4(0.0);
+    return;
+  }
+  vec3 rebuilt = viewPositionOnRay(v_farRay, unpackLinearDepth(g.ba));
+  vec3 truth = v_farRay * (u_planeOffset / dot(v_farRay, u_planeNormal));
+  float bound = u_halfDepthStep * length(v_farRay) / u_farPlane + 1e-5 * length(truth);
+  gl_FragColor = vec4(1.0, clamp(length(rebuilt - truth) / bound, 0.0, 2.0) * 0.5, 0.0, 1.0);
+}
+)";
+
+void checkPlaneInTheShader(const Case& c, const Renderer& renderer, const FrameCamera& frame, const glm::vec3& nv,
+                           const glm::vec3& pv) {
+  const gl::RenderTarget& gbuffer = renderer.gbuffer();
+  const gl::Program program("reconstruction check", ShaderLibrary::compose("fullscreen.vert", {}, {}),
+                            ShaderLibrary::composeText(kShaderCheck, {}, {}));
+  const gl::RenderTarget target("reconstruction check", gbuffer.width(), gbuffer.height(), GL_NEAREST,
+                                gl::RenderTarget::Depth::None, false);
+  target.bindForDrawing();
+  program.use();
+  setReconstructionUniforms(program, frame.reconstruction);
+  gbuffer.color().bind(0);
+  program.set("u_gbuffer", 0);
+  program.set("u_size", glm::vec2(gbuffer.width(), gbuffer.height()));
+  program.set("u_planeNormal", nv);
+  program.set("u_planeOffset", glm::dot(pv, nv));
+  program.set("u_halfDepthStep", 0.5f * (c.far - c.near) / 65535.0f);
+  const FullscreenTriangle triangle;
+  triangle.draw();
+  gl::restoreBaselineState();
+  const std::vector<std::uint8_t> pixels = target.readRgba();
+  glBindFramebuffer(GL_FRAMEBUFFER, 0);
+  int checked = 0, worst = 0;
+  for (size_t i = 0; i < pixels.size(); i += 4) {
+    if (pixels[i] != 255) continue;
+    ++checked;
+    worst = std::max(worst, int(pixels[i + 1]));
+  }
+  EXPECT_GT(checked, gbuffer.width() * gbuffer.height() / 2) << c.name;
+  // 128 is a ratio of 1.0; one more step of slack for the 8-bit write.
+  EXPECT_LE(worst, 129) << c.name << ": the shader's worst error is " << worst / 127.5 << " x the quantisation bound";
+}
 
 void checkPlane(const Case& c) {
   // A large tilted plane through (0, 0, 0) with normal n (world space).
@@ -58,6 +119,7 @@ void checkPlane(const Case& c) {
   }
   EXPECT_GT(checked, camera.width * camera.height / 2) << c.name;
   EXPECT_LE(worstRatio, 1.0) << c.name << ": worst error is " << worstRatio << " x the quantisation bound";
+  checkPlaneInTheShader(c, renderer, frame, nv, pv);
 }
 
 }  // namespace
