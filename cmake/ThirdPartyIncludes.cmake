@@ -20,7 +20,7 @@ foreach(link IN LISTS _links)
   list(GET parts 1 target)
   if(NOT EXISTS "${target}")
     message(FATAL_ERROR "Missing ${target}: install libglm-dev libtinygltf-dev nlohmann-json3-dev libstb-dev "
-                        "(tools/setup.sh does).")
+                        "(tools/install-deps.sh does).")
   endif()
   file(CREATE_LINK "${target}" "${_mirror}/${name}" SYMBOLIC)
 endforeach()
