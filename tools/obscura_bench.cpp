@@ -2,8 +2,9 @@
 //
 //   obscura-bench [--out DIR] [--frames N] [--backend osmesa|egl] [--quick]
 //
-// Prints tables and writes DIR/bench.csv (every measurement), DIR/radius_sweep.csv and DIR/radius_sweep.png
-// (gnuplot). Every pass is bounded by glFinish on both sides and reported as the median over N frames.
+// Prints tables and writes DIR/bench.csv (every measurement), DIR/ratios.csv, DIR/radius_sweep.csv and
+// DIR/radius_sweep.png (gnuplot). Every pass is bounded by glFinish on both sides and reported as the median over N
+// frames.
 // Sections:
 //   1. per-pass ms at 640x360, 1280x720 and 1920x1080 on the built-in scene and on 2CylinderEngine.glb
 //   2. radius sweep 0.25 .. 4 m, depth hierarchy on and off
@@ -20,6 +21,7 @@
 #include <string>
 #include <vector>
 
+#include "apps/SceneInput.h"
 #include "core/AoSettings.h"
 #include "core/Error.h"
 #include "core/DepthHierarchyPass.h"
@@ -37,6 +39,7 @@ using namespace obscura;
 namespace {
 
 const char* kEnginePath = "/usr/share/assimp/models/glTF2/2CylinderEngine-glTF-Binary/2CylinderEngine.glb";
+constexpr float kEngineScale = 0.01f;
 constexpr Pass kPasses[] = {Pass::GBuffer, Pass::Hierarchy, Pass::Sao, Pass::BlurHorizontal,
                             Pass::BlurVertical, Pass::Upsample, Pass::Composite};
 
@@ -260,7 +263,10 @@ int main(int argc, char** argv) {
 
     std::vector<BenchScene> scenes;
     scenes.push_back({"builtin", makeBuiltinScene(), builtinSceneCamera()});
+    // The engine is modelled in centimetres (about 5 x 7 x 4 m once scaled); unscaled, r = 1 m would be a tenth of a
+    // bolt and SAO's disk about a pixel. The tuning views scale it the same way (tools/tuning-views.json).
     Scene engine = loadGltfFile(kEnginePath);
+    scaleScene(engine, kEngineScale);
     const Camera engineCamera = Camera::fit(engine.worldBounds(), 1280, 720);
     scenes.push_back({"2CylinderEngine", std::move(engine), engineCamera});
     Bench bench(options, context);
@@ -308,11 +314,12 @@ int main(int argc, char** argv) {
 
     std::printf("\n2b. Hierarchy storage, built-in scene %dx%d: SAO pass ms\n", w, h);
     std::printf("%10s %18s %18s\n", "radius m", "separate textures", "atlas");
-    for (float radius : {0.5f, 4.0f}) {
+    std::pair<double, double> storageAt[2];  // (separate, atlas) at r = 0.5 m and r = 4 m
+    for (int i = 0; i < 2; ++i) {
       AoSettings settings = defaults;
-      settings.radius = radius;
-      const auto [separate, atlas] = bench.measureStorages(builtin, w, h, settings);
-      std::printf("%10.2f %18.2f %18.2f\n", radius, separate, atlas);
+      settings.radius = i == 0 ? 0.5f : 4.0f;
+      storageAt[i] = bench.measureStorages(builtin, w, h, settings);
+      std::printf("%10.2f %18.2f %18.2f\n", settings.radius, storageAt[i].first, storageAt[i].second);
     }
 
     std::printf("\n3. Sample-count sweep, built-in scene %dx%d: SAO pass ms\n", w, h);
@@ -347,14 +354,27 @@ int main(int argc, char** argv) {
                                     defaults.radius / distance,
                                 defaults.maxScreenRadius * static_cast<float>(h));
     const auto [sao, floor] = bench.measureAgainstFloor(builtin, w, h, defaults, disk);
-    std::printf("  SAO / G-buffer                         %6.2f   (%.2f / %.2f ms)\n",
-                base[static_cast<size_t>(Pass::Sao)] / base[static_cast<size_t>(Pass::GBuffer)],
-                base[static_cast<size_t>(Pass::Sao)], base[static_cast<size_t>(Pass::GBuffer)]);
-    std::printf("  SAO(r=4 m) / SAO(r=0.5 m), hierarchy   %6.2f   (goal <= 1.15)\n", saoAt[1][1] / saoAt[1][0]);
-    std::printf("  SAO(r=4 m) / SAO(r=0.5 m), no hierarchy%6.2f\n", saoAt[0][1] / saoAt[0][0]);
-    std::printf("  SAO / fetch floor (%d fetches, disk %.0f px)  %6.2f   (%.2f / %.2f ms)\n", defaults.samples + 1,
-                disk, sao / floor, sao, floor);
-    std::printf("\nobscura-bench: wrote %s/bench.csv, radius_sweep.csv, radius_sweep.png\n", options.outDir.c_str());
+    const double saoMs = base[static_cast<size_t>(Pass::Sao)], gbufferMs = base[static_cast<size_t>(Pass::GBuffer)];
+    // Printed and written to DIR/ratios.csv, each with the two figures it divides.
+    std::ofstream ratios(options.outDir + "/ratios.csv");
+    ratios << "ratio,value,numerator_ms,denominator_ms\n";
+    auto ratio = [&](const char* label, const char* key, double numerator, double denominator, const char* note) {
+      std::printf("  %-44s %6.2f   (%.2f / %.2f ms)%s\n", label, numerator / denominator, numerator, denominator, note);
+      ratios << key << "," << numerator / denominator << "," << numerator << "," << denominator << "\n";
+    };
+    ratio("SAO / G-buffer", "sao_over_gbuffer", saoMs, gbufferMs, "");
+    ratio("SAO(r=4 m) / SAO(r=0.5 m), hierarchy (default)", "sao_r4_over_r05_hierarchy", saoAt[1][1], saoAt[1][0],
+          "   goal <= 1.15");
+    ratio("SAO(r=4 m) / SAO(r=0.5 m), no hierarchy", "sao_r4_over_r05_no_hierarchy", saoAt[0][1], saoAt[0][0], "");
+    ratio("SAO(r=4 m) / SAO(r=0.5 m), separate textures", "sao_r4_over_r05_separate_textures", storageAt[1].first,
+          storageAt[0].first, "");
+    ratio("SAO(r=4 m) / SAO(r=0.5 m), atlas", "sao_r4_over_r05_atlas", storageAt[1].second, storageAt[0].second, "");
+    const std::string floorLabel =
+        "SAO / fetch floor (" + std::to_string(defaults.samples + 1) + " fetches, disk " +
+        std::to_string(static_cast<int>(std::lround(disk))) + " px)";
+    ratio(floorLabel.c_str(), "sao_over_fetch_floor", sao, floor, "");
+    std::printf("\nobscura-bench: wrote %s/bench.csv, ratios.csv, radius_sweep.csv, radius_sweep.png\n",
+                options.outDir.c_str());
     return 0;
   } catch (const InputError& e) {
     std::fprintf(stderr, "obscura-bench: %s\n", e.what());
