@@ -7,6 +7,7 @@
 #include "core/Error.h"
 #include "gl/GlObjects.h"
 #include "gl/PipelineState.h"
+#include "gl/RenderTarget.h"
 #include "scene/BuiltinScene.h"
 #include "scene/GltfLoader.h"
 #include "scene/Primitives.h"
@@ -58,6 +59,56 @@ TEST(Resources, AGlErrorIsCaughtAndAttributed) {
   }
   EXPECT_EQ(glGetError(), static_cast<GLenum>(GL_NO_ERROR));
   EXPECT_NO_THROW(test::render(renderer, builtinSceneCamera(32, 24), AoSettings{}, View::Final));
+}
+
+// An error raised inside a pass is blamed on that pass: a timer hook (called as each pass ends, before the check)
+// raises GL_INVALID_ENUM at the end of the chosen pass.
+TEST(Resources, AGlErrorRaisedInAPassNamesThatPass) {
+  struct ErrorAtTheEndOf : PassTimer {
+    Pass target;
+    explicit ErrorAtTheEndOf(Pass p) : target(p) {}
+    void begin(Pass) override {}
+    void end(Pass pass) override {
+      if (pass == target) glEnable(0x1234);
+    }
+  };
+  Renderer renderer = test::makeRenderer();
+  renderer.setScene(makeBuiltinScene());
+  const Camera camera = builtinSceneCamera(32, 24);
+  const gl::RenderTarget output("output", camera.width, camera.height, GL_NEAREST,
+                                gl::RenderTarget::Depth::Renderbuffer, test::context().caps().depth24);
+  for (int p = 0; p < static_cast<int>(Pass::Count); ++p) {
+    const Pass pass = static_cast<Pass>(p);
+    AoSettings settings;
+    settings.halfResolution = pass == Pass::Upsample;  // the upsampler runs only for half-resolution AO
+    ErrorAtTheEndOf timer(pass);
+    try {
+      renderer.render(camera, settings, View::Final,
+                      OutputTarget{output.framebuffer(), camera.width, camera.height, 0.0f}, &timer);
+      ADD_FAILURE() << "the GL error raised in " << passName(pass) << " went unnoticed";
+    } catch (const GlError& e) {
+      EXPECT_NE(std::string(e.what()).find(std::string("after pass ") + passName(pass)), std::string::npos)
+          << e.what();
+    }
+    gl::restoreBaselineState();  // the frame was abandoned mid-way
+  }
+  glBindFramebuffer(GL_FRAMEBUFFER, 0);
+  EXPECT_EQ(glGetError(), static_cast<GLenum>(GL_NO_ERROR));
+}
+
+TEST(Resources, AnIncompleteFramebufferIsNamedWithItsReason) {
+  test::context();
+  try {
+    // A zero-sized colour attachment: GL_FRAMEBUFFER_INCOMPLETE_ATTACHMENT (or, on some drivers, missing).
+    const gl::RenderTarget target("empty target", 0, 0, GL_NEAREST, gl::RenderTarget::Depth::None, false);
+    FAIL() << "a framebuffer with a 0x0 attachment was accepted";
+  } catch (const GlError& e) {
+    const std::string message = e.what();
+    EXPECT_NE(message.find("framebuffer 'empty target' is incomplete: "), std::string::npos) << message;
+    EXPECT_NE(message.find("(status 0x"), std::string::npos) << message;
+  }
+  glBindFramebuffer(GL_FRAMEBUFFER, 0);
+  EXPECT_EQ(glGetError(), static_cast<GLenum>(GL_NO_ERROR));
 }
 
 TEST(Limits, RendersAtOneByOne) {

@@ -43,6 +43,24 @@ TEST(Shaders, CompileFailureNamesTheProgramAndQuotesTheLog) {
   }
 }
 
+TEST(Shaders, LinkFailureNamesTheProgramAndQuotesTheLog) {
+  test::context();
+  try {
+    // Each stage compiles; the fragment stage reads a varying the vertex stage never declares: a link error.
+    gl::Program("unlinkable[test]",
+                ShaderLibrary::composeText("void main() { gl_Position = vec4(0.0); }", {}, {}),
+                ShaderLibrary::composeText("precision mediump float;\nvarying vec3 v_missing;\n"
+                                           "void main() { gl_FragColor = vec4(v_missing, 1.0); }",
+                                           {}, {}));
+    FAIL() << "a program whose stages disagree linked";
+  } catch (const GlError& e) {
+    const std::string message = e.what();
+    EXPECT_NE(message.find("'unlinkable[test]' failed to link: "), std::string::npos) << message;
+    EXPECT_GT(message.size(), std::string("shader program 'unlinkable[test]' failed to link: ").size() + 5)
+        << "no driver log quoted: " << message;
+  }
+}
+
 TEST(Shaders, SourcesAreGlslEs100WithoutForbiddenFeatures) {
   for (const ProgramSpec& spec : Renderer::allProgramSpecs()) {
     for (std::string source : {spec.vertexSource(), spec.fragmentSource()}) {
