@@ -89,13 +89,16 @@ TEST(DepthHierarchy, ChangesTheBlurredAoLittle) {
   const Camera camera = builtinSceneCamera(320, 180);
   AoSettings with, without;
   without.depthHierarchy = false;
-  for (float radius : {0.5f, 2.0f}) {
+  // Measured on llvmpipe: 0.0005, 0.22 and 0.51 (of 255); bounds about twice that. At 0.5 m nearly every tap is within
+  // 16 px and reads level 0, so the figure is close to nothing; the far radii are where the levels are read.
+  const std::pair<float, double> radiusAndBound[] = {{0.5f, 0.01}, {2.0f, 0.5}, {4.0f, 1.0}};
+  for (const auto& [radius, bound] : radiusAndBound) {
     with.radius = without.radius = radius;
     const Difference d = aoDifference(test::render(renderer, camera, with, View::Ao),
                                       test::render(renderer, camera, without, View::Ao));
     RecordProperty("mean_at_" + std::to_string(static_cast<int>(radius * 10)), std::to_string(d.mean));
     // Far taps read one real depth per block instead of their own texel: the estimate barely moves.
-    EXPECT_LE(d.mean, 1.0) << "radius " << radius << ": mean difference " << d.mean << "/255, max " << d.max;
+    EXPECT_LE(d.mean, bound) << "radius " << radius << ": mean difference " << d.mean << "/255, max " << d.max;
   }
 }
 
