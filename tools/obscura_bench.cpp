@@ -359,7 +359,7 @@ int main(int argc, char** argv) {
     std::ofstream ratios(options.outDir + "/ratios.csv");
     ratios << "ratio,value,numerator_ms,denominator_ms\n";
     auto ratio = [&](const char* label, const char* key, double numerator, double denominator, const char* note) {
-      std::printf("  %-44s %6.2f   (%.2f / %.2f ms)%s\n", label, numerator / denominator, numerator, denominator, note);
+      std::printf("  %-48s %6.2f   (%.2f / %.2f ms)%s\n", label, numerator / denominator, numerator, denominator, note);
       ratios << key << "," << numerator / denominator << "," << numerator << "," << denominator << "\n";
     };
     ratio("SAO / G-buffer", "sao_over_gbuffer", saoMs, gbufferMs, "");
