@@ -7,8 +7,8 @@
 #   docs/images/accuracy-*.png   reference | SAO | difference
 #   tests/golden/*.png           the golden images, which show the default (tuned) AO
 #   docs/images/builtin_*.png    the README's pictures (tools/render-docs-images.sh), likewise
-# Reference images are cached in build/tuning-cache (traced once per view and radius). About 5-10 minutes on two
-# cores, plus a few minutes the first time to trace the references. Usage: tools/tune-defaults.sh
+# Reference images are cached in build/tuning-cache (traced once per view and radius). About 3 minutes on two
+# cores, tracing the references included. Usage: tools/tune-defaults.sh
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
