@@ -42,6 +42,34 @@ TEST(ViewerState, RoundTripsThroughQueryTextExactly) {
   EXPECT_EQ(text.find("bias="), std::string::npos) << "defaults are left out: " << text;
 }
 
+// A preset whose values were then changed still travels with the text: it selects the fitted estimator parameters
+// ("auto"), so dropping it would reopen the link with medium's bias, intensity and contrast.
+TEST(ViewerState, ATweakedPresetRoundTripsWithItsFittedEstimator) {
+  for (const char* preset : {"low", "high", "ultra"}) {
+    ViewerState original;
+    original.settings.set("preset", preset);
+    original.settings.set("samples", "9");
+    original.settings.set("blur-radius", "2");
+    original.settings.set("radius", "0.5");
+    ASSERT_EQ(original.settings.get("preset"), "") << "the values no longer match the preset";
+    ViewerState copy;
+    copy.applyQuery(original.toQuery());
+    EXPECT_EQ(copy.settings.preset, original.settings.preset) << original.toQuery();
+    for (const ParameterInfo& p : aoParameters())
+      EXPECT_EQ(copy.settings.get(p.name), original.settings.get(p.name)) << p.name << " in " << original.toQuery();
+    const EstimatorParameters a = original.settings.estimator(), b = copy.settings.estimator();
+    EXPECT_EQ(a.intensity, b.intensity) << original.toQuery();
+    EXPECT_EQ(a.bias, b.bias);
+    EXPECT_EQ(a.contrast, b.contrast);
+    EXPECT_NE(a.intensity, AoSettings{}.estimator().intensity) << "the test needs a preset whose fit differs";
+  }
+  // A value that differs from the defaults but equals the preset's own is left out.
+  ViewerState low;
+  low.settings.set("preset", "low");
+  EXPECT_EQ(low.toQuery().find("samples="), std::string::npos) << low.toQuery();
+  EXPECT_NE(low.toQuery().find("preset=low"), std::string::npos) << low.toQuery();
+}
+
 TEST(ViewerState, AcceptsKeysInAnyOrderAndEncodedText) {
   ViewerState state;
   // "turns" before "samples" in the text: parameters apply in table order, so 5 is checked against 32 samples.

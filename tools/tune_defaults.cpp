@@ -362,12 +362,6 @@ std::string presetEnumName(const PresetInfo& preset) {
   return "QualityPreset::" + name;
 }
 
-const char* presetName(QualityPreset preset) {
-  for (const PresetInfo& p : qualityPresets())
-    if (p.preset == preset) return p.name;
-  return "?";
-}
-
 std::string viewList(const TuningConfig& config) {
   std::string names;
   for (const ViewSpec& v : config.views) names += (names.empty() ? "" : ", ") + v.name;

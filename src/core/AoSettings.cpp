@@ -215,6 +215,12 @@ const std::vector<PresetInfo>& qualityPresets() {
   return presets;
 }
 
+const char* presetName(QualityPreset preset) {
+  for (const PresetInfo& p : qualityPresets())
+    if (p.preset == preset) return p.name;
+  return "medium";  // unreachable: the table lists every preset
+}
+
 QualityPreset parsePreset(const std::string& name) {
   for (const PresetInfo& p : qualityPresets())
     if (name == p.name) return p.preset;

@@ -110,6 +110,7 @@ struct PresetInfo {
 // The single table of quality presets used by the CLI, the viewer and the page.
 const std::vector<PresetInfo>& qualityPresets();
 QualityPreset parsePreset(const std::string& name);  // throws InputError
+const char* presetName(QualityPreset preset);
 const char* falloffName(Falloff falloff);
 
 // The shortest decimal text that reads back as exactly `value`: how get() writes numbers (and the viewers' state

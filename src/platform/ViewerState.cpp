@@ -108,10 +108,16 @@ std::string ViewerState::toQuery() const {
   auto add = [&](const std::string& key, const std::string& value) {
     query += "&" + key + "=" + encodeComponent(value);
   };
-  const AoSettings defaults;
+  // The preset the settings came from is written whenever it is not the default, even after some of its values
+  // were changed: it also selects the fitted bias, intensity and contrast that "auto" resolves to. The parameters
+  // that follow are those differing from that preset's own values; applyQuery applies the preset first.
+  AoSettings base;
+  base.applyPreset(settings.preset);
+  if (settings.preset != AoSettings{}.preset) add("preset", presetName(settings.preset));
   for (const ParameterInfo& p : aoParameters()) {
+    if (std::string(p.name) == "preset") continue;
     const std::string value = settings.get(p.name);
-    if (!value.empty() && value != defaults.get(p.name)) add(p.name, value);
+    if (value != base.get(p.name)) add(p.name, value);
   }
   add("eye", formatVector(camera.eye));
   add("target", formatVector(camera.target));
