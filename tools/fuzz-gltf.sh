@@ -12,7 +12,11 @@ cmake --build build-fuzz --target obscura-gltf-fuzzer -j"$jobs"
 
 corpus=build-fuzz/corpus
 mkdir -p "$corpus"
-find /usr/share/assimp/models/glTF2 -type f \( -name '*.gltf' -o -name '*.glb' \) -exec cp -n {} "$corpus/" \;
+# Seeds named after their path under glTF2/ (several folders hold a BoxTextured.gltf), so every file seeds.
+models=/usr/share/assimp/models/glTF2
+find "$models" -type f \( -name '*.gltf' -o -name '*.glb' \) -printf '%P\n' | while IFS= read -r relative; do
+  cp -n "$models/$relative" "$corpus/seed-${relative//\//_}"
+done
 cp -n tests/fuzz/regressions/* "$corpus/"
 cd build-fuzz
 ./tests/fuzz/obscura-gltf-fuzzer -max_total_time="$seconds" -timeout=10 -rss_limit_mb=4096 -print_final_stats=1 \

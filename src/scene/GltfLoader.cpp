@@ -22,7 +22,8 @@
 namespace obscura {
 namespace {
 
-// Extensions that change nothing the AO renderer depends on, so a file that *requires* them still renders right.
+// Extensions a file may require: KHR_texture_transform is applied (to the base colour's TEXCOORD_0, below); the others
+// change nothing the AO renderer depends on, so a file that *requires* them still renders right.
 const std::set<std::string> kHarmlessRequiredExtensions = {
     "KHR_materials_unlit", "KHR_materials_emissive_strength", "KHR_texture_transform", "KHR_materials_ior",
     "KHR_materials_specular", "KHR_materials_clearcoat", "KHR_materials_sheen", "KHR_materials_transmission",
@@ -163,22 +164,28 @@ std::vector<double> readAccessor(const LoaderContext& ctx, int accessorIndex, co
 
   const int size = componentSize(a.componentType);
   const std::uint64_t elementSize = std::uint64_t(size) * components;
-  std::vector<double> out(a.count * static_cast<size_t>(components), 0.0);
-
+  // Every bound is checked before anything is allocated: a small file declaring a huge count over a short buffer is
+  // refused at once, not after reserving memory for the count.
+  const std::uint8_t* data = nullptr;
+  std::uint64_t stride = elementSize;
   if (a.bufferView >= 0) {
     std::uint64_t viewLength = 0;
-    const std::uint8_t* data = bufferViewData(ctx, a.bufferView, what, &viewLength);
+    data = bufferViewData(ctx, a.bufferView, what, &viewLength);
     const tinygltf::BufferView& view = ctx.model.bufferViews[static_cast<size_t>(a.bufferView)];
-    const std::uint64_t stride = view.byteStride ? view.byteStride : elementSize;
-    if (view.byteStride && (view.byteStride < elementSize || view.byteStride > 252))
-      ctx.refuse(what + " has byteStride " + std::to_string(view.byteStride) + ", outside " +
+    if (view.byteStride && (view.byteStride < elementSize || view.byteStride > 252 || view.byteStride % 4 != 0))
+      ctx.refuse(what + " has byteStride " + std::to_string(view.byteStride) + ", expected a multiple of 4 in " +
                  std::to_string(elementSize) + " .. 252");
+    if (view.byteStride) stride = view.byteStride;
     if (a.count > 0) {
       const std::uint64_t last = std::uint64_t(a.byteOffset) + stride * (a.count - 1) + elementSize;
       if (last > viewLength)
         ctx.refuse(what + " reads up to byte " + std::to_string(last) + " of bufferView " +
                    std::to_string(a.bufferView) + ", which holds " + std::to_string(viewLength));
     }
+  }
+
+  std::vector<double> out(a.count * static_cast<size_t>(components), 0.0);
+  if (data) {
     for (size_t i = 0; i < a.count; ++i) {
       const std::uint8_t* element = data + a.byteOffset + stride * i;
       for (int c = 0; c < components; ++c)
@@ -282,6 +289,45 @@ size_t dropDegenerateTriangles(Mesh& mesh) {
   return dropped;
 }
 
+// KHR_texture_transform on the base colour texture, as the matrix that maps TEXCOORD_0 to the coordinates sampled:
+// uv' = T(offset) * R(rotation) * S(scale) * uv. The extension's README lists R as the usual counter-clockwise matrix,
+// but in glTF's UV space (v pointing down) the sample model TextureTransformTest, Babylon.js and three.js all use
+// u' = cos r u + sin r v, v' = -sin r u + cos r v (KhronosGroup/glTF issue #1563); so does this.
+// Identity when the material has no such extension. Scales and offsets that are not finite are refused.
+glm::mat3 baseColorUvTransform(const LoaderContext& ctx, int materialIndex, const std::string& what) {
+  if (materialIndex < 0 || static_cast<size_t>(materialIndex) >= ctx.model.materials.size()) return glm::mat3(1.0f);
+  const tinygltf::TextureInfo& info = ctx.model.materials[static_cast<size_t>(materialIndex)]
+                                          .pbrMetallicRoughness.baseColorTexture;
+  const auto it = info.extensions.find("KHR_texture_transform");
+  if (info.index < 0 || it == info.extensions.end() || !it->second.IsObject()) return glm::mat3(1.0f);
+  const tinygltf::Value& transform = it->second;
+  auto pair = [&](const char* key, glm::vec2 fallback) {
+    if (!transform.Has(key)) return fallback;
+    const tinygltf::Value& v = transform.Get(key);
+    if (!v.IsArray() || v.ArrayLen() != 2 || !v.Get(0).IsNumber() || !v.Get(1).IsNumber())
+      ctx.refuse(what + ": KHR_texture_transform " + key + " is not an array of two numbers");
+    return glm::vec2(static_cast<float>(v.Get(0).GetNumberAsDouble()), static_cast<float>(v.Get(1).GetNumberAsDouble()));
+  };
+  const glm::vec2 offset = pair("offset", glm::vec2(0.0f)), scale = pair("scale", glm::vec2(1.0f));
+  float rotation = 0.0f;
+  if (transform.Has("rotation")) {
+    if (!transform.Get("rotation").IsNumber()) ctx.refuse(what + ": KHR_texture_transform rotation is not a number");
+    rotation = static_cast<float>(transform.Get("rotation").GetNumberAsDouble());
+  }
+  if (!std::isfinite(offset.x) || !std::isfinite(offset.y) || !std::isfinite(scale.x) || !std::isfinite(scale.y) ||
+      !std::isfinite(rotation))
+    ctx.refuse(what + ": KHR_texture_transform has a value that is not finite");
+  if (transform.Has("texCoord") && transform.Get("texCoord").IsInt() && transform.Get("texCoord").GetNumberAsInt() != 0)
+    ctx.report.warnings.push_back(what + ": KHR_texture_transform asks for TEXCOORD_" +
+                                  std::to_string(transform.Get("texCoord").GetNumberAsInt()) +
+                                  ", only TEXCOORD_0 is read");
+  const float c = std::cos(rotation), s = std::sin(rotation);
+  const glm::mat3 translationMatrix(1, 0, 0, 0, 1, 0, offset.x, offset.y, 1);  // columns
+  const glm::mat3 rotationMatrix(c, -s, 0, s, c, 0, 0, 0, 1);
+  const glm::mat3 scaleMatrix(scale.x, 0, 0, 0, scale.y, 0, 0, 0, 1);
+  return translationMatrix * rotationMatrix * scaleMatrix;
+}
+
 Mesh loadPrimitive(const LoaderContext& ctx, const tinygltf::Primitive& primitive, const std::string& what,
                    bool* skipped) {
   Mesh mesh;
@@ -337,6 +383,11 @@ Mesh loadPrimitive(const LoaderContext& ctx, const tinygltf::Primitive& primitiv
                  std::to_string(vertexCount) + " positions");
     for (glm::vec2& uv : mesh.texcoords)
       if (!std::isfinite(uv.x) || !std::isfinite(uv.y)) uv = glm::vec2(0.0f);
+    // Each glTF primitive becomes its own Mesh with its own copy of the coordinates, so applying the material's
+    // transform here is right even when primitives with different materials share one TEXCOORD_0 accessor.
+    const glm::mat3 transform = baseColorUvTransform(ctx, primitive.material, what);
+    if (transform != glm::mat3(1.0f))
+      for (glm::vec2& uv : mesh.texcoords) uv = glm::vec2(transform * glm::vec3(uv, 1.0f));
   }
 
   mesh.indices = triangleIndices(ctx, primitive, vertexCount, what);

@@ -4,11 +4,12 @@
 //
 // Supported: the default scene's node hierarchy (matrix or TRS), TRIANGLES primitives (strips and fans are
 // converted; points and lines are skipped), indices u8/u16/u32 or none, POSITION, NORMAL (flat normals generated when
-// missing, as the spec requires), TEXCOORD_0, sparse accessors, baseColorFactor / baseColorTexture, alphaMode
-// OPAQUE / MASK (BLEND is drawn opaque), doubleSided.
+// missing, as the spec requires), TEXCOORD_0 (with the base colour's KHR_texture_transform applied), sparse
+// accessors, baseColorFactor / baseColorTexture, alphaMode OPAQUE / MASK (BLEND is drawn opaque), doubleSided.
 //
-// Checked: accessor and buffer-view bounds, strides, component types and element types, index ranges, NaN/Inf
-// positions, degenerate triangles (dropped), unsupported required extensions, node cycles, and the limits below.
+// Checked, before anything is allocated for an accessor: accessor and buffer-view bounds, strides, component types
+// and element types; then index ranges, NaN/Inf positions, degenerate triangles (dropped), unsupported required
+// extensions, node cycles, and the limits below.
 #include <cstdint>
 #include <map>
 #include <string>
