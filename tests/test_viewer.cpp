@@ -117,9 +117,32 @@ TEST(Viewer, KeysActThroughTheParameterTable) {
   for (int i = 0; i < 100; ++i) viewer.handleKey(",");
   EXPECT_EQ(state.settings.samples, 1);
   EXPECT_TRUE(viewer.handleKey("p"));
-  EXPECT_EQ(state.settings.get("preset"), "low") << "from no preset, p starts at the first";
+  EXPECT_EQ(state.settings.get("preset"), "high") << "p goes on from the preset the changed values came from";
   viewer.handleKey("p");
-  EXPECT_EQ(state.settings.get("preset"), "medium");
+  viewer.handleKey("p");
+  EXPECT_EQ(state.settings.get("preset"), "low") << "and wraps around";
+
+  // The estimator's keys start from the value in use ("auto": the fitted one), clamp to the ranges, and "0" returns
+  // all three to their fitted values.
+  const EstimatorParameters fitted = state.settings.estimator();
+  viewer.handleKey("}");
+  EXPECT_FLOAT_EQ(*state.settings.bias, fitted.bias + 0.01f);
+  viewer.handleKey("'");
+  EXPECT_FLOAT_EQ(*state.settings.contrast, fitted.contrast + 0.5f);
+  for (int i = 0; i < 100; ++i) viewer.handleKey("{");
+  EXPECT_FLOAT_EQ(*state.settings.bias, 0.0f) << "clamped to the parameter's range";
+  for (int i = 0; i < 100; ++i) viewer.handleKey(";");
+  EXPECT_FLOAT_EQ(*state.settings.contrast, 0.1f);
+  viewer.handleKey("=");
+  EXPECT_TRUE(viewer.handleKey("0"));
+  EXPECT_EQ(state.settings.get("bias"), "auto");
+  EXPECT_EQ(state.settings.get("intensity"), "auto");
+  EXPECT_EQ(state.settings.get("contrast"), "auto");
+  const int blurRadius = state.settings.blurRadius;
+  viewer.handleKey(">");
+  EXPECT_EQ(state.settings.blurRadius, blurRadius + 1);
+  for (int i = 0; i < 20; ++i) viewer.handleKey("<");
+  EXPECT_EQ(state.settings.blurRadius, 0) << "clamped to the parameter's range";
   viewer.handleKey("a");
   EXPECT_FALSE(state.settings.enabled);
   viewer.handleKey("6");

@@ -269,15 +269,31 @@ function wireUrl(obscura) {
     if (pending) return;
     pending = setTimeout(() => {
       pending = null;
-      history.replaceState(null, '', `${location.pathname}?${obscura.state()}`);
+      history.replaceState(null, '', `${location.pathname}?${obscura.state()}${urlFlags()}`);
     }, 150);
   });
+}
+
+// Page flags in the URL that are not part of the shared state: `debug-gl` checks glGetError after every pass.
+const PAGE_FLAGS = ['debug-gl'];
+
+// The URL's query without the page flags: what setState() takes.
+function stateFromUrl() {
+  const params = new URLSearchParams(location.search);
+  for (const flag of PAGE_FLAGS) params.delete(flag);
+  return params.toString();
+}
+
+// The page flags present in the URL, to keep when the state is written back.
+function urlFlags() {
+  const params = new URLSearchParams(location.search);
+  return PAGE_FLAGS.filter((flag) => params.has(flag)).map((flag) => `&${flag}`).join('');
 }
 
 async function main() {
   let obscura;
   try {
-    obscura = await createObscura($('#view'));
+    obscura = await createObscura($('#view'), { checkGlErrors: new URLSearchParams(location.search).has('debug-gl') });
   } catch (e) {
     showError(`Obscura cannot start here: ${e.message}`);
     $('#stats').textContent = '';
@@ -287,9 +303,10 @@ async function main() {
 
   buildControls(obscura);
   $('#panel-toggle').addEventListener('click', togglePanel);
-  if (location.search.length > 1) {
+  const linkedState = stateFromUrl();
+  if (linkedState) {
     try {
-      obscura.setState(location.search);
+      obscura.setState(linkedState);
     } catch (e) {
       showError(`This link's view was not applied: ${e.message}`);
     }

@@ -22,10 +22,12 @@ export class ObscuraError extends Error {
 // Starts the core on `canvas` and resolves to an Obscura instance once the first frames are scheduled.
 // Options:
 //   pointerControls (default true): orbit / pan / zoom with mouse, touch and wheel on the canvas.
-export async function createObscura(canvas, { pointerControls = true } = {}) {
+//   checkGlErrors (default false): glGetError after every pass; a GL error stops drawing and is logged as a console
+//     error naming the pass (for tests and debugging: each check waits for the GPU).
+export async function createObscura(canvas, { pointerControls = true, checkGlErrors = false } = {}) {
   const core = await createObscuraCore({ canvas });
   const obscura = new Obscura(core, canvas);
-  if (!core._obscura_create()) throw new ObscuraError(core.UTF8ToString(core._obscura_error()));
+  if (!core._obscura_create(checkGlErrors ? 1 : 0)) throw new ObscuraError(core.UTF8ToString(core._obscura_error()));
   obscura.description = obscura.json('obscura_describe');
   if (pointerControls) obscura.attachPointerControls();
   return obscura;
@@ -49,7 +51,7 @@ export class Obscura extends EventTarget {
   get views() { return this.description.views; }
   // [{key, description}]: the keys handleKey() understands (the same as obscura-view's)
   get keyBindings() { return this.description.keys; }
-  // ['gbuffer', 'sao', 'blur-h', 'blur-v', 'composite']: the keys of stats().passMs
+  // ['gbuffer', 'hierarchy', 'sao', 'blur-h', 'blur-v', 'upsample', 'composite']: the keys of stats().passMs
   get passes() { return this.description.passes; }
   // {version, renderer, vendor, shadingLanguage, maxRenderSize, depth24, elementIndexUint, timerQuery}
   get context() { return this.description.context; }

@@ -3,9 +3,11 @@
 // one leaves the current scene and says why in the title bar and on stderr). Timings are shown in the title bar.
 //
 // usage: obscura-view [FILE.glb|FILE.gltf] [--size WxH] [--state QUERY] [--screenshot OUT.png [--frames N]]
+#include <cctype>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <filesystem>
 #include <iostream>
 #include <string>
 #include <vector>
@@ -103,8 +105,23 @@ class Input {
       self(w).viewer_.zoom(std::exp(-kZoomPerWheelStep * static_cast<float>(dy)));
     });
     glfwSetDropCallback(window, [](GLFWwindow* w, int count, const char** paths) {
-      if (count > 0) self(w).load(paths[0]);
+      self(w).loadDropped(std::vector<std::string>(paths, paths + count));
     });
+  }
+
+  // A drop may hold a .gltf with its .bin and images, in any order: the scene file is the one to load (its side
+  // files are found next to it).
+  void loadDropped(const std::vector<std::string>& paths) {
+    for (const std::string& path : paths) {
+      std::string extension = std::filesystem::path(path).extension().string();
+      for (char& c : extension) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+      if (extension == ".gltf" || extension == ".glb") {
+        load(path);
+        return;
+      }
+    }
+    message_ = "none of the dropped files is a .gltf or .glb scene";
+    std::fprintf(stderr, "obscura-view: %s\n", message_.c_str());
   }
 
   void load(const std::string& path) {
@@ -170,6 +187,13 @@ std::string title(const Viewer& viewer, double frameMs, const GpuPassTimer& time
   std::snprintf(text, sizeof text, "Obscura - %s - %s - %.1f ms (%.0f fps)", viewer.sceneName().c_str(),
                 viewer.state().viewMode().c_str(), frameMs, frameMs > 0.0 ? 1000.0 / frameMs : 0.0);
   std::string out = text;
+  // What the keys change, as in use (bias, intensity and contrast on "auto" show their fitted values).
+  const AoSettings& s = viewer.state().settings;
+  const std::string preset = s.get("preset");
+  out += " - AO " + s.get("ao") + ", " + (preset.empty() ? std::string(presetName(s.preset)) + " (changed)" : preset) +
+         ", r " + s.get("radius") + " m, " + s.get("samples") + " samples, intensity " + s.effective("intensity") +
+         ", bias " + s.effective("bias") + ", contrast " + s.effective("contrast") + ", blur " +
+         (s.blur ? s.get("blur-radius") : std::string("off"));
   if (timer.hasResult()) {
     out += " - GPU";
     for (int p = 0; p < GpuPassTimer::kPassCount; ++p) {

@@ -37,9 +37,9 @@ constexpr double kSmoothing = 0.1;
 
 class WebApp {
  public:
-  WebApp()
+  explicit WebApp(const RendererOptions& options)
       : canvas_([this] { contextLost(); }, [this] { contextRestored(); }),
-        viewer_(gl::GlCaps::query()),
+        viewer_(gl::GlCaps::query(), options),
         timer_(std::make_unique<GpuPassTimer>(viewer_.caps(), &WebCanvas::procAddress)) {
     emscripten_request_animation_frame_loop(&WebApp::animationFrame, this);
   }
@@ -66,7 +66,8 @@ class WebApp {
       return true;
     } catch (const std::exception& e) {
       renderError_ = e.what();
-      emscripten_log(EM_LOG_ERROR, "obscura: cannot render: %s", e.what());
+      // EM_LOG_CONSOLE: console.error (without it Emscripten writes to stderr, which the page shows as a warning).
+      emscripten_log(EM_LOG_CONSOLE | EM_LOG_ERROR, "obscura: cannot render: %s", e.what());
       return false;
     }
   }
@@ -150,7 +151,7 @@ class WebApp {
       changed();
     } catch (const std::exception& e) {
       renderError_ = std::string("cannot rebuild after the context was restored: ") + e.what();
-      emscripten_log(EM_LOG_ERROR, "obscura: %s", renderError_.c_str());
+      emscripten_log(EM_LOG_CONSOLE | EM_LOG_ERROR, "obscura: %s", renderError_.c_str());
     }
   }
 
@@ -212,8 +213,14 @@ const char* kindName(ParameterKind kind) {
 
 extern "C" {
 
-EMSCRIPTEN_KEEPALIVE int obscura_create() {
-  return attempt([] { g_app = std::make_unique<WebApp>(); });
+// checkGlErrors: glGetError after every pass; an error stops the frame and is logged as a console error naming the
+// pass (the browser tests turn it on; it costs a round trip per pass).
+EMSCRIPTEN_KEEPALIVE int obscura_create(int checkGlErrors) {
+  return attempt([checkGlErrors] {
+    RendererOptions options;
+    options.checkGlErrors = checkGlErrors != 0;
+    g_app = std::make_unique<WebApp>(options);
+  });
 }
 
 EMSCRIPTEN_KEEPALIVE const char* obscura_error() { return g_error.c_str(); }
@@ -274,7 +281,8 @@ EMSCRIPTEN_KEEPALIVE const char* obscura_get_effective(const char* name) {
 EMSCRIPTEN_KEEPALIVE const char* obscura_set_hierarchy_storage(const char* name) {
   std::string used;
   if (!attempt([&] {
-        RendererOptions options;
+        RendererOptions options = g_app->viewer().rendererOptions();  // keeps checkGlErrors
+        options.hierarchyStorage.reset();                              // "auto"
         const std::string wanted = name;
         if (wanted == "separate") options.hierarchyStorage = DepthHierarchyPass::Storage::SeparateTextures;
         else if (wanted == "atlas") options.hierarchyStorage = DepthHierarchyPass::Storage::Atlas;

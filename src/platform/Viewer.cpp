@@ -38,19 +38,29 @@ const std::vector<Viewer::KeyAction>& Viewer::keyActions() {
       {"b", "blur on / off", toggle("blur")},
       {"p", "next quality preset",
        [](Viewer& v) {
+         // From the preset the settings came from, even after some of its values were changed.
          const std::vector<PresetInfo>& presets = qualityPresets();
-         const std::string current = v.state_.settings.get("preset");
          size_t next = 0;
          for (size_t i = 0; i < presets.size(); ++i)
-           if (current == presets[i].name) next = (i + 1) % presets.size();
+           if (v.state_.settings.preset == presets[i].preset) next = (i + 1) % presets.size();
          v.state_.settings.set("preset", presets[next].name);
        }},
       {"[", "radius / 1.25", scale("radius", 1.0 / 1.25)},
       {"]", "radius x 1.25", scale("radius", 1.25)},
       {"-", "intensity - 0.1", step("intensity", -0.1)},
       {"=", "intensity + 0.1", step("intensity", 0.1)},
+      {"{", "bias - 0.01 m", step("bias", -0.01)},
+      {"}", "bias + 0.01 m", step("bias", 0.01)},
+      {";", "contrast - 0.5", step("contrast", -0.5)},
+      {"'", "contrast + 0.5", step("contrast", 0.5)},
+      {"0", "intensity, bias, contrast back to auto (fitted)",
+       [](Viewer& v) {
+         for (const char* name : {"intensity", "bias", "contrast"}) v.state_.settings.set(name, "auto");
+       }},
       {",", "one sample fewer", step("samples", -1)},
       {".", "one sample more", step("samples", 1)},
+      {"<", "blur radius - 1", step("blur-radius", -1)},
+      {">", "blur radius + 1", step("blur-radius", 1)},
       {"r", "reset the camera", [](Viewer& v) { v.resetCamera(); }},
   };
   return actions;

@@ -71,6 +71,7 @@ class Viewer {
   // Rebuilds the Renderer with other options (e.g. a forced depth-hierarchy storage, to compare the storages on
   // this context); the scene, state and camera stay. Returns the storage now in use.
   DepthHierarchyPass::Storage setRendererOptions(const RendererOptions& options);
+  const RendererOptions& rendererOptions() const { return options_; }
   const Renderer* renderer() const { return renderer_.get(); }
 
  private:

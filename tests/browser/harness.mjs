@@ -44,18 +44,29 @@ export async function startBrowser() {
   };
 }
 
-// Opens the page at `url` and waits until Obscura has drawn its first frame. Console errors, uncaught exceptions and
-// failed requests are collected in page.errors (warnings, e.g. SwiftShader's "GPU stall due to ReadPixels", are not
-// errors).
+// GL errors as Chrome reports them: WebGL's own checks ("WebGL: INVALID_OPERATION: ...") and ANGLE's
+// ("GL_INVALID_ENUM ..."), both as console warnings. Other warnings (SwiftShader's "GPU stall due to ReadPixels",
+// the context-loss test's CONTEXT_LOST_WEBGL) are not failures.
+const glErrorWarning = /GL_INVALID_|GL_OUT_OF_MEMORY|WebGL: INVALID_/;
+
+// Opens the page at `url` and waits until Obscura has drawn its first frame. The page runs with `debug-gl`
+// (glGetError after every pass; an error stops drawing and is logged as a console error naming the pass). Console
+// errors, GL errors reported as warnings, uncaught exceptions and failed requests are collected in page.errors.
 export async function openPage(context, url) {
   const page = await context.newPage();
   page.errors = [];
-  page.on('console', (message) => { if (message.type() === 'error') page.errors.push(message.text()); });
+  page.on('console', (message) => {
+    if (message.type() === 'error' || (message.type() === 'warning' && glErrorWarning.test(message.text()))) {
+      page.errors.push(message.text());
+    }
+  });
   page.on('pageerror', (error) => page.errors.push(`uncaught: ${error.message}`));
   page.on('response', (response) => {
     if (response.status() >= 400) page.errors.push(`HTTP ${response.status()} for ${response.url()}`);
   });
-  await page.goto(url);
+  const checked = new URL(url);
+  checked.searchParams.set('debug-gl', '');
+  await page.goto(checked.toString());
   await page.waitForFunction(() => document.body.dataset.ready === 'true', null, { timeout: 60000 });
   await waitForDrawn(page);
   return page;

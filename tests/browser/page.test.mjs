@@ -261,12 +261,35 @@ describe('demo page', () => {
     }
   });
 
+  test('debug-gl: a GL error stops the frame and is reported, naming where it was raised', { timeout: 120000 },
+    async () => {
+      const checked = await openPage(context, `${session.baseUrl}?view=ao`);
+      try {
+        // An error the page's own script leaves pending on Obscura's context (GL_INVALID_ENUM), then a change.
+        await checked.evaluate(() => {
+          document.querySelector('#view').getContext('webgl').enable(0x1234);
+          window.obscura.set('radius', 1.5);
+        });
+        await checked.waitForFunction(() => window.obscura.stats().error !== '', null, { timeout: 60000 });
+        const error = await checked.evaluate(() => window.obscura.stats().error);
+        assert.match(error, /GL error 0x0500 outside the passes \(pending before the frame/);
+        assert.ok(checked.errors.some((e) => /cannot render: GL error 0x0500/.test(e)), checked.errors.join('\n'));
+        assert.ok(checked.errors.some((e) => /INVALID_ENUM/.test(e)), 'Chrome\'s own warning is collected too');
+        // The next change draws again.
+        await checked.evaluate(() => window.obscura.set('radius', 1.0));
+        await waitForDrawn(checked);
+        assert.equal(await checked.evaluate(() => window.obscura.stats().error), '');
+      } finally {
+        await checked.close();
+      }
+    });
+
   test('a bad URL is reported and the default view shown', { timeout: 120000 }, async () => {
     const bad = await openPage(context, `${session.baseUrl}?radius=-4&view=ao`);
     try {
       assert.match(await bad.locator('#error').textContent(), /radius: -4 is out of range/);
       assert.equal(await bad.evaluate(() => window.obscura.view), 'final', 'nothing of the bad link was applied');
-      bad.errors.length = 0;
+      assert.deepEqual(bad.errors, [], 'a refused link is shown in the page, not thrown or logged as an error');
     } finally {
       await bad.close();
     }
