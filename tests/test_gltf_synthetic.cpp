@@ -307,6 +307,13 @@ TEST(GltfSynthetic, RefusesFaultsTheCorpusDoesNotCoverWithOneLine) {
                     g.accessor(g.view(indices), kUnsignedShort, 3, "SCALAR"));
        },
        "index 4"},
+      {"integer texture coordinates that are not normalised",
+       [](GltfBuilder& g) {
+         const std::vector<std::uint8_t> uv(8, 1);
+         g.meshNode({{"POSITION", g.floats(kQuad, "VEC3", 3)},
+                     {"TEXCOORD_0", g.accessor(g.view(uv), kUnsignedByte, 4, "VEC2")}});
+       },
+       "TEXCOORD_0 (accessor 1) has component type UNSIGNED_BYTE without normalized: true"},
       {"normal count differs from the positions",
        [](GltfBuilder& g) {
          const std::vector<float> normals = {0, 0, 1};

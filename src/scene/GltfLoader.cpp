@@ -378,6 +378,12 @@ Mesh loadPrimitive(const LoaderContext& ctx, const tinygltf::Primitive& primitiv
     mesh.texcoords = toVectors<2>(readAccessor(ctx, uvAccessor, what + " TEXCOORD_0", 2,
                                                {TINYGLTF_COMPONENT_TYPE_FLOAT, TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE,
                                                 TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT}));
+    // glTF 2.0 (3.7.2.1) allows integer texture coordinates only normalised; raw integers would be read as
+    // coordinates hundreds of textures wide.
+    const tinygltf::Accessor& uvs = ctx.model.accessors[static_cast<size_t>(uvAccessor)];
+    if (uvs.componentType != TINYGLTF_COMPONENT_TYPE_FLOAT && !uvs.normalized)
+      ctx.refuse(what + " TEXCOORD_0 (accessor " + std::to_string(uvAccessor) + ") has component type " +
+                 componentTypeName(uvs.componentType) + " without normalized: true, which glTF does not allow");
     if (mesh.texcoords.size() != vertexCount)
       ctx.refuse(what + " has " + std::to_string(mesh.texcoords.size()) + " texture coordinates for " +
                  std::to_string(vertexCount) + " positions");
