@@ -73,7 +73,8 @@ TEST(AlphaMask, CutOutTexelsAreMissingFromEveryPass) {
   const Camera camera = test::makeCamera({0.0f, 1.2f, 4.0f}, {0.0f, 0.6f, 0.0f}, kWidth, kHeight);
   const Probe cutOut = pixelOf(camera, {-0.5f, 1.5f, 0.0f}), kept = pixelOf(camera, {0.5f, 1.5f, 0.0f});
   // On the floor just in front of the quad's foot: the contact shadow of the kept half, open floor under the cut half.
-  const Probe floorUnderCut = pixelOf(camera, {-0.5f, 0.0f, 0.1f}), floorUnderKept = pixelOf(camera, {0.5f, 0.0f, 0.1f});
+  const Probe floorUnderCut = pixelOf(camera, {-0.5f, 0.0f, 0.1f});
+  const Probe floorUnderKept = pixelOf(camera, {0.5f, 0.0f, 0.1f});
   const Probe sky = {kWidth / 2, 2};
 
   const Views masked = renderViews(AlphaMode::Mask, camera);

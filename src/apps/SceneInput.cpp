@@ -85,7 +85,8 @@ SceneInput::Loaded SceneInput::load() const {
 }
 
 void SceneInput::printWarnings(const char* tool, const std::vector<std::string>& warnings) const {
-  for (const std::string& warning : warnings) std::cerr << tool << ": warning: " << scenePath << ": " << warning << "\n";
+  for (const std::string& warning : warnings)
+    std::cerr << tool << ": warning: " << scenePath << ": " << warning << "\n";
 }
 
 std::string sceneInputUsage() {

@@ -306,7 +306,8 @@ glm::mat3 baseColorUvTransform(const LoaderContext& ctx, int materialIndex, cons
     const tinygltf::Value& v = transform.Get(key);
     if (!v.IsArray() || v.ArrayLen() != 2 || !v.Get(0).IsNumber() || !v.Get(1).IsNumber())
       ctx.refuse(what + ": KHR_texture_transform " + key + " is not an array of two numbers");
-    return glm::vec2(static_cast<float>(v.Get(0).GetNumberAsDouble()), static_cast<float>(v.Get(1).GetNumberAsDouble()));
+    return glm::vec2(static_cast<float>(v.Get(0).GetNumberAsDouble()),
+                     static_cast<float>(v.Get(1).GetNumberAsDouble()));
   };
   const glm::vec2 offset = pair("offset", glm::vec2(0.0f)), scale = pair("scale", glm::vec2(1.0f));
   float rotation = 0.0f;
