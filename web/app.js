@@ -149,15 +149,17 @@ function refreshControls(obscura) {
 
 // --- Stats -------------------------------------------------------------------------------------------------------
 
+// Every figure is a measurement: the last drawn frame's time in the renderer, the GPU time of its passes once the
+// timer queries come back (a few animation frames later, also while idle), and the frame time only where frames
+// were drawn back to back.
 function showStats(obscura) {
   const s = obscura.stats();
-  const fps = s.frameMs > 0 ? ` (${(1000 / s.frameMs).toFixed(0)} fps)` : '';
-  const frame = s.frameMs > 0 ? `${s.frameMs.toFixed(1)} ms${fps}`
-                              : '- (needs frames back to back: redraw continuously)';
+  const frame = s.frameMs > 0 ? `${s.frameMs.toFixed(1)} ms (${(1000 / s.frameMs).toFixed(0)} fps)`
+                              : '- (drawn on change only: redraw continuously to measure)';
   const lines = [`${s.width} x ${s.height} px, ${s.frames} frames drawn`, `frame  ${frame}`,
-                 `CPU    ${s.cpuMs.toFixed(2)} ms in the renderer`];
+                 `CPU    ${s.frames > 0 ? s.lastCpuMs.toFixed(2) : '-'} ms in the renderer, last frame`];
   if (s.passMs) {
-    lines.push('GPU per pass (EXT_disjoint_timer_query):');
+    lines.push('GPU per pass, a recent frame (EXT_disjoint_timer_query):');
     let total = 0;
     for (const pass of obscura.passes) {
       const ms = s.passMs[pass];

@@ -152,11 +152,12 @@ export class Obscura extends EventTarget {
   setContinuous(continuous) { this.core._obscura_set_continuous(continuous ? 1 : 0); }
 
   // {width, height (drawing-buffer pixels), continuous, pending (a change waits for its frame), frameMs (between
-  //  frames drawn back to back, smoothed), cpuMs
-  //  (time in the renderer, smoothed), frames (drawn so far), timerQueries (EXT_disjoint_timer_query in use), passMs
-  //  ({gbuffer: ms, ...} of a recent frame, null per pass not run; null without timer queries or before the first
-  //  result), contextLost, contextRestores, glObjects: {textures, buffers, ...} (live GL objects), error (why frames
-  //  stopped, or '')}
+  //  frames drawn back to back, smoothed; 0 until there were such frames), cpuMs (time in the renderer, smoothed),
+  //  lastCpuMs (time in the renderer of the last drawn frame), frames (drawn so far), timerQueries
+  //  (EXT_disjoint_timer_query in use), passMs ({gbuffer: ms, ...} of a recent frame, read a few animation frames
+  //  after it, drawn or not; null per pass not run; null without timer queries or before the first result),
+  //  contextLost, contextRestores, glObjects: {textures, buffers, ...} (live GL objects), error (why frames stopped,
+  //  or '')}
   stats() { return this.json('obscura_stats'); }
 
   // Draws a frame now and returns it: {width, height, pixels: Uint8Array RGBA, rows top to bottom}.

@@ -88,6 +88,7 @@ class WebApp {
                 {"pending", frameWanted_},
                 {"frameMs", frameMs_},
                 {"cpuMs", cpuMs_},
+                {"lastCpuMs", lastCpuMs_},
                 {"frames", frames_},
                 {"timerQueries", timer_ && timer_->available()},
                 {"passMs", passes},
@@ -127,8 +128,8 @@ class WebApp {
       lastFrameTime_ = 0.0;
       return;
     }
-    const double cpu = emscripten_get_now() - start;
-    cpuMs_ = frames_ == 0 ? cpu : cpuMs_ + kSmoothing * (cpu - cpuMs_);
+    lastCpuMs_ = emscripten_get_now() - start;
+    cpuMs_ = frames_ == 0 ? lastCpuMs_ : cpuMs_ + kSmoothing * (lastCpuMs_ - cpuMs_);
     // The frame time is the interval between animation frames drawn back to back (continuous mode, or a drag).
     if (lastFrameTime_ > 0.0) {
       const double interval = timeMs - lastFrameTime_;
@@ -162,6 +163,7 @@ class WebApp {
   bool continuous_ = false;
   int width_ = 0, height_ = 0;
   double lastFrameTime_ = 0.0, frameMs_ = 0.0, cpuMs_ = 0.0;
+  double lastCpuMs_ = 0.0;  // time in the renderer of the last drawn frame, unsmoothed
   long frames_ = 0;
   int restores_ = 0;
   std::string renderError_;

@@ -1,5 +1,7 @@
 #include "platform/GpuPassTimer.h"
 
+#include <algorithm>
+
 #include "gl/GlObjects.h"
 
 namespace obscura {
@@ -85,7 +87,9 @@ void GpuPassTimer::beginFrame() {
 }
 
 void GpuPassTimer::endFrame() {
-  if (recording_) frames_[current_].pending = true;
+  // A frame that measured no pass (the renderer failed before its first) has no times to report.
+  Frame& frame = frames_[current_];
+  if (recording_) frame.pending = std::find(frame.used.begin(), frame.used.end(), true) != frame.used.end();
   recording_ = false;
 }
 
