@@ -1,6 +1,7 @@
-// The demo page end to end in headless Chromium (WebGL 1 on SwiftShader): start-up without console errors, a WebGL 1
-// context, a picture that is not blank, the AO controls changing the image, loading a glTF file (and refusing a
-// malformed one while keeping the previous scene), the URL reproducing a view, and the page screenshots.
+// The demo page end to end in headless Chromium (WebGL 1 on SwiftShader, GL errors checked after every pass):
+// start-up without console errors, a WebGL 1 context, a picture that is not blank, the AO controls changing the
+// image, the stats, loading a glTF file with a progress bar (and refusing a malformed one while keeping the previous
+// scene), the URL reproducing a view (a changed preset included), and the page screenshots.
 import assert from 'node:assert/strict';
 import fs from 'node:fs';
 import path from 'node:path';
@@ -183,8 +184,16 @@ describe('demo page', () => {
     assert.deepEqual((await snapshot(page)).pixels, before.pixels, 'still the built-in scene');
   });
 
-  test('loading 2CylinderEngine.glb with the file picker shows it', { timeout: 120000 }, async () => {
+  test('loading 2CylinderEngine.glb with the file picker shows it, with a progress bar meanwhile',
+       { timeout: 120000 }, async () => {
     const builtin = await snapshot(page);
+    // Every state the progress bar goes through, recorded as it changes (a load is over too soon to poll).
+    await page.evaluate(() => {
+      const progress = document.querySelector('#load-progress');
+      window.progressSeen = [];
+      new MutationObserver(() => window.progressSeen.push({ hidden: progress.hidden, value: progress.value }))
+        .observe(progress, { attributes: true, attributeFilter: ['hidden', 'value'] });
+    });
     await page.locator('#file-input').setInputFiles(path.join(assimpModels, '2CylinderEngine-glTF-Binary',
                                                               '2CylinderEngine.glb'));
     await page.waitForFunction(
@@ -192,6 +201,10 @@ describe('demo page', () => {
       { timeout: 60000 });
     assert.equal(await page.locator('#error').isVisible(), false);
     assert.equal(await page.locator('#load-progress').isVisible(), false, 'the progress bar is gone when done');
+    const seen = await page.evaluate(() => window.progressSeen);
+    assert.ok(seen.some((s) => !s.hidden), `the progress bar was shown during the load: ${JSON.stringify(seen)}`);
+    assert.ok(seen.some((s) => !s.hidden && s.value === 1), 'and reached the end of the reading');
+    assert.equal(seen.at(-1).hidden, true, 'its last change hid it');
     const scene = await page.evaluate(() => window.obscura.scene());
     assert.ok(scene.triangles > 100000, `${scene.triangles} triangles`);
     await page.locator('#view-final').check();
@@ -234,6 +247,27 @@ describe('demo page', () => {
       const reproduced = await snapshot(shared);
       const difference = compareImages(original, reproduced);
       assert.equal(difference.max, 0, `the shared URL draws the same pixels (max difference ${difference.max})`);
+      assert.deepEqual(shared.errors, []);
+    } finally {
+      await shared.close();
+    }
+  });
+
+  test('a URL keeps a changed preset, so its fitted values and the image come back', { timeout: 120000 }, async () => {
+    await page.evaluate(() => window.obscura.setState('preset=ultra&intensity=auto&bias=auto&contrast=auto'));
+    await page.locator('#view').click({ position: { x: 100, y: 100 } });
+    await page.keyboard.press('p');  // the next preset: low
+    await page.keyboard.press('.');  // one sample more: the values no longer match the preset
+    assert.equal(await page.evaluate(() => window.obscura.get('preset')), '');
+    await page.waitForFunction(() => location.search.includes('preset=low') && location.search.includes('samples=9'));
+    await waitForDrawn(page);
+    const original = await snapshot(page);
+    const shown = () => ({ state: window.obscura.state(),
+                           fitted: ['intensity', 'bias', 'contrast'].map((name) => window.obscura.effective(name)) });
+    const shared = await openPage(context, await page.evaluate(() => location.href));
+    try {
+      assert.deepEqual(await shared.evaluate(shown), await page.evaluate(shown), 'the same state and fitted values');
+      assert.equal(compareImages(original, await snapshot(shared)).max, 0, 'the same pixels');
       assert.deepEqual(shared.errors, []);
     } finally {
       await shared.close();
