@@ -351,8 +351,11 @@ describe('demo page', () => {
       const large = await openPage(largeContext, session.baseUrl);
       await large.evaluate(() => document.querySelector('#shortcuts-section').removeAttribute('open'));
       const pictures = {};
-      for (const [name, state] of [['ao_off', 'view=final&ao=off'], ['ao_on', 'view=final&ao=on'],
-                                   ['split', 'view=split']]) {
+      // The controls panel is shown in one picture only, so the others show the AO unobstructed.
+      for (const [name, state, panel] of [['ao_off', 'view=final&ao=off', false], ['ao_on', 'view=final&ao=on', true],
+                                          ['split', 'view=split', false]]) {
+        const collapsed = await large.evaluate(() => document.querySelector('#panel').classList.contains('collapsed'));
+        if (collapsed === panel) await large.locator('#panel-toggle').click();
         await large.evaluate((query) => window.obscura.setState(query), state);
         pictures[name] = await snapshot(large);
         await waitForDrawn(large);
