@@ -24,6 +24,7 @@ TEST(Cli, BadInputExitsWithStatusTwoAndOneLine) {
   const std::string badJson = writeFile("bad.json", R"({"eye":[1,2,3],"target":)");
   const std::string badCamera = writeFile("near.json", R"({"eye":[0,0,5],"target":[0,0,0],"near":-1})");
   const std::string notGltf = writeFile("garbage.glb", "glTF this is not a binary glTF at all");
+  const std::string repairable = obscura::test::assimpModels() + "/BoxBadNormals-glTF-Binary/BoxBadNormals.glb";
   const std::pair<std::string, std::string> cases[] = {
       {"--scene /nonexistent/scene.glb", "/nonexistent/scene.glb: cannot open"},
       {"--camera " + badJson, badJson + ": malformed JSON at byte"},
@@ -44,10 +45,8 @@ TEST(Cli, BadInputExitsWithStatusTwoAndOneLine) {
       {"--scene-scale big", "--scene-scale: expected a number"},
       {"--scene " + obscura::test::assimpModels() + "/IndexOutOfRange/IndexOutOfRange.gltf", "index 255"},
       // A file the loader repairs with a warning, refused for another input: still one line, the refusal.
-      {"--scene " + obscura::test::assimpModels() + "/BoxBadNormals-glTF-Binary/BoxBadNormals.glb --camera " + badCamera,
-       badCamera + ": near: must be > 0"},
-      {"--scene " + obscura::test::assimpModels() + "/BoxBadNormals-glTF-Binary/BoxBadNormals.glb --size 16385x16",
-       "--size: 16385x16 is out of range"},
+      {"--scene " + repairable + " --camera " + badCamera, badCamera + ": near: must be > 0"},
+      {"--scene " + repairable + " --size 16385x16", "--size: 16385x16 is out of range"},
   };
   for (const auto& [args, expect] : cases) {
     const obscura::test::ProcessResult r = run("--out " + ::testing::TempDir() + "never.png " + args);
@@ -75,8 +74,8 @@ TEST(Cli, RendersEveryViewOfTheBuiltinSceneOnBothBackends) {
 // right edges (fitted for a landscape frustum and then narrowed, it would be cut at both sides).
 TEST(Cli, FitFramesTheSceneForThePortraitSizeAsked) {
   const std::string mask = obscura::test::tempPath("fit-portrait-mask.png");
-  const obscura::test::ProcessResult r = run("--scene " + obscura::test::assimpModels() +
-                       "/2CylinderEngine-glTF-Binary/2CylinderEngine.glb --fit --size 90x160 --view mask --out " + mask);
+  const std::string engine = obscura::test::assimpModels() + "/2CylinderEngine-glTF-Binary/2CylinderEngine.glb";
+  const obscura::test::ProcessResult r = run("--scene " + engine + " --fit --size 90x160 --view mask --out " + mask);
   ASSERT_EQ(r.status, 0) << r.err;
   const obscura::Image m = obscura::readPng(mask);
   ASSERT_EQ(m.width, 90);

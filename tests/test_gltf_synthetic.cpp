@@ -216,7 +216,8 @@ TEST(GltfSynthetic, ReadsTexcoordsMaterialsAndTheirTextureTransform) {
          {{"baseColorTexture",
            {{"index", 0},
             {"extensions",
-             {{"KHR_texture_transform", {{"offset", {0.5, 0.25}}, {"rotation", quarterTurn}, {"scale", {2, 4}}}}}}}}}}}});
+             {{"KHR_texture_transform",
+               {{"offset", {0.5, 0.25}}, {"rotation", quarterTurn}, {"scale", {2, 4}}}}}}}}}}}});
   gltf.doc()["extensionsUsed"] = {"KHR_texture_transform"};
   gltf.doc()["extensionsRequired"] = {"KHR_texture_transform"};
   // Both primitives share the TEXCOORD_0 accessor; only the second material transforms it.

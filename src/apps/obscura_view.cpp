@@ -190,10 +190,10 @@ std::string title(const Viewer& viewer, double frameMs, const GpuPassTimer& time
   // What the keys change, as in use (bias, intensity and contrast on "auto" show their fitted values).
   const AoSettings& s = viewer.state().settings;
   const std::string preset = s.get("preset");
-  out += " - AO " + s.get("ao") + ", " + (preset.empty() ? std::string(presetName(s.preset)) + " (changed)" : preset) +
-         ", r " + s.get("radius") + " m, " + s.get("samples") + " samples, intensity " + s.effective("intensity") +
-         ", bias " + s.effective("bias") + ", contrast " + s.effective("contrast") + ", blur " +
-         (s.blur ? s.get("blur-radius") : std::string("off"));
+  const std::string presetShown = preset.empty() ? std::string(presetName(s.preset)) + " (changed)" : preset;
+  out += " - AO " + s.get("ao") + ", " + presetShown + ", r " + s.get("radius") + " m, " + s.get("samples") +
+         " samples, intensity " + s.effective("intensity") + ", bias " + s.effective("bias") + ", contrast " +
+         s.effective("contrast") + ", blur " + (s.blur ? s.get("blur-radius") : std::string("off"));
   if (timer.hasResult()) {
     out += " - GPU";
     for (int p = 0; p < GpuPassTimer::kPassCount; ++p) {

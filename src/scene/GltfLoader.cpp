@@ -318,9 +318,11 @@ glm::mat3 baseColorUvTransform(const LoaderContext& ctx, int materialIndex, cons
   if (!std::isfinite(offset.x) || !std::isfinite(offset.y) || !std::isfinite(scale.x) || !std::isfinite(scale.y) ||
       !std::isfinite(rotation))
     ctx.refuse(what + ": KHR_texture_transform has a value that is not finite");
-  if (transform.Has("texCoord") && transform.Get("texCoord").IsInt() && transform.Get("texCoord").GetNumberAsInt() != 0)
-    ctx.report.warnings.push_back(what + ": KHR_texture_transform asks for TEXCOORD_" +
-                                  std::to_string(transform.Get("texCoord").GetNumberAsInt()) +
+  const int texCoord = transform.Has("texCoord") && transform.Get("texCoord").IsInt()
+                           ? transform.Get("texCoord").GetNumberAsInt()
+                           : 0;
+  if (texCoord != 0)
+    ctx.report.warnings.push_back(what + ": KHR_texture_transform asks for TEXCOORD_" + std::to_string(texCoord) +
                                   ", only TEXCOORD_0 is read");
   const float c = std::cos(rotation), s = std::sin(rotation);
   const glm::mat3 translationMatrix(1, 0, 0, 0, 1, 0, offset.x, offset.y, 1);  // columns
