@@ -54,6 +54,28 @@ Mesh makeRectangle(const glm::vec3& origin, const glm::vec3& u, const glm::vec3&
   return mesh;
 }
 
+Scene cutOutQuadOnAFloor(AlphaMode mode) {
+  Scene scene = sceneOf({makeRectangle({-10, 0, 10}, {20, 0, 0}, {0, 0, -20}),  // floor, normal +y
+                         makeRectangle({-1, 0, 0}, {2, 0, 0}, {0, 2, 0})});     // quad, normal +z
+  // Texel 0 (u < 0.5, the quad's left half) fully transparent, texel 1 opaque.
+  Image image;
+  image.width = 2;
+  image.height = 1;
+  image.rgba = {200, 60, 60, 0, 200, 60, 60, 255};
+  scene.images.push_back(image);
+  Texture texture;
+  texture.image = 0;
+  texture.sampler = {0x2600, 0x2600, 0x812F, 0x812F};  // GL_NEAREST, GL_NEAREST, GL_CLAMP_TO_EDGE twice
+  scene.textures.push_back(texture);
+  Material material;
+  material.baseColorTexture = 0;
+  material.alphaMode = mode;
+  material.alphaCutoff = 0.5f;
+  scene.materials.push_back(material);
+  scene.meshes[1].material = 0;
+  return scene;
+}
+
 Camera makeCamera(const glm::vec3& eye, const glm::vec3& target, int width, int height, float near, float far,
                   float fovyDegrees) {
   Camera camera;

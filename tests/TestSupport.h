@@ -35,6 +35,11 @@ Scene sceneOf(std::vector<Mesh> meshes);
 // A rectangle in the plane through `origin` spanned by `u` and `v` (normal u x v), one quad.
 Mesh makeRectangle(const glm::vec3& origin, const glm::vec3& u, const glm::vec3& v);
 
+// A floor (y = 0, 20 m square) and a 2 m quad standing on it in the plane z = 0 (x from -1 to 1, facing +z), whose
+// base-colour texture is fully transparent on its left half (x < 0) and opaque on the right (nearest, clamped),
+// with alphaMode `mode` (cutoff 0.5).
+Scene cutOutQuadOnAFloor(AlphaMode mode);
+
 // Camera looking from eye to target, with explicit size and planes.
 Camera makeCamera(const glm::vec3& eye, const glm::vec3& target, int width, int height, float near = 0.1f,
                   float far = 100.0f, float fovyDegrees = 50.0f);

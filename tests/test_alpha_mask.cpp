@@ -1,6 +1,7 @@
 // alphaMode MASK in every geometry pass: a quad standing on a floor, its base-colour texture transparent on the left
-// half. The cut-out half must be missing from the G-buffer (mask view), from the lit image and from the AO it
-// would cast on the floor; with alphaMode OPAQUE the same quad is whole.
+// half (test::cutOutQuadOnAFloor). The cut-out half must be missing from the G-buffer (mask view), from the lit image
+// and from the AO it would cast on the floor; with alphaMode OPAQUE the same quad is whole. (The ray-traced reference
+// is held to the same in test_reference.cpp.)
 #include <gtest/gtest.h>
 
 #include <glm/gtc/matrix_transform.hpp>
@@ -13,28 +14,6 @@ using namespace obscura;
 namespace {
 
 constexpr int kWidth = 200, kHeight = 150;
-
-Scene quadOnTheFloor(AlphaMode mode) {
-  Scene scene = test::sceneOf({test::makeRectangle({-10, 0, 10}, {20, 0, 0}, {0, 0, -20}),  // floor, normal +y
-                               test::makeRectangle({-1, 0, 0}, {2, 0, 0}, {0, 2, 0})});     // quad, normal +z
-  // Texel 0 (u < 0.5, the quad's left half, x < 0) fully transparent, texel 1 opaque; nearest, clamped.
-  Image image;
-  image.width = 2;
-  image.height = 1;
-  image.rgba = {200, 60, 60, 0, 200, 60, 60, 255};
-  scene.images.push_back(image);
-  Texture texture;
-  texture.image = 0;
-  texture.sampler = {0x2600, 0x2600, 0x812F, 0x812F};  // GL_NEAREST, GL_NEAREST, GL_CLAMP_TO_EDGE twice
-  scene.textures.push_back(texture);
-  Material material;
-  material.baseColorTexture = 0;
-  material.alphaMode = mode;
-  material.alphaCutoff = 0.5f;
-  scene.materials.push_back(material);
-  scene.meshes[1].material = 0;
-  return scene;
-}
 
 struct Probe {
   int x, y;
@@ -54,7 +33,7 @@ struct Views {
 
 Views renderViews(AlphaMode mode, const Camera& camera) {
   Renderer renderer = test::makeRenderer();
-  renderer.setScene(quadOnTheFloor(mode));
+  renderer.setScene(test::cutOutQuadOnAFloor(mode));
   const AoSettings settings;
   return {test::render(renderer, camera, settings, View::Mask), test::render(renderer, camera, settings, View::Ao),
           test::render(renderer, camera, settings, View::Final)};

@@ -179,6 +179,35 @@ TEST(Reference, PrimaryRaysFollowTheRasterisersProjectionAndCulling) {
   for (std::uint8_t m : both.mask) ASSERT_EQ(m, 1);
 }
 
+// alphaMode MASK, as the raster passes apply it: primary rays pass through the cut-out half of the quad, hemisphere
+// rays too, and the mask matches obscura-render's G-buffer pixel for pixel.
+TEST(Reference, AlphaMaskCutOutsAreNotSurfaces) {
+  const Camera camera = test::makeCamera({0.0f, 1.2f, 4.0f}, {0.0f, 0.6f, 0.0f}, 100, 75);
+  const Scene masked = test::cutOutQuadOnAFloor(AlphaMode::Mask);
+  const AoReferenceTracer tracer(masked);
+  const ReferenceFrame frame = tracer.trace(camera, {1.0f, 64, 2});
+
+  // The mask: the same pixels as the rasteriser's (both sample the 2-texel texture with GL_NEAREST).
+  Renderer renderer = test::makeRenderer();
+  renderer.setScene(masked);
+  const test::RenderedImage rasterMask = test::render(renderer, camera, AoSettings{}, View::Mask);
+  size_t differing = 0, hole = 0;
+  for (size_t i = 0; i < frame.mask.size(); ++i) differing += (frame.mask[i] != 0) != (rasterMask.rgba[4 * i] != 0);
+  // Pixels whose centre falls within float rounding of an edge may go either way.
+  EXPECT_LE(differing, frame.mask.size() / 500) << "pixels where the reference and the G-buffer disagree";
+  const AoReferenceTracer opaqueTracer(test::cutOutQuadOnAFloor(AlphaMode::Opaque));
+  const ReferenceFrame opaque = opaqueTracer.trace(camera, {1.0f, 64, 2});
+  for (size_t i = 0; i < frame.mask.size(); ++i) hole += opaque.mask[i] && !frame.mask[i];
+  EXPECT_GT(hole, frame.mask.size() / 20) << "the cut-out half should let the background through";
+
+  // Hemisphere rays: the floor at the foot of the cut-out half is open (the quad's kept half is 0.5 m away, so a
+  // 0.25 m radius does not reach it); at the foot of the kept half it is not.
+  const ReferenceSettings settings{0.25f, 1024, 1};
+  EXPECT_EQ(tracer.visibilityAt({-0.5f, 0.0f, 0.05f}, kY, settings), 1.0f);
+  EXPECT_LT(tracer.visibilityAt({0.5f, 0.0f, 0.05f}, kY, settings), 0.8f);
+  EXPECT_LT(opaqueTracer.visibilityAt({-0.5f, 0.0f, 0.05f}, kY, settings), 0.8f);
+}
+
 TEST(Reference, ImageDoesNotDependOnTheThreadCount) {
   const AoReferenceTracer tracer(test::sceneOf({floorMesh(), square({0, 50, 0}, kZ, kY, 100.0f)}));
   const Camera camera = test::makeCamera({3.0f, 1.5f, 2.0f}, {0.0f, 0.0f, 0.0f}, 48, 32);

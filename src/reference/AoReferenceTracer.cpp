@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <atomic>
+#include <memory>
 #include <cmath>
 #include <stdexcept>
 #include <string>
@@ -21,17 +22,81 @@ namespace {
 
 namespace hs = HemisphereSampling;
 
-// Primary rays: a hit on the back of a single-sided triangle is rejected, as the rasteriser's face culling would.
-// Embree's geometric normal points out of the side from which the vertices appear counter-clockwise (the glTF and
-// GL front face), so a back face is one whose normal points along the ray.
-void cullBackFaces(const RTCFilterFunctionNArguments* args) {
+// Hits a geometry rejects, as the raster passes would not draw them there:
+// - back faces of single-sided materials, for primary rays (the rasteriser culls them; GpuScene). Embree's geometric
+//   normal points out of the side from which the vertices appear counter-clockwise (the glTF and GL front face), so
+//   a back face is one whose normal points along the ray;
+// - alphaMode MASK cut-outs, for every ray (lib/material.glsl discards them in both geometry passes): where
+//   baseColorFactor.a times the base-colour texture's alpha at the interpolated TEXCOORD_0 is below the cutoff.
+//   The texture is sampled with its sampler's magnification filter and wrap modes on the original image; the GPU's
+//   mipmaps (and the power-of-two resampling WebGL 1 needs for repeat or mipmaps) are not modelled, so at a cut-out's
+//   edge a pixel may differ.
+struct SurfaceFilter {
+  bool cullBackFaces = false;
+  bool alphaMask = false;
+  float factorAlpha = 1.0f, cutoff = 0.5f;
+  std::vector<std::uint32_t> indices;  // as in Embree's index buffer (winding swapped for mirroring transforms)
+  std::vector<glm::vec2> texcoords;    // TEXCOORD_0 per vertex; empty: the factor alone
+  Image image;                         // the base-colour texture's image; empty: none
+  SamplerState sampler;
+
+  static int wrap(int i, int size, int mode) {
+    if (mode == 0x812F) return std::clamp(i, 0, size - 1);  // GL_CLAMP_TO_EDGE
+    if (mode == 0x8370) {                                      // GL_MIRRORED_REPEAT
+      const int m = ((i % (2 * size)) + 2 * size) % (2 * size);
+      return m < size ? m : 2 * size - 1 - m;
+    }
+    return ((i % size) + size) % size;  // GL_REPEAT
+  }
+  float texelAlpha(int x, int y) const {
+    const size_t index = static_cast<size_t>(wrap(y, image.height, sampler.wrapT)) * image.width +
+                         static_cast<size_t>(wrap(x, image.width, sampler.wrapS));
+    return image.rgba[index * 4 + 3] / 255.0f;
+  }
+  float textureAlpha(const glm::vec2& uv) const {
+    // Image row 0 is v = 0 (glTF's texture coordinates start at the image's top left).
+    const float x = uv.x * static_cast<float>(image.width), y = uv.y * static_cast<float>(image.height);
+    if (sampler.magFilter == 0x2600)  // GL_NEAREST
+      return texelAlpha(static_cast<int>(std::floor(x)), static_cast<int>(std::floor(y)));
+    const float fx = x - 0.5f, fy = y - 0.5f;
+    const int x0 = static_cast<int>(std::floor(fx)), y0 = static_cast<int>(std::floor(fy));
+    const float tx = fx - static_cast<float>(x0), ty = fy - static_cast<float>(y0);
+    const float top = texelAlpha(x0, y0) * (1.0f - tx) + texelAlpha(x0 + 1, y0) * tx;
+    const float bottom = texelAlpha(x0, y0 + 1) * (1.0f - tx) + texelAlpha(x0 + 1, y0 + 1) * tx;
+    return top * (1.0f - ty) + bottom * ty;
+  }
+  // Embree's barycentrics: the hit is (1 - u - v) p0 + u p1 + v p2 of the triangle as stored.
+  bool cutOut(unsigned triangle, float u, float v) const {
+    float alpha = factorAlpha;
+    if (!image.rgba.empty() && !texcoords.empty()) {
+      const std::uint32_t* corner = &indices[3 * static_cast<size_t>(triangle)];
+      const glm::vec2 uv = (1.0f - u - v) * texcoords[corner[0]] + u * texcoords[corner[1]] + v * texcoords[corner[2]];
+      alpha *= textureAlpha(uv);
+    }
+    return alpha < cutoff;
+  }
+};
+
+void filterPrimaryHits(const RTCFilterFunctionNArguments* args) {
+  const auto* filter = static_cast<const SurfaceFilter*>(args->geometryUserPtr);
   for (unsigned i = 0; i < args->N; ++i) {
     if (args->valid[i] != -1) continue;
     const float facing = RTCHitN_Ng_x(args->hit, args->N, i) * RTCRayN_dir_x(args->ray, args->N, i) +
                          RTCHitN_Ng_y(args->hit, args->N, i) * RTCRayN_dir_y(args->ray, args->N, i) +
                          RTCHitN_Ng_z(args->hit, args->N, i) * RTCRayN_dir_z(args->ray, args->N, i);
-    if (facing > 0.0f) args->valid[i] = 0;
+    if ((filter->cullBackFaces && facing > 0.0f) ||
+        (filter->alphaMask && filter->cutOut(RTCHitN_primID(args->hit, args->N, i), RTCHitN_u(args->hit, args->N, i),
+                                             RTCHitN_v(args->hit, args->N, i))))
+      args->valid[i] = 0;
   }
+}
+
+void filterOcclusionHits(const RTCFilterFunctionNArguments* args) {
+  const auto* filter = static_cast<const SurfaceFilter*>(args->geometryUserPtr);
+  for (unsigned i = 0; i < args->N; ++i)
+    if (args->valid[i] == -1 && filter->cutOut(RTCHitN_primID(args->hit, args->N, i), RTCHitN_u(args->hit, args->N, i),
+                                               RTCHitN_v(args->hit, args->N, i)))
+      args->valid[i] = 0;
 }
 
 void reportEmbreeError(void*, RTCError code, const char* message) {
@@ -60,6 +125,7 @@ int log2Exact(int n) {
 struct AoReferenceTracer::Impl {
   RTCDevice device = nullptr;
   RTCScene scene = nullptr;
+  std::vector<std::unique_ptr<SurfaceFilter>> filters;  // the geometries' user data, alive as long as the scene
 
   ~Impl() {
     if (scene) rtcReleaseScene(scene);
@@ -121,8 +187,8 @@ AoReferenceTracer::AoReferenceTracer(const Scene& scene, int buildThreads) : imp
   for (const Instance& instance : scene.instances) {
     const Mesh& mesh = scene.meshes[static_cast<size_t>(instance.mesh)];
     if (mesh.indices.empty()) continue;
-    const bool doubleSided =
-        mesh.material >= 0 && scene.materials[static_cast<size_t>(mesh.material)].doubleSided;
+    const Material* material = mesh.material >= 0 ? &scene.materials[static_cast<size_t>(mesh.material)] : nullptr;
+    const bool doubleSided = material && material->doubleSided;
     // A mirroring transform reverses the winding; swapping two indices keeps "front" the side GpuScene draws.
     const bool mirrored = glm::determinant(glm::mat3(instance.world)) < 0.0f;
 
@@ -144,7 +210,27 @@ AoReferenceTracer::AoReferenceTracer(const Scene& scene, int buildThreads) : imp
       indices[t + 1] = mesh.indices[t + (mirrored ? 2 : 1)];
       indices[t + 2] = mesh.indices[t + (mirrored ? 1 : 2)];
     }
-    if (!doubleSided) rtcSetGeometryIntersectFilterFunction(geometry, cullBackFaces);
+    // Filters only where needed: opaque double-sided geometry keeps Embree's full speed.
+    auto filter = std::make_unique<SurfaceFilter>();
+    filter->cullBackFaces = !doubleSided;
+    filter->alphaMask = material && material->alphaMode == AlphaMode::Mask;
+    if (filter->alphaMask) {
+      filter->factorAlpha = material->baseColorFactor.a;
+      filter->cutoff = material->alphaCutoff;
+      filter->indices.assign(indices, indices + mesh.indices.size() / 3 * 3);
+      filter->texcoords = mesh.texcoords;
+      if (material->baseColorTexture >= 0) {
+        const Texture& texture = scene.textures[static_cast<size_t>(material->baseColorTexture)];
+        filter->sampler = texture.sampler;
+        if (texture.image >= 0) filter->image = scene.images[static_cast<size_t>(texture.image)];
+      }
+      rtcSetGeometryOccludedFilterFunction(geometry, filterOcclusionHits);
+    }
+    if (filter->cullBackFaces || filter->alphaMask) {
+      rtcSetGeometryIntersectFilterFunction(geometry, filterPrimaryHits);
+      rtcSetGeometryUserData(geometry, filter.get());
+      impl_->filters.push_back(std::move(filter));
+    }
     rtcCommitGeometry(geometry);
     rtcAttachGeometry(impl_->scene, geometry);
     rtcReleaseGeometry(geometry);

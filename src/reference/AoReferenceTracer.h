@@ -21,7 +21,9 @@
 //   rays are blocked by every face, from either side: geometry hides the sky whichever way it faces.
 // - Rays start at P offset along n by a small distance relative to the magnitude of P (float precision), with
 //   tnear = 0 and tfar = R.
-// Not modelled: alpha-masked materials are treated as opaque (the G-buffer pass discards masked texels).
+// - alphaMode MASK cut-outs are not surfaces, for primary and hemisphere rays alike, as the G-buffer and lighting
+//   passes discard them (the texture's alpha sampled with its sampler's filter and wrap on the original image;
+//   mipmaps not modelled).
 #include <cstdint>
 #include <memory>
 #include <vector>
