@@ -56,18 +56,20 @@ Mesh makeRectangle(const glm::vec3& origin, const glm::vec3& u, const glm::vec3&
 
 Scene cutOutQuadOnAFloor(AlphaMode mode) {
   Scene scene = sceneOf({makeRectangle({-10, 0, 10}, {20, 0, 0}, {0, 0, -20}),  // floor, normal +y
-                         makeRectangle({-1, 0, 0}, {2, 0, 0}, {0, 2, 0})});     // quad, normal +z
-  // Texel 0 (u < 0.5, the quad's left half) fully transparent, texel 1 opaque.
+                         makeRectangle({-3, 0, 0}, {6, 0, 0}, {0, 2, 0})});     // quad, normal +z
+  // Texel 0 (u < 0.5, the quad's left half) has alpha 0.6, texel 1 alpha 1; with the factor's 0.8 only the left
+  // half falls below the cutoff (0.48 < 0.5 <= 0.8), so a pass that ignored either factor would draw it.
   Image image;
   image.width = 2;
   image.height = 1;
-  image.rgba = {200, 60, 60, 0, 200, 60, 60, 255};
+  image.rgba = {200, 60, 60, 153, 200, 60, 60, 255};
   scene.images.push_back(image);
   Texture texture;
   texture.image = 0;
   texture.sampler = {0x2600, 0x2600, 0x812F, 0x812F};  // GL_NEAREST, GL_NEAREST, GL_CLAMP_TO_EDGE twice
   scene.textures.push_back(texture);
   Material material;
+  material.baseColorFactor = glm::vec4(1.0f, 1.0f, 1.0f, 0.8f);
   material.baseColorTexture = 0;
   material.alphaMode = mode;
   material.alphaCutoff = 0.5f;

@@ -35,9 +35,9 @@ Scene sceneOf(std::vector<Mesh> meshes);
 // A rectangle in the plane through `origin` spanned by `u` and `v` (normal u x v), one quad.
 Mesh makeRectangle(const glm::vec3& origin, const glm::vec3& u, const glm::vec3& v);
 
-// A floor (y = 0, 20 m square) and a 2 m quad standing on it in the plane z = 0 (x from -1 to 1, facing +z), whose
-// base-colour texture is fully transparent on its left half (x < 0) and opaque on the right (nearest, clamped),
-// with alphaMode `mode` (cutoff 0.5).
+// A floor (y = 0, 20 m square) and a 6 x 2 m quad standing on it in the plane z = 0 (x from -3 to 3, facing +z),
+// whose base colour (factor alpha 0.8 times a nearest, clamped texture) is below the 0.5 cutoff on its left half
+// (x < 0) and above it on the right, with alphaMode `mode`.
 Scene cutOutQuadOnAFloor(AlphaMode mode);
 
 // Camera looking from eye to target, with explicit size and planes.

@@ -24,7 +24,10 @@ Probe pixelOf(const Camera& camera, const glm::vec3& p) {
   const FrameCamera frame = FrameCamera::from(camera, camera.width, camera.height);
   const glm::vec3 window =
       glm::project(p, frame.view, frame.projection, glm::vec4(0, 0, camera.width, camera.height));
-  return {static_cast<int>(window.x), camera.height - 1 - static_cast<int>(window.y)};
+  const Probe probe{static_cast<int>(window.x), camera.height - 1 - static_cast<int>(window.y)};
+  EXPECT_TRUE(probe.x >= 1 && probe.y >= 1 && probe.x < camera.width - 1 && probe.y < camera.height - 1)
+      << "probe (" << p.x << ", " << p.y << ", " << p.z << ") is not in view";
+  return probe;
 }
 
 struct Views {
@@ -50,10 +53,11 @@ float meanAo(const test::RenderedImage& ao, Probe centre) {
 
 TEST(AlphaMask, CutOutTexelsAreMissingFromEveryPass) {
   const Camera camera = test::makeCamera({0.0f, 1.2f, 4.0f}, {0.0f, 0.6f, 0.0f}, kWidth, kHeight);
-  const Probe cutOut = pixelOf(camera, {-0.5f, 1.5f, 0.0f}), kept = pixelOf(camera, {0.5f, 1.5f, 0.0f});
+  // 1.5 m either side of the middle: more than the 1 m AO radius from the other half.
+  const Probe cutOut = pixelOf(camera, {-1.5f, 1.5f, 0.0f}), kept = pixelOf(camera, {1.5f, 1.5f, 0.0f});
   // On the floor just in front of the quad's foot: the contact shadow of the kept half, open floor under the cut half.
-  const Probe floorUnderCut = pixelOf(camera, {-0.5f, 0.0f, 0.1f});
-  const Probe floorUnderKept = pixelOf(camera, {0.5f, 0.0f, 0.1f});
+  const Probe floorUnderCut = pixelOf(camera, {-1.5f, 0.0f, 0.1f});
+  const Probe floorUnderKept = pixelOf(camera, {1.5f, 0.0f, 0.1f});
   const Probe sky = {kWidth / 2, 2};
 
   const Views masked = renderViews(AlphaMode::Mask, camera);
@@ -72,7 +76,7 @@ TEST(AlphaMask, CutOutTexelsAreMissingFromEveryPass) {
 
   // AO: the floor at the foot of the cut-out half is as open as the floor far away; the kept half still darkens its
   // foot, and with the whole quad opaque both feet are dark.
-  const float openFloor = meanAo(masked.ao, pixelOf(camera, {-3.0f, 0.0f, 2.0f}));
+  const float openFloor = meanAo(masked.ao, pixelOf(camera, {0.0f, 0.0f, 1.6f}));  // 1.6 m from everything
   EXPECT_GE(openFloor, 0.95f);
   EXPECT_GE(meanAo(masked.ao, floorUnderCut), openFloor - 0.03f) << "occlusion from a cut-out surface";
   EXPECT_LT(meanAo(masked.ao, floorUnderKept), openFloor - 0.1f) << "no contact shadow at the kept half";

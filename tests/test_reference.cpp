@@ -200,12 +200,12 @@ TEST(Reference, AlphaMaskCutOutsAreNotSurfaces) {
   for (size_t i = 0; i < frame.mask.size(); ++i) hole += opaque.mask[i] && !frame.mask[i];
   EXPECT_GT(hole, frame.mask.size() / 20) << "the cut-out half should let the background through";
 
-  // Hemisphere rays: the floor at the foot of the cut-out half is open (the quad's kept half is 0.5 m away, so a
-  // 0.25 m radius does not reach it); at the foot of the kept half it is not.
-  const ReferenceSettings settings{0.25f, 1024, 1};
-  EXPECT_EQ(tracer.visibilityAt({-0.5f, 0.0f, 0.05f}, kY, settings), 1.0f);
-  EXPECT_LT(tracer.visibilityAt({0.5f, 0.0f, 0.05f}, kY, settings), 0.8f);
-  EXPECT_LT(opaqueTracer.visibilityAt({-0.5f, 0.0f, 0.05f}, kY, settings), 0.8f);
+  // Hemisphere rays: the floor at the foot of the cut-out half is open (the kept half is 1.5 m away, beyond the 1 m
+  // radius); at the foot of the kept half it is not.
+  const ReferenceSettings settings{1.0f, 1024, 1};
+  EXPECT_EQ(tracer.visibilityAt({-1.5f, 0.0f, 0.05f}, kY, settings), 1.0f);
+  EXPECT_LT(tracer.visibilityAt({1.5f, 0.0f, 0.05f}, kY, settings), 0.8f);
+  EXPECT_LT(opaqueTracer.visibilityAt({-1.5f, 0.0f, 0.05f}, kY, settings), 0.8f);
 }
 
 TEST(Reference, ImageDoesNotDependOnTheThreadCount) {

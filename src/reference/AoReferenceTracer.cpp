@@ -2,8 +2,8 @@
 
 #include <algorithm>
 #include <atomic>
-#include <memory>
 #include <cmath>
+#include <memory>
 #include <stdexcept>
 #include <string>
 #include <thread>
@@ -36,7 +36,7 @@ struct SurfaceFilter {
   bool alphaMask = false;
   float factorAlpha = 1.0f, cutoff = 0.5f;
   std::vector<std::uint32_t> indices;  // as in Embree's index buffer (winding swapped for mirroring transforms)
-  std::vector<glm::vec2> texcoords;    // TEXCOORD_0 per vertex; empty: the factor alone
+  std::vector<glm::vec2> texcoords;    // TEXCOORD_0 per vertex; empty: (0, 0) everywhere
   Image image;                         // the base-colour texture's image; empty: none
   SamplerState sampler;
 
@@ -68,9 +68,13 @@ struct SurfaceFilter {
   // Embree's barycentrics: the hit is (1 - u - v) p0 + u p1 + v p2 of the triangle as stored.
   bool cutOut(unsigned triangle, float u, float v) const {
     float alpha = factorAlpha;
-    if (!image.rgba.empty() && !texcoords.empty()) {
-      const std::uint32_t* corner = &indices[3 * static_cast<size_t>(triangle)];
-      const glm::vec2 uv = (1.0f - u - v) * texcoords[corner[0]] + u * texcoords[corner[1]] + v * texcoords[corner[2]];
+    if (!image.rgba.empty()) {
+      // Without TEXCOORD_0 every vertex samples (0, 0), as GpuScene uploads it.
+      glm::vec2 uv(0.0f);
+      if (!texcoords.empty()) {
+        const std::uint32_t* corner = &indices[3 * static_cast<size_t>(triangle)];
+        uv = (1.0f - u - v) * texcoords[corner[0]] + u * texcoords[corner[1]] + v * texcoords[corner[2]];
+      }
       alpha *= textureAlpha(uv);
     }
     return alpha < cutoff;
