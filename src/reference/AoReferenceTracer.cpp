@@ -79,6 +79,11 @@ struct SurfaceFilter {
     }
     return alpha < cutoff;
   }
+  // cutOut() for hit i of a filter call.
+  bool cutOutHit(const RTCFilterFunctionNArguments* args, unsigned i) const {
+    return cutOut(RTCHitN_primID(args->hit, args->N, i), RTCHitN_u(args->hit, args->N, i),
+                  RTCHitN_v(args->hit, args->N, i));
+  }
 };
 
 void filterPrimaryHits(const RTCFilterFunctionNArguments* args) {
@@ -88,9 +93,7 @@ void filterPrimaryHits(const RTCFilterFunctionNArguments* args) {
     const float facing = RTCHitN_Ng_x(args->hit, args->N, i) * RTCRayN_dir_x(args->ray, args->N, i) +
                          RTCHitN_Ng_y(args->hit, args->N, i) * RTCRayN_dir_y(args->ray, args->N, i) +
                          RTCHitN_Ng_z(args->hit, args->N, i) * RTCRayN_dir_z(args->ray, args->N, i);
-    if ((filter->cullBackFaces && facing > 0.0f) ||
-        (filter->alphaMask && filter->cutOut(RTCHitN_primID(args->hit, args->N, i), RTCHitN_u(args->hit, args->N, i),
-                                             RTCHitN_v(args->hit, args->N, i))))
+    if ((filter->cullBackFaces && facing > 0.0f) || (filter->alphaMask && filter->cutOutHit(args, i)))
       args->valid[i] = 0;
   }
 }
@@ -98,9 +101,7 @@ void filterPrimaryHits(const RTCFilterFunctionNArguments* args) {
 void filterOcclusionHits(const RTCFilterFunctionNArguments* args) {
   const auto* filter = static_cast<const SurfaceFilter*>(args->geometryUserPtr);
   for (unsigned i = 0; i < args->N; ++i)
-    if (args->valid[i] == -1 && filter->cutOut(RTCHitN_primID(args->hit, args->N, i), RTCHitN_u(args->hit, args->N, i),
-                                               RTCHitN_v(args->hit, args->N, i)))
-      args->valid[i] = 0;
+    if (args->valid[i] == -1 && filter->cutOutHit(args, i)) args->valid[i] = 0;
 }
 
 void reportEmbreeError(void*, RTCError code, const char* message) {
