@@ -160,6 +160,12 @@ export class Obscura extends EventTarget {
   //  or '')}
   stats() { return this.json('obscura_stats'); }
 
+  // Draws a frame now into the canvas, outside the animation-frame schedule (an embedder drawing on its own clock,
+  // a benchmark that bounds each frame with gl.finish). Throws ObscuraError if no frame could be drawn.
+  draw() {
+    if (!this.core._obscura_draw()) throw new ObscuraError(this.core.UTF8ToString(this.core._obscura_error()));
+  }
+
   // Draws a frame now and returns it: {width, height, pixels: Uint8Array RGBA, rows top to bottom}.
   snapshot() {
     const pointer = this.core._obscura_snapshot();

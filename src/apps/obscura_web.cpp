@@ -374,6 +374,14 @@ EMSCRIPTEN_KEEPALIVE const char* obscura_stats() { return returned(g_app->stats(
 // Continuous mode draws on every animation frame (for live timings); otherwise only after a change.
 EMSCRIPTEN_KEEPALIVE void obscura_set_continuous(int continuous) { g_app->setContinuous(continuous != 0); }
 
+// Draws a frame now into the canvas (for embedders that draw on their own schedule, and for benchmarks that bound a
+// frame with gl.finish); 0 if no frame could be drawn (context lost, renderer failure).
+EMSCRIPTEN_KEEPALIVE int obscura_draw() {
+  if (g_app->draw(nullptr)) return 1;
+  g_error = g_app->canvas().lost() ? "the WebGL context is lost" : g_app->stats()["error"].get<std::string>();
+  return 0;
+}
+
 // Draws a frame now and reads it back: {"width", "height", "pointer"} to width * height RGBA8 pixels, rows top to
 // bottom, valid until the next snapshot. 0 if no frame could be drawn (context lost, renderer failure).
 EMSCRIPTEN_KEEPALIVE const char* obscura_snapshot() {

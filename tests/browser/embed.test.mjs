@@ -45,6 +45,19 @@ describe('embedding with obscura.js alone', () => {
     assert.ok(stats.frames > 0 && stats.lastCpuMs > 0, JSON.stringify(stats));
     assert.equal(stats.error, '');
 
+    // draw() renders a frame now, outside the animation-frame schedule: the canvas holds it within the same task.
+    const drawn = await page.evaluate(() => {
+      const obscura = window.obscura;
+      const before = obscura.stats().frames;
+      obscura.draw();
+      const gl = obscura.canvas.getContext('webgl');
+      const pixel = new Uint8Array(4);
+      gl.readPixels(100, 60, 1, 1, gl.RGBA, gl.UNSIGNED_BYTE, pixel);
+      return { before, after: obscura.stats().frames, pixel: Array.from(pixel) };
+    });
+    assert.equal(drawn.after, drawn.before, 'draw() is not an animation frame: frames counts only those');
+    assert.notDeepEqual(drawn.pixel, [0, 0, 0, 0], 'the drawn frame is in the canvas');
+
     const shot = await snapshot(page);
     assert.equal(shot.width, 200);
     const ao = luminanceStats(shot);
