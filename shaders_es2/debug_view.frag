@@ -1,25 +1,35 @@
-// The diagnostic views: AO (blurred or raw) as grey, view-space normals as colour, linear depth as grey, geometry mask.
-//   VIEW_MODE 0: AO texture R channel (background white)
-//   VIEW_MODE 1: G-buffer normal, n * 0.5 + 0.5 (background black)
-//   VIEW_MODE 2: G-buffer linear depth (background white)
-//   VIEW_MODE 3: geometry mask (geometry white, background black)
+// The debug views: one named target's bytes decoded and shown as they are (no tone curve, no sRGB encoding, no
+// antialiasing), so tools read back the values themselves (obscura-compare reads --view ao's linear AO).
+//   VIEW_DECODING 0 grey: R (AO)                   3 mask: G-buffer geometry white, background black
+//                 1 normals: n * 0.5 + 0.5         4 HDR colour: lib/hdr.glsl decoded, clamped to [0, 1]
+//                 2 depth: G-buffer linear depth   5 colour: RGB as stored
+//                                                  6 count: R * 32 (a count / 255: 1 -> 32/255, 8 and more white)
+// The target may be smaller than the view (half-resolution AO): sampled NEAREST at the view's uv.
 #include "lib/precision.glsl"
 #include "lib/packing.glsl"
+#include "lib/hdr.glsl"
 
-uniform sampler2D u_source;   // the AO texture (mode 0) or the G-buffer (modes 1, 2, 3)
+uniform sampler2D u_source;
 
 varying vec2 v_uv;
 
 void main() {
   vec4 texel = texture2D(u_source, v_uv);
-#if VIEW_MODE == 0
+#if VIEW_DECODING == 0
   gl_FragColor = vec4(vec3(texel.r), 1.0);
-#elif VIEW_MODE == 1
+#elif VIEW_DECODING == 1
   gl_FragColor = isBackgroundCode(unpackDepthCode(texel.ba)) ? vec4(0.0, 0.0, 0.0, 1.0)
                                                             : vec4(decodeNormal(texel.rg) * 0.5 + 0.5, 1.0);
-#elif VIEW_MODE == 2
+#elif VIEW_DECODING == 2
   gl_FragColor = vec4(vec3(unpackLinearDepth(texel.ba)), 1.0);
-#else
+#elif VIEW_DECODING == 3
   gl_FragColor = isBackgroundCode(unpackDepthCode(texel.ba)) ? vec4(0.0, 0.0, 0.0, 1.0) : vec4(1.0);
+#elif VIEW_DECODING == 4
+  gl_FragColor = vec4(clamp(decodeHdr(texel), 0.0, 1.0), 1.0);
+#elif VIEW_DECODING == 5
+  gl_FragColor = vec4(texel.rgb, 1.0);
+#else
+  // Bytes written as (b + 0.25) / 255, so rounding and truncating targets both store 32 per count (lib/packing.glsl).
+  gl_FragColor = vec4(vec3(min((floor(texel.r * 255.0 + 0.5) * 32.0 + 0.25) * (1.0 / 255.0), 1.0)), 1.0);
 #endif
 }

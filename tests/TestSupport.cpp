@@ -24,10 +24,30 @@ Renderer makeRenderer(const RendererOptions& options) {
   return Renderer(context().caps(), checked);
 }
 
-RenderedImage render(Renderer& renderer, const Camera& camera, const AoSettings& settings, View view) {
+const EffectResources& effectResources() {
+  static const RendererOptions options = [] {
+    context();  // the GL objects below need the context current
+    RendererOptions checked;
+    checked.checkGlErrors = true;
+    return checked;
+  }();
+  static const FullscreenTriangle* triangle = new FullscreenTriangle();  // lives as long as the context
+  static const EffectResources resources{context().caps(), options, *triangle};
+  return resources;
+}
+
+FrameOptions retaining(std::vector<std::string> targets) {
+  FrameOptions options;
+  options.retain = std::move(targets);
+  return options;
+}
+
+RenderedImage render(Renderer& renderer, const Camera& camera, const RenderSettings& settings, const View& view,
+                     const FrameOptions& options) {
   const gl::RenderTarget output("test output", camera.width, camera.height, GL_NEAREST,
-                                gl::RenderTarget::Depth::Renderbuffer, context().caps().depth24);
-  renderer.render(camera, settings, view, OutputTarget{output.framebuffer(), camera.width, camera.height, 0.0f});
+                                gl::RenderTarget::Depth::None, false);
+  renderer.render(camera, settings, view, OutputTarget{output.framebuffer(), camera.width, camera.height, {}},
+                  options);
   RenderedImage image;
   image.width = camera.width;
   image.height = camera.height;

@@ -8,6 +8,8 @@
 #include <gtest/gtest.h>
 
 #include "core/AoSettings.h"
+#include "core/EffectTable.h"
+#include "core/RenderSettings.h"
 #include "core/Renderer.h"
 #include "gl/RenderTarget.h"
 #include "platform/HeadlessContext.h"
@@ -18,8 +20,11 @@ namespace obscura::test {
 
 HeadlessContext& context();
 
-// A renderer for the test context with GL error checks after every pass.
+// A renderer for the test context with GL error checks (and strict programs, and the baseline-state check) after
+// every pass.
 Renderer makeRenderer(const RendererOptions& options = {});
+// What a Renderer lends its effects, for tests that build a pass alone (strict programs).
+const EffectResources& effectResources();
 
 // Renders `view` into an offscreen RGBA8 target and reads it back (rows top to bottom).
 struct RenderedImage {
@@ -28,7 +33,10 @@ struct RenderedImage {
   std::uint8_t channel(int x, int y, int c) const { return rgba[(static_cast<size_t>(y) * width + x) * 4 + c]; }
   float red(int x, int y) const { return channel(x, y, 0) / 255.0f; }
 };
-RenderedImage render(Renderer& renderer, const Camera& camera, const AoSettings& settings, View view);
+RenderedImage render(Renderer& renderer, const Camera& camera, const RenderSettings& settings, const View& view,
+                     const FrameOptions& options = {});
+// FrameOptions that keep these targets readable after the frame (Renderer::retained).
+FrameOptions retaining(std::vector<std::string> targets);
 
 // Scenes made of one material-less mesh placed with an identity transform.
 Scene sceneOf(std::vector<Mesh> meshes);

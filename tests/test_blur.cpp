@@ -38,16 +38,17 @@ struct SyntheticFrame {
 
 // Runs both blur directions and returns the output's AO channel, bottom-up.
 std::vector<float> blur(const SyntheticFrame& frame, const AoSettings& settings) {
-  test::context();
-  const FullscreenTriangle triangle;
-  BilateralBlurPass pass(triangle);
-  pass.resize(kWidth, kHeight);
+  BilateralBlurPass pass(test::effectResources());
   const gl::Texture2D ao(kWidth, kHeight, GL_NEAREST, frame.ao.data());
   const gl::Texture2D gbuffer(kWidth, kHeight, GL_NEAREST, frame.gbuffer.data());
   const FrameCamera camera = FrameCamera::from(frame.camera, kWidth, kHeight);
+  const gl::RenderTarget horizontal("blur h", kWidth, kHeight, GL_NEAREST, gl::RenderTarget::Depth::None, false);
+  const gl::RenderTarget vertical("blur v", kWidth, kHeight, GL_NEAREST, gl::RenderTarget::Depth::None, false);
+  horizontal.bindForDrawing();
   pass.render(BilateralBlurPass::Direction::Horizontal, ao, gbuffer, camera, settings, 1);
-  pass.render(BilateralBlurPass::Direction::Vertical, ao, gbuffer, camera, settings, 1);
-  const std::vector<std::uint8_t> topDown = pass.output().readRgba();
+  vertical.bindForDrawing();
+  pass.render(BilateralBlurPass::Direction::Vertical, horizontal.color(), gbuffer, camera, settings, 1);
+  const std::vector<std::uint8_t> topDown = vertical.readRgba();
   glBindFramebuffer(GL_FRAMEBUFFER, 0);
   std::vector<float> out(kWidth * kHeight);
   for (int y = 0; y < kHeight; ++y)

@@ -6,6 +6,8 @@
 #include <set>
 
 #include "TestSupport.h"
+#include "core/EffectTable.h"
+#include "core/RenderSettings.h"
 #include "scene/ImageIo.h"
 
 namespace {
@@ -37,7 +39,9 @@ TEST(Cli, BadInputExitsWithStatusTwoAndOneLine) {
       {"--samples 0", "--samples: 0 is out of range"},
       {"--size 10x", "--size: expected WxH"},
       {"--size 0x10", "--size: 0x10 is out of range"},
-      {"--view sideways", "--view: expected final, ao, ao-raw, normals, depth or mask"},
+      {"--view sideways", "--view: expected final, split, normals, depth, mask, "},
+      {"--tonemap.operator filmic", "--tonemap.operator: expected linear, reinhard, aces, neutral or agx"},
+      {"--no-radius", "unknown option '--no-radius'"},
       {"--bench many", "--bench: expected a whole number"},
       {"--backend vulkan", "--backend: expected osmesa or egl"},
       {"--fit --camera x.json", "--camera and --fit exclude each other"},
@@ -58,7 +62,7 @@ TEST(Cli, BadInputExitsWithStatusTwoAndOneLine) {
 
 TEST(Cli, RendersEveryViewOfTheBuiltinSceneOnBothBackends) {
   for (const char* backend : {"osmesa", "egl"}) {
-    for (const char* view : {"final", "ao", "ao-raw", "normals", "depth", "mask"}) {
+    for (const std::string& view : obscura::frameViewNames()) {
       const std::string out = obscura::test::tempPath(std::string("view-") + backend + "-" + view + ".png");
       const obscura::test::ProcessResult r =
           run(std::string("--backend ") + backend + " --size 96x64 --view " + view + " --out " + out);
@@ -114,7 +118,7 @@ TEST(Cli, RendersAGltfFileWithFitAndBenchPrintsEveryPass) {
   const obscura::test::ProcessResult r = run("--scene " + obscura::test::assimpModels() +
                        "/2CylinderEngine-glTF-Binary/2CylinderEngine.glb --fit --size 160x90 --bench 2 --out " + out);
   ASSERT_EQ(r.status, 0) << r.err;
-  for (const char* pass : {"gbuffer", "sao", "blur-h", "blur-v", "composite", "total"})
+  for (const char* pass : {"gbuffer", "sao", "blur-h", "blur-v", "lighting", "tonemap", "fxaa", "total"})
     EXPECT_NE(r.out.find(pass), std::string::npos) << r.out;
   const obscura::Image image = obscura::readPng(out);
   // Not blank: the engine covers part of the frame in colours other than the background.
@@ -124,9 +128,24 @@ TEST(Cli, RendersAGltfFileWithFitAndBenchPrintsEveryPass) {
   EXPECT_GT(colours.size(), 50u);
 }
 
-TEST(Cli, HelpListsEveryAoParameter) {
+TEST(Cli, HelpListsEveryParameterAndItsOldName) {
   const obscura::test::ProcessResult r = run("--help");
   EXPECT_EQ(r.status, 0);
   for (const char* name : {"--radius", "--bias", "--intensity", "--contrast", "--samples", "--blur-radius", "--no-blur"})
     EXPECT_NE(r.out.find(name), std::string::npos) << name;
+  for (const obscura::ParameterInfo& p : obscura::RenderSettings::parameters())
+    EXPECT_NE(r.out.find("--" + p.name + " "), std::string::npos) << p.name;
+  for (const std::string& view : obscura::frameViewNames()) EXPECT_NE(r.out.find(view), std::string::npos) << view;
+}
+
+// Old and new names reach the same parameter, switches have --no- forms, and every effect's parameters are options.
+TEST(Cli, OldNamesNewNamesAndSwitches) {
+  const std::string a = obscura::test::tempPath("names-old.png"), b = obscura::test::tempPath("names-new.png");
+  ASSERT_EQ(run("--size 96x64 --view ao --radius 2 --samples 16 --no-blur --out " + a).status, 0);
+  ASSERT_EQ(run("--size 96x64 --view ao --ao.radius 2 --ao.samples 16 --ao.blur off --out " + b).status, 0);
+  EXPECT_EQ(obscura::readPng(a).rgba, obscura::readPng(b).rgba);
+  const std::string c = obscura::test::tempPath("names-tone.png"), d = obscura::test::tempPath("names-off.png");
+  ASSERT_EQ(run("--size 96x64 --tonemap.operator agx --tonemap.exposure 1 --fxaa.preset ultra --out " + c).status, 0);
+  ASSERT_EQ(run("--size 96x64 --no-tonemap --no-fxaa --no-ao --out " + d).status, 0);
+  EXPECT_NE(obscura::readPng(c).rgba, obscura::readPng(d).rgba);
 }

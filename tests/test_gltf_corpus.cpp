@@ -8,7 +8,7 @@
 #include <map>
 
 #include "TestSupport.h"
-#include "core/Error.h"
+#include "base/Error.h"
 #include "scene/GltfLoader.h"
 #include "scene/TexturePreparation.h"
 

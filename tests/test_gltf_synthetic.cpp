@@ -11,7 +11,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include "core/Error.h"
+#include "base/Error.h"
 #include "scene/GltfLoader.h"
 
 using namespace obscura;

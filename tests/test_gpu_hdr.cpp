@@ -10,6 +10,7 @@
 
 #include "TestSupport.h"
 #include "core/FrameContext.h"
+#include "core/FullscreenTriangle.h"
 #include "core/HdrEncoding.h"
 #include "core/ShaderLibrary.h"
 #include "core/ToneMapping.h"
@@ -251,7 +252,7 @@ void main() { gl_FragColor = encodeHdr(decodeHdr(texture2D(u_input, gl_FragCoord
   const FullscreenTriangle triangle;
   program.use();
   input.bind(0);
-  program.set("u_input", 0);
+  program.set(program.uniform("u_input"), 0);
   triangle.draw();
   gl::restoreBaselineState();
   const std::vector<std::uint8_t> pixels = bottomUp(target.readRgba());
@@ -307,7 +308,7 @@ void main() {
                                              {toneMapShaderDefine(op)});
     for (float ev : {0.0f, -2.0f, 2.5f}) {
       program.use();
-      program.set("u_exposure", exposureScale(ev));
+      program.set(program.uniform("u_exposure"), exposureScale(ev));
       const std::vector<std::uint8_t> pixels = drawPoints(program, first, {});
       int worst = 0, offByOne = 0;
       for (size_t i = 0; i < inputs.size(); ++i) {

@@ -237,7 +237,7 @@ void main() {
   const FullscreenTriangle triangle;
   program.use();
   input.bind(0);
-  program.set("u_input", 0);
+  program.set(program.uniform("u_input"), 0);
   triangle.draw();
   gl::restoreBaselineState();
   const std::vector<std::uint8_t> pixels = target.readRgba();

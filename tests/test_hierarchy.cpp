@@ -48,17 +48,18 @@ TEST(DepthHierarchy, EveryLevelHoldsTheRotatedGridPickAndItsPlaceInEveryStorage)
   const Camera camera = builtinSceneCamera(203, 117);
   Renderer renderer = test::makeRenderer();
   renderer.setScene(makeBuiltinScene());
-  test::render(renderer, camera, AoSettings{}, View::Depth);
-  const std::vector<std::uint8_t> gbuffer = renderer.gbuffer().readRgba();  // rows top to bottom
+  test::render(renderer, camera, AoSettings{}, View::Depth, test::retaining({"gbuffer"}));
+  const std::vector<std::uint8_t> gbuffer = renderer.retained("gbuffer").readRgba();  // rows top to bottom
   const glm::ivec2 size(camera.width, camera.height);
   auto gbufferTexel = [&](glm::ivec2 p) { return &gbuffer[(static_cast<size_t>(size.y - 1 - p.y) * size.x + p.x) * 4]; };
 
-  const FullscreenTriangle triangle;
+  const EffectResources& resources = test::effectResources();
   for (DepthHierarchyPass::Storage storage : availableStorages()) {
-    DepthHierarchyPass hierarchy(triangle, test::context().caps(), storage);
+    DepthHierarchyPass hierarchy(resources.triangle, test::context().caps(), storage,
+                                 resources.build(DepthHierarchyPass::programSpecs().front()));
     hierarchy.resize(size.x, size.y);
     ASSERT_EQ(hierarchy.storage(), storage);
-    hierarchy.render(renderer.gbuffer().color());
+    hierarchy.render(renderer.retained("gbuffer").color());
     // The atlas also holds level 0: the G-buffer's depth key with no offset.
     const int firstLevel = storage == DepthHierarchyPass::Storage::Atlas ? 0 : 1;
     for (int level = firstLevel; level <= SaoKernel::kMaxMipLevel; ++level) {
@@ -129,8 +130,9 @@ TEST(DepthHierarchy, EveryStorageGivesTheSameAo) {
 TEST(DepthHierarchy, TheAtlasFallsBackToSeparateTexturesWhenTooWide) {
   gl::GlCaps caps = test::context().caps();
   caps.maxTextureSize = caps.maxRenderbufferSize = caps.maxViewportWidth = caps.maxViewportHeight = 512;
-  const FullscreenTriangle triangle;
-  DepthHierarchyPass hierarchy(triangle, caps, DepthHierarchyPass::Storage::Atlas);
+  const EffectResources& resources = test::effectResources();
+  DepthHierarchyPass hierarchy(resources.triangle, caps, DepthHierarchyPass::Storage::Atlas,
+                               resources.build(DepthHierarchyPass::programSpecs().front()));
   hierarchy.resize(340, 200);  // 340 + 170 fits in 512
   EXPECT_EQ(hierarchy.storage(), DepthHierarchyPass::Storage::Atlas);
   hierarchy.resize(400, 200);  // 400 + 200 does not
@@ -171,11 +173,11 @@ TEST(HalfResolution, UpsamplingDoesNotBleedAcrossADepthStep) {
     }
   const gl::Texture2D gbufferTexture(kWidth, kHeight, GL_NEAREST, gbuffer.data());
   const gl::Texture2D aoTexture(half.x, half.y, GL_NEAREST, ao.data());
-  const FullscreenTriangle triangle;
-  AoUpsamplePass upsample(triangle);
-  upsample.resize(kWidth, kHeight);
+  AoUpsamplePass upsample(test::effectResources());
+  const gl::RenderTarget target("upsampled", kWidth, kHeight, GL_NEAREST, gl::RenderTarget::Depth::None, false);
+  target.bindForDrawing();
   upsample.render(aoTexture, gbufferTexture, FrameCamera::from(camera, kWidth, kHeight), AoSettings{});
-  const std::vector<std::uint8_t> out = upsample.target().readRgba();
+  const std::vector<std::uint8_t> out = target.readRgba();
   glBindFramebuffer(GL_FRAMEBUFFER, 0);
   for (int y = 0; y < kHeight; ++y)
     for (int x = 0; x < kWidth; ++x) {
@@ -210,7 +212,7 @@ TEST(QualityPresets, EveryPresetRendersEveryView) {
   for (const PresetInfo& preset : qualityPresets()) {
     AoSettings settings;
     settings.applyPreset(preset.preset);
-    for (View view : {View::Final, View::Ao, View::AoRaw})
+    for (const View& view : {View::Final, View::Ao, View::AoRaw})
       EXPECT_NO_THROW(test::render(renderer, camera, settings, view)) << preset.name;
     // Every preset estimates the same AO, with less noise as quality rises.
     const Difference d = aoDifference(test::render(renderer, camera, settings, View::Ao), ultra);

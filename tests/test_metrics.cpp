@@ -3,7 +3,7 @@
 
 #include <cmath>
 
-#include "core/Error.h"
+#include "base/Error.h"
 #include "metrics/AoMetrics.h"
 
 using namespace obscura;

@@ -47,24 +47,22 @@ void main() {
 }
 )";
 
-void checkPlaneInTheShader(const Case& c, const Renderer& renderer, const FrameCamera& frame, const glm::vec3& nv,
-                           const glm::vec3& pv) {
-  const gl::RenderTarget& gbuffer = renderer.gbuffer();
+void checkPlaneInTheShader(const Case& c, const gl::RenderTarget& gbuffer, const FrameCamera& frame,
+                           const glm::vec3& nv, const glm::vec3& pv) {
   const gl::Program program("reconstruction check", ShaderLibrary::compose("fullscreen.vert", {}, {}),
                             ShaderLibrary::composeText(kShaderCheck, {}, {}));
   const gl::RenderTarget target("reconstruction check", gbuffer.width(), gbuffer.height(), GL_NEAREST,
                                 gl::RenderTarget::Depth::None, false);
   target.bindForDrawing();
   program.use();
-  setReconstructionUniforms(program, frame.reconstruction);
+  ReconstructionUniforms(program).set(frame.reconstruction);
   gbuffer.color().bind(0);
-  program.set("u_gbuffer", 0);
-  program.set("u_size", glm::vec2(gbuffer.width(), gbuffer.height()));
-  program.set("u_planeNormal", nv);
-  program.set("u_planeOffset", glm::dot(pv, nv));
-  program.set("u_halfDepthStep", 0.5f * (c.far - c.near) / 65535.0f);
-  const FullscreenTriangle triangle;
-  triangle.draw();
+  program.set(program.uniform("u_gbuffer"), 0);
+  program.set(program.uniform("u_size"), glm::vec2(gbuffer.width(), gbuffer.height()));
+  program.set(program.uniform("u_planeNormal"), nv);
+  program.set(program.uniform("u_planeOffset"), glm::dot(pv, nv));
+  program.set(program.uniform("u_halfDepthStep"), 0.5f * (c.far - c.near) / 65535.0f);
+  test::effectResources().triangle.draw();
   gl::restoreBaselineState();
   const std::vector<std::uint8_t> pixels = target.readRgba();
   glBindFramebuffer(GL_FRAMEBUFFER, 0);
@@ -89,8 +87,8 @@ void checkPlane(const Case& c) {
   const Camera camera = test::makeCamera(c.eye, c.target, 160, 120, c.near, c.far);
   AoSettings settings;
   settings.enabled = false;
-  test::render(renderer, camera, settings, View::Final);
-  const std::vector<std::uint8_t> gbuffer = renderer.gbuffer().readRgba();
+  test::render(renderer, camera, settings, View::Final, test::retaining({"gbuffer"}));
+  const std::vector<std::uint8_t> gbuffer = renderer.retained("gbuffer").readRgba();
 
   const FrameCamera frame = FrameCamera::from(camera, camera.width, camera.height);
   // The plane in view space: normal nv, through point pv.
@@ -119,7 +117,7 @@ void checkPlane(const Case& c) {
   }
   EXPECT_GT(checked, camera.width * camera.height / 2) << c.name;
   EXPECT_LE(worstRatio, 1.0) << c.name << ": worst error is " << worstRatio << " x the quantisation bound";
-  checkPlaneInTheShader(c, renderer, frame, nv, pv);
+  checkPlaneInTheShader(c, renderer.retained("gbuffer"), frame, nv, pv);
 }
 
 }  // namespace

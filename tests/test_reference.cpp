@@ -15,7 +15,7 @@
 #include <glm/trigonometric.hpp>
 
 #include "TestSupport.h"
-#include "core/Error.h"
+#include "base/Error.h"
 #include "core/LinearDepthPacking.h"
 #include "reference/AoReferenceTracer.h"
 #include "reference/HemisphereSampling.h"

@@ -4,7 +4,7 @@
 #include <gtest/gtest.h>
 
 #include "TestSupport.h"
-#include "core/Error.h"
+#include "base/Error.h"
 #include "gl/GlObjects.h"
 #include "gl/PipelineState.h"
 #include "gl/RenderTarget.h"
@@ -34,16 +34,22 @@ TEST(Resources, SceneReloadsReturnToTheBaselineObjectCount) {
   }
 }
 
+// The Renderer made by the tests checks the baseline after every pass (checkGlErrors) and names the pass that left
+// state behind; this runs every view, at full and half AO resolution, with every tone curve.
 TEST(Resources, EveryPassLeavesTheBaselineGlState) {
   Renderer renderer = test::makeRenderer();
   renderer.setScene(makeBuiltinScene());
-  AoSettings settings;
+  RenderSettings settings;
   for (bool half : {false, true}) {
-    settings.halfResolution = half;
-    for (View view : {View::Final, View::Ao, View::AoRaw, View::Normals, View::Depth}) {
-      test::render(renderer, builtinSceneCamera(64, 48), settings, view);
-      EXPECT_EQ(gl::baselineStateDifferences(), "") << viewName(view);
+    settings.ao().halfResolution = half;
+    for (const std::string& view : frameViewNames()) {
+      EXPECT_NO_THROW(test::render(renderer, builtinSceneCamera(64, 48), settings, View{view})) << view;
+      EXPECT_EQ(gl::baselineStateDifferences(), "") << view;
     }
+  }
+  for (const char* op : {"linear", "reinhard", "aces", "neutral", "agx"}) {
+    settings.set("tonemap.operator", op);
+    EXPECT_NO_THROW(test::render(renderer, builtinSceneCamera(64, 48), settings, View::Final)) << op;
   }
 }
 
@@ -65,10 +71,10 @@ TEST(Resources, AGlErrorIsCaughtAndAttributed) {
 // raises GL_INVALID_ENUM at the end of the chosen pass.
 TEST(Resources, AGlErrorRaisedInAPassNamesThatPass) {
   struct ErrorAtTheEndOf : PassTimer {
-    Pass target;
-    explicit ErrorAtTheEndOf(Pass p) : target(p) {}
-    void begin(Pass) override {}
-    void end(Pass pass) override {
+    std::string target;
+    explicit ErrorAtTheEndOf(std::string p) : target(std::move(p)) {}
+    void begin(const std::string&) override {}
+    void end(const std::string& pass) override {
       if (pass == target) glEnable(0x1234);
     }
   };
@@ -77,18 +83,22 @@ TEST(Resources, AGlErrorRaisedInAPassNamesThatPass) {
   const Camera camera = builtinSceneCamera(32, 24);
   const gl::RenderTarget output("output", camera.width, camera.height, GL_NEAREST,
                                 gl::RenderTarget::Depth::Renderbuffer, test::context().caps().depth24);
-  for (int p = 0; p < static_cast<int>(Pass::Count); ++p) {
-    const Pass pass = static_cast<Pass>(p);
+  for (const std::string& pass : framePassNames()) {
     AoSettings settings;
-    settings.halfResolution = pass == Pass::Upsample;  // the upsampler runs only for half-resolution AO
+    settings.halfResolution = pass == "upsample";  // the upsampler runs only for half-resolution AO
+    // The frame's own passes run for a debug view, the shading count's for its view, the present pass when the
+    // final image is also kept after the frame.
+    const View view = pass == "view" ? View::Ao : pass == "shading-count" ? View{"shading-count"} : View::Final;
+    FrameOptions options;
+    if (pass == "present") options.retain = {"display-color"};
     ErrorAtTheEndOf timer(pass);
+    options.timer = &timer;
     try {
-      renderer.render(camera, settings, View::Final,
-                      OutputTarget{output.framebuffer(), camera.width, camera.height, 0.0f}, &timer);
-      ADD_FAILURE() << "the GL error raised in " << passName(pass) << " went unnoticed";
+      renderer.render(camera, settings, view, OutputTarget{output.framebuffer(), camera.width, camera.height, {}},
+                      options);
+      ADD_FAILURE() << "the GL error raised in " << pass << " went unnoticed";
     } catch (const GlError& e) {
-      EXPECT_NE(std::string(e.what()).find(std::string("after pass ") + passName(pass)), std::string::npos)
-          << e.what();
+      EXPECT_NE(std::string(e.what()).find("after pass " + pass), std::string::npos) << e.what();
     }
     gl::restoreBaselineState();  // the frame was abandoned mid-way
   }
@@ -117,9 +127,9 @@ TEST(Limits, RendersAtOneByOne) {
   for (bool half : {false, true}) {
     AoSettings settings;
     settings.halfResolution = half;
-    for (View view : {View::Final, View::Ao, View::AoRaw, View::Normals, View::Depth}) {
-      const test::RenderedImage image = test::render(renderer, builtinSceneCamera(1, 1), settings, view);
-      EXPECT_EQ(image.rgba.size(), 4u);
+    for (const std::string& view : frameViewNames()) {
+      const test::RenderedImage image = test::render(renderer, builtinSceneCamera(1, 1), settings, View{view});
+      EXPECT_EQ(image.rgba.size(), 4u) << view;
     }
   }
 }
@@ -129,7 +139,7 @@ TEST(Limits, SizesBeyondTheContextAreRefused) {
   renderer.setScene(makeBuiltinScene());
   const int limit = test::context().caps().maxRenderSize();
   try {
-    renderer.render(builtinSceneCamera(), AoSettings{}, View::Final, OutputTarget{0, limit + 1, 16, 0.0f});
+    renderer.render(builtinSceneCamera(), AoSettings{}, View::Final, OutputTarget{0, limit + 1, 16, {}});
     FAIL() << "accepted " << limit + 1;
   } catch (const InputError& e) {
     EXPECT_NE(std::string(e.what()).find("outside what this context can render"), std::string::npos) << e.what();
@@ -149,7 +159,7 @@ TEST(Limits, RendersAtTheLargestSizeTheContextAllows) {
   settings.blur = false;
   const gl::RenderTarget output("largest", size, size, GL_NEAREST, gl::RenderTarget::Depth::Renderbuffer,
                                 test::context().caps().depth24);
-  renderer.render(builtinSceneCamera(size, size), settings, View::AoRaw, {output.framebuffer(), size, size, 0.0f});
+  renderer.render(builtinSceneCamera(size, size), settings, View::AoRaw, {output.framebuffer(), size, size, {}});
   // Read a band across the middle, where the floor and walls are: geometry with AO in range, not background.
   std::vector<std::uint8_t> band(static_cast<size_t>(size) * 4);
   glBindFramebuffer(GL_FRAMEBUFFER, output.framebuffer());
@@ -174,10 +184,10 @@ TEST(Limits, MeshesOverSixteenBitsAreSplitWithoutOesElementIndexUint) {
   EXPECT_FALSE(without.gpuScene().usesUint32Indices());
   EXPECT_GT(without.gpuScene().pieceCount(), 1u);
   // The same triangles are drawn either way: the images agree exactly.
-  for (View view : {View::Normals, View::Final}) {
+  for (const View& view : {View::Normals, View::Final}) {
     const test::RenderedImage a = test::render(withUint, camera, AoSettings{}, view);
     const test::RenderedImage b = test::render(without, camera, AoSettings{}, view);
-    EXPECT_EQ(a.rgba, b.rgba) << viewName(view);
+    EXPECT_EQ(a.rgba, b.rgba) << view.name;
   }
 }
 

@@ -183,8 +183,8 @@ TEST(Sao, ShaderMatchesTheCpuMirror) {
       settings.depthHierarchy = hierarchy;
       settings.radius = 2.0f;  // far taps reach hierarchy levels 1 and 2 at this size
       const EstimatorParameters estimator = settings.estimator();
-      const auto gpu = test::render(renderer, camera, settings, View::AoRaw);
-      const std::vector<std::uint8_t> gbuffer = renderer.gbuffer().readRgba();
+      const auto gpu = test::render(renderer, camera, settings, View::AoRaw, test::retaining({"gbuffer"}));
+      const std::vector<std::uint8_t> gbuffer = renderer.retained("gbuffer").readRgba();
       const FrameCamera frame = FrameCamera::from(camera, camera.width, camera.height);
       const int w = camera.width, h = camera.height;
       const glm::ivec2 size(w, h);

@@ -6,7 +6,7 @@
 #include <set>
 
 #include "TestSupport.h"
-#include "core/Error.h"
+#include "base/Error.h"
 #include "scene/BuiltinScene.h"
 #include "scene/Camera.h"
 #include "scene/GltfLoader.h"

@@ -1,4 +1,5 @@
-// AO parameters: one table of names and ranges for the CLI, viewer and page; presets; spiral turns.
+// Parameters: the AO's own (names, ranges, presets, spiral turns), and the frame's (every effect's under its prefix,
+// aliases, the frame preset): one table for the CLI, the viewers and the page.
 #include <cstdio>
 
 #include <gtest/gtest.h>
@@ -6,9 +7,12 @@
 #include <algorithm>
 #include <cmath>
 
+#include "base/Error.h"
 #include "core/AoSettings.h"
-#include "core/Error.h"
+#include "core/FxaaEffect.h"
+#include "core/RenderSettings.h"
 #include "core/SaoKernel.h"
+#include "core/TonemapEffect.h"
 
 using namespace obscura;
 
@@ -239,4 +243,122 @@ TEST(AoSettings, ValidateNamesTheParameterOutOfRange) {
   settings = AoSettings{};
   settings.spiralTurns = 11;  // shares a factor with 11 samples
   EXPECT_THROW(settings.validate(), InputError);
+}
+
+// --- The frame's settings: every effect's parameters under "effect.name", the switches, the aliases, the presets.
+
+TEST(RenderSettings, NamesAreEffectDotParameterAndTheOldAoNamesAreAliases) {
+  RenderSettings settings;
+  settings.set("ao.radius", "2.5");
+  EXPECT_EQ(settings.get("radius"), "2.5");
+  settings.set("radius", "1.5");
+  EXPECT_EQ(settings.get("ao.radius"), "1.5");
+  EXPECT_FLOAT_EQ(settings.ao().radius, 1.5f);
+  for (const char* effect : {"ao", "tonemap", "fxaa"}) {
+    EXPECT_TRUE(settings.enabled(effect)) << effect;
+    settings.set(effect, "off");
+    EXPECT_FALSE(settings.enabled(effect)) << effect;
+  }
+  settings.set("tonemap.exposure", "1.5");
+  settings.set("tonemap.operator", "agx");
+  EXPECT_EQ(settings.get("tonemap.exposure"), "1.5");
+  EXPECT_EQ(settings.of<TonemapSettings>().op, ToneMapOperator::AgX);
+  EXPECT_EQ(RenderSettings::canonicalName("blur-radius"), "ao.blur-radius");
+  EXPECT_EQ(RenderSettings::canonicalName("fxaa.subpix"), "fxaa.subpix");
+  EXPECT_THROW(RenderSettings::canonicalName("exposure"), InputError) << "only the AO's old names are aliases";
+  EXPECT_THROW(settings.set("tonemap.colour", "red"), InputError);
+  // Every parameter belongs to an effect of the table, named after it; the aliases are the AO's old names.
+  for (const ParameterInfo& p : RenderSettings::parameters()) {
+    if (p.name == "preset") continue;
+    EXPECT_TRUE(p.name == p.effect || p.name.rfind(p.effect + ".", 0) == 0) << p.name;
+    if (!p.alias.empty()) {
+      EXPECT_EQ("ao." + p.alias, p.name);
+    }
+  }
+}
+
+TEST(RenderSettings, MessagesNameTheParameterAsWritten) {
+  RenderSettings settings;
+  const std::pair<std::pair<const char*, const char*>, const char*> cases[] = {
+      {{"ao.radius", "0"}, "ao.radius: 0 is out of range"},
+      {{"radius", "0"}, "radius: 0 is out of range"},
+      {{"tonemap.exposure", "40"}, "tonemap.exposure: 40 is out of range (-16 .. 16 EV)"},
+      {{"tonemap.operator", "filmic"}, "tonemap.operator: expected linear, reinhard, aces, neutral or agx"},
+      {{"fxaa.quality", "16"}, "fxaa.quality: expected 10, 11, 12"},
+      {{"fxaa", "maybe"}, "fxaa: expected on or off"},
+      {{"preset", "extreme"}, "preset: expected low, medium, high or ultra"},
+  };
+  for (const auto& [input, expect] : cases) {
+    try {
+      settings.set(input.first, input.second);
+      ADD_FAILURE() << input.first << "=" << input.second << " was accepted";
+    } catch (const InputError& e) {
+      EXPECT_NE(std::string(e.what()).find(expect), std::string::npos) << e.what();
+    }
+  }
+  EXPECT_NO_THROW(settings.validate());
+}
+
+TEST(RenderSettings, TheFramePresetSetsEveryEffectsPreset) {
+  RenderSettings settings;
+  EXPECT_EQ(settings.get("preset"), "medium");
+  settings.set("preset", "high");
+  EXPECT_EQ(settings.get("preset"), "high");
+  EXPECT_EQ(settings.get("ao.preset"), "high");
+  EXPECT_EQ(settings.get("fxaa.preset"), "high");
+  EXPECT_EQ(settings.ao().samples, 16);
+  EXPECT_EQ(settings.of<FxaaSettings>().quality, 29);
+  settings.set("fxaa.preset", "low");  // one effect's own preset: the frame's no longer holds
+  EXPECT_EQ(settings.get("preset"), "");
+  EXPECT_EQ(settings.get("ao.preset"), "high");
+  settings.set("ao.samples", "9");
+  EXPECT_EQ(settings.get("ao.preset"), "");
+  EXPECT_EQ(settings.ao().preset, QualityPreset::High) << "the AO remembers the preset it came from";
+}
+
+TEST(RenderSettings, EveryParameterOfEveryEffectDescribesItsValuesAndRoundTrips) {
+  for (const ParameterInfo& p : RenderSettings::parameters()) {
+    EXPECT_NE(p.help, "") << p.name;
+    EXPECT_NE(p.range, "") << p.name;
+    RenderSettings settings;
+    switch (p.kind) {
+      case ParameterKind::Number:
+      case ParameterKind::Integer: {
+        ASSERT_LT(p.min, p.max) << p.name;
+        if (p.name == "ao.turns") continue;  // also needs to be coprime with samples
+        char text[32];
+        std::snprintf(text, sizeof text, "%g", p.max);
+        EXPECT_NO_THROW(settings.set(p.name, text)) << p.name;
+        std::snprintf(text, sizeof text, "%g", p.max + 1.0);
+        EXPECT_THROW(settings.set(p.name, text), InputError) << p.name;
+        break;
+      }
+      case ParameterKind::Switch:
+      case ParameterKind::Choice:
+        ASSERT_FALSE(p.choices.empty()) << p.name;
+        for (const std::string& choice : p.choices) {
+          EXPECT_NO_THROW(settings.set(p.name, choice)) << p.name << "=" << choice;
+          if (p.name.find("preset") == std::string::npos) {
+            EXPECT_EQ(settings.get(p.name), choice) << p.name;
+          }
+        }
+        EXPECT_THROW(settings.set(p.name, "no-such-choice"), InputError) << p.name;
+        break;
+    }
+    EXPECT_NO_THROW(settings.validate()) << p.name;
+  }
+}
+
+TEST(RenderSettings, CopiesAreIndependent) {
+  RenderSettings a;
+  a.set("tonemap.exposure", "2");
+  RenderSettings b = a;
+  b.set("tonemap.exposure", "-1");
+  a.set("ao.radius", "3");
+  EXPECT_EQ(a.get("tonemap.exposure"), "2");
+  EXPECT_EQ(b.get("tonemap.exposure"), "-1");
+  EXPECT_EQ(b.get("ao.radius"), "1");
+  const RenderSettings fromAo(a.ao());
+  EXPECT_EQ(fromAo.get("ao.radius"), "3");
+  EXPECT_EQ(fromAo.get("tonemap.exposure"), "0") << "the other effects at their defaults";
 }

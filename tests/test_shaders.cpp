@@ -6,7 +6,7 @@
 #include <algorithm>
 
 #include "TestSupport.h"
-#include "core/Error.h"
+#include "base/Error.h"
 #include "core/ShaderLibrary.h"
 
 using namespace obscura;

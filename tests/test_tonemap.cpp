@@ -11,7 +11,7 @@
 #include <glm/geometric.hpp>
 
 #include "core/ColorSpaces.h"
-#include "core/Error.h"
+#include "base/Error.h"
 #include "core/ShaderLibrary.h"
 #include "core/ToneMapping.h"
 

@@ -8,7 +8,7 @@
 #include <gtest/gtest.h>
 
 #include "TestSupport.h"
-#include "core/Error.h"
+#include "base/Error.h"
 #include "gl/GlObjects.h"
 #include "platform/Viewer.h"
 
@@ -111,11 +111,11 @@ TEST(Viewer, KeysActThroughTheParameterTable) {
   Viewer viewer(test::context().caps());
   ViewerState& state = viewer.state();
   EXPECT_TRUE(viewer.handleKey("]"));
-  EXPECT_FLOAT_EQ(state.settings.radius, 1.25f);
+  EXPECT_FLOAT_EQ(state.settings.ao().radius, 1.25f);
   for (int i = 0; i < 100; ++i) viewer.handleKey("]");
-  EXPECT_FLOAT_EQ(state.settings.radius, 100.0f) << "clamped to the parameter's range";
+  EXPECT_FLOAT_EQ(state.settings.ao().radius, 100.0f) << "clamped to the parameter's range";
   for (int i = 0; i < 100; ++i) viewer.handleKey(",");
-  EXPECT_EQ(state.settings.samples, 1);
+  EXPECT_EQ(state.settings.ao().samples, 1);
   EXPECT_TRUE(viewer.handleKey("p"));
   EXPECT_EQ(state.settings.get("preset"), "high") << "p goes on from the preset the changed values came from";
   viewer.handleKey("p");
@@ -124,29 +124,38 @@ TEST(Viewer, KeysActThroughTheParameterTable) {
 
   // The estimator's keys start from the value in use ("auto": the fitted one), clamp to the ranges, and "0" returns
   // all three to their fitted values.
-  const EstimatorParameters fitted = state.settings.estimator();
+  const EstimatorParameters fitted = state.settings.ao().estimator();
   viewer.handleKey("}");
-  EXPECT_FLOAT_EQ(*state.settings.bias, fitted.bias + 0.01f);
+  EXPECT_FLOAT_EQ(*state.settings.ao().bias, fitted.bias + 0.01f);
   viewer.handleKey("'");
-  EXPECT_FLOAT_EQ(*state.settings.contrast, fitted.contrast + 0.5f);
+  EXPECT_FLOAT_EQ(*state.settings.ao().contrast, fitted.contrast + 0.5f);
   for (int i = 0; i < 100; ++i) viewer.handleKey("{");
-  EXPECT_FLOAT_EQ(*state.settings.bias, 0.0f) << "clamped to the parameter's range";
+  EXPECT_FLOAT_EQ(*state.settings.ao().bias, 0.0f) << "clamped to the parameter's range";
   for (int i = 0; i < 100; ++i) viewer.handleKey(";");
-  EXPECT_FLOAT_EQ(*state.settings.contrast, 0.1f);
+  EXPECT_FLOAT_EQ(*state.settings.ao().contrast, 0.1f);
   viewer.handleKey("=");
   EXPECT_TRUE(viewer.handleKey("0"));
   EXPECT_EQ(state.settings.get("bias"), "auto");
   EXPECT_EQ(state.settings.get("intensity"), "auto");
   EXPECT_EQ(state.settings.get("contrast"), "auto");
-  const int blurRadius = state.settings.blurRadius;
+  const int blurRadius = state.settings.ao().blurRadius;
   viewer.handleKey(">");
-  EXPECT_EQ(state.settings.blurRadius, blurRadius + 1);
+  EXPECT_EQ(state.settings.ao().blurRadius, blurRadius + 1);
   for (int i = 0; i < 20; ++i) viewer.handleKey("<");
-  EXPECT_EQ(state.settings.blurRadius, 0) << "clamped to the parameter's range";
+  EXPECT_EQ(state.settings.ao().blurRadius, 0) << "clamped to the parameter's range";
   viewer.handleKey("a");
-  EXPECT_FALSE(state.settings.enabled);
+  EXPECT_FALSE(state.settings.ao().enabled);
   viewer.handleKey("6");
   EXPECT_EQ(state.viewMode(), "split");
+  // The other effects' keys: tone mapping and FXAA on / off, exposure in half stops.
+  viewer.handleKey("t");
+  viewer.handleKey("f");
+  EXPECT_EQ(state.settings.get("tonemap"), "off");
+  EXPECT_EQ(state.settings.get("fxaa"), "off");
+  viewer.handleKey(")");
+  viewer.handleKey(")");
+  viewer.handleKey("(");
+  EXPECT_EQ(state.settings.get("tonemap.exposure"), "0.5");
   EXPECT_FALSE(viewer.handleKey("?"));
 
   const Camera original = state.camera;

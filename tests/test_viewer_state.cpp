@@ -4,7 +4,7 @@
 #include <glm/geometric.hpp>
 #include <gtest/gtest.h>
 
-#include "core/Error.h"
+#include "base/Error.h"
 #include "platform/CameraControls.h"
 #include "platform/ViewerState.h"
 #include "scene/BuiltinScene.h"
@@ -35,11 +35,16 @@ TEST(ViewerState, RoundTripsThroughQueryTextExactly) {
     EXPECT_EQ(copy.toQuery(), original.toQuery());
     EXPECT_TRUE(sameCamera(copy.camera, original.camera)) << copy.toQuery();
     EXPECT_EQ(copy.viewMode(), original.viewMode());
-    for (const ParameterInfo& p : aoParameters()) EXPECT_EQ(copy.settings.get(p.name), original.settings.get(p.name));
+    for (const ParameterInfo& p : RenderSettings::parameters())
+      EXPECT_EQ(copy.settings.get(p.name), original.settings.get(p.name)) << p.name;
   }
+  // Written under the full names, the frame's preset first; read back under the old names too (aliases).
   const std::string text = changed.toQuery();
-  EXPECT_EQ(text.rfind("view=split&preset=high&radius=2.5&", 0), 0u) << text;
+  EXPECT_EQ(text.rfind("view=split&preset=high&ao.radius=2.5&", 0), 0u) << text;
   EXPECT_EQ(text.find("bias="), std::string::npos) << "defaults are left out: " << text;
+  ViewerState old;
+  old.applyQuery("view=split&preset=high&radius=2.5&blur=off");
+  EXPECT_EQ(old.toQuery().substr(0, text.find("&eye=")), text.substr(0, text.find("&eye=")));
 }
 
 // A preset whose values were then changed still travels with the text: it selects the fitted estimator parameters
@@ -54,10 +59,10 @@ TEST(ViewerState, ATweakedPresetRoundTripsWithItsFittedEstimator) {
     ASSERT_EQ(original.settings.get("preset"), "") << "the values no longer match the preset";
     ViewerState copy;
     copy.applyQuery(original.toQuery());
-    EXPECT_EQ(copy.settings.preset, original.settings.preset) << original.toQuery();
-    for (const ParameterInfo& p : aoParameters())
+    EXPECT_EQ(copy.settings.ao().preset, original.settings.ao().preset) << original.toQuery();
+    for (const ParameterInfo& p : RenderSettings::parameters())
       EXPECT_EQ(copy.settings.get(p.name), original.settings.get(p.name)) << p.name << " in " << original.toQuery();
-    const EstimatorParameters a = original.settings.estimator(), b = copy.settings.estimator();
+    const EstimatorParameters a = original.settings.ao().estimator(), b = copy.settings.ao().estimator();
     EXPECT_EQ(a.intensity, b.intensity) << original.toQuery();
     EXPECT_EQ(a.bias, b.bias);
     EXPECT_EQ(a.contrast, b.contrast);
@@ -74,25 +79,32 @@ TEST(ViewerState, AcceptsKeysInAnyOrderAndEncodedText) {
   ViewerState state;
   // "turns" before "samples" in the text: parameters apply in table order, so 5 is checked against 32 samples.
   EXPECT_FALSE(state.applyQuery("?turns=5&samples=32&view=ao-raw"));
-  EXPECT_EQ(state.settings.samples, 32);
-  EXPECT_EQ(state.settings.spiralTurns, 5);
+  EXPECT_EQ(state.settings.ao().samples, 32);
+  EXPECT_EQ(state.settings.ao().spiralTurns, 5);
   EXPECT_EQ(state.viewMode(), "ao-raw");
   EXPECT_TRUE(state.applyQuery("eye=1%2C2%2C3&target=0,0,0&view=split"));
   EXPECT_EQ(state.camera.eye, glm::vec3(1, 2, 3));
-  EXPECT_TRUE(state.split);
-  EXPECT_EQ(state.view, View::Final);
+  EXPECT_EQ(state.view, View::Split);
+  // Full names and old names mix; every effect's parameters are keys.
+  EXPECT_FALSE(state.applyQuery("ao.turns=3&samples=8&tonemap.operator=aces&fxaa=off&view=scene-color"));
+  EXPECT_EQ(state.settings.ao().samples, 8);
+  EXPECT_EQ(state.settings.get("tonemap.operator"), "aces");
+  EXPECT_EQ(state.settings.get("fxaa"), "off");
+  EXPECT_EQ(state.viewMode(), "scene-color");
 }
 
 TEST(ViewerState, RefusesBadTextAndKeepsTheState) {
   const std::pair<const char*, const char*> cases[] = {
       {"colour=red", "unknown key 'colour'"},
       {"radius=0", "state: radius: 0 is out of range"},
-      {"view=wireframe", "state: view: expected final, ao, ao-raw, normals, depth or split"},
+      {"view=wireframe", "state: view: expected final, split, normals, depth, mask, "},
       {"eye=1,2", "eye: expected x,y,z"},
       {"eye=1,2,x", "eye: expected a number"},
       {"eye=0,0,0&target=0,0,0", "target: must differ from eye"},
       {"near=5&far=1", "far: must be greater than near"},
       {"radius=2&radius=3", "radius is given twice"},
+      {"radius=2&ao.radius=3", "ao.radius is given twice (also as radius)"},
+      {"tonemap.operator=filmic", "state: tonemap.operator: expected linear, reinhard, aces, neutral or agx"},
       {"radius", "'radius' has no value"},
   };
   ViewerState state;

@@ -41,8 +41,9 @@
 #include <glm/geometric.hpp>
 
 #include "core/ColorSpaces.h"
-#include "core/Error.h"
+#include "base/Error.h"
 #include "core/FrameContext.h"
+#include "core/FullscreenTriangle.h"
 #include "core/HdrEncoding.h"
 #include "core/ShaderLibrary.h"
 #include "core/ToneMapping.h"

@@ -4,9 +4,10 @@
 //
 // Prints tables and writes DIR/bench.csv (every measurement), DIR/ratios.csv, DIR/radius_sweep.csv and
 // DIR/radius_sweep.png (gnuplot). Every pass is bounded by glFinish on both sides and reported as the median over N
-// frames.
+// frames. The passes and effects are the effect table's (core/EffectTable.h): a new effect shows up by itself.
 // Sections:
-//   1. per-pass ms at 640x360, 1280x720 and 1920x1080 on the built-in scene and on 2CylinderEngine.glb
+//   1. per-pass and per-effect ms at 640x360, 1280x720 and 1920x1080 on the built-in scene and on
+//      2CylinderEngine.glb, at the defaults (every effect on)
 //   2. radius sweep 0.25 .. 4 m, depth hierarchy on and off
 //   3. sample-count sweep 4 .. 32
 //   4. the quality presets
@@ -14,18 +15,19 @@
 //      (goal <= 1.15 with it), SAO / a floor pass making the same fetches with no arithmetic
 #include <cstdio>
 #include <cstdlib>
-#include <array>
+#include <tuple>
 #include <cmath>
 #include <fstream>
+#include <map>
 #include <memory>
 #include <string>
 #include <vector>
 
 #include "apps/SceneInput.h"
 #include "core/AoSettings.h"
-#include "core/Error.h"
+#include "base/Error.h"
 #include "core/DepthHierarchyPass.h"
-#include "core/FetchFloorPass.h"
+#include "FetchFloorPass.h"
 #include "core/Renderer.h"
 #include "core/SaoKernel.h"
 #include "gl/RenderTarget.h"
@@ -40,8 +42,17 @@ namespace {
 
 const char* kEnginePath = "/usr/share/assimp/models/glTF2/2CylinderEngine-glTF-Binary/2CylinderEngine.glb";
 constexpr float kEngineScale = 0.01f;
-constexpr Pass kPasses[] = {Pass::GBuffer, Pass::Hierarchy, Pass::Sao, Pass::BlurHorizontal,
-                            Pass::BlurVertical, Pass::Upsample, Pass::Composite};
+
+// The passes a frame of the final image may run (the table's, without the debug views' own).
+const std::vector<std::string>& benchPasses() {
+  static const std::vector<std::string> passes = [] {
+    std::vector<std::string> out;
+    for (const std::string& pass : framePassNames())
+      if (pass != "view" && pass != "present" && pass != "shading-count") out.push_back(pass);
+    return out;
+  }();
+  return passes;
+}
 
 struct Options {
   std::string outDir = "bench-results";
@@ -56,7 +67,8 @@ struct BenchScene {
   Camera camera;
 };
 
-using PassTimes = std::array<double, static_cast<size_t>(Pass::Count)>;
+// Median ms per pass name (0: did not run).
+using PassTimes = std::map<std::string, double>;
 
 class Bench {
  public:
@@ -78,7 +90,7 @@ class Bench {
         : camera(sized(scene.camera, width, height)),
           output("bench output", width, height, GL_NEAREST, gl::RenderTarget::Depth::Renderbuffer,
                  bench.context_.caps().depth24),
-          target{output.framebuffer(), width, height, 0.0f} {
+          target{output.framebuffer(), width, height, {}} {
       bench.useScene(scene);
     }
     static Camera sized(Camera camera, int width, int height) {
@@ -100,7 +112,8 @@ class Bench {
 
   // SAO pass medians for the same settings with the hierarchy stored as separate textures and as an atlas, taking
   // turns frame by frame: {separate, atlas}.
-  std::pair<double, double> measureStorages(const BenchScene& scene, int width, int height, const AoSettings& settings) {
+  std::pair<double, double> measureStorages(const BenchScene& scene, int width, int height,
+                                            const RenderSettings& settings) {
     const BenchView view(*this, scene, width, height);
     const Camera& camera = view.camera;
     const OutputTarget& target = view.target;
@@ -111,37 +124,36 @@ class Bench {
         storageRenderers_[i]->render(camera, settings, View::Final, target, &timers[i]);
     for (size_t i = 0; i < storageRenderers_.size(); ++i)
       csv_ << "storage," << scene.name << "," << width << "," << height << ","
-           << DepthHierarchyPass::storageName(storageRenderers_[i]->hierarchyStorage()) << "," << settings.samples
-           << "," << settings.radius << ",1,0,sao," << timers[i].medianMs(Pass::Sao) << "\n";
-    return {timers[0].medianMs(Pass::Sao), timers[1].medianMs(Pass::Sao)};
+           << DepthHierarchyPass::storageName(storageRenderers_[i]->hierarchyStorage()) << ","
+           << settings.ao().samples << "," << settings.ao().radius << ",1,0,sao," << timers[i].medianMs("sao") << "\n";
+    return {timers[0].medianMs("sao"), timers[1].medianMs("sao")};
   }
 
   // Median per-pass times of `frames` frames of the final view for each of `configurations`, after one warm-up
   // frame each. The configurations take turns frame by frame, so a slow spell of the machine (other processes,
   // frequency changes) falls on all of them alike and the ratios between them stay sound.
   std::vector<PassTimes> measure(const std::string& section, const BenchScene& scene, int width, int height,
-                                 const std::vector<AoSettings>& configurations) {
+                                 const std::vector<RenderSettings>& configurations) {
     const BenchView view(*this, scene, width, height);
     const Camera& camera = view.camera;
     const OutputTarget& target = view.target;
-    for (const AoSettings& settings : configurations) renderer_.render(camera, settings, View::Final, target);
+    for (const RenderSettings& settings : configurations) renderer_.render(camera, settings, View::Final, target);
     std::vector<FinishPassTimer> timers(configurations.size());
     for (int frame = 0; frame < options_.frames; ++frame)
       for (size_t c = 0; c < configurations.size(); ++c)
         renderer_.render(camera, configurations[c], View::Final, target, &timers[c]);
     std::vector<PassTimes> results;
     for (size_t c = 0; c < configurations.size(); ++c) {
-      const AoSettings& settings = configurations[c];
-      PassTimes times{};
-      for (Pass pass : kPasses) {
-        times[static_cast<size_t>(pass)] = timers[c].medianMs(pass);
+      const AoSettings& settings = configurations[c].ao();
+      PassTimes times;
+      for (const std::string& pass : benchPasses()) {
+        times[pass] = timers[c].medianMs(pass);
         if (timers[c].samples(pass).empty()) continue;
-        const std::string presetName = settings.get("preset");
+        const std::string presetName = configurations[c].get("preset");
         csv_ << section << "," << scene.name << "," << width << "," << height << ","
              << (presetName.empty() ? "custom" : presetName) << ","
              << settings.samples << "," << settings.radius << "," << (settings.depthHierarchy ? 1 : 0) << ","
-             << (settings.halfResolution ? 1 : 0) << "," << passName(pass) << ","
-             << times[static_cast<size_t>(pass)] << "\n";
+             << (settings.halfResolution ? 1 : 0) << "," << pass << "," << times[pass] << "\n";
       }
       results.push_back(times);
     }
@@ -149,28 +161,31 @@ class Bench {
   }
 
   PassTimes measure(const std::string& section, const BenchScene& scene, int width, int height,
-                    const AoSettings& settings) {
-    return measure(section, scene, width, height, std::vector<AoSettings>{settings}).front();
+                    const RenderSettings& settings) {
+    return measure(section, scene, width, height, std::vector<RenderSettings>{settings}).front();
   }
 
   // The SAO pass and the floor pass at the same size and sample count (a disk of `diskRadius` pixels), taking turns
   // frame by frame. Returns {SAO median ms, floor median ms}.
   std::pair<double, double> measureAgainstFloor(const BenchScene& scene, int width, int height,
                                                 const AoSettings& settings, float diskRadius) {
+    FrameOptions keepGbuffer;
+    keepGbuffer.retain = {"gbuffer"};
     const BenchView view(*this, scene, width, height);
     const Camera& camera = view.camera;
     const OutputTarget& target = view.target;
     FetchFloorPass floor(triangle_);
-    renderer_.render(camera, settings, View::Final, target);
-    floor.render(renderer_.gbuffer().color(), settings.samples, settings.spiralTurns, diskRadius);  // warm-up
+    renderer_.render(camera, settings, View::Final, target, keepGbuffer);
+    floor.render(renderer_.retained("gbuffer").color(), settings.samples, settings.spiralTurns, diskRadius);  // warm-up
     FinishPassTimer saoTimer, floorTimer;
     for (int frame = 0; frame < options_.frames; ++frame) {
-      renderer_.render(camera, settings, View::Final, target, &saoTimer);
-      floorTimer.begin(Pass::Sao);
-      floor.render(renderer_.gbuffer().color(), settings.samples, settings.spiralTurns, diskRadius);
-      floorTimer.end(Pass::Sao);
+      keepGbuffer.timer = &saoTimer;
+      renderer_.render(camera, settings, View::Final, target, keepGbuffer);
+      floorTimer.begin("sao");
+      floor.render(renderer_.retained("gbuffer").color(), settings.samples, settings.spiralTurns, diskRadius);
+      floorTimer.end("sao");
     }
-    const double sao = saoTimer.medianMs(Pass::Sao), floorMs = floorTimer.medianMs(Pass::Sao);
+    const double sao = saoTimer.medianMs("sao"), floorMs = floorTimer.medianMs("sao");
     csv_ << "floor," << scene.name << "," << width << "," << height << ",medium," << settings.samples << ","
          << settings.radius << "," << (settings.depthHierarchy ? 1 : 0) << ",0,sao," << sao << "\n";
     csv_ << "floor," << scene.name << "," << width << "," << height << ",medium," << settings.samples << ","
@@ -192,19 +207,43 @@ class Bench {
 
 double total(const PassTimes& t) {
   double sum = 0.0;
-  for (double v : t) sum += v;
+  for (const auto& [pass, ms] : t) sum += ms;
+  return sum;
+}
+
+double at(const PassTimes& t, const std::string& pass) {
+  const auto it = t.find(pass);
+  return it == t.end() ? 0.0 : it->second;
+}
+
+// One effect's milliseconds: the sum of its passes.
+double effectMs(const PassTimes& t, const EffectEntry& effect) {
+  double sum = 0.0;
+  for (const std::string& pass : effect.info.passes) sum += at(t, pass);
   return sum;
 }
 
 void printPassHeader() {
   std::printf("%-16s %-10s", "scene", "size");
-  for (Pass pass : kPasses) std::printf(" %9s", passName(pass));
+  for (const std::string& pass : benchPasses()) std::printf(" %9s", pass.c_str());
   std::printf(" %9s\n", "total");
 }
 
 void printPassRow(const std::string& scene, int width, int height, const PassTimes& t) {
   std::printf("%-16s %-10s", scene.c_str(), (std::to_string(width) + "x" + std::to_string(height)).c_str());
-  for (Pass pass : kPasses) std::printf(" %9.2f", t[static_cast<size_t>(pass)]);
+  for (const std::string& pass : benchPasses()) std::printf(" %9.2f", at(t, pass));
+  std::printf(" %9.2f\n", total(t));
+}
+
+void printEffectHeader() {
+  std::printf("%-16s %-10s", "scene", "size");
+  for (const EffectEntry& effect : effectTable()) std::printf(" %9s", effect.info.name.c_str());
+  std::printf(" %9s\n", "total");
+}
+
+void printEffectRow(const std::string& scene, int width, int height, const PassTimes& t) {
+  std::printf("%-16s %-10s", scene.c_str(), (std::to_string(width) + "x" + std::to_string(height)).c_str());
+  for (const EffectEntry& effect : effectTable()) std::printf(" %9.2f", effectMs(t, effect));
   std::printf(" %9.2f\n", total(t));
 }
 
@@ -273,14 +312,21 @@ int main(int argc, char** argv) {
     const AoSettings defaults;
     const BenchScene& builtin = scenes[0];
 
-    std::printf("\n1. Per-pass ms, default settings (%d samples, r = %.2f m, hierarchy on)\n", defaults.samples,
-                defaults.radius);
+    std::printf("\n1. Per-pass ms, default settings (every effect on; AO %d samples, r = %.2f m, hierarchy on)\n",
+                defaults.samples, defaults.radius);
     printPassHeader();
     const std::vector<std::pair<int, int>> sizes =
         options.quick ? std::vector<std::pair<int, int>>{{640, 360}}
                       : std::vector<std::pair<int, int>>{{640, 360}, {1280, 720}, {1920, 1080}};
+    std::vector<std::tuple<std::string, int, int, PassTimes>> perPass;
     for (const BenchScene& scene : scenes)
-      for (auto [w, h] : sizes) printPassRow(scene.name, w, h, bench.measure("passes", scene, w, h, defaults));
+      for (auto [w, h] : sizes) {
+        perPass.emplace_back(scene.name, w, h, bench.measure("passes", scene, w, h, defaults));
+        printPassRow(scene.name, w, h, std::get<3>(perPass.back()));
+      }
+    std::printf("\n1b. Per-effect ms (the sum of each effect's passes), the same frames\n");
+    printEffectHeader();
+    for (const auto& [name, w, h, times] : perPass) printEffectRow(name, w, h, times);
 
     const int w = options.quick ? 640 : 1280, h = options.quick ? 360 : 720;
     std::printf("\n2. Radius sweep, built-in scene %dx%d: SAO pass ms (hierarchy pass ms)\n", w, h);
@@ -289,7 +335,7 @@ int main(int argc, char** argv) {
     sweep << "radius_m,sao_ms_hierarchy,sao_ms_no_hierarchy\n";
     // Every radius and both hierarchy settings take turns frame by frame (see Bench::measure).
     const std::vector<float> radii = {0.25f, 0.5f, 1.0f, 2.0f, 3.0f, 4.0f};
-    std::vector<AoSettings> sweepSettings;
+    std::vector<RenderSettings> sweepSettings;
     for (float radius : radii) {
       for (bool hierarchy : {true, false}) {
         AoSettings settings = defaults;
@@ -303,8 +349,8 @@ int main(int argc, char** argv) {
     for (size_t r = 0; r < radii.size(); ++r) {
       const PassTimes& on = sweepTimes[2 * r];
       const PassTimes& off = sweepTimes[2 * r + 1];
-      const double saoOn = on[static_cast<size_t>(Pass::Sao)], saoOff = off[static_cast<size_t>(Pass::Sao)];
-      std::printf("%10.2f %11.2f (%4.2f) %18.2f\n", radii[r], saoOn, on[static_cast<size_t>(Pass::Hierarchy)], saoOff);
+      const double saoOn = at(on, "sao"), saoOff = at(off, "sao");
+      std::printf("%10.2f %11.2f (%4.2f) %18.2f\n", radii[r], saoOn, at(on, "hierarchy"), saoOff);
       sweep << radii[r] << "," << saoOn << "," << saoOff << "\n";
       if (radii[r] == 0.5f) saoAt[1][0] = saoOn, saoAt[0][0] = saoOff;
       if (radii[r] == 4.0f) saoAt[1][1] = saoOn, saoAt[0][1] = saoOff;
@@ -324,7 +370,7 @@ int main(int argc, char** argv) {
 
     std::printf("\n3. Sample-count sweep, built-in scene %dx%d: SAO pass ms\n", w, h);
     const std::vector<int> sampleCounts = {4, 8, 11, 16, 24, 32};
-    std::vector<AoSettings> sampleSettings;
+    std::vector<RenderSettings> sampleSettings;
     for (int samples : sampleCounts) {
       AoSettings settings = defaults;
       settings.samples = samples;
@@ -333,18 +379,19 @@ int main(int argc, char** argv) {
     }
     const std::vector<PassTimes> sampleTimes = bench.measure("samples", builtin, w, h, sampleSettings);
     for (size_t i = 0; i < sampleCounts.size(); ++i)
-      std::printf("%10d samples %9.2f ms\n", sampleCounts[i], sampleTimes[i][static_cast<size_t>(Pass::Sao)]);
+      std::printf("%10d samples %9.2f ms\n", sampleCounts[i], at(sampleTimes[i], "sao"));
 
     std::printf("\n4. Quality presets, built-in scene %dx%d\n", w, h);
     printPassHeader();
-    std::vector<AoSettings> presetSettings;
-    for (const PresetInfo& preset : qualityPresets()) {
-      AoSettings settings = defaults;
-      settings.applyPreset(preset.preset);
+    std::vector<RenderSettings> presetSettings;
+    for (QualityPreset preset : allQualityPresets()) {
+      RenderSettings settings;
+      settings.applyPreset(preset);  // every effect's preset
       presetSettings.push_back(settings);
     }
     const std::vector<PassTimes> presetTimes = bench.measure("presets", builtin, w, h, presetSettings);
-    for (size_t i = 0; i < presetTimes.size(); ++i) printPassRow(qualityPresets()[i].name, w, h, presetTimes[i]);
+    for (size_t i = 0; i < presetTimes.size(); ++i)
+      printPassRow(presetName(allQualityPresets()[i]), w, h, presetTimes[i]);
 
     std::printf("\n5. Ratios (this run, built-in scene %dx%d)\n", w, h);
     const PassTimes base = bench.measure("ratios", builtin, w, h, defaults);
@@ -354,7 +401,7 @@ int main(int argc, char** argv) {
                                     defaults.radius / distance,
                                 defaults.maxScreenRadius * static_cast<float>(h));
     const auto [sao, floor] = bench.measureAgainstFloor(builtin, w, h, defaults, disk);
-    const double saoMs = base[static_cast<size_t>(Pass::Sao)], gbufferMs = base[static_cast<size_t>(Pass::GBuffer)];
+    const double saoMs = at(base, "sao"), gbufferMs = at(base, "gbuffer");
     // Printed and written to DIR/ratios.csv, each with the two figures it divides.
     std::ofstream ratios(options.outDir + "/ratios.csv");
     ratios << "ratio,value,numerator_ms,denominator_ms\n";

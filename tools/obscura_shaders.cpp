@@ -8,11 +8,11 @@
 #include <fstream>
 #include <string>
 
-#include "core/FetchFloorPass.h"
+#include "FetchFloorPass.h"
 #include "core/Renderer.h"
 
 namespace {
-// The renderer's programs and the benchmark's floor pass.
+// The frame's programs and the benchmark's floor pass.
 std::vector<obscura::ProgramSpec> everyProgram() {
   std::vector<obscura::ProgramSpec> specs = obscura::Renderer::allProgramSpecs();
   for (const obscura::ProgramSpec& spec : obscura::FetchFloorPass::programSpecs()) specs.push_back(spec);

@@ -31,7 +31,7 @@
 
 #include "apps/SceneInput.h"
 #include "core/AoSettings.h"
-#include "core/Error.h"
+#include "base/Error.h"
 #include "core/Renderer.h"
 #include "gl/RenderTarget.h"
 #include "metrics/AoMetrics.h"
@@ -193,7 +193,7 @@ void loadReferences(TuningView& view, const Scene& scene, const TuningConfig& co
 
 Image renderAo(TuningView& view, const AoSettings& settings, PassTimer* timer = nullptr) {
   view.renderer->render(view.camera, settings, obscura::View::Ao,
-                        OutputTarget{view.output->framebuffer(), view.camera.width, view.camera.height, 0.0f}, timer);
+                        OutputTarget{view.output->framebuffer(), view.camera.width, view.camera.height, {}}, timer);
   Image image;
   image.width = view.camera.width;
   image.height = view.camera.height;
@@ -450,14 +450,12 @@ void fit(std::vector<TuningView>& views, const TuningConfig& config, const std::
 // --- The report ------------------------------------------------------------------------------------------------------
 
 double aoMilliseconds(TuningView& view, const AoSettings& settings) {
-  // The median over a few frames of every pass except the G-buffer and the composite: the cost AO adds.
+  // The median over a few frames of the AO effect's passes: the cost AO adds.
   FinishPassTimer timer;
   constexpr int kFrames = 11;
   for (int i = 0; i < kFrames; ++i) renderAo(view, settings, &timer);
   std::vector<double> frames(kFrames, 0.0);
-  for (int p = 0; p < static_cast<int>(Pass::Count); ++p) {
-    const Pass pass = static_cast<Pass>(p);
-    if (pass == Pass::GBuffer || pass == Pass::Composite) continue;
+  for (const std::string& pass : effectEntry("ao").info.passes) {
     const std::vector<double>& samples = timer.samples(pass);
     for (size_t i = 0; i < samples.size() && i < frames.size(); ++i) frames[i] += samples[i];
   }

@@ -1,11 +1,12 @@
 // The demo page: a full-window canvas and a controls panel over the JS API of obscura.js. The controls are built
-// from the parameter table the core exports (names, kinds, ranges, presets); this file only decides their layout.
+// from the effect table the core exports (effects, their parameters with kinds, ranges and presets, the views); this
+// file only decides their layout: one collapsible section per effect, its switch in the heading, the parameters the
+// table marks primary up front and the others under "more".
 import { createObscura, ObscuraError } from './obscura.js';
 
-// Parameters shown up front, in this order; every other parameter of the core's table goes under "More parameters".
-const MAIN_PARAMETERS = ['ao', 'preset', 'radius', 'intensity', 'bias', 'contrast', 'samples', 'blur', 'blur-radius'];
-const VIEW_LABELS = { final: 'Final', ao: 'AO', 'ao-raw': 'Raw AO', normals: 'Normals', depth: 'Depth',
-                      split: 'Split: AO off | on' };
+const VIEW_LABELS = { final: 'Final', split: 'Split: AO off | on', ao: 'AO', 'ao-raw': 'Raw AO', 'ao-blur-h': 'AO blur H',
+                      normals: 'Normals', depth: 'Depth', mask: 'Mask', 'scene-color': 'HDR colour',
+                      'display-color': 'Display colour', 'shading-count': 'Shading count' };
 // Keys of the page itself (the core's bindings come from obscura.keyBindings).
 const PAGE_KEYS = [['h', 'hide / show the controls'], ['o', 'open a scene file']];
 const POINTER_HELP = [['left drag', 'orbit'], ['right drag, shift + drag', 'pan'], ['wheel', 'zoom'],
@@ -54,10 +55,16 @@ function sliderScale(parameter) {
   };
 }
 
+// A parameter's element id: "param-ao-radius" for "ao.radius" (ids with dots are awkward in CSS selectors).
+const controlId = (name) => `param-${name.replace(/\./g, '-')}`;
+// Its label: the name without its effect's prefix.
+const shortName = (parameter) => (parameter.name.startsWith(`${parameter.effect}.`)
+  ? parameter.name.slice(parameter.effect.length + 1) : parameter.name).replace(/-/g, ' ');
+
 function parameterControl(obscura, parameter) {
-  const id = `param-${parameter.name}`;
-  const label = element('label', { htmlFor: id, textContent: parameter.name.replace(/-/g, ' '),
-                                   title: `${parameter.help} (${parameter.range})` });
+  const id = controlId(parameter.name);
+  const label = element('label', { htmlFor: id, textContent: shortName(parameter),
+                                   title: `${parameter.name}: ${parameter.help} (${parameter.range})` });
   const row = element('div', { className: `parameter ${parameter.kind}` }, label);
   const apply = (value) => {
     try {
@@ -115,15 +122,35 @@ function parameterControl(obscura, parameter) {
 }
 
 function buildControls(obscura) {
-  for (const parameter of obscura.parameters) {
+  // The frame's own parameters (the quality preset) first, then a section per effect, in frame order.
+  for (const parameter of obscura.parameters.filter((p) => !p.effect)) {
     const control = parameterControl(obscura, parameter);
-    $(MAIN_PARAMETERS.includes(parameter.name) ? '#main-parameters' : '#more-parameters').append(control.row);
+    $('#frame-parameters').append(control.row);
     controls.push(control);
   }
-  // Keep the up-front parameters in MAIN_PARAMETERS order.
-  for (const name of MAIN_PARAMETERS) {
-    const row = document.getElementById(`param-${name}`)?.closest('.parameter');
-    if (row) $('#main-parameters').append(row);
+  for (const effect of obscura.effects) {
+    const parameters = obscura.parameters.filter((p) => p.effect === effect.name);
+    if (!parameters.length) continue;
+    const section = element('details', { className: 'effect', id: `effect-${effect.name}`, open: true });
+    const summary = element('summary', { textContent: effect.title });
+    const main = element('div', { className: 'parameters' });
+    const more = element('details', { className: 'more' }, element('summary', { textContent: 'more' }));
+    section.append(summary, main);
+    for (const parameter of parameters) {
+      const control = parameterControl(obscura, parameter);
+      controls.push(control);
+      if (parameter.name === effect.name) {
+        // The effect's switch sits in its heading; clicking the box must not fold the section.
+        const box = control.row.querySelector('input');
+        box.addEventListener('click', (e) => e.stopPropagation());
+        box.title = `${effect.title} on / off`;
+        summary.append(box);
+      } else {
+        (parameter.primary ? main : more).append(control.row);
+      }
+    }
+    if (more.children.length > 1) section.append(more);
+    $('#effects').append(section);
   }
 
   for (const view of obscura.views) {
@@ -171,6 +198,7 @@ function showStats(obscura) {
     lines.push(s.timerQueries ? 'GPU per pass: waiting for the first results'
                               : 'GPU per pass: needs EXT_disjoint_timer_query (not offered here)');
   }
+  if (s.history) lines.push(`history ${s.history.frames} frames (dropped ${s.history.drops} times)`);
   if (s.contextLost) lines.push('WebGL context lost: waiting for the browser to restore it');
   if (s.error) lines.push(`stopped: ${s.error}`);
   $('#stats').textContent = lines.join('\n');

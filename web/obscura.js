@@ -1,13 +1,15 @@
-// Obscura's JavaScript API: Scalable Ambient Obscurance on a WebGL 1 canvas, driven by the same C++ core as the
-// native renderer. Documented in web/README.md; the demo page (app.js) uses nothing else.
+// Obscura's JavaScript API: image-space effects (Scalable Ambient Obscurance, tone mapping, FXAA) on a WebGL 1
+// canvas, driven by the same C++ core as the native renderer. Documented in web/README.md; the demo page (app.js)
+// uses nothing else.
 //
 //   import { createObscura } from './obscura.js';
 //   const obscura = await createObscura(document.querySelector('canvas'));
-//   obscura.set('radius', 1.5);
+//   obscura.set('ao.radius', 1.5);        // 'radius' (the name before effects had prefixes) works too
+//   obscura.set('tonemap.operator', 'agx');
 //   obscura.setView('ao');
 //
-// Everything that describes parameters (names, kinds, ranges, presets, views, keys) comes from the core, so a page
-// never repeats the core's tables.
+// Everything that describes effects and parameters (names, kinds, ranges, presets, views, passes, keys) comes from
+// the core's effect table, so a page never repeats it.
 import createObscuraCore from './obscura-core.js';
 
 // A refused call: an unknown parameter, a value out of range, a file that is not valid glTF. `message` is one line
@@ -42,16 +44,23 @@ export class Obscura extends EventTarget {
   }
 
   // --- What the core offers (read once at start) ---------------------------------------------------------------
-  // [{name, kind: 'switch'|'number'|'integer'|'choice', range, help, default, min?, max?, choices?}]
-  // (a number's choices are words it accepts besides numbers: 'auto' for bias, intensity and contrast)
+  // [{name, effect, alias?, kind: 'switch'|'number'|'integer'|'choice', range, help, default, primary, min?, max?,
+  //   choices?}]: every parameter of the frame, "preset" (effect '') first, then each effect's ("ao", "ao.radius",
+  // ...), in frame order. alias: an older name set() and get() also take ('radius'). A number's choices are words
+  // it accepts besides numbers ('auto' for the AO's bias, intensity and contrast). primary: shown up front.
   get parameters() { return this.description.parameters; }
-  // [{name, samples, turns, blurRadius, blurStride, halfResolution}]
+  // [{name, title, switch, passes: [...], targets: [{name, encoding, views: [...]}], parameters: [names]}]: the
+  // effect table, in the order the frame runs it.
+  get effects() { return this.description.effects; }
+  // [{name, samples, turns, blurRadius, blurStride, halfResolution}]: the AO's quality presets
   get presets() { return this.description.presets; }
-  // ['final', 'ao', 'ao-raw', 'normals', 'depth', 'split']
+  // ['final', 'split', then every target's debug view: 'normals', 'depth', 'mask', 'ao-raw', 'ao-blur-h', 'ao',
+  //  'scene-color', 'shading-count', 'display-color']
   get views() { return this.description.views; }
   // [{key, description}]: the keys handleKey() understands (the same as obscura-view's)
   get keyBindings() { return this.description.keys; }
-  // ['gbuffer', 'hierarchy', 'sao', 'blur-h', 'blur-v', 'upsample', 'composite']: the keys of stats().passMs
+  // Every pass of the table, in frame order ('gbuffer', 'hierarchy', 'sao', ..., 'lighting', 'tonemap', 'fxaa',
+  // 'view', 'present'): the keys of stats().passMs
   get passes() { return this.description.passes; }
   // {version, renderer, vendor, shadingLanguage, maxRenderSize, depth24, elementIndexUint, timerQuery}
   get context() { return this.description.context; }
@@ -156,8 +165,10 @@ export class Obscura extends EventTarget {
   //  lastCpuMs (time in the renderer of the last drawn frame), frames (drawn so far), timerQueries
   //  (EXT_disjoint_timer_query in use), passMs ({gbuffer: ms, ...} of a recent frame, read a few animation frames
   //  after it, drawn or not; null per pass not run; null without timer queries or before the first result),
-  //  contextLost, contextRestores, glObjects: {textures, buffers, ...} (live GL objects), error (why frames stopped,
-  //  or '')}
+  //  passesRun (the passes the last frame ran, in order), history ({frames: consecutive frames the history
+  //  survived, drops: how often it was dropped (resize, scene change), frameIndex}: starts afresh after a context
+  //  loss), pooledTargets (render targets the frame keeps), contextLost, contextRestores, glObjects: {textures,
+  //  buffers, ...} (live GL objects), error (why frames stopped, or '')}
   stats() { return this.json('obscura_stats'); }
 
   // Draws a frame now into the canvas, outside the animation-frame schedule (an embedder drawing on its own clock,

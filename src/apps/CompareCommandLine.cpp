@@ -5,7 +5,7 @@
 #include <cstdlib>
 #include <iostream>
 
-#include "core/Error.h"
+#include "base/Error.h"
 #include "scene/ImageIo.h"
 
 namespace obscura {

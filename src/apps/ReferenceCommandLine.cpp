@@ -6,7 +6,7 @@
 #include <thread>
 
 #include "core/AoSettings.h"
-#include "core/Error.h"
+#include "base/Error.h"
 #include "scene/ImageIo.h"
 
 namespace obscura {

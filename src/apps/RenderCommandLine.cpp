@@ -5,7 +5,7 @@
 #include <cstdio>
 #include <iostream>
 
-#include "core/Error.h"
+#include "base/Error.h"
 #include "gl/RenderTarget.h"
 #include "platform/FinishPassTimer.h"
 #include "scene/ImageIo.h"
@@ -15,21 +15,28 @@ namespace obscura {
 std::string renderUsage() {
   std::string usage =
       "usage: obscura-render [--scene FILE [--scene-scale S]] [--camera CAM.json | --fit] [--size WxH] [--view V]\n"
-      "                      [--out FILE.png]\n"
-      "                      [--radius R --bias B --intensity I --contrast K --samples N --blur-radius R --no-blur]\n"
-      "                      [--preset P] [--no-ao] [--bench N] [--backend osmesa|egl]\n"
+      "                      [--out FILE.png] [--NAME VALUE | --no-EFFECT ...] [--preset P] [--bench N]\n"
+      "                      [--backend osmesa|egl]\n"
       "\n"
-      "Renders a glTF 2.0 scene (default: the built-in scene) headless with Scalable Ambient Obscurance.\n"
+      "Renders a glTF 2.0 scene (default: the built-in scene) headless: the G-buffer, Scalable Ambient Obscurance,\n"
+      "lighting, tone mapping and FXAA, or one of the frame's targets.\n"
       + sceneInputUsage() +
-      "  --view V          final | ao | ao-raw | normals | depth | mask   (default final)\n"
+      "  --view V          " + parse::joinChoices(frameViewNames(), " | ") + "\n"
+      "                    (default final; a target's view shows its values as they are: no tone curve, no FXAA)\n"
       "  --out FILE        output PNG (default obscura.png)\n"
       "  --bench N         render N frames and print per-pass milliseconds (glFinish-bounded)\n"
       "  --backend B       osmesa (default) or egl (Mesa EGL surfaceless, a true GLES 2 context)\n"
-      "  --no-ao, --no-blur  shorthands for --ao off, --blur off\n"
-      "\nAO parameters (--NAME VALUE):\n";
-  for (const ParameterInfo& p : aoParameters()) {
-    char line[200];
-    std::snprintf(line, sizeof line, "  --%-18s %-32s %s\n", p.name, p.range.c_str(), p.help);
+      "  --no-EFFECT       shorthand for --EFFECT off (--no-ao, --no-tonemap, --no-fxaa; --no-blur: --ao.blur off)\n"
+      "\nParameters (--NAME VALUE; in brackets, older names still accepted):\n";
+  std::string effect = "-";
+  for (const ParameterInfo& p : RenderSettings::parameters()) {
+    if (p.effect != effect) {
+      effect = p.effect;
+      usage += effect.empty() ? std::string("  frame:\n") : "  " + effectEntry(effect).info.title + ":\n";
+    }
+    const std::string name = p.name + (p.alias.empty() ? "" : " (--" + p.alias + ")");
+    char line[300];
+    std::snprintf(line, sizeof line, "    --%-28s %-32s %s\n", name.c_str(), p.range.c_str(), p.help.c_str());
     usage += line;
   }
   return usage;
@@ -37,9 +44,10 @@ std::string renderUsage() {
 
 RenderOptions parseRenderCommandLine(const std::vector<std::string>& args) {
   RenderOptions options;
-  auto isParameter = [](const std::string& name) {
-    const auto& params = aoParameters();
-    return std::any_of(params.begin(), params.end(), [&](const ParameterInfo& p) { return name == p.name; });
+  auto isParameter = [](const std::string& name) { return RenderSettings::find(name) != nullptr; };
+  auto isSwitch = [](const std::string& name) {
+    const ParameterInfo* p = RenderSettings::find(name);
+    return p && p->kind == ParameterKind::Switch;
   };
   for (size_t i = 0; i < args.size(); ++i) {
     const std::string& arg = args[i];
@@ -65,12 +73,12 @@ RenderOptions parseRenderCommandLine(const std::vector<std::string>& args) {
       } catch (const InputError& e) {
         throw InputError(std::string("--") + e.what());
       }
-    } else if (arg == "--no-blur") options.ao.blur = false;
-    else if (arg == "--no-ao") options.ao.enabled = false;
-    else if (arg.rfind("--", 0) == 0 && isParameter(arg.substr(2))) {
+    } else if (arg.rfind("--no-", 0) == 0 && isSwitch(arg.substr(5))) {
+      options.settings.set(arg.substr(5), "off");  // --no-ao, --no-tonemap, --no-fxaa, --no-blur
+    } else if (arg.rfind("--", 0) == 0 && isParameter(arg.substr(2))) {
       const std::string name = arg.substr(2);
       try {
-        options.ao.set(name, value());
+        options.settings.set(name, value());
       } catch (const InputError& e) {
         throw InputError(std::string("--") + e.what());
       }
@@ -105,30 +113,33 @@ int runRender(const RenderOptions& options) {
     renderer.setScene(scene);
     const gl::RenderTarget output("output", camera.width, camera.height, GL_NEAREST,
                                   gl::RenderTarget::Depth::Renderbuffer, context.caps().depth24);
-    const OutputTarget target{output.framebuffer(), camera.width, camera.height, 0.0f};
+    OutputTarget target;
+    target.framebuffer = output.framebuffer();
+    target.width = camera.width;
+    target.height = camera.height;
 
-    renderer.render(camera, options.ao, options.view, target);  // also warms up shader compilation
+    renderer.render(camera, options.settings, options.view, target);  // also warms up shader compilation
     if (options.benchFrames > 0) {
       FinishPassTimer timer;
       const auto start = std::chrono::steady_clock::now();
       for (int frame = 0; frame < options.benchFrames; ++frame)
-        renderer.render(camera, options.ao, options.view, target, &timer);
+        renderer.render(camera, options.settings, options.view, target, &timer);
       glFinish();
       const double total = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
-      std::printf("obscura-render --bench: %dx%d, %d frames, view %s, %d samples, backend %s (%s)\n", camera.width,
-                  camera.height, options.benchFrames, viewName(options.view), options.ao.samples,
+      std::printf("obscura-render --bench: %dx%d, %d frames, view %s, %d AO samples, backend %s (%s)\n", camera.width,
+                  camera.height, options.benchFrames, options.view.name.c_str(), options.settings.ao().samples,
                   backendName(options.backend), context.caps().renderer.c_str());
       std::printf("%-10s %10s %10s %10s\n", "pass", "mean ms", "min ms", "max ms");
       double sumOfMeans = 0.0;
-      for (int p = 0; p < static_cast<int>(Pass::Count); ++p) {
-        const std::vector<double>& s = timer.samples(static_cast<Pass>(p));
+      for (const std::string& pass : framePassNames()) {
+        const std::vector<double>& s = timer.samples(pass);
         if (s.empty()) continue;
         double sum = 0.0;
         for (double v : s) sum += v;
         const double mean = sum / static_cast<double>(s.size());
         sumOfMeans += mean;
-        std::printf("%-10s %10.3f %10.3f %10.3f\n", passName(static_cast<Pass>(p)), mean,
-                    *std::min_element(s.begin(), s.end()), *std::max_element(s.begin(), s.end()));
+        std::printf("%-10s %10.3f %10.3f %10.3f\n", pass.c_str(), mean, *std::min_element(s.begin(), s.end()),
+                    *std::max_element(s.begin(), s.end()));
       }
       std::printf("%-10s %10.3f   (sum of pass means; wall clock per frame %.3f ms)\n", "total", sumOfMeans,
                   total / options.benchFrames);
@@ -145,6 +156,9 @@ int runRender(const RenderOptions& options) {
     return 2;
   } catch (const GlError& e) {
     std::cerr << "obscura-render: GL error: " << e.what() << "\n";
+    return 1;
+  } catch (const PipelineError& e) {
+    std::cerr << "obscura-render: " << e.what() << "\n";
     return 1;
   }
 }

@@ -5,7 +5,7 @@
 #include <vector>
 
 #include "apps/SceneInput.h"
-#include "core/AoSettings.h"
+#include "core/RenderSettings.h"
 #include "core/Renderer.h"
 #include "platform/HeadlessContext.h"
 
@@ -15,7 +15,7 @@ struct RenderOptions {
   SceneInput input;  // --scene, --scene-scale, --camera, --fit, --size
   View view = View::Final;
   std::string outPath = "obscura.png";
-  AoSettings ao;
+  RenderSettings settings;
   int benchFrames = 0;
   HeadlessBackend backend = HeadlessBackend::OSMesa;
   bool help = false;

@@ -7,7 +7,7 @@
 
 #include <glm/gtc/matrix_transform.hpp>
 
-#include "core/Error.h"
+#include "base/Error.h"
 #include "scene/BuiltinScene.h"
 #include "scene/GltfLoader.h"
 

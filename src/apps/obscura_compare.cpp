@@ -2,7 +2,7 @@
 #include <iostream>
 
 #include "apps/CompareCommandLine.h"
-#include "core/Error.h"
+#include "base/Error.h"
 
 int main(int argc, char** argv) {
   try {

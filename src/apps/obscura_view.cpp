@@ -15,7 +15,7 @@
 #define GLFW_INCLUDE_NONE
 #include <GLFW/glfw3.h>
 
-#include "core/Error.h"
+#include "base/Error.h"
 #include "gl/RenderTarget.h"
 #include "platform/GlfwWindow.h"
 #include "platform/GpuPassTimer.h"
@@ -188,18 +188,23 @@ std::string title(const Viewer& viewer, double frameMs, const GpuPassTimer& time
                 viewer.state().viewMode().c_str(), frameMs, frameMs > 0.0 ? 1000.0 / frameMs : 0.0);
   std::string out = text;
   // What the keys change, as in use (bias, intensity and contrast on "auto" show their fitted values).
-  const AoSettings& s = viewer.state().settings;
-  const std::string preset = s.get("preset");
-  const std::string presetShown = preset.empty() ? std::string(presetName(s.preset)) + " (changed)" : preset;
-  out += " - AO " + s.get("ao") + ", " + presetShown + ", r " + s.get("radius") + " m, " + s.get("samples") +
-         " samples, intensity " + s.effective("intensity") + ", bias " + s.effective("bias") + ", contrast " +
-         s.effective("contrast") + ", blur " + (s.blur ? s.get("blur-radius") : std::string("off"));
+  const RenderSettings& s = viewer.state().settings;
+  const std::string preset = s.get("ao.preset");
+  const std::string presetShown = preset.empty() ? std::string(presetName(s.ao().preset)) + " (changed)" : preset;
+  out += " - AO " + s.get("ao") + ", " + presetShown + ", r " + s.get("ao.radius") + " m, " + s.get("ao.samples") +
+         " samples, intensity " + s.effective("ao.intensity") + ", bias " + s.effective("ao.bias") + ", contrast " +
+         s.effective("ao.contrast") + ", blur " + (s.ao().blur ? s.get("ao.blur-radius") : std::string("off")) +
+         " - tone mapping " + (s.get("tonemap") == "on" ? s.get("tonemap.operator") + " " +
+                                                             s.get("tonemap.exposure") + " EV"
+                                                       : std::string("off")) +
+         " - FXAA " + s.get("fxaa");
   if (timer.hasResult()) {
     out += " - GPU";
-    for (int p = 0; p < GpuPassTimer::kPassCount; ++p) {
-      const double ms = timer.lastResult()[static_cast<size_t>(p)];
+    const std::vector<std::string>& passes = framePassNames();
+    for (size_t p = 0; p < passes.size(); ++p) {
+      const double ms = timer.lastResult()[p];
       if (ms < 0.0) continue;
-      std::snprintf(text, sizeof text, " %s %.2f", passName(static_cast<Pass>(p)), ms);
+      std::snprintf(text, sizeof text, " %s %.2f", passes[p].c_str(), ms);
       out += text;
     }
     out += " ms";
@@ -229,7 +234,7 @@ int run(const Options& options) {
     glfwGetFramebufferSize(window.handle(), &width, &height);
     if (width > 0 && height > 0) {  // 0 x 0 while minimised
       timer.beginFrame();
-      viewer.render(0, width, height, timer.available() ? &timer : nullptr);
+      viewer.render(0, width, height, timer.available() ? &timer : nullptr, glfwGetTime());
       timer.endFrame();
     }
     if (!options.screenshot.empty() && frame >= options.frames) {
@@ -264,6 +269,9 @@ int main(int argc, char** argv) {
     return 2;
   } catch (const GlError& e) {
     std::cerr << "obscura-view: GL error: " << e.what() << "\n";
+    return 1;
+  } catch (const PipelineError& e) {
+    std::cerr << "obscura-view: " << e.what() << "\n";
     return 1;
   }
 }

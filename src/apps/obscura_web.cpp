@@ -20,7 +20,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include "core/Error.h"
+#include "base/Error.h"
 #include "gl/GlObjects.h"
 #include "gl/RenderTarget.h"
 #include "platform/GpuPassTimer.h"
@@ -62,7 +62,7 @@ class WebApp {
     if (canvas_.lost() || !renderError_.empty()) return false;
     canvas_.fitToDisplay(viewer_.caps().maxRenderSize(), &width_, &height_);
     try {
-      viewer_.render(0, width_, height_, timer);
+      viewer_.render(0, width_, height_, timer, time_);
       return true;
     } catch (const std::exception& e) {
       renderError_ = e.what();
@@ -76,10 +76,20 @@ class WebApp {
     Json passes = nullptr;
     if (timer_ && timer_->hasResult()) {
       passes = Json::object();
-      for (int p = 0; p < GpuPassTimer::kPassCount; ++p) {
-        const double ms = timer_->lastResult()[static_cast<size_t>(p)];
-        passes[passName(static_cast<Pass>(p))] = ms >= 0.0 ? Json(ms) : Json(nullptr);
+      const std::vector<std::string>& names = framePassNames();
+      for (size_t p = 0; p < names.size(); ++p) {
+        const double ms = timer_->lastResult()[p];
+        passes[names[p]] = ms >= 0.0 ? Json(ms) : Json(nullptr);
       }
+    }
+    // The frame the renderer drew last: how many frames its history has survived, and the passes it ran.
+    Json history = nullptr, ran = Json::array();
+    if (const Renderer* renderer = viewer_.renderer()) {
+      history = {{"frames", renderer->lastFrame().historyFrames},
+                 {"drops", renderer->historyDrops()},
+                 {"frameIndex", renderer->lastFrame().index}};
+      for (const PlannedPass& pass : renderer->lastPlan().passes())
+        if (pass.live) ran.push_back(pass.decl.name);
     }
     const gl::LiveObjects& live = gl::liveObjects();
     return Json{{"width", width_},
@@ -92,6 +102,9 @@ class WebApp {
                 {"frames", frames_},
                 {"timerQueries", timer_ && timer_->available()},
                 {"passMs", passes},
+                {"passesRun", ran},
+                {"history", history},
+                {"pooledTargets", viewer_.renderer() ? Json(viewer_.renderer()->pooledTargets()) : Json(nullptr)},
                 {"contextLost", canvas_.lost()},
                 {"contextRestores", restores_},
                 {"glObjects", {{"textures", live.textures},
@@ -110,6 +123,7 @@ class WebApp {
   }
 
   void frame(double timeMs) {
+    time_ = timeMs * 0.001;
     if (canvas_.lost()) return;
     GpuPassTimer* timer = timer_ && timer_->available() ? timer_.get() : nullptr;
     if (timer) timer->collectResults();
@@ -163,6 +177,7 @@ class WebApp {
   bool continuous_ = false;
   int width_ = 0, height_ = 0;
   double lastFrameTime_ = 0.0, frameMs_ = 0.0, cpuMs_ = 0.0;
+  double time_ = 0.0;  // seconds, the animation clock (the last animation frame's time)
   double lastCpuMs_ = 0.0;  // time in the renderer of the last drawn frame, unsmoothed
   long frames_ = 0;
   int restores_ = 0;
@@ -201,16 +216,6 @@ const char* returned(std::string text) {
   return g_returned.c_str();
 }
 
-const char* kindName(ParameterKind kind) {
-  switch (kind) {
-    case ParameterKind::Switch: return "switch";
-    case ParameterKind::Number: return "number";
-    case ParameterKind::Integer: return "integer";
-    case ParameterKind::Choice: return "choice";
-  }
-  return "?";
-}
-
 }  // namespace
 
 extern "C" {
@@ -227,18 +232,34 @@ EMSCRIPTEN_KEEPALIVE int obscura_create(int checkGlErrors) {
 
 EMSCRIPTEN_KEEPALIVE const char* obscura_error() { return g_error.c_str(); }
 
-// Everything a user interface needs to build its controls, read from the core's tables.
+// Everything a user interface needs to build its controls, read from the core's tables: the effect table (effects,
+// their parameters, passes and targets), the views, the presets and the keys.
 EMSCRIPTEN_KEEPALIVE const char* obscura_describe() {
+  const RenderSettings defaults;
   Json parameters = Json::array();
-  for (const ParameterInfo& p : aoParameters()) {
-    Json item{{"name", p.name}, {"kind", kindName(p.kind)}, {"range", p.range}, {"help", p.help},
-              {"default", AoSettings{}.get(p.name)}};
+  for (const ParameterInfo& p : RenderSettings::parameters()) {
+    Json item{{"name", p.name}, {"effect", p.effect}, {"kind", parameterKindName(p.kind)}, {"range", p.range},
+              {"help", p.help}, {"default", defaults.get(p.name)}, {"primary", p.primary}};
+    if (!p.alias.empty()) item["alias"] = p.alias;
     if (p.kind == ParameterKind::Number || p.kind == ParameterKind::Integer) {
       item["min"] = p.min;
       item["max"] = p.max;
     }
     if (!p.choices.empty()) item["choices"] = p.choices;  // for a number: words accepted besides numbers ("auto")
     parameters.push_back(item);
+  }
+  Json effects = Json::array();
+  for (const EffectEntry& row : effectTable()) {
+    Json names = Json::array(), targets = Json::array();
+    for (const ParameterInfo& p : RenderSettings::parameters())
+      if (p.effect == row.info.name) names.push_back(p.name);
+    for (const TargetInfo& t : row.info.targets) {
+      Json views = Json::array();
+      for (const TargetView& v : t.views) views.push_back(v.name);
+      targets.push_back({{"name", t.name}, {"encoding", t.encoding}, {"views", views}});
+    }
+    effects.push_back({{"name", row.info.name}, {"title", row.info.title}, {"switch", row.info.hasSwitch},
+                       {"passes", row.info.passes}, {"targets", targets}, {"parameters", names}});
   }
   Json presets = Json::array();
   for (const PresetInfo& p : qualityPresets())
@@ -248,8 +269,6 @@ EMSCRIPTEN_KEEPALIVE const char* obscura_describe() {
   Json keys = Json::array();
   for (const Viewer::KeyBinding& k : Viewer::keyBindings())
     keys.push_back({{"key", k.key}, {"description", k.description}});
-  Json passes = Json::array();
-  for (int p = 0; p < static_cast<int>(Pass::Count); ++p) passes.push_back(passName(static_cast<Pass>(p)));
   Json context = nullptr;
   if (g_app) {
     const gl::GlCaps& caps = g_app->viewer().caps();
@@ -258,8 +277,9 @@ EMSCRIPTEN_KEEPALIVE const char* obscura_describe() {
                {"depth24", caps.depth24}, {"elementIndexUint", caps.elementIndexUint},
                {"timerQuery", caps.timerQuery}};
   }
-  return returned(Json{{"parameters", parameters}, {"presets", presets}, {"views", ViewerState::viewModes()},
-                       {"keys", keys}, {"passes", passes}, {"context", context}}.dump());
+  return returned(Json{{"parameters", parameters}, {"effects", effects}, {"presets", presets},
+                       {"views", ViewerState::viewModes()}, {"keys", keys}, {"passes", framePassNames()},
+                       {"context", context}}.dump());
 }
 
 EMSCRIPTEN_KEEPALIVE int obscura_set(const char* name, const char* value) {

@@ -1,10 +1,13 @@
 #pragma once
-// Every user-facing knob of the AO pipeline, with its default, its range and its documentation, in one place. The
-// command line, the desktop viewer and the web page all set parameters through AoSettings::set, so they accept the
-// same names and the same ranges, and an out-of-range value never reaches a shader.
+// The settings of the ambient obscurance effect (core/AoEffect.h): every knob of SAO, its depth hierarchy and its
+// blur, with its default, range and documentation (parameters()). Set by name through RenderSettings as "ao.NAME";
+// the plain names ("radius", "samples", ...) are the names they had before effects had prefixes, and stay accepted
+// everywhere (command line, URLs, the JS API).
 #include <optional>
 #include <string>
 #include <vector>
+
+#include "core/Parameters.h"
 
 namespace obscura {
 
@@ -13,8 +16,7 @@ enum class Falloff {
   Alchemy2011,  // McGuire et al., HPG 2011: a hard cut at the radius
   Sao2012,      // McGuire, Mara, Luebke, HPG 2012 reference code: smooth (r^2 - v.v)^3 falloff
 };
-
-enum class QualityPreset { Low, Medium, High, Ultra };
+const char* falloffName(Falloff falloff);
 
 // The estimator parameters SAO's pass uses (SaoKernel.h).
 struct EstimatorParameters {
@@ -30,7 +32,7 @@ constexpr EstimatorParameters kPaperEstimatorParameters{};
 // for `preset` at `radius`: linear in log(radius) between the fitted radii, held at the ends of the fitted range.
 EstimatorParameters tunedEstimatorParameters(QualityPreset preset, float radius);
 
-struct AoSettings {
+struct AoSettings : ParameterAccess<AoSettings> {
   bool enabled = true;
 
   // --- Estimator (see SaoKernel.h) ---
@@ -57,45 +59,23 @@ struct AoSettings {
   bool blurNormalAware = true;   // also weight by normals and by distance to the centre's tangent plane
   float blurDepthSigma = 0.1f;   // metres: range weight exp(-(dz/sigma)^2)
 
+  // Every parameter, by its local name ("radius"; the switch is "ao"). set/get/effective come from ParameterAccess;
+  // "auto" for bias, intensity or contrast returns that parameter to its tuned value, and "preset" reads as the
+  // preset whose values the settings hold, or "" when they match none.
+  static const std::vector<Parameter<AoSettings>>& parameters();
+
   // Applies a preset's samples, spiral turns, blur radius/stride and resolution, and remembers the preset (for the
   // tuned estimator parameters), leaving the rest alone.
   void applyPreset(QualityPreset which);
-  // Sets `name` (the command-line spelling without "--", e.g. "radius") from text. Throws InputError naming the
-  // parameter, the value and the accepted range when the name is unknown or the value is out of range.
-  // "auto" for bias, intensity or contrast returns that parameter to its tuned value.
-  void set(const std::string& name, const std::string& value);
+  // Whether the settings still hold `which`'s values.
+  bool matchesPreset(QualityPreset which) const;
   // sigma, beta and k as the SAO pass uses them: the explicit values where set, the tuned ones elsewhere.
   EstimatorParameters estimator() const;
-  // The current value of `name` as text that set() accepts (numbers in their shortest exact form), so settings
-  // round-trip through text (the web page's URL, the viewers' key bindings). "auto" for bias, intensity or
-  // contrast left to their tuned values. For "preset": the preset whose values the settings hold, or "" when they
-  // match none. Throws InputError for an unknown name.
-  std::string get(const std::string& name) const;
-  // The value in use, as text: get(name), except that bias, intensity and contrast left on "auto" read as the
-  // values estimator() resolves them to (for sliders and the viewers' +/- keys).
-  std::string effective(const std::string& name) const;
   // Throws InputError if a field is out of range (for settings built in code).
   void validate() const;
 };
 
-// What kind of value a parameter takes, so a user interface can offer the right control.
-enum class ParameterKind {
-  Switch,   // "on" | "off"
-  Number,   // a real number in min .. max
-  Integer,  // a whole number in min .. max
-  Choice,   // one of `choices`
-};
-
-// Documentation of one parameter accepted by AoSettings::set.
-struct ParameterInfo {
-  const char* name;
-  std::string range;  // human-readable, made from the fields below, e.g. "0.01 .. 100 (metres)"
-  const char* help;
-  ParameterKind kind;
-  double min = 0.0, max = 0.0;       // Number and Integer
-  std::vector<std::string> choices;  // Switch and Choice, in the order to offer them; for a Number, words accepted
-                                     // besides numbers ("auto": bias, intensity and contrast)
-};
+// The AO parameters' documentation, by local name.
 const std::vector<ParameterInfo>& aoParameters();
 
 struct PresetInfo {
@@ -107,14 +87,7 @@ struct PresetInfo {
   int blurStride;
   bool halfResolution;
 };
-// The single table of quality presets used by the CLI, the viewer and the page.
+// The single table of the AO's quality presets, used by the CLI, the viewers and the page.
 const std::vector<PresetInfo>& qualityPresets();
-QualityPreset parsePreset(const std::string& name);  // throws InputError
-const char* presetName(QualityPreset preset);
-const char* falloffName(Falloff falloff);
-
-// The shortest decimal text that reads back as exactly `value`: how get() writes numbers (and the viewers' state
-// text writes camera coordinates), so "0.3" stays "0.3" rather than "0.300000012".
-std::string formatShortest(float value);
 
 }  // namespace obscura

@@ -8,28 +8,31 @@ std::vector<ProgramSpec> AoUpsamplePass::programSpecs() {
   return {ProgramSpec{"ao-upsample", "fullscreen.vert", "ao_upsample.frag", {}, {}}};
 }
 
-AoUpsamplePass::AoUpsamplePass(const FullscreenTriangle& triangle)
-    : triangle_(triangle), program_(programSpecs().front().build()) {}
-
-void AoUpsamplePass::resize(int width, int height) {
-  if (target_ && target_.width() == width && target_.height() == height) return;
-  target_ = gl::RenderTarget("AO upsample", width, height, GL_NEAREST, gl::RenderTarget::Depth::None, false);
-}
+AoUpsamplePass::AoUpsamplePass(const EffectResources& resources)
+    : resources_(resources),
+      program_(resources.build(programSpecs().front())),
+      reconstruction_(program_),
+      ao_(program_.uniform("u_ao")),
+      aoSize_(program_.uniform("u_aoSize")),
+      gbuffer_(program_.uniform("u_gbuffer")),
+      gbufferSize_(program_.uniform("u_gbufferSize")),
+      aoScale_(program_.uniform("u_aoScale")),
+      invSigma2_(program_.uniform("u_invSigma2")) {}
 
 void AoUpsamplePass::render(const gl::Texture2D& halfResolutionAo, const gl::Texture2D& gbuffer,
                             const FrameCamera& camera, const AoSettings& settings) {
-  target_.bindForDrawing();
+  using gl::Program;
   program_.use();
   halfResolutionAo.bind(0);
-  program_.set("u_ao", 0);
-  program_.set("u_aoSize", glm::vec2(halfResolutionAo.width(), halfResolutionAo.height()));
+  Program::set(ao_, 0);
+  Program::set(aoSize_, glm::vec2(halfResolutionAo.width(), halfResolutionAo.height()));
   gbuffer.bind(1);
-  program_.set("u_gbuffer", 1);
-  program_.set("u_gbufferSize", glm::vec2(gbuffer.width(), gbuffer.height()));
-  program_.set("u_aoScale", 2.0f);
-  program_.set("u_invSigma2", 1.0f / (settings.blurDepthSigma * settings.blurDepthSigma));
-  setReconstructionUniforms(program_, camera.reconstruction);
-  triangle_.draw();
+  Program::set(gbuffer_, 1);
+  Program::set(gbufferSize_, glm::vec2(gbuffer.width(), gbuffer.height()));
+  Program::set(aoScale_, 2.0f);
+  Program::set(invSigma2_, 1.0f / (settings.blurDepthSigma * settings.blurDepthSigma));
+  reconstruction_.set(camera.reconstruction);
+  resources_.triangle.draw();
   gl::restoreBaselineState();
 }
 

@@ -1,30 +1,55 @@
 #include "core/DebugViewPass.h"
 
+#include "core/FramePlan.h"
+#include "core/PassContext.h"
 #include "gl/PipelineState.h"
 
 namespace obscura {
 namespace {
-ProgramSpec spec(DebugViewPass::Mode mode) {
-  static const char* names[] = {"view[ao]", "view[normals]", "view[depth]", "view[mask]"};
-  const int index = static_cast<int>(mode);
-  return ProgramSpec{names[index], "fullscreen.vert", "debug_view.frag", {{"VIEW_MODE", std::to_string(index)}}, {}};
-}
+
+constexpr ViewDecoding kDecodings[] = {ViewDecoding::Grey,     ViewDecoding::Normals, ViewDecoding::Depth,
+                                       ViewDecoding::Mask,     ViewDecoding::HdrColor, ViewDecoding::Color,
+                                       ViewDecoding::Count};
+constexpr const char* kDecodingNames[] = {"grey", "normals", "depth", "mask", "hdr-color", "color", "count"};
+
 }  // namespace
 
-std::vector<ProgramSpec> DebugViewPass::programSpecs() {
-  return {spec(Mode::Ao), spec(Mode::Normals), spec(Mode::Depth), spec(Mode::Mask)};
+ProgramSpec DebugViewPass::programSpec(ViewDecoding decoding) {
+  const int index = static_cast<int>(decoding);
+  return ProgramSpec{std::string("view[") + kDecodingNames[index] + "]",
+                     "fullscreen.vert",
+                     "debug_view.frag",
+                     {{"VIEW_DECODING", std::to_string(index)}, {"FAR_RAY", "0"}},
+                     {}};
 }
 
-void DebugViewPass::render(Mode mode, const gl::Texture2D& source, const FrameCamera& camera) {
-  auto it = programs_.find(mode);
-  if (it == programs_.end()) it = programs_.emplace(mode, spec(mode).build()).first;
-  const gl::Program& program = it->second;
-  program.use();
-  setReconstructionUniforms(program, camera.reconstruction);
-  source.bind(0);
-  program.set("u_source", 0);
-  triangle_.draw();
-  gl::restoreBaselineState();
+std::vector<ProgramSpec> DebugViewPass::programSpecs() {
+  std::vector<ProgramSpec> specs;
+  for (ViewDecoding decoding : kDecodings) specs.push_back(programSpec(decoding));
+  return specs;
+}
+
+const DebugViewPass::Variant& DebugViewPass::variant(ViewDecoding decoding) {
+  auto it = variants_.find(decoding);
+  if (it == variants_.end()) it = variants_.emplace(decoding, Variant(resources_.build(programSpec(decoding)))).first;
+  return it->second;
+}
+
+PassDecl DebugViewPass::pass(const std::string& name, const std::string& target, ViewDecoding decoding) {
+  PassDecl pass;
+  pass.name = name;
+  pass.reads = {target};
+  pass.writes = {{kOutputTarget, TargetSize::full(), PassDecl::Write::Depth::None, ""}};
+  pass.run = [this, target, decoding](PassContext& context) {
+    const Variant& v = variant(decoding);
+    context.bindForWriting(kOutputTarget);
+    v.program.use();
+    context.texture(target).bind(0);
+    gl::Program::set(v.source, 0);
+    resources_.triangle.draw();
+    gl::restoreBaselineState();
+  };
+  return pass;
 }
 
 }  // namespace obscura

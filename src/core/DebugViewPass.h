@@ -1,28 +1,33 @@
 #pragma once
-// The diagnostic views (shaders_es2/debug_view.frag): AO as grey, G-buffer normals as colour, linear depth as grey,
-// and the geometry mask (which pixels hold geometry; what obscura-compare measures over).
+// The frame's own last pass when it shows a debug view: one named target (core/Effect.h, TargetInfo::views)
+// decoded into the output (shaders_es2/debug_view.frag). Also the present pass, which copies the frame's result into
+// the output when its writer could not write there itself.
 #include <map>
 #include <vector>
 
-#include "core/FrameContext.h"
-#include "core/ShaderLibrary.h"
-#include "gl/RenderTarget.h"
+#include "core/EffectTable.h"
 
 namespace obscura {
 
 class DebugViewPass {
  public:
-  enum class Mode { Ao = 0, Normals = 1, Depth = 2, Mask = 3 };
-
+  static ProgramSpec programSpec(ViewDecoding decoding);
   static std::vector<ProgramSpec> programSpecs();
 
-  explicit DebugViewPass(const FullscreenTriangle& triangle) : triangle_(triangle) {}
-  // Draws into the bound framebuffer. `source`: the AO texture (Mode::Ao) or the G-buffer (the others).
-  void render(Mode mode, const gl::Texture2D& source, const FrameCamera& camera);
+  explicit DebugViewPass(const EffectResources& resources) : resources_(resources) {}
+  // A pass named `name` reading `target`, writing the output.
+  PassDecl pass(const std::string& name, const std::string& target, ViewDecoding decoding);
 
  private:
-  const FullscreenTriangle& triangle_;
-  std::map<Mode, gl::Program> programs_;
+  struct Variant {
+    explicit Variant(gl::Program built) : program(std::move(built)), source(program.uniform("u_source")) {}
+    gl::Program program;
+    GLint source;
+  };
+  const Variant& variant(ViewDecoding decoding);
+
+  const EffectResources& resources_;
+  std::map<ViewDecoding, Variant> variants_;
 };
 
 }  // namespace obscura

@@ -3,7 +3,7 @@
 #include <algorithm>
 #include <string>
 
-#include "core/Error.h"
+#include "base/Error.h"
 #include "core/SaoKernel.h"
 #include "gl/PipelineState.h"
 
@@ -60,12 +60,34 @@ const char* DepthHierarchyPass::storageName(Storage storage) {
   return "?";
 }
 
-DepthHierarchyPass::DepthHierarchyPass(const FullscreenTriangle& triangle, const gl::GlCaps& caps, Storage storage)
+DepthHierarchyPass::DepthHierarchyPass(const FullscreenTriangle& triangle, const gl::GlCaps& caps, Storage storage,
+                                       gl::Program program)
     : triangle_(triangle),
       caps_(caps),
       requested_(storage),
       active_(storage),
-      program_(programSpecs().front().build()) {}
+      program_(std::move(program)),
+      gbuffer_(program_.uniform("u_gbuffer")),
+      gbufferSize_(program_.uniform("u_gbufferSize")),
+      level_(program_.uniform("u_level")) {}
+
+DepthHierarchyPass::SamplingUniforms::SamplingUniforms(const gl::Program& sao, Storage storage) {
+  switch (storage) {
+    case Storage::SeparateTextures:
+      for (int level = 1; level <= SaoKernel::kMaxMipLevel; ++level)
+        levels[level - 1] = sao.uniform(("u_level" + std::to_string(level)).c_str());
+      break;
+    case Storage::Atlas:
+      atlas = sao.uniform("u_depthAtlas");
+      atlasSize = sao.uniform("u_depthAtlasSize");
+      atlasLevelRows = sao.uniform("u_atlasLevelRows");
+      break;
+    case Storage::MipChain:
+      mips = sao.uniform("u_depthMips");
+      mipsSize = sao.uniform("u_depthMipsSize");
+      break;
+  }
+}
 
 DepthHierarchyPass::Region DepthHierarchyPass::atlasRegion(int level) const {
   const glm::ivec2 size = levelSize(width_, height_, level);
@@ -133,8 +155,8 @@ void DepthHierarchyPass::resize(int width, int height) {
 void DepthHierarchyPass::render(const gl::Texture2D& gbuffer) {
   program_.use();
   gbuffer.bind(0);
-  program_.set("u_gbuffer", 0);
-  program_.set("u_gbufferSize", glm::vec2(gbuffer.width(), gbuffer.height()));
+  gl::Program::set(gbuffer_, 0);
+  gl::Program::set(gbufferSize_, glm::vec2(gbuffer.width(), gbuffer.height()));
   // The atlas also holds level 0 (a copy of the G-buffer's depth key), so every tap reads the one texture.
   const int firstLevel = active_ == Storage::Atlas ? 0 : 1;
   if (active_ == Storage::Atlas) glBindFramebuffer(GL_FRAMEBUFFER, atlas_.framebuffer());
@@ -153,35 +175,36 @@ void DepthHierarchyPass::render(const gl::Texture2D& gbuffer) {
         break;
       }
     }
-    program_.set("u_level", static_cast<float>(level));
+    gl::Program::set(level_, static_cast<float>(level));
     triangle_.draw();
   }
   gl::restoreBaselineState();
 }
 
-void DepthHierarchyPass::bindForSampling(const gl::Program& sao, int firstUnit) const {
+void DepthHierarchyPass::bindForSampling(const SamplingUniforms& uniforms, int firstUnit) const {
+  using gl::Program;
   switch (active_) {
     case Storage::SeparateTextures:
       for (int level = 1; level <= SaoKernel::kMaxMipLevel; ++level) {
         const int unit = firstUnit + level - 1;
         levels_[static_cast<size_t>(level - 1)].color().bind(unit);
-        const std::string name = "u_level" + std::to_string(level);
-        sao.set(name.c_str(), unit);
+        Program::set(uniforms.levels[level - 1], unit);
       }
       break;
     case Storage::Atlas: {
       atlas_.color().bind(firstUnit);
-      sao.set("u_depthAtlas", firstUnit);
-      sao.set("u_depthAtlasSize", glm::vec2(atlas_.width(), atlas_.height()));
+      Program::set(uniforms.atlas, firstUnit);
+      Program::set(uniforms.atlasSize, glm::vec2(atlas_.width(), atlas_.height()));
       // Levels 2 .. 5 start at these rows (level 1 at row 0).
-      sao.set("u_atlasLevelRows", glm::vec4(atlasRegion(2).y, atlasRegion(3).y, atlasRegion(4).y, atlasRegion(5).y));
+      Program::set(uniforms.atlasLevelRows,
+                   glm::vec4(atlasRegion(2).y, atlasRegion(3).y, atlasRegion(4).y, atlasRegion(5).y));
       break;
     }
     case Storage::MipChain:
       glActiveTexture(static_cast<GLenum>(GL_TEXTURE0 + firstUnit));
       glBindTexture(GL_TEXTURE_2D, mipTexture_.id());
-      sao.set("u_depthMips", firstUnit);
-      sao.set("u_depthMipsSize", glm::vec2(mipWidth_, mipHeight_));
+      Program::set(uniforms.mips, firstUnit);
+      Program::set(uniforms.mipsSize, glm::vec2(mipWidth_, mipHeight_));
       break;
   }
 }

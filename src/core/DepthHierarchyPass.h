@@ -19,7 +19,7 @@
 #include <optional>
 #include <vector>
 
-#include "core/FrameContext.h"
+#include "core/FullscreenTriangle.h"
 #include "core/ShaderLibrary.h"
 #include "gl/GlCaps.h"
 #include "gl/RenderTarget.h"
@@ -28,7 +28,9 @@ namespace obscura {
 
 class DepthHierarchyPass {
  public:
-  enum class Storage { SeparateTextures, Atlas, MipChain };
+  // How the levels are stored. SAO's program variants are keyed by it too (sao.frag's DEPTH_HIERARCHY: the
+  // storage's value, or 0 for no hierarchy: SaoPass::programSpec takes an optional Storage).
+  enum class Storage { SeparateTextures = 1, MipChain = 2, Atlas = 3 };
 
   static std::vector<ProgramSpec> programSpecs();
   // MipChain where the context has both extensions, else Atlas; `forced` overrides (tests, benchmarks). An Atlas
@@ -36,13 +38,22 @@ class DepthHierarchyPass {
   static Storage storageFor(const gl::GlCaps& caps, std::optional<Storage> forced = std::nullopt);
   static const char* storageName(Storage storage);
 
-  DepthHierarchyPass(const FullscreenTriangle& triangle, const gl::GlCaps& caps, Storage storage);
+  DepthHierarchyPass(const FullscreenTriangle& triangle, const gl::GlCaps& caps, Storage storage,
+                     gl::Program program);
   // The storage in use: the one asked for, or SeparateTextures when an atlas of this size would not fit.
   Storage storage() const { return active_; }
   void resize(int width, int height);
   void render(const gl::Texture2D& gbuffer);
+  // The uniforms of sao.frag that bindForSampling() sets, resolved once per SAO program.
+  struct SamplingUniforms {
+    SamplingUniforms() = default;
+    SamplingUniforms(const gl::Program& sao, Storage storage);
+    GLint levels[5] = {-1, -1, -1, -1, -1};                 // SeparateTextures: u_level1 .. u_level5
+    GLint atlas = -1, atlasSize = -1, atlasLevelRows = -1;  // Atlas
+    GLint mips = -1, mipsSize = -1;                         // MipChain
+  };
   // Binds the levels for sao.frag (DEPTH_HIERARCHY 1, 2 or 3) to texture units firstUnit, firstUnit + 1, ...
-  void bindForSampling(const gl::Program& sao, int firstUnit) const;
+  void bindForSampling(const SamplingUniforms& uniforms, int firstUnit) const;
   // Level m (0 .. 5; 0 only with the atlas) read back, rows top to bottom, whatever the storage (tests, tools).
   std::vector<std::uint8_t> readLevel(int m) const;
 
@@ -56,6 +67,7 @@ class DepthHierarchyPass {
   gl::GlCaps caps_;
   Storage requested_, active_;
   gl::Program program_;
+  GLint gbuffer_ = -1, gbufferSize_ = -1, level_ = -1;
   int width_ = 0, height_ = 0;
   std::vector<gl::RenderTarget> levels_;  // SeparateTextures: levels 1..5
   gl::RenderTarget atlas_;                // Atlas: levels 0..5

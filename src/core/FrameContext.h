@@ -1,37 +1,61 @@
 #pragma once
-// What every pass of one frame shares: the camera's matrices and reconstruction constants, and the full-screen
-// triangle the image-space passes draw.
+// What every pass of one frame shares: the camera of this frame and of the previous one, the sub-pixel jitter, the
+// frame's index and time, and the world matrices each scene instance had in the previous frame.
+//
+// "Previous" is history: it survives from one frame to the next and is dropped, together with the history targets
+// (core/RenderTargetPool.h), when the output size changes, the scene changes or the context is lost (a new
+// Renderer). A frame that starts afresh has hasPrevious false and its previous camera equal to its own.
+#include <cstdint>
+#include <vector>
+
 #include <glm/mat4x4.hpp>
+#include <glm/vec2.hpp>
 
 #include "core/ViewReconstruction.h"
-#include "gl/GlObjects.h"
 #include "gl/Program.h"
 #include "scene/Camera.h"
 
 namespace obscura {
 
 struct FrameCamera {
-  glm::mat4 view{1.0f}, projection{1.0f};
+  glm::mat4 view{1.0f};
+  glm::mat4 projection{1.0f};  // jittered when the frame is (jitter below)
   ViewReconstruction reconstruction;
   float near = 0.1f, far = 100.0f, fovyRadians = 1.0f;
-  int width = 1, height = 1;  // the output size; the camera's aspect follows it
+  int width = 1, height = 1;   // the output size; the camera's aspect follows it
+  glm::vec2 jitter{0.0f};      // sub-pixel offset of the projection, in pixels (x right, y up)
 
-  static FrameCamera from(const Camera& camera, int width, int height);
+  static FrameCamera from(const Camera& camera, int width, int height, glm::vec2 jitterPixels = glm::vec2(0.0f));
   // Pixels per metre at 1 m in front of the camera, for a target `targetHeight` pixels tall.
   float projScale(int targetHeight) const;
 };
 
-// Sets the uniforms of shaders_es2/lib/reconstruct.glsl.
-void setReconstructionUniforms(const gl::Program& program, const ViewReconstruction& reconstruction);
+struct FrameContext {
+  FrameCamera camera;
+  FrameCamera previousCamera;  // the previous frame's; equal to `camera` when !hasPrevious
+  bool hasPrevious = false;
+  std::uint64_t index = 0;     // frames this Renderer has drawn before this one
+  int historyFrames = 0;       // consecutive earlier frames the history survived (0: this frame starts afresh)
+  double time = 0.0;           // seconds (FrameOptions::time)
+  double deltaTime = 0.0;      // since the previous frame; 0 when !hasPrevious
+  // World matrix of each GpuScene instance in the previous frame, in the GpuScene's instance order (the current ones
+  // when !hasPrevious). Animation moves instances between frames; motion vectors read both.
+  std::vector<glm::mat4> previousWorld;
+};
 
-// One triangle covering the viewport (attribute slot 0: a_position, clip-space xy).
-class FullscreenTriangle {
+// Halton low-discrepancy sequence (radical inverse of `index` in `base`), index >= 1: the jitter of temporal
+// antialiasing takes (halton(i, 2), halton(i, 3)) - 0.5.
+float halton(std::uint32_t index, std::uint32_t base);
+
+// The uniforms of shaders_es2/lib/reconstruct.glsl, resolved once per program.
+class ReconstructionUniforms {
  public:
-  FullscreenTriangle();
-  void draw() const;
+  ReconstructionUniforms() = default;
+  explicit ReconstructionUniforms(const gl::Program& program);
+  void set(const ViewReconstruction& reconstruction) const;  // on the program in use
 
  private:
-  gl::BufferHandle vertices_;
+  GLint farHalfExtent_ = -1, farPlane_ = -1, depthToRay_ = -1;
 };
 
 }  // namespace obscura

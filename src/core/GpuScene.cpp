@@ -109,23 +109,39 @@ bool GpuScene::usesUint32Indices() const {
   return std::any_of(pieces_.begin(), pieces_.end(), [](const Piece& p) { return p.indexType == GL_UNSIGNED_INT; });
 }
 
-void GpuScene::draw(const gl::Program& program, const glm::mat4& view) const {
+GeometryUniforms::GeometryUniforms(const gl::Program& program)
+    : modelView(program.uniform("u_modelView")),
+      // A fragment stage that reads no normal (the shading-count view) lets the compiler drop it.
+      normalMatrix(program.optionalUniform("u_normalMatrix")),
+      baseColorFactor(program.uniform("u_baseColorFactor")),
+      baseColorTexture(program.uniform("u_baseColorTexture")),
+      alphaCutoff(program.uniform("u_alphaCutoff")) {}
+
+std::vector<glm::mat4> GpuScene::worldMatrices() const {
+  std::vector<glm::mat4> out;
+  out.reserve(instances_.size());
+  for (const InstanceGpu& instance : instances_) out.push_back(instance.world);
+  return out;
+}
+
+void GpuScene::draw(const GeometryUniforms& uniforms, const glm::mat4& view) const {
+  using gl::Program;
   const GLsizei stride = 8 * sizeof(float);
   glActiveTexture(GL_TEXTURE0);
-  program.set("u_baseColorTexture", 0);
+  Program::set(uniforms.baseColorTexture, 0);
   for (GLuint slot : {gl::kAttribPosition, gl::kAttribNormal, gl::kAttribTexcoord}) glEnableVertexAttribArray(slot);
 
   for (const InstanceGpu& instance : instances_) {
     const glm::mat4 modelView = view * instance.world;
     const glm::mat3 linear(modelView);
-    program.set("u_modelView", modelView);
-    program.set("u_normalMatrix", glm::inverseTranspose(linear));
+    Program::set(uniforms.modelView, modelView);
+    Program::set(uniforms.normalMatrix, glm::inverseTranspose(linear));
     // A mirroring transform flips the winding; keep "front" meaning the outside.
     glFrontFace(glm::determinant(linear) < 0.0f ? GL_CW : GL_CCW);
 
     const MaterialGpu& material = materials_[static_cast<size_t>(instance.material)];
-    program.set("u_baseColorFactor", material.baseColorFactor);
-    program.set("u_alphaCutoff", material.alphaCutoff);
+    Program::set(uniforms.baseColorFactor, material.baseColorFactor);
+    Program::set(uniforms.alphaCutoff, material.alphaCutoff);
     glBindTexture(GL_TEXTURE_2D,
                   material.texture >= 0 ? textures_[static_cast<size_t>(material.texture)].id() : white_.id());
     if (material.doubleSided) glDisable(GL_CULL_FACE);

@@ -15,6 +15,13 @@
 
 namespace obscura {
 
+// The uniforms of geometry.vert and lib/material.glsl that draw() sets per instance, resolved once per program.
+struct GeometryUniforms {
+  GeometryUniforms() = default;
+  explicit GeometryUniforms(const gl::Program& program);
+  GLint modelView = -1, normalMatrix = -1, baseColorFactor = -1, baseColorTexture = -1, alphaCutoff = -1;
+};
+
 class GpuScene {
  public:
   struct Options {
@@ -25,10 +32,13 @@ class GpuScene {
   GpuScene(const Scene& scene, const gl::GlCaps& caps, const Options& options);
   GpuScene(const Scene& scene, const gl::GlCaps& caps) : GpuScene(scene, caps, Options{}) {}
 
-  // Draws every instance with `program` (already in use, u_projection already set): sets u_modelView,
-  // u_normalMatrix, the material uniforms of lib/material.glsl, face culling per material and winding per
-  // instance. Leaves the baseline pipeline state except for the program, depth and framebuffer state it was given.
-  void draw(const gl::Program& program, const glm::mat4& view) const;
+  // Draws every instance with the program in use (u_projection already set): sets u_modelView, u_normalMatrix,
+  // the material uniforms of lib/material.glsl, face culling per material and winding per instance. Leaves the
+  // baseline pipeline state except for the program, depth and framebuffer state it was given.
+  void draw(const GeometryUniforms& uniforms, const glm::mat4& view) const;
+
+  // Each instance's world matrix, in draw order (the frame context keeps the previous frame's).
+  std::vector<glm::mat4> worldMatrices() const;
 
   std::size_t pieceCount() const { return pieces_.size(); }
   bool usesUint32Indices() const;

@@ -2,8 +2,9 @@
 
 #include <cstdio>
 
-#include "core/Error.h"
-#include "core/SaoKernel.h"
+#include "base/Error.h"
+#include "core/AoEffect.h"
+#include "gl/PipelineState.h"
 
 namespace obscura {
 namespace {
@@ -15,170 +16,186 @@ const gl::GlCaps& requireUsable(const gl::GlCaps& caps) {
   return caps;
 }
 
-struct ScopedPass {
-  ScopedPass(PassTimer* timer, Pass pass) : timer_(timer), pass_(pass) {
-    if (timer_) timer_->begin(pass_);
-  }
-  ~ScopedPass() {
-    if (timer_) timer_->end(pass_);
-  }
-  PassTimer* timer_;
-  Pass pass_;
-};
+// The view `name` shows, and how: {target, decoding}; empty target for "final" and "split".
+std::pair<std::string, ViewDecoding> viewTarget(const View& view) {
+  for (const TargetInfo& target : frameTargets())
+    for (const TargetView& v : target.views)
+      if (v.name == view.name) return {target.name, v.decoding};
+  return {"", ViewDecoding::Color};
+}
 
 }  // namespace
 
 View parseView(const std::string& name) {
-  for (View v : {View::Final, View::Ao, View::AoRaw, View::Normals, View::Depth, View::Mask})
-    if (name == viewName(v)) return v;
-  throw InputError("view: expected final, ao, ao-raw, normals, depth or mask, got '" + name + "'");
-}
-
-const char* viewName(View view) {
-  switch (view) {
-    case View::Final: return "final";
-    case View::Ao: return "ao";
-    case View::AoRaw: return "ao-raw";
-    case View::Normals: return "normals";
-    case View::Depth: return "depth";
-    case View::Mask: return "mask";
-  }
-  return "?";
-}
-
-const char* passName(Pass pass) {
-  switch (pass) {
-    case Pass::GBuffer: return "gbuffer";
-    case Pass::Hierarchy: return "hierarchy";
-    case Pass::Sao: return "sao";
-    case Pass::BlurHorizontal: return "blur-h";
-    case Pass::BlurVertical: return "blur-v";
-    case Pass::Upsample: return "upsample";
-    case Pass::Composite: return "composite";
-    case Pass::Count: break;
-  }
-  return "?";
+  const std::vector<std::string>& names = frameViewNames();
+  for (const std::string& v : names)
+    if (v == name) return View{name};
+  throw InputError("view: expected " + parse::joinChoices(names, ", ") + ", got '" + name + "'");
 }
 
 Renderer::Renderer(const gl::GlCaps& caps, const RendererOptions& options)
     : caps_(requireUsable(caps)),
       options_(options),
-      gbuffer_(caps.depth24),
-      hierarchy_(triangle_, caps, DepthHierarchyPass::storageFor(caps, options.hierarchyStorage)),
-      sao_(triangle_),
-      blur_(triangle_),
-      upsample_(triangle_),
-      debugView_(triangle_),
-      white_(1, 1, GL_NEAREST, std::vector<std::uint8_t>{255, 255, 255, 255}.data()) {}
-
-std::vector<ProgramSpec> Renderer::allProgramSpecs() {
-  std::vector<ProgramSpec> specs;
-  for (auto list : {GBufferPass::programSpecs(), DepthHierarchyPass::programSpecs(), SaoPass::programSpecs(),
-                    BilateralBlurPass::programSpecs(), AoUpsamplePass::programSpecs(), LightingPass::programSpecs(),
-                    DebugViewPass::programSpecs()})
-    specs.insert(specs.end(), list.begin(), list.end());
-  return specs;
+      resources_{caps_, options_, triangle_},
+      views_(resources_),
+      pool_(caps_) {
+  for (const EffectEntry& row : effectTable()) {
+    effects_.push_back(row.create(resources_));
+    if (row.info.name == "ao") ao_ = static_cast<AoEffect*>(effects_.back().get());
+    for (const TargetInfo& target : row.info.targets) targets_[target.name] = target;
+  }
+  // The table must add up before any frame: plan one with every effect on, at the defaults, for the final image
+  // and for every view (PipelineError names the pass and the target that does not).
+  const FrameContext probe;
+  const RenderSettings defaults;
+  for (const std::string& name : frameViewNames()) {
+    if (name == "split") continue;
+    const auto [target, decoding] = viewTarget(View{name});
+    FramePlanner planner(defaults, probe, targets_);
+    planner.setViewTarget(target);
+    for (size_t row = 0; row < effects_.size(); ++row) {
+      planner.beginEffect(effectTable()[row].info.name);
+      effects_[row]->plan(planner);
+    }
+    planner.beginEffect("");
+    if (!target.empty()) planner.add(views_.pass("view", target, decoding));
+    FramePlan::resolve(std::move(planner), target.empty() ? kFinalImageTarget : kOutputTarget,
+                       [&] { return views_.pass("present", kFinalImageTarget, ViewDecoding::Color); });
+  }
 }
+
+Renderer::~Renderer() = default;
+
+DepthHierarchyPass::Storage Renderer::hierarchyStorage() const { return ao_->hierarchyStorage(); }
 
 void Renderer::setScene(const Scene& scene) {
   GpuScene::Options options;
   options.allowUint32Indices = options_.allowUint32Indices;
   scene_ = GpuScene(scene, caps_, options);
-  checkErrors(Pass::Count);
+  dropHistory();
+  checkErrors("");
 }
 
-void Renderer::checkErrors(Pass after) const {
+void Renderer::dropHistory() {
+  if (hasPrevious_) ++historyDrops_;
+  hasPrevious_ = false;
+  historyFrames_ = 0;
+  previousWorld_.clear();
+  pool_.dropHistory();
+}
+
+void Renderer::checkErrors(const std::string& after) const {
   if (!options_.checkGlErrors) return;
   const GLenum error = glGetError();
-  if (error == GL_NO_ERROR) return;
-  char code[16];
-  std::snprintf(code, sizeof code, "0x%04X", error);
-  throw GlError(std::string("GL error ") + code + " " +
-                (after == Pass::Count ? std::string("outside the passes (pending before the frame or from the scene "
-                                                    "upload)")
-                                      : std::string("after pass ") + passName(after)));
+  if (error != GL_NO_ERROR) {
+    char code[16];
+    std::snprintf(code, sizeof code, "0x%04X", error);
+    throw GlError(std::string("GL error ") + code + " " +
+                  (after.empty() ? std::string("outside the passes (pending before the frame or from the scene "
+                                               "upload)")
+                                 : "after pass " + after));
+  }
+  if (!after.empty()) {
+    const std::string leaked = gl::baselineStateDifferences();
+    if (!leaked.empty()) throw GlError("pass " + after + " left GL state behind: " + leaked);
+  }
 }
 
-void Renderer::render(const Camera& camera, const AoSettings& settings, View view, const OutputTarget& output,
-                      PassTimer* timer) {
-  checkErrors(Pass::Count);  // an error the application left pending is reported as such, not blamed on a pass
+void Renderer::beginFrame(const Camera& camera, const RenderSettings& settings, const OutputTarget& output,
+                          double time) {
+  const glm::ivec2 size(output.width, output.height);
+  if (size != lastSize_) {
+    dropHistory();
+    lastSize_ = size;
+  }
+  pool_.beginFrame(size);
+  // Sub-pixel jitter (Halton 2, 3, centred) while an effect that is on asks for it.
+  glm::vec2 jitter(0.0f);
+  for (size_t row = 0; row < effectTable().size(); ++row)
+    if (effectTable()[row].info.jitters && settings.enabled(row)) {
+      const auto index = static_cast<std::uint32_t>(frameIndex_ % 8 + 1);
+      jitter = glm::vec2(halton(index, 2), halton(index, 3)) - 0.5f;
+    }
+  FrameContext frame;
+  frame.camera = FrameCamera::from(camera, output.width, output.height, jitter);
+  frame.hasPrevious = hasPrevious_;
+  frame.previousCamera = hasPrevious_ ? previousCamera_ : frame.camera;
+  frame.index = frameIndex_;
+  frame.historyFrames = historyFrames_;
+  frame.time = time;
+  frame.deltaTime = hasPrevious_ ? time - previousTime_ : 0.0;
+  frame.previousWorld = hasPrevious_ ? previousWorld_ : scene_.worldMatrices();
+  frame_ = std::move(frame);
+}
+
+void Renderer::endFrame() {
+  pool_.endFrame();
+  previousCamera_ = frame_.camera;
+  previousTime_ = frame_.time;
+  previousWorld_ = scene_.worldMatrices();
+  hasPrevious_ = true;
+  ++historyFrames_;
+  ++frameIndex_;
+}
+
+void Renderer::run(const RenderSettings& settings, const View& view, const OutputTarget& output,
+                   const FrameOptions& options) {
+  const auto [target, decoding] = viewTarget(view);
+  FramePlanner planner(settings, frame_, targets_);
+  planner.setViewTarget(target);
+  for (size_t row = 0; row < effects_.size(); ++row) {
+    planner.beginEffect(effectTable()[row].info.name);
+    effects_[row]->plan(planner);
+  }
+  planner.beginEffect("");
+  if (!target.empty()) planner.add(views_.pass("view", target, decoding));
+  plan_ = FramePlan::resolve(std::move(planner), target.empty() ? kFinalImageTarget : kOutputTarget,
+                             [&] { return views_.pass("present", kFinalImageTarget, ViewDecoding::Color); },
+                             options.retain);
+
+  for (size_t i = 0; i < plan_.passes().size(); ++i) {
+    const PlannedPass& pass = plan_.passes()[i];
+    if (!pass.live) continue;
+    PassContext context(plan_, static_cast<int>(i), pool_, frame_, settings, scene_, output);
+    if (options.timer) options.timer->begin(pass.decl.name);
+    pass.decl.run(context);
+    if (options.timer) options.timer->end(pass.decl.name);
+    checkErrors(pass.decl.name);
+  }
+}
+
+void Renderer::render(const Camera& camera, const RenderSettings& settings, const View& view,
+                      const OutputTarget& output, const FrameOptions& options) {
+  checkErrors("");  // an error the application left pending is reported as such, not blamed on a pass
   settings.validate();
   const int limit = caps_.maxRenderSize();
   if (output.width < 1 || output.height < 1 || output.width > limit || output.height > limit)
     throw InputError("output size " + std::to_string(output.width) + "x" + std::to_string(output.height) +
                      " is outside what this context can render (1 .. " + std::to_string(limit) + " per side)");
-  const FrameCamera frame = FrameCamera::from(camera, output.width, output.height);
-  const bool needAo = settings.enabled || view == View::Ao || view == View::AoRaw;
 
-  gbuffer_.resize(output.width, output.height);
-  {
-    ScopedPass scoped(timer, Pass::GBuffer);
-    gbuffer_.render(scene_, frame);
+  beginFrame(camera, settings, output, options.time);
+  if (view == View::Split) {
+    // Two frames of one frame context into one output: the AO off, then the AO on over the right half.
+    RenderSettings off = settings, on = settings;
+    off.ao().enabled = false;
+    on.ao().enabled = true;
+    run(off, View::Final, output, options);
+    OutputTarget right = output;
+    right.region = {output.width / 2, 0, output.width - output.width / 2, output.height};
+    run(on, View::Final, right, options);
+  } else {
+    parseView(view.name);
+    run(settings, view, output, options);
   }
-  checkErrors(Pass::GBuffer);
+  endFrame();
+}
 
-  finalAo_ = &white_;
-  if (needAo) {
-    // Half resolution: AO at floor(size / 2), AO pixel p standing for G-buffer pixel 2p.
-    const int aoScale = settings.halfResolution ? 2 : 1;
-    const glm::ivec2 aoSize =
-        SaoKernel::hierarchyLevelSize(glm::ivec2(output.width, output.height), settings.halfResolution ? 1 : 0);
-    const gl::Texture2D& gbuffer = gbuffer_.target().color();
-    if (settings.depthHierarchy) {
-      hierarchy_.resize(output.width, output.height);
-      {
-        ScopedPass scoped(timer, Pass::Hierarchy);
-        hierarchy_.render(gbuffer);
-      }
-      checkErrors(Pass::Hierarchy);
-    }
-    sao_.resize(aoSize.x, aoSize.y);
-    {
-      ScopedPass scoped(timer, Pass::Sao);
-      sao_.render(gbuffer, settings.depthHierarchy ? &hierarchy_ : nullptr, frame, settings, aoScale);
-    }
-    checkErrors(Pass::Sao);
-    finalAo_ = &sao_.target().color();
-    if (settings.blur && settings.blurRadius > 0) {
-      blur_.resize(aoSize.x, aoSize.y);
-      for (Pass pass : {Pass::BlurHorizontal, Pass::BlurVertical}) {
-        {
-          ScopedPass scoped(timer, pass);
-          blur_.render(pass == Pass::BlurHorizontal ? BilateralBlurPass::Direction::Horizontal
-                                                    : BilateralBlurPass::Direction::Vertical,
-                       sao_.target().color(), gbuffer, frame, settings, aoScale);
-        }
-        checkErrors(pass);
-      }
-      finalAo_ = &blur_.output().color();
-    }
-    if (aoScale == 2) {
-      upsample_.resize(output.width, output.height);
-      {
-        ScopedPass scoped(timer, Pass::Upsample);
-        upsample_.render(*finalAo_, gbuffer, frame, settings);
-      }
-      checkErrors(Pass::Upsample);
-      finalAo_ = &upsample_.target().color();
-    }
-  }
-
-  {
-    ScopedPass scoped(timer, Pass::Composite);
-    glBindFramebuffer(GL_FRAMEBUFFER, output.framebuffer);
-    glViewport(0, 0, output.width, output.height);
-    switch (view) {
-      case View::Final:
-        lighting_.render(scene_, frame, light_, settings.enabled ? *finalAo_ : white_, output.aoSplitX);
-        break;
-      case View::Ao: debugView_.render(DebugViewPass::Mode::Ao, *finalAo_, frame); break;
-      case View::AoRaw: debugView_.render(DebugViewPass::Mode::Ao, sao_.target().color(), frame); break;
-      case View::Normals: debugView_.render(DebugViewPass::Mode::Normals, gbuffer_.target().color(), frame); break;
-      case View::Depth: debugView_.render(DebugViewPass::Mode::Depth, gbuffer_.target().color(), frame); break;
-      case View::Mask: debugView_.render(DebugViewPass::Mode::Mask, gbuffer_.target().color(), frame); break;
-    }
-  }
-  checkErrors(Pass::Composite);
+const gl::RenderTarget& Renderer::retained(const std::string& target) {
+  const int version = plan_.retainedVersion(target);
+  if (version < 0) throw InputError("target '" + target + "' was not retained by the last frame");
+  const TargetVersion& v = plan_.versions()[static_cast<size_t>(version)];
+  if (!v.slot) throw InputError("target '" + target + "' is not a pooled target");
+  return pool_.slot(*v.slot);
 }
 
 }  // namespace obscura

@@ -1,99 +1,142 @@
 #pragma once
-// The AO pipeline of one frame, the same on every platform:
-//   G-buffer -> depth hierarchy -> SAO -> bilateral blur (H, V) -> [upsample, at half resolution]
-//            -> forward lighting with AO on the ambient term (or a diagnostic view).
-// The platform layer owns the context and the output framebuffer; the Renderer owns every GL object it creates.
+// The frame, the same on every platform: the effect table (core/EffectTable.h) planned and run for one camera, one
+// set of settings and one view. The platform layer owns the context and the output framebuffer; the Renderer owns
+// every GL object it creates (the effects, the pooled targets, the scene on the GPU).
+//
+// Each render():
+//   1. starts the frame context (core/FrameContext.h): this frame's camera and the previous one, time, jitter;
+//   2. asks each effect in table order to plan its passes (Effect::plan), then adds the view's pass;
+//   3. resolves the plan (core/FramePlan.h): order, liveness, the result into the output, pooled targets;
+//   4. runs the passes that are needed, timing each (PassTimer) and, with checkGlErrors, checking glGetError and the
+//      baseline GL state after each one.
+#include <map>
 #include <memory>
 #include <optional>
 #include <string>
 #include <vector>
 
-#include "core/AoSettings.h"
-#include "core/AoUpsamplePass.h"
-#include "core/BilateralBlurPass.h"
 #include "core/DebugViewPass.h"
-#include "core/DepthHierarchyPass.h"
+#include "core/EffectTable.h"
 #include "core/FrameContext.h"
-#include "core/GBufferPass.h"
+#include "core/FramePlan.h"
+#include "core/FullscreenTriangle.h"
 #include "core/GpuScene.h"
-#include "core/LightingPass.h"
-#include "core/SaoPass.h"
+#include "core/PassContext.h"
+#include "core/RenderSettings.h"
+#include "core/RenderTargetPool.h"
+#include "core/RendererOptions.h"
 #include "gl/GlCaps.h"
 #include "scene/Camera.h"
 #include "scene/Scene.h"
 
 namespace obscura {
 
-enum class View { Final, Ao, AoRaw, Normals, Depth, Mask };
-View parseView(const std::string& name);  // final | ao | ao-raw | normals | depth | mask; throws InputError
-const char* viewName(View view);
+class AoEffect;
 
-enum class Pass { GBuffer, Hierarchy, Sao, BlurHorizontal, BlurVertical, Upsample, Composite, Count };
-const char* passName(Pass pass);
+// What a frame shows: "final" (the finished image), "split" (the final image with the AO off left of the middle and
+// on right of it), or the name of a target's debug view ("ao", "normals", "scene-color", ...: frameViewNames()).
+struct View {
+  std::string name = "final";
 
-// Receives the start and end of each pass (per-pass timings: glFinish-bounded natively, timer queries on the web).
+  static const View Final, Split, Ao, AoRaw, Normals, Depth, Mask;
+  bool operator==(const View& other) const { return name == other.name; }
+  bool operator!=(const View& other) const { return name != other.name; }
+};
+inline const View View::Final{"final"};
+inline const View View::Split{"split"};
+inline const View View::Ao{"ao"};
+inline const View View::AoRaw{"ao-raw"};
+inline const View View::Normals{"normals"};
+inline const View View::Depth{"depth"};
+inline const View View::Mask{"mask"};
+
+// One of frameViewNames(); throws InputError listing them.
+View parseView(const std::string& name);
+
+// Receives the start and end of each pass that runs, by its name (framePassNames(); per-pass timings:
+// glFinish-bounded natively, timer queries on the web).
 class PassTimer {
  public:
   virtual ~PassTimer() = default;
-  virtual void begin(Pass pass) = 0;
-  virtual void end(Pass pass) = 0;
+  virtual void begin(const std::string& pass) = 0;
+  virtual void end(const std::string& pass) = 0;
 };
 
-struct OutputTarget {
-  GLuint framebuffer = 0;  // 0: the default framebuffer
-  int width = 1, height = 1;
-  float aoSplitX = 0.0f;   // Final view: AO applies right of this pixel column (split-screen comparison)
-};
-
-struct RendererOptions {
-  bool checkGlErrors = false;        // glGetError after every pass; a GL error throws GlError naming the pass
-  bool allowUint32Indices = true;    // false simulates a context without OES_element_index_uint
-  // How the depth hierarchy is stored; unset: the extension mip chain where available, else the atlas
-  // (DepthHierarchyPass.h). Tests and benchmarks force each storage to compare them.
-  std::optional<DepthHierarchyPass::Storage> hierarchyStorage;
+struct FrameOptions {
+  PassTimer* timer = nullptr;
+  double time = 0.0;  // seconds: the frame context's time (animation), delta time from the previous frame's
+  // Targets whose contents stay readable after the frame (retained()): tests and tools read them back. Their
+  // writers run and their pooled targets are not reused within the frame.
+  std::vector<std::string> retain;
 };
 
 class Renderer {
  public:
-  // Throws GlError if the context cannot run Obscura (no fragment highp) or a shader fails to build.
+  // Throws GlError if the context cannot run Obscura (no fragment highp) or a shader fails to build, and
+  // PipelineError if the effect table does not add up (a pass reading what no earlier pass writes).
   explicit Renderer(const gl::GlCaps& caps, const RendererOptions& options = {});
-  // The passes hold references to the renderer's shared full-screen triangle: a Renderer stays where it is built.
+  // The effects hold references to the renderer's resources: a Renderer stays where it is built.
   Renderer(const Renderer&) = delete;
   Renderer& operator=(const Renderer&) = delete;
+  ~Renderer();
 
+  // Uploads the scene; drops the history (the previous frame showed another scene).
   void setScene(const Scene& scene);
-  void render(const Camera& camera, const AoSettings& settings, View view, const OutputTarget& output,
-              PassTimer* timer = nullptr);
+  void render(const Camera& camera, const RenderSettings& settings, const View& view, const OutputTarget& output,
+              const FrameOptions& options = {});
+  void render(const Camera& camera, const RenderSettings& settings, const View& view, const OutputTarget& output,
+              PassTimer* timer) {
+    FrameOptions options;
+    options.timer = timer;
+    render(camera, settings, view, output, options);
+  }
 
-  // Every program the renderer may build, for the shader validation tools and tests.
-  static std::vector<ProgramSpec> allProgramSpecs();
+  // Every program the frame may build, for the shader validation tools and tests.
+  static std::vector<ProgramSpec> allProgramSpecs() { return frameProgramSpecs(); }
 
   const gl::GlCaps& caps() const { return caps_; }
   const GpuScene& gpuScene() const { return scene_; }
-  // The textures of the last frame, for tests and tools.
-  const gl::RenderTarget& gbuffer() const { return gbuffer_.target(); }
-  const gl::RenderTarget& rawAo() const { return sao_.target(); }  // half size at half resolution
-  DepthHierarchyPass::Storage hierarchyStorage() const { return hierarchy_.storage(); }
-  // The AO the lighting pass used: blurred, or raw when the blur is off.
-  const gl::Texture2D& finalAo() const { return *finalAo_; }
+  // The last frame's context and plan (the second half's, for split screen).
+  const FrameContext& lastFrame() const { return frame_; }
+  const FramePlan& lastPlan() const { return plan_; }
+  // A target the last frame retained (FrameOptions::retain). Throws InputError if it was not retained or written.
+  const gl::RenderTarget& retained(const std::string& target);
+  // The depth hierarchy's storage in use (the AO effect's).
+  DepthHierarchyPass::Storage hierarchyStorage() const;
+  // How often the history was dropped (size changes, scene changes), and the pooled targets alive now.
+  int historyDrops() const { return pool_.historyDrops() + historyDrops_; }
+  size_t pooledTargets() const { return pool_.slotCount(); }
 
  private:
-  void checkErrors(Pass after) const;
+  void beginFrame(const Camera& camera, const RenderSettings& settings, const OutputTarget& output, double time);
+  void endFrame();
+  void dropHistory();
+  // Plans and runs one frame's passes for `view` (a target view, or the final image) into `output`.
+  void run(const RenderSettings& settings, const View& view, const OutputTarget& output, const FrameOptions& options);
+  void checkErrors(const std::string& after) const;
 
   gl::GlCaps caps_;
   RendererOptions options_;
   FullscreenTriangle triangle_;
+  EffectResources resources_;
+  std::vector<std::unique_ptr<Effect>> effects_;  // one per table row
+  AoEffect* ao_ = nullptr;
+  DebugViewPass views_;
+  std::map<std::string, TargetInfo> targets_;     // every table target, by name
   GpuScene scene_;
-  GBufferPass gbuffer_;
-  DepthHierarchyPass hierarchy_;
-  SaoPass sao_;
-  BilateralBlurPass blur_;
-  AoUpsamplePass upsample_;
-  LightingPass lighting_;
-  DebugViewPass debugView_;
-  gl::Texture2D white_;  // AO = 1 when AO is off
-  const gl::Texture2D* finalAo_ = nullptr;
-  Lighting light_;
+  RenderTargetPool pool_;
+  FramePlan plan_;
+
+  // History: what the next frame's context calls "previous".
+  FrameContext frame_;
+  std::uint64_t frameIndex_ = 0;
+  bool hasPrevious_ = false;
+  int historyFrames_ = 0;
+  int historyDrops_ = 0;
+  FrameCamera previousCamera_;
+  double previousTime_ = 0.0;
+  std::vector<glm::mat4> previousWorld_;
+  glm::ivec2 lastSize_{0, 0};
 };
 
 }  // namespace obscura

@@ -4,7 +4,7 @@
 #include <sstream>
 
 #include "core/EmbeddedShaders.h"
-#include "core/Error.h"
+#include "base/Error.h"
 
 namespace obscura {
 namespace ShaderLibrary {
@@ -59,7 +59,12 @@ std::string composeText(const std::string& text, const std::vector<std::pair<std
 }  // namespace ShaderLibrary
 
 std::string ProgramSpec::vertexSource() const { return ShaderLibrary::compose(vertexFile, defines, extensions); }
-std::string ProgramSpec::fragmentSource() const { return ShaderLibrary::compose(fragmentFile, defines, extensions); }
-gl::Program ProgramSpec::build() const { return gl::Program(name, vertexSource(), fragmentSource()); }
+std::string ProgramSpec::fragmentSource() const {
+  return fragmentText.empty() ? ShaderLibrary::compose(fragmentFile, defines, extensions)
+                              : ShaderLibrary::composeText(fragmentText, defines, extensions);
+}
+gl::Program ProgramSpec::build(bool strict) const {
+  return gl::Program(name, vertexSource(), fragmentSource(), strict);
+}
 
 }  // namespace obscura

@@ -15,14 +15,25 @@ namespace obscura {
 
 // One compilable program: two files and the variant's compile-time constants.
 struct ProgramSpec {
+  ProgramSpec() = default;
+  ProgramSpec(std::string name_, std::string vertexFile_, std::string fragmentFile_,
+              std::vector<std::pair<std::string, std::string>> defines_ = {}, std::vector<std::string> extensions_ = {},
+              std::string fragmentText_ = "")
+      : name(std::move(name_)), vertexFile(std::move(vertexFile_)), fragmentFile(std::move(fragmentFile_)),
+        defines(std::move(defines_)), extensions(std::move(extensions_)), fragmentText(std::move(fragmentText_)) {}
+
   std::string name;  // for messages and dumps, e.g. "sao[samples=11,turns=4,falloff=sao2012]"
   std::string vertexFile, fragmentFile;
   std::vector<std::pair<std::string, std::string>> defines;
   std::vector<std::string> extensions;  // enabled with "#extension NAME : require"
+  // Fragment shader text that is not an embedded file (a tool's own program: obscura-bench's floor pass); used
+  // instead of fragmentFile when set, composed the same way (its includes come from shaders_es2/lib).
+  std::string fragmentText;
 
   std::string vertexSource() const;
   std::string fragmentSource() const;
-  gl::Program build() const;
+  // Compiles and links; a strict program refuses to resolve uniforms it lacks (gl/Program.h).
+  gl::Program build(bool strict = false) const;
 };
 
 namespace ShaderLibrary {

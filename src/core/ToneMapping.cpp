@@ -8,7 +8,7 @@
 #include <glm/matrix.hpp>
 
 #include "core/ColorSpaces.h"
-#include "core/Error.h"
+#include "base/Error.h"
 
 namespace obscura {
 namespace {

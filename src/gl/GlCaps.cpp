@@ -39,6 +39,10 @@ GlCaps GlCaps::query() {
                          caps.version.find("WebGL") == std::string::npos;
   caps.elementIndexUint = desktopGl || caps.has("GL_OES_element_index_uint");
   caps.depth24 = desktopGl || caps.has("GL_OES_depth24");
+  // WebGL 1 has a DEPTH_STENCIL renderbuffer in its core; GLES 2 needs OES_packed_depth_stencil (desktop GL 3.0 has
+  // DEPTH24_STENCIL8 as core).
+  const bool webGl = caps.version.find("WebGL") != std::string::npos;
+  caps.packedDepthStencil = webGl || desktopGl || caps.has("GL_OES_packed_depth_stencil");
   caps.standardDerivatives = caps.has("GL_OES_standard_derivatives");
   caps.shaderTextureLod = caps.has("GL_EXT_shader_texture_lod");
   caps.fboRenderMipmap = caps.has("GL_OES_fbo_render_mipmap");

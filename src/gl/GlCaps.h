@@ -15,6 +15,7 @@ struct GlCaps {
   bool fragmentHighp = false;           // GL_HIGH_FLOAT in fragment shaders (needed by the 16-bit depth packing)
   bool elementIndexUint = false;        // OES_element_index_uint: 32-bit indices
   bool depth24 = false;                 // OES_depth24 renderbuffers
+  bool packedDepthStencil = false;      // a depth + stencil renderbuffer (WebGL 1 core, OES_packed_depth_stencil)
   bool standardDerivatives = false;     // OES_standard_derivatives
   bool shaderTextureLod = false;        // EXT_shader_texture_lod: texture2DLodEXT in fragment shaders
   bool fboRenderMipmap = false;         // OES_fbo_render_mipmap: render into mip levels > 0

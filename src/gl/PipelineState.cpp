@@ -14,6 +14,13 @@ void restoreBaselineState() {
   glDisable(GL_CULL_FACE);
   glFrontFace(GL_CCW);
   glDisable(GL_BLEND);
+  glBlendFunc(GL_ONE, GL_ZERO);
+  glDisable(GL_SCISSOR_TEST);
+  glDisable(GL_POLYGON_OFFSET_FILL);
+  glPolygonOffset(0.0f, 0.0f);
+  glDisable(GL_STENCIL_TEST);
+  glStencilFunc(GL_ALWAYS, 0, 0xFF);
+  glStencilOp(GL_KEEP, GL_KEEP, GL_KEEP);
   glUseProgram(0);
   glBindBuffer(GL_ARRAY_BUFFER, 0);
   glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, 0);
@@ -33,6 +40,9 @@ std::string baselineStateDifferences() {
   expect(!glIsEnabled(GL_DEPTH_TEST), "depth test enabled");
   expect(!glIsEnabled(GL_CULL_FACE), "face culling enabled");
   expect(!glIsEnabled(GL_BLEND), "blending enabled");
+  expect(!glIsEnabled(GL_SCISSOR_TEST), "scissor test enabled");
+  expect(!glIsEnabled(GL_POLYGON_OFFSET_FILL), "polygon offset enabled");
+  expect(!glIsEnabled(GL_STENCIL_TEST), "stencil test enabled");
   GLboolean depthMask = GL_FALSE;
   glGetBooleanv(GL_DEPTH_WRITEMASK, &depthMask);
   expect(depthMask == GL_TRUE, "depth writes off");

@@ -3,7 +3,7 @@
 #include <glm/gtc/type_ptr.hpp>
 #include <vector>
 
-#include "core/Error.h"
+#include "base/Error.h"
 
 namespace obscura::gl {
 namespace {
@@ -39,8 +39,9 @@ ShaderHandle compile(const std::string& programName, GLenum stage, const std::st
 
 }  // namespace
 
-Program::Program(const std::string& name, const std::string& vertexSource, const std::string& fragmentSource)
-    : name_(name) {
+Program::Program(const std::string& name, const std::string& vertexSource, const std::string& fragmentSource,
+                 bool strict)
+    : name_(name), strict_(strict) {
   ShaderHandle vertex = compile(name, GL_VERTEX_SHADER, vertexSource);
   ShaderHandle fragment = compile(name, GL_FRAGMENT_SHADER, fragmentSource);
   program_ = ProgramHandle::create();
@@ -59,18 +60,16 @@ Program::Program(const std::string& name, const std::string& vertexSource, const
 }
 
 GLint Program::uniform(const char* name) const {
-  auto it = uniforms_.find(name);
-  if (it != uniforms_.end()) return it->second;
-  const GLint location = glGetUniformLocation(program_.id(), name);
-  uniforms_.emplace(name, location);
+  const GLint location = optionalUniform(name);
+  if (location < 0 && strict_)
+    throw GlError("shader program '" + name_ + "' has no active uniform '" + name +
+                  "' (misspelt, or unused and removed by the compiler)");
   return location;
 }
 
-void Program::set(const char* name, const glm::mat3& m) const {
-  glUniformMatrix3fv(uniform(name), 1, GL_FALSE, glm::value_ptr(m));
-}
-void Program::set(const char* name, const glm::mat4& m) const {
-  glUniformMatrix4fv(uniform(name), 1, GL_FALSE, glm::value_ptr(m));
-}
+GLint Program::optionalUniform(const char* name) const { return glGetUniformLocation(program_.id(), name); }
+
+void Program::set(GLint location, const glm::mat3& m) { glUniformMatrix3fv(location, 1, GL_FALSE, glm::value_ptr(m)); }
+void Program::set(GLint location, const glm::mat4& m) { glUniformMatrix4fv(location, 1, GL_FALSE, glm::value_ptr(m)); }
 
 }  // namespace obscura::gl

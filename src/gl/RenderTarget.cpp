@@ -3,7 +3,7 @@
 #include <cstdio>
 #include <cstring>
 
-#include "core/Error.h"
+#include "base/Error.h"
 
 namespace obscura::gl {
 
@@ -47,7 +47,8 @@ void checkFramebufferComplete(const std::string& what) {
   throw GlError("framebuffer '" + what + "' is incomplete: " + reason + " (status " + code + ")");
 }
 
-RenderTarget::RenderTarget(const std::string& name, int width, int height, GLenum filter, Depth depth, bool depth24)
+RenderTarget::RenderTarget(const std::string& name, int width, int height, GLenum filter, Depth depth, bool depth24,
+                           bool stencil)
     : name_(name), color_(width, height, filter), framebuffer_(FramebufferHandle::create()) {
   glBindFramebuffer(GL_FRAMEBUFFER, framebuffer_.id());
   glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, color_.id(), 0);
@@ -58,18 +59,18 @@ RenderTarget::RenderTarget(const std::string& name, int width, int height, GLenu
     // has a core DEPTH_STENCIL renderbuffer (24-bit depth in practice): with 16 bits, a face seen edge-on at a
     // crease wins the odd pixel and SAO finds it fully occluded (dark dots in the browser, see README's parity).
 #if defined(__EMSCRIPTEN__)
-    constexpr GLenum kWebGlDepthStencil = 0x84F9, kWebGlDepthStencilAttachment = 0x821A;  // WebGL 1 constants
-    if (!depth24) {
-      glRenderbufferStorage(GL_RENDERBUFFER, kWebGlDepthStencil, width, height);
-      glFramebufferRenderbuffer(GL_FRAMEBUFFER, kWebGlDepthStencilAttachment, GL_RENDERBUFFER, depth_.id());
-    } else
+    constexpr GLenum kWebGlDepthStencil = 0x84F9;  // WebGL 1 constant
+    stencil_ = stencil || !depth24;
+    if (stencil_) glRenderbufferStorage(GL_RENDERBUFFER, kWebGlDepthStencil, width, height);
+    else
+#else
+    stencil_ = stencil;
+    if (stencil_) glRenderbufferStorage(GL_RENDERBUFFER, GL_DEPTH24_STENCIL8_OES, width, height);
+    else
 #endif
-    {
-      glRenderbufferStorage(GL_RENDERBUFFER, depth24 ? GL_DEPTH_COMPONENT24_OES : GL_DEPTH_COMPONENT16, width,
-                            height);
-      glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_RENDERBUFFER, depth_.id());
-    }
+      glRenderbufferStorage(GL_RENDERBUFFER, depth24 ? GL_DEPTH_COMPONENT24_OES : GL_DEPTH_COMPONENT16, width, height);
     glBindRenderbuffer(GL_RENDERBUFFER, 0);
+    attachDepth();
   }
   try {
     checkFramebufferComplete(name);
@@ -78,6 +79,34 @@ RenderTarget::RenderTarget(const std::string& name, int width, int height, GLenu
     throw;
   }
   glBindFramebuffer(GL_FRAMEBUFFER, 0);
+}
+
+void RenderTarget::attachDepth() const {
+#if defined(__EMSCRIPTEN__)
+  constexpr GLenum kWebGlDepthStencilAttachment = 0x821A;  // WebGL 1 constant
+  glFramebufferRenderbuffer(GL_FRAMEBUFFER, stencil_ ? kWebGlDepthStencilAttachment : GL_DEPTH_ATTACHMENT,
+                            GL_RENDERBUFFER, depth_.id());
+#else
+  // OES_packed_depth_stencil: one renderbuffer at both attachment points.
+  glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_RENDERBUFFER, depth_.id());
+  if (stencil_) glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_STENCIL_ATTACHMENT, GL_RENDERBUFFER, depth_.id());
+#endif
+}
+
+FramebufferHandle RenderTarget::sharingDepth(const RenderTarget& color, const RenderTarget& depthOwner,
+                                             const std::string& name) {
+  FramebufferHandle framebuffer = FramebufferHandle::create();
+  glBindFramebuffer(GL_FRAMEBUFFER, framebuffer.id());
+  glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, color.color().id(), 0);
+  depthOwner.attachDepth();
+  try {
+    checkFramebufferComplete(name);
+  } catch (...) {
+    glBindFramebuffer(GL_FRAMEBUFFER, 0);
+    throw;
+  }
+  glBindFramebuffer(GL_FRAMEBUFFER, 0);
+  return framebuffer;
 }
 
 void RenderTarget::bindForDrawing() const {

@@ -31,14 +31,24 @@ class RenderTarget {
  public:
   enum class Depth { None, Renderbuffer };
   RenderTarget() = default;
-  // Throws GlError with a readable reason if the framebuffer is incomplete. `name` appears in messages.
-  RenderTarget(const std::string& name, int width, int height, GLenum filter, Depth depth, bool depth24);
+  // Throws GlError with a readable reason if the framebuffer is incomplete. `name` appears in messages. With
+  // `stencil` (where GlCaps::packedDepthStencil), the depth renderbuffer also holds 8 stencil bits.
+  RenderTarget(const std::string& name, int width, int height, GLenum filter, Depth depth, bool depth24,
+               bool stencil = false);
 
   int width() const { return color_.width(); }
   int height() const { return color_.height(); }
   const Texture2D& color() const { return color_; }
   GLuint framebuffer() const { return framebuffer_.id(); }
+  bool hasDepth() const { return depth_.id() != 0; }
+  bool hasStencil() const { return stencil_; }
   explicit operator bool() const { return framebuffer_.id() != 0; }
+
+  // A framebuffer drawing into `color`'s texture with `depthOwner`'s depth renderbuffer attached (same size), so a
+  // pass can depth-test against what another pass drew (the lighting pass against the G-buffer's depth). Throws
+  // GlError if it is incomplete.
+  static FramebufferHandle sharingDepth(const RenderTarget& color, const RenderTarget& depthOwner,
+                                        const std::string& name);
 
   // Binds the framebuffer and sets the viewport to cover it.
   void bindForDrawing() const;
@@ -46,9 +56,13 @@ class RenderTarget {
   std::vector<std::uint8_t> readRgba() const;
 
  private:
+  // Attaches depth_ to the bound framebuffer at the attachment point its format needs.
+  void attachDepth() const;
+
   std::string name_;
   Texture2D color_;
   RenderbufferHandle depth_;
+  bool stencil_ = false;  // a packed depth + stencil renderbuffer (WebGL 1's DEPTH_STENCIL, DEPTH24_STENCIL8_OES)
   FramebufferHandle framebuffer_;
 };
 

@@ -4,22 +4,25 @@
 
 namespace obscura {
 
-void FinishPassTimer::begin(Pass) {
+void FinishPassTimer::begin(const std::string&) {
   glFinish();
   start_ = std::chrono::steady_clock::now();
 }
 
-void FinishPassTimer::end(Pass pass) {
+void FinishPassTimer::end(const std::string& pass) {
   glFinish();
-  samples_[static_cast<size_t>(pass)].push_back(
-      std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start_).count());
+  samples_[pass].push_back(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start_).count());
 }
 
-void FinishPassTimer::clear() {
-  for (auto& s : samples_) s.clear();
+void FinishPassTimer::clear() { samples_.clear(); }
+
+const std::vector<double>& FinishPassTimer::samples(const std::string& pass) const {
+  static const std::vector<double> none;
+  const auto it = samples_.find(pass);
+  return it == samples_.end() ? none : it->second;
 }
 
-double FinishPassTimer::medianMs(Pass pass) const {
+double FinishPassTimer::medianMs(const std::string& pass) const {
   std::vector<double> s = samples(pass);
   if (s.empty()) return 0.0;
   std::nth_element(s.begin(), s.begin() + static_cast<long>(s.size() / 2), s.end());

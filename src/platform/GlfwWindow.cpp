@@ -4,7 +4,7 @@
 #define GLFW_INCLUDE_NONE
 #include <GLFW/glfw3.h>
 
-#include "core/Error.h"
+#include "base/Error.h"
 #include "gl/GlLoader.h"
 
 namespace obscura {
@@ -27,8 +27,10 @@ GlfwWindow::GlfwWindow(const std::string& title, int width, int height) {
     glfwWindowHint(GLFW_CONTEXT_CREATION_API, api);
     glfwWindowHint(GLFW_CONTEXT_VERSION_MAJOR, 2);
     glfwWindowHint(GLFW_CONTEXT_VERSION_MINOR, 0);
-    glfwWindowHint(GLFW_DEPTH_BITS, 24);
-    glfwWindowHint(GLFW_SAMPLES, 4);
+    // Every pass of the frame draws into textures and the last one is a full-screen triangle into the window: the
+    // window needs neither depth nor multisampling (FXAA antialiases; core/FxaaEffect.h says why not MSAA).
+    glfwWindowHint(GLFW_DEPTH_BITS, 0);
+    glfwWindowHint(GLFW_SAMPLES, 0);
     window_ = glfwCreateWindow(width, height, title.c_str(), nullptr, nullptr);
     if (window_) break;
     reasons += (reasons.empty() ? "" : "; ") + lastGlfwError();

@@ -15,7 +15,25 @@ struct GpuPassTimer::Functions {
   PFNGLGETQUERYOBJECTUI64VEXTPROC getQueryObjectui64v = nullptr;  // optional: 32-bit nanoseconds suffice per pass
 };
 
-GpuPassTimer::GpuPassTimer(const gl::GlCaps& caps, gl::ProcLoader loader) : generation_(gl::contextGeneration()) {
+namespace {
+
+int passIndex(const std::string& pass) {
+  const std::vector<std::string>& names = framePassNames();
+  const auto it = std::find(names.begin(), names.end(), pass);
+  return it == names.end() ? -1 : static_cast<int>(it - names.begin());
+}
+
+}  // namespace
+
+GpuPassTimer::GpuPassTimer(const gl::GlCaps& caps, gl::ProcLoader loader)
+    : generation_(gl::contextGeneration()),
+      frames_(kFramesInFlight),
+      lastResult_(framePassNames().size(), -1.0) {
+  const size_t passes = framePassNames().size();
+  for (Frame& frame : frames_) {
+    frame.queries.assign(passes, 0);
+    frame.used.assign(passes, false);
+  }
   if (!caps.timerQuery || !loader) return;
   auto f = std::make_unique<Functions>();
   f->genQueries = reinterpret_cast<PFNGLGENQUERIESEXTPROC>(loader("glGenQueriesEXT"));
@@ -26,23 +44,25 @@ GpuPassTimer::GpuPassTimer(const gl::GlCaps& caps, gl::ProcLoader loader) : gene
   f->getQueryObjectui64v = reinterpret_cast<PFNGLGETQUERYOBJECTUI64VEXTPROC>(loader("glGetQueryObjectui64vEXT"));
   if (!f->genQueries || !f->deleteQueries || !f->beginQuery || !f->endQuery || !f->getQueryObjectuiv) return;
   functions_ = std::move(f);
-  for (Frame& frame : frames_) functions_->genQueries(kPassCount, frame.queries.data());
+  for (Frame& frame : frames_) functions_->genQueries(static_cast<GLsizei>(passes), frame.queries.data());
   available_ = true;
 }
 
 GpuPassTimer::~GpuPassTimer() {
   if (functions_ && generation_ == gl::contextGeneration())
-    for (Frame& frame : frames_) functions_->deleteQueries(kPassCount, frame.queries.data());
+    for (Frame& frame : frames_)
+      functions_->deleteQueries(static_cast<GLsizei>(frame.queries.size()), frame.queries.data());
 }
 
 bool GpuPassTimer::collect(Frame& frame) {
-  for (int p = 0; p < kPassCount; ++p) {
+  const size_t passCount = frame.queries.size();
+  for (size_t p = 0; p < passCount; ++p) {
     if (!frame.used[p]) continue;
     GLuint ready = 0;
     functions_->getQueryObjectuiv(frame.queries[p], GL_QUERY_RESULT_AVAILABLE_EXT, &ready);
     if (!ready) return false;
   }
-  for (int p = 0; p < kPassCount; ++p) {
+  for (size_t p = 0; p < passCount; ++p) {
     lastResult_[p] = -1.0;
     if (!frame.used[p]) continue;
     double nanoseconds = 0.0;
@@ -68,7 +88,7 @@ void GpuPassTimer::collectResults() {
   GLint disjoint = 0;
   glGetIntegerv(GL_GPU_DISJOINT_EXT, &disjoint);
   for (int age = 1; age <= kFramesInFlight; ++age) {
-    Frame& frame = frames_[(current_ + age) % kFramesInFlight];  // oldest first
+    Frame& frame = frames_[static_cast<size_t>((current_ + age) % kFramesInFlight)];  // oldest first
     if (!frame.pending) continue;
     if (disjoint) frame.pending = false;
     else if (!collect(frame)) break;  // later frames cannot be ready before this one
@@ -80,28 +100,33 @@ void GpuPassTimer::beginFrame() {
   if (!available_) return;
   collectResults();
   current_ = (current_ + 1) % kFramesInFlight;
-  Frame& frame = frames_[current_];
+  Frame& frame = frames_[static_cast<size_t>(current_)];
   if (frame.pending) return;  // results of this slot have not come back yet: skip measuring this frame
-  frame.used.fill(false);
+  frame.used.assign(frame.used.size(), false);
   recording_ = true;
 }
 
 void GpuPassTimer::endFrame() {
   // A frame that measured no pass (the renderer failed before its first) has no times to report.
-  Frame& frame = frames_[current_];
+  Frame& frame = frames_[static_cast<size_t>(current_)];
   if (recording_) frame.pending = std::find(frame.used.begin(), frame.used.end(), true) != frame.used.end();
   recording_ = false;
 }
 
-void GpuPassTimer::begin(Pass pass) {
+void GpuPassTimer::begin(const std::string& pass) {
   if (!recording_) return;
-  Frame& frame = frames_[current_];
-  functions_->beginQuery(GL_TIME_ELAPSED_EXT, frame.queries[static_cast<int>(pass)]);
-  frame.used[static_cast<int>(pass)] = true;
+  Frame& frame = frames_[static_cast<size_t>(current_)];
+  const int index = passIndex(pass);
+  if (index < 0 || frame.used[static_cast<size_t>(index)]) return;
+  functions_->beginQuery(GL_TIME_ELAPSED_EXT, frame.queries[static_cast<size_t>(index)]);
+  frame.used[static_cast<size_t>(index)] = true;
+  measuring_ = index;
 }
 
-void GpuPassTimer::end(Pass) {
-  if (recording_) functions_->endQuery(GL_TIME_ELAPSED_EXT);
+void GpuPassTimer::end(const std::string& pass) {
+  if (!recording_ || measuring_ < 0 || measuring_ != passIndex(pass)) return;
+  functions_->endQuery(GL_TIME_ELAPSED_EXT);
+  measuring_ = -1;
 }
 
 }  // namespace obscura

@@ -4,9 +4,10 @@
 // after control returns to the browser). When the GPU reports a disjoint event (a clock change, a context switch)
 // every result in flight is discarded. Without the extension it measures nothing and the viewers show frame times
 // only.
-#include <array>
 #include <cstdint>
 #include <memory>
+#include <string>
+#include <vector>
 
 #include "core/Renderer.h"
 #include "gl/GlCaps.h"
@@ -16,7 +17,6 @@ namespace obscura {
 
 class GpuPassTimer : public PassTimer {
  public:
-  static constexpr int kPassCount = static_cast<int>(Pass::Count);
   static constexpr int kFramesInFlight = 4;
 
   // `loader` resolves the extension's entry points in the current context (glfwGetProcAddress on the desktop,
@@ -35,19 +35,20 @@ class GpuPassTimer : public PassTimer {
   // free again.
   void beginFrame();
   void endFrame();
-  void begin(Pass pass) override;
-  void end(Pass pass) override;
+  // A pass that runs twice in one frame (split screen runs the frame twice) is measured the first time.
+  void begin(const std::string& pass) override;
+  void end(const std::string& pass) override;
 
-  // GPU milliseconds per pass of the newest frame whose results came back (a pass that did not run reads as a
-  // negative value); false before the first one.
+  // GPU milliseconds per pass of the newest frame whose results came back, in framePassNames() order (a pass that
+  // did not run reads as a negative value); false before the first one.
   bool hasResult() const { return hasResult_; }
-  const std::array<double, kPassCount>& lastResult() const { return lastResult_; }
+  const std::vector<double>& lastResult() const { return lastResult_; }
 
  private:
   struct Functions;
   struct Frame {
-    std::array<GLuint, kPassCount> queries{};
-    std::array<bool, kPassCount> used{};
+    std::vector<GLuint> queries;
+    std::vector<bool> used;
     bool pending = false;
   };
   bool collect(Frame& frame);
@@ -55,11 +56,12 @@ class GpuPassTimer : public PassTimer {
   bool available_ = false;
   std::uint32_t generation_ = 0;
   std::unique_ptr<Functions> functions_;
-  std::array<Frame, kFramesInFlight> frames_;
+  std::vector<Frame> frames_;
   int current_ = 0;  // the slot of the frame being recorded
   bool recording_ = false;
+  int measuring_ = -1;  // the pass whose query is open
   bool hasResult_ = false;
-  std::array<double, kPassCount> lastResult_{};
+  std::vector<double> lastResult_;
 };
 
 }  // namespace obscura

@@ -3,7 +3,7 @@
 #include <EGL/egl.h>
 #include <EGL/eglext.h>
 
-#include "core/Error.h"
+#include "base/Error.h"
 #include "gl/GlLoader.h"
 #include "platform/OsMesaContext.h"
 

@@ -4,7 +4,7 @@
 
 #include <string>
 
-#include "core/Error.h"
+#include "base/Error.h"
 #include "gl/GlLoader.h"
 
 namespace obscura {

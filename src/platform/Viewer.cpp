@@ -21,6 +21,7 @@ const std::vector<Viewer::KeyAction>& Viewer::keyActions() {
   auto toggle = [](const char* name) {
     return [name](Viewer& v) { v.state_.settings.set(name, v.state_.settings.get(name) == "on" ? "off" : "on"); };
   };
+  // Keys name parameters by their full names ("ao.radius"); RenderSettings also takes the old ones.
   auto scale = [](const char* name, double factor) {
     return [name, factor](Viewer& v) { v.adjustParameter(name, [factor](double x) { return x * factor; }); };
   };
@@ -35,32 +36,36 @@ const std::vector<Viewer::KeyAction>& Viewer::keyActions() {
       {"5", "depth", view("depth")},
       {"6", "split screen: AO off | on", view("split")},
       {"a", "AO on / off", toggle("ao")},
-      {"b", "blur on / off", toggle("blur")},
+      {"b", "blur on / off", toggle("ao.blur")},
+      {"t", "tone mapping on / off", toggle("tonemap")},
+      {"f", "FXAA on / off", toggle("fxaa")},
       {"p", "next quality preset",
        [](Viewer& v) {
-         // From the preset the settings came from, even after some of its values were changed.
-         const std::vector<PresetInfo>& presets = qualityPresets();
+         // From the preset the AO's settings came from, even after some of its values were changed.
+         const std::vector<QualityPreset>& presets = allQualityPresets();
          size_t next = 0;
          for (size_t i = 0; i < presets.size(); ++i)
-           if (v.state_.settings.preset == presets[i].preset) next = (i + 1) % presets.size();
-         v.state_.settings.set("preset", presets[next].name);
+           if (v.state_.settings.ao().preset == presets[i]) next = (i + 1) % presets.size();
+         v.state_.settings.set("preset", presetName(presets[next]));
        }},
-      {"[", "radius / 1.25", scale("radius", 1.0 / 1.25)},
-      {"]", "radius x 1.25", scale("radius", 1.25)},
-      {"-", "intensity - 0.1", step("intensity", -0.1)},
-      {"=", "intensity + 0.1", step("intensity", 0.1)},
-      {"{", "bias - 0.01 m", step("bias", -0.01)},
-      {"}", "bias + 0.01 m", step("bias", 0.01)},
-      {";", "contrast - 0.5", step("contrast", -0.5)},
-      {"'", "contrast + 0.5", step("contrast", 0.5)},
-      {"0", "intensity, bias, contrast back to auto (fitted)",
+      {"[", "AO radius / 1.25", scale("ao.radius", 1.0 / 1.25)},
+      {"]", "AO radius x 1.25", scale("ao.radius", 1.25)},
+      {"-", "AO intensity - 0.1", step("ao.intensity", -0.1)},
+      {"=", "AO intensity + 0.1", step("ao.intensity", 0.1)},
+      {"{", "AO bias - 0.01 m", step("ao.bias", -0.01)},
+      {"}", "AO bias + 0.01 m", step("ao.bias", 0.01)},
+      {";", "AO contrast - 0.5", step("ao.contrast", -0.5)},
+      {"'", "AO contrast + 0.5", step("ao.contrast", 0.5)},
+      {"0", "AO intensity, bias, contrast back to auto (fitted)",
        [](Viewer& v) {
-         for (const char* name : {"intensity", "bias", "contrast"}) v.state_.settings.set(name, "auto");
+         for (const char* name : {"ao.intensity", "ao.bias", "ao.contrast"}) v.state_.settings.set(name, "auto");
        }},
-      {",", "one sample fewer", step("samples", -1)},
-      {".", "one sample more", step("samples", 1)},
-      {"<", "blur radius - 1", step("blur-radius", -1)},
-      {">", "blur radius + 1", step("blur-radius", 1)},
+      {",", "one AO sample fewer", step("ao.samples", -1)},
+      {".", "one AO sample more", step("ao.samples", 1)},
+      {"<", "AO blur radius - 1", step("ao.blur-radius", -1)},
+      {">", "AO blur radius + 1", step("ao.blur-radius", 1)},
+      {"(", "exposure - 0.5 EV", step("tonemap.exposure", -0.5)},
+      {")", "exposure + 0.5 EV", step("tonemap.exposure", 0.5)},
       {"r", "reset the camera", [](Viewer& v) { v.resetCamera(); }},
   };
   return actions;
@@ -126,7 +131,7 @@ void Viewer::zoom(float factor) {
 void Viewer::resetCamera() { state_.camera = sceneCamera_; }
 
 void Viewer::adjustParameter(const std::string& name, const std::function<double(double)>& change) {
-  const auto& params = aoParameters();
+  const auto& params = RenderSettings::parameters();
   const auto info = std::find_if(params.begin(), params.end(), [&](const ParameterInfo& p) { return name == p.name; });
   // From the value in use: an "auto" intensity steps from the value fitted for the preset and radius.
   const double current = std::strtod(state_.settings.effective(name).c_str(), nullptr);
@@ -145,15 +150,19 @@ bool Viewer::handleKey(const std::string& key) {
   return false;
 }
 
-void Viewer::render(GLuint framebuffer, int width, int height, PassTimer* timer) {
+void Viewer::render(GLuint framebuffer, int width, int height, PassTimer* timer, double timeSeconds) {
   // The size is remembered so a scene loaded next is framed for this aspect ratio.
   state_.camera.width = width;
   state_.camera.height = height;
   if (!renderer_) return;
-  AoSettings settings = state_.settings;
-  if (state_.split) settings.enabled = true;  // the right half shows AO whatever the AO switch says
-  const OutputTarget target{framebuffer, width, height, state_.split ? 0.5f * static_cast<float>(width) : 0.0f};
-  renderer_->render(state_.camera, settings, state_.view, target, timer);
+  OutputTarget target;
+  target.framebuffer = framebuffer;
+  target.width = width;
+  target.height = height;
+  FrameOptions options;
+  options.timer = timer;
+  options.time = timeSeconds;
+  renderer_->render(state_.camera, state_.settings, state_.view, target, options);
 }
 
 void Viewer::contextLost() {

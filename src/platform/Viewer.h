@@ -56,9 +56,9 @@ class Viewer {
   // Applies the key's action; false if the key is not bound. Throws InputError if the action is refused.
   bool handleKey(const std::string& key);
 
-  // Draws one frame of the current state into `framebuffer` (0: the window's or canvas's own) at width x height.
-  // Does nothing while the context is lost.
-  void render(GLuint framebuffer, int width, int height, PassTimer* timer = nullptr);
+  // Draws one frame of the current state into `framebuffer` (0: the window's or canvas's own) at width x height, at
+  // `timeSeconds` (the frame context's clock). Does nothing while the context is lost.
+  void render(GLuint framebuffer, int width, int height, PassTimer* timer = nullptr, double timeSeconds = 0.0);
 
   // --- Context loss. contextLost() drops every GL object without deleting it (its names belong to the lost context,
   // see gl::abandonContextObjects); contextRestored() rebuilds the Renderer and the GPU scene from the CPU scene for

@@ -1,11 +1,12 @@
 #include "platform/ViewerState.h"
 
+#include <algorithm>
 #include <cctype>
 #include <cmath>
 #include <cstdlib>
 #include <map>
 
-#include "core/Error.h"
+#include "base/Error.h"
 
 namespace obscura {
 namespace {
@@ -77,45 +78,39 @@ std::string formatVector(const glm::vec3& v) {
 
 }  // namespace
 
-const std::vector<std::string>& ViewerState::viewModes() {
-  static const std::vector<std::string> modes = [] {
-    std::vector<std::string> out;
-    for (View v : {View::Final, View::Ao, View::AoRaw, View::Normals, View::Depth}) out.push_back(viewName(v));
-    out.push_back("split");
-    return out;
-  }();
-  return modes;
-}
+const std::vector<std::string>& ViewerState::viewModes() { return frameViewNames(); }
 
-std::string ViewerState::viewMode() const { return split ? "split" : viewName(view); }
-
-void ViewerState::setViewMode(const std::string& name) {
-  if (name == "split") {
-    view = View::Final;
-    split = true;
-    return;
-  }
-  try {
-    view = parseView(name);
-  } catch (const InputError&) {
-    throw InputError("view: expected final, ao, ao-raw, normals, depth or split, got '" + name + "'");
-  }
-  split = false;
-}
+void ViewerState::setViewMode(const std::string& name) { view = parseView(name); }
 
 std::string ViewerState::toQuery() const {
   std::string query = "view=" + viewMode();
   auto add = [&](const std::string& key, const std::string& value) {
     query += "&" + key + "=" + encodeComponent(value);
   };
-  // The preset the settings came from is written whenever it is not the default, even after some of its values
-  // were changed: it also selects the fitted bias, intensity and contrast that "auto" resolves to. The parameters
-  // that follow are those differing from that preset's own values; applyQuery applies the preset first.
-  AoSettings base;
-  base.applyPreset(settings.preset);
-  if (settings.preset != AoSettings{}.preset) add("preset", presetName(settings.preset));
-  for (const ParameterInfo& p : aoParameters()) {
-    if (std::string(p.name) == "preset") continue;
+  // Presets first, as applyQuery applies them: the frame's preset when every effect holds one, else each effect's
+  // remembered preset (which the AO also uses to pick its fitted estimator parameters) where it is not the default.
+  // The parameters that follow are those differing from what those presets set.
+  RenderSettings base;
+  const std::string framePreset = settings.get("preset");
+  if (!framePreset.empty() && framePreset != base.get("preset")) {
+    add("preset", framePreset);
+    base.set("preset", framePreset);
+  }
+  std::vector<std::string> presetNames;
+  for (const EffectEntry& row : effectTable()) {
+    if (!row.applyPreset) continue;
+    const std::string name = row.info.name + ".preset";
+    presetNames.push_back(name);
+    const RenderSettings& current = settings;
+    // The preset the effect's settings came from, even once some of its values changed.
+    const std::string remembered = presetName(row.presetOf(current.row(row.info.name)));
+    if (remembered != presetName(row.presetOf(base.row(row.info.name)))) {
+      add(name, remembered);
+      base.set(name, remembered);
+    }
+  }
+  for (const ParameterInfo& p : RenderSettings::parameters()) {
+    if (p.name == "preset" || std::find(presetNames.begin(), presetNames.end(), p.name) != presetNames.end()) continue;
     const std::string value = settings.get(p.name);
     if (value != base.get(p.name)) add(p.name, value);
   }
@@ -155,8 +150,12 @@ bool ViewerState::applyQuery(const std::string& query) {
   std::string text;
   try {
     if (take("view", &text)) next.setViewMode(text);
-    for (const ParameterInfo& p : aoParameters())
-      if (take(p.name, &text)) next.settings.set(p.name, text);
+    for (const ParameterInfo& p : RenderSettings::parameters()) {
+      const bool byName = values.count(p.name) != 0, byAlias = !p.alias.empty() && values.count(p.alias) != 0;
+      if (byName && byAlias) throw InputError(p.name + " is given twice (also as " + p.alias + ")");
+      if (take(p.name, &text) || (!p.alias.empty() && take(p.alias, &text)))
+        next.settings.set(byName ? p.name : p.alias, text);
+    }
   } catch (const InputError& e) {
     throw InputError(std::string("state: ") + e.what());
   }

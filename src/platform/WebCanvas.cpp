@@ -6,7 +6,7 @@
 #include <emscripten/emscripten.h>
 #include <emscripten/html5.h>
 
-#include "core/Error.h"
+#include "base/Error.h"
 #include "gl/GlApi.h"
 
 namespace obscura {
@@ -36,9 +36,12 @@ WebCanvas::WebCanvas(std::function<void()> onLost, std::function<void()> onResto
   attributes.majorVersion = 1;
   attributes.minorVersion = 0;
   attributes.alpha = EM_FALSE;
-  attributes.depth = EM_TRUE;
+  // Every pass draws into textures; the last one is a full-screen triangle into the canvas, which therefore needs
+  // neither a depth buffer nor multisampling (FXAA antialiases: core/FxaaEffect.h says why not MSAA). Measured on
+  // SwiftShader, the multisampled back buffer alone cost a fifth of the old frame (docs/benchmarks.md).
+  attributes.depth = EM_FALSE;
   attributes.stencil = EM_FALSE;
-  attributes.antialias = EM_TRUE;
+  attributes.antialias = EM_FALSE;
   attributes.premultipliedAlpha = EM_TRUE;
   attributes.preserveDrawingBuffer = EM_FALSE;
   attributes.powerPreference = EM_WEBGL_POWER_PREFERENCE_HIGH_PERFORMANCE;

@@ -13,7 +13,7 @@
 #include <glm/mat3x3.hpp>
 #include <glm/matrix.hpp>
 
-#include "core/Error.h"
+#include "base/Error.h"
 #include "core/LinearDepthPacking.h"
 #include "reference/HemisphereSampling.h"
 

@@ -8,7 +8,7 @@
 #include <glm/gtc/matrix_transform.hpp>
 #include <nlohmann/json.hpp>
 
-#include "core/Error.h"
+#include "base/Error.h"
 
 namespace obscura {
 

@@ -16,7 +16,7 @@
 #include <stb_image.h>
 #include <tiny_gltf.h>
 
-#include "core/Error.h"
+#include "base/Error.h"
 #include "scene/MeshProcessing.h"
 
 namespace obscura {

@@ -4,7 +4,7 @@
 #include <stb_image_resize.h>
 #include <stb_image_write.h>
 
-#include "core/Error.h"
+#include "base/Error.h"
 
 namespace obscura {
 

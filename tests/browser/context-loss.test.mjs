@@ -61,11 +61,55 @@ describe('WebGL context loss', () => {
     const difference = compareImages(before, after);
     assert.equal(difference.max, 0, `the restored context draws the same pixels (max difference ${difference.max})`);
 
+    // The history (the previous frame's camera, history targets) starts afresh on the new context.
+    assert.ok(statsBefore.history.frames > 0, `history before the loss: ${JSON.stringify(statsBefore.history)}`);
+    assert.equal(statsAfter.history.frames, 0, 'the restored context starts without history');
+    assert.equal(statsAfter.history.frameIndex, 0, 'a new renderer');
+
     if (statsBefore.timerQueries) {
       // The timer went with the lost context (no pass times while lost); a new one measures the restored frames.
       assert.equal(whileLost.stats.passMs, null);
       await page.waitForFunction(() => window.obscura.stats().timerQueries && window.obscura.stats().passMs !== null,
                                  null, { timeout: 30000 });
+    }
+  });
+});
+
+describe('history', () => {
+  test('survives frames and is dropped on resize and scene change', { timeout: 120000 }, async () => {
+    const session = await startBrowser();
+    try {
+      const page = await openPage(await session.newContext(), session.baseUrl);
+      const history = () => page.evaluate(() => {
+        window.obscura.draw();  // a frame now, whatever the animation-frame schedule does
+        return window.obscura.stats().history;
+      });
+      await history();
+      const running = await history();
+      assert.ok(running.frames >= 1, JSON.stringify(running));
+      const grown = await history();
+      assert.equal(grown.frames, running.frames + 1, 'one more frame of history per frame');
+
+      await page.setViewportSize({ width: 500, height: 300 });  // a resize
+      await page.waitForFunction(() => window.obscura.stats().width === 250);
+      await waitForDrawn(page);
+      const resized = await page.evaluate(() => window.obscura.stats().history);
+      assert.ok(resized.drops > grown.drops, `dropped on resize: ${JSON.stringify(resized)}`);
+      assert.ok(resized.frames < grown.frames, 'and started again');
+
+      // A scene change, and a frame drawn right after it in the same task (no animation frame in between).
+      const [before, changed] = await page.evaluate(() => {
+        window.obscura.draw();
+        const previous = window.obscura.stats().history;
+        window.obscura.loadBuiltinScene();
+        window.obscura.draw();
+        return [previous, window.obscura.stats().history];
+      });
+      assert.equal(changed.frames, 0, `dropped on a scene change: ${JSON.stringify(changed)}`);
+      assert.equal(changed.drops, before.drops + 1);
+      assert.deepEqual(page.errors, []);
+    } finally {
+      await session.close();
     }
   });
 });

@@ -34,7 +34,8 @@ describe('embedding with obscura.js alone', () => {
     });
     assert.equal(shown.radius, '1.5');
     assert.equal(shown.view, 'ao');
-    assert.match(shown.state, /^view=ao&radius=1\.5&eye=/);
+    // Written under the full name ("radius" is its old name, still accepted).
+    assert.match(shown.state, /^view=ao&ao\.radius=1\.5&eye=/);
     assert.doesNotMatch(shown.state, /eye=3\.2,2\.6,6\.2&/, 'the orbit moved the eye');
 
     await waitForDrawn(page);

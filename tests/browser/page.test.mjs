@@ -41,7 +41,9 @@ describe('demo page', () => {
     assert.equal(context.isWebGl2, false);
     assert.match(context.version, /^WebGL 1\.0/);
     assert.match(context.api, /WebGL 1\.0/);
-    assert.equal(context.antialias, true, 'the back buffer was requested antialiased');
+    // Every pass draws into textures and FXAA antialiases: the canvas is not multisampled (core/FxaaEffect.h).
+    assert.equal(context.antialias, false, 'the back buffer is not multisampled');
+    assert.equal(context.samples, 0);
     assert.deepEqual(page.errors, []);
   });
 
@@ -84,15 +86,57 @@ describe('demo page', () => {
     assert.notDeepEqual(aoView.pixels, withAo.pixels);
   });
 
+  test('the panel groups the controls by effect, from the effect table', { timeout: 120000 }, async () => {
+    const table = await page.evaluate(() => window.obscura.effects.map((e) => ({
+      name: e.name, title: e.title, parameters: e.parameters })));
+    const sections = await page.locator('#effects > details.effect').evaluateAll(
+      (nodes) => nodes.map((n) => ({ id: n.id, title: n.querySelector('summary').textContent, open: n.open })));
+    // One section per effect with parameters, in frame order, open, titled from the table.
+    const withParameters = table.filter((e) => e.parameters.length);
+    assert.deepEqual(sections.map((s) => s.id), withParameters.map((e) => `effect-${e.name}`));
+    assert.deepEqual(sections.map((s) => s.title), withParameters.map((e) => e.title));
+    assert.ok(sections.every((s) => s.open));
+    for (const effect of withParameters) {
+      for (const name of effect.parameters) {
+        const id = `param-${name.replace(/\./g, '-')}`;
+        assert.equal(await page.locator(`#effect-${effect.name} #${id}`).count(), 1, `${name} in its section`);
+      }
+    }
+    // The switch sits in the heading; primary parameters up front, the rest under "more".
+    assert.equal(await page.locator('#effect-tonemap > summary #param-tonemap').count(), 1);
+    assert.equal(await page.locator('#effect-ao > .parameters #param-ao-radius').count(), 1);
+    assert.equal(await page.locator('#effect-ao details.more #param-ao-turns').count(), 1);
+    assert.equal(await page.locator('#param-ao-turns').isVisible(), false, '"more" starts folded');
+    assert.equal(await page.locator('#frame-parameters #param-preset').count(), 1, "the frame's preset on top");
+
+    // The controls act: an operator, the exposure, the switch in the heading; folding a section hides its controls.
+    await page.locator('#view-final').check();
+    const neutral = await snapshot(page);
+    await page.locator('#param-tonemap-operator').selectOption('aces');
+    assert.equal(await page.evaluate(() => window.obscura.get('tonemap.operator')), 'aces');
+    const aces = await snapshot(page);
+    assert.ok(compareImages(neutral, aces).r.differing > 0.3, 'another tone curve changes the image');
+    await page.locator('#param-tonemap').uncheck();
+    assert.equal(await page.evaluate(() => window.obscura.get('tonemap')), 'off');
+    assert.equal(await page.locator('#effect-tonemap').evaluate((n) => n.open), true, 'the switch does not fold it');
+    await page.locator('#param-tonemap').check();
+    await page.locator('#param-tonemap-operator').selectOption('neutral');
+    await page.locator('#effect-fxaa > summary').click({ position: { x: 12, y: 6 } });
+    assert.equal(await page.locator('#param-fxaa-preset').isVisible(), false);
+    await page.locator('#effect-fxaa > summary').click({ position: { x: 12, y: 6 } });
+    assert.equal(await page.locator('#param-fxaa-preset').isVisible(), true);
+    assert.deepEqual(page.errors, []);
+  });
+
   test('moving the radius slider changes the AO image', { timeout: 120000 }, async () => {
     await page.locator('#view-ao').check();
     const before = await snapshot(page);
-    const slider = page.locator('#param-radius');
+    const slider = page.locator('#param-ao-radius');
     const position = Number(await slider.inputValue());
     await slider.fill(String(position + 75));  // logarithmic, 1000 steps over 0.01 .. 100: x2 in radius
     const radius = Number(await page.evaluate(() => window.obscura.get('radius')));
     assert.ok(radius > 1.5 && radius < 3, `radius now ${radius}`);
-    assert.equal(Number(await page.locator('#param-radius + input').inputValue()), radius, 'the number box follows');
+    assert.equal(Number(await page.locator('#param-ao-radius + input').inputValue()), radius, 'the number box follows');
     const after = await snapshot(page);
     const difference = compareImages(before, after);
     assert.ok(difference.r.differing > 0.05, `${difference.r.differing} of the pixels changed`);
@@ -135,7 +179,7 @@ describe('demo page', () => {
     if (timerQuery) {
       await page.waitForFunction(() => window.obscura.stats().passMs !== null, null, { timeout: 30000 });
       const passes = await page.evaluate(() => window.obscura.stats().passMs);
-      for (const pass of ['gbuffer', 'sao', 'composite']) assert.ok(passes[pass] > 0, `${pass}: ${passes[pass]} ms`);
+      for (const pass of ['gbuffer', 'sao', 'lighting', 'tonemap', 'fxaa']) assert.ok(passes[pass] > 0, `${pass}: ${passes[pass]} ms`);
       await page.waitForFunction(() => document.querySelector('#stats').textContent.includes('gbuffer'));
     } else {
       await page.waitForFunction(() => document.querySelector('#stats').textContent.includes('needs EXT_disjoint'));
@@ -223,8 +267,8 @@ describe('demo page', () => {
 
   test('a URL with camera and parameters reproduces the same image', { timeout: 120000 }, async () => {
     await page.locator('#view-split').check();
-    await page.locator('#param-samples').fill('16');
-    await page.locator('#param-intensity').fill('650');  // 0 .. 20 linear: 13
+    await page.locator('#param-ao-samples').fill('16');
+    await page.locator('#param-ao-intensity').fill('650');  // 0 .. 20 linear: 13
     // Orbit and zoom with the mouse, as a user would.
     await page.mouse.move(100, 200);
     await page.mouse.down();
@@ -243,7 +287,7 @@ describe('demo page', () => {
       const state = await page.evaluate(() => window.obscura.state());
       assert.equal(await shared.evaluate(() => window.obscura.state()), state);
       assert.equal(await shared.locator('#view-split').isChecked(), true);
-      assert.equal(await shared.locator('#param-samples + input').inputValue(), '16');
+      assert.equal(await shared.locator('#param-ao-samples + input').inputValue(), '16');
       const reproduced = await snapshot(shared);
       const difference = compareImages(original, reproduced);
       assert.equal(difference.max, 0, `the shared URL draws the same pixels (max difference ${difference.max})`);

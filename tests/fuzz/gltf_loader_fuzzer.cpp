@@ -6,7 +6,7 @@
 #include <map>
 #include <vector>
 
-#include "core/Error.h"
+#include "base/Error.h"
 #include "scene/GltfLoader.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {

@@ -1,10 +1,11 @@
 #pragma once
-// The benchmark's floor for the SAO pass (shaders_es2/fetch_floor.frag): as many G-buffer fetches per pixel as SAO
-// makes, with no arithmetic. Used by obscura-bench only.
+// The benchmark's floor for the SAO pass: as many G-buffer fetches per pixel as SAO makes, with no arithmetic.
+// obscura-bench's own program (its shader text lives in FetchFloorPass.cpp, not in the renderer's shaders_es2/), so
+// neither the core library nor the web module carries it; obscura-shaders lists it for the GLSL checks.
 #include <map>
 #include <vector>
 
-#include "core/FrameContext.h"
+#include "core/FullscreenTriangle.h"
 #include "core/ShaderLibrary.h"
 #include "gl/RenderTarget.h"
 

@@ -1,4 +1,4 @@
-#include "core/FetchFloorPass.h"
+#include "FetchFloorPass.h"
 
 #include <string>
 
@@ -6,13 +6,36 @@
 #include "gl/PipelineState.h"
 
 namespace obscura {
+namespace {
+
+// The same number of G-buffer fetches per pixel as SAO (1 + NUM_SAMPLES), at the spiral's offsets for a typical
+// disk (precomputed on the CPU, identical for every pixel so access is perfectly coherent), and no arithmetic beyond
+// summing. SAO cost / this cost is how much the estimator's maths and its scattered taps add over bare bandwidth.
+constexpr const char* kFloorShader = R"(
+#include "lib/precision.glsl"
+
+uniform sampler2D u_gbuffer;
+uniform vec2 u_offsets[NUM_SAMPLES];  // uv offsets
+
+varying vec2 v_uv;
+
+void main() {
+  vec4 sum = texture2D(u_gbuffer, v_uv);
+  for (int i = 0; i < NUM_SAMPLES; i++) sum += texture2D(u_gbuffer, v_uv + u_offsets[i]);
+  gl_FragColor = sum;
+}
+)";
+
+}  // namespace
 
 ProgramSpec FetchFloorPass::programSpec(int samples) {
-  return ProgramSpec{"fetch-floor[samples=" + std::to_string(samples) + "]",
-                     "fullscreen.vert",
-                     "fetch_floor.frag",
-                     {{"NUM_SAMPLES", std::to_string(samples)}},
-                     {}};
+  ProgramSpec spec{"fetch-floor[samples=" + std::to_string(samples) + "]",
+                   "fullscreen.vert",
+                   "",
+                   {{"NUM_SAMPLES", std::to_string(samples)}, {"FAR_RAY", "0"}},
+                   {},
+                   kFloorShader};
+  return spec;
 }
 
 std::vector<ProgramSpec> FetchFloorPass::programSpecs() {
@@ -40,7 +63,7 @@ void FetchFloorPass::render(const gl::Texture2D& gbuffer, int samples, int spira
   target_.bindForDrawing();
   program.use();
   gbuffer.bind(0);
-  program.set("u_gbuffer", 0);
+  gl::Program::set(program.uniform("u_gbuffer"), 0);
   glUniform2fv(program.uniform("u_offsets[0]"), samples, offsets.data());
   triangle_.draw();
   gl::restoreBaselineState();

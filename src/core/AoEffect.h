@@ -1,0 +1,45 @@
+#pragma once
+// Ambient obscurance: Scalable Ambient Obscurance (McGuire, Mara, Luebke, HPG 2012) from the G-buffer, with SAO's
+// depth hierarchy and a separable bilateral blur, at full or half resolution. Settings: core/AoSettings.h.
+//
+// Passes (each skipped when its settings turn it off):
+//   hierarchy  G-buffer -> depth-hierarchy (its own storage: an atlas 1.5 times the frame's width, or a mip chain;
+//              core/DepthHierarchyPass.h)
+//   sao        G-buffer (+ hierarchy) -> ao-raw (full or half size)
+//   blur-h     ao-raw -> ao-blur-h           blur-v   ao-blur-h -> ao      (without the blur, ao is ao-raw)
+//   upsample   ao (half size) -> ao (full size), at half resolution
+// The lighting reads "ao".
+#include <optional>
+#include <vector>
+
+#include "core/AoSettings.h"
+#include "core/AoUpsamplePass.h"
+#include "core/BilateralBlurPass.h"
+#include "core/DepthHierarchyPass.h"
+#include "core/EffectTable.h"
+#include "core/SaoPass.h"
+
+namespace obscura {
+
+class AoEffect : public Effect {
+ public:
+  using Settings = AoSettings;
+  static constexpr bool kHasSwitch = true;
+  static EffectInfo info();
+  static std::vector<ProgramSpec> programSpecs();
+
+  explicit AoEffect(const EffectResources& resources);
+  void plan(FramePlanner& planner) override;
+
+  // The depth hierarchy's storage in use (tests and tools compare them).
+  DepthHierarchyPass::Storage hierarchyStorage() const { return hierarchy_.storage(); }
+  const DepthHierarchyPass& hierarchy() const { return hierarchy_; }
+
+ private:
+  DepthHierarchyPass hierarchy_;
+  SaoPass sao_;
+  BilateralBlurPass blur_;
+  AoUpsamplePass upsample_;
+};
+
+}  // namespace obscura

@@ -1,0 +1,87 @@
+#include "core/EffectTable.h"
+
+#include <set>
+
+#include "core/AoEffect.h"
+#include "core/DebugViewPass.h"
+#include "core/FxaaEffect.h"
+#include "core/GBufferEffect.h"
+#include "core/LightingEffect.h"
+#include "core/TonemapEffect.h"
+
+namespace obscura {
+
+// The frame, in order. Adding an effect: a class with info(), programSpecs(), Settings and plan() (docs/
+// architecture.md, "Adding an effect"), one shader, and one row here, where it runs.
+const std::vector<EffectEntry>& effectTable() {
+  static const std::vector<EffectEntry> table = [] {
+    std::vector<EffectEntry> rows = {
+        EffectEntry::of<GBufferEffect>(),   // scene -> gbuffer (normal + 16-bit depth, own depth buffer)
+        EffectEntry::of<AoEffect>(),        // gbuffer -> ao
+        EffectEntry::of<LightingEffect>(),  // scene, ao, the G-buffer's depth -> scene-color (HDR)
+        EffectEntry::of<TonemapEffect>(),   // scene-color -> display-color (sRGB, luma in alpha)
+        EffectEntry::of<FxaaEffect>(),      // display-color -> display-color
+    };
+    // Names are how everything finds effects, passes and targets: each is used once.
+    std::set<std::string> effects, passes, targets;
+    for (const EffectEntry& row : rows) {
+      if (!effects.insert(row.info.name).second) throw PipelineError("effect '" + row.info.name + "' is listed twice");
+      for (const std::string& pass : row.info.passes)
+        if (!passes.insert(pass).second) throw PipelineError("pass name '" + pass + "' is used twice");
+      for (const TargetInfo& target : row.info.targets)
+        if (!targets.insert(target.name).second) throw PipelineError("target '" + target.name + "' is declared twice");
+    }
+    return rows;
+  }();
+  return table;
+}
+
+const EffectEntry& effectEntry(const std::string& effect) {
+  for (const EffectEntry& row : effectTable())
+    if (row.info.name == effect) return row;
+  throw InputError("unknown effect '" + effect + "'");
+}
+
+const std::vector<std::string>& framePassNames() {
+  static const std::vector<std::string> names = [] {
+    std::vector<std::string> out;
+    for (const EffectEntry& row : effectTable()) out.insert(out.end(), row.info.passes.begin(), row.info.passes.end());
+    out.push_back("view");
+    out.push_back("present");
+    return out;
+  }();
+  return names;
+}
+
+const std::vector<TargetInfo>& frameTargets() {
+  static const std::vector<TargetInfo> targets = [] {
+    std::vector<TargetInfo> out;
+    for (const EffectEntry& row : effectTable())
+      out.insert(out.end(), row.info.targets.begin(), row.info.targets.end());
+    return out;
+  }();
+  return targets;
+}
+
+const std::vector<std::string>& frameViewNames() {
+  static const std::vector<std::string> names = [] {
+    std::vector<std::string> out = {"final", "split"};
+    for (const TargetInfo& target : frameTargets())
+      for (const TargetView& view : target.views) out.push_back(view.name);
+    return out;
+  }();
+  return names;
+}
+
+std::vector<ProgramSpec> frameProgramSpecs() {
+  std::vector<ProgramSpec> specs;
+  for (const EffectEntry& row : effectTable()) {
+    const std::vector<ProgramSpec> list = row.programSpecs();
+    specs.insert(specs.end(), list.begin(), list.end());
+  }
+  const std::vector<ProgramSpec> views = DebugViewPass::programSpecs();
+  specs.insert(specs.end(), views.begin(), views.end());
+  return specs;
+}
+
+}  // namespace obscura
