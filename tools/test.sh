@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # Runs every test on a fresh Debian machine: installs what is missing, builds the native and the web versions,
-# installs the browser tests' npm packages (tests/browser, from its package-lock.json), then runs the whole suite:
-# CPU and GPU unit tests, the command line, the desktop viewer under Xvfb, and the web page in headless Chromium.
+# installs the browser tests' and the browser benchmark's npm packages (tests/browser and tools/browser-bench, from
+# their package-lock.json files), then runs the whole suite: CPU and GPU unit tests, the command line, the desktop
+# viewer under Xvfb, the web page in headless Chromium and the browser benchmark's smoke run.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
@@ -10,6 +11,7 @@ tools/install-deps.sh
 tools/build.sh -DOBSCURA_WERROR=ON
 tools/build-web.sh -DOBSCURA_WERROR=ON
 (cd tests/browser && npm ci --no-audit --no-fund --loglevel=error)
+(cd tools/browser-bench && npm ci --no-audit --no-fund --loglevel=error)
 ctest --test-dir build --output-on-failure -j"$(nproc 2>/dev/null || echo 2)"
 tools/test-sanitizers.sh
 tools/fuzz-gltf.sh 60
