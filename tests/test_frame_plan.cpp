@@ -83,6 +83,16 @@ TEST(EffectTable, ListsTheFrameInOrderWithUniqueNames) {
       EXPECT_TRUE(p.info.name == row.info.name || p.info.name.rfind(row.info.name + ".", 0) == 0) << p.info.name;
 }
 
+TEST(TargetSize, SizesAreRelativeToTheFrame) {
+  const glm::ivec2 frame(1281, 721);
+  EXPECT_EQ(TargetSize::full().of(frame), frame);
+  EXPECT_EQ(TargetSize::half().of(frame), glm::ivec2(640, 360));   // floor, as the AO's half resolution
+  EXPECT_EQ(TargetSize::quarter().of(frame), glm::ivec2(320, 180));
+  EXPECT_EQ(TargetSize::tiles(20).of(frame), glm::ivec2(65, 37));  // ceil: a tile for every pixel
+  EXPECT_EQ(TargetSize::quarter().of({2, 3}), glm::ivec2(1, 1));   // never empty
+  EXPECT_EQ(TargetSize::tiles(16).name(), "tiles of 16");
+}
+
 TEST(FramePlan, ReadsBindToTheLatestEarlierWriteAndTheResultGoesToTheOutput) {
   Fixture f;
   f.planner.add(pass("g", {}, {"gbuffer"}));

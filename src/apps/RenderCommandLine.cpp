@@ -36,7 +36,7 @@ std::string renderUsage() {
     }
     const std::string name = p.name + (p.alias.empty() ? "" : " (--" + p.alias + ")");
     char line[300];
-    std::snprintf(line, sizeof line, "    --%-28s %-32s %s\n", name.c_str(), p.range.c_str(), p.help.c_str());
+    std::snprintf(line, sizeof line, "    --%-44s %-30s %s\n", name.c_str(), p.range.c_str(), p.help.c_str());
     usage += line;
   }
   return usage;

@@ -33,7 +33,6 @@ class AoEffect : public Effect {
 
   // The depth hierarchy's storage in use (tests and tools compare them).
   DepthHierarchyPass::Storage hierarchyStorage() const { return hierarchy_.storage(); }
-  const DepthHierarchyPass& hierarchy() const { return hierarchy_; }
 
  private:
   DepthHierarchyPass hierarchy_;

@@ -47,21 +47,26 @@ Renderer::Renderer(const gl::GlCaps& caps, const RendererOptions& options)
   // The table must add up before any frame: plan one with every effect on, at the defaults, for the final image
   // and for every view (PipelineError names the pass and the target that does not).
   const FrameContext probe;
-  const RenderSettings defaults;
-  for (const std::string& name : frameViewNames()) {
-    if (name == "split") continue;
-    const auto [target, decoding] = viewTarget(View{name});
-    FramePlanner planner(defaults, probe, targets_);
-    planner.setViewTarget(target);
-    for (size_t row = 0; row < effects_.size(); ++row) {
-      planner.beginEffect(effectTable()[row].info.name);
-      effects_[row]->plan(planner);
-    }
-    planner.beginEffect("");
-    if (!target.empty()) planner.add(views_.pass("view", target, decoding));
-    FramePlan::resolve(std::move(planner), target.empty() ? kFinalImageTarget : kOutputTarget,
-                       [&] { return views_.pass("present", kFinalImageTarget, ViewDecoding::Color); });
+  RenderSettings everyEffect;
+  for (size_t row = 0; row < effectTable().size(); ++row)
+    if (effectTable()[row].info.hasSwitch) everyEffect.set(effectTable()[row].info.name, "on");
+  for (const std::string& name : frameViewNames())
+    if (name != "split") plan(everyEffect, probe, View{name}, {});
+}
+
+FramePlan Renderer::plan(const RenderSettings& settings, const FrameContext& frame, const View& view,
+                         const std::vector<std::string>& retain) {
+  const auto [target, decoding] = viewTarget(view);
+  FramePlanner planner(settings, frame, targets_);
+  planner.setViewTarget(target);
+  for (size_t row = 0; row < effects_.size(); ++row) {
+    planner.beginEffect(effectTable()[row].info.name);
+    effects_[row]->plan(planner);
   }
+  planner.beginEffect("");
+  if (!target.empty()) planner.add(views_.pass("view", target, decoding));
+  return FramePlan::resolve(std::move(planner), target.empty() ? kFinalImageTarget : kOutputTarget,
+                            [&] { return views_.pass("present", kFinalImageTarget, ViewDecoding::Color); }, retain);
 }
 
 Renderer::~Renderer() = default;
@@ -140,18 +145,7 @@ void Renderer::endFrame() {
 
 void Renderer::run(const RenderSettings& settings, const View& view, const OutputTarget& output,
                    const FrameOptions& options) {
-  const auto [target, decoding] = viewTarget(view);
-  FramePlanner planner(settings, frame_, targets_);
-  planner.setViewTarget(target);
-  for (size_t row = 0; row < effects_.size(); ++row) {
-    planner.beginEffect(effectTable()[row].info.name);
-    effects_[row]->plan(planner);
-  }
-  planner.beginEffect("");
-  if (!target.empty()) planner.add(views_.pass("view", target, decoding));
-  plan_ = FramePlan::resolve(std::move(planner), target.empty() ? kFinalImageTarget : kOutputTarget,
-                             [&] { return views_.pass("present", kFinalImageTarget, ViewDecoding::Color); },
-                             options.retain);
+  plan_ = plan(settings, frame_, view, options.retain);
 
   for (size_t i = 0; i < plan_.passes().size(); ++i) {
     const PlannedPass& pass = plan_.passes()[i];

@@ -111,7 +111,10 @@ class Renderer {
   void beginFrame(const Camera& camera, const RenderSettings& settings, const OutputTarget& output, double time);
   void endFrame();
   void dropHistory();
-  // Plans and runs one frame's passes for `view` (a target view, or the final image) into `output`.
+  // Every effect's passes for `view` (a target view, or the final image), resolved.
+  FramePlan plan(const RenderSettings& settings, const FrameContext& frame, const View& view,
+                 const std::vector<std::string>& retain);
+  // Plans and runs one frame's passes for `view` into `output`.
   void run(const RenderSettings& settings, const View& view, const OutputTarget& output, const FrameOptions& options);
   void checkErrors(const std::string& after) const;
 

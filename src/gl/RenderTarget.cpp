@@ -24,13 +24,6 @@ void Texture2D::bind(int unit) const {
   glBindTexture(GL_TEXTURE_2D, texture_.id());
 }
 
-void Texture2D::upload(const void* rgba) {
-  glBindTexture(GL_TEXTURE_2D, texture_.id());
-  glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
-  glTexSubImage2D(GL_TEXTURE_2D, 0, 0, 0, width_, height_, GL_RGBA, GL_UNSIGNED_BYTE, rgba);
-  glBindTexture(GL_TEXTURE_2D, 0);
-}
-
 void checkFramebufferComplete(const std::string& what) {
   const GLenum status = glCheckFramebufferStatus(GL_FRAMEBUFFER);
   if (status == GL_FRAMEBUFFER_COMPLETE) return;

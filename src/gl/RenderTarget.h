@@ -19,7 +19,6 @@ class Texture2D {
   int width() const { return width_; }
   int height() const { return height_; }
   void bind(int unit) const;
-  void upload(const void* rgba);
 
  private:
   TextureHandle texture_;
@@ -40,8 +39,6 @@ class RenderTarget {
   int height() const { return color_.height(); }
   const Texture2D& color() const { return color_; }
   GLuint framebuffer() const { return framebuffer_.id(); }
-  bool hasDepth() const { return depth_.id() != 0; }
-  bool hasStencil() const { return stencil_; }
   explicit operator bool() const { return framebuffer_.id() != 0; }
 
   // A framebuffer drawing into `color`'s texture with `depthOwner`'s depth renderbuffer attached (same size), so a
