@@ -1,7 +1,13 @@
 // G-buffer pass: one RGBA8 target. RG = octahedral view-space normal, BA = 16-bit linear depth.
+// GBUFFER_OUTPUT 0: that target alone. 2: with EXT_draw_buffers, the material's base colour too (gl_FragData[1],
+// sRGB-encoded, A = 1), which the deferred lighting reads: the scene is drawn once. 1: the base colour alone (the
+// base-color view on a context without several render targets).
+// ALPHA_MASK 1: the variant for alphaMode MASK materials, which discards cut-out fragments. Opaque materials use the
+// variant without discard, so the depth test may run before the fragment shader (early depth rejection).
 #include "lib/precision.glsl"
 #include "lib/packing.glsl"
 #include "lib/material.glsl"
+#include "lib/srgb.glsl"
 
 uniform float u_near;
 uniform float u_depthRange;  // far - near
@@ -11,10 +17,23 @@ varying vec3 v_viewNormal;
 varying vec2 v_texcoord;
 
 void main() {
+#if ALPHA_MASK
   if (alphaMasked(v_texcoord)) discard;
+#endif
   vec3 n = normalize(v_viewNormal);
   // Double-sided materials show their back faces: turn the normal towards the viewer.
   if (!gl_FrontFacing) n = -n;
   float linearDepth = (-v_viewPosition.z - u_near) / u_depthRange;
-  gl_FragColor = vec4(encodeNormal(n), packLinearDepth(linearDepth));
+  vec4 gbuffer = vec4(encodeNormal(n), packLinearDepth(linearDepth));
+#if GBUFFER_OUTPUT == 0
+  gl_FragColor = gbuffer;
+#else
+  vec4 base = vec4(linearToSrgb(baseColor(v_texcoord).rgb), 1.0);
+#if GBUFFER_OUTPUT == 1
+  gl_FragColor = base;
+#else
+  gl_FragData[0] = gbuffer;
+  gl_FragData[1] = base;
+#endif
+#endif
 }

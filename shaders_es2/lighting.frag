@@ -1,24 +1,41 @@
-// The lit image: base colour under one directional light and a sky/ground hemisphere ambient, written as linear HDR
-// colour in the RGBA8 HDR encoding (lib/hdr.glsl). AO multiplies the ambient term only (direct light is shadowed by
-// shadow maps, not by AO).
+// The lit image: base colour under one directional light and a sky/ground hemisphere ambient. AO multiplies the
+// ambient term only (direct light is shadowed by shadow maps, not by AO). Variants (src/core/LightingEffect.h):
 //
-// COUNT_SHADING 1: the diagnostic variant. Each fragment adds 1/255 (additive blending), so the target counts the
-// fragments shaded per pixel under the same depth test as the lit pass.
+//   DEFERRED 0        the scene drawn again with the G-buffer pass's vertex stage (geometry.vert), tested against
+//                     its depth; the material's base colour from lib/material.glsl. ALPHA_MASK 1 discards cut-outs.
+//   DEFERRED 1        a full-screen pass (fullscreen.vert): the normal from the G-buffer, the base colour from the
+//                     target the G-buffer pass wrote beside it (several render targets). Each pixel once.
+//   TONEMAP_INLINE 0  linear HDR colour in the RGBA8 encoding of lib/hdr.glsl, for the passes after it;
+//                  1  the tone mapping done here, where the tone-mapping pass would be this colour's only reader:
+//                     exposure, curve (TONEMAP_OPERATOR), sRGB, and the luma FXAA reads in alpha.
+//   COUNT_SHADING 1   the diagnostic: each fragment adds 1/255 (additive blending), counting the fragments shaded
+//                     per pixel under the lit pass's depth test.
 #include "lib/precision.glsl"
+#include "lib/packing.glsl"
+#include "lib/srgb.glsl"
+#include "lib/hdr.glsl"
 #include "lib/material.glsl"
 
+#if DEFERRED
+uniform sampler2D u_gbuffer;    // RG normal, BA depth code
+varying vec2 v_uv;
+#else
 varying vec3 v_viewPosition;
 varying vec3 v_viewNormal;
 varying vec2 v_texcoord;
 varying vec4 v_clipPosition;
+#endif
 
 #if COUNT_SHADING
 void main() {
+#if DEFERRED
+  if (isBackgroundCode(unpackDepthCode(texture2D(u_gbuffer, v_uv).ba))) discard;
+#elif ALPHA_MASK
   if (alphaMasked(v_texcoord)) discard;
+#endif
   gl_FragColor = vec4(1.0 / 255.0);
 }
 #else
-#include "lib/hdr.glsl"
 
 uniform sampler2D u_ao;          // AO in R, the frame's size (1x1 white when the AO is off)
 uniform vec3 u_lightDirection;   // view space, towards the light, unit
@@ -27,19 +44,48 @@ uniform vec3 u_skyColor;
 uniform vec3 u_groundColor;
 uniform vec3 u_viewUp;           // world up in view space
 
+vec3 shade(vec3 base, vec3 n, float ao) {
+  vec3 ambient = mix(u_groundColor, u_skyColor, dot(n, u_viewUp) * 0.5 + 0.5) * ao;
+  vec3 direct = u_lightColor * max(dot(n, u_lightDirection), 0.0);
+  return base * (ambient + direct);
+}
+
+#if TONEMAP_INLINE
+#include "lib/tonemap.glsl"
+uniform float u_lumaInAlpha;     // 1: luma in alpha, for FXAA; 0: alpha 1, for the output framebuffer
+vec4 encodeOutput(vec3 linear) {
+  vec3 display = linearToSrgb(toneMap(linear));
+  return vec4(display, mix(1.0, fxaaLuma(display), u_lumaInAlpha));
+}
+#else
+vec4 encodeOutput(vec3 linear) { return encodeHdr(linear); }
+#endif
+
+#if DEFERRED
+uniform sampler2D u_baseColor;   // sRGB-encoded base colour
+uniform vec3 u_background;       // linear radiance where no geometry is
+
+void main() {
+  vec4 g = texture2D(u_gbuffer, v_uv);
+  if (isBackgroundCode(unpackDepthCode(g.ba))) {
+    gl_FragColor = encodeOutput(u_background);
+    return;
+  }
+  vec3 base = srgbToLinear(texture2D(u_baseColor, v_uv).rgb);
+  gl_FragColor = encodeOutput(shade(base, decodeNormal(g.rg), texture2D(u_ao, v_uv).r));
+}
+#else
 void main() {
   vec4 base = baseColor(v_texcoord);
-  if (u_alphaCutoff >= 0.0 && base.a < u_alphaCutoff) discard;
+#if ALPHA_MASK
+  if (base.a < u_alphaCutoff) discard;
+#endif
   vec3 n = normalize(v_viewNormal);
   if (!gl_FrontFacing) n = -n;
-
   // This fragment's pixel centre in [0, 1]^2, from the interpolated clip position rather than gl_FragCoord, which is
   // only mediump in GLSL ES 1.00 and would address the wrong AO texel beyond 2048 pixels.
   vec2 screenUv = v_clipPosition.xy / v_clipPosition.w * 0.5 + 0.5;
-  float ao = texture2D(u_ao, screenUv).r;
-
-  vec3 ambient = mix(u_groundColor, u_skyColor, dot(n, u_viewUp) * 0.5 + 0.5) * ao;
-  vec3 direct = u_lightColor * max(dot(n, u_lightDirection), 0.0);
-  gl_FragColor = encodeHdr(base.rgb * (ambient + direct));
+  gl_FragColor = encodeOutput(shade(base.rgb, n, texture2D(u_ao, screenUv).r));
 }
+#endif
 #endif

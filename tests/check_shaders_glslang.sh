@@ -8,14 +8,26 @@
 #   no while / do-while, and no dynamic indexing beyond what Appendix A requires of every implementation;
 # - OpenGL ES 2.0's minimum texture units, vertex attributes and draw buffers (ES 2.0 spec, table 6.20), so a
 #   shader that only runs where a driver offers more is caught.
+#
+# glslang does not know GL_EXT_draw_buffers. A variant that requires it (only built where the context offers it) is
+# checked without its #extension line under the extension's own guarantee: MAX_DRAW_BUFFERS_EXT is at least 4
+# (EXT_draw_buffers, WEBGL_draw_buffers), which gives gl_FragData[] that many elements.
 set -euo pipefail
 limits="$(dirname "$0")/glslang-gles2-limits.conf"
 dump=$(mktemp -d)
 trap 'rm -rf "$dump"' EXIT
 "$1" --dump "$dump"
+sed 's/^MaxDrawBuffers 1$/MaxDrawBuffers 4/' "$limits" > "$dump/draw-buffers-limits.conf"
+grep -q '^MaxDrawBuffers 4$' "$dump/draw-buffers-limits.conf"
 count=0
 for file in "$dump"/*.vert "$dump"/*.frag; do
-  if ! out=$(glslangValidator "$limits" "$file" 2>&1); then
+  fileLimits="$limits"
+  if grep -q '^#extension GL_EXT_draw_buffers' "$file"; then
+    # Keep the line count, so glslang's line numbers still match the dumped file.
+    sed -i 's/^#extension GL_EXT_draw_buffers.*$/\/\/ (#extension GL_EXT_draw_buffers: checked with MaxDrawBuffers 4)/' "$file"
+    fileLimits="$dump/draw-buffers-limits.conf"
+  fi
+  if ! out=$(glslangValidator "$fileLimits" "$file" 2>&1); then
     echo "glslangValidator rejected $(basename "$file"):"
     echo "$out"
     exit 1

@@ -63,7 +63,7 @@ TEST(EffectTable, ListsTheFrameInOrderWithUniqueNames) {
   for (const EffectEntry& row : effectTable()) effects.push_back(row.info.name);
   EXPECT_EQ(effects, (std::vector<std::string>{"gbuffer", "ao", "lighting", "tonemap", "fxaa"}));
   EXPECT_EQ(framePassNames(),
-            (std::vector<std::string>{"gbuffer", "hierarchy", "sao", "blur-h", "blur-v", "upsample", "lighting",
+            (std::vector<std::string>{"gbuffer", "base-color", "hierarchy", "sao", "blur-h", "blur-v", "upsample", "lighting",
                                       "shading-count", "tonemap", "fxaa", "view", "present"}));
   // Every target an effect declares is RGBA8 data with a documented encoding; packed data is never filtered.
   for (const TargetInfo& target : frameTargets()) {
@@ -184,6 +184,98 @@ TEST(FramePlan, AliasesReadTheTargetTheyStandFor) {
   const FramePlan plan = FramePlan::resolve(std::move(f.planner), kFinalImageTarget, present);
   EXPECT_EQ(running(plan), (std::vector<std::string>{"sao", "light"}));
   EXPECT_EQ(plan.passes()[1].reads.at("b"), plan.passes()[0].writes.at("a"));
+}
+
+namespace {
+// A lighting pass with the two kinds of alternatives the frame uses: a deferred form, taken when the G-buffer pass
+// writes the base colour (several render targets), and one that also applies the tone curve when the tone pass is
+// the only reader of its colour.
+PassDecl lightingWithAlternatives(bool mayWriteOutput) {
+  PassDecl light = pass("light", {"a"}, {"color"});
+  PassDecl::Alternative folded;
+  folded.absorbing = "tone";
+  folded.mayWriteOutput = mayWriteOutput;
+  folded.reads = {"a"};
+  folded.writes = {{"display-color", TargetSize::full(), PassDecl::Write::Depth::None, ""}};
+  folded.run = [](PassContext&) {};
+  PassDecl::Alternative deferred;
+  deferred.whenWritten = {"b"};
+  deferred.reads = {"a", "b"};
+  deferred.writes = {{"color", TargetSize::full(), PassDecl::Write::Depth::None, ""}};
+  deferred.run = [](PassContext&) {};
+  light.alternatives = {folded, deferred};
+  return light;
+}
+}  // namespace
+
+TEST(FramePlan, AlternativesAreTakenOnlyWhereTheirConditionsHold) {
+  {  // Tone is the only reader of the colour and writes the result: the lighting does its work and draws the output.
+    Fixture f;
+    f.planner.add(pass("g", {}, {"a"}));
+    f.planner.add(lightingWithAlternatives(true));
+    f.planner.add(pass("tone", {"color"}, {"display-color"}));
+    const FramePlan plan = FramePlan::resolve(std::move(f.planner), kFinalImageTarget, present);
+    EXPECT_EQ(running(plan), (std::vector<std::string>{"g", "light"}));
+    EXPECT_EQ(plan.passes()[1].absorbed, std::vector<std::string>{"tone"});
+    EXPECT_TRUE(written(plan, "tone", "display-color").output);  // the version, now the lighting's
+    EXPECT_EQ(written(plan, "tone", "display-color").writer, 1);
+    EXPECT_EQ(plan.passes()[1].writes.count("color"), 0u);
+  }
+  {  // The same where the alternative may not draw the output: as declared.
+    Fixture f;
+    f.planner.add(pass("g", {}, {"a"}));
+    f.planner.add(lightingWithAlternatives(false));
+    f.planner.add(pass("tone", {"color"}, {"display-color"}));
+    const FramePlan plan = FramePlan::resolve(std::move(f.planner), kFinalImageTarget, present);
+    EXPECT_EQ(running(plan), (std::vector<std::string>{"g", "light", "tone"}));
+    EXPECT_TRUE(plan.passes()[1].absorbed.empty());
+  }
+  {  // A later pass reads the tone pass's result: the fold is allowed without drawing the output.
+    Fixture f;
+    f.planner.add(pass("g", {}, {"a"}));
+    f.planner.add(lightingWithAlternatives(false));
+    f.planner.add(pass("tone", {"color"}, {"display-color"}));
+    f.planner.add(pass("aa", {"display-color"}, {"display-color"}));
+    const FramePlan plan = FramePlan::resolve(std::move(f.planner), kFinalImageTarget, present);
+    EXPECT_EQ(running(plan), (std::vector<std::string>{"g", "light", "aa"}));
+    EXPECT_EQ(plan.passes()[3].reads.at("display-color"), plan.passes()[1].writes.at("display-color"));
+  }
+  {  // Another pass needs the HDR colour (or it is retained): no fold.
+    Fixture f;
+    f.planner.add(pass("g", {}, {"a"}));
+    f.planner.add(lightingWithAlternatives(true));
+    f.planner.add(pass("bloom", {"color"}, {"c"}));
+    f.planner.add(pass("tone", {"color", "c"}, {"display-color"}));
+    const FramePlan plan = FramePlan::resolve(std::move(f.planner), kFinalImageTarget, present);
+    EXPECT_EQ(running(plan), (std::vector<std::string>{"g", "light", "bloom", "tone"}));
+    Fixture r;
+    r.planner.add(pass("g", {}, {"a"}));
+    r.planner.add(lightingWithAlternatives(true));
+    r.planner.add(pass("tone", {"color"}, {"display-color"}));
+    const FramePlan retained = FramePlan::resolve(std::move(r.planner), kFinalImageTarget, present, {"color"});
+    EXPECT_EQ(running(retained), (std::vector<std::string>{"g", "light", "tone"}));
+  }
+  {  // The base colour is written by a running pass: the deferred form, with its reads (the fold is impossible).
+    Fixture f;
+    f.planner.add(pass("g", {}, {"a", "b"}));
+    f.planner.add(lightingWithAlternatives(true));
+    f.planner.add(pass("bloom", {"color"}, {"c"}));
+    f.planner.add(pass("tone", {"color", "c"}, {"display-color"}));
+    const FramePlan plan = FramePlan::resolve(std::move(f.planner), kFinalImageTarget, present);
+    EXPECT_EQ(plan.passes()[1].reads.count("b"), 1u);
+    EXPECT_EQ(plan.passes()[1].reads.at("b"), plan.passes()[0].writes.at("b"));
+  }
+  {  // Declared but not written by a running pass: the forward form.
+    Fixture f;
+    f.planner.add(pass("g", {}, {"a"}));
+    f.planner.add(pass("unused", {}, {"b"}));
+    f.planner.add(lightingWithAlternatives(true));
+    f.planner.add(pass("bloom", {"color"}, {"c"}));
+    f.planner.add(pass("tone", {"color", "c"}, {"display-color"}));
+    const FramePlan plan = FramePlan::resolve(std::move(f.planner), kFinalImageTarget, present);
+    EXPECT_EQ(running(plan), (std::vector<std::string>{"g", "light", "bloom", "tone"}));
+    EXPECT_EQ(plan.passes()[2].reads.count("b"), 0u);
+  }
 }
 
 TEST(FramePlan, MistakesAreRefusedWithMessagesNamingThem) {

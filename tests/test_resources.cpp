@@ -84,13 +84,20 @@ TEST(Resources, AGlErrorRaisedInAPassNamesThatPass) {
   const gl::RenderTarget output("output", camera.width, camera.height, GL_NEAREST,
                                 gl::RenderTarget::Depth::Renderbuffer, test::context().caps().depth24);
   for (const std::string& pass : framePassNames()) {
+    // Where the G-buffer pass writes the base colour too, no frame has a base-colour pass of its own.
+    if (pass == "base-color" && test::context().caps().drawBuffers) continue;
     AoSettings settings;
     settings.halfResolution = pass == "upsample";  // the upsampler runs only for half-resolution AO
-    // The frame's own passes run for a debug view, the shading count's for its view, the present pass when the
-    // final image is also kept after the frame.
-    const View view = pass == "view" ? View::Ao : pass == "shading-count" ? View{"shading-count"} : View::Final;
+    // The frame's own passes run for a debug view, the shading count's and the base colour's for theirs, the present
+    // pass when the final image is also kept after the frame, the tone-mapping pass when something else reads the
+    // HDR colour (otherwise the lighting does its work).
+    const View view = pass == "view"            ? View::Ao
+                      : pass == "shading-count" ? View{"shading-count"}
+                      : pass == "base-color"    ? View{"base-color"}
+                                                : View::Final;
     FrameOptions options;
     if (pass == "present") options.retain = {"display-color"};
+    if (pass == "tonemap") options.retain = {"scene-color"};
     ErrorAtTheEndOf timer(pass);
     options.timer = &timer;
     try {

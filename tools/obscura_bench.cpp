@@ -142,6 +142,8 @@ class Bench {
     for (int frame = 0; frame < options_.frames; ++frame)
       for (size_t c = 0; c < configurations.size(); ++c)
         renderer_.render(camera, configurations[c], View::Final, target, &timers[c]);
+    for (const PlannedPass& pass : renderer_.lastPlan().passes())
+      for (const std::string& absorbed : pass.absorbed) doneBy_[absorbed] = pass.decl.name;
     std::vector<PassTimes> results;
     for (size_t c = 0; c < configurations.size(); ++c) {
       const AoSettings& settings = configurations[c].ao();
@@ -164,6 +166,9 @@ class Bench {
                     const RenderSettings& settings) {
     return measure(section, scene, width, height, std::vector<RenderSettings>{settings}).front();
   }
+
+  // Passes whose work another pass did in the frames measured (the tone curve in the lighting): absorbed -> doer.
+  const std::map<std::string, std::string>& doneBy() const { return doneBy_; }
 
   // The SAO pass and the floor pass at the same size and sample count (a disk of `diskRadius` pixels), taking turns
   // frame by frame. Returns {SAO median ms, floor median ms}.
@@ -203,6 +208,7 @@ class Bench {
   FullscreenTriangle triangle_;
   std::ofstream csv_;
   const BenchScene* current_ = nullptr;
+  std::map<std::string, std::string> doneBy_;
 };
 
 double total(const PassTimes& t) {
@@ -327,6 +333,9 @@ int main(int argc, char** argv) {
     std::printf("\n1b. Per-effect ms (the sum of each effect's passes), the same frames\n");
     printEffectHeader();
     for (const auto& [name, w, h, times] : perPass) printEffectRow(name, w, h, times);
+    for (const auto& [absorbed, doer] : bench.doneBy())
+      std::printf("(%s: 0 ms where the %s pass did its work, with nothing else reading what it reads)\n",
+                  absorbed.c_str(), doer.c_str());
 
     const int w = options.quick ? 640 : 1280, h = options.quick ? 360 : 720;
     std::printf("\n2. Radius sweep, built-in scene %dx%d: SAO pass ms (hierarchy pass ms)\n", w, h);

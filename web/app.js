@@ -191,7 +191,8 @@ function showStats(obscura) {
     for (const pass of obscura.passes) {
       const ms = s.passMs[pass];
       if (ms !== null) total += ms;
-      lines.push(`  ${pass.padEnd(10)} ${ms === null ? '   -' : ms.toFixed(2)} ms`);
+      const doneBy = s.passesDoneBy[pass];
+      lines.push(`  ${pass.padEnd(10)} ${ms === null ? '   -' : ms.toFixed(2)} ms${doneBy ? ` (done by ${doneBy})` : ''}`);
     }
     lines.push(`  ${'total'.padEnd(10)} ${total.toFixed(2)} ms`);
   } else {

@@ -3,8 +3,8 @@
 //
 //   vec3 toneMap(vec3 linearHdr)    exposure (u_exposure = 2^EV, exposureScale(ev) on the CPU), then the curve
 //   vec3 toneMapCurve(vec3 x)       the curve alone: non-negative linear Rec. 709 in, linear display [0, 1] out
-//   linearToSrgb / srgbToLinear     IEC 61966-2-1, the real piecewise curve
-//   float fxaaLuma(vec3 srgb)       FXAA 3.11's luma of the display-encoded colour
+//   linearToSrgb / srgbToLinear     IEC 61966-2-1, the real piecewise curve (lib/srgb.glsl)
+//   float fxaaLuma(vec3 srgb)       FXAA 3.11's luma of the display-encoded colour (lib/srgb.glsl)
 //
 // TONEMAP_OPERATOR picks the curve: ToneMapOperator's values (toneMapShaderDefine() writes the line).
 #define TONEMAP_LINEAR 0
@@ -12,6 +12,8 @@
 #define TONEMAP_ACES 2
 #define TONEMAP_NEUTRAL 3
 #define TONEMAP_AGX 4
+
+#include "lib/srgb.glsl"
 
 #ifndef TONEMAP_OPERATOR
 #error "define TONEMAP_OPERATOR (toneMapShaderDefine() on the CPU)"
@@ -112,20 +114,3 @@ vec3 toneMapCurve(vec3 x) {
 }
 
 vec3 toneMap(vec3 linearHdr) { return toneMapCurve(linearHdr * u_exposure); }
-
-// The pow branch takes max(c, 0.0031308) so that it never sees 0 (pow(0, y) is only defined for y > 0, and mix would
-// carry a NaN from the unused branch).
-vec3 linearToSrgb(vec3 linear) {
-  vec3 c = clamp(linear, 0.0, 1.0);
-  vec3 curve = 1.055 * pow(max(c, 0.0031308), vec3(1.0 / 2.4)) - 0.055;
-  return mix(curve, c * 12.92, vec3(lessThanEqual(c, vec3(0.0031308))));
-}
-
-vec3 srgbToLinear(vec3 srgb) {
-  vec3 c = clamp(srgb, 0.0, 1.0);
-  vec3 curve = pow((max(c, 0.04045) + 0.055) / 1.055, vec3(2.4));
-  return mix(curve, c / 12.92, vec3(lessThanEqual(c, vec3(0.04045))));
-}
-
-// FXAA 3.11 (Lottes 2011) reads the luma of the display-encoded colour from alpha: BT.601 weights.
-float fxaaLuma(vec3 srgb) { return dot(srgb, vec3(0.299, 0.587, 0.114)); }

@@ -133,7 +133,14 @@ int runRender(const RenderOptions& options) {
       double sumOfMeans = 0.0;
       for (const std::string& pass : framePassNames()) {
         const std::vector<double>& s = timer.samples(pass);
-        if (s.empty()) continue;
+        if (s.empty()) {
+          // A pass whose work another one did this frame (the tone curve applied by the lighting) is named, so a
+          // reader looking for it finds where its time went.
+          for (const PlannedPass& planned : renderer.lastPlan().passes())
+            if (planned.live && std::count(planned.absorbed.begin(), planned.absorbed.end(), pass))
+              std::printf("%-10s %10s   (done by %s)\n", pass.c_str(), "-", planned.decl.name.c_str());
+          continue;
+        }
         double sum = 0.0;
         for (double v : s) sum += v;
         const double mean = sum / static_cast<double>(s.size());

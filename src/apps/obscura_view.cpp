@@ -208,6 +208,9 @@ std::string title(const Viewer& viewer, double frameMs, const GpuPassTimer& time
       out += text;
     }
     out += " ms";
+    if (const Renderer* renderer = viewer.renderer())
+      for (const PlannedPass& pass : renderer->lastPlan().passes())
+        for (const std::string& absorbed : pass.absorbed) out += " (" + absorbed + " done by " + pass.decl.name + ")";
   }
   if (!message.empty()) out += " - error: " + message;
   return out;

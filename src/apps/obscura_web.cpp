@@ -83,13 +83,16 @@ class WebApp {
       }
     }
     // The frame the renderer drew last: how many frames its history has survived, and the passes it ran.
-    Json history = nullptr, ran = Json::array();
+    Json history = nullptr, ran = Json::array(), doneBy = Json::object();
     if (const Renderer* renderer = viewer_.renderer()) {
       history = {{"frames", renderer->lastFrame().historyFrames},
                  {"drops", renderer->historyDrops()},
                  {"frameIndex", renderer->lastFrame().index}};
       for (const PlannedPass& pass : renderer->lastPlan().passes())
-        if (pass.live) ran.push_back(pass.decl.name);
+        if (pass.live) {
+          ran.push_back(pass.decl.name);
+          for (const std::string& absorbed : pass.absorbed) doneBy[absorbed] = pass.decl.name;
+        }
     }
     const gl::LiveObjects& live = gl::liveObjects();
     return Json{{"width", width_},
@@ -103,6 +106,7 @@ class WebApp {
                 {"timerQueries", timer_ && timer_->available()},
                 {"passMs", passes},
                 {"passesRun", ran},
+                {"passesDoneBy", doneBy},
                 {"history", history},
                 {"pooledTargets", viewer_.renderer() ? Json(viewer_.renderer()->pooledTargets()) : Json(nullptr)},
                 {"contextLost", canvas_.lost()},

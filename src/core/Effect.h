@@ -88,12 +88,30 @@ struct PassDecl {
     std::string depthFrom;  // Shared: the target whose depth renderbuffer it attaches
   };
 
+  // Another way to run the pass, taken when its conditions hold once the plan knows which passes run (the first of
+  // a pass's alternatives that applies wins; none: the pass as declared). It keeps the pass's name.
+  struct Alternative {
+    // Targets that a running earlier pass writes (not only one that is declared): the deferred lighting needs the
+    // base colour the G-buffer pass writes where it has several render targets, and runs.
+    std::vector<std::string> whenWritten;
+    // "" or the name of a pass that is the only running reader of what this pass writes, reads nothing else, and
+    // whose own writes are read by a running pass (or, with `mayWriteOutput`, are the frame's result). The
+    // alternative then does that pass's work too: it writes that pass's targets (its `writes` name them), and that
+    // pass does not run. (The lighting applies the tone curve itself when nothing else needs the HDR colour.)
+    std::string absorbing;
+    bool mayWriteOutput = false;
+    std::vector<std::string> reads;
+    std::vector<Write> writes;  // without `absorbing`: the same targets as the pass's
+    std::function<void(PassContext&)> run;
+  };
+
   std::string name;                        // one of its effect's EffectInfo::passes
   std::vector<std::string> reads;          // required: an earlier pass must write each
   std::vector<std::string> optionalReads;  // used when some earlier pass writes it anyway; never keeps one alive
   std::vector<Write> writes;
   bool keep = false;                       // runs even when nothing reads what it writes (history)
   std::function<void(PassContext&)> run;
+  std::vector<Alternative> alternatives;
 };
 
 // Effects draw through this during their passes.

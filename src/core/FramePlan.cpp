@@ -46,12 +46,14 @@ FramePlan FramePlan::resolve(FramePlanner&& planner, const std::string& result,
                              const std::function<PassDecl()>& presentPass, const std::vector<std::string>& retain) {
   FramePlan plan;
   std::map<std::string, int> latest;  // target or alias -> the version reads bind to
+  std::vector<std::map<std::string, int>> visible;  // per pass: `latest` as it stood before the pass
 
   auto addPass = [&](FramePlanner::Entry&& entry) {
     PlannedPass pass;
     pass.effect = std::move(entry.effect);
     pass.decl = std::move(entry.decl);
     const int index = static_cast<int>(plan.passes_.size());
+    visible.push_back(latest);
     for (const std::string& read : pass.decl.reads) {
       const auto it = latest.find(read);
       if (it == latest.end())
@@ -132,11 +134,99 @@ FramePlan FramePlan::resolve(FramePlanner&& planner, const std::string& result,
   auto writerLive = [&](int version) {
     return plan.passes_[static_cast<size_t>(plan.versions_[static_cast<size_t>(version)].writer)].live;
   };
-  for (PlannedPass& pass : plan.passes_) {
+  for (PlannedPass& pass : plan.passes_)
     for (const std::string& read : pass.decl.optionalReads) {
       const auto it = pass.reads.find(read);
       if (it != pass.reads.end() && !writerLive(it->second)) pass.reads.erase(it);
     }
+
+  // Alternatives, now that it is known which passes run.
+  auto readersOf = [&](int version) {
+    std::vector<int> readers;
+    for (int j = 0; j < static_cast<int>(plan.passes_.size()); ++j) {
+      const PlannedPass& other = plan.passes_[static_cast<size_t>(j)];
+      if (!other.live) continue;
+      for (const auto& [target, read] : other.reads)
+        if (read == version) {
+          readers.push_back(j);
+          break;
+        }
+    }
+    return readers;
+  };
+  auto retainedVersion = [&](int version) {
+    for (const auto& [target, v] : plan.retained_)
+      if (v == version) return true;
+    return false;
+  };
+  for (int i = 0; i < static_cast<int>(plan.passes_.size()); ++i) {
+    PlannedPass& pass = plan.passes_[static_cast<size_t>(i)];
+    if (!pass.live) continue;
+    for (const PassDecl::Alternative& alternative : pass.decl.alternatives) {
+      const std::map<std::string, int>& seen = visible[static_cast<size_t>(i)];
+      auto written = [&](const std::string& target) {
+        const auto it = seen.find(target);
+        return it != seen.end() && writerLive(it->second);
+      };
+      if (!std::all_of(alternative.whenWritten.begin(), alternative.whenWritten.end(), written) ||
+          !std::all_of(alternative.reads.begin(), alternative.reads.end(), written))
+        continue;
+      int absorbed = -1;
+      if (!alternative.absorbing.empty()) {
+        // The one running reader of everything this pass writes, reading nothing else.
+        std::set<int> readers;
+        bool kept = false;
+        for (const auto& [target, version] : pass.writes) {
+          for (int j : readersOf(version)) readers.insert(j);
+          kept = kept || version == resultVersion || retainedVersion(version);
+        }
+        if (kept || readers.size() != 1) continue;
+        const PlannedPass& reader = plan.passes_[static_cast<size_t>(*readers.begin())];
+        if (reader.decl.name != alternative.absorbing) continue;
+        bool readsOnlyThis = true;
+        for (const auto& [target, version] : reader.reads)
+          readsOnlyThis = readsOnlyThis && plan.versions_[static_cast<size_t>(version)].writer == i;
+        bool used = true;  // its results are read, or (where allowed) are the frame's result
+        for (const auto& [target, version] : reader.writes)
+          used = used && (!readersOf(version).empty() || retainedVersion(version) ||
+                          (alternative.mayWriteOutput && version == resultVersion));
+        if (!readsOnlyThis || !used) continue;
+        absorbed = *readers.begin();
+      }
+      // Take it: the alternative's reads, its code, and the writes (this pass's targets, or the absorbed pass's).
+      std::map<std::string, int> writes = absorbed >= 0 ? plan.passes_[static_cast<size_t>(absorbed)].writes
+                                                        : pass.writes;
+      if (writes.size() != alternative.writes.size())
+        throw PipelineError(describe(pass) + ": an alternative writes other targets than it stands in for");
+      pass.reads.clear();
+      for (const std::string& read : alternative.reads) pass.reads[read] = seen.at(read);
+      for (const PassDecl::Write& write : alternative.writes) {
+        const auto it = writes.find(write.target);
+        if (it == writes.end())
+          throw PipelineError(describe(pass) + ": an alternative writes '" + write.target + "', which it stands in for "
+                              "no pass writing");
+        TargetVersion& version = plan.versions_[static_cast<size_t>(it->second)];
+        version.writer = i;
+        version.size = write.size;
+        version.depth = write.depth;
+        version.depthVersion = -1;
+        if (write.depth == PassDecl::Write::Depth::Shared && pass.reads.count(write.depthFrom))
+          version.depthVersion = pass.reads.at(write.depthFrom);
+      }
+      if (absorbed >= 0) {
+        plan.passes_[static_cast<size_t>(absorbed)].live = false;
+        pass.absorbed.push_back(plan.passes_[static_cast<size_t>(absorbed)].decl.name);
+      }
+      pass.writes = writes;
+      pass.decl.reads = alternative.reads;
+      pass.decl.optionalReads.clear();
+      pass.decl.writes = alternative.writes;
+      pass.decl.run = alternative.run;
+      break;
+    }
+  }
+
+  for (PlannedPass& pass : plan.passes_) {
     for (const auto& [target, version] : pass.writes) {
       TargetVersion& v = plan.versions_[static_cast<size_t>(version)];
       if (v.depth == PassDecl::Write::Depth::Shared && (v.depthVersion < 0 || !writerLive(v.depthVersion))) {

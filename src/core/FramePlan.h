@@ -56,6 +56,7 @@ struct PlannedPass {
   std::map<std::string, int> reads;   // target (or alias) -> version: required reads, and optional ones whose
                                       // writer runs
   std::map<std::string, int> writes;  // target -> version
+  std::vector<std::string> absorbed;  // passes whose work this one does (PassDecl::Alternative::absorbing)
 };
 
 // Collects one frame's passes. Effects add theirs in FramePlanner's hands (Effect::plan).

@@ -12,49 +12,96 @@ EffectInfo GBufferEffect::info() {
           "G-buffer",
           false,
           false,
-          {"gbuffer"},
+          {"gbuffer", "base-color"},
           {{"gbuffer",
             "RG: octahedral view-space normal (254 steps); BA: 16-bit linear depth, high byte in B (65535: background)",
             GL_NEAREST,
-            {{"normals", ViewDecoding::Normals}, {"depth", ViewDecoding::Depth}, {"mask", ViewDecoding::Mask}}}}};
+            {{"normals", ViewDecoding::Normals}, {"depth", ViewDecoding::Depth}, {"mask", ViewDecoding::Mask}}},
+           {"base-color",
+            "RGB: the material's base colour (factor x texture), sRGB-encoded; A: 1. Written beside the G-buffer where "
+            "there are several render targets (the deferred lighting reads it); background undefined",
+            GL_NEAREST,
+            {{"base-color", ViewDecoding::Color}}}}};
 }
+
+namespace {
+
+ProgramSpec spec(int output, bool masked) {
+  static const char* outputs[] = {"gbuffer", "base-color", "gbuffer+base-color"};
+  ProgramSpec s{"gbuffer[" + std::string(outputs[output]) + (masked ? ",mask]" : ",opaque]"), "geometry.vert",
+                "gbuffer.frag", {{"GBUFFER_OUTPUT", std::to_string(output)}, {"ALPHA_MASK", masked ? "1" : "0"}}};
+  if (output == 2) s.extensions = {"GL_EXT_draw_buffers"};
+  return s;
+}
+
+}  // namespace
 
 std::vector<ProgramSpec> GBufferEffect::programSpecs() {
-  return {ProgramSpec{"gbuffer", "geometry.vert", "gbuffer.frag", {}, {}}};
+  std::vector<ProgramSpec> specs;
+  for (int output = 0; output < 3; ++output)
+    for (bool masked : {false, true}) specs.push_back(spec(output, masked));
+  return specs;
 }
+
+GBufferEffect::Variant::Variant(gl::Program built)
+    : program(std::move(built)),
+      geometry(program),
+      projection(program.uniform("u_projection")),
+      // The base-colour-only variant computes no depth.
+      near(program.optionalUniform("u_near")),
+      depthRange(program.optionalUniform("u_depthRange")) {}
 
 GBufferEffect::GBufferEffect(const EffectResources& resources)
-    : program_(resources.build(programSpecs().front())),
-      geometry_(program_),
-      projection_(program_.uniform("u_projection")),
-      near_(program_.uniform("u_near")),
-      depthRange_(program_.uniform("u_depthRange")) {}
-
-void GBufferEffect::plan(FramePlanner& planner) {
-  PassDecl pass;
-  pass.name = "gbuffer";
-  pass.writes = {{"gbuffer", TargetSize::full(), PassDecl::Write::Depth::Own, ""}};
-  pass.run = [this](PassContext& context) { render(context); };
-  planner.add(std::move(pass));
+    : drawBuffers_(resources.caps.drawBuffers && resources.options.allowDrawBuffers) {
+  for (int output = 0; output < 3; ++output) {
+    if (output == 2 && !drawBuffers_) continue;  // the draw-buffers variant only where the context has them
+    for (int masked = 0; masked < 2; ++masked)
+      variants_[output][masked] = Variant(resources.build(spec(output, masked != 0)));
+  }
 }
 
-void GBufferEffect::render(const PassContext& context) const {
+void GBufferEffect::plan(FramePlanner& planner) {
+  using Write = PassDecl::Write;
+  PassDecl pass;
+  pass.name = "gbuffer";
+  pass.writes = {{"gbuffer", TargetSize::full(), Write::Depth::Own, ""}};
+  if (drawBuffers_) pass.writes.push_back({"base-color", TargetSize::full(), Write::Depth::None, ""});
+  const Output output = drawBuffers_ ? Output::Both : Output::GBuffer;
+  pass.run = [this, output](PassContext& context) { render(context, output); };
+  planner.add(std::move(pass));
+  // Without several render targets, the base colour has a pass of its own, for its view only.
+  if (!drawBuffers_ && planner.viewTarget() == "base-color") {
+    PassDecl base;
+    base.name = "base-color";
+    base.writes = {{"base-color", TargetSize::full(), Write::Depth::Own, ""}};
+    base.run = [this](PassContext& context) { render(context, Output::BaseColor); };
+    planner.add(std::move(base));
+  }
+}
+
+void GBufferEffect::render(const PassContext& context, Output output) const {
   const FrameCamera& camera = context.camera();
-  context.bindForWriting("gbuffer");
+  if (output == Output::Both) context.bindForWriting(std::vector<std::string>{"gbuffer", "base-color"});
+  else context.bindForWriting(output == Output::GBuffer ? "gbuffer" : "base-color");
   // Background: normal (0, 0, 1) and depth code 65535. A channel of 1.0 stores byte 255.
+  // (With several render targets the base colour is cleared to the same bytes: the background is not read there.)
   const auto normal = encodeNormal(glm::vec3(0.0f, 0.0f, 1.0f));
-  glClearColor(LinearDepthPacking::channelFromByte(normal[0]), LinearDepthPacking::channelFromByte(normal[1]), 1.0f,
-               1.0f);
+  if (output == Output::BaseColor) glClearColor(0.0f, 0.0f, 0.0f, 1.0f);
+  else glClearColor(LinearDepthPacking::channelFromByte(normal[0]), LinearDepthPacking::channelFromByte(normal[1]),
+                    1.0f, 1.0f);
   glClearDepthf(1.0f);
   glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
   glEnable(GL_DEPTH_TEST);
   glDepthFunc(GL_LESS);
 
-  program_.use();
-  gl::Program::set(projection_, camera.projection);
-  gl::Program::set(near_, camera.near);
-  gl::Program::set(depthRange_, camera.far - camera.near);
-  context.scene().draw(geometry_, camera.view);
+  context.scene().draw(camera.view, [&](bool masked) -> const GeometryUniforms& {
+    const Variant& v = variants_[static_cast<int>(output)][masked ? 1 : 0];
+    v.program.use();
+    gl::Program::set(v.projection, camera.projection);
+    gl::Program::set(v.near, camera.near);
+    gl::Program::set(v.depthRange, camera.far - camera.near);
+    return v.geometry;
+  });
   gl::restoreBaselineState();
 }
 

@@ -3,6 +3,10 @@
 // shaders_es2/gbuffer.frag) with its own depth renderbuffer, which the lighting pass then shares. Cleared to depth
 // code 65535, the background marker. Always part of the frame; the plan drops it when no running pass reads it
 // (the AO off: the lighting then depth-tests on its own).
+//
+// Where the context has several render targets (EXT_draw_buffers, WEBGL_draw_buffers), the same pass also writes
+// the material's base colour into "base-color", so the lighting can be a full-screen pass instead of drawing the
+// scene again: on a CPU rasteriser a pass over a 110k-triangle model costs about 50 ms whatever the size.
 #include <vector>
 
 #include "core/EffectTable.h"
@@ -21,11 +25,19 @@ class GBufferEffect : public Effect {
   void plan(FramePlanner& planner) override;
 
  private:
-  void render(const PassContext& context) const;
+  struct Variant {
+    Variant() = default;
+    explicit Variant(gl::Program built);
+    gl::Program program;
+    GeometryUniforms geometry;
+    GLint projection = -1, near = -1, depthRange = -1;
+  };
+  // What a pass writes: the G-buffer, the base colour, or both at once (several render targets).
+  enum class Output { GBuffer = 0, BaseColor = 1, Both = 2 };
+  void render(const PassContext& context, Output output) const;
 
-  gl::Program program_;
-  GeometryUniforms geometry_;
-  GLint projection_ = -1, near_ = -1, depthRange_ = -1;
+  bool drawBuffers_;          // the context can write both in one pass (and RendererOptions allows it)
+  Variant variants_[3][2];    // [output][masked]: without and with the alpha test's discard
 };
 
 }  // namespace obscura

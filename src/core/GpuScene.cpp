@@ -98,6 +98,9 @@ GpuScene::GpuScene(const Scene& scene, const gl::GlCaps& caps, const Options& op
     const Mesh& mesh = scene.meshes[static_cast<size_t>(instance.mesh)];
     InstanceGpu gpu;
     gpu.world = instance.world;
+    Bounds bounds;
+    for (const glm::vec3& p : mesh.positions) bounds.add(glm::vec3(instance.world * glm::vec4(p, 1.0f)));
+    gpu.centre = bounds.empty() ? glm::vec3(instance.world[3]) : 0.5f * (bounds.min + bounds.max);
     gpu.material = mesh.material >= 0 ? mesh.material : static_cast<int>(materials_.size()) - 1;
     gpu.firstPiece = meshPieces[static_cast<size_t>(instance.mesh)].first;
     gpu.pieceCount = meshPieces[static_cast<size_t>(instance.mesh)].second;
@@ -111,11 +114,10 @@ bool GpuScene::usesUint32Indices() const {
 
 GeometryUniforms::GeometryUniforms(const gl::Program& program)
     : modelView(program.uniform("u_modelView")),
-      // A fragment stage that reads no normal (the shading-count view) lets the compiler drop it.
       normalMatrix(program.optionalUniform("u_normalMatrix")),
-      baseColorFactor(program.uniform("u_baseColorFactor")),
-      baseColorTexture(program.uniform("u_baseColorTexture")),
-      alphaCutoff(program.uniform("u_alphaCutoff")) {}
+      baseColorFactor(program.optionalUniform("u_baseColorFactor")),
+      baseColorTexture(program.optionalUniform("u_baseColorTexture")),
+      alphaCutoff(program.optionalUniform("u_alphaCutoff")) {}
 
 std::vector<glm::mat4> GpuScene::worldMatrices() const {
   std::vector<glm::mat4> out;
@@ -124,24 +126,41 @@ std::vector<glm::mat4> GpuScene::worldMatrices() const {
   return out;
 }
 
-void GpuScene::draw(const GeometryUniforms& uniforms, const glm::mat4& view) const {
+void GpuScene::draw(const glm::mat4& view, const ProgramChoice& choose) const {
   using gl::Program;
-  const GLsizei stride = 8 * sizeof(float);
-  glActiveTexture(GL_TEXTURE0);
-  Program::set(uniforms.baseColorTexture, 0);
-  for (GLuint slot : {gl::kAttribPosition, gl::kAttribNormal, gl::kAttribTexcoord}) glEnableVertexAttribArray(slot);
-
+  // Opaque before masked, each front to back: the view-space z of the bounds' centre, nearest (largest) first.
+  std::vector<std::pair<float, const InstanceGpu*>> order;
+  order.reserve(instances_.size());
   for (const InstanceGpu& instance : instances_) {
+    const bool masked = materials_[static_cast<size_t>(instance.material)].alphaCutoff >= 0.0f;
+    order.emplace_back((masked ? 1e30f : 0.0f) - (view * glm::vec4(instance.centre, 1.0f)).z, &instance);
+  }
+  std::stable_sort(order.begin(), order.end(),
+                   [](const auto& a, const auto& b) { return a.first < b.first; });
+
+  const GLsizei stride = 8 * sizeof(float);
+  for (GLuint slot : {gl::kAttribPosition, gl::kAttribNormal, gl::kAttribTexcoord}) glEnableVertexAttribArray(slot);
+  const GeometryUniforms* uniforms = nullptr;
+  bool maskedProgram = false;
+  for (const auto& [key, instancePointer] : order) {
+    const InstanceGpu& instance = *instancePointer;
+    const MaterialGpu& material = materials_[static_cast<size_t>(instance.material)];
+    const bool masked = material.alphaCutoff >= 0.0f;
+    if (!uniforms || masked != maskedProgram) {
+      uniforms = &choose(masked);
+      maskedProgram = masked;
+      glActiveTexture(GL_TEXTURE0);
+      Program::set(uniforms->baseColorTexture, 0);
+    }
     const glm::mat4 modelView = view * instance.world;
     const glm::mat3 linear(modelView);
-    Program::set(uniforms.modelView, modelView);
-    Program::set(uniforms.normalMatrix, glm::inverseTranspose(linear));
+    Program::set(uniforms->modelView, modelView);
+    Program::set(uniforms->normalMatrix, glm::inverseTranspose(linear));
     // A mirroring transform flips the winding; keep "front" meaning the outside.
     glFrontFace(glm::determinant(linear) < 0.0f ? GL_CW : GL_CCW);
 
-    const MaterialGpu& material = materials_[static_cast<size_t>(instance.material)];
-    Program::set(uniforms.baseColorFactor, material.baseColorFactor);
-    Program::set(uniforms.alphaCutoff, material.alphaCutoff);
+    Program::set(uniforms->baseColorFactor, material.baseColorFactor);
+    Program::set(uniforms->alphaCutoff, material.alphaCutoff);
     glBindTexture(GL_TEXTURE_2D,
                   material.texture >= 0 ? textures_[static_cast<size_t>(material.texture)].id() : white_.id());
     if (material.doubleSided) glDisable(GL_CULL_FACE);

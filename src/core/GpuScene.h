@@ -4,6 +4,7 @@
 //
 // WebGL 1 rules: without OES_element_index_uint, meshes over 65535 vertices are split into 16-bit pieces
 // (scene/MeshProcessing.h); textures follow the non-power-of-two and size rules of scene/TexturePreparation.h.
+#include <functional>
 #include <vector>
 
 #include <glm/mat4x4.hpp>
@@ -15,7 +16,9 @@
 
 namespace obscura {
 
-// The uniforms of geometry.vert and lib/material.glsl that draw() sets per instance, resolved once per program.
+// The uniforms of geometry.vert and lib/material.glsl that draw() sets per instance, resolved once per program. Only
+// u_modelView is required: a fragment stage that reads no normal or no base colour (the G-buffer pass of opaque
+// materials) lets the compiler drop the others.
 struct GeometryUniforms {
   GeometryUniforms() = default;
   explicit GeometryUniforms(const gl::Program& program);
@@ -32,10 +35,15 @@ class GpuScene {
   GpuScene(const Scene& scene, const gl::GlCaps& caps, const Options& options);
   GpuScene(const Scene& scene, const gl::GlCaps& caps) : GpuScene(scene, caps, Options{}) {}
 
-  // Draws every instance with the program in use (u_projection already set): sets u_modelView, u_normalMatrix,
-  // the material uniforms of lib/material.glsl, face culling per material and winding per instance. Leaves the
-  // baseline pipeline state except for the program, depth and framebuffer state it was given.
-  void draw(const GeometryUniforms& uniforms, const glm::mat4& view) const;
+  // Chooses the program for a kind of material: `masked` (alphaMode MASK: the variant that discards cut-out
+  // fragments) or opaque (a variant without discard, so the depth and stencil tests may run before the fragment
+  // shader). It makes the program current, sets its per-frame uniforms, and returns its per-instance ones.
+  using ProgramChoice = std::function<const GeometryUniforms&(bool masked)>;
+  // Draws every instance: opaque materials first, then masked ones, each group front to back (by the distance of
+  // its bounds' centre from the eye), so early depth tests reject what a nearer surface hides. Sets u_modelView,
+  // u_normalMatrix, the material uniforms of lib/material.glsl, face culling per material and winding per instance.
+  // Leaves the baseline pipeline state except for the program, depth and framebuffer state it was given.
+  void draw(const glm::mat4& view, const ProgramChoice& choose) const;
 
   // Each instance's world matrix, in draw order (the frame context keeps the previous frame's).
   std::vector<glm::mat4> worldMatrices() const;
@@ -57,6 +65,7 @@ class GpuScene {
   };
   struct InstanceGpu {
     glm::mat4 world{1.0f};
+    glm::vec3 centre{0.0f};  // of its world-space bounds, for the drawing order
     int material = 0;
     int firstPiece = 0, pieceCount = 0;
   };

@@ -8,17 +8,6 @@
 #include "gl/PipelineState.h"
 
 namespace obscura {
-namespace {
-
-ProgramSpec spec(bool countShading) {
-  return ProgramSpec{countShading ? "lighting[count-shading]" : "lighting",
-                     "geometry.vert",
-                     "lighting.frag",
-                     {{"COUNT_SHADING", countShading ? "1" : "0"}},
-                     {}};
-}
-
-}  // namespace
 
 EffectInfo LightingEffect::info() {
   return {"lighting",
@@ -26,68 +15,201 @@ EffectInfo LightingEffect::info() {
           false,
           false,
           {"lighting", "shading-count"},
-          {{"scene-color", "linear HDR colour in the RGBA8 encoding of lib/hdr.glsl (" + kHdrColorEncoding.name() +
-                                ", core/HdrEncoding.h): fetch NEAREST, decode, then filter",
+          {{"scene-color",
+            "linear HDR colour in the RGBA8 encoding of lib/hdr.glsl (" + kHdrColorEncoding.name() +
+                ", core/HdrEncoding.h): fetch NEAREST, decode, then filter",
             GL_NEAREST,
             {{"scene-color", ViewDecoding::HdrColor}}},
            {"shading-count", "R: fragments the lighting pass shaded at this pixel, / 255 (diagnostic)", GL_NEAREST,
             {{"shading-count", ViewDecoding::Count}}}}};
 }
 
-std::vector<ProgramSpec> LightingEffect::programSpecs() { return {spec(false), spec(true)}; }
+ProgramSpec LightingEffect::spec(const Form& form, bool masked) {
+  std::string name = std::string("lighting[") + (form.deferred ? "deferred" : masked ? "forward,mask" : "forward");
+  if (form.counting) name += ",count-shading";
+  if (form.toneMap >= 0) name += std::string(",tonemap=") + toneMapOperatorName(static_cast<ToneMapOperator>(form.toneMap));
+  ProgramSpec s{name + "]", form.deferred ? "fullscreen.vert" : "geometry.vert", "lighting.frag",
+                {{"DEFERRED", form.deferred ? "1" : "0"},
+                 {"COUNT_SHADING", form.counting ? "1" : "0"},
+                 {"ALPHA_MASK", masked ? "1" : "0"},
+                 {"TONEMAP_INLINE", form.toneMap >= 0 ? "1" : "0"},
+                 {"FAR_RAY", "0"}}};
+  if (form.toneMap >= 0) s.defines.push_back(toneMapShaderDefine(static_cast<ToneMapOperator>(form.toneMap)));
+  return s;
+}
 
-LightingEffect::Variant::Variant(gl::Program built)
+std::vector<ProgramSpec> LightingEffect::programSpecs() {
+  std::vector<ProgramSpec> specs;
+  for (bool deferred : {false, true})
+    for (bool masked : {false, true}) {
+      if (deferred && masked) continue;  // a full-screen pass has no material
+      specs.push_back(spec({deferred, true, -1}, masked));
+      for (int toneMap = -1; toneMap < kToneMapOperatorCount; ++toneMap) specs.push_back(spec({deferred, false, toneMap}, masked));
+    }
+  return specs;
+}
+
+LightingEffect::Variant::Variant(gl::Program built, bool geometryStage)
     : program(std::move(built)),
-      geometry(program),
-      projection(program.uniform("u_projection")),
+      geometry(geometryStage ? GeometryUniforms(program) : GeometryUniforms()),
+      projection(program.optionalUniform("u_projection")),
       lightDirection(program.optionalUniform("u_lightDirection")),
       viewUp(program.optionalUniform("u_viewUp")),
       lightColor(program.optionalUniform("u_lightColor")),
       skyColor(program.optionalUniform("u_skyColor")),
       groundColor(program.optionalUniform("u_groundColor")),
-      ao(program.optionalUniform("u_ao")) {}
+      ao(program.optionalUniform("u_ao")),
+      gbuffer(program.optionalUniform("u_gbuffer")),
+      baseColor(program.optionalUniform("u_baseColor")),
+      background(program.optionalUniform("u_background")),
+      exposure(program.optionalUniform("u_exposure")),
+      lumaInAlpha(program.optionalUniform("u_lumaInAlpha")) {}
+
+const LightingEffect::Variant& LightingEffect::variant(const Form& form, bool masked) {
+  const auto key = std::make_pair(form, masked);
+  auto it = variants_.find(key);
+  if (it == variants_.end()) {
+    it = variants_.emplace(key, Variant(resources_.build(spec(form, masked)), !form.deferred)).first;
+    // Resolve strictly what this form must use, so a misspelt or dropped uniform is caught where it matters.
+    const gl::Program& program = it->second.program;
+    if (!form.deferred) program.uniform("u_projection");
+    if (!form.counting)
+      for (const char* name : {"u_lightDirection", "u_viewUp", "u_lightColor", "u_skyColor", "u_groundColor", "u_ao"})
+        program.uniform(name);
+    if (form.deferred) program.uniform("u_gbuffer");
+    if (form.deferred && !form.counting)
+      for (const char* name : {"u_baseColor", "u_background"}) program.uniform(name);
+    if (form.toneMap >= 0)
+      for (const char* name : {"u_exposure", "u_lumaInAlpha"}) program.uniform(name);
+  }
+  return it->second;
+}
 
 LightingEffect::LightingEffect(const EffectResources& resources)
-    : shade_(resources.build(spec(false))),
-      countShading_(resources.build(spec(true))),
+    : resources_(resources),
       white_(1, 1, GL_NEAREST, std::vector<std::uint8_t>{255, 255, 255, 255}.data()),
       stencil_(resources.caps.packedDepthStencil) {
-  // The lit program uses every uniform: resolve them strictly there (the counting one has none of the lights).
-  for (const char* name : {"u_lightDirection", "u_viewUp", "u_lightColor", "u_skyColor", "u_groundColor", "u_ao"})
-    shade_.program.uniform(name);
+  // The forms every default frame uses are built now, so a broken program fails when the renderer is made.
+  variant({false, false, -1}, false);
+  variant({false, false, -1}, true);
 }
 
 void LightingEffect::plan(FramePlanner& planner) {
-  const bool withAo = planner.settings().ao().enabled;
-  // The counting pass is planned only for its view, beside the lit pass (which that view's plan then drops). It
-  // has the lit pass's reads, so the plan, and with it the depth set-up, is the one the lit pass would have.
+  using Write = PassDecl::Write;
+  std::vector<std::string> reads;
+  if (planner.settings().ao().enabled) reads.push_back("ao");
+  const ToneMapInUse tone = ToneMapInUse::of(planner.settings().of<TonemapSettings>());
+  const int op = static_cast<int>(tone.op);
+  auto with = [&](std::vector<std::string> more) {
+    std::vector<std::string> all = reads;
+    all.insert(all.end(), more.begin(), more.end());
+    return all;
+  };
+  auto runAs = [this, scale = tone.exposureScale](Form form, std::string output) {
+    return [this, form, output, scale](PassContext& context) { render(context, form, output, scale); };
+  };
+
   for (const char* output : {"scene-color", "shading-count"}) {
     const bool counting = std::string(output) == "shading-count";
+    // The counting pass is planned only for its view, beside the lit pass (which that view's plan then drops). It
+    // has the lit pass's reads and alternatives, so the plan, and with it the depth set-up, is the one the lit
+    // pass would have.
     if (counting && planner.viewTarget() != output) continue;
     PassDecl pass;
     pass.name = counting ? "shading-count" : "lighting";
-    if (withAo) pass.reads = {"ao"};
+    pass.reads = reads;
     pass.optionalReads = {"gbuffer"};  // its depth, when the G-buffer pass runs anyway
-    pass.writes = {{output, TargetSize::full(), PassDecl::Write::Depth::Shared, "gbuffer"}};
-    pass.run = [this, output](PassContext& context) { render(context, output); };
+    pass.writes = {{output, TargetSize::full(), Write::Depth::Shared, "gbuffer"}};
+    pass.run = runAs({false, counting, -1}, output);
+    using Alternative = PassDecl::Alternative;
+    if (counting) {
+      pass.alternatives.push_back(Alternative{{"base-color"}, "", false, {"gbuffer"},
+                                              {{output, TargetSize::full(), Write::Depth::None, ""}},
+                                              runAs({true, true, -1}, output)});
+    } else {
+      const std::vector<Write> toDisplay = {{"display-color", TargetSize::full(), Write::Depth::None, ""}};
+      const std::vector<Write> toDisplayShared = {
+          {"display-color", TargetSize::full(), Write::Depth::Shared, "gbuffer"}};
+      const std::vector<Write> toDisplayOwn = {{"display-color", TargetSize::full(), Write::Depth::Own, ""}};
+      // Best first: deferred and tone-mapped, deferred, forward and tone-mapped (with the G-buffer's depth, or its
+      // own); else the pass as declared.
+      pass.alternatives = {
+          Alternative{{"base-color"}, "tonemap", true, with({"gbuffer", "base-color"}), toDisplay,
+                      runAs({true, false, op}, "display-color")},
+          Alternative{{"base-color"}, "", false, with({"gbuffer", "base-color"}),
+                      {{output, TargetSize::full(), Write::Depth::None, ""}}, runAs({true, false, -1}, output)},
+          Alternative{{"gbuffer"}, "tonemap", false, with({"gbuffer"}), toDisplayShared,
+                      runAs({false, false, op}, "display-color")},
+          Alternative{{}, "tonemap", false, reads, toDisplayOwn, runAs({false, false, op}, "display-color")},
+      };
+    }
     planner.add(std::move(pass));
   }
 }
 
-void LightingEffect::render(const PassContext& context, const std::string& output) const {
+void LightingEffect::render(const PassContext& context, const Form& form, const std::string& output,
+                            float exposureScale) {
   using gl::Program;
   const FrameCamera& camera = context.camera();
-  const bool counting = output == "shading-count";
-  const Variant& v = counting ? countShading_ : shade_;
   context.bindForWriting(output);
+  const bool lumaInAlpha = !context.writesOutput(output);
+  const ToneMapInUse tone{static_cast<ToneMapOperator>(std::max(form.toneMap, 0)), exposureScale};
 
-  if (counting) {
+  const glm::mat3 viewRotation(camera.view);
+  const glm::vec3 lightDirection = glm::normalize(viewRotation * light_.directionToLight);
+  const glm::vec3 viewUp = viewRotation * glm::vec3(0.0f, 1.0f, 0.0f);
+  auto setShading = [&](const Variant& v) {
+    if (form.counting) return;
+    Program::set(v.lightDirection, lightDirection);
+    Program::set(v.viewUp, viewUp);
+    Program::set(v.lightColor, light_.lightColor);
+    Program::set(v.skyColor, light_.skyColor);
+    Program::set(v.groundColor, light_.groundColor);
+    Program::set(v.ao, 1);
+    Program::set(v.exposure, exposureScale);
+    Program::set(v.lumaInAlpha, lumaInAlpha ? 1.0f : 0.0f);
+  };
+  (context.has("ao") ? context.texture("ao") : white_).bind(1);
+
+  if (form.deferred) {
+    // Every pixel once, background included: no clear, no depth.
+    if (form.counting) {
+      glClearColor(0.0f, 0.0f, 0.0f, 0.0f);
+      glClear(GL_COLOR_BUFFER_BIT);
+    }
+    const Variant& v = variant(form, false);
+    v.program.use();
+    setShading(v);
+    context.texture("gbuffer").bind(0);
+    Program::set(v.gbuffer, 0);
+    if (!form.counting) {
+      context.texture("base-color").bind(2);
+      Program::set(v.baseColor, 2);
+      Program::set(v.background, light_.background);
+    }
+    if (form.counting) {
+      glEnable(GL_BLEND);
+      glBlendFunc(GL_ONE, GL_ONE);
+    }
+    resources_.triangle.draw();
+    gl::restoreBaselineState();
+    return;
+  }
+
+  if (form.counting) {
     glClearColor(0.0f, 0.0f, 0.0f, 0.0f);
   } else {
     // Where no geometry is, the background's radiance, encoded as the lit pixels are.
-    const std::array<std::uint8_t, 4> background = encodeHdr(light_.background);
-    glClearColor(LinearDepthPacking::channelFromByte(background[0]), LinearDepthPacking::channelFromByte(background[1]),
-                 LinearDepthPacking::channelFromByte(background[2]), LinearDepthPacking::channelFromByte(background[3]));
+    const glm::vec4 clear = form.toneMap >= 0
+                                ? tone.displayColor(light_.background, lumaInAlpha)
+                                : [&] {
+                                    const HdrTexel t = encodeHdr(light_.background);
+                                    return glm::vec4(LinearDepthPacking::channelFromByte(t[0]),
+                                                     LinearDepthPacking::channelFromByte(t[1]),
+                                                     LinearDepthPacking::channelFromByte(t[2]),
+                                                     LinearDepthPacking::channelFromByte(t[3]));
+                                  }();
+    glClearColor(clear.r, clear.g, clear.b, clear.a);
   }
   glEnable(GL_DEPTH_TEST);
   if (context.sharesDepth(output) && stencil_) {
@@ -115,24 +237,17 @@ void LightingEffect::render(const PassContext& context, const std::string& outpu
     glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
     glDepthFunc(GL_LESS);
   }
-  if (counting) {
+  if (form.counting) {
     glEnable(GL_BLEND);
     glBlendFunc(GL_ONE, GL_ONE);
   }
-
-  v.program.use();
-  Program::set(v.projection, camera.projection);
-  if (!counting) {
-    const glm::mat3 viewRotation(camera.view);
-    Program::set(v.lightDirection, glm::normalize(viewRotation * light_.directionToLight));
-    Program::set(v.viewUp, viewRotation * glm::vec3(0.0f, 1.0f, 0.0f));
-    Program::set(v.lightColor, light_.lightColor);
-    Program::set(v.skyColor, light_.skyColor);
-    Program::set(v.groundColor, light_.groundColor);
-    (context.has("ao") ? context.texture("ao") : white_).bind(1);
-    Program::set(v.ao, 1);
-  }
-  context.scene().draw(v.geometry, camera.view);
+  context.scene().draw(camera.view, [&](bool masked) -> const GeometryUniforms& {
+    const Variant& v = variant(form, masked);
+    v.program.use();
+    Program::set(v.projection, camera.projection);
+    setShading(v);
+    return v.geometry;
+  });
   gl::restoreBaselineState();
 }
 

@@ -1,25 +1,37 @@
 #pragma once
-// The lit image: the scene drawn again with the G-buffer's vertex stage (shaders_es2/lighting.frag), base colour under
-// one directional light and a sky/ground hemisphere ambient; the AO multiplies the ambient term only. It writes
-// linear HDR colour in the RGBA8 HDR encoding (lib/hdr.glsl) into "scene-color", which later effects read.
+// The lit image (shaders_es2/lighting.frag): base colour under one directional light and a sky/ground hemisphere
+// ambient; the AO multiplies the ambient term only. It writes linear HDR colour in the RGBA8 encoding of
+// lib/hdr.glsl into "scene-color", which later effects read. The pass takes one of these forms, chosen once the
+// frame's plan knows which passes run (PassDecl::Alternative):
 //
-// When the G-buffer pass runs, the lighting pass shares its depth renderbuffer and tests against it: both passes run
-// the same vertex shader text on the same uniforms with gl_Position invariant, so they compute the same depths.
-// GL_EQUAL against that depth, and a stencil test passing only the first fragment per pixel, shade each pixel once
-// however much the scene overlaps itself, coplanar and edge-on faces included. Where the context has no packed depth
-// + stencil (core GLES 2 without OES_packed_depth_stencil), GL_LESS against the depth pulled one resolvable step
-// nearer, writing depth, does nearly as well (tests/test_pipeline.cpp measures both). Without the G-buffer (no
-// effect reads it: the AO off), it clears and tests a depth buffer of its own, and pays for overdraw.
+//   deferred  where the G-buffer pass wrote the base colour beside the G-buffer (several render targets): a
+//             full-screen pass reading the normal, the base colour and the AO. The scene is drawn once per frame.
+//   forward   otherwise: the scene drawn again with the G-buffer pass's vertex shader text. When the G-buffer pass
+//             runs it shares its depth renderbuffer: both compute the same depths (gl_Position invariant), so
+//             GL_EQUAL, and a stencil test passing only the first fragment per pixel, shade each pixel once however
+//             much the scene overlaps itself, coplanar and edge-on faces included. Without packed depth + stencil
+//             (core GLES 2 without OES_packed_depth_stencil), GL_LESS against the depth pulled one resolvable step
+//             nearer, writing depth, does nearly as well (tests/test_pipeline.cpp measures both). Without the
+//             G-buffer (no effect reads it: the AO off) it clears and tests a depth buffer of its own, and pays for
+//             the overdraw drawing front to back leaves.
+//   either, tone-mapped: when the tone-mapping pass is the only reader of the HDR colour (no effect works on it in
+//             between, no view shows it), the lighting applies the tone mapping itself (ToneMapInUse: exposure,
+//             curve, sRGB, luma in alpha) and writes "display-color": a full-screen pass and an HDR encode and
+//             decode fewer. The forward form does so only when something reads the display colour after it (FXAA):
+//             it cannot draw into the output framebuffer, which has no depth buffer.
 //
 // Its second target, "shading-count", is a diagnostic: the same pass with the same reads and depth set-up, counting
 // how many fragments each pixel shaded (additive blending of 1/255) instead of shading them; the view
 // "shading-count" shows 1 as grey 32/255. The tests read it to hold the once-per-pixel promise.
+#include <map>
+#include <tuple>
 #include <vector>
 
 #include <glm/vec3.hpp>
 
 #include "core/EffectTable.h"
 #include "core/GpuScene.h"
+#include "core/TonemapEffect.h"
 #include "gl/RenderTarget.h"
 
 namespace obscura {
@@ -44,18 +56,30 @@ class LightingEffect : public Effect {
   void plan(FramePlanner& planner) override;
 
  private:
-  struct Variant {
-    explicit Variant(gl::Program built);
-    gl::Program program;
-    GeometryUniforms geometry;
-    GLint projection, lightDirection, viewUp, lightColor, skyColor, groundColor, ao;
+  // One form of the pass: deferred or forward, tone-mapped here (an operator) or not, counting or shading.
+  struct Form {
+    bool deferred = false;
+    bool counting = false;
+    int toneMap = -1;  // -1: HDR output; else the ToneMapOperator applied here
+    bool operator<(const Form& o) const {
+      return std::tie(deferred, counting, toneMap) < std::tie(o.deferred, o.counting, o.toneMap);
+    }
   };
-  void render(const PassContext& context, const std::string& output) const;
+  struct Variant {
+    Variant(gl::Program built, bool geometryStage);
+    gl::Program program;
+    GeometryUniforms geometry;  // the forward forms' (geometry.vert)
+    GLint projection, lightDirection, viewUp, lightColor, skyColor, groundColor, ao;
+    GLint gbuffer, baseColor, background, exposure, lumaInAlpha;
+  };
+  static ProgramSpec spec(const Form& form, bool masked);
+  const Variant& variant(const Form& form, bool masked);
+  void render(const PassContext& context, const Form& form, const std::string& output, float exposureScale);
 
-  Variant shade_;         // the lit image
-  Variant countShading_;  // the shading-count view: how many fragments each pixel shaded
-  gl::Texture2D white_;   // AO = 1 when the AO is off
-  bool stencil_;          // the G-buffer's depth has stencil bits (RenderTargetPool): shade exactly once
+  const EffectResources& resources_;
+  std::map<std::pair<Form, bool>, Variant> variants_;  // built on first use: (form, masked)
+  gl::Texture2D white_;  // AO = 1 when the AO is off
+  bool stencil_;         // the G-buffer's depth has stencil bits (RenderTargetPool): shade exactly once
   Lighting light_;
 };
 

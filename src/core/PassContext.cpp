@@ -60,6 +60,20 @@ void PassContext::bindForWriting(const std::string& target) const {
   slot.bindForDrawing();
 }
 
+void PassContext::bindForWriting(const std::vector<std::string>& targets) const {
+  std::vector<SlotKey> slots;
+  for (const std::string& target : targets) {
+    const TargetVersion& version = writeVersion(target);
+    if (!version.slot || version.depth == PassDecl::Write::Depth::Shared)
+      throw PipelineError("pass '" + passName(plan_, pass_) + "' writes '" + target +
+                          "' among several targets, which needs pooled targets with no shared depth");
+    slots.push_back(*version.slot);
+  }
+  glBindFramebuffer(GL_FRAMEBUFFER, pool_.multipleTargetFramebuffer(slots));
+  const glm::ivec2 size = writeVersion(targets.front()).size.of({frame_.camera.width, frame_.camera.height});
+  glViewport(0, 0, size.x, size.y);
+}
+
 glm::ivec2 PassContext::size(const std::string& target) const {
   const PlannedPass& pass = plan_.passes()[static_cast<size_t>(pass_)];
   const TargetVersion& version = pass.writes.count(target) ? writeVersion(target) : readVersion(target);

@@ -41,6 +41,9 @@ class PassContext {
   // Binds the framebuffer this pass writes `target` into and sets the viewport to cover it. For the frame's result,
   // that is the output framebuffer, scissored to the output's region.
   void bindForWriting(const std::string& target) const;
+  // Binds one framebuffer writing several pooled targets of the same size at once (EXT_draw_buffers:
+  // gl_FragData[i] goes to targets[i]), with the depth renderbuffer of the first that has one.
+  void bindForWriting(const std::vector<std::string>& targets) const;
   // The size of a target this pass reads or writes, in pixels.
   glm::ivec2 size(const std::string& target) const;
   // Whether this pass writes `target` into the output framebuffer.

@@ -1,5 +1,7 @@
 #include "core/RenderTargetPool.h"
 
+#include <algorithm>
+
 namespace obscura {
 namespace {
 
@@ -15,6 +17,7 @@ void RenderTargetPool::beginFrame(glm::ivec2 size) {
   if (size == size_) return;
   size_ = size;
   sharedDepth_.clear();
+  multipleTargets_.clear();
   slots_.clear();
   if (!history_.empty()) ++historyDrops_;
   history_.clear();
@@ -47,6 +50,19 @@ GLuint RenderTargetPool::sharedDepthFramebuffer(const SlotKey& color, const Slot
   return it->second.id();
 }
 
+GLuint RenderTargetPool::multipleTargetFramebuffer(const std::vector<SlotKey>& colors) {
+  auto it = multipleTargets_.find(colors);
+  if (it == multipleTargets_.end()) {
+    std::vector<const gl::RenderTarget*> targets;
+    for (const SlotKey& key : colors) targets.push_back(&slot(key));
+    std::string name;
+    for (const SlotKey& key : colors) name += (name.empty() ? "" : " + ") + slotName(key);
+    it = multipleTargets_.emplace(colors, gl::RenderTarget::multipleTargets(targets, name)).first;
+  }
+  for (const SlotKey& key : colors) slot(key);  // marks them used
+  return it->second.id();
+}
+
 void RenderTargetPool::endFrame() {
   for (auto it = slots_.begin(); it != slots_.end();) {
     if (frame_ - it->second.lastUsed < static_cast<std::uint64_t>(kKeepUnusedFrames)) {
@@ -56,6 +72,11 @@ void RenderTargetPool::endFrame() {
     for (auto shared = sharedDepth_.begin(); shared != sharedDepth_.end();) {
       if (shared->first.first == it->first || shared->first.second == it->first) shared = sharedDepth_.erase(shared);
       else ++shared;
+    }
+    for (auto multiple = multipleTargets_.begin(); multiple != multipleTargets_.end();) {
+      const std::vector<SlotKey>& keys = multiple->first;
+      if (std::find(keys.begin(), keys.end(), it->first) != keys.end()) multiple = multipleTargets_.erase(multiple);
+      else ++multiple;
     }
     it = slots_.erase(it);
   }

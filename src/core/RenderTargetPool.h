@@ -34,6 +34,9 @@ class RenderTargetPool {
   const gl::RenderTarget& slot(const SlotKey& key);
   // A framebuffer drawing into `color`'s texture with `depth`'s depth renderbuffer.
   GLuint sharedDepthFramebuffer(const SlotKey& color, const SlotKey& depth);
+  // A framebuffer drawing into several slots' textures at once (EXT_draw_buffers: gl_FragData[i] into `colors[i]`),
+  // with the depth renderbuffer of the first that has one.
+  GLuint multipleTargetFramebuffer(const std::vector<SlotKey>& colors);
   // Releases slots unused for kKeepUnusedFrames frames.
   void endFrame();
 
@@ -71,6 +74,7 @@ class RenderTargetPool {
   std::uint64_t frame_ = 0;
   std::map<SlotKey, Slot> slots_;
   std::map<std::pair<SlotKey, SlotKey>, gl::FramebufferHandle> sharedDepth_;
+  std::map<std::vector<SlotKey>, gl::FramebufferHandle> multipleTargets_;
   std::map<std::string, History> history_;
   int historyDrops_ = 0;
 };

@@ -11,6 +11,9 @@ struct RendererOptions {
   // program does not have is an error (gl/Program.h). The tests and the page's debug-gl turn it on.
   bool checkGlErrors = false;
   bool allowUint32Indices = true;  // false simulates a context without OES_element_index_uint
+  // false simulates a context without EXT_draw_buffers / WEBGL_draw_buffers: the lighting draws the scene a second
+  // time instead of reading the base colour the G-buffer pass writes beside it (tests compare both).
+  bool allowDrawBuffers = true;
   // How the depth hierarchy is stored; unset: the extension mip chain where available, else the atlas
   // (DepthHierarchyPass.h). Tests and benchmarks force each storage to compare them.
   std::optional<DepthHierarchyPass::Storage> hierarchyStorage;

@@ -58,7 +58,8 @@ std::string composeText(const std::string& text, const std::vector<std::pair<std
 
 }  // namespace ShaderLibrary
 
-std::string ProgramSpec::vertexSource() const { return ShaderLibrary::compose(vertexFile, defines, extensions); }
+// Every extension Obscura enables is a fragment-stage one (texture LOD, draw buffers).
+std::string ProgramSpec::vertexSource() const { return ShaderLibrary::compose(vertexFile, defines, {}); }
 std::string ProgramSpec::fragmentSource() const {
   return fragmentText.empty() ? ShaderLibrary::compose(fragmentFile, defines, extensions)
                               : ShaderLibrary::composeText(fragmentText, defines, extensions);

@@ -25,7 +25,7 @@ struct ProgramSpec {
   std::string name;  // for messages and dumps, e.g. "sao[samples=11,turns=4,falloff=sao2012]"
   std::string vertexFile, fragmentFile;
   std::vector<std::pair<std::string, std::string>> defines;
-  std::vector<std::string> extensions;  // enabled with "#extension NAME : require"
+  std::vector<std::string> extensions;  // enabled with "#extension NAME : require" in the fragment stage
   // Fragment shader text that is not an embedded file (a tool's own program: obscura-bench's floor pass); used
   // instead of fragmentFile when set, composed the same way (its includes come from shaders_es2/lib).
   std::string fragmentText;

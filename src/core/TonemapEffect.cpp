@@ -32,6 +32,20 @@ const std::vector<Parameter<TonemapSettings>>& TonemapSettings::parameters() {
   return table;
 }
 
+ToneMapInUse ToneMapInUse::of(const TonemapSettings& settings) {
+  ToneMapInUse use;
+  if (settings.enabled) {
+    use.op = settings.op;
+    use.exposureScale = obscura::exposureScale(settings.exposure);
+  }
+  return use;
+}
+
+glm::vec4 ToneMapInUse::displayColor(const glm::vec3& linearHdr, bool lumaInAlpha) const {
+  const glm::vec3 srgb = linearToSrgb(toneMap(op, linearHdr * exposureScale));
+  return glm::vec4(srgb, lumaInAlpha ? fxaaLuma(srgb) : 1.0f);
+}
+
 EffectInfo TonemapEffect::info() {
   return {"tonemap",
           "Tone mapping",
@@ -61,10 +75,10 @@ const TonemapEffect::Variant& TonemapEffect::variant(ToneMapOperator op) {
 }
 
 void TonemapEffect::plan(FramePlanner& planner) {
-  const TonemapSettings& settings = planner.settings().of<TonemapSettings>();
   // Off: the same pass without exposure or curve (it still decodes the HDR colour for display).
-  const ToneMapOperator op = settings.enabled ? settings.op : ToneMapOperator::Linear;
-  const float exposure = settings.enabled ? exposureScale(settings.exposure) : 1.0f;
+  const ToneMapInUse use = ToneMapInUse::of(planner.settings().of<TonemapSettings>());
+  const ToneMapOperator op = use.op;
+  const float exposure = use.exposureScale;
   PassDecl pass;
   pass.name = "tonemap";
   pass.reads = {"scene-color"};

@@ -24,6 +24,17 @@ struct TonemapSettings : ParameterAccess<TonemapSettings> {
   void validate() const { validateParameters("tone mapping"); }
 };
 
+// The tone mapping a frame applies: its curve and exposure multiplier, with "off" meaning neither (the linear curve,
+// 2^0). The tone-mapping pass applies it, and so does the lighting pass where it takes that pass's place
+// (LightingEffect.h).
+struct ToneMapInUse {
+  ToneMapOperator op = ToneMapOperator::Linear;
+  float exposureScale = 1.0f;
+  static ToneMapInUse of(const TonemapSettings& settings);
+  // A linear HDR colour as the pass writes it: sRGB display colour, and luma in alpha (or 1, for the output).
+  glm::vec4 displayColor(const glm::vec3& linearHdr, bool lumaInAlpha) const;
+};
+
 class TonemapEffect : public Effect {
  public:
   using Settings = TonemapSettings;

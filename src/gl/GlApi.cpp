@@ -5,6 +5,7 @@ namespace obscura::gles {
 #define OBSCURA_GL_FN(type, name) type name = nullptr;
 #include "gl/GlFunctionList.inl"
 #undef OBSCURA_GL_FN
+PFNGLDRAWBUFFERSEXTPROC glDrawBuffersEXT = nullptr;
 }  // namespace obscura::gles
 #endif
 
@@ -22,6 +23,7 @@ bool loadGles2([[maybe_unused]] ProcLoader loader, [[maybe_unused]] std::string*
   }
 #include "gl/GlFunctionList.inl"
 #undef OBSCURA_GL_FN
+  gles::glDrawBuffersEXT = reinterpret_cast<PFNGLDRAWBUFFERSEXTPROC>(loader("glDrawBuffersEXT"));
   return true;
 #endif
 }

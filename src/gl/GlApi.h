@@ -12,6 +12,8 @@
 #define OBSCURA_GL_DIRECT 1
 #include <GLES2/gl2.h>
 #include <GLES2/gl2ext.h>
+// Emscripten's GL library maps glDrawBuffersEXT onto WEBGL_draw_buffers (it enables the extension itself).
+extern "C" void glDrawBuffersEXT(GLsizei n, const GLenum* buffers);
 namespace obscura::gles {}
 #else
 #define OBSCURA_GL_DIRECT 0
@@ -22,6 +24,8 @@ namespace obscura::gles {
 #define OBSCURA_GL_FN(type, name) extern type name;
 #include "gl/GlFunctionList.inl"
 #undef OBSCURA_GL_FN
+// Extension entry points: loaded when the context has them, null otherwise (GlCaps says which are usable).
+extern PFNGLDRAWBUFFERSEXTPROC glDrawBuffersEXT;
 }  // namespace obscura::gles
 #endif
 

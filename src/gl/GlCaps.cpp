@@ -47,6 +47,15 @@ GlCaps GlCaps::query() {
   caps.shaderTextureLod = caps.has("GL_EXT_shader_texture_lod");
   caps.fboRenderMipmap = caps.has("GL_OES_fbo_render_mipmap");
   caps.timerQuery = caps.has("GL_EXT_disjoint_timer_query");
+  // Natively the entry point must have loaded too (GlApi.cpp); a desktop context's ES shaders cannot use the ES
+  // extension, so OSMesa's compatibility context, which does not list it, takes the path without it.
+#if OBSCURA_GL_DIRECT
+  const bool entryPoint = true;  // linked from Emscripten's GL library
+#else
+  const bool entryPoint = glDrawBuffersEXT != nullptr;
+#endif
+  caps.drawBuffers = (caps.has("GL_EXT_draw_buffers") || caps.has("GL_WEBGL_draw_buffers")) && entryPoint;
+  if (caps.drawBuffers) glGetIntegerv(GL_MAX_DRAW_BUFFERS_EXT, &caps.maxDrawBuffers);
 
   glGetIntegerv(GL_MAX_TEXTURE_SIZE, &caps.maxTextureSize);
   glGetIntegerv(GL_MAX_RENDERBUFFER_SIZE, &caps.maxRenderbufferSize);

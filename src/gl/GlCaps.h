@@ -20,6 +20,8 @@ struct GlCaps {
   bool shaderTextureLod = false;        // EXT_shader_texture_lod: texture2DLodEXT in fragment shaders
   bool fboRenderMipmap = false;         // OES_fbo_render_mipmap: render into mip levels > 0
   bool timerQuery = false;              // EXT_disjoint_timer_query
+  bool drawBuffers = false;             // EXT_draw_buffers / WEBGL_draw_buffers: several colour targets per pass
+  GLint maxDrawBuffers = 1;
   GLint maxTextureSize = 0, maxRenderbufferSize = 0, maxViewportWidth = 0, maxViewportHeight = 0;
 
   bool has(const std::string& extension) const { return extensions.count(extension) != 0; }

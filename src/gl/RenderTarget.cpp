@@ -102,6 +102,33 @@ FramebufferHandle RenderTarget::sharingDepth(const RenderTarget& color, const Re
   return framebuffer;
 }
 
+FramebufferHandle RenderTarget::multipleTargets(const std::vector<const RenderTarget*>& targets,
+                                                const std::string& name) {
+  FramebufferHandle framebuffer = FramebufferHandle::create();
+  glBindFramebuffer(GL_FRAMEBUFFER, framebuffer.id());
+  std::vector<GLenum> buffers;
+  bool depth = false;
+  for (const RenderTarget* target : targets) {
+    const GLenum attachment = GL_COLOR_ATTACHMENT0_EXT + static_cast<GLenum>(buffers.size());
+    glFramebufferTexture2D(GL_FRAMEBUFFER, attachment, GL_TEXTURE_2D, target->color().id(), 0);
+    buffers.push_back(attachment);
+    if (!depth && target->depth_) {
+      target->attachDepth();
+      depth = true;
+    }
+  }
+  // Draw-buffer state belongs to the framebuffer: set once here, it holds whenever this one is bound.
+  glDrawBuffersEXT(static_cast<GLsizei>(buffers.size()), buffers.data());
+  try {
+    checkFramebufferComplete(name);
+  } catch (...) {
+    glBindFramebuffer(GL_FRAMEBUFFER, 0);
+    throw;
+  }
+  glBindFramebuffer(GL_FRAMEBUFFER, 0);
+  return framebuffer;
+}
+
 void RenderTarget::bindForDrawing() const {
   glBindFramebuffer(GL_FRAMEBUFFER, framebuffer_.id());
   glViewport(0, 0, width(), height());

@@ -46,6 +46,10 @@ class RenderTarget {
   // GlError if it is incomplete.
   static FramebufferHandle sharingDepth(const RenderTarget& color, const RenderTarget& depthOwner,
                                         const std::string& name);
+  // A framebuffer drawing into every target's texture at once (EXT_draw_buffers: colour attachment i is
+  // targets[i], and its draw buffers are set to all of them), with the first depth renderbuffer among them. All the
+  // same size. Throws GlError if it is incomplete.
+  static FramebufferHandle multipleTargets(const std::vector<const RenderTarget*>& targets, const std::string& name);
 
   // Binds the framebuffer and sets the viewport to cover it.
   void bindForDrawing() const;

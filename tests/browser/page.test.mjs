@@ -178,9 +178,12 @@ describe('demo page', () => {
     const timerQuery = await page.evaluate(() => window.obscura.context.timerQuery);
     if (timerQuery) {
       await page.waitForFunction(() => window.obscura.stats().passMs !== null, null, { timeout: 30000 });
-      const passes = await page.evaluate(() => window.obscura.stats().passMs);
-      for (const pass of ['gbuffer', 'sao', 'lighting', 'tonemap', 'fxaa']) assert.ok(passes[pass] > 0, `${pass}: ${passes[pass]} ms`);
-      await page.waitForFunction(() => document.querySelector('#stats').textContent.includes('gbuffer'));
+      const { passMs: passes, passesDoneBy } = await page.evaluate(() => window.obscura.stats());
+      for (const pass of ['gbuffer', 'sao', 'lighting', 'fxaa']) assert.ok(passes[pass] > 0, `${pass}: ${passes[pass]} ms`);
+      // Nothing else reads the HDR colour at the defaults: the lighting applies the tone curve, and the page says so.
+      assert.equal(passes.tonemap, null);
+      assert.deepEqual(passesDoneBy, { tonemap: 'lighting' });
+      await page.waitForFunction(() => /tonemap +- ms \(done by lighting\)/.test(document.querySelector('#stats').textContent));
     } else {
       await page.waitForFunction(() => document.querySelector('#stats').textContent.includes('needs EXT_disjoint'));
     }

@@ -24,7 +24,8 @@ await page.evaluate(async (data) => { await window.obscura.loadScene(new Uint8Ar
 for (const state of states.length ? states : ['']) {
   const result = await page.evaluate(async (s) => {
     const o = window.obscura;
-    o.setState(`radius=41.8&${s}`);
+    o.setState("ao=on&tonemap=on&fxaa=on&radius=41.8");
+    if (s) o.setState(s);
     const sums = {};
     let n = 0;
     o.setContinuous(true);
