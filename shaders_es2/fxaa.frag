@@ -1,7 +1,11 @@
 // FXAA 3.11, quality path (Timothy Lottes, NVIDIA 2011, "FXAA_QUALITY__PRESET"), written for GLSL ES 1.00.
 //
 // Input: the display colour (sRGB-encoded, as FXAA expects: its thresholds are in perceptual units) with its luma in
-// alpha, in a target sampled with LINEAR filtering: the edge search and the final resample read between texels.
+// alpha, in a NEAREST target. Every pixel reads the 3x3 texel centres; only edge pixels read between texels (the
+// search and the final resample), and they filter by hand (bilinear(): four texels). Lottes reads everything through
+// LINEAR filtering, which costs a GPU nothing at texel centres, but on the CPU rasterisers WebGL 1 often runs on
+// (llvmpipe, SwiftShader) a LINEAR fetch filters four texels wherever it lands: NEAREST took this pass from about 47 to 35 ms on
+// llvmpipe at 1280x720, and changed nothing measurable on SwiftShader (docs/benchmarks.md).
 // Per pixel:
 //   1. local contrast: the luma range of the pixel and its 4 neighbours; below max(EDGE_THRESHOLD_MIN,
 //      EDGE_THRESHOLD * max luma) the pixel is left alone (most of the image);
@@ -16,7 +20,8 @@
 //      SUBPIX), whichever is larger.
 #include "lib/precision.glsl"
 
-uniform sampler2D u_color;          // RGB display colour, A its luma; LINEAR
+uniform sampler2D u_color;          // RGB display colour, A its luma; NEAREST
+uniform vec2 u_size;                // pixels
 uniform vec2 u_texel;               // 1 / size
 uniform float u_subpix;             // 0 (sharp) .. 1 (soft); Lottes' default 0.75
 uniform float u_edgeThreshold;      // 0.063 .. 0.333; default 0.166
@@ -25,7 +30,19 @@ uniform float u_searchSteps[FXAA_SEARCH_STEPS];  // the preset's step lengths, p
 
 varying vec2 v_uv;
 
-float lumaAt(vec2 uv) { return texture2D(u_color, uv).a; }
+// What a LINEAR fetch at uv would return (clamped to the edge like it), from the four texels around uv.
+vec4 bilinear(vec2 uv) {
+  vec2 p = uv * u_size - 0.5;
+  vec2 f = fract(p);
+  vec2 t = (floor(p) + 0.5) * u_texel;
+  vec4 a = texture2D(u_color, t);
+  vec4 b = texture2D(u_color, t + vec2(u_texel.x, 0.0));
+  vec4 c = texture2D(u_color, t + vec2(0.0, u_texel.y));
+  vec4 d = texture2D(u_color, t + u_texel);
+  return mix(mix(a, b, f.x), mix(c, d, f.x), f.y);
+}
+
+float lumaAt(vec2 uv) { return bilinear(uv).a; }
 float lumaOff(vec2 uv, float x, float y) { return texture2D(u_color, uv + vec2(x, y) * u_texel).a; }
 
 void main() {
@@ -115,5 +132,5 @@ void main() {
   float offset = max(goodSpan ? pixelOffset : 0.0, subpixF * subpixF * u_subpix);
   if (horzSpan) posM.y += offset * lengthSign;
   else posM.x += offset * lengthSign;
-  gl_FragColor = vec4(texture2D(u_color, posM).rgb, 1.0);
+  gl_FragColor = vec4(bilinear(posM).rgb, 1.0);
 }

@@ -2,7 +2,8 @@
 // ambient term only (direct light is shadowed by shadow maps, not by AO). Variants (src/core/LightingEffect.h):
 //
 //   DEFERRED 0        the scene drawn again with the G-buffer pass's vertex stage (geometry.vert), tested against
-//                     its depth; the material's base colour from lib/material.glsl. ALPHA_MASK 1 discards cut-outs.
+//                     its depth; the material's base colour from lib/material.glsl (a variant per MaterialKind:
+//                     ALPHA_MASK 1 discards cut-outs, BASE_COLOR_TEXTURE 0 uses the factor alone).
 //   DEFERRED 1        a full-screen pass (fullscreen.vert): the normal from the G-buffer, the base colour from the
 //                     target the G-buffer pass wrote beside it (several render targets). Each pixel once.
 //   TONEMAP_INLINE 0  linear HDR colour in the RGBA8 encoding of lib/hdr.glsl, for the passes after it;

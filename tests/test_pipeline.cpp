@@ -209,6 +209,33 @@ TEST(Pipeline, TheFrameIsTheSameWhicheverFormTheLightingTakes) {
   }
 }
 
+// A material without a texture is drawn by a program variant that neither samples nor decodes one
+// (core/MaterialKind.h). It is the same material as one with a white texture: the images agree exactly, in every form
+// of the geometry passes (forward and deferred lighting, the G-buffer alone and with the base colour).
+TEST(Pipeline, AMaterialWithoutATextureLooksAsWithAWhiteOne) {
+  Scene untextured = makeBuiltinScene();
+  for (Material& material : untextured.materials) material.baseColorTexture = -1;
+  Scene white = untextured;
+  white.images.push_back(Image{1, 1, {255, 255, 255, 255}});
+  white.textures.push_back(Texture{static_cast<int>(white.images.size()) - 1, {}});
+  for (Material& material : white.materials) material.baseColorTexture = static_cast<int>(white.textures.size()) - 1;
+  ASSERT_FALSE(white.materials.empty());
+  const Camera camera = builtinSceneCamera(160, 90);
+  for (bool drawBuffers : {false, true}) {
+    RendererOptions options;
+    options.checkGlErrors = true;
+    options.allowDrawBuffers = drawBuffers;
+    Renderer renderer(test::context().caps(), options);
+    for (const View& view : {View::Final, View{"base-color"}, View{"normals"}}) {
+      renderer.setScene(untextured);
+      const test::RenderedImage a = test::render(renderer, camera, RenderSettings(), view);
+      renderer.setScene(white);
+      const test::RenderedImage b = test::render(renderer, camera, RenderSettings(), view);
+      EXPECT_EQ(a.rgba, b.rgba) << view.name << (drawBuffers ? ", several render targets" : "");
+    }
+  }
+}
+
 TEST(Pipeline, HistorySurvivesFramesAndIsDroppedOnResizeSceneChangeAndContextLoss) {
   Renderer renderer = test::makeRenderer();
   renderer.setScene(makeBuiltinScene());

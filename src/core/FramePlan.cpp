@@ -13,12 +13,15 @@ std::string describe(const PlannedPass& pass) {
   return "pass '" + pass.decl.name + "'" + (pass.effect.empty() ? std::string() : " of effect '" + pass.effect + "'");
 }
 
-auto slotKind(const SlotKey& k) { return std::make_tuple(static_cast<int>(k.size.kind), k.size.tile, k.filter, k.ownDepth); }
+auto slotKind(const SlotKey& k) {
+  return std::make_tuple(static_cast<int>(k.size.kind), k.size.tile, k.filter, k.ownDepth);
+}
 
 }  // namespace
 
 bool SlotKey::operator<(const SlotKey& o) const {
-  return std::tuple_cat(slotKind(*this), std::make_tuple(index)) < std::tuple_cat(slotKind(o), std::make_tuple(o.index));
+  return std::tuple_cat(slotKind(*this), std::make_tuple(index)) <
+         std::tuple_cat(slotKind(o), std::make_tuple(o.index));
 }
 bool SlotKey::operator==(const SlotKey& o) const { return !(*this < o) && !(o < *this); }
 

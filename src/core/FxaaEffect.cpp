@@ -125,6 +125,7 @@ std::vector<ProgramSpec> FxaaEffect::programSpecs() {
 FxaaEffect::Variant::Variant(gl::Program built, int quality)
     : program(std::move(built)),
       color(program.uniform("u_color")),
+      size(program.uniform("u_size")),
       texel(program.uniform("u_texel")),
       subpix(program.uniform("u_subpix")),
       edgeThreshold(program.uniform("u_edgeThreshold")),
@@ -156,8 +157,9 @@ void FxaaEffect::plan(FramePlanner& planner) {
     v.program.use();
     input.bind(0);
     gl::Program::set(v.color, 0);
-    gl::Program::set(v.texel, glm::vec2(1.0f / static_cast<float>(input.width()),
-                                        1.0f / static_cast<float>(input.height())));
+    const glm::vec2 size(static_cast<float>(input.width()), static_cast<float>(input.height()));
+    gl::Program::set(v.size, size);
+    gl::Program::set(v.texel, 1.0f / size);
     gl::Program::set(v.subpix, settings.subpix);
     gl::Program::set(v.edgeThreshold, settings.edgeThreshold);
     gl::Program::set(v.edgeThresholdMin, settings.edgeThresholdMin);

@@ -1,7 +1,7 @@
 #pragma once
 // FXAA 3.11, quality path (Lottes 2011; shaders_es2/fxaa.frag): the frame's antialiasing, last in the chain. It
-// reads "display-color" (sRGB, luma in alpha, LINEAR filtering) and writes it again, straight into the output
-// framebuffer when it is the frame's result.
+// reads "display-color" (sRGB, luma in alpha; NEAREST, filtered by hand where FXAA reads between texels) and writes
+// it again, straight into the output framebuffer when it is the frame's result.
 //
 // Why FXAA and not multisampling: WebGL 1 cannot resolve a multisampled buffer into a texture, and every frame reads
 // the lit image again (the tone-mapping pass decodes its HDR encoding), so Obscura draws no geometry into the back
@@ -44,7 +44,7 @@ class FxaaEffect : public Effect {
   struct Variant {
     Variant(gl::Program built, int quality);
     gl::Program program;
-    GLint color, texel, subpix, edgeThreshold, edgeThresholdMin;
+    GLint color, size, texel, subpix, edgeThreshold, edgeThresholdMin;
   };
   const Variant& variant(int quality);
 

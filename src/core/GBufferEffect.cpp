@@ -26,10 +26,14 @@ EffectInfo GBufferEffect::info() {
 
 namespace {
 
-ProgramSpec spec(int output, bool masked) {
+// The G-buffer alone reads the base colour only for the alpha test.
+MaterialKind readKind(int output, MaterialKind kind) { return output == 0 ? kind.forAlphaOnly() : kind; }
+
+ProgramSpec spec(int output, MaterialKind kind) {
   static const char* outputs[] = {"gbuffer", "base-color", "gbuffer+base-color"};
-  ProgramSpec s{"gbuffer[" + std::string(outputs[output]) + (masked ? ",mask]" : ",opaque]"), "geometry.vert",
-                "gbuffer.frag", {{"GBUFFER_OUTPUT", std::to_string(output)}, {"ALPHA_MASK", masked ? "1" : "0"}}};
+  ProgramSpec s{"gbuffer[" + std::string(outputs[output]) + kind.nameSuffix() + "]", "geometry.vert", "gbuffer.frag",
+                {{"GBUFFER_OUTPUT", std::to_string(output)}}};
+  for (auto& define : kind.defines()) s.defines.push_back(define);
   if (output == 2) s.extensions = {"GL_EXT_draw_buffers"};
   return s;
 }
@@ -39,7 +43,8 @@ ProgramSpec spec(int output, bool masked) {
 std::vector<ProgramSpec> GBufferEffect::programSpecs() {
   std::vector<ProgramSpec> specs;
   for (int output = 0; output < 3; ++output)
-    for (bool masked : {false, true}) specs.push_back(spec(output, masked));
+    for (MaterialKind kind : MaterialKind::all())
+      if (readKind(output, kind) == kind) specs.push_back(spec(output, kind));
   return specs;
 }
 
@@ -51,13 +56,19 @@ GBufferEffect::Variant::Variant(gl::Program built)
       near(program.optionalUniform("u_near")),
       depthRange(program.optionalUniform("u_depthRange")) {}
 
+const GBufferEffect::Variant& GBufferEffect::variant(Output output, MaterialKind kind) {
+  const int o = static_cast<int>(output);
+  const auto key = std::make_pair(o, readKind(o, kind));
+  auto it = variants_.find(key);
+  if (it == variants_.end()) it = variants_.emplace(key, Variant(resources_.build(spec(o, key.second)))).first;
+  return it->second;
+}
+
 GBufferEffect::GBufferEffect(const EffectResources& resources)
-    : drawBuffers_(resources.caps.drawBuffers && resources.options.allowDrawBuffers) {
-  for (int output = 0; output < 3; ++output) {
-    if (output == 2 && !drawBuffers_) continue;  // the draw-buffers variant only where the context has them
-    for (int masked = 0; masked < 2; ++masked)
-      variants_[output][masked] = Variant(resources.build(spec(output, masked != 0)));
-  }
+    : resources_(resources), drawBuffers_(resources.caps.drawBuffers && resources.options.allowDrawBuffers) {
+  // The variants of the pass every frame runs are built now, so a broken program fails when the renderer is made;
+  // the others (the base colour alone, for its view) on first use.
+  for (MaterialKind kind : MaterialKind::all()) variant(drawBuffers_ ? Output::Both : Output::GBuffer, kind);
 }
 
 void GBufferEffect::plan(FramePlanner& planner) {
@@ -79,7 +90,7 @@ void GBufferEffect::plan(FramePlanner& planner) {
   }
 }
 
-void GBufferEffect::render(const PassContext& context, Output output) const {
+void GBufferEffect::render(const PassContext& context, Output output) {
   const FrameCamera& camera = context.camera();
   if (output == Output::Both) context.bindForWriting(std::vector<std::string>{"gbuffer", "base-color"});
   else context.bindForWriting(output == Output::GBuffer ? "gbuffer" : "base-color");
@@ -94,8 +105,8 @@ void GBufferEffect::render(const PassContext& context, Output output) const {
   glEnable(GL_DEPTH_TEST);
   glDepthFunc(GL_LESS);
 
-  context.scene().draw(camera.view, [&](bool masked) -> const GeometryUniforms& {
-    const Variant& v = variants_[static_cast<int>(output)][masked ? 1 : 0];
+  context.scene().draw(camera.view, [&](MaterialKind kind) -> const GeometryUniforms& {
+    const Variant& v = variant(output, kind);
     v.program.use();
     gl::Program::set(v.projection, camera.projection);
     gl::Program::set(v.near, camera.near);

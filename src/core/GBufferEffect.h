@@ -7,6 +7,7 @@
 // Where the context has several render targets (EXT_draw_buffers, WEBGL_draw_buffers), the same pass also writes
 // the material's base colour into "base-color", so the lighting can be a full-screen pass instead of drawing the
 // scene again: on a CPU rasteriser a pass over a 110k-triangle model costs about 50 ms whatever the size.
+#include <map>
 #include <vector>
 
 #include "core/EffectTable.h"
@@ -34,10 +35,12 @@ class GBufferEffect : public Effect {
   };
   // What a pass writes: the G-buffer, the base colour, or both at once (several render targets).
   enum class Output { GBuffer = 0, BaseColor = 1, Both = 2 };
-  void render(const PassContext& context, Output output) const;
+  void render(const PassContext& context, Output output);
+  const Variant& variant(Output output, MaterialKind kind);
 
-  bool drawBuffers_;          // the context can write both in one pass (and RendererOptions allows it)
-  Variant variants_[3][2];    // [output][masked]: without and with the alpha test's discard
+  const EffectResources& resources_;
+  bool drawBuffers_;  // the context can write both in one pass (and RendererOptions allows it)
+  std::map<std::pair<int, MaterialKind>, Variant> variants_;  // (output, the kind as that output reads it)
 };
 
 }  // namespace obscura

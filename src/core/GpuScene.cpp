@@ -38,14 +38,6 @@ GpuScene::GpuScene(const Scene& scene, const gl::GlCaps& caps, const Options& op
     else
       textures_.emplace_back();
   }
-  const std::uint8_t whitePixel[4] = {255, 255, 255, 255};
-  white_ = gl::TextureHandle::create();
-  glBindTexture(GL_TEXTURE_2D, white_.id());
-  glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA, 1, 1, 0, GL_RGBA, GL_UNSIGNED_BYTE, whitePixel);
-  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
-  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
-  glBindTexture(GL_TEXTURE_2D, 0);
-
   for (const Material& m : scene.materials) {
     MaterialGpu gpu;
     gpu.baseColorFactor = m.baseColorFactor;
@@ -141,15 +133,15 @@ void GpuScene::draw(const glm::mat4& view, const ProgramChoice& choose) const {
   const GLsizei stride = 8 * sizeof(float);
   for (GLuint slot : {gl::kAttribPosition, gl::kAttribNormal, gl::kAttribTexcoord}) glEnableVertexAttribArray(slot);
   const GeometryUniforms* uniforms = nullptr;
-  bool maskedProgram = false;
+  MaterialKind programKind;
+  glActiveTexture(GL_TEXTURE0);
   for (const auto& [key, instancePointer] : order) {
     const InstanceGpu& instance = *instancePointer;
     const MaterialGpu& material = materials_[static_cast<size_t>(instance.material)];
-    const bool masked = material.alphaCutoff >= 0.0f;
-    if (!uniforms || masked != maskedProgram) {
-      uniforms = &choose(masked);
-      maskedProgram = masked;
-      glActiveTexture(GL_TEXTURE0);
+    const MaterialKind kind{material.alphaCutoff >= 0.0f, material.texture >= 0};
+    if (!uniforms || !(kind == programKind)) {
+      uniforms = &choose(kind);
+      programKind = kind;
       Program::set(uniforms->baseColorTexture, 0);
     }
     const glm::mat4 modelView = view * instance.world;
@@ -161,8 +153,7 @@ void GpuScene::draw(const glm::mat4& view, const ProgramChoice& choose) const {
 
     Program::set(uniforms->baseColorFactor, material.baseColorFactor);
     Program::set(uniforms->alphaCutoff, material.alphaCutoff);
-    glBindTexture(GL_TEXTURE_2D,
-                  material.texture >= 0 ? textures_[static_cast<size_t>(material.texture)].id() : white_.id());
+    if (material.texture >= 0) glBindTexture(GL_TEXTURE_2D, textures_[static_cast<size_t>(material.texture)].id());
     if (material.doubleSided) glDisable(GL_CULL_FACE);
     else glEnable(GL_CULL_FACE);
 

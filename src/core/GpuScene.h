@@ -11,6 +11,7 @@
 
 #include "gl/GlCaps.h"
 #include "gl/GlObjects.h"
+#include "core/MaterialKind.h"
 #include "gl/Program.h"
 #include "scene/Scene.h"
 
@@ -35,10 +36,9 @@ class GpuScene {
   GpuScene(const Scene& scene, const gl::GlCaps& caps, const Options& options);
   GpuScene(const Scene& scene, const gl::GlCaps& caps) : GpuScene(scene, caps, Options{}) {}
 
-  // Chooses the program for a kind of material: `masked` (alphaMode MASK: the variant that discards cut-out
-  // fragments) or opaque (a variant without discard, so the depth and stencil tests may run before the fragment
-  // shader). It makes the program current, sets its per-frame uniforms, and returns its per-instance ones.
-  using ProgramChoice = std::function<const GeometryUniforms&(bool masked)>;
+  // Chooses the program for a kind of material (core/MaterialKind.h: masked or opaque, with or without a base-colour
+  // texture). It makes the program current, sets its per-frame uniforms, and returns its per-instance ones.
+  using ProgramChoice = std::function<const GeometryUniforms&(MaterialKind kind)>;
   // Draws every instance: opaque materials first, then masked ones, each group front to back (by the distance of
   // its bounds' centre from the eye), so early depth tests reject what a nearer surface hides. Sets u_modelView,
   // u_normalMatrix, the material uniforms of lib/material.glsl, face culling per material and winding per instance.
@@ -59,7 +59,7 @@ class GpuScene {
   };
   struct MaterialGpu {
     glm::vec4 baseColorFactor{1.0f};
-    int texture = -1;  // index into textures_, -1: white
+    int texture = -1;  // index into textures_, -1: none (the factor alone)
     float alphaCutoff = -1.0f;
     bool doubleSided = false;
   };
@@ -74,7 +74,6 @@ class GpuScene {
   std::vector<MaterialGpu> materials_;  // last entry: the default material
   std::vector<InstanceGpu> instances_;
   std::vector<gl::TextureHandle> textures_;
-  gl::TextureHandle white_;
 };
 
 }  // namespace obscura

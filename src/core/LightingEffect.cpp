@@ -24,16 +24,24 @@ EffectInfo LightingEffect::info() {
             {{"shading-count", ViewDecoding::Count}}}}};
 }
 
-ProgramSpec LightingEffect::spec(const Form& form, bool masked) {
-  std::string name = std::string("lighting[") + (form.deferred ? "deferred" : masked ? "forward,mask" : "forward");
+// The material as a form's fragment stage sees it: a full-screen pass has none, the shading count reads the base
+// colour only for the alpha test.
+MaterialKind LightingEffect::readKind(const Form& form, MaterialKind kind) {
+  if (form.deferred) return {};
+  return form.counting ? kind.forAlphaOnly() : kind;
+}
+
+ProgramSpec LightingEffect::spec(const Form& form, MaterialKind kind) {
+  std::string name = std::string("lighting[") + (form.deferred ? "deferred" : "forward" + kind.nameSuffix());
   if (form.counting) name += ",count-shading";
-  if (form.toneMap >= 0) name += std::string(",tonemap=") + toneMapOperatorName(static_cast<ToneMapOperator>(form.toneMap));
+  if (form.toneMap >= 0)
+    name += std::string(",tonemap=") + toneMapOperatorName(static_cast<ToneMapOperator>(form.toneMap));
   ProgramSpec s{name + "]", form.deferred ? "fullscreen.vert" : "geometry.vert", "lighting.frag",
                 {{"DEFERRED", form.deferred ? "1" : "0"},
                  {"COUNT_SHADING", form.counting ? "1" : "0"},
-                 {"ALPHA_MASK", masked ? "1" : "0"},
                  {"TONEMAP_INLINE", form.toneMap >= 0 ? "1" : "0"},
                  {"FAR_RAY", "0"}}};
+  for (auto& define : kind.defines()) s.defines.push_back(define);
   if (form.toneMap >= 0) s.defines.push_back(toneMapShaderDefine(static_cast<ToneMapOperator>(form.toneMap)));
   return s;
 }
@@ -41,11 +49,12 @@ ProgramSpec LightingEffect::spec(const Form& form, bool masked) {
 std::vector<ProgramSpec> LightingEffect::programSpecs() {
   std::vector<ProgramSpec> specs;
   for (bool deferred : {false, true})
-    for (bool masked : {false, true}) {
-      if (deferred && masked) continue;  // a full-screen pass has no material
-      specs.push_back(spec({deferred, true, -1}, masked));
-      for (int toneMap = -1; toneMap < kToneMapOperatorCount; ++toneMap) specs.push_back(spec({deferred, false, toneMap}, masked));
-    }
+    for (bool counting : {true, false})
+      for (int toneMap = -1; toneMap < (counting ? 0 : kToneMapOperatorCount); ++toneMap)
+        for (MaterialKind kind : MaterialKind::all()) {
+          const Form form{deferred, counting, toneMap};
+          if (readKind(form, kind) == kind) specs.push_back(spec(form, kind));
+        }
   return specs;
 }
 
@@ -65,11 +74,11 @@ LightingEffect::Variant::Variant(gl::Program built, bool geometryStage)
       exposure(program.optionalUniform("u_exposure")),
       lumaInAlpha(program.optionalUniform("u_lumaInAlpha")) {}
 
-const LightingEffect::Variant& LightingEffect::variant(const Form& form, bool masked) {
-  const auto key = std::make_pair(form, masked);
+const LightingEffect::Variant& LightingEffect::variant(const Form& form, MaterialKind kind) {
+  const auto key = std::make_pair(form, readKind(form, kind));
   auto it = variants_.find(key);
   if (it == variants_.end()) {
-    it = variants_.emplace(key, Variant(resources_.build(spec(form, masked)), !form.deferred)).first;
+    it = variants_.emplace(key, Variant(resources_.build(spec(form, key.second)), !form.deferred)).first;
     // Resolve strictly what this form must use, so a misspelt or dropped uniform is caught where it matters.
     const gl::Program& program = it->second.program;
     if (!form.deferred) program.uniform("u_projection");
@@ -89,9 +98,9 @@ LightingEffect::LightingEffect(const EffectResources& resources)
     : resources_(resources),
       white_(1, 1, GL_NEAREST, std::vector<std::uint8_t>{255, 255, 255, 255}.data()),
       stencil_(resources.caps.packedDepthStencil) {
-  // The forms every default frame uses are built now, so a broken program fails when the renderer is made.
-  variant({false, false, -1}, false);
-  variant({false, false, -1}, true);
+  // The form of the lit pass before the plan's alternatives, for every material, is built now, so a broken program
+  // fails when the renderer is made.
+  for (MaterialKind kind : MaterialKind::all()) variant({false, false, -1}, kind);
 }
 
 void LightingEffect::plan(FramePlanner& planner) {
@@ -177,7 +186,7 @@ void LightingEffect::render(const PassContext& context, const Form& form, const 
       glClearColor(0.0f, 0.0f, 0.0f, 0.0f);
       glClear(GL_COLOR_BUFFER_BIT);
     }
-    const Variant& v = variant(form, false);
+    const Variant& v = variant(form, {});
     v.program.use();
     setShading(v);
     context.texture("gbuffer").bind(0);
@@ -241,8 +250,8 @@ void LightingEffect::render(const PassContext& context, const Form& form, const 
     glEnable(GL_BLEND);
     glBlendFunc(GL_ONE, GL_ONE);
   }
-  context.scene().draw(camera.view, [&](bool masked) -> const GeometryUniforms& {
-    const Variant& v = variant(form, masked);
+  context.scene().draw(camera.view, [&](MaterialKind kind) -> const GeometryUniforms& {
+    const Variant& v = variant(form, kind);
     v.program.use();
     Program::set(v.projection, camera.projection);
     setShading(v);

@@ -72,12 +72,13 @@ class LightingEffect : public Effect {
     GLint projection, lightDirection, viewUp, lightColor, skyColor, groundColor, ao;
     GLint gbuffer, baseColor, background, exposure, lumaInAlpha;
   };
-  static ProgramSpec spec(const Form& form, bool masked);
-  const Variant& variant(const Form& form, bool masked);
+  static MaterialKind readKind(const Form& form, MaterialKind kind);
+  static ProgramSpec spec(const Form& form, MaterialKind kind);
+  const Variant& variant(const Form& form, MaterialKind kind);
   void render(const PassContext& context, const Form& form, const std::string& output, float exposureScale);
 
   const EffectResources& resources_;
-  std::map<std::pair<Form, bool>, Variant> variants_;  // built on first use: (form, masked)
+  std::map<std::pair<Form, MaterialKind>, Variant> variants_;  // built on first use: (form, the kind it reads)
   gl::Texture2D white_;  // AO = 1 when the AO is off
   bool stencil_;         // the G-buffer's depth has stencil bits (RenderTargetPool): shade exactly once
   Lighting light_;

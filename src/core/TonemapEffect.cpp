@@ -52,7 +52,7 @@ EffectInfo TonemapEffect::info() {
           true,
           false,
           {"tonemap"},
-          {{"display-color", "RGB: display colour, sRGB-encoded; A: its luma (FXAA 3.11's input)", GL_LINEAR,
+          {{"display-color", "RGB: display colour, sRGB-encoded; A: its luma (FXAA 3.11's input)", GL_NEAREST,
             {{"display-color", ViewDecoding::Color}}}}};
 }
 
