@@ -4,8 +4,14 @@
 // alpha, in a NEAREST target. Every pixel reads the 3x3 texel centres; only edge pixels read between texels (the
 // search and the final resample), and they filter by hand (bilinear(): four texels). Lottes reads everything through
 // LINEAR filtering, which costs a GPU nothing at texel centres, but on the CPU rasterisers WebGL 1 often runs on
-// (llvmpipe, SwiftShader) a LINEAR fetch filters four texels wherever it lands: NEAREST took this pass from about 47 to 35 ms on
-// llvmpipe at 1280x720, and changed nothing measurable on SwiftShader (docs/benchmarks.md).
+// (llvmpipe, SwiftShader) a LINEAR fetch filters four texels wherever it lands: NEAREST took this pass from about 47
+// to 35 ms on llvmpipe at 1280x720, and changed nothing measurable on SwiftShader (docs/benchmarks.md).
+//
+// FXAA_CLASSIFY 1: step 1 alone, for a target with a stencil buffer (src/core/FxaaEffect.h): pixels below the
+// threshold are written as they are and their stencil cleared; edge pixels are discarded and keep stencil 1, and the
+// full pass (FXAA_CLASSIFY 0) then runs on them only. Both variants share step 1's arithmetic, so they agree on
+// which pixels are edges, and the image is the same as the full pass's alone.
+//
 // Per pixel:
 //   1. local contrast: the luma range of the pixel and its 4 neighbours; below max(EDGE_THRESHOLD_MIN,
 //      EDGE_THRESHOLD * max luma) the pixel is left alone (most of the image);
@@ -21,15 +27,20 @@
 #include "lib/precision.glsl"
 
 uniform sampler2D u_color;          // RGB display colour, A its luma; NEAREST
-uniform vec2 u_size;                // pixels
 uniform vec2 u_texel;               // 1 / size
-uniform float u_subpix;             // 0 (sharp) .. 1 (soft); Lottes' default 0.75
 uniform float u_edgeThreshold;      // 0.063 .. 0.333; default 0.166
 uniform float u_edgeThresholdMin;   // 0.0312 .. 0.0833; default 0.0833
+#if !FXAA_CLASSIFY
+uniform vec2 u_size;                // pixels
+uniform float u_subpix;             // 0 (sharp) .. 1 (soft); Lottes' default 0.75
 uniform float u_searchSteps[FXAA_SEARCH_STEPS];  // the preset's step lengths, pixels
+#endif
 
 varying vec2 v_uv;
 
+float lumaOff(vec2 uv, float x, float y) { return texture2D(u_color, uv + vec2(x, y) * u_texel).a; }
+
+#if !FXAA_CLASSIFY
 // What a LINEAR fetch at uv would return (clamped to the edge like it), from the four texels around uv.
 vec4 bilinear(vec2 uv) {
   vec2 p = uv * u_size - 0.5;
@@ -43,7 +54,7 @@ vec4 bilinear(vec2 uv) {
 }
 
 float lumaAt(vec2 uv) { return bilinear(uv).a; }
-float lumaOff(vec2 uv, float x, float y) { return texture2D(u_color, uv + vec2(x, y) * u_texel).a; }
+#endif
 
 void main() {
   vec2 posM = v_uv;
@@ -61,6 +72,9 @@ void main() {
     gl_FragColor = vec4(rgbyM.rgb, 1.0);
     return;
   }
+#if FXAA_CLASSIFY
+  discard;  // an edge: left to the full pass, which the stencil now lets through here
+#else
 
   float lumaNW = lumaOff(posM, -1.0, -1.0);
   float lumaSE = lumaOff(posM, 1.0, 1.0);
@@ -133,4 +147,5 @@ void main() {
   if (horzSpan) posM.y += offset * lengthSign;
   else posM.x += offset * lengthSign;
   gl_FragColor = vec4(bilinear(posM).rgb, 1.0);
+#endif
 }

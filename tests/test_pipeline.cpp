@@ -14,9 +14,11 @@
 #include "core/HdrEncoding.h"
 #include "core/LightingEffect.h"
 #include "core/NormalEncoding.h"
+#include "core/ShaderLibrary.h"
 #include "core/TonemapEffect.h"
 #include "core/ToneMapping.h"
 #include "gl/GlObjects.h"
+#include "gl/PipelineState.h"
 #include "platform/Viewer.h"
 #include "scene/BuiltinScene.h"
 #include "scene/Primitives.h"
@@ -461,4 +463,63 @@ TEST(Pipeline, FxaaMovesEdgesTowardsASupersampledReference) {
   // of 0.81; the bound asks for at least 12 % less.
   EXPECT_LE(fxaaError, 0.88 * plainError) << "edge MAE: aliased " << plainError << ", FXAA " << fxaaError;
   EXPECT_LE(flatChange / flat, 0.005) << "away from geometric edges FXAA changes little";
+}
+
+// Where FXAA's target has a stencil buffer it classifies first and runs the full FXAA on the edge pixels only
+// (FxaaEffect.h). The image must be the one a single full draw gives, and the stencil must show that the edge pixels,
+// and only they (a small part of the frame, most of it flat), went through the second draw.
+TEST(Pipeline, FxaaMaskedByTheStencilGivesTheSameImageAsOneDraw) {
+  if (!test::context().caps().packedDepthStencil) GTEST_SKIP() << "no packed depth + stencil renderbuffer";
+  const Camera camera = builtinSceneCamera(240, 135);
+  RenderSettings settings;
+  settings.set("ao", "off");
+  auto renderInto = [&](bool allowStencil, bool outputStencil) {
+    RendererOptions options;
+    options.allowFxaaStencil = allowStencil;
+    Renderer renderer = test::makeRenderer(options);
+    renderer.setScene(makeBuiltinScene());
+    auto output = std::make_unique<gl::RenderTarget>(
+        "stencilled output", camera.width, camera.height, GL_NEAREST,
+        outputStencil ? gl::RenderTarget::Depth::Renderbuffer : gl::RenderTarget::Depth::None,
+        test::context().caps().depth24, outputStencil);
+    output->bindForDrawing();
+    glClear(GL_STENCIL_BUFFER_BIT);  // 0, the GL default; a new renderbuffer's contents are undefined
+    renderer.render(camera, settings, View::Final, OutputTarget{output->framebuffer(), camera.width, camera.height, {}});
+    return output;
+  };
+  const auto masked = renderInto(true, true);
+  const auto oneDraw = renderInto(false, true);
+  const auto noStencil = renderInto(true, false);
+  const std::vector<std::uint8_t> image = masked->readRgba();
+  EXPECT_EQ(image, oneDraw->readRgba());
+  EXPECT_EQ(image, noStencil->readRgba());
+
+  // Paint where the stencil is 1 (the pixels the full FXAA ran on) and count them.
+  const gl::Program paint("paint stencil 1",
+                          ShaderLibrary::composeText(
+                              "attribute vec2 a_position; void main() { gl_Position = vec4(a_position, 0.0, 1.0); }",
+                              {}, {}),
+                          ShaderLibrary::composeText("#include \"lib/precision.glsl\"\n"
+                                                     "void main() { gl_FragColor = vec4(1.0, 0.0, 1.0, 1.0); }",
+                                                     {}, {}));
+  auto edgePixels = [&](const gl::RenderTarget& target) {
+    target.bindForDrawing();
+    glEnable(GL_STENCIL_TEST);
+    glStencilFunc(GL_EQUAL, 1, 0xFF);
+    paint.use();
+    test::effectResources().triangle.draw();
+    gl::restoreBaselineState();
+    glBindFramebuffer(GL_FRAMEBUFFER, 0);
+    const std::vector<std::uint8_t> painted = target.readRgba();
+    int count = 0;
+    for (size_t i = 0; i < painted.size(); i += 4)
+      count += painted[i] == 255 && painted[i + 1] == 0 && painted[i + 2] == 255;
+    return count;
+  };
+  const int pixels = camera.width * camera.height;
+  const int edges = edgePixels(*masked);
+  RecordProperty("fxaa_edge_pixels", edges);
+  EXPECT_GT(edges, pixels / 100) << "the classifying draw marked no edges";
+  EXPECT_LT(edges, pixels / 4) << "the classifying draw marked most of the frame";
+  EXPECT_EQ(edgePixels(*oneDraw), 0) << "one draw leaves the stencil as it was cleared";
 }

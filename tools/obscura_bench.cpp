@@ -89,7 +89,7 @@ class Bench {
     BenchView(Bench& bench, const BenchScene& scene, int width, int height)
         : camera(sized(scene.camera, width, height)),
           output("bench output", width, height, GL_NEAREST, gl::RenderTarget::Depth::Renderbuffer,
-                 bench.context_.caps().depth24),
+                 bench.context_.caps().depth24, bench.context_.caps().packedDepthStencil),  // like a window's
           target{output.framebuffer(), width, height, {}} {
       bench.useScene(scene);
     }

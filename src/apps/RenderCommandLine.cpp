@@ -112,7 +112,8 @@ int runRender(const RenderOptions& options) {
     Renderer renderer(context.caps(), rendererOptions);
     renderer.setScene(scene);
     const gl::RenderTarget output("output", camera.width, camera.height, GL_NEAREST,
-                                  gl::RenderTarget::Depth::Renderbuffer, context.caps().depth24);
+                                  gl::RenderTarget::Depth::Renderbuffer, context.caps().depth24,
+                                  context.caps().packedDepthStencil);  // the stencil: FxaaEffect.h
     OutputTarget target;
     target.framebuffer = output.framebuffer();
     target.width = camera.width;

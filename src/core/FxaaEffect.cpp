@@ -48,11 +48,17 @@ constexpr FxaaPreset kPresets[] = {
     {QualityPreset::Ultra, 39, 0.063f, 0.0312f},
 };
 
+// quality 0: the classifying draw, which has no search.
 ProgramSpec spec(int quality) {
+  if (quality == 0)
+    return ProgramSpec{"fxaa[classify]", "fullscreen.vert", "fxaa.frag", {{"FXAA_CLASSIFY", "1"}, {"FAR_RAY", "0"}},
+                       {}};
   return ProgramSpec{"fxaa[quality=" + std::to_string(quality) + "]",
                      "fullscreen.vert",
                      "fxaa.frag",
-                     {{"FXAA_SEARCH_STEPS", std::to_string(fxaaSearchSteps(quality).size())}, {"FAR_RAY", "0"}},
+                     {{"FXAA_CLASSIFY", "0"},
+                      {"FXAA_SEARCH_STEPS", std::to_string(fxaaSearchSteps(quality).size())},
+                      {"FAR_RAY", "0"}},
                      {}};
 }
 
@@ -117,7 +123,7 @@ bool FxaaSettings::matchesPreset(QualityPreset which) const {
 EffectInfo FxaaEffect::info() { return {"fxaa", "FXAA", true, false, {"fxaa"}, {}}; }
 
 std::vector<ProgramSpec> FxaaEffect::programSpecs() {
-  std::vector<ProgramSpec> specs;
+  std::vector<ProgramSpec> specs = {spec(0)};
   for (const auto& [lottes, steps] : searchStepTable()) specs.push_back(spec(lottes));
   return specs;
 }
@@ -125,11 +131,12 @@ std::vector<ProgramSpec> FxaaEffect::programSpecs() {
 FxaaEffect::Variant::Variant(gl::Program built, int quality)
     : program(std::move(built)),
       color(program.uniform("u_color")),
-      size(program.uniform("u_size")),
       texel(program.uniform("u_texel")),
-      subpix(program.uniform("u_subpix")),
       edgeThreshold(program.uniform("u_edgeThreshold")),
       edgeThresholdMin(program.uniform("u_edgeThresholdMin")) {
+  if (quality == 0) return;
+  size = program.uniform("u_size");
+  subpix = program.uniform("u_subpix");
   // The step table is the preset's constant: set once, it stays with the program.
   const std::vector<float>& steps = fxaaSearchSteps(quality);
   program.use();
@@ -151,22 +158,41 @@ void FxaaEffect::plan(FramePlanner& planner) {
   pass.reads = {"display-color"};
   pass.writes = {{"display-color", TargetSize::full(), PassDecl::Write::Depth::None, ""}};
   pass.run = [this, settings](PassContext& context) {
-    const Variant& v = variant(settings.quality);
     const gl::Texture2D& input = context.texture("display-color");
-    context.bindForWriting("display-color");
-    v.program.use();
-    input.bind(0);
-    gl::Program::set(v.color, 0);
     const glm::vec2 size(static_cast<float>(input.width()), static_cast<float>(input.height()));
-    gl::Program::set(v.size, size);
-    gl::Program::set(v.texel, 1.0f / size);
-    gl::Program::set(v.subpix, settings.subpix);
-    gl::Program::set(v.edgeThreshold, settings.edgeThreshold);
-    gl::Program::set(v.edgeThresholdMin, settings.edgeThresholdMin);
-    resources_.triangle.draw();
+    context.bindForWriting("display-color");
+    input.bind(0);
+    GLint stencilBits = 0;
+    glGetIntegerv(GL_STENCIL_BITS, &stencilBits);
+    if (stencilBits > 0 && resources_.options.allowFxaaStencil) {
+      // Stencil 1 everywhere (within the output's region: the clear is scissored like the draws); the classifying
+      // draw sets 0 where it writes, and discards the edge pixels, which keep 1.
+      glEnable(GL_STENCIL_TEST);
+      glClearStencil(1);
+      glClear(GL_STENCIL_BUFFER_BIT);
+      glStencilFunc(GL_ALWAYS, 0, 0xFF);
+      glStencilOp(GL_KEEP, GL_KEEP, GL_REPLACE);
+      draw(variant(0), settings, size);
+      glStencilFunc(GL_EQUAL, 1, 0xFF);
+      glStencilOp(GL_KEEP, GL_KEEP, GL_KEEP);
+    }
+    draw(variant(settings.quality), settings, size);
     gl::restoreBaselineState();
   };
   planner.add(std::move(pass));
+}
+
+void FxaaEffect::draw(const Variant& v, const FxaaSettings& settings, glm::vec2 size) const {
+  v.program.use();
+  gl::Program::set(v.color, 0);
+  gl::Program::set(v.texel, 1.0f / size);
+  gl::Program::set(v.edgeThreshold, settings.edgeThreshold);
+  gl::Program::set(v.edgeThresholdMin, settings.edgeThresholdMin);
+  if (v.size >= 0) {
+    gl::Program::set(v.size, size);
+    gl::Program::set(v.subpix, settings.subpix);
+  }
+  resources_.triangle.draw();
 }
 
 }  // namespace obscura

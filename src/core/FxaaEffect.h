@@ -6,6 +6,15 @@
 // Why FXAA and not multisampling: WebGL 1 cannot resolve a multisampled buffer into a texture, and every frame reads
 // the lit image again (the tone-mapping pass decodes its HDR encoding), so Obscura draws no geometry into the back
 // buffer, where multisampling would act. Canvas and window are made without it (measured: docs/benchmarks.md).
+//
+// Where the target it writes has a stencil buffer (the desktop window and obscura-render's output have one),
+// the pass runs in two draws, as SMAA does with its edge mask (Jimenez et al. 2012): a classifying draw writes the
+// pixels below FXAA's contrast threshold as they are and leaves stencil 1 on the edge pixels, then the full FXAA
+// draws only where the stencil is 1. The image is the same as one full draw's (tests/test_pipeline.cpp). What it
+// saves is the part of FXAA after its early exit, which a GPU skips where a whole wavefront exits, but which CPU
+// rasterisers pay for far more often (SwiftShader runs both sides of every branch, masked): llvmpipe's FXAA pass went
+// from about 40 to 13 ms at 1280x720. On SwiftShader the page's frame was no faster (WebCanvas.cpp), so the canvas has no stencil and the
+// pass there is one draw.
 #include <map>
 #include <vector>
 
@@ -42,11 +51,13 @@ class FxaaEffect : public Effect {
 
  private:
   struct Variant {
-    Variant(gl::Program built, int quality);
+    Variant(gl::Program built, int quality);  // quality 0: the classifying draw (FXAA_CLASSIFY)
     gl::Program program;
-    GLint color, size, texel, subpix, edgeThreshold, edgeThresholdMin;
+    GLint color, texel, edgeThreshold, edgeThresholdMin;
+    GLint size = -1, subpix = -1;  // the full draw's
   };
   const Variant& variant(int quality);
+  void draw(const Variant& v, const FxaaSettings& settings, glm::vec2 size) const;
 
   const EffectResources& resources_;
   std::map<int, Variant> variants_;

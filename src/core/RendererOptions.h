@@ -14,6 +14,8 @@ struct RendererOptions {
   // false simulates a context without EXT_draw_buffers / WEBGL_draw_buffers: the lighting draws the scene a second
   // time instead of reading the base colour the G-buffer pass writes beside it (tests compare both).
   bool allowDrawBuffers = true;
+  // false: FXAA runs in one draw even where its target has a stencil buffer (FxaaEffect.h; tests compare both).
+  bool allowFxaaStencil = true;
   // How the depth hierarchy is stored; unset: the extension mip chain where available, else the atlas
   // (DepthHierarchyPass.h). Tests and benchmarks force each storage to compare them.
   std::optional<DepthHierarchyPass::Storage> hierarchyStorage;
