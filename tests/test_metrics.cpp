@@ -57,6 +57,42 @@ TEST(Metrics, KnownErrorsOverTheMask) {
   EXPECT_EQ(c.haloPixels, 0u);  // no depth given
 }
 
+TEST(Metrics, PearsonCorrelationIgnoresScaleAndOffsetButNotShape) {
+  const GreyImage a = pattern(64, 48);
+  GreyImage weaker = a, inverted = a, other = pattern(64, 48);
+  for (float& v : weaker.values) v = 1.0f - 0.25f * (1.0f - v);  // the same AO at a quarter of its strength
+  for (float& v : inverted.values) v = 1.0f - v;
+  for (int y = 0; y < 48; ++y)  // the pattern shifted by a quarter of its x period: partly related
+    for (int x = 0; x < 64; ++x)
+      other.values[static_cast<size_t>(y) * 64 + x] = a.at((x + 5) % 64, y);
+  EXPECT_NEAR(compareAo(a, a, {}).pearson, 1.0, 1e-9);
+  EXPECT_NEAR(compareAo(a, weaker, {}).pearson, 1.0, 1e-6);  // MAE is large, the correlation perfect
+  EXPECT_GT(compareAo(a, weaker, {}).mae, 0.05);
+  EXPECT_NEAR(compareAo(a, inverted, {}).pearson, -1.0, 1e-6);
+  const double shifted = compareAo(a, other, {}).pearson;
+  EXPECT_GT(shifted, -0.9);
+  EXPECT_LT(shifted, 0.9);
+  // Symmetric, and 0 against a constant image (nothing varies with the reference).
+  EXPECT_NEAR(compareAo(other, a, {}).pearson, shifted, 1e-9);
+  EXPECT_EQ(compareAo(a, constant(64, 48, 1.0f), {}).pearson, 0.0);
+}
+
+// Pearson over the mask only, on two regions whose values correlate with opposite signs.
+TEST(Metrics, PearsonCorrelationCountsOnlyMaskedPixels) {
+  const int w = 40, h = 20;
+  GreyImage a = constant(w, h, 0.0f), b = a;
+  std::vector<std::uint8_t> right(static_cast<size_t>(w) * h, 0);
+  for (int y = 0; y < h; ++y)
+    for (int x = 0; x < w; ++x) {
+      const size_t i = static_cast<size_t>(y) * w + x;
+      a.values[i] = static_cast<float>(y) / h;
+      b.values[i] = x < w / 2 ? 1.0f - a.values[i] : 0.5f * a.values[i] + 0.2f;
+      right[i] = x >= w / 2;
+    }
+  EXPECT_NEAR(compareAo(a, b, right).pearson, 1.0, 1e-6);
+  EXPECT_LT(compareAo(a, b, {}).pearson, 0.0);  // the left half's inverted ramp outweighs the right's
+}
+
 TEST(Metrics, SsimFallsWithNoiseAndIsSymmetric) {
   const GreyImage a = pattern(64, 64);
   GreyImage slightly = a, very = a;

@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <string>
 
 #include "TestSupport.h"
 #include "scene/ImageIo.h"
@@ -95,11 +96,18 @@ TEST(CompareCli, ReportsFiguresAndWritesThePictures) {
   ASSERT_EQ(same.status, 0) << same.err;
   EXPECT_NE(same.out.find("\"mae\": 0.000000"), std::string::npos) << same.out;
   EXPECT_NE(same.out.find("\"ssim\": 1.000000"), std::string::npos) << same.out;
+  EXPECT_NE(same.out.find("\"pearson\": 1.000000"), std::string::npos) << same.out;
   const ProcessResult different = compare(dir + "cmp-ao.png " + dir + "cmp-ao2.png" + common + " --side-by-side " +
                                           dir + "cmp-sbs.png");
   ASSERT_EQ(different.status, 0) << different.err;
   EXPECT_EQ(different.out.find("\"mae\": 0.000000"), std::string::npos) << different.out;
   EXPECT_NE(different.out.find("\"halo_mae\""), std::string::npos) << different.out;
+  // Twice the radius darkens more, in much the same places: well correlated, not identical.
+  const size_t at = different.out.find("\"pearson\": ");
+  ASSERT_NE(at, std::string::npos) << different.out;
+  const double pearson = std::stod(different.out.substr(at + 11));
+  EXPECT_GT(pearson, 0.5) << different.out;
+  EXPECT_LT(pearson, 1.0) << different.out;
   const obscura::Image sbs = obscura::readPng(dir + "cmp-sbs.png");
   EXPECT_EQ(sbs.width, 3 * 64 + 2 * 4);
   EXPECT_EQ(sbs.height, 36);

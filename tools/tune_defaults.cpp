@@ -476,9 +476,10 @@ void report(std::vector<TuningView>& views, const TuningConfig& config, const st
      << "glFinish-bounded.\n\n";
 
   md << "### Each view and preset at r = " << radiusText(radius) << " m, default (tuned) parameters\n\n"
-     << "| view | preset | MAE | RMSE | SSIM | halo MAE | interior MAE | bias | AO ms | MAE, paper's sigma/beta/k |\n"
-     << "|---|---|---|---|---|---|---|---|---|---|\n";
-  std::map<std::string, std::array<double, 4>> meanByPreset;  // MAE, SSIM, halo, paper MAE
+     << "| view | preset | MAE | RMSE | SSIM | Pearson | halo MAE | interior MAE | bias | AO ms | MAE, paper's sigma/beta/k "
+        "|\n"
+     << "|---|---|---|---|---|---|---|---|---|---|---|\n";
+  std::map<std::string, std::array<double, 5>> meanByPreset;  // MAE, SSIM, halo, paper MAE, Pearson
   for (TuningView& view : views) {
     for (const PresetInfo& preset : qualityPresets()) {
       const AoSettings tuned = settingsFor(preset.preset, radius);  // estimator parameters left to the table
@@ -486,7 +487,8 @@ void report(std::vector<TuningView>& views, const TuningConfig& config, const st
       const AoComparison paper = measure(view, withParameters(tuned, kPaperEstimatorParameters), radius);
       const double ms = aoMilliseconds(view, tuned);
       md << "| " << view.spec.name << " | " << preset.name << " | " << format("%.4f", c.mae) << " | "
-         << format("%.4f", c.rmse) << " | " << format("%.3f", c.ssim) << " | " << format("%.4f", c.haloMae) << " | "
+         << format("%.4f", c.rmse) << " | " << format("%.3f", c.ssim) << " | " << format("%.3f", c.pearson) << " | "
+         << format("%.4f", c.haloMae) << " | "
          << format("%.4f", c.interiorMae) << " | " << format("%+.4f", c.bias) << " | " << format("%.1f", ms) << " | "
          << format("%.4f", paper.mae) << " |\n";
       auto& mean = meanByPreset[preset.name];
@@ -494,14 +496,15 @@ void report(std::vector<TuningView>& views, const TuningConfig& config, const st
       mean[1] += c.ssim / static_cast<double>(views.size());
       mean[2] += c.haloMae / static_cast<double>(views.size());
       mean[3] += paper.mae / static_cast<double>(views.size());
+      mean[4] += c.pearson / static_cast<double>(views.size());
     }
   }
   md << "\n**Mean over the views:**\n\n"
-     << "| preset | MAE | SSIM | halo MAE | MAE, paper's sigma/beta/k |\n|---|---|---|---|---|\n";
+     << "| preset | MAE | SSIM | Pearson | halo MAE | MAE, paper's sigma/beta/k |\n|---|---|---|---|---|---|\n";
   for (const PresetInfo& preset : qualityPresets()) {
     const auto& mean = meanByPreset[preset.name];
     md << "| " << preset.name << " | " << format("%.4f", mean[0]) << " | " << format("%.3f", mean[1]) << " | "
-       << format("%.4f", mean[2]) << " | " << format("%.4f", mean[3]) << " |\n";
+       << format("%.3f", mean[4]) << " | " << format("%.4f", mean[2]) << " | " << format("%.4f", mean[3]) << " |\n";
   }
 
   const AoSettings defaults;

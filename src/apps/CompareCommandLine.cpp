@@ -31,8 +31,8 @@ std::string compareUsage() {
          "                       [--diff OUT.png] [--side-by-side OUT.png] [--json]\n"
          "\n"
          "Error of AO image B against AO image A (e.g. A: obscura-reference, B: obscura-render --view ao), over the\n"
-         "pixels the mask marks as geometry: MAE, RMSE, bias (mean B - A), SSIM, and the MAE within K pixels of the\n"
-         "depth view's discontinuities (where screen-space AO's halos live) and elsewhere.\n"
+         "pixels the mask marks as geometry: MAE, RMSE, bias (mean B - A), SSIM, Pearson correlation, and the MAE\n"
+         "within K pixels of the depth view's discontinuities (where screen-space AO's halos live) and elsewhere.\n"
          "  --mask M.png          mask view (geometry 255, background 0); default: every pixel\n"
          "  --depth D.png         depth view (obscura-render or obscura-reference --view depth): halo figures\n"
          "  --halo-width K        pixels around a discontinuity (0 .. 64, default 3)\n"
@@ -108,16 +108,16 @@ int runCompare(const CompareOptions& options) {
     const double share = 100.0 * static_cast<double>(c.pixels) / (static_cast<double>(a.width) * a.height);
     const bool halo = !options.depthPath.empty();
     if (options.json) {
-      std::printf("{\"pixels\": %zu, \"mae\": %.6f, \"rmse\": %.6f, \"bias\": %.6f, \"ssim\": %.6f", c.pixels, c.mae,
-                  c.rmse, c.bias, c.ssim);
+      std::printf("{\"pixels\": %zu, \"mae\": %.6f, \"rmse\": %.6f, \"bias\": %.6f, \"ssim\": %.6f, \"pearson\": %.6f",
+                  c.pixels, c.mae, c.rmse, c.bias, c.ssim, c.pearson);
       if (halo)
         std::printf(", \"halo_pixels\": %zu, \"halo_mae\": %.6f, \"interior_mae\": %.6f", c.haloPixels, c.haloMae,
                     c.interiorMae);
       std::printf("}\n");
     } else {
       std::printf("pixels   %zu (%.1f%% of the image)\n", c.pixels, share);
-      std::printf("MAE      %.4f\nRMSE     %.4f\nbias     %+.4f (mean B - A)\nSSIM     %.4f\n", c.mae, c.rmse, c.bias,
-                  c.ssim);
+      std::printf("MAE      %.4f\nRMSE     %.4f\nbias     %+.4f (mean B - A)\nSSIM     %.4f\nPearson  %.4f\n", c.mae,
+                  c.rmse, c.bias, c.ssim, c.pearson);
       if (halo) {
         std::printf("halo     MAE %.4f over %zu pixels (%.1f%%) within %d px of depth jumps > %g relative\n",
                     c.haloMae, c.haloPixels, 100.0 * static_cast<double>(c.haloPixels) / static_cast<double>(c.pixels),

@@ -125,10 +125,13 @@ AoComparison compareAo(const GreyImage& a, const GreyImage& b, const std::vector
   const std::vector<float> ssim = computeSsim ? ssimMap(a, b) : std::vector<float>(n, 0.0f);
   AoComparison result;
   double sumAbs = 0, sumSq = 0, sumSigned = 0, sumSsim = 0, haloAbs = 0;
+  double sumA = 0, sumB = 0;
   for (size_t i = 0; i < n; ++i) {
     if (!mask.empty() && !mask[i]) continue;
     const double d = static_cast<double>(b.values[i]) - a.values[i];
     ++result.pixels;
+    sumA += a.values[i];
+    sumB += b.values[i];
     sumAbs += std::abs(d);
     sumSq += d * d;
     sumSigned += d;
@@ -144,6 +147,17 @@ AoComparison compareAo(const GreyImage& a, const GreyImage& b, const std::vector
   result.rmse = std::sqrt(sumSq / count);
   result.bias = sumSigned / count;
   result.ssim = sumSsim / count;
+  // Pearson's r from centred sums (a second pass: one-pass sums of squares lose the small variances AO has).
+  const double meanA = sumA / count, meanB = sumB / count;
+  double covAB = 0, varA = 0, varB = 0;
+  for (size_t i = 0; i < n; ++i) {
+    if (!mask.empty() && !mask[i]) continue;
+    const double da = a.values[i] - meanA, db = b.values[i] - meanB;
+    covAB += da * db;
+    varA += da * da;
+    varB += db * db;
+  }
+  result.pearson = varA > 0 && varB > 0 ? covAB / std::sqrt(varA * varB) : 0.0;
   result.haloMae = result.haloPixels ? haloAbs / static_cast<double>(result.haloPixels) : 0.0;
   const size_t interior = result.pixels - result.haloPixels;
   result.interiorMae = interior ? (sumAbs - haloAbs) / static_cast<double>(interior) : 0.0;

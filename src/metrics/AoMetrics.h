@@ -6,6 +6,9 @@
 //   MAE   mean |B - A|
 //   RMSE  sqrt(mean (B - A)^2)
 //   bias  mean (B - A): negative when B is darker than A
+//   Pearson correlation  cov(A, B) / (sd(A) sd(B)): how well B's variation follows A's, whatever B's scale and
+//         offset (an AO that darkens the right places too weakly still correlates). 0 where either image is
+//         constant over the mask (an all-white AO explains none of the reference's variation).
 //   SSIM  mean of the SSIM map (Wang, Bovik, Sheikh, Simoncelli, "Image Quality Assessment: From Error Visibility to
 //         Structural Similarity", IEEE TIP 2004, eq. 13) with their constants: an 11x11 Gaussian window of
 //         sigma 1.5 (renormalised where it leaves the image), C1 = (0.01 L)^2, C2 = (0.03 L)^2, L = 1. The map is
@@ -49,6 +52,7 @@ struct AoComparison {
   std::size_t pixels = 0;          // geometry pixels compared
   std::size_t haloPixels = 0;      // of which within the discontinuity band (0 when no depth was given)
   double mae = 0, rmse = 0, bias = 0, ssim = 0;
+  double pearson = 0;
   double haloMae = 0, interiorMae = 0;  // MAE inside / outside the band
 };
 
