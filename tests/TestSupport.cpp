@@ -3,10 +3,14 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cstdlib>
 #include <fstream>
 #include <memory>
 #include <sstream>
+
+#include "gl/GlObjects.h"
+#include "gl/PipelineState.h"
 
 namespace obscura::test {
 
@@ -40,6 +44,40 @@ FrameOptions retaining(std::vector<std::string> targets) {
   FrameOptions options;
   options.retain = std::move(targets);
   return options;
+}
+
+std::vector<std::uint8_t> drawPoints(const gl::Program& program, const std::vector<glm::vec4>& normal,
+                                     const std::vector<glm::vec3>& texcoord) {
+  const gl::RenderTarget target("points", kPointSide, kPointSide, GL_NEAREST, gl::RenderTarget::Depth::None, false);
+  target.bindForDrawing();
+  glClearColor(0, 0, 0, 0);
+  glClear(GL_COLOR_BUFFER_BIT);
+  std::vector<float> vertices;
+  for (size_t i = 0; i < normal.size(); ++i) {
+    const float x = (static_cast<float>(i % kPointSide) + 0.5f) / kPointSide * 2.0f - 1.0f;
+    const float y = (static_cast<float>(i / kPointSide) + 0.5f) / kPointSide * 2.0f - 1.0f;
+    const glm::vec3 t = i < texcoord.size() ? texcoord[i] : glm::vec3(0.0f);
+    vertices.insert(vertices.end(), {x, y, normal[i].x, normal[i].y, normal[i].z, normal[i].w, t.x, t.y, t.z});
+  }
+  gl::BufferHandle buffer = gl::BufferHandle::create();
+  glBindBuffer(GL_ARRAY_BUFFER, buffer.id());
+  glBufferData(GL_ARRAY_BUFFER, static_cast<GLsizeiptr>(vertices.size() * 4), vertices.data(), GL_STATIC_DRAW);
+  glEnableVertexAttribArray(gl::kAttribPosition);
+  glEnableVertexAttribArray(gl::kAttribNormal);
+  glEnableVertexAttribArray(gl::kAttribTexcoord);
+  glVertexAttribPointer(gl::kAttribPosition, 2, GL_FLOAT, GL_FALSE, 36, nullptr);
+  glVertexAttribPointer(gl::kAttribNormal, 4, GL_FLOAT, GL_FALSE, 36, reinterpret_cast<const void*>(8));
+  glVertexAttribPointer(gl::kAttribTexcoord, 3, GL_FLOAT, GL_FALSE, 36, reinterpret_cast<const void*>(24));
+  program.use();
+  glDrawArrays(GL_POINTS, 0, static_cast<GLsizei>(normal.size()));
+  gl::restoreBaselineState();
+  const std::vector<std::uint8_t> topDown = target.readRgba();
+  glBindFramebuffer(GL_FRAMEBUFFER, 0);
+  std::vector<std::uint8_t> bottomUp(topDown.size());
+  for (int y = 0; y < kPointSide; ++y)
+    std::copy_n(&topDown[static_cast<size_t>(kPointSide - 1 - y) * kPointSide * 4], kPointSide * 4,
+                &bottomUp[static_cast<size_t>(y) * kPointSide * 4]);
+  return bottomUp;
 }
 
 RenderedImage render(Renderer& renderer, const Camera& camera, const RenderSettings& settings, const View& view,

@@ -5,12 +5,15 @@
 #include <string>
 #include <vector>
 
+#include <glm/vec3.hpp>
+#include <glm/vec4.hpp>
 #include <gtest/gtest.h>
 
 #include "core/AoSettings.h"
 #include "core/EffectTable.h"
 #include "core/RenderSettings.h"
 #include "core/Renderer.h"
+#include "gl/Program.h"
 #include "gl/RenderTarget.h"
 #include "platform/HeadlessContext.h"
 #include "scene/Camera.h"
@@ -37,6 +40,14 @@ RenderedImage render(Renderer& renderer, const Camera& camera, const RenderSetti
                      const FrameOptions& options = {});
 // FrameOptions that keep these targets readable after the frame (Renderer::retained).
 FrameOptions retaining(std::vector<std::string> targets);
+
+// Shader tests at one value per pixel: draws one point per value into pixel i (row-major from the bottom) of a
+// kPointSide x kPointSide RGBA8 target cleared to 0, with normal[i] in the attribute a_normal (slot kAttribNormal;
+// a vec3 attribute takes xyz) and texcoord[i], where given, in a_texcoord (0 elsewhere), and returns the target's bytes
+// in that order (pixel i at 4 i).
+constexpr int kPointSide = 256;
+std::vector<std::uint8_t> drawPoints(const gl::Program& program, const std::vector<glm::vec4>& normal,
+                                     const std::vector<glm::vec3>& texcoord = {});
 
 // Scenes made of one material-less mesh placed with an identity transform.
 Scene sceneOf(std::vector<Mesh> meshes);

@@ -11,6 +11,7 @@
 #include "TestSupport.h"
 #include "core/FrameContext.h"
 #include "core/FullscreenTriangle.h"
+#include "core/ColorSpaces.h"
 #include "core/HdrEncoding.h"
 #include "core/ShaderLibrary.h"
 #include "core/ToneMapping.h"
@@ -20,7 +21,7 @@ using namespace obscura;
 
 namespace {
 
-constexpr int kSide = 256;  // up to 65536 values per draw, one point each
+constexpr int kSide = test::kPointSide;  // up to 65536 values per draw, one point each
 
 // Two per-point values travel in the attribute slots the programs bind by name: a_normal (vec4) and a_texcoord (vec3).
 const char* kPointVertex = R"(
@@ -51,46 +52,6 @@ std::vector<std::uint8_t> bottomUp(const std::vector<std::uint8_t>& topDown) {
   return out;
 }
 
-// Draws one point per value at pixel i (row-major from the bottom) and returns the target's bytes in that order.
-std::vector<std::uint8_t> drawPoints(const gl::Program& program, const std::vector<glm::vec4>& first,
-                                     const std::vector<glm::vec3>& second) {
-  const gl::RenderTarget target("points", kSide, kSide, GL_NEAREST, gl::RenderTarget::Depth::None, false);
-  target.bindForDrawing();
-  glClearColor(0, 0, 0, 0);
-  glClear(GL_COLOR_BUFFER_BIT);
-  std::vector<float> vertices;
-  for (size_t i = 0; i < first.size(); ++i) {
-    const float x = (static_cast<float>(i % kSide) + 0.5f) / kSide * 2.0f - 1.0f;
-    const float y = (static_cast<float>(i / kSide) + 0.5f) / kSide * 2.0f - 1.0f;
-    const glm::vec3 s = i < second.size() ? second[i] : glm::vec3(0.0f);
-    vertices.insert(vertices.end(), {x, y, first[i].x, first[i].y, first[i].z, first[i].w, s.x, s.y, s.z});
-  }
-  gl::BufferHandle buffer = gl::BufferHandle::create();
-  glBindBuffer(GL_ARRAY_BUFFER, buffer.id());
-  glBufferData(GL_ARRAY_BUFFER, static_cast<GLsizeiptr>(vertices.size() * 4), vertices.data(), GL_STATIC_DRAW);
-  glEnableVertexAttribArray(gl::kAttribPosition);
-  glEnableVertexAttribArray(gl::kAttribNormal);
-  glEnableVertexAttribArray(gl::kAttribTexcoord);
-  glVertexAttribPointer(gl::kAttribPosition, 2, GL_FLOAT, GL_FALSE, 36, nullptr);
-  glVertexAttribPointer(gl::kAttribNormal, 4, GL_FLOAT, GL_FALSE, 36, reinterpret_cast<const void*>(8));
-  glVertexAttribPointer(gl::kAttribTexcoord, 3, GL_FLOAT, GL_FALSE, 36, reinterpret_cast<const void*>(24));
-  program.use();
-  glDrawArrays(GL_POINTS, 0, static_cast<GLsizei>(first.size()));
-  gl::restoreBaselineState();
-  const std::vector<std::uint8_t> pixels = bottomUp(target.readRgba());
-  glBindFramebuffer(GL_FRAMEBUFFER, 0);
-  return pixels;
-}
-
-glm::vec3 hueColor(float hue, float saturation) {  // HSV with V = 1
-  const glm::vec3 k(0.0f, 2.0f / 3.0f, 1.0f / 3.0f);
-  glm::vec3 rgb;
-  for (int i = 0; i < 3; ++i) {
-    const float p = std::abs((hue + k[i]) - std::floor(hue + k[i])) * 6.0f - 3.0f;
-    rgb[i] = std::clamp(std::abs(p) - 1.0f, 0.0f, 1.0f);
-  }
-  return glm::mix(glm::vec3(1.0f), rgb, saturation);
-}
 
 // 65536 colours: black, the range ends and beyond, powers of two and their neighbours (exponent boundaries), mantissa
 // ties, 64 hues x 5 saturations from 1e-6 to 1e6, and random colours with log-uniform brightness.
@@ -106,7 +67,7 @@ std::vector<glm::vec3> testColours() {
     for (float s : {0.0f, 0.25f, 0.5f, 0.9f, 1.0f})
       for (int i = 0; i <= 120; ++i) {
         const float brightness = 1e-6f * std::pow(10.0f, static_cast<float>(i) / 10.0f);
-        colours.push_back(hueColor(static_cast<float>(h) / 64.0f, s) * brightness);
+        colours.push_back(ColorSpaces::hsvColor(static_cast<float>(h) / 64.0f, s) * brightness);
       }
   std::mt19937 rng(3);
   std::uniform_real_distribution<float> exponent(-20.0f, 17.0f), ratio(0.0f, 1.0f);
@@ -156,7 +117,7 @@ varying vec4 v_first;
 void main() { gl_FragColor = encodeHdr(v_first.xyz); }
 )",
                                            hdrShaderDefines(e));
-  const std::vector<std::uint8_t> pixels = drawPoints(program, first, {});
+  const std::vector<std::uint8_t> pixels = test::drawPoints(program, first, {});
   int exact = 0, nearBoundary = 0, wrong = 0;
   for (size_t i = 0; i < colours.size(); ++i) {
     float margin = 0.0f;
@@ -210,7 +171,7 @@ void main() {
 }
 )",
                                            hdrShaderDefines(e));
-  const std::vector<std::uint8_t> pixels = drawPoints(program, texels, decoded);
+  const std::vector<std::uint8_t> pixels = test::drawPoints(program, texels, decoded);
   int worst = 0;
   for (size_t i = 0; i < colours.size(); ++i)
     for (int c = 0; c < 3; ++c) worst = std::max(worst, std::abs(pixels[i * 4 + c] - 128));
@@ -287,7 +248,7 @@ TEST(GpuToneMapping, EveryCurveMatchesTheCpuWithinOneLevel) {
   std::vector<glm::vec3> inputs;
   std::vector<glm::vec3> bases = {glm::vec3(1.0f)};
   for (int h = 0; h < 12; ++h)
-    for (float s : {0.5f, 1.0f}) bases.push_back(hueColor(static_cast<float>(h) / 12.0f, s));
+    for (float s : {0.5f, 1.0f}) bases.push_back(ColorSpaces::hsvColor(static_cast<float>(h) / 12.0f, s));
   for (const glm::vec3& base : bases)
     for (int i = 0; i <= 2400; ++i) inputs.push_back(base * (1e-3f * std::pow(10.0f, static_cast<float>(i) / 400.0f)));
   ASSERT_LE(inputs.size(), static_cast<size_t>(kSide * kSide));
@@ -309,7 +270,7 @@ void main() {
     for (float ev : {0.0f, -2.0f, 2.5f}) {
       program.use();
       program.set(program.uniform("u_exposure"), exposureScale(ev));
-      const std::vector<std::uint8_t> pixels = drawPoints(program, first, {});
+      const std::vector<std::uint8_t> pixels = test::drawPoints(program, first, {});
       int worst = 0, offByOne = 0;
       for (size_t i = 0; i < inputs.size(); ++i) {
         const glm::vec3 srgb = linearToSrgb(toneMap(op, inputs[i] * exposureScale(ev)));
@@ -351,7 +312,7 @@ void main() {
 }
 )",
                                            {toneMapShaderDefine(ToneMapOperator::Linear)});
-  const std::vector<std::uint8_t> pixels = drawPoints(program, first, {});
+  const std::vector<std::uint8_t> pixels = test::drawPoints(program, first, {});
   for (int b = 0; b < 256; ++b) {
     const float gpu = static_cast<float>(pixels[b * 4] * 256 + pixels[b * 4 + 1]) / 65535.0f;
     const float cpu = srgbToLinear(static_cast<float>(b) / 255.0f);

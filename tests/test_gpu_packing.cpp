@@ -15,7 +15,7 @@ namespace ldp = obscura::LinearDepthPacking;
 
 namespace {
 
-constexpr int kSide = 256;  // 65536 pixels: one per depth code
+constexpr int kSide = test::kPointSide;  // 65536 pixels: one per depth code
 
 const char* kPointVertex = R"(
 attribute vec2 a_position;
@@ -32,36 +32,12 @@ gl::Program buildProgram(const char* name, const std::string& vertex, const std:
   return gl::Program(name, ShaderLibrary::composeText(vertex, {}, {}), ShaderLibrary::composeText(fragment, {}, {}));
 }
 
-// Draws one point per value at pixel i (row-major from the bottom), with `values` in attribute slot 1.
+// One point per value at pixel i (row-major from the bottom), the value in a_normal.
 std::vector<std::uint8_t> drawPoints(const gl::Program& program, const std::vector<glm::vec3>& values) {
-  const gl::RenderTarget target("points", kSide, kSide, GL_NEAREST, gl::RenderTarget::Depth::None, false);
-  target.bindForDrawing();
-  glClearColor(0, 0, 0, 0);
-  glClear(GL_COLOR_BUFFER_BIT);
-  std::vector<float> vertices;
-  for (size_t i = 0; i < values.size(); ++i) {
-    const float x = (static_cast<float>(i % kSide) + 0.5f) / kSide * 2.0f - 1.0f;
-    const float y = (static_cast<float>(i / kSide) + 0.5f) / kSide * 2.0f - 1.0f;
-    vertices.insert(vertices.end(), {x, y, values[i].x, values[i].y, values[i].z});
-  }
-  gl::BufferHandle buffer = gl::BufferHandle::create();
-  glBindBuffer(GL_ARRAY_BUFFER, buffer.id());
-  glBufferData(GL_ARRAY_BUFFER, static_cast<GLsizeiptr>(vertices.size() * 4), vertices.data(), GL_STATIC_DRAW);
-  glEnableVertexAttribArray(gl::kAttribPosition);
-  glEnableVertexAttribArray(gl::kAttribNormal);
-  glVertexAttribPointer(gl::kAttribPosition, 2, GL_FLOAT, GL_FALSE, 20, nullptr);
-  glVertexAttribPointer(gl::kAttribNormal, 3, GL_FLOAT, GL_FALSE, 20, reinterpret_cast<const void*>(8));
-  program.use();
-  glDrawArrays(GL_POINTS, 0, static_cast<GLsizei>(values.size()));
-  gl::restoreBaselineState();
-  std::vector<std::uint8_t> topDown = target.readRgba();
-  // Back to bottom-up order, so pixel i is index i.
-  std::vector<std::uint8_t> bottomUp(topDown.size());
-  for (int y = 0; y < kSide; ++y)
-    std::copy_n(&topDown[static_cast<size_t>(kSide - 1 - y) * kSide * 4], kSide * 4,
-                &bottomUp[static_cast<size_t>(y) * kSide * 4]);
-  glBindFramebuffer(GL_FRAMEBUFFER, 0);
-  return bottomUp;
+  std::vector<glm::vec4> normal;
+  normal.reserve(values.size());
+  for (const glm::vec3& v : values) normal.emplace_back(v, 0.0f);
+  return test::drawPoints(program, normal);
 }
 
 }  // namespace

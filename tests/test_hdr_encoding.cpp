@@ -11,6 +11,7 @@
 
 #include <glm/geometric.hpp>
 
+#include "core/ColorSpaces.h"
 #include "core/HdrEncoding.h"
 #include "core/ShaderLibrary.h"
 
@@ -23,23 +24,13 @@ const glm::vec3 kLuminance(0.2126f, 0.7152f, 0.0722f);
 glm::vec3 roundTrip(const glm::vec3& c, const HdrEncoding& e) { return decodeHdr(encodeHdr(c, e), e); }
 float max3(const glm::vec3& v) { return std::max(v.r, std::max(v.g, v.b)); }
 
-glm::vec3 hueColor(float hue, float saturation) {  // HSV with V = 1
-  const glm::vec3 k(0.0f, 2.0f / 3.0f, 1.0f / 3.0f);
-  glm::vec3 rgb;
-  for (int i = 0; i < 3; ++i) {
-    const float p = std::abs((hue + k[i]) - std::floor(hue + k[i])) * 6.0f - 3.0f;
-    rgb[i] = std::clamp(std::abs(p) - 1.0f, 0.0f, 1.0f);
-  }
-  return glm::mix(glm::vec3(1.0f), rgb, saturation);
-}
-
 // Colours of 64 hues x 5 saturations whose brightest channel runs log-spaced from `lowest` to `highest`.
 template <typename F>
 void forEachColour(float lowest, float highest, int steps, F&& f) {
   for (int h = 0; h < 64; ++h)
     for (float s : {0.0f, 0.25f, 0.5f, 0.75f, 1.0f}) {
       if (s == 0.0f && h > 0) continue;
-      const glm::vec3 base = hueColor(static_cast<float>(h) / 64.0f, s);
+      const glm::vec3 base = ColorSpaces::hsvColor(static_cast<float>(h) / 64.0f, s);
       for (int i = 0; i <= steps; ++i)
         f(base * (lowest * std::pow(highest / lowest, static_cast<float>(i) / static_cast<float>(steps))), i == 0);
     }

@@ -16,6 +16,24 @@
 
 using namespace obscura;
 
+namespace {
+
+// Each case, {{name, value}, message}: set(name, value) throws InputError whose message contains `message`.
+using RefusalCase = std::pair<std::pair<const char*, const char*>, const char*>;
+template <class Settings, size_t N>
+void expectRefusals(Settings& settings, const RefusalCase (&cases)[N]) {
+  for (const auto& [input, expect] : cases) {
+    try {
+      settings.set(input.first, input.second);
+      ADD_FAILURE() << input.first << "=" << input.second << " was accepted";
+    } catch (const InputError& e) {
+      EXPECT_NE(std::string(e.what()).find(expect), std::string::npos) << e.what();
+    }
+  }
+}
+
+}  // namespace
+
 TEST(AoSettings, DefaultsAreValidAndUseTheBestSpiral) {
   const AoSettings settings;
   EXPECT_NO_THROW(settings.validate());
@@ -44,7 +62,7 @@ TEST(AoSettings, SpiralTurnsMatchTheReferenceTable) {
 
 TEST(AoSettings, SetRefusesUnknownNamesAndOutOfRangeValues) {
   AoSettings settings;
-  const std::pair<std::pair<const char*, const char*>, const char*> cases[] = {
+  const RefusalCase cases[] = {
       {{"radius", "0"}, "radius: 0 is out of range"},
       {{"radius", "abc"}, "radius: expected a number"},
       {{"radius", "nan"}, "radius: expected a number"},
@@ -57,14 +75,7 @@ TEST(AoSettings, SetRefusesUnknownNamesAndOutOfRangeValues) {
       {{"colour", "red"}, "unknown parameter 'colour'"},
   };
   settings.set("samples", "8");
-  for (const auto& [input, expect] : cases) {
-    try {
-      settings.set(input.first, input.second);
-      ADD_FAILURE() << input.first << "=" << input.second << " was accepted";
-    } catch (const InputError& e) {
-      EXPECT_NE(std::string(e.what()).find(expect), std::string::npos) << e.what();
-    }
-  }
+  expectRefusals(settings, cases);
   EXPECT_NO_THROW(settings.validate());  // failed sets left the settings valid
 }
 
@@ -204,20 +215,13 @@ TEST(AoSettings, ParameterMetadataDescribesTheAcceptedValues) {
 
 TEST(AoSettings, ExplicitEstimatorParametersKeepTheirRanges) {
   AoSettings settings;
-  const std::pair<std::pair<const char*, const char*>, const char*> cases[] = {
+  const RefusalCase cases[] = {
       {{"intensity", "25"}, "intensity: 25 is out of range (0 .. 20)"},
       {{"bias", "-0.1"}, "bias: -0.1 is out of range (0 .. 1 metres)"},
       {{"contrast", "0"}, "contrast: 0 is out of range (0.1 .. 10)"},
       {{"contrast", "automatic"}, "contrast: expected a number"},
   };
-  for (const auto& [input, expect] : cases) {
-    try {
-      settings.set(input.first, input.second);
-      ADD_FAILURE() << input.first << "=" << input.second << " was accepted";
-    } catch (const InputError& e) {
-      EXPECT_NE(std::string(e.what()).find(expect), std::string::npos) << e.what();
-    }
-  }
+  expectRefusals(settings, cases);
   settings.intensity = 30.0f;  // set in code, out of range
   EXPECT_THROW(settings.validate(), InputError);
 }
@@ -279,7 +283,7 @@ TEST(RenderSettings, NamesAreEffectDotParameterAndTheOldAoNamesAreAliases) {
 
 TEST(RenderSettings, MessagesNameTheParameterAsWritten) {
   RenderSettings settings;
-  const std::pair<std::pair<const char*, const char*>, const char*> cases[] = {
+  const RefusalCase cases[] = {
       {{"ao.radius", "0"}, "ao.radius: 0 is out of range"},
       {{"radius", "0"}, "radius: 0 is out of range"},
       {{"tonemap.exposure", "40"}, "tonemap.exposure: 40 is out of range (-16 .. 16 EV)"},
@@ -288,14 +292,7 @@ TEST(RenderSettings, MessagesNameTheParameterAsWritten) {
       {{"fxaa", "maybe"}, "fxaa: expected on or off"},
       {{"preset", "extreme"}, "preset: expected low, medium, high or ultra"},
   };
-  for (const auto& [input, expect] : cases) {
-    try {
-      settings.set(input.first, input.second);
-      ADD_FAILURE() << input.first << "=" << input.second << " was accepted";
-    } catch (const InputError& e) {
-      EXPECT_NE(std::string(e.what()).find(expect), std::string::npos) << e.what();
-    }
-  }
+  expectRefusals(settings, cases);
   EXPECT_NO_THROW(settings.validate());
 }
 

@@ -62,16 +62,6 @@ glm::vec3 luminanceWeights() {
   return glm::vec3(m[0][1], m[1][1], m[2][1]);
 }
 
-glm::vec3 hueColor(float hue, float saturation) {  // HSV with V = 1
-  const glm::vec3 k(0.0f, 2.0f / 3.0f, 1.0f / 3.0f);
-  glm::vec3 rgb;
-  for (int i = 0; i < 3; ++i) {
-    const float p = std::abs((hue + k[i]) - std::floor(hue + k[i])) * 6.0f - 3.0f;
-    rgb[i] = std::clamp(std::abs(p) - 1.0f, 0.0f, 1.0f);
-  }
-  return glm::mix(glm::vec3(1.0f), rgb, saturation);
-}
-
 glm::vec3 withLuminance(const glm::vec3& color, float luminance) {
   return color * (luminance / glm::dot(color, luminanceWeights()));
 }
@@ -127,7 +117,7 @@ std::vector<glm::vec3> colourSet(const HdrEncoding& e) {
   for (int h = 0; h < 64; ++h)
     for (float s : {0.0f, 0.25f, 0.5f, 0.75f, 1.0f}) {
       if (s == 0.0f && h > 0) continue;  // grey once
-      const glm::vec3 base = hueColor(static_cast<float>(h) / 64.0f, s);
+      const glm::vec3 base = ColorSpaces::hsvColor(static_cast<float>(h) / 64.0f, s);
       for (int i = 0; i <= steps; ++i) {
         const float luminance = 1e-4f * std::pow(10.0f, static_cast<float>(i) / 100.0f);
         const glm::vec3 c = withLuminance(base, std::min(luminance, top));
@@ -143,7 +133,7 @@ void measureBanding(const HdrEncoding& e, const std::vector<float>& saturations,
   for (float s : saturations) {
     if (s == 0.0f) ramps.push_back(glm::vec3(1.0f));
     else
-      for (int h = 0; h < 12; ++h) ramps.push_back(hueColor(static_cast<float>(h) / 12.0f, s));
+      for (int h = 0; h < 12; ++h) ramps.push_back(ColorSpaces::hsvColor(static_cast<float>(h) / 12.0f, s));
   }
   std::vector<float> luminances;
   const int logSteps = static_cast<int>(std::ceil(std::log10(top / 1e-4f) * 1000.0f));

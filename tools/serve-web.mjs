@@ -14,16 +14,33 @@ const TYPES = {
   '.wasm': 'application/wasm',  // needed for WebAssembly.instantiateStreaming
   '.png': 'image/png',
   '.json': 'application/json',
+  '.glb': 'model/gltf-binary',
 };
 
 // Resolves to the listening server; port 0 picks a free one (server.address().port). server.stop() closes it
 // together with the browser's idle keep-alive connections, which would otherwise hold the process open.
-export function startServer(root, port = 0) {
-  const base = path.resolve(root);
+// `mounts` serve more than `root`: {'/prefix/': directory} serves a folder under a URL prefix, {'/exact/path': file}
+// one file (the browser benchmark mounts its pages, node_modules and the model). `root` may be null: mounts only.
+export function startServer(root, port = 0, mounts = {}) {
+  const base = root === null ? null : path.resolve(root);
+  // The file a URL path names, or null: mounted first, then under root; never outside the folder it is served from.
+  const resolve = (pathname) => {
+    for (const [prefix, target] of Object.entries(mounts)) {
+      if (pathname === prefix && !prefix.endsWith('/')) return target;
+      if (prefix.endsWith('/') && pathname.startsWith(prefix)) {
+        const folder = path.resolve(target);
+        const file = path.join(folder, pathname.slice(prefix.length) || 'index.html');
+        return file.startsWith(folder + path.sep) ? file : null;
+      }
+    }
+    if (base === null) return null;
+    const file = path.join(base, pathname === '/' ? '/index.html' : pathname);
+    return file.startsWith(base + path.sep) ? file : null;
+  };
   const server = http.createServer((request, response) => {
     const url = new URL(request.url, 'http://127.0.0.1');
-    const file = path.join(base, decodeURIComponent(url.pathname === '/' ? '/index.html' : url.pathname));
-    if (!file.startsWith(base + path.sep)) {
+    const file = resolve(decodeURIComponent(url.pathname));
+    if (!file) {
       response.writeHead(403).end();
       return;
     }

@@ -9,6 +9,7 @@
 // RGB (1, 1, 1) map to W: M_RGB->XYZ = P diag(S).
 #include <glm/mat3x3.hpp>
 #include <glm/vec2.hpp>
+#include <glm/vec3.hpp>
 
 namespace obscura::ColorSpaces {
 
@@ -28,5 +29,9 @@ glm::dmat3 rgbToXyz(const Primaries& primaries);
 // Linear BT.709 (sRGB) to linear BT.2020 RGB: rgbToXyz(BT.2020)^-1 * rgbToXyz(BT.709). ITU-R BT.2087-0 eq. (4)
 // prints it to four decimals (0.6274 0.3293 0.0433 / 0.0691 0.9195 0.0114 / 0.0164 0.0880 0.8956); tested against it.
 glm::dmat3 srgbToRec2020();
+
+// The fully bright colour of a hue (HSV with V = 1; hue in [0, 1), saturation 0 white .. 1 pure): the test and study
+// colours of the HDR encodings sweep hues and saturations with it.
+glm::vec3 hsvColor(float hue, float saturation);
 
 }  // namespace obscura::ColorSpaces

@@ -40,6 +40,19 @@ void checkFramebufferComplete(const std::string& what) {
   throw GlError("framebuffer '" + what + "' is incomplete: " + reason + " (status " + code + ")");
 }
 
+namespace {
+// Checks the bound framebuffer, then unbinds it whether or not it is complete (the throw leaves no binding behind).
+void checkCompleteAndUnbind(const std::string& what) {
+  try {
+    checkFramebufferComplete(what);
+  } catch (...) {
+    glBindFramebuffer(GL_FRAMEBUFFER, 0);
+    throw;
+  }
+  glBindFramebuffer(GL_FRAMEBUFFER, 0);
+}
+}  // namespace
+
 RenderTarget::RenderTarget(const std::string& name, int width, int height, GLenum filter, Depth depth, bool depth24,
                            bool stencil)
     : name_(name), color_(width, height, filter), framebuffer_(FramebufferHandle::create()) {
@@ -65,13 +78,7 @@ RenderTarget::RenderTarget(const std::string& name, int width, int height, GLenu
     glBindRenderbuffer(GL_RENDERBUFFER, 0);
     attachDepth();
   }
-  try {
-    checkFramebufferComplete(name);
-  } catch (...) {
-    glBindFramebuffer(GL_FRAMEBUFFER, 0);
-    throw;
-  }
-  glBindFramebuffer(GL_FRAMEBUFFER, 0);
+  checkCompleteAndUnbind(name);
 }
 
 void RenderTarget::attachDepth() const {
@@ -92,13 +99,7 @@ FramebufferHandle RenderTarget::sharingDepth(const RenderTarget& color, const Re
   glBindFramebuffer(GL_FRAMEBUFFER, framebuffer.id());
   glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, color.color().id(), 0);
   depthOwner.attachDepth();
-  try {
-    checkFramebufferComplete(name);
-  } catch (...) {
-    glBindFramebuffer(GL_FRAMEBUFFER, 0);
-    throw;
-  }
-  glBindFramebuffer(GL_FRAMEBUFFER, 0);
+  checkCompleteAndUnbind(name);
   return framebuffer;
 }
 
@@ -119,13 +120,7 @@ FramebufferHandle RenderTarget::multipleTargets(const std::vector<const RenderTa
   }
   // Draw-buffer state belongs to the framebuffer: set once here, it holds whenever this one is bound.
   glDrawBuffersEXT(static_cast<GLsizei>(buffers.size()), buffers.data());
-  try {
-    checkFramebufferComplete(name);
-  } catch (...) {
-    glBindFramebuffer(GL_FRAMEBUFFER, 0);
-    throw;
-  }
-  glBindFramebuffer(GL_FRAMEBUFFER, 0);
+  checkCompleteAndUnbind(name);
   return framebuffer;
 }
 

@@ -18,7 +18,6 @@
 // Screenshots of every renderer go to build/browser-bench/ and are checked automatically (model visible, same
 // framing as Obscura, AO darker than its AO-off counterpart); a failed check fails the run.
 import fs from 'node:fs';
-import http from 'node:http';
 import os from 'node:os';
 import path from 'node:path';
 import { fileURLToPath } from 'node:url';
@@ -26,6 +25,7 @@ import zlib from 'node:zlib';
 import { chromium } from 'playwright-core';
 import { glbBoundingSphere } from './glb-bounds.mjs';
 import { decodePng } from '../../tests/browser/png.mjs';
+import { startServer } from '../serve-web.mjs';
 
 const benchDir = path.dirname(fileURLToPath(import.meta.url));
 const sourceDir = path.resolve(benchDir, '..', '..');
@@ -117,40 +117,8 @@ const RATIOS = [
 ];
 
 // --- A static server: the site, this folder (pages and node_modules) and the model, on 127.0.0.1 only -----------
-const TYPES = { '.html': 'text/html; charset=utf-8', '.js': 'text/javascript; charset=utf-8',
-                '.mjs': 'text/javascript; charset=utf-8', '.css': 'text/css; charset=utf-8',
-                '.wasm': 'application/wasm', '.json': 'application/json', '.glb': 'model/gltf-binary' };
-function startServer() {
-  const mounts = [['/site/', siteDir], ['/bench/', benchDir]];
-  const server = http.createServer((request, response) => {
-    const url = new URL(request.url, 'http://127.0.0.1');
-    const pathname = decodeURIComponent(url.pathname);
-    let file = null;
-    if (pathname === `/model/${modelName}`) file = modelPath;
-    for (const [prefix, root] of mounts) {
-      if (pathname.startsWith(prefix)) {
-        const candidate = path.join(root, pathname.slice(prefix.length) || 'index.html');
-        if (candidate.startsWith(root + path.sep)) file = candidate;
-      }
-    }
-    if (!file) {
-      response.writeHead(404).end();
-      return;
-    }
-    fs.readFile(file, (error, data) => {
-      if (error) {
-        response.writeHead(404, { 'Content-Type': 'text/plain' }).end(`not found: ${pathname}\n`);
-        return;
-      }
-      response.writeHead(200, { 'Content-Type': TYPES[path.extname(file)] ?? 'application/octet-stream',
-                                'Cache-Control': 'no-store' });
-      response.end(data);
-    });
-  });
-  return new Promise((resolve, reject) => {
-    server.once('error', reject);
-    server.listen(0, '127.0.0.1', () => resolve(server));
-  });
+function startBenchServer() {
+  return startServer(null, 0, { '/site/': siteDir, '/bench/': benchDir, [`/model/${modelName}`]: modelPath });
 }
 
 // --- Pages -----------------------------------------------------------------------------------------------------------
@@ -353,7 +321,7 @@ async function main() {
   console.log(`timing: ${options.warmup} warm-up frames each, then ${options.rounds} rounds x ${options.frames} ` +
               'frames per renderer, round-robin; each frame = draw + gl.finish() + 1-pixel gl.readPixels');
 
-  const server = await startServer();
+  const server = await startBenchServer();
   const base = `http://127.0.0.1:${server.address().port}`;
   const browser = await chromium.launch({ executablePath: '/usr/bin/chromium', headless: true, args: chromiumFlags });
   console.log(`browser: ${browser.version()} (headless, ${chromiumFlags.join(' ')})`);
@@ -482,8 +450,7 @@ async function main() {
     }
   } finally {
     await browser.close();
-    server.close();
-    server.closeAllConnections();
+    server.stop();
   }
 
   // --- Report ----------------------------------------------------------------------------------------------------
