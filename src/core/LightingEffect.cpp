@@ -98,6 +98,9 @@ LightingEffect::LightingEffect(const EffectResources& resources)
     : resources_(resources),
       white_(1, 1, GL_NEAREST, std::vector<std::uint8_t>{255, 255, 255, 255}.data()),
       stencil_(resources.caps.packedDepthStencil) {
+  const HdrTexel t = encodeHdr(light_.background);
+  backgroundHdr_ = glm::vec4(LinearDepthPacking::channelFromByte(t[0]), LinearDepthPacking::channelFromByte(t[1]),
+                             LinearDepthPacking::channelFromByte(t[2]), LinearDepthPacking::channelFromByte(t[3]));
   // The form of the lit pass before the plan's alternatives, for every material, is built now, so a broken program
   // fails when the renderer is made.
   for (MaterialKind kind : MaterialKind::all()) variant({false, false, -1}, kind);
@@ -209,15 +212,7 @@ void LightingEffect::render(const PassContext& context, const Form& form, const 
     glClearColor(0.0f, 0.0f, 0.0f, 0.0f);
   } else {
     // Where no geometry is, the background's radiance, encoded as the lit pixels are.
-    const glm::vec4 clear = form.toneMap >= 0
-                                ? tone.displayColor(light_.background, lumaInAlpha)
-                                : [&] {
-                                    const HdrTexel t = encodeHdr(light_.background);
-                                    return glm::vec4(LinearDepthPacking::channelFromByte(t[0]),
-                                                     LinearDepthPacking::channelFromByte(t[1]),
-                                                     LinearDepthPacking::channelFromByte(t[2]),
-                                                     LinearDepthPacking::channelFromByte(t[3]));
-                                  }();
+    const glm::vec4 clear = form.toneMap >= 0 ? tone.displayColor(light_.background, lumaInAlpha) : backgroundHdr_;
     glClearColor(clear.r, clear.g, clear.b, clear.a);
   }
   glEnable(GL_DEPTH_TEST);

@@ -82,6 +82,7 @@ class LightingEffect : public Effect {
   gl::Texture2D white_;  // AO = 1 when the AO is off
   bool stencil_;         // the G-buffer's depth has stencil bits (RenderTargetPool): shade exactly once
   Lighting light_;
+  glm::vec4 backgroundHdr_;  // the background's radiance in scene-color's encoding, as clear-colour channels
 };
 
 }  // namespace obscura
