@@ -15,7 +15,7 @@
 uniform sampler2D u_ao;        // half-resolution AO (R) + depth code (GB)
 uniform vec2 u_aoSize;
 uniform sampler2D u_gbuffer;   // full resolution
-uniform float u_invSigma2;     // 1 / sigma^2, metres^-2
+uniform float u_invSigma2;     // 1 / sigma^2, scene units^-2 (sigma is a fraction of the AO radius)
 
 varying vec2 v_uv;
 varying vec3 v_farRay;

@@ -5,7 +5,8 @@
 //
 // Weights, per tap i in [-BLUR_RADIUS, BLUR_RADIUS] at a stride of u_stepPixels:
 //   spatial  exp(-i^2 / (2 s^2)), s = (BLUR_RADIUS + 1) / 2 taps
-//   range    exp(-(delta / sigma)^2), delta in view-space metres, so the result does not depend on near / far:
+//   range    exp(-(delta / sigma)^2), delta in view-space units, so the result does not depend on near / far,
+//            and sigma a fraction of the AO radius, so it does not depend on the scene's units either:
 //              NORMAL_AWARE 0: delta = |z_tap - z_centre|
 //              NORMAL_AWARE 1: delta = distance of the tap's point from the centre's tangent plane (a plane seen at
 //                              a grazing angle still blurs), times the normal weight ((n_c.n_t + 1) / 2)^10
@@ -20,7 +21,7 @@ uniform sampler2D u_ao;
 uniform vec2 u_aoSize;        // pixels
 uniform vec2 u_stepPixels;    // blur direction times stride, in AO pixels
 uniform float u_gaussianK;    // 1 / (2 s^2)
-uniform float u_invSigma2;    // 1 / sigma^2, metres^-2
+uniform float u_invSigma2;    // 1 / sigma^2, scene units^-2 (sigma is a fraction of the AO radius)
 #if NORMAL_AWARE
 uniform sampler2D u_gbuffer;  // normals in RG
 #else

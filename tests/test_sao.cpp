@@ -7,10 +7,12 @@
 #include <glm/gtc/matrix_transform.hpp>
 
 #include "TestSupport.h"
+#include "apps/SceneInput.h"
 #include "core/FrameContext.h"
 #include "core/LinearDepthPacking.h"
 #include "core/NormalEncoding.h"
 #include "core/SaoKernel.h"
+#include "scene/BuiltinScene.h"
 #include "scene/Primitives.h"
 
 using namespace obscura;
@@ -23,13 +25,26 @@ AoSettings rawAoSettings() {
   return settings;
 }
 
-// The estimator as the defaults resolve it (fitted to the reference), and with the SAO paper's own sigma, beta, k.
+// Every estimator with its fitted defaults, and SAO with the SAO paper's own sigma, beta, k.
 std::vector<std::pair<const char*, AoSettings>> defaultAndPaperEstimators() {
   AoSettings paper = rawAoSettings();
   paper.intensity = kPaperEstimatorParameters.intensity;
   paper.bias = kPaperEstimatorParameters.bias;
   paper.contrast = kPaperEstimatorParameters.contrast;
-  return {{"fitted defaults", rawAoSettings()}, {"SAO paper's parameters", paper}};
+  AoSettings gtao = rawAoSettings();
+  gtao.estimator = AoEstimator::Gtao;
+  return {{"SAO, fitted defaults", rawAoSettings()}, {"SAO paper's parameters", paper}, {"GTAO, fitted defaults", gtao}};
+}
+
+// Every estimator, blurred, with its fitted defaults.
+std::vector<AoSettings> everyEstimator() {
+  std::vector<AoSettings> all;
+  for (AoEstimator estimator : {AoEstimator::Sao, AoEstimator::Gtao}) {
+    AoSettings settings;
+    settings.estimator = estimator;
+    all.push_back(settings);
+  }
+  return all;
 }
 
 float minOverGeometry(const test::RenderedImage& ao, const test::RenderedImage& depth) {
@@ -90,7 +105,6 @@ TEST(Sao, InsideCornerIsDarkerThanOpenFloor) {
   // Floor y = 0 and a wall z = -3 facing +z.
   renderer.setScene(test::sceneOf({floorMesh(), test::makeRectangle({-50, 0, -3}, {100, 0, 0}, {0, 10, 0})}));
   const Camera camera = test::makeCamera({0.0f, 1.5f, 2.0f}, {0.0f, 0.5f, -3.0f}, 240, 180);
-  const auto ao = test::render(renderer, camera, AoSettings{}, View::Ao);
   // Project the corner point (0, 0.05, -2.95) and an open floor point (0, 0, 0.5) into the image.
   const FrameCamera frame = FrameCamera::from(camera, camera.width, camera.height);
   auto pixelOf = [&](glm::vec3 p) {
@@ -102,10 +116,14 @@ TEST(Sao, InsideCornerIsDarkerThanOpenFloor) {
   const glm::ivec2 corner = pixelOf({0.0f, 0.05f, -2.95f});
   const glm::ivec2 open = pixelOf({0.0f, 0.0f, -0.8f});  // 2.2 m from the wall, more than the 1 m radius
   ASSERT_TRUE(corner.y > 2 && corner.y < camera.height - 3 && open.y > 2 && open.y < camera.height - 3);
-  const float cornerAo = meanAo(ao, corner.x, corner.y);
-  const float openAo = meanAo(ao, open.x, open.y);
-  EXPECT_GE(openAo, 0.98f);
-  EXPECT_LT(cornerAo, openAo - 0.2f) << "corner " << cornerAo << ", open floor " << openAo;
+  for (const AoSettings& settings : everyEstimator()) {
+    const auto ao = test::render(renderer, camera, settings, View::Ao);
+    const float cornerAo = meanAo(ao, corner.x, corner.y);
+    const float openAo = meanAo(ao, open.x, open.y);
+    EXPECT_GE(openAo, 0.98f) << estimatorName(settings.estimator);
+    EXPECT_LT(cornerAo, openAo - 0.2f) << estimatorName(settings.estimator) << ": corner " << cornerAo
+                                       << ", open floor " << openAo;
+  }
 }
 
 TEST(Sao, SphereOnTheFloorCastsAContactShadow) {
@@ -115,8 +133,9 @@ TEST(Sao, SphereOnTheFloorCastsAContactShadow) {
   renderer.setScene(test::sceneOf({floorMesh(), std::move(sphere)}));
   // Looking down at the sphere from the front and above.
   const Camera camera = test::makeCamera({0.0f, 2.5f, 3.0f}, {0.0f, 0.0f, 0.0f}, 240, 180);
-  const auto ao = test::render(renderer, camera, AoSettings{}, View::Ao);
   const FrameCamera frame = FrameCamera::from(camera, camera.width, camera.height);
+  for (const AoSettings& settings : everyEstimator()) {
+  const auto ao = test::render(renderer, camera, settings, View::Ao);
   auto aoAt = [&](glm::vec3 p) {
     const glm::vec4 clip = frame.projection * frame.view * glm::vec4(p, 1.0f);
     const glm::vec2 ndc = glm::vec2(clip) / clip.w;
@@ -126,8 +145,10 @@ TEST(Sao, SphereOnTheFloorCastsAContactShadow) {
   // Floor beside the contact point (left of the sphere, 0.15 m from where it touches) vs open floor 2 m away.
   const float contact = aoAt({-0.32f, 0.0f, 0.1f});
   const float open = aoAt({-2.0f, 0.0f, 0.5f});
-  EXPECT_GE(open, 0.97f);
-  EXPECT_LT(contact, open - 0.25f) << "contact " << contact << ", open " << open;
+  EXPECT_GE(open, 0.97f) << estimatorName(settings.estimator);
+  EXPECT_LT(contact, open - 0.25f) << estimatorName(settings.estimator) << ": contact " << contact << ", open "
+                                   << open;
+  }
 }
 
 TEST(Sao, NearAndFarPlanesDoNotChangeTheAo) {
@@ -166,6 +187,42 @@ TEST(Sao, NearAndFarPlanesDoNotChangeTheAo) {
   }
 }
 
+// The estimator measures distances in units of the radius (SaoKernel.h), and the blur's depth sigma is a fraction of
+// it, so the built-in scene scaled by s and seen with its camera scaled by s (eye, target, near, far) gives the same
+// AO at radius s as the scene in metres at 1 m: within 1/255 everywhere, from millimetres to hectometres, at full
+// (medium) and half (low) resolution, for every estimator.
+TEST(Sao, ScalingTheSceneAndTheRadiusTogetherGivesTheSameAo) {
+  const Scene metres = makeBuiltinScene();
+  const Camera camera = builtinSceneCamera(320, 180);
+  Renderer renderer = test::makeRenderer();
+  for (const auto& [estimator, preset] : {std::pair(AoEstimator::Sao, QualityPreset::Medium),
+                                          std::pair(AoEstimator::Sao, QualityPreset::Low),
+                                          std::pair(AoEstimator::Gtao, QualityPreset::Medium)}) {
+    AoSettings settings;
+    settings.applyPreset(preset);
+    settings.estimator = estimator;
+    renderer.setScene(metres);
+    const test::RenderedImage expected = test::render(renderer, camera, settings, View::Ao);
+    for (float scale : {0.001f, 0.01f, 100.0f}) {
+      Scene scaled = metres;
+      scaleScene(scaled, scale);
+      renderer.setScene(scaled);
+      Camera scaledCamera = camera;
+      scaledCamera.eye *= scale;
+      scaledCamera.target *= scale;
+      scaledCamera.near *= scale;
+      scaledCamera.far *= scale;
+      AoSettings scaledSettings = settings;
+      scaledSettings.radius = settings.radius * scale;
+      const test::RenderedImage ao = test::render(renderer, scaledCamera, scaledSettings, View::Ao);
+      int worst = 0;
+      for (size_t i = 0; i < ao.rgba.size(); i += 4) worst = std::max(worst, std::abs(ao.rgba[i] - expected.rgba[i]));
+      EXPECT_LE(worst, 1) << estimatorName(estimator) << ", " << presetName(preset) << ", scale " << scale
+                          << ": max difference " << worst << "/255";
+    }
+  }
+}
+
 // The shader against the CPU mirror: both evaluate SAO over the same G-buffer, with and without the hierarchy.
 TEST(Sao, ShaderMatchesTheCpuMirror) {
   Renderer renderer = test::makeRenderer();
@@ -182,7 +239,7 @@ TEST(Sao, ShaderMatchesTheCpuMirror) {
       settings.spiralTurns = SaoKernel::bestSpiralTurns(16);
       settings.depthHierarchy = hierarchy;
       settings.radius = 2.0f;  // far taps reach hierarchy levels 1 and 2 at this size
-      const EstimatorParameters estimator = settings.estimator();
+      const EstimatorKnots knots = settings.estimatorKnots();
       const auto gpu = test::render(renderer, camera, settings, View::AoRaw, test::retaining({"gbuffer"}));
       const std::vector<std::uint8_t> gbuffer = renderer.retained("gbuffer").readRgba();
       const FrameCamera frame = FrameCamera::from(camera, camera.width, camera.height);
@@ -207,6 +264,7 @@ TEST(Sao, ShaderMatchesTheCpuMirror) {
           const float disk = SaoKernel::diskRadiusPixels(settings.radius, c.z, frame.projScale(h),
                                                          settings.maxScreenRadius * static_cast<float>(h));
           const float spin = SaoKernel::rotationAngle(static_cast<float>(x), static_cast<float>(y));
+          const EstimatorParameters estimator = knots.interpolate(disk);  // this pixel's, at its radius in pixels
           float sum = 0.0f;
           for (int i = 0; i < settings.samples; ++i) {
             float alpha = 0.0f;

@@ -111,51 +111,61 @@ TEST(AoSettings, EstimatorParametersAreTunedUnlessSetExplicitly) {
   settings.set("preset", "high");
   EXPECT_EQ(settings.preset, QualityPreset::High);
   settings.set("radius", "2");
-  const EstimatorParameters tuned = tunedEstimatorParameters(QualityPreset::High, 2.0f);
-  EXPECT_FLOAT_EQ(settings.estimator().intensity, tuned.intensity);
-  EXPECT_FLOAT_EQ(settings.estimator().bias, tuned.bias);
-  EXPECT_FLOAT_EQ(settings.estimator().contrast, tuned.contrast);
+  const EstimatorKnots tuned = tunedEstimatorKnots(AoEstimator::Sao, QualityPreset::High);
+  for (int j = 0; j < kEstimatorKnots; ++j) {
+    EXPECT_FLOAT_EQ(settings.estimatorKnots().at[j].intensity, tuned.at[j].intensity);
+    EXPECT_FLOAT_EQ(settings.estimatorKnots().at[j].bias, tuned.at[j].bias);
+    EXPECT_FLOAT_EQ(settings.estimatorKnots().at[j].contrast, tuned.at[j].contrast);
+  }
+  // Keyed by the radius in pixels and the preset, not by the radius: another radius in scene units, the same knots.
+  settings.set("radius", "200");
+  EXPECT_FLOAT_EQ(settings.estimatorKnots().at[2].intensity, tuned.at[2].intensity);
 
   settings.set("intensity", "2.5");
   settings.set("bias", "0.03");
   settings.set("contrast", "1.5");
-  EXPECT_FLOAT_EQ(settings.estimator().intensity, 2.5f);
-  EXPECT_FLOAT_EQ(settings.estimator().bias, 0.03f);
-  EXPECT_FLOAT_EQ(settings.estimator().contrast, 1.5f);
-  settings.set("radius", "0.5");  // an explicit value stays explicit whatever the radius
-  EXPECT_FLOAT_EQ(settings.estimator().intensity, 2.5f);
+  for (float pixels : {1.0f, 4.0f, 23.0f, 500.0f}) {  // an explicit value holds at every radius in pixels
+    EXPECT_FLOAT_EQ(settings.estimatorAt(pixels).intensity, 2.5f);
+    EXPECT_FLOAT_EQ(settings.estimatorAt(pixels).bias, 0.03f);
+    EXPECT_FLOAT_EQ(settings.estimatorAt(pixels).contrast, 1.5f);
+  }
 
   settings.set("intensity", "auto");
-  EXPECT_FLOAT_EQ(settings.estimator().intensity, tunedEstimatorParameters(QualityPreset::High, 0.5f).intensity);
-  EXPECT_FLOAT_EQ(settings.estimator().bias, 0.03f);
+  EXPECT_FLOAT_EQ(settings.estimatorAt().intensity, tuned.interpolate(kShownKnotPixels).intensity);
+  EXPECT_FLOAT_EQ(settings.estimatorAt().bias, 0.03f);
 }
 
 TEST(AoSettings, EffectiveValuesResolveAuto) {
   AoSettings settings;
   settings.set("radius", "2");
   EXPECT_EQ(settings.get("intensity"), "auto");
-  EXPECT_FLOAT_EQ(std::stof(settings.effective("intensity")), settings.estimator().intensity);
+  EXPECT_FLOAT_EQ(std::stof(settings.effective("intensity")), settings.estimatorAt().intensity);
   settings.set("intensity", "1.25");
   EXPECT_EQ(settings.effective("intensity"), "1.25");
   EXPECT_EQ(settings.effective("radius"), settings.get("radius"));
 }
 
-TEST(AoSettings, TunedParametersAreValidAndContinuousOverTheWholeRadiusRange) {
+TEST(AoSettings, TunedKnotsInterpolateInLogRadiusAndHoldAtTheEnds) {
   for (const PresetInfo& preset : qualityPresets()) {
-    EstimatorParameters previous = tunedEstimatorParameters(preset.preset, 0.01f);
-    // Radii 0.01 .. 100 m in steps of 2^(1/16): interpolation in log(radius) moves a little per step.
-    for (int step = 1; step <= 213; ++step) {
-      const float radius = 0.01f * std::pow(2.0f, static_cast<float>(step) / 16.0f);
-      AoSettings settings;
-      settings.applyPreset(preset.preset);
-      settings.radius = std::min(radius, 100.0f);
-      EXPECT_NO_THROW(settings.validate()) << preset.name << " r = " << radius;
-      const EstimatorParameters e = settings.estimator();
-      EXPECT_LT(std::abs(e.intensity - previous.intensity), 0.5f) << preset.name << " r = " << radius;
-      EXPECT_LT(std::abs(e.bias - previous.bias), 0.05f) << preset.name << " r = " << radius;
-      EXPECT_LT(std::abs(e.contrast - previous.contrast), 0.5f) << preset.name << " r = " << radius;
-      previous = e;
+    AoSettings settings;
+    settings.applyPreset(preset.preset);
+    EXPECT_NO_THROW(settings.validate()) << preset.name;
+    const EstimatorKnots knots = tunedEstimatorKnots(AoEstimator::Sao, preset.preset);
+    for (int j = 0; j < kEstimatorKnots; ++j) {
+      // At a knot, its own values; halfway (in log2) between two knots, their mean.
+      EXPECT_FLOAT_EQ(knots.interpolate(estimatorKnotPixels(j)).intensity, knots.at[j].intensity);
+      if (j + 1 < kEstimatorKnots) {
+        EXPECT_NEAR(knots.interpolate(estimatorKnotPixels(j) * std::sqrt(2.0f)).bias,
+                    0.5f * (knots.at[j].bias + knots.at[j + 1].bias), 1e-5f);
+      }
     }
+    EXPECT_FLOAT_EQ(knots.interpolate(0.5f).contrast, knots.at[0].contrast);
+    EXPECT_FLOAT_EQ(knots.interpolate(4096.0f).contrast, knots.at[kEstimatorKnots - 1].contrast);
+    // Every knot comes from the fitted table (none left at the paper's values).
+    for (const EstimatorParameters& e : knots.at)
+      EXPECT_FALSE(e.intensity == kPaperEstimatorParameters.intensity && e.bias == kPaperEstimatorParameters.bias &&
+                   e.contrast == kPaperEstimatorParameters.contrast)
+          << preset.name;
   }
 }
 
@@ -196,7 +206,7 @@ TEST(AoSettings, ParameterMetadataDescribesTheAcceptedValues) {
         char text[32];
         std::snprintf(text, sizeof text, "%g", p.max);
         EXPECT_NO_THROW(settings.set(p.name, text)) << p.name;
-        std::snprintf(text, sizeof text, "%g", p.max + 1.0);
+        std::snprintf(text, sizeof text, "%g", p.max + std::max(1.0, 0.01 * p.max));
         EXPECT_THROW(settings.set(p.name, text), InputError) << p.name;
         break;
       }
@@ -217,7 +227,7 @@ TEST(AoSettings, ExplicitEstimatorParametersKeepTheirRanges) {
   AoSettings settings;
   const RefusalCase cases[] = {
       {{"intensity", "25"}, "intensity: 25 is out of range (0 .. 20)"},
-      {{"bias", "-0.1"}, "bias: -0.1 is out of range (0 .. 1 metres)"},
+      {{"bias", "-0.1"}, "bias: -0.1 is out of range (0 .. 1 fraction of radius)"},
       {{"contrast", "0"}, "contrast: 0 is out of range (0.1 .. 10)"},
       {{"contrast", "automatic"}, "contrast: expected a number"},
   };
@@ -242,7 +252,7 @@ TEST(AoSettings, ValidateNamesTheParameterOutOfRange) {
     settings.validate();
     ADD_FAILURE() << "radius 0 passed validate()";
   } catch (const InputError& e) {
-    EXPECT_NE(std::string(e.what()).find("radius = 0 is outside 0.01 .. 100"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("radius = 0 is outside 0.0001 .. 1e+06"), std::string::npos) << e.what();
   }
   settings = AoSettings{};
   settings.spiralTurns = 11;  // shares a factor with 11 samples
@@ -326,7 +336,7 @@ TEST(RenderSettings, EveryParameterOfEveryEffectDescribesItsValuesAndRoundTrips)
         char text[32];
         std::snprintf(text, sizeof text, "%g", p.max);
         EXPECT_NO_THROW(settings.set(p.name, text)) << p.name;
-        std::snprintf(text, sizeof text, "%g", p.max + 1.0);
+        std::snprintf(text, sizeof text, "%g", p.max + std::max(1.0, 0.01 * p.max));
         EXPECT_THROW(settings.set(p.name, text), InputError) << p.name;
         break;
       }

@@ -113,7 +113,7 @@ TEST(Viewer, KeysActThroughTheParameterTable) {
   EXPECT_TRUE(viewer.handleKey("]"));
   EXPECT_FLOAT_EQ(state.settings.ao().radius, 1.25f);
   for (int i = 0; i < 100; ++i) viewer.handleKey("]");
-  EXPECT_FLOAT_EQ(state.settings.ao().radius, 100.0f) << "clamped to the parameter's range";
+  EXPECT_FLOAT_EQ(state.settings.ao().radius, 1e6f) << "clamped to the parameter's range";
   for (int i = 0; i < 100; ++i) viewer.handleKey(",");
   EXPECT_EQ(state.settings.ao().samples, 1);
   EXPECT_TRUE(viewer.handleKey("p"));
@@ -124,7 +124,7 @@ TEST(Viewer, KeysActThroughTheParameterTable) {
 
   // The estimator's keys start from the value in use ("auto": the fitted one), clamp to the ranges, and "0" returns
   // all three to their fitted values.
-  const EstimatorParameters fitted = state.settings.ao().estimator();
+  const EstimatorParameters fitted = state.settings.ao().estimatorAt();
   viewer.handleKey("}");
   EXPECT_FLOAT_EQ(*state.settings.ao().bias, fitted.bias + 0.01f);
   viewer.handleKey("'");

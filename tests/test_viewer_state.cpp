@@ -62,11 +62,11 @@ TEST(ViewerState, ATweakedPresetRoundTripsWithItsFittedEstimator) {
     EXPECT_EQ(copy.settings.ao().preset, original.settings.ao().preset) << original.toQuery();
     for (const ParameterInfo& p : RenderSettings::parameters())
       EXPECT_EQ(copy.settings.get(p.name), original.settings.get(p.name)) << p.name << " in " << original.toQuery();
-    const EstimatorParameters a = original.settings.ao().estimator(), b = copy.settings.ao().estimator();
+    const EstimatorParameters a = original.settings.ao().estimatorAt(), b = copy.settings.ao().estimatorAt();
     EXPECT_EQ(a.intensity, b.intensity) << original.toQuery();
     EXPECT_EQ(a.bias, b.bias);
     EXPECT_EQ(a.contrast, b.contrast);
-    EXPECT_NE(a.intensity, AoSettings{}.estimator().intensity) << "the test needs a preset whose fit differs";
+    EXPECT_NE(a.intensity, AoSettings{}.estimatorAt().intensity) << "the test needs a preset whose fit differs";
   }
   // A value that differs from the defaults but equals the preset's own is left out.
   ViewerState low;

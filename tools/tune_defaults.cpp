@@ -1,5 +1,6 @@
-// obscura-tune: fits SAO's intensity sigma, bias beta and contrast k, per quality preset and radius, so that its
-// blurred AO best matches the ray-traced reference at the same radius over a set of views; writes the fitted table
+// obscura-tune: fits SAO's intensity sigma, bias beta and contrast k, per quality preset and radius in pixels, so
+// that its blurred AO best matches the ray-traced reference at the same radius over a set of views (each at several
+// radii, multiples of a typical object's size in that scene's units); writes the fitted table
 // the core reads (src/core/TunedDefaults.inc), and the accuracy report (docs/accuracy.md and its images).
 // tools/tune-defaults.sh runs the whole procedure; see docs/accuracy.md.
 //
@@ -9,9 +10,10 @@
 // The reference images are cached under --cache (default build/tuning-cache), keyed by a hash of the scene's
 // geometry, the camera, the radius, the ray count and the tracer's version, so they are traced once.
 //
-// Fit: for each preset (qualityPresets()) and radius, Nelder-Mead (Nelder & Mead 1965; Lagarias et al. 1998 for
-// the coefficients: reflection 1, expansion 2, contraction 1/2, shrink 1/2) over (ln(sigma k), beta / r, ln k)
-// clamped to a box, minimising the mean over views of MAE + w (1 - SSIM) over geometry pixels (w: "ssim_weight").
+// Fit: for each preset (qualityPresets()) and knot of the projected radius in pixels (AoSettings.h), Nelder-Mead
+// (Nelder & Mead 1965; Lagarias et al. 1998 for the coefficients: reflection 1, expansion 2, contraction 1/2,
+// shrink 1/2) over (ln(sigma k), beta / r, ln k) clamped to a box, minimising the MAE over the geometry pixels whose
+// radius in pixels lies nearest that knot, across every view and radius (see fit()).
 // Every evaluation renders the real pipeline (Renderer, headless), so the fit sees exactly what users see.
 #include <algorithm>
 #include <array>
@@ -32,6 +34,9 @@
 #include "apps/SceneInput.h"
 #include "core/AoSettings.h"
 #include "base/Error.h"
+#include "core/FrameContext.h"
+#include "core/LinearDepthPacking.h"
+#include "core/SaoKernel.h"
 #include "core/Renderer.h"
 #include "gl/RenderTarget.h"
 #include "metrics/AoMetrics.h"
@@ -51,15 +56,15 @@ constexpr const char* kReferenceVersion = "obscura-reference-1";
 struct ViewSpec {
   std::string name;
   SceneInput input;
+  float objectSize = 1.0f;  // a typical object's size in the scene's units: the radii are multiples of it
 };
 
 struct TuningConfig {
   int width = 480, height = 270;
   int rays = 256;
-  std::vector<float> radii;
-  float reportRadius = 1.0f;
-  double ssimWeight = 0.0;
-  int evaluations = 40;         // Nelder-Mead budget for the first preset fitted at each radius
+  std::vector<float> radiusFactors;  // each view is measured at these multiples of its object size
+  float reportFactor = 1.0f;         // the one the per-view tables and pictures show
+  int evaluations = 40;         // Nelder-Mead budget for the first preset fitted at each knot
   int followEvaluations = 15;   // ... and for the others, which start from its result
   std::vector<ViewSpec> views;
 };
@@ -80,9 +85,8 @@ TuningConfig loadConfig(const std::string& path) {
     config.width = size.at(0).get<int>();
     config.height = size.at(1).get<int>();
     config.rays = json.at("rays").get<int>();
-    config.radii = json.at("radii").get<std::vector<float>>();
-    config.reportRadius = json.value("report_radius", 1.0f);
-    config.ssimWeight = json.value("ssim_weight", 0.0);
+    config.radiusFactors = json.at("radius_factors").get<std::vector<float>>();
+    config.reportFactor = json.value("report_factor", 1.0f);
     config.evaluations = json.value("evaluations", 40);
     config.followEvaluations = json.value("follow_evaluations", 15);
     for (const auto& view : json.at("views")) {
@@ -92,6 +96,8 @@ TuningConfig loadConfig(const std::string& path) {
       if (scene != "builtin") spec.input.scenePath = scene;
       spec.input.sceneScale = view.value("scene_scale", 1.0f);
       spec.input.cameraPath = view.at("camera").get<std::string>();
+      spec.objectSize = view.at("object_size").get<float>();
+      if (!(spec.objectSize > 0.0f)) fail("views: " + spec.name + ": object_size must be positive");
       spec.input.width = config.width;
       spec.input.height = config.height;
       config.views.push_back(spec);
@@ -101,10 +107,13 @@ TuningConfig loadConfig(const std::string& path) {
   }
   if (config.width < 16 || config.height < 16 || config.width > 4096 || config.height > 4096)
     fail("size: each side must be in 16 .. 4096");
-  if (config.radii.empty() || !std::is_sorted(config.radii.begin(), config.radii.end()))
-    fail("radii: expected an increasing list");
-  for (float r : config.radii)
-    if (!(r >= 0.01f && r <= 100.0f)) fail("radii: each must be in 0.01 .. 100 metres");
+  if (config.radiusFactors.empty() || !std::is_sorted(config.radiusFactors.begin(), config.radiusFactors.end()))
+    fail("radius_factors: expected an increasing list");
+  for (float f : config.radiusFactors)
+    if (!(f >= 0.01f && f <= 100.0f)) fail("radius_factors: each must be in 0.01 .. 100");
+  if (std::find(config.radiusFactors.begin(), config.radiusFactors.end(), config.reportFactor) ==
+      config.radiusFactors.end())
+    fail("report_factor: must be one of radius_factors");
   if (config.views.empty()) fail("views: empty");
   if (config.evaluations < 4 || config.followEvaluations < 4) fail("evaluations: at least 4");
   return config;
@@ -153,42 +162,101 @@ std::string radiusText(float radius) {
   return text;
 }
 
-// One view: its scene in a renderer, its camera, and its reference images per radius.
+// One view: its scene in a renderer, its camera, and what the reference says of it.
 struct TuningView {
   ViewSpec spec;
   Camera camera;
   std::unique_ptr<Renderer> renderer;
   std::unique_ptr<gl::RenderTarget> output;
   std::vector<std::uint8_t> mask, haloBand;  // from the reference's mask and depth views
-  std::map<float, Image> referenceAo;
-  std::map<float, GreyImage> referenceGrey;
+  std::vector<float> viewDepth;              // -z_view per pixel (0 on background), from the 16-bit depth code
 };
 
-void loadReferences(TuningView& view, const Scene& scene, const TuningConfig& config, const fs::path& cache,
-                    int threads) {
+// One view at one radius: the unit the fit and the report measure.
+struct TuningCase {
+  TuningView* view = nullptr;
+  float factor = 1.0f;  // the radius in units of the view's object size
+  float radius = 1.0f;  // in the scene's units
+  Image referenceAo;
+  GreyImage reference;
+  std::vector<float> radiusPixels;  // the SAO pass's projected radius h at each pixel (clamped as the shader does)
+  double whiteMae = 0;              // MAE of an all-white image: what "no AO" would score
+};
+
+// The 16-bit depth code per pixel in R (high byte) and G (low byte): the depth view's 8 bits are too coarse to place
+// a pixel's projected radius in its knot.
+Image depthCodeImage(const ReferenceFrame& frame) {
+  Image image{frame.width, frame.height, std::vector<std::uint8_t>(frame.linearDepth.size() * 4, 255)};
+  for (size_t i = 0; i < frame.linearDepth.size(); ++i) {
+    const std::uint16_t code = LinearDepthPacking::codeFromDepth(frame.linearDepth[i]);
+    image.rgba[i * 4 + 0] = static_cast<std::uint8_t>(code >> 8);
+    image.rgba[i * 4 + 1] = static_cast<std::uint8_t>(code & 0xff);
+    image.rgba[i * 4 + 2] = 0;
+  }
+  return image;
+}
+
+std::vector<TuningCase> loadReferences(TuningView& view, const Scene& scene, const TuningConfig& config,
+                                       const fs::path& cache, int threads) {
   fs::create_directories(cache);
   const std::string key = referenceKey(scene, view.camera, config.rays);
-  const fs::path depthPath = cache / (view.spec.name + "-" + key + "-depth.png");
-  const fs::path maskPath = cache / (view.spec.name + "-" + key + "-mask.png");
+  const std::string stem = (cache / (view.spec.name + "-" + key)).string();
+  const std::string depthPath = stem + "-depth.png", codePath = stem + "-depth16.png", maskPath = stem + "-mask.png";
   std::unique_ptr<AoReferenceTracer> tracer;
-  for (float radius : config.radii) {
-    const fs::path aoPath = cache / (view.spec.name + "-" + key + "-r" + radiusText(radius) + ".png");
-    if (!fs::exists(aoPath) || !fs::exists(depthPath) || !fs::exists(maskPath)) {
+  std::vector<TuningCase> cases;
+  for (float factor : config.radiusFactors) {
+    const float radius = factor * view.spec.objectSize;
+    const std::string aoPath = stem + "-r" + radiusText(radius) + ".png";
+    if (!fs::exists(aoPath) || !fs::exists(depthPath) || !fs::exists(codePath) || !fs::exists(maskPath)) {
       if (!tracer) tracer = std::make_unique<AoReferenceTracer>(scene, threads);
       const auto start = std::chrono::steady_clock::now();
       const ReferenceFrame frame = tracer->trace(view.camera, {radius, config.rays, threads});
-      writePng(aoPath.string(), frame.aoImage());
-      writePng(depthPath.string(), frame.depthImage());
-      writePng(maskPath.string(), frame.maskImage());
-      std::printf("  traced %s at r = %s m: %.1f s\n", view.spec.name.c_str(), radiusText(radius).c_str(),
+      writePng(aoPath, frame.aoImage());
+      writePng(depthPath, frame.depthImage());
+      writePng(codePath, depthCodeImage(frame));
+      writePng(maskPath, frame.maskImage());
+      std::printf("  traced %s at r = %s: %.1f s\n", view.spec.name.c_str(), radiusText(radius).c_str(),
                   std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
       std::fflush(stdout);
     }
-    view.referenceAo[radius] = readPng(aoPath.string());
-    view.referenceGrey[radius] = GreyImage::fromRed(view.referenceAo[radius]);
+    TuningCase c;
+    c.view = &view;
+    c.factor = factor;
+    c.radius = radius;
+    c.referenceAo = readPng(aoPath);
+    c.reference = GreyImage::fromRed(c.referenceAo);
+    cases.push_back(std::move(c));
   }
-  view.mask = maskFromImage(readPng(maskPath.string()));
-  view.haloBand = discontinuityBand(GreyImage::fromRed(readPng(depthPath.string())), {});
+  view.mask = maskFromImage(readPng(maskPath));
+  // The issue's halo band: geometry within 4 pixels of a depth discontinuity.
+  DiscontinuityOptions band;
+  band.haloWidth = 4;
+  view.haloBand = discontinuityBand(GreyImage::fromRed(readPng(depthPath)), band);
+  const Image codes = readPng(codePath);
+  view.viewDepth.assign(view.mask.size(), 0.0f);
+  for (size_t i = 0; i < view.mask.size(); ++i) {
+    const auto code = static_cast<std::uint16_t>((codes.rgba[i * 4] << 8) | codes.rgba[i * 4 + 1]);
+    if (view.mask[i])
+      view.viewDepth[i] = view.camera.near + LinearDepthPacking::depthFromCode(code) * (view.camera.far - view.camera.near);
+  }
+  // h = min(projScale r / -z, maxScreenRadius * height), as SaoKernel::diskRadiusPixels at G-buffer resolution.
+  const AoSettings defaults;
+  const float projScale = FrameCamera::from(view.camera, view.camera.width, view.camera.height)
+                              .projScale(view.camera.height);
+  const float maxPixels = defaults.maxScreenRadius * static_cast<float>(view.camera.height);
+  for (TuningCase& c : cases) {
+    c.radiusPixels.assign(view.mask.size(), 0.0f);
+    double white = 0.0;
+    size_t pixels = 0;
+    for (size_t i = 0; i < view.mask.size(); ++i) {
+      if (!view.mask[i]) continue;
+      c.radiusPixels[i] = SaoKernel::diskRadiusPixels(c.radius, -view.viewDepth[i], projScale, maxPixels);
+      white += 1.0 - c.reference.values[i];
+      ++pixels;
+    }
+    c.whiteMae = pixels ? white / static_cast<double>(pixels) : 0.0;
+  }
+  return cases;
 }
 
 Image renderAo(TuningView& view, const AoSettings& settings, PassTimer* timer = nullptr) {
@@ -201,35 +269,48 @@ Image renderAo(TuningView& view, const AoSettings& settings, PassTimer* timer = 
   return image;
 }
 
-AoComparison measure(TuningView& view, const AoSettings& settings, float radius, bool ssim = true) {
-  const GreyImage sao = GreyImage::fromRed(renderAo(view, settings));
-  return compareAo(view.referenceGrey.at(radius), sao, view.mask, view.haloBand, ssim);
+AoComparison measure(TuningCase& c, const AoSettings& settings, bool ssim = true) {
+  AoSettings at = settings;
+  at.radius = c.radius;
+  const GreyImage ao = GreyImage::fromRed(renderAo(*c.view, at));
+  return compareAo(c.reference, ao, c.view->mask, c.view->haloBand, ssim);
 }
 
+// The knot a projected radius h belongs to when fitting: the nearest in log2(h), the ends taking everything beyond.
+int knotOf(float radiusPixels) {
+  const float t = std::log2(std::max(radiusPixels, 1e-3f) / kFirstKnotPixels);
+  return std::clamp(static_cast<int>(std::lround(t)), 0, kEstimatorKnots - 1);
+}
+
+// Means over cases, each case weighted alike.
 struct Score {
-  double objective = 0, mae = 0, ssim = 0, haloMae = 0;
-};
-
-Score score(std::vector<TuningView>& views, const AoSettings& settings, float radius, double ssimWeight,
-            bool ssim = true) {
-  Score s;
-  for (TuningView& view : views) {
-    const AoComparison c = measure(view, settings, radius, ssim);
-    s.mae += c.mae;
-    s.ssim += c.ssim;
-    s.haloMae += c.haloMae;
+  double mae = 0, ssim = 0, pearson = 0, haloMae = 0, interiorMae = 0, paperMae = 0, minSkill = 1;
+  int cases = 0;
+  void add(const AoComparison& c, double whiteMae) {
+    mae += c.mae;
+    ssim += c.ssim;
+    pearson += c.pearson;
+    haloMae += c.haloMae;
+    interiorMae += c.interiorMae;
+    minSkill = std::min(minSkill, whiteMae > 0 ? 1.0 - c.mae / whiteMae : 0.0);
+    ++cases;
   }
-  const double n = static_cast<double>(views.size());
-  s.mae /= n;
-  s.ssim /= n;
-  s.haloMae /= n;
-  s.objective = s.mae + ssimWeight * (1.0 - s.ssim);
-  return s;
-}
+  Score mean() const {
+    Score s = *this;
+    const double n = std::max(cases, 1);
+    s.mae /= n;
+    s.ssim /= n;
+    s.pearson /= n;
+    s.haloMae /= n;
+    s.interiorMae /= n;
+    s.paperMae /= n;
+    return s;
+  }
+};
 
 // --- The fit -------------------------------------------------------------------------------------------------------
 
-// The search runs over (ln(sigma k), beta / r, ln k). SAO's visibility is max(0, 1 - sigma S)^k for the tap sum S;
+// The search runs over (ln(sigma k), beta, ln k), beta a fraction of the radius. SAO's visibility is max(0, 1 - sigma S)^k for the tap sum S;
 // for large k it tends to exp(-sigma k S), so sigma and k trade against each other along sigma k = const. Searching
 // ln(sigma k) and ln k separately keeps that valley axis-aligned, where Nelder-Mead walks it quickly.
 using Point = std::array<double, 3>;
@@ -245,15 +326,15 @@ Point clampToBox(const Point& p) {
   return {lnSigmaK, std::clamp(p[1], 0.0, 0.5), lnK};
 }
 
-EstimatorParameters toParameters(const Point& p, float radius) {
+EstimatorParameters toParameters(const Point& p) {
   const Point q = clampToBox(p);
   // Rounded to what the table stores, so the fitted figures are those of the written values.
   auto round4 = [](double v) { return static_cast<float>(std::round(v * 1e4) / 1e4); };
-  return {round4(std::exp(q[0] - q[2])), std::min(round4(q[1] * radius), 1.0f), round4(std::exp(q[2]))};
+  return {round4(std::exp(q[0] - q[2])), round4(q[1]), round4(std::exp(q[2]))};
 }
 
-Point fromParameters(const EstimatorParameters& e, float radius) {
-  return clampToBox({std::log(e.intensity * e.contrast), e.bias / radius, std::log(e.contrast)});
+Point fromParameters(const EstimatorParameters& e) {
+  return clampToBox({std::log(e.intensity * e.contrast), e.bias, std::log(e.contrast)});
 }
 
 Point nelderMead(const std::function<double(const Point&)>& f, const Point& start, const Point& step,
@@ -328,10 +409,9 @@ Point nelderMead(const std::function<double(const Point&)>& f, const Point& star
   return simplex[static_cast<size_t>(std::min_element(value.begin(), value.end()) - value.begin())];
 }
 
-AoSettings settingsFor(QualityPreset preset, float radius) {
+AoSettings settingsFor(QualityPreset preset) {
   AoSettings settings;
   settings.applyPreset(preset);
-  settings.radius = radius;
   return settings;
 }
 
@@ -362,85 +442,155 @@ std::string presetEnumName(const PresetInfo& preset) {
   return "QualityPreset::" + name;
 }
 
+// Every estimator the table holds, in its order.
+constexpr AoEstimator kEstimators[] = {AoEstimator::Sao, AoEstimator::Gtao};
+
+std::string estimatorEnumName(AoEstimator estimator) {
+  return estimator == AoEstimator::Gtao ? "AoEstimator::Gtao" : "AoEstimator::Sao";
+}
+
 std::string viewList(const TuningConfig& config) {
   std::string names;
   for (const ViewSpec& v : config.views) names += (names.empty() ? "" : ", ") + v.name;
   return names;
 }
 
-void fit(std::vector<TuningView>& views, const TuningConfig& config, const std::string& tablePath) {
+// The fit, per preset and knot j: the pixels whose projected radius lies nearest knot j (knotOf), over every case
+// (view x radius), rendered with one (sigma, beta, k) everywhere; Nelder-Mead minimises their pixel-weighted MAE.
+// Each pixel then interpolates the knots at its own radius in pixels (EstimatorKnots::interpolate). A knot with too
+// few pixels over all cases copies its neighbour's fit.
+void fit(std::vector<TuningCase>& cases, const TuningConfig& config, const std::string& tablePath) {
+  constexpr size_t kMinCasePixels = 200, kMinKnotPixels = 2000;
   struct Row {
+    AoEstimator estimator;
     const PresetInfo* preset;
-    float radius;
+    int knot;
     EstimatorParameters fitted;
-    Score tuned, paper;
+    double mae = 0, paperMae = 0;
+    size_t pixels = 0;
   };
   std::vector<Row> rows;
   const auto& presets = qualityPresets();
-  // The default preset first: the others start from its result at the same radius.
+  // The default preset first: the others start from its result at the same knot.
   std::vector<const PresetInfo*> order;
   for (const PresetInfo& p : presets)
     if (p.preset == AoSettings{}.preset) order.push_back(&p);
   for (const PresetInfo& p : presets)
     if (p.preset != AoSettings{}.preset) order.push_back(&p);
 
-  std::map<float, EstimatorParameters> leader;
+  // Which pixels of which cases belong to each knot.
+  struct Member {
+    TuningCase* c;
+    std::vector<std::uint32_t> pixels;
+  };
+  std::array<std::vector<Member>, kEstimatorKnots> members;
+  std::array<size_t, kEstimatorKnots> knotPixels{};
+  for (TuningCase& c : cases) {
+    std::array<std::vector<std::uint32_t>, kEstimatorKnots> byKnot;
+    for (size_t i = 0; i < c.radiusPixels.size(); ++i)
+      if (c.view->mask[i]) byKnot[static_cast<size_t>(knotOf(c.radiusPixels[i]))].push_back(static_cast<std::uint32_t>(i));
+    for (size_t j = 0; j < byKnot.size(); ++j) {
+      if (byKnot[j].size() < kMinCasePixels) continue;
+      knotPixels[j] += byKnot[j].size();
+      members[j].push_back({&c, std::move(byKnot[j])});
+    }
+  }
+  auto knotMae = [&](int knot, const AoSettings& settings) {
+    double sum = 0.0;
+    size_t n = 0;
+    for (const Member& m : members[static_cast<size_t>(knot)]) {
+      AoSettings at = settings;
+      at.radius = m.c->radius;
+      const Image ao = renderAo(*m.c->view, at);
+      for (std::uint32_t i : m.pixels) sum += std::abs(ao.rgba[i * 4] / 255.0 - m.c->reference.values[i]);
+      n += m.pixels.size();
+    }
+    return n ? sum / static_cast<double>(n) : 0.0;
+  };
+
+  for (AoEstimator estimator : kEstimators) {
+  std::map<int, EstimatorParameters> leader;
   for (const PresetInfo* preset : order) {
-    EstimatorParameters start = kPaperEstimatorParameters;
-    for (float radius : config.radii) {
-      const bool first = leader.count(radius) == 0;
-      if (!first) start = leader[radius];
-      const AoSettings base = settingsFor(preset->preset, radius);
+    AoSettings base = settingsFor(preset->preset);
+    base.estimator = estimator;
+    std::map<int, Row> fitted;
+    for (int knot = 0; knot < kEstimatorKnots; ++knot) {
+      if (knotPixels[static_cast<size_t>(knot)] < kMinKnotPixels) continue;
+      const bool first = leader.count(knot) == 0;
+      EstimatorParameters start = kPaperEstimatorParameters;
+      if (!first) start = leader[knot];
+      else if (fitted.count(knot - 1)) start = fitted[knot - 1].fitted;
       int evaluations = 0;
       auto objective = [&](const Point& p) {
         ++evaluations;
-        // SSIM costs as much as the render: computed only when the objective weighs it.
-        return score(views, withParameters(base, toParameters(p, radius)), radius, config.ssimWeight,
-                     config.ssimWeight > 0.0)
-            .objective;
+        return knotMae(knot, withParameters(base, toParameters(p)));
       };
       const auto begin = std::chrono::steady_clock::now();
-      const Point step = first ? Point{0.4, 0.03, 0.4} : Point{0.15, 0.01, 0.15};
-      const Point best = nelderMead(objective, fromParameters(start, radius), step,
-                                    first ? config.evaluations : config.followEvaluations);
-      Row row{preset, radius, toParameters(best, radius), {}, {}};
-      row.tuned = score(views, withParameters(base, row.fitted), radius, config.ssimWeight);
-      row.paper = score(views, withParameters(base, kPaperEstimatorParameters), radius, config.ssimWeight);
-      std::printf("  %-6s r = %-4s sigma %.3f beta %.4f k %.3f | MAE %.4f SSIM %.3f halo %.4f | paper MAE %.4f SSIM "
-                  "%.3f | %d renders x %zu views, %.0f s\n",
-                  preset->name, radiusText(radius).c_str(), static_cast<double>(row.fitted.intensity),
-                  static_cast<double>(row.fitted.bias), static_cast<double>(row.fitted.contrast), row.tuned.mae,
-                  row.tuned.ssim, row.tuned.haloMae, row.paper.mae, row.paper.ssim, evaluations, views.size(),
+      const Point step = first ? Point{0.4, 0.05, 0.4} : Point{0.15, 0.02, 0.15};
+      const Point best =
+          nelderMead(objective, fromParameters(start), step, first ? config.evaluations : config.followEvaluations);
+      Row row{estimator, preset, knot, toParameters(best)};
+      row.mae = knotMae(knot, withParameters(base, row.fitted));
+      row.paperMae = knotMae(knot, withParameters(base, kPaperEstimatorParameters));
+      row.pixels = knotPixels[static_cast<size_t>(knot)];
+      std::printf("  %-4s %-6s h = %3.0f px sigma %.3f beta %.4f k %.3f | MAE %.4f | paper MAE %.4f | %zu px in %zu "
+                  "cases, %d renders each, %.0f s\n",
+                  estimatorName(estimator), preset->name, static_cast<double>(estimatorKnotPixels(knot)),
+                  static_cast<double>(row.fitted.intensity), static_cast<double>(row.fitted.bias),
+                  static_cast<double>(row.fitted.contrast), row.mae, row.paperMae, row.pixels,
+                  members[static_cast<size_t>(knot)].size(), evaluations,
                   std::chrono::duration<double>(std::chrono::steady_clock::now() - begin).count());
       std::fflush(stdout);
-      if (first) leader[radius] = row.fitted;
-      start = row.fitted;
+      if (first) leader[knot] = row.fitted;
+      fitted[knot] = row;
+    }
+    if (fitted.empty()) throw InputError("no knot has enough pixels: add views or radius factors");
+    for (int knot = 0; knot < kEstimatorKnots; ++knot) {
+      Row row;
+      if (fitted.count(knot)) {
+        row = fitted[knot];
+      } else {  // the nearest fitted knot's values
+        int nearest = fitted.begin()->first;
+        for (const auto& [k, r] : fitted)
+          if (std::abs(k - knot) < std::abs(nearest - knot)) nearest = k;
+        row = fitted[nearest];
+        row.knot = knot;
+        row.pixels = 0;
+      }
       rows.push_back(row);
     }
   }
+  }
 
-  // Rows grouped by preset in qualityPresets() order, radii increasing, as tunedEstimatorParameters expects.
+  // Rows grouped by preset in qualityPresets() order, knots increasing, as tunedEstimatorKnots expects.
   std::ostringstream out;
-  const std::string objective =
-      config.ssimWeight > 0.0 ? "MAE + " + format("%g", config.ssimWeight) + " (1 - SSIM)" : std::string("MAE");
   out << "// Generated by tools/tune-defaults.sh (obscura-tune --fit): do not edit by hand.\n"
-      << "// SAO's intensity sigma, bias beta and contrast k per quality preset and radius, fitted to the ray-traced\n"
-      << "// reference (obscura-reference, " << config.rays << " rays per pixel) at " << config.width << "x"
-      << config.height << ", minimising the mean " << objective << "\n"
-      << "// of the blurred AO over geometry pixels across the views of tools/tuning-views.json:\n"
-      << "// " << viewList(config) << ".\n"
+      << "// Each estimator's intensity sigma, bias beta (a fraction of the radius) and contrast k per quality preset, at\n"
+      << "// knots of"
+      << " the projected radius in pixels (AoSettings.h), fitted to the ray-traced reference (obscura-reference,\n"
+      << "// " << config.rays << " rays per pixel) at " << config.width << "x" << config.height
+      << ": per knot, the MAE of the blurred AO over the pixels whose\n"
+      << "// radius in pixels lies nearest it, across the views of tools/tuning-views.json at radii of";
+  for (float f : config.radiusFactors) out << " " << radiusText(f);
+  out << "\n// times each view's object size: " << viewList(config) << ".\n"
       << "// docs/accuracy.md explains the procedure.\n"
-      << "// {preset, radius (m), {intensity sigma, bias beta (m), contrast k}},  // fitted | SAO paper's values\n";
+      << "// {estimator, preset, radius in pixels (knot), {intensity sigma, bias beta (fraction of r), contrast k}},  // fitted | "
+         "SAO paper's values\n";
+  for (AoEstimator estimator : kEstimators) {
   for (const PresetInfo& preset : presets) {
     for (const Row& row : rows) {
-      if (row.preset != &preset) continue;
+      if (row.preset != &preset || row.estimator != estimator) continue;
       char comment[160];
-      std::snprintf(comment, sizeof comment, "  // MAE %.4f SSIM %.3f | paper MAE %.4f SSIM %.3f", row.tuned.mae,
-                    row.tuned.ssim, row.paper.mae, row.paper.ssim);
-      out << "{" << presetEnumName(preset) << ", " << floatLiteral(row.radius) << ", {"
-          << floatLiteral(row.fitted.intensity) << ", " << floatLiteral(row.fitted.bias) << ", "
-          << floatLiteral(row.fitted.contrast) << "}}," << comment << "\n";
+      if (row.pixels)
+        std::snprintf(comment, sizeof comment, "  // MAE %.4f | paper MAE %.4f, %zu px", row.mae, row.paperMae,
+                      row.pixels);
+      else
+        std::snprintf(comment, sizeof comment, "  // too few pixels: the nearest fitted knot's values");
+      out << "{" << estimatorEnumName(estimator) << ", " << presetEnumName(preset) << ", "
+          << floatLiteral(estimatorKnotPixels(row.knot)) << ", {" << floatLiteral(row.fitted.intensity) << ", "
+          << floatLiteral(row.fitted.bias) << ", " << floatLiteral(row.fitted.contrast) << "}}," << comment << "\n";
     }
+  }
   }
   std::ofstream file(tablePath);
   if (!(file << out.str())) throw InputError(tablePath + ": cannot write");
@@ -463,79 +613,108 @@ double aoMilliseconds(TuningView& view, const AoSettings& settings) {
   return frames[kFrames / 2];
 }
 
-void report(std::vector<TuningView>& views, const TuningConfig& config, const std::string& docPath,
-            const std::string& imageDir, const HeadlessContext& context) {
-  const float radius = config.reportRadius;
-  if (std::find(config.radii.begin(), config.radii.end(), radius) == config.radii.end())
-    throw InputError("report_radius: must be one of the fitted radii");
+std::string passFail(bool met) { return met ? "met" : "**not met**"; }
+
+void report(std::vector<TuningCase>& cases, std::vector<TuningView>& views, const TuningConfig& config,
+            const std::string& docPath, const std::string& imageDir, const HeadlessContext& context) {
   std::ostringstream md;
   md << "Generated by `tools/tune-defaults.sh` (`obscura-tune --report`) on " << context.caps().renderer << ", "
-     << config.width << "x" << config.height << ", reference " << config.rays << " rays per pixel. Errors are in AO "
-     << "units (0 = black, 1 = white) over geometry pixels; *halo* is the MAE within 3 pixels of a depth "
-     << "discontinuity; *AO ms* is the median time of the AO passes (everything but the G-buffer and the composite), "
-     << "glFinish-bounded.\n\n";
-
-  md << "### Each view and preset at r = " << radiusText(radius) << " m, default (tuned) parameters\n\n"
-     << "| view | preset | MAE | RMSE | SSIM | Pearson | halo MAE | interior MAE | bias | AO ms | MAE, paper's sigma/beta/k "
-        "|\n"
-     << "|---|---|---|---|---|---|---|---|---|---|---|\n";
-  std::map<std::string, std::array<double, 5>> meanByPreset;  // MAE, SSIM, halo, paper MAE, Pearson
-  for (TuningView& view : views) {
-    for (const PresetInfo& preset : qualityPresets()) {
-      const AoSettings tuned = settingsFor(preset.preset, radius);  // estimator parameters left to the table
-      const AoComparison c = measure(view, tuned, radius);
-      const AoComparison paper = measure(view, withParameters(tuned, kPaperEstimatorParameters), radius);
-      const double ms = aoMilliseconds(view, tuned);
-      md << "| " << view.spec.name << " | " << preset.name << " | " << format("%.4f", c.mae) << " | "
-         << format("%.4f", c.rmse) << " | " << format("%.3f", c.ssim) << " | " << format("%.3f", c.pearson) << " | "
-         << format("%.4f", c.haloMae) << " | "
-         << format("%.4f", c.interiorMae) << " | " << format("%+.4f", c.bias) << " | " << format("%.1f", ms) << " | "
-         << format("%.4f", paper.mae) << " |\n";
-      auto& mean = meanByPreset[preset.name];
-      mean[0] += c.mae / static_cast<double>(views.size());
-      mean[1] += c.ssim / static_cast<double>(views.size());
-      mean[2] += c.haloMae / static_cast<double>(views.size());
-      mean[3] += paper.mae / static_cast<double>(views.size());
-      mean[4] += c.pearson / static_cast<double>(views.size());
-    }
-  }
-  md << "\n**Mean over the views:**\n\n"
-     << "| preset | MAE | SSIM | Pearson | halo MAE | MAE, paper's sigma/beta/k |\n|---|---|---|---|---|---|\n";
-  for (const PresetInfo& preset : qualityPresets()) {
-    const auto& mean = meanByPreset[preset.name];
-    md << "| " << preset.name << " | " << format("%.4f", mean[0]) << " | " << format("%.3f", mean[1]) << " | "
-       << format("%.3f", mean[4]) << " | " << format("%.4f", mean[2]) << " | " << format("%.4f", mean[3]) << " |\n";
-  }
+     << config.width << "x" << config.height << ", reference " << config.rays << " rays per pixel, " << views.size()
+     << " views at radii of";
+  for (float f : config.radiusFactors) md << " " << radiusText(f);
+  md << " times each view's object size (" << cases.size() << " cases). Errors are in AO units (0 = black, "
+     << "1 = white) over geometry pixels; *halo* is the MAE within 4 pixels of a depth discontinuity, *interior* the "
+     << "MAE elsewhere; *skill* is 1 - MAE / (MAE of an all-white image); *AO ms* is the median time of the AO passes "
+     << "(everything but the G-buffer and the composite), glFinish-bounded.\n\n";
 
   const AoSettings defaults;
-  md << "\n### Every fitted radius, preset " << presetName(defaults.preset)
-     << " (mean over the views)\n\n"
-     << "| radius (m) | sigma | beta (m) | k | MAE | SSIM | halo MAE | MAE, paper's values | SSIM, paper's values |\n"
-     << "|---|---|---|---|---|---|---|---|---|\n";
-  for (float r : config.radii) {
-    AoSettings tuned = settingsFor(defaults.preset, r);
-    const EstimatorParameters e = tuned.estimator();
-    const Score s = score(views, tuned, r, 0.0);
-    const Score paper = score(views, withParameters(tuned, kPaperEstimatorParameters), r, 0.0);
-    md << "| " << radiusText(r) << " | " << format("%.3f", e.intensity) << " | " << format("%.4f", e.bias) << " | "
-       << format("%.3f", e.contrast) << " | " << format("%.4f", s.mae) << " | " << format("%.3f", s.ssim) << " | "
-       << format("%.4f", s.haloMae) << " | " << format("%.4f", paper.mae) << " | " << format("%.3f", paper.ssim)
-       << " |\n";
+  std::map<QualityPreset, Score> byPreset;
+  std::map<float, Score> byFactor;  // default preset
+  for (TuningCase& c : cases) {
+    for (const PresetInfo& preset : qualityPresets()) {
+      const AoSettings tuned = settingsFor(preset.preset);
+      const AoComparison m = measure(c, tuned);
+      Score& s = byPreset[preset.preset];
+      s.add(m, c.whiteMae);
+      s.paperMae += measure(c, withParameters(tuned, kPaperEstimatorParameters), false).mae;
+      if (preset.preset == defaults.preset) byFactor[c.factor].add(m, c.whiteMae);
+    }
+  }
+  const Score target = byPreset[defaults.preset].mean();
+  const double haloRatio = target.haloMae / std::max(target.interiorMae, 1e-9);
+  md << "### Targets (issue 12), preset " << presetName(defaults.preset) << ", mean over the " << cases.size()
+     << " cases\n\n"
+     << "| figure | target | reached | |\n|---|---|---|---|\n"
+     << "| mean Pearson correlation | >= 0.93 | " << format("%.3f", target.pearson) << " | "
+     << passFail(target.pearson >= 0.93) << " |\n"
+     << "| mean MAE | <= 0.030 | " << format("%.4f", target.mae) << " | " << passFail(target.mae <= 0.030) << " |\n"
+     << "| halo MAE / interior MAE | <= 1.1 | " << format("%.2f", haloRatio) << " | " << passFail(haloRatio <= 1.1)
+     << " |\n"
+     << "| lowest skill of any case | >= 0.5 | " << format("%.2f", target.minSkill) << " | "
+     << passFail(target.minSkill >= 0.5) << " |\n\n";
+
+  md << "### Each preset, mean over the cases\n\n"
+     << "| preset | MAE | SSIM | Pearson | halo MAE | interior MAE | halo / interior | lowest skill | MAE, paper's "
+        "sigma/beta/k |\n|---|---|---|---|---|---|---|---|---|\n";
+  for (const PresetInfo& preset : qualityPresets()) {
+    const Score s = byPreset[preset.preset].mean();
+    md << "| " << preset.name << " | " << format("%.4f", s.mae) << " | " << format("%.3f", s.ssim) << " | "
+       << format("%.3f", s.pearson) << " | " << format("%.4f", s.haloMae) << " | " << format("%.4f", s.interiorMae)
+       << " | " << format("%.2f", s.haloMae / std::max(s.interiorMae, 1e-9)) << " | " << format("%.2f", s.minSkill)
+       << " | " << format("%.4f", s.paperMae) << " |\n";
   }
 
-  md << "\n### Reference | SAO | difference\n\nPreset " << presetName(defaults.preset)
-     << ", r = " << radiusText(radius) << " m, tuned parameters. Difference: red where SAO is darker than the "
-     << "reference, blue where lighter, full colour at 0.25; grey: background.\n\n";
+  md << "\n### Each radius (in object sizes), preset " << presetName(defaults.preset) << ", mean over the views\n\n"
+     << "| radius / object size | MAE | SSIM | Pearson | halo MAE | interior MAE | lowest skill |\n"
+     << "|---|---|---|---|---|---|---|\n";
+  for (const auto& [factor, score] : byFactor) {
+    const Score s = score.mean();
+    md << "| " << radiusText(factor) << " | " << format("%.4f", s.mae) << " | " << format("%.3f", s.ssim) << " | "
+       << format("%.3f", s.pearson) << " | " << format("%.4f", s.haloMae) << " | " << format("%.4f", s.interiorMae)
+       << " | " << format("%.2f", s.minSkill) << " |\n";
+  }
+
+  md << "\n### Each view at " << radiusText(config.reportFactor) << " object size, preset "
+     << presetName(defaults.preset) << "\n\n"
+     << "| view | r (scene units) | MAE | RMSE | SSIM | Pearson | halo MAE | interior MAE | bias | skill | AO ms | MAE, "
+        "paper's sigma/beta/k |\n|---|---|---|---|---|---|---|---|---|---|---|---|\n";
+  for (TuningCase& c : cases) {
+    if (c.factor != config.reportFactor) continue;
+    const AoSettings tuned = settingsFor(defaults.preset);
+    const AoComparison m = measure(c, tuned);
+    const AoComparison paper = measure(c, withParameters(tuned, kPaperEstimatorParameters), false);
+    AoSettings timed = tuned;
+    timed.radius = c.radius;
+    const double ms = aoMilliseconds(*c.view, timed);
+    md << "| " << c.view->spec.name << " | " << radiusText(c.radius) << " | " << format("%.4f", m.mae) << " | "
+       << format("%.4f", m.rmse) << " | " << format("%.3f", m.ssim) << " | " << format("%.3f", m.pearson) << " | "
+       << format("%.4f", m.haloMae) << " | " << format("%.4f", m.interiorMae) << " | " << format("%+.4f", m.bias)
+       << " | " << format("%.2f", 1.0 - m.mae / std::max(c.whiteMae, 1e-9)) << " | " << format("%.1f", ms) << " | "
+       << format("%.4f", paper.mae) << " |\n";
+  }
+
+  md << "\n### The fitted knots, preset " << presetName(defaults.preset) << "\n\n"
+     << "| radius in pixels | sigma | beta (fraction of r) | k |\n|---|---|---|---|\n";
+  const EstimatorKnots knots = tunedEstimatorKnots(defaults.estimator, defaults.preset);
+  for (int j = 0; j < kEstimatorKnots; ++j)
+    md << "| " << radiusText(estimatorKnotPixels(j)) << " | " << format("%.3f", knots.at[j].intensity) << " | "
+       << format("%.4f", knots.at[j].bias) << " | " << format("%.3f", knots.at[j].contrast) << " |\n";
+
+  md << "\n### Reference | SAO | difference\n\nPreset " << presetName(defaults.preset) << ", r = "
+     << radiusText(config.reportFactor) << " object size, tuned parameters. Difference: red where SAO is darker than "
+     << "the reference, blue where lighter, full colour at 0.25; grey: background.\n\n";
   fs::create_directories(imageDir);
   const fs::path docDir = fs::path(docPath).parent_path();
-  for (TuningView& view : views) {
-    const AoSettings tuned = settingsFor(defaults.preset, radius);
-    const Image sao = renderAo(view, tuned);
-    const Image& reference = view.referenceAo.at(radius);
-    const Image diff = differenceImage(view.referenceGrey.at(radius), GreyImage::fromRed(sao), view.mask);
-    const fs::path file = fs::path(imageDir) / ("accuracy-" + view.spec.name + ".png");
-    writePng(file.string(), sideBySide({reference, sao, diff}));
-    md << "**" << view.spec.name << "**\n\n![" << view.spec.name << ": reference | SAO | difference]("
+  for (TuningCase& c : cases) {
+    if (c.factor != config.reportFactor) continue;
+    AoSettings tuned = settingsFor(defaults.preset);
+    tuned.radius = c.radius;
+    const Image sao = renderAo(*c.view, tuned);
+    const Image diff = differenceImage(c.reference, GreyImage::fromRed(sao), c.view->mask);
+    const std::string& name = c.view->spec.name;
+    const fs::path file = fs::path(imageDir) / ("accuracy-" + name + ".png");
+    writePng(file.string(), sideBySide({c.referenceAo, sao, diff}));
+    md << "**" << name << "** (r = " << radiusText(c.radius) << ")\n\n![" << name << ": reference | SAO | difference]("
        << fs::relative(file, docDir.empty() ? fs::path(".") : docDir).generic_string() << ")\n\n";
   }
 
@@ -605,8 +784,9 @@ int main(int argc, char** argv) {
     HeadlessContext context(backend);
     std::vector<TuningView> views(config.views.size());
     std::printf("obscura-tune: %zu views at %dx%d, radii", views.size(), config.width, config.height);
-    for (float r : config.radii) std::printf(" %s", radiusText(r).c_str());
-    std::printf(" m; references in %s\n", cache.c_str());
+    for (float f : config.radiusFactors) std::printf(" %s", radiusText(f).c_str());
+    std::printf(" x object size; references in %s\n", cache.c_str());
+    std::vector<TuningCase> cases;
     for (size_t i = 0; i < views.size(); ++i) {
       TuningView& view = views[i];
       view.spec = config.views[i];
@@ -614,15 +794,15 @@ int main(int argc, char** argv) {
       view.spec.input.printWarnings("obscura-tune", input.warnings);
       const Scene scene = std::move(input.scene);
       view.camera = input.camera;
-      loadReferences(view, scene, config, cache, threads);
+      for (TuningCase& c : loadReferences(view, scene, config, cache, threads)) cases.push_back(std::move(c));
       view.renderer = std::make_unique<Renderer>(context.caps());
       view.renderer->setScene(scene);
       view.output = std::make_unique<gl::RenderTarget>("tuning output", view.camera.width, view.camera.height,
                                                        GL_NEAREST, gl::RenderTarget::Depth::Renderbuffer,
                                                        context.caps().depth24);
     }
-    if (!tablePath.empty()) fit(views, config, tablePath);
-    else report(views, config, docPath, imageDir, context);
+    if (!tablePath.empty()) fit(cases, config, tablePath);
+    else report(cases, views, config, docPath, imageDir, context);
     std::printf("obscura-tune: done in %.0f s\n",
                 std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
     return 0;

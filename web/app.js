@@ -32,7 +32,7 @@ function setStatus(message) { $('#status').textContent = message; }
 // --- Parameter controls ------------------------------------------------------------------------------------------
 
 // Slider positions: whole numbers step through their range; real numbers get SLIDER_STEPS positions, on a
-// logarithmic scale for wide positive ranges (radius 0.01 .. 100 m) so small values stay reachable.
+// logarithmic scale for wide positive ranges (the radius) so small values stay reachable.
 function sliderScale(parameter) {
   if (parameter.kind === 'integer') {
     return { min: parameter.min, max: parameter.max, toSlider: (v) => v, fromSlider: (t) => t };

@@ -19,7 +19,7 @@ std::string referenceUsage() {
          "Ray-traces (Embree) the ambient visibility A = (1/pi) * integral of V_R(w) cos(theta) dw of the scene\n"
          "obscura-render draws, with the same scene, camera and view conventions (docs/accuracy.md).\n" +
          sceneInputUsage() +
-         "  --radius R        AO radius in metres, as obscura-render's --radius (0.01 .. 100; default 1)\n"
+         "  --radius R        AO radius in scene units, as obscura-render's --radius (1e-4 .. 1e6; default 1)\n"
          "  --rays N          cosine-weighted hemisphere rays per pixel, a power of two (default 256)\n"
          "  --threads N       worker threads (default: the number of cores); the image does not depend on it\n"
          "  --view V          ao (default) | depth | mask, encoded as obscura-render's views\n"

@@ -1,5 +1,6 @@
 #include "core/AoSettings.h"
 
+#include <algorithm>
 #include <cmath>
 
 #include "base/Error.h"
@@ -27,17 +28,21 @@ const std::vector<Parameter<AoSettings>>& AoSettings::parameters() {
     presetParameter.valid = [](const S&) { return true; };
     t.push_back(std::move(presetParameter).primary());
 
-    t.push_back(numberParameter<S>("radius", 0.01, 100, "metres", "world-space obscurance radius r", &S::radius)
+    t.push_back(choiceParameter<S, AoEstimator>("estimator", "obscurance estimator (docs/accuracy.md compares them)",
+                                                &S::estimator,
+                                                {{"sao", AoEstimator::Sao}, {"gtao", AoEstimator::Gtao}}));
+    t.push_back(numberParameter<S>("radius", 1e-4, 1e6, "scene units",
+                                   "world-space obscurance radius r (metres in the built-in scene)", &S::radius)
                     .primary());
     t.push_back(autoNumberParameter<S>("intensity", 0, 20, "", "intensity sigma (auto: fitted to the reference)",
-                                       &S::intensity, [](const S& s) { return s.estimator().intensity; })
+                                       &S::intensity, [](const S& s) { return s.estimatorAt().intensity; })
                     .primary());
-    t.push_back(autoNumberParameter<S>("bias", 0, 1, "metres",
+    t.push_back(autoNumberParameter<S>("bias", 0, 1, "fraction of radius",
                                        "tangent-plane bias beta against self-occlusion (auto: fitted to the reference)",
-                                       &S::bias, [](const S& s) { return s.estimator().bias; })
+                                       &S::bias, [](const S& s) { return s.estimatorAt().bias; })
                     .primary());
     t.push_back(autoNumberParameter<S>("contrast", 0.1, 10, "", "contrast exponent k (auto: fitted to the reference)",
-                                       &S::contrast, [](const S& s) { return s.estimator().contrast; })
+                                       &S::contrast, [](const S& s) { return s.estimatorAt().contrast; })
                     .primary());
     t.push_back(integerParameter<S>("samples", 1, 64, "", "", "taps per pixel (also picks the best spiral turns)",
                                     &S::samples, [](S& s, const std::string&) {
@@ -67,7 +72,7 @@ const std::vector<Parameter<AoSettings>>& AoSettings::parameters() {
                     .primary());
     t.push_back(integerParameter<S>("blur-stride", 1, 8, "pixels", "", "pixels between blur taps", &S::blurStride));
     t.push_back(switchParameter<S>("blur-normals", "normal-aware blur weights", &S::blurNormalAware));
-    t.push_back(numberParameter<S>("blur-depth-sigma", 0.001, 10, "metres",
+    t.push_back(numberParameter<S>("blur-depth-sigma", 0.001, 10, "fraction of radius",
                                    "depth difference at which blur weights fall to 1/e", &S::blurDepthSigma));
     // Before effects had prefixes these were the only parameters, named without "ao.": those names stay accepted.
     // ("preset" is now the frame's preset, which sets this one too.)
@@ -90,6 +95,8 @@ const std::vector<PresetInfo>& qualityPresets() {
   };
   return presets;
 }
+
+const char* estimatorName(AoEstimator estimator) { return estimator == AoEstimator::Gtao ? "gtao" : "sao"; }
 
 const char* falloffName(Falloff falloff) { return falloff == Falloff::Sao2012 ? "sao2012" : "alchemy2011"; }
 
@@ -116,55 +123,67 @@ bool AoSettings::matchesPreset(QualityPreset which) const {
 void AoSettings::validate() const {
   validateParameters("AO");
   // The estimator parameters are also checked as resolved, so a tuned table entry out of range is caught too.
-  const EstimatorParameters e = estimator();
-  if (!(e.bias >= 0.0f && e.bias <= 1.0f && e.intensity >= 0.0f && e.intensity <= 20.0f && e.contrast >= 0.1f &&
-        e.contrast <= 10.0f))
-    throw InputError("invalid AO settings: the tuned estimator parameters for this preset and radius are out of range");
+  for (const EstimatorParameters& e : estimatorKnots().at)
+    if (!(e.bias >= 0.0f && e.bias <= 1.0f && e.intensity >= 0.0f && e.intensity <= 20.0f && e.contrast >= 0.1f &&
+          e.contrast <= 10.0f))
+      throw InputError("invalid AO settings: the tuned estimator parameters for this preset are out of range");
 }
 
 namespace {
 
 struct TunedEntry {
+  AoEstimator estimator;
   QualityPreset preset;
-  float radius;
+  float radiusPixels;
   EstimatorParameters parameters;
 };
 
-// Rows ordered by preset, then by increasing radius.
+// One row per estimator, preset and knot.
 constexpr TunedEntry kTunedTable[] = {
 #include "core/TunedDefaults.inc"
 };
 
 }  // namespace
 
-EstimatorParameters tunedEstimatorParameters(QualityPreset preset, float radius) {
-  const TunedEntry* first = nullptr;
-  const TunedEntry* last = nullptr;
-  for (const TunedEntry& entry : kTunedTable) {
-    if (entry.preset != preset) continue;
-    if (!first) first = &entry;
-    last = &entry;
+float estimatorKnotPixels(int knot) { return kFirstKnotPixels * std::exp2(static_cast<float>(knot)); }
+
+EstimatorParameters EstimatorKnots::interpolate(float radiusPixels) const {
+  // The shader's form (sao.frag): tent weights max(0, 1 - |t - j|) at t = clamp(log2(h / h_0), 0, knots - 1).
+  const float t = std::clamp(std::log2(std::max(radiusPixels, 1e-3f) / kFirstKnotPixels), 0.0f,
+                             static_cast<float>(kEstimatorKnots - 1));
+  EstimatorParameters e{0.0f, 0.0f, 0.0f};
+  for (int j = 0; j < kEstimatorKnots; ++j) {
+    const float w = std::max(0.0f, 1.0f - std::abs(t - static_cast<float>(j)));
+    e.intensity += w * at[j].intensity;
+    e.bias += w * at[j].bias;
+    e.contrast += w * at[j].contrast;
   }
-  if (!first) return kPaperEstimatorParameters;
-  if (radius <= first->radius) return first->parameters;
-  if (radius >= last->radius) return last->parameters;
-  const TunedEntry* upper = first + 1;
-  while (upper->radius < radius) ++upper;
-  const TunedEntry& lower = *(upper - 1);
-  // The fitted radii are spaced by factors of two, so interpolate in log(radius).
-  const float t = std::log(radius / lower.radius) / std::log(upper->radius / lower.radius);
-  auto mix = [t](float a, float b) { return a + (b - a) * t; };
-  return {mix(lower.parameters.intensity, upper->parameters.intensity),
-          mix(lower.parameters.bias, upper->parameters.bias),
-          mix(lower.parameters.contrast, upper->parameters.contrast)};
+  return e;
 }
 
-EstimatorParameters AoSettings::estimator() const {
-  EstimatorParameters e = tunedEstimatorParameters(preset, radius);
-  if (intensity) e.intensity = *intensity;
-  if (bias) e.bias = *bias;
-  if (contrast) e.contrast = *contrast;
-  return e;
+EstimatorKnots tunedEstimatorKnots(AoEstimator estimator, QualityPreset preset) {
+  EstimatorKnots knots;
+  for (EstimatorParameters& e : knots.at) e = kPaperEstimatorParameters;
+  for (const TunedEntry& entry : kTunedTable) {
+    if (entry.estimator != estimator || entry.preset != preset) continue;
+    for (int j = 0; j < kEstimatorKnots; ++j)
+      if (std::abs(entry.radiusPixels - estimatorKnotPixels(j)) < 1e-3f) knots.at[j] = entry.parameters;
+  }
+  return knots;
+}
+
+EstimatorKnots AoSettings::estimatorKnots() const {
+  EstimatorKnots knots = tunedEstimatorKnots(estimator, preset);
+  for (EstimatorParameters& e : knots.at) {
+    if (intensity) e.intensity = *intensity;
+    if (bias) e.bias = *bias;
+    if (contrast) e.contrast = *contrast;
+  }
+  return knots;
+}
+
+EstimatorParameters AoSettings::estimatorAt(float radiusPixels) const {
+  return estimatorKnots().interpolate(radiusPixels);
 }
 
 const std::vector<ParameterInfo>& aoParameters() {

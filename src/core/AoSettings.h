@@ -11,6 +11,14 @@
 
 namespace obscura {
 
+// The obscurance estimator: how the pass turns G-buffer taps into visibility. Every estimator reads the same G-buffer
+// and depth hierarchy, goes through the same blur, and has its own fitted parameters (docs/accuracy.md compares them).
+enum class AoEstimator {
+  Sao,   // Scalable Ambient Obscurance (McGuire, Mara, Luebke 2012): shaders_es2/sao.frag
+  Gtao,  // Ground-truth AO (Jimenez et al. 2016), horizon-based, cosine-weighted: shaders_es2/gtao.frag
+};
+const char* estimatorName(AoEstimator estimator);
+
 // Per-tap distance falloff of the Alchemy estimator family (see SaoKernel.h for the equations).
 enum class Falloff {
   Alchemy2011,  // McGuire et al., HPG 2011: a hard cut at the radius
@@ -21,26 +29,48 @@ const char* falloffName(Falloff falloff);
 // The estimator parameters SAO's pass uses (SaoKernel.h).
 struct EstimatorParameters {
   float intensity = 1.0f;  // sigma
-  float bias = 0.012f;     // beta, metres
+  float bias = 0.012f;     // beta, as a fraction of the radius
   float contrast = 1.0f;   // k
 };
-// The SAO paper's and reference code's values (sigma 1, beta 0.012 m, k 1): what obscura used before tuning, and the
-// fallback for a preset the tuned table does not cover.
+// The SAO paper's and reference code's values (sigma 1, beta 0.012 m at r = 1 m, k 1): what obscura used before
+// tuning, and the fallback for a preset the tuned table does not cover.
 constexpr EstimatorParameters kPaperEstimatorParameters{};
 
-// The parameters fitted to the ray-traced reference (src/core/TunedDefaults.inc, written by tools/tune-defaults.sh)
-// for `preset` at `radius`: linear in log(radius) between the fitted radii, held at the ends of the fitted range.
-EstimatorParameters tunedEstimatorParameters(QualityPreset preset, float radius);
+// The fitted parameters are keyed by what changes the estimator's error once distances are in units of the radius:
+// the radius in pixels h (how finely the taps sample the disk, which hierarchy levels they read, how far the blur
+// reaches in units of r) and the sample count (the preset). They are tabulated at knots h_j = 4 * 2^j pixels,
+// j = 0 .. 5 (4 .. 128 px), and each pixel interpolates them linearly in log2(h) at its own projected radius (held at
+// the ends): a near surface and a far one in the same frame each get the parameters fitted for their sampling.
+constexpr int kEstimatorKnots = 6;
+constexpr float kFirstKnotPixels = 4.0f;
+// The radius in pixels of knot j.
+float estimatorKnotPixels(int knot);
+// The radius in pixels at which settings show a single "auto" value (the middle of the fitted range).
+constexpr float kShownKnotPixels = 32.0f;
+
+struct EstimatorKnots {
+  EstimatorParameters at[kEstimatorKnots];
+  // The parameters at a projected radius of `radiusPixels`: linear in log2(radiusPixels) between knots.
+  EstimatorParameters interpolate(float radiusPixels) const;
+};
+
+// The knots fitted to the ray-traced reference (src/core/TunedDefaults.inc, written by tools/tune-defaults.sh) for
+// `preset`; the SAO paper's values at every knot for a preset the table does not cover.
+EstimatorKnots tunedEstimatorKnots(AoEstimator estimator, QualityPreset preset);
 
 struct AoSettings : ParameterAccess<AoSettings> {
   bool enabled = true;
 
   // --- Estimator (see SaoKernel.h) ---
-  float radius = 1.0f;  // r: world-space obscurance radius, metres
-  // beta (ignores occluders closer than this to the tangent plane, metres), sigma (scales the obscurance sum) and k
+  AoEstimator estimator = AoEstimator::Sao;
+  // r: world-space obscurance radius, in the scene's units (metres for the built-in scene). The estimator measures
+  // every distance in units of r, so a scene and its radius scaled together give the same AO.
+  float radius = 1.0f;
+  // beta (ignores occluders closer than this to the tangent plane, a fraction of r), sigma (scales the obscurance
+  // sum) and k
   // (exponent on the final value): explicit values when set; unset, estimator() resolves them to the values fitted
-  // to the ray-traced reference for `preset` and `radius` (tunedEstimatorParameters, docs/accuracy.md), so that a
-  // radius means the obscurance of that radius.
+  // to the ray-traced reference for `preset` at each pixel's radius in pixels (tunedEstimatorKnots,
+  // docs/accuracy.md), so that a radius means the obscurance of that radius.
   std::optional<float> bias, intensity, contrast;
   QualityPreset preset = QualityPreset::Medium;  // the preset these settings came from (applyPreset sets it)
   int samples = 11;        // s: taps per pixel, a compile-time constant of the shader variant
@@ -57,7 +87,7 @@ struct AoSettings : ParameterAccess<AoSettings> {
   int blurRadius = 4;            // taps on each side of the centre, per direction (0 .. 8)
   int blurStride = 1;            // pixels between taps (2 aliases with the interleaved-gradient rotation)
   bool blurNormalAware = true;   // also weight by normals and by distance to the centre's tangent plane
-  float blurDepthSigma = 0.1f;   // metres: range weight exp(-(dz/sigma)^2)
+  float blurDepthSigma = 0.1f;   // fraction of the radius: range weight exp(-(dz/sigma)^2)
 
   // Every parameter, by its local name ("radius"; the switch is "ao"). set/get/effective come from ParameterAccess;
   // "auto" for bias, intensity or contrast returns that parameter to its tuned value, and "preset" reads as the
@@ -69,8 +99,12 @@ struct AoSettings : ParameterAccess<AoSettings> {
   void applyPreset(QualityPreset which);
   // Whether the settings still hold `which`'s values.
   bool matchesPreset(QualityPreset which) const;
-  // sigma, beta and k as the SAO pass uses them: the explicit values where set, the tuned ones elsewhere.
-  EstimatorParameters estimator() const;
+  // sigma, beta and k as the SAO pass uses them, per knot: the explicit values where set, the tuned ones elsewhere.
+  EstimatorKnots estimatorKnots() const;
+  // The same at one projected radius (kShownKnotPixels: the value controls show for "auto").
+  EstimatorParameters estimatorAt(float radiusPixels = kShownKnotPixels) const;
+  // The blur's depth sigma in scene units (blurDepthSigma times the radius).
+  float blurDepthSigmaDistance() const { return blurDepthSigma * radius; }
   // Throws InputError if a field is out of range (for settings built in code).
   void validate() const;
 };

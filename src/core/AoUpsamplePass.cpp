@@ -30,7 +30,7 @@ void AoUpsamplePass::render(const gl::Texture2D& halfResolutionAo, const gl::Tex
   Program::set(gbuffer_, 1);
   Program::set(gbufferSize_, glm::vec2(gbuffer.width(), gbuffer.height()));
   Program::set(aoScale_, 2.0f);
-  Program::set(invSigma2_, 1.0f / (settings.blurDepthSigma * settings.blurDepthSigma));
+  Program::set(invSigma2_, 1.0f / (settings.blurDepthSigmaDistance() * settings.blurDepthSigmaDistance()));
   reconstruction_.set(camera.reconstruction);
   resources_.triangle.draw();
   gl::restoreBaselineState();

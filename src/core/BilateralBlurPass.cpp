@@ -60,7 +60,7 @@ void BilateralBlurPass::render(Direction direction, const gl::Texture2D& ao, con
   // Spatial Gaussian with s = (radius + 1) / 2 taps: the outermost tap keeps exp(-2 R^2 / (R + 1)^2), 0.28 at R = 4.
   const float s = 0.5f * static_cast<float>(settings.blurRadius + 1);
   Program::set(blur.gaussianK, 1.0f / (2.0f * s * s));
-  Program::set(blur.invSigma2, 1.0f / (settings.blurDepthSigma * settings.blurDepthSigma));
+  Program::set(blur.invSigma2, 1.0f / (settings.blurDepthSigmaDistance() * settings.blurDepthSigmaDistance()));
   if (settings.blurNormalAware) {
     blur.reconstruction.set(camera.reconstruction);
     Program::set(blur.gbufferSize, glm::vec2(gbuffer.width(), gbuffer.height()));

@@ -80,12 +80,11 @@ float diskRadiusPixels(float radius, float viewZ, float projScale, float maxRadi
 }
 
 float tapObscurance(Falloff falloff, const glm::vec3& v, const glm::vec3& n, float radius, float bias) {
-  const float vv = glm::dot(v, v);
-  const float vn = glm::dot(v, n);
-  const float radius2 = radius * radius;
-  const float angular = std::max(vn - bias, 0.0f) / (vv + kEpsilon);
-  if (falloff == Falloff::Alchemy2011) return vv < radius2 ? angular : 0.0f;
-  const float f = std::max(radius2 - vv, 0.0f) / radius2;
+  const glm::vec3 u = v * (1.0f / radius);  // the tap in units of the radius
+  const float uu = glm::dot(u, u);
+  const float angular = std::max(glm::dot(u, n) - bias, 0.0f) / (uu + kEpsilon);
+  if (falloff == Falloff::Alchemy2011) return uu < 1.0f ? angular : 0.0f;
+  const float f = std::max(1.0f - uu, 0.0f);
   return f * f * f * angular;
 }
 

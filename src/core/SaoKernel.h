@@ -12,12 +12,18 @@
 // 0.00583715 y)) at integer pixel (x, y). Arithmetic only, since GLSL ES 1.00 has no bitwise operators (the SAO
 // reference uses (3x ^ y + xy) * 10); its low-discrepancy 3x3 neighbourhoods suit the bilateral blur.
 //
-// Estimator (v = Q - C from the centre C to the tap's point Q, n = centre normal, eps = 0.01 m^2, beta = bias):
-//   Alchemy 2011 (McGuire et al. HPG 2011, eq. 7, with SAO's metric bias):
-//       A = max(0, 1 - (2 sigma / s) sum_i [v.v < r^2] max(0, v.n - beta) / (v.v + eps))^k
+// Estimator, dimensionless: distances are measured in units of the radius, u = (Q - C) / r from the centre C to the
+// tap's point Q, with n the centre normal, beta the bias as a fraction of r and eps = 0.01:
+//   Alchemy 2011 (McGuire et al. HPG 2011, eq. 7, with SAO's bias):
+//       A = max(0, 1 - (2 sigma / s) sum_i [u.u < 1] max(0, u.n - beta) / (u.u + eps))^k
 //   SAO 2012 (reference code's recommended falloff):
-//       A = max(0, 1 - (5 sigma / s) sum_i ((max(0, r^2 - v.v) / r^2)^3) max(0, v.n - beta) / (v.v + eps))^k
-// The SAO paper's eps = 0.01 ("large epsilon to avoid overdarkening within cracks") is used for both.
+//       A = max(0, 1 - (5 sigma / s) sum_i (max(0, 1 - u.u)^3) max(0, u.n - beta) / (u.u + eps))^k
+// The papers write the tap term in metres, (v.n - beta) / (v.v + eps) with v = Q - C, eps = 0.01 m^2 and beta in
+// metres; at r = 1 m the two forms are the same numbers. In metres the term changes with the scene's units (a model
+// in centimetres, with the radius in centimetres, would get other AO: eps and beta would not scale with it). In
+// units of r, scaling the scene and the radius together gives the same AO, and eps = 0.01 r^2 keeps the paper's
+// intent ("large epsilon to avoid overdarkening within cracks") at every scale. The 1/r this removes from the sum
+// is what sigma absorbed before.
 #include <glm/vec2.hpp>
 #include <glm/ext/vector_int2.hpp>
 #include <glm/vec3.hpp>
@@ -57,7 +63,7 @@ glm::vec2 tapDirection(int tapIndex, int samples, int spiralTurns, float rotatio
 // Projected disk radius in pixels for a centre at view-space depth viewZ (< 0).
 float diskRadiusPixels(float radius, float viewZ, float projScale, float maxRadiusPixels);
 
-// One tap's contribution to the obscurance sum.
+// One tap's contribution to the obscurance sum, for v = Q - C in scene units and bias as a fraction of radius.
 float tapObscurance(Falloff falloff, const glm::vec3& v, const glm::vec3& n, float radius, float bias);
 
 // The factor the tap sum is multiplied by: 5 sigma / s (SAO 2012) or 2 sigma / s (Alchemy 2011).

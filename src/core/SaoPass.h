@@ -1,7 +1,8 @@
 #pragma once
-// Scalable Ambient Obscurance from the G-buffer into the bound RGBA8 target: R = ambient visibility, GB = the
-// centre's 16-bit depth code (the blur's key, so the blur reads a single texture). Shader: shaders_es2/sao.frag; CPU
-// mirror and equations: core/SaoKernel.h. Far taps read the depth hierarchy when one is given.
+// The obscurance estimator pass, SAO by default: from the G-buffer into the bound RGBA8 target, R = ambient
+// visibility, GB = the centre's 16-bit depth code (the blur's key, so the blur reads a single texture). Shaders:
+// shaders_es2/sao.frag (CPU mirror and equations: core/SaoKernel.h) or, with ao.estimator, gtao.frag; both share
+// lib/ao_estimator.glsl. Far taps read the depth hierarchy when one is given.
 #include <map>
 #include <optional>
 #include <tuple>
@@ -17,9 +18,18 @@ namespace obscura {
 class SaoPass {
  public:
   using Storage = DepthHierarchyPass::Storage;
-  // The program variant for a sample count, spiral turns, falloff and depth source (compile-time constants):
-  // no hierarchy (every tap reads the G-buffer), or the hierarchy in the given storage.
-  static ProgramSpec programSpec(int samples, int spiralTurns, Falloff falloff, std::optional<Storage> hierarchy);
+  // The program variant for an estimator, a sample count, spiral turns, falloff (SAO) and depth source
+  // (compile-time constants): no hierarchy (every tap reads the G-buffer), or the hierarchy in the given storage.
+  static ProgramSpec programSpec(AoEstimator estimator, int samples, int spiralTurns, Falloff falloff,
+                                 std::optional<Storage> hierarchy);
+  // GTAO's split of `samples` taps: slices per pixel and taps per side of each (2 x slices x steps <= samples + 1).
+  struct GtaoSampling {
+    int slices, steps;
+  };
+  static GtaoSampling gtaoSampling(int samples);
+  // The factor the estimator's obscurance is multiplied by before the contrast (lib/ao_estimator.glsl): SAO's
+  // 5 sigma / s or 2 sigma / s (SaoKernel::intensityScale), GTAO's sigma.
+  static float intensityScale(const AoSettings& settings, float intensity);
   // Every variant the presets and the documented sample counts (4, 8, 11, 16, 24, 32) use.
   static std::vector<ProgramSpec> programSpecs();
 
@@ -35,12 +45,12 @@ class SaoPass {
     gl::Program program;
     ReconstructionUniforms reconstruction;
     DepthHierarchyPass::SamplingUniforms hierarchy;
-    GLint gbuffer, gbufferSize, aoSize, aoScale, projScale, radius, bias, intensityScale, contrast, maxRadiusPixels;
+    GLint gbuffer, gbufferSize, aoSize, aoScale, projScale, radius, invRadius, estimatorKnots, maxRadiusPixels;
   };
   const Variant& variant(const AoSettings& settings, std::optional<Storage> hierarchy);
 
   const EffectResources& resources_;
-  std::map<std::tuple<int, int, Falloff, int>, Variant> variants_;
+  std::map<std::tuple<AoEstimator, int, int, Falloff, int>, Variant> variants_;
 };
 
 }  // namespace obscura

@@ -172,8 +172,8 @@ struct AoReferenceTracer::Impl {
 };
 
 void validateReferenceSettings(const ReferenceSettings& settings) {
-  if (!(settings.radius >= 0.01f && settings.radius <= 100.0f))
-    throw InputError("radius: " + std::to_string(settings.radius) + " is out of range (0.01 .. 100 metres)");
+  if (!(settings.radius >= 1e-4f && settings.radius <= 1e6f))
+    throw InputError("radius: " + std::to_string(settings.radius) + " is out of range (1e-4 .. 1e6 scene units)");
   if (!isPowerOfTwo(settings.rays) || settings.rays > 65536)
     throw InputError("rays: " + std::to_string(settings.rays) +
                      " must be a power of two in 1 .. 65536 (the sample set is a base-2 net)");
