@@ -149,3 +149,38 @@ TEST(Cli, OldNamesNewNamesAndSwitches) {
   ASSERT_EQ(run("--size 96x64 --no-tonemap --no-fxaa --no-ao --out " + d).status, 0);
   EXPECT_NE(obscura::readPng(c).rgba, obscura::readPng(d).rgba);
 }
+
+// Without --ao.radius a scene gets 5 % of its bounding-sphere diameter to two significant figures (scene/SceneScale.h;
+// 42 for the engine, in centimetres), said on stderr and used: the same image as with --ao.radius 42. A radius
+// given is used as given, without the note.
+TEST(Cli, ChoosesTheSceneDefaultRadiusUnlessOneIsGiven) {
+  const std::string engine = "--scene " + obscura::test::assimpModels() +
+                             "/2CylinderEngine-glTF-Binary/2CylinderEngine.glb --size 96x54 --view ao --out ";
+  const std::string chosen = obscura::test::tempPath("radius-default.png");
+  const obscura::test::ProcessResult r = run(engine + chosen);
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_NE(r.err.find("obscura-render: AO radius 42 (5 % of the scene's bounding-sphere diameter, 836.05"),
+            std::string::npos)
+      << r.err;
+  EXPECT_NE(r.err.find("set --ao.radius to choose)\n"), std::string::npos) << r.err;
+
+  const std::string given = obscura::test::tempPath("radius-42.png"), one = obscura::test::tempPath("radius-1.png");
+  const obscura::test::ProcessResult r42 = run(engine + given + " --ao.radius 42");
+  ASSERT_EQ(r42.status, 0) << r42.err;
+  EXPECT_EQ(r42.err.find("AO radius"), std::string::npos) << "no note when the radius is given: " << r42.err;
+  ASSERT_EQ(run(engine + one + " --radius 1").status, 0);
+  EXPECT_EQ(obscura::readPng(chosen).rgba, obscura::readPng(given).rgba) << "the default is used";
+  EXPECT_NE(obscura::readPng(one).rgba, obscura::readPng(given).rgba) << "and a radius given is used instead";
+
+  // --scene-scale composes: the rule reads the scaled scene; the built-in scene keeps its own metre.
+  const obscura::test::ProcessResult scaled = run(engine + chosen + " --scene-scale 0.01");
+  ASSERT_EQ(scaled.status, 0) << scaled.err;
+  EXPECT_NE(scaled.err.find("AO radius 0.42 (5 %"), std::string::npos) << scaled.err;
+  const obscura::test::ProcessResult builtin = run("--size 32x18 --out " + chosen);
+  ASSERT_EQ(builtin.status, 0) << builtin.err;
+  EXPECT_NE(builtin.err.find("obscura-render: AO radius 1 (the radius the built-in scene was designed for"),
+            std::string::npos)
+      << builtin.err;
+  EXPECT_NE(run("--help").out.find("AO radius: without --ao.radius, 5 % of the scene's bounding-sphere diameter"),
+            std::string::npos);
+}

@@ -128,3 +128,29 @@ TEST(DesktopViewer, ABadSceneFileExitsWithStatusTwoAndSaysWhy) {
   EXPECT_NE(r.output.find("BoxWithInfinites.glb: mesh 0 primitive 0 POSITION 0 is not finite"), std::string::npos)
       << r.output;
 }
+
+// A scene file opened in the viewer gets the default AO radius obscura-render gives it (scene/SceneScale.h: 42 for
+// the engine, in centimetres), so the two draw the same AO; a radius in --state is used instead.
+TEST(DesktopViewer, AFileGetsTheSameDefaultRadiusAsTheHeadlessRenderer) {
+  const std::string engine = test::assimpModels() + "/2CylinderEngine-glTF-Binary/2CylinderEngine.glb";
+  auto shot = [&](const std::string& name, const std::string& state) {
+    const std::string path = ::testing::TempDir() + name;
+    std::remove(path.c_str());
+    const Result r = runUnderXvfb(std::string(OBSCURA_VIEW_BINARY) + " " + engine + " --size " + kSize +
+                                  " --state '" + state + "' --screenshot " + path);
+    EXPECT_EQ(r.status, 0) << r.output;
+    return readPng(path);
+  };
+  const Image window = shot("view-engine-ao.png", "view=ao");
+  const Image headless = headlessRender("render-engine-ao.png", "--scene " + engine + " --view ao");
+  ASSERT_EQ(window.rgba.size(), headless.rgba.size());
+  auto meanDifference = [](const Image& a, const Image& b) {
+    double sum = 0.0;
+    for (size_t i = 0; i < a.rgba.size(); ++i) sum += std::abs(a.rgba[i] - b.rgba[i]);
+    return sum / static_cast<double>(a.rgba.size());
+  };
+  EXPECT_LE(meanDifference(window, headless), 0.5) << "mean absolute difference (of 255)";
+  const Image small = shot("view-engine-ao-r1.png", "view=ao&radius=1");
+  ASSERT_EQ(small.rgba.size(), headless.rgba.size());
+  EXPECT_GT(meanDifference(small, headless), 1.0) << "radius 1 (a hundredth of a cylinder) draws other AO";
+}

@@ -30,7 +30,7 @@ TEST(ReferenceCli, BadInputExitsWithStatusTwoAndOneLine) {
   const std::pair<std::string, std::string> cases[] = {
       {"--scene /nonexistent/scene.glb", "/nonexistent/scene.glb: cannot open"},
       {"--camera " + badCamera, badCamera + ": near: must be > 0"},
-      {"--radius 0", "--radius: 0 is out of range (0.01 .. 100 metres)"},
+      {"--radius 0", "--radius: 0 is out of range (0.0001 .. 1e+06 scene units)"},
       {"--rays 100", "--rays: 100 must be a power of two"},
       {"--rays 0", "--rays: 0 is out of range"},
       {"--threads x", "--threads: expected a whole number"},
@@ -65,6 +65,42 @@ TEST(ReferenceCli, WritesTheSameViewsAsObscuraRender) {
     for (size_t i = 0; i < a.rgba.size(); i += 4) differing += std::abs(a.rgba[i] - b.rgba[i]) > 1;
     EXPECT_LE(differing, a.rgba.size() / 4 / 100) << view;
   }
+}
+
+// Without --radius, obscura-reference takes the radius obscura-render takes for the same scene (scene/SceneScale.h:
+// 42 for the engine in centimetres), says so on stderr and traces with it; --radius is used as given.
+TEST(ReferenceCli, ChoosesTheSameDefaultRadiusAsObscuraRender) {
+  const std::string engine = "--scene " + obscura::test::assimpModels() +
+                             "/2CylinderEngine-glTF-Binary/2CylinderEngine.glb --size 48x27 --rays 16 --out ";
+  const std::string chosen = obscura::test::tempPath("ref-radius-default.png");
+  const ProcessResult r = reference(engine + chosen);
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_NE(r.err.find("obscura-reference: AO radius 42 (5 % of the scene's bounding-sphere diameter, 836.05"),
+            std::string::npos)
+      << r.err;
+  EXPECT_NE(r.err.find("set --radius to choose)\n"), std::string::npos) << r.err;
+  EXPECT_NE(r.out.find("radius 42, 16 rays"), std::string::npos) << r.out;
+  const ProcessResult rendered = render(engine.substr(0, engine.find(" --rays")) + " --view mask --out " +
+                                        obscura::test::tempPath("ref-radius-mask.png"));
+  ASSERT_EQ(rendered.status, 0) << rendered.err;
+  EXPECT_NE(rendered.err.find("obscura-render: AO radius 42 ("), std::string::npos) << rendered.err;
+
+  const std::string given = obscura::test::tempPath("ref-radius-42.png");
+  const std::string seven = obscura::test::tempPath("ref-radius-7.png");
+  const ProcessResult r42 = reference(engine + given + " --radius 42");
+  ASSERT_EQ(r42.status, 0) << r42.err;
+  EXPECT_EQ(r42.err.find("AO radius"), std::string::npos) << r42.err;
+  const ProcessResult r7 = reference(engine + seven + " --radius 7");
+  ASSERT_EQ(r7.status, 0) << r7.err;
+  EXPECT_NE(r7.out.find("radius 7, 16 rays"), std::string::npos) << r7.out;
+  EXPECT_EQ(obscura::readPng(chosen).rgba, obscura::readPng(given).rgba) << "the default is used";
+  EXPECT_NE(obscura::readPng(seven).rgba, obscura::readPng(given).rgba) << "and a radius given is used instead";
+
+  const ProcessResult scaled = reference(engine + chosen + " --scene-scale 0.01");
+  ASSERT_EQ(scaled.status, 0) << scaled.err;
+  EXPECT_NE(scaled.err.find("AO radius 0.42 (5 %"), std::string::npos) << scaled.err;
+  EXPECT_NE(reference("--help").out.find("AO radius: without --radius, 5 % of the scene's bounding-sphere"),
+            std::string::npos);
 }
 
 TEST(CompareCli, BadInputExitsWithStatusTwoAndOneLine) {

@@ -7,7 +7,7 @@
 // frames. The passes and effects are the effect table's (core/EffectTable.h): a new effect shows up by itself.
 // Sections:
 //   1. per-pass and per-effect ms at 640x360, 1280x720 and 1920x1080 on the built-in scene and on
-//      2CylinderEngine.glb, at the defaults (every effect on)
+//      2CylinderEngine.glb, at the defaults (every effect on; each scene at its default AO radius, scene/SceneScale.h)
 //   2. radius sweep 0.25 .. 4 m, depth hierarchy on and off
 //   3. sample-count sweep 4 .. 32
 //   4. the quality presets
@@ -26,6 +26,7 @@
 #include "apps/SceneInput.h"
 #include "core/AoSettings.h"
 #include "base/Error.h"
+#include "base/Text.h"
 #include "core/DepthHierarchyPass.h"
 #include "FetchFloorPass.h"
 #include "core/Renderer.h"
@@ -35,6 +36,7 @@
 #include "platform/HeadlessContext.h"
 #include "scene/BuiltinScene.h"
 #include "scene/GltfLoader.h"
+#include "scene/SceneScale.h"
 
 using namespace obscura;
 
@@ -308,8 +310,9 @@ int main(int argc, char** argv) {
 
     std::vector<BenchScene> scenes;
     scenes.push_back({"builtin", makeBuiltinScene(), builtinSceneCamera()});
-    // The engine is modelled in centimetres (about 5 x 7 x 4 m once scaled); unscaled, r = 1 m would be a tenth of a
-    // bolt and SAO's disk about a pixel. The tuning views scale it the same way (tools/tuning-views.json).
+    // The engine is modelled in centimetres; scaled to metres (about 5 x 7 x 4 m) as the tuning views do
+    // (tools/tuning-views.json). Its AO radius is its default either way (scene/SceneScale.h: 5 % of the bounding
+    // sphere's diameter, 0.42 m here), so the scale changes no figure.
     Scene engine = loadGltfFile(kEnginePath);
     scaleScene(engine, kEngineScale);
     const Camera engineCamera = Camera::fit(engine.worldBounds(), 1280, 720);
@@ -318,8 +321,13 @@ int main(int argc, char** argv) {
     const AoSettings defaults;
     const BenchScene& builtin = scenes[0];
 
-    std::printf("\n1. Per-pass ms, default settings (every effect on; AO %d samples, r = %.2f m, hierarchy on)\n",
-                defaults.samples, defaults.radius);
+    // Each scene at its default radius, as obscura-render and the viewers choose it (scene/SceneScale.h).
+    std::string sceneRadii;
+    for (const BenchScene& scene : scenes)
+      sceneRadii += (sceneRadii.empty() ? "" : ", ") + scene.name + " " + formatShortest(defaultAoRadius(scene.scene));
+    std::printf("\n1. Per-pass ms, default settings (every effect on; AO %d samples, r = each scene's default: %s; "
+                "hierarchy on)\n",
+                defaults.samples, sceneRadii.c_str());
     printPassHeader();
     const std::vector<std::pair<int, int>> sizes =
         options.quick ? std::vector<std::pair<int, int>>{{640, 360}}
@@ -327,7 +335,9 @@ int main(int argc, char** argv) {
     std::vector<std::tuple<std::string, int, int, PassTimes>> perPass;
     for (const BenchScene& scene : scenes)
       for (auto [w, h] : sizes) {
-        perPass.emplace_back(scene.name, w, h, bench.measure("passes", scene, w, h, defaults));
+        AoSettings settings = defaults;
+        settings.radius = defaultAoRadius(scene.scene);
+        perPass.emplace_back(scene.name, w, h, bench.measure("passes", scene, w, h, settings));
         printPassRow(scene.name, w, h, std::get<3>(perPass.back()));
       }
     std::printf("\n1b. Per-effect ms (the sum of each effect's passes), the same frames\n");

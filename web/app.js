@@ -31,28 +31,48 @@ function setStatus(message) { $('#status').textContent = message; }
 
 // --- Parameter controls ------------------------------------------------------------------------------------------
 
-// Slider positions: whole numbers step through their range; real numbers get SLIDER_STEPS positions, on a
-// logarithmic scale for wide positive ranges (the radius) so small values stay reachable.
-function sliderScale(parameter) {
+// Slider positions: whole numbers step through their range; real numbers get SLIDER_STEPS positions over
+// low .. high (by default the parameter's range), on a logarithmic scale for wide positive ranges (the radius) so
+// small values stay reachable.
+function sliderScale(parameter, low = parameter.min, high = parameter.max) {
   if (parameter.kind === 'integer') {
     return { min: parameter.min, max: parameter.max, toSlider: (v) => v, fromSlider: (t) => t };
   }
-  if (parameter.min > 0 && parameter.max / parameter.min >= 100) {
-    const ratio = Math.log(parameter.max / parameter.min);
+  if (low > 0 && high / low >= 100) {
+    const ratio = Math.log(high / low);
     return {
       min: 0,
       max: SLIDER_STEPS,
-      toSlider: (v) => Math.round(SLIDER_STEPS * Math.log(v / parameter.min) / ratio),
-      fromSlider: (t) => Number((parameter.min * Math.exp(ratio * t / SLIDER_STEPS)).toPrecision(3)),
+      toSlider: (v) => Math.round(SLIDER_STEPS * Math.log(v / low) / ratio),
+      fromSlider: (t) => Number((low * Math.exp(ratio * t / SLIDER_STEPS)).toPrecision(3)),
     };
   }
-  const span = parameter.max - parameter.min;
+  const span = high - low;
   return {
     min: 0,
     max: SLIDER_STEPS,
-    toSlider: (v) => Math.round(SLIDER_STEPS * (v - parameter.min) / span),
-    fromSlider: (t) => Number((parameter.min + span * t / SLIDER_STEPS).toPrecision(4)),
+    toSlider: (v) => Math.round(SLIDER_STEPS * (v - low) / span),
+    fromSlider: (t) => Number((low + span * t / SLIDER_STEPS).toPrecision(4)),
   };
+}
+
+// The AO radius is in the scene's units, and its range (1e-4 .. 1e6) is far too wide for one slider: its slider
+// spans the scene's default radius (obscura.defaultRadius: 5 % of the scene's bounding-sphere diameter) / 100 ..
+// x 100, logarithmic, so the default sits in the middle. The span is re-centred when a scene with another default
+// is loaded, and widened to take in a value typed or linked outside it (within the parameter's range).
+const FOLLOWS_SCENE = 'ao.radius';
+const SCENE_SPAN = 100;
+
+function sceneSpan(parameter, previous, centre, value) {
+  const span = previous && previous.centre === centre
+    ? { ...previous } : { centre, low: centre / SCENE_SPAN, high: centre * SCENE_SPAN };
+  if (Number.isFinite(value) && value > 0) {
+    span.low = Math.min(span.low, value);
+    span.high = Math.max(span.high, value);
+  }
+  span.low = Math.max(span.low, parameter.min);
+  span.high = Math.min(span.high, parameter.max);
+  return span;
 }
 
 // A parameter's element id: "param-ao-radius" for "ao.radius" (ids with dots are awkward in CSS selectors).
@@ -92,9 +112,21 @@ function parameterControl(obscura, parameter) {
     row.append(select);
     return { row, update: () => { select.value = obscura.get(parameter.name); } };
   }
-  const scale = sliderScale(parameter);
+  let scale = sliderScale(parameter);
   const slider = element('input', { type: 'range', id, min: scale.min, max: scale.max, step: 1,
                                     title: parameter.range });
+  // For the radius: the span its slider covers now (sceneSpan), also in the slider's data-low and data-high.
+  let span = null;
+  const followScene = (value) => {
+    const next = sceneSpan(parameter, span, obscura.defaultRadius, value);
+    if (span && next.low === span.low && next.high === span.high && next.centre === span.centre) return;
+    span = next;
+    scale = sliderScale(parameter, span.low, span.high);
+    slider.dataset.low = String(span.low);
+    slider.dataset.high = String(span.high);
+    slider.title = `${Number(span.low.toPrecision(3))} .. ${Number(span.high.toPrecision(3))} on this slider ` +
+                   `(the scene's default ${span.centre} in the middle); ${parameter.range} typed`;
+  };
   const number = element('input', { type: 'number', min: parameter.min, max: parameter.max,
                                     step: parameter.kind === 'integer' ? 1 : 'any', title: parameter.range,
                                     ariaLabel: `${parameter.name} value` });
@@ -114,6 +146,7 @@ function parameterControl(obscura, parameter) {
     row,
     update: () => {
       const value = obscura.effective(parameter.name);
+      if (parameter.name === FOLLOWS_SCENE) followScene(Number(value));
       slider.value = scale.toSlider(Number(value));
       if (document.activeElement !== number) number.value = value;
       if (auto) auto.checked = obscura.get(parameter.name) === 'auto';
@@ -208,7 +241,9 @@ function showStats(obscura) {
 // --- Scenes ------------------------------------------------------------------------------------------------------
 
 function showScene(scene) {
-  $('#scene-name').textContent = `${scene.name}: ${scene.triangles.toLocaleString('en')} triangles`;
+  // The radius a scene gets by default: 5 % of its bounding sphere's diameter (the built-in scene: 1 m).
+  $('#scene-name').textContent = `${scene.name}: ${scene.triangles.toLocaleString('en')} triangles, ` +
+                                 `AO radius ${scene.defaultRadius} by default`;
   setStatus(scene.warnings.length ? `${scene.warnings.length} warning(s): ${scene.warnings.join('; ')}` : '');
 }
 

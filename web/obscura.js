@@ -85,7 +85,8 @@ export class Obscura extends EventTarget {
   setView(mode) { this.call('obscura_set_view', ['string'], [mode]); }
 
   // The whole state (view, parameters that differ from their defaults, camera) as query-string text, and back.
-  // setState applies only what the text names and throws (changing nothing) on anything unknown or invalid.
+  // setState applies only what the text names and throws (changing nothing) on anything unknown or invalid. The
+  // radius's default is the scene's (scene().defaultRadius); a radius setState gives is kept when scenes change.
   state() { return this.text('obscura_state', [], []); }
   setState(query) { this.call('obscura_set_state', ['string'], [query]); }
 
@@ -111,7 +112,8 @@ export class Obscura extends EventTarget {
   // --- Scenes ------------------------------------------------------------------------------------------------------
   // Loads a .glb or .gltf from bytes (ArrayBuffer or Uint8Array). A .gltf's external buffers and images come in
   // sideFiles, keyed by the URI the file uses: {'scene.bin': bytes, ...}. Resolves to scene(); on a bad file it
-  // rejects with ObscuraError and the previous scene stays on screen.
+  // rejects with ObscuraError and the previous scene stays on screen. The AO radius becomes the new scene's
+  // defaultRadius, unless setState() gave one (then it is kept); set('ao.radius', r) after loading overrides it.
   async loadScene(bytes, name, sideFiles = {}) {
     // Let the page paint its progress indicator before the (synchronous) parse and upload.
     await new Promise((resolve) => requestAnimationFrame(() => setTimeout(resolve, 0)));
@@ -152,8 +154,13 @@ export class Obscura extends EventTarget {
     return this.scene();
   }
 
-  // {name, triangles, warnings: [what the loader repaired or ignored]}
+  // {name, triangles, warnings: [what the loader repaired or ignored], defaultRadius, radiusGiven}. defaultRadius:
+  // the AO radius the scene gets when nobody sets one, in its units: 5 % of the diameter of its bounding sphere, to
+  // two significant figures (the built-in scene: 1, metres). radiusGiven: a state text (setState, the page's URL)
+  // gave the radius, which loading a scene then keeps.
   scene() { return this.json('obscura_scene'); }
+  // scene().defaultRadius alone (cheap: the page reads it on every change).
+  get defaultRadius() { return Number(this.text('obscura_default_radius', [], [])); }
 
   // --- Measurements ------------------------------------------------------------------------------------------------
   // Frames are drawn when something changed; continuous mode draws on every animation frame, so the timings stay

@@ -19,13 +19,15 @@ std::string referenceUsage() {
          "Ray-traces (Embree) the ambient visibility A = (1/pi) * integral of V_R(w) cos(theta) dw of the scene\n"
          "obscura-render draws, with the same scene, camera and view conventions (docs/accuracy.md).\n" +
          sceneInputUsage() +
-         "  --radius R        AO radius in scene units, as obscura-render's --radius (1e-4 .. 1e6; default 1)\n"
+         "  --radius R        AO radius in scene units, as obscura-render's --radius (1e-4 .. 1e6; default: below)\n"
          "  --rays N          cosine-weighted hemisphere rays per pixel, a power of two (default 256)\n"
          "  --threads N       worker threads (default: the number of cores); the image does not depend on it\n"
          "  --view V          ao (default) | depth | mask, encoded as obscura-render's views\n"
          "  --out FILE        the --view image (default reference.png)\n"
          "  --depth-out FILE  also write the depth view from the same trace\n"
-         "  --mask-out FILE   also write the mask view (geometry 255, background 0)\n";
+         "  --mask-out FILE   also write the mask view (geometry 255, background 0)\n"
+         "\n" + defaultAoRadiusUsage("--radius") +
+         "obscura-render chooses the same for the same scene, so their images compare without a radius given.\n";
 }
 
 ReferenceOptions parseReferenceCommandLine(const std::vector<std::string>& args) {
@@ -53,6 +55,7 @@ ReferenceOptions parseReferenceCommandLine(const std::vector<std::string>& args)
         throw InputError(std::string("--") + e.what());
       }
       options.trace.radius = settings.radius;
+      options.radiusGiven = true;
     } else if (arg == "--rays") options.trace.rays = parseCount(arg, value(), 65536);
     else if (arg == "--threads") options.trace.threads = parseCount(arg, value(), 256);
     else if (arg == "--view") {
@@ -86,11 +89,13 @@ int runReference(const ReferenceOptions& options) {
     options.input.printWarnings("obscura-reference", input.warnings);
     const Scene& scene = input.scene;
     const Camera& camera = input.camera;
+    ReferenceSettings trace = options.trace;
+    if (!options.radiusGiven) trace.radius = chooseDefaultAoRadius("obscura-reference", "--radius", scene);
 
     const auto start = std::chrono::steady_clock::now();
-    const AoReferenceTracer tracer(scene, options.trace.threads);
+    const AoReferenceTracer tracer(scene, trace.threads);
     const auto built = std::chrono::steady_clock::now();
-    const ReferenceFrame frame = tracer.trace(camera, options.trace);
+    const ReferenceFrame frame = tracer.trace(camera, trace);
     const auto done = std::chrono::steady_clock::now();
 
     const Image views[] = {frame.aoImage(), frame.depthImage(), frame.maskImage()};
@@ -102,11 +107,11 @@ int runReference(const ReferenceOptions& options) {
     for (std::uint8_t m : frame.mask) geometry += m;
     const double buildSeconds = std::chrono::duration<double>(built - start).count();
     const double traceSeconds = std::chrono::duration<double>(done - built).count();
-    const double rays = static_cast<double>(geometry) * options.trace.rays + static_cast<double>(frame.mask.size());
-    std::printf("obscura-reference: %dx%d, radius %g m, %d rays per pixel, %zu triangles, %d threads: "
+    const double rays = static_cast<double>(geometry) * trace.rays + static_cast<double>(frame.mask.size());
+    std::printf("obscura-reference: %dx%d, radius %g, %d rays per pixel, %zu triangles, %d threads: "
                 "BVH %.2f s, trace %.2f s (%.1f M rays/s)\n",
-                camera.width, camera.height, static_cast<double>(options.trace.radius), options.trace.rays,
-                tracer.triangleCount(), options.trace.threads, buildSeconds, traceSeconds,
+                camera.width, camera.height, static_cast<double>(trace.radius), trace.rays,
+                tracer.triangleCount(), trace.threads, buildSeconds, traceSeconds,
                 rays / traceSeconds * 1e-6);
     return 0;
   } catch (const InputError& e) {

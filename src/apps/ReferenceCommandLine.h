@@ -14,6 +14,9 @@ enum class ReferenceView { Ao, Depth, Mask };
 struct ReferenceOptions {
   SceneInput input;  // --scene, --scene-scale, --camera, --fit, --size
   ReferenceSettings trace;
+  // Whether --radius was given; if not, runReference takes the scene's default radius (chooseDefaultAoRadius: the
+  // same as obscura-render's for the same scene).
+  bool radiusGiven = false;
   ReferenceView view = ReferenceView::Ao;
   std::string outPath = "reference.png";
   std::string depthOutPath, maskOutPath;  // optional extra views from the same trace

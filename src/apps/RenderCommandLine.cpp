@@ -27,6 +27,7 @@ std::string renderUsage() {
       "  --bench N         render N frames and print per-pass milliseconds (glFinish-bounded)\n"
       "  --backend B       osmesa (default) or egl (Mesa EGL surfaceless, a true GLES 2 context)\n"
       "  --no-EFFECT       shorthand for --EFFECT off (--no-ao, --no-tonemap, --no-fxaa; --no-blur: --ao.blur off)\n"
+      "\n" + defaultAoRadiusUsage("--ao.radius") +
       "\nParameters (--NAME VALUE; in brackets, older names still accepted):\n";
   std::string effect = "-";
   for (const ParameterInfo& p : RenderSettings::parameters()) {
@@ -82,6 +83,7 @@ RenderOptions parseRenderCommandLine(const std::vector<std::string>& args) {
       } catch (const InputError& e) {
         throw InputError(std::string("--") + e.what());
       }
+      if (RenderSettings::canonicalName(name) == "ao.radius") options.radiusGiven = true;
     } else {
       throw InputError("unknown option '" + arg + "' (see --help)");
     }
@@ -107,6 +109,8 @@ int runRender(const RenderOptions& options) {
                        " exceeds this context's limit of " + std::to_string(context.caps().maxRenderSize()) +
                        " per side");
     options.input.printWarnings("obscura-render", input.warnings);  // every input checked: a refusal stays one line
+    RenderSettings settings = options.settings;
+    if (!options.radiusGiven) settings.ao().radius = chooseDefaultAoRadius("obscura-render", "--ao.radius", scene);
     RendererOptions rendererOptions;
     rendererOptions.checkGlErrors = true;
     Renderer renderer(context.caps(), rendererOptions);
@@ -119,16 +123,16 @@ int runRender(const RenderOptions& options) {
     target.width = camera.width;
     target.height = camera.height;
 
-    renderer.render(camera, options.settings, options.view, target);  // also warms up shader compilation
+    renderer.render(camera, settings, options.view, target);  // also warms up shader compilation
     if (options.benchFrames > 0) {
       FinishPassTimer timer;
       const auto start = std::chrono::steady_clock::now();
       for (int frame = 0; frame < options.benchFrames; ++frame)
-        renderer.render(camera, options.settings, options.view, target, &timer);
+        renderer.render(camera, settings, options.view, target, &timer);
       glFinish();
       const double total = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
       std::printf("obscura-render --bench: %dx%d, %d frames, view %s, %d AO samples, backend %s (%s)\n", camera.width,
-                  camera.height, options.benchFrames, options.view.name.c_str(), options.settings.ao().samples,
+                  camera.height, options.benchFrames, options.view.name.c_str(), settings.ao().samples,
                   backendName(options.backend), context.caps().renderer.c_str());
       std::printf("%-10s %10s %10s %10s\n", "pass", "mean ms", "min ms", "max ms");
       double sumOfMeans = 0.0;

@@ -16,6 +16,9 @@ struct RenderOptions {
   View view = View::Final;
   std::string outPath = "obscura.png";
   RenderSettings settings;
+  // Whether the command line gave the AO radius (--ao.radius or --radius); if not, runRender takes the scene's
+  // default (chooseDefaultAoRadius, scene/SceneScale.h) once the scene is loaded.
+  bool radiusGiven = false;
   int benchFrames = 0;
   HeadlessBackend backend = HeadlessBackend::OSMesa;
   bool help = false;

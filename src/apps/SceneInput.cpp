@@ -8,8 +8,10 @@
 #include <glm/gtc/matrix_transform.hpp>
 
 #include "base/Error.h"
+#include "base/Text.h"
 #include "scene/BuiltinScene.h"
 #include "scene/GltfLoader.h"
+#include "scene/SceneScale.h"
 
 namespace obscura {
 
@@ -97,9 +99,24 @@ std::string sceneInputUsage() {
          "  --size WxH        output size (overrides the camera's width and height; default 1280x720)\n";
 }
 
+float chooseDefaultAoRadius(const char* tool, const char* option, const Scene& scene) {
+  const float radius = defaultAoRadius(scene);
+  std::cerr << tool << ": AO radius " << formatShortest(radius) << " (" << defaultAoRadiusReason(scene) << "; set "
+            << option << " to choose)\n";
+  return radius;
+}
+
+std::string defaultAoRadiusUsage(const std::string& option) {
+  return "AO radius: without " + option +
+         ", 5 % of the scene's bounding-sphere diameter, to two significant figures (the\n"
+         "built-in scene: 1, the metre it was designed for); it follows --scene-scale, and a note on stderr says\n"
+         "which radius was chosen.\n";
+}
+
 void scaleScene(Scene& scene, float scale) {
   const glm::mat4 scaling = glm::scale(glm::mat4(1.0f), glm::vec3(scale));
   for (Instance& instance : scene.instances) instance.world = scaling * instance.world;
+  scene.designedAoRadius *= scale;  // a radius the scene was designed for scales with it (scene/SceneScale.h)
 }
 
 }  // namespace obscura

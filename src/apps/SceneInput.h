@@ -1,6 +1,7 @@
 #pragma once
 // What the command-line tools (obscura-render, obscura-reference, obscura-tune) share: the scene and the camera they
-// are asked for, so every tool reads the same options the same way and sees the same pixels.
+// are asked for, so every tool reads the same options the same way and sees the same pixels, and the AO radius they
+// choose for a scene when none is given.
 //
 //   --scene FILE       glTF 2.0 (.gltf or .glb); default: the built-in scene
 //   --scene-scale S    multiplies the scene's world positions (a model authored in millimetres: 0.001)
@@ -44,6 +45,15 @@ struct SceneInput {
 
 // The usage lines of the options above, for --help texts.
 std::string sceneInputUsage();
+
+// The AO radius when the command line gives none: defaultAoRadius(scene) (scene/SceneScale.h: 5 % of the scene's
+// bounding-sphere diameter to two significant figures; the built-in scene's own 1 m), with a one-line note on stderr,
+// e.g. "obscura-render: AO radius 42 (5 % of the scene's bounding-sphere diameter, 836.05; set --ao.radius to
+// choose)". `option` is the tool's radius option. obscura-render and obscura-reference call it alike, so that they
+// pick the same radius for the same scene.
+float chooseDefaultAoRadius(const char* tool, const char* option, const Scene& scene);
+// The --help lines saying so, for the tool's radius option.
+std::string defaultAoRadiusUsage(const std::string& option);
 
 // Multiplies every instance's world transform by a uniform scale.
 void scaleScene(Scene& scene, float scale);

@@ -43,6 +43,8 @@ const char* kUsage =
     "\n"
     "Shows a glTF 2.0 scene (default: the built-in scene) with Scalable Ambient Obscurance in an OpenGL ES 2.0\n"
     "window. Drop a .glb or .gltf on the window to load it.\n"
+    "Each scene loaded gets its default AO radius, 5 % of its bounding-sphere diameter to two significant figures\n"
+    "(the built-in scene: 1 m), unless --state gives one, which is then kept for every scene.\n"
     "  --size WxH         window size (default 1280x720)\n"
     "  --state QUERY      view, parameters and camera as the web page's URL query, e.g. 'view=ao&radius=2'\n"
     "  --screenshot FILE  draw --frames frames (default 3), write the last one as PNG and exit\n"
@@ -187,11 +189,12 @@ std::string title(const Viewer& viewer, double frameMs, const GpuPassTimer& time
   std::snprintf(text, sizeof text, "Obscura - %s - %s - %.1f ms (%.0f fps)", viewer.sceneName().c_str(),
                 viewer.state().viewMode().c_str(), frameMs, frameMs > 0.0 ? 1000.0 / frameMs : 0.0);
   std::string out = text;
-  // What the keys change, as in use (bias, intensity and contrast on "auto" show their fitted values).
+  // What the keys change, as in use (bias, intensity and contrast on "auto" show their fitted values). The radius is
+  // in the scene's units (metres only for the built-in scene), so it goes without a unit.
   const RenderSettings& s = viewer.state().settings;
   const std::string preset = s.get("ao.preset");
   const std::string presetShown = preset.empty() ? std::string(presetName(s.ao().preset)) + " (changed)" : preset;
-  out += " - AO " + s.get("ao") + ", " + presetShown + ", r " + s.get("ao.radius") + " m, " + s.get("ao.samples") +
+  out += " - AO " + s.get("ao") + ", " + presetShown + ", r " + s.get("ao.radius") + ", " + s.get("ao.samples") +
          " samples, intensity " + s.effective("ao.intensity") + ", bias " + s.effective("ao.bias") + ", contrast " +
          s.effective("ao.contrast") + ", blur " + (s.ao().blur ? s.get("ao.blur-radius") : std::string("off")) +
          " - tone mapping " + (s.get("tonemap") == "on" ? s.get("tonemap.operator") + " " +

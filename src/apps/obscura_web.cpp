@@ -21,6 +21,7 @@
 #include <nlohmann/json.hpp>
 
 #include "base/Error.h"
+#include "base/Text.h"
 #include "gl/GlObjects.h"
 #include "gl/RenderTarget.h"
 #include "platform/GpuPassTimer.h"
@@ -369,7 +370,8 @@ EMSCRIPTEN_KEEPALIVE void obscura_add_side_file(const char* uri, const std::uint
 }
 
 // Loads a .gltf or .glb from memory with the side files added before; on failure the current scene stays.
-// The scene's name, triangle count and the loader's warnings are then in obscura_scene().
+// The scene's name, triangle count and the loader's warnings are then in obscura_scene(). The AO radius becomes the
+// scene's default unless a state text gave one (platform/Viewer.h).
 EMSCRIPTEN_KEEPALIVE int obscura_load_scene(const char* name, const std::uint8_t* bytes, int size) {
   std::map<std::string, std::vector<std::uint8_t>> sideFiles;
   sideFiles.swap(g_sideFiles);
@@ -387,10 +389,19 @@ EMSCRIPTEN_KEEPALIVE int obscura_load_builtin_scene() {
   });
 }
 
+// The scene's name, triangle count, loader warnings, and the AO radius it gets when nobody sets one
+// (scene/SceneScale.h; as written, so that 0.42 reads 0.42 and not the float's nearest double).
 EMSCRIPTEN_KEEPALIVE const char* obscura_scene() {
   return returned(Json{{"name", g_app->viewer().sceneName()},
                        {"triangles", g_app->viewer().sceneTriangles()},
-                       {"warnings", g_sceneWarnings}}.dump());
+                       {"warnings", g_sceneWarnings},
+                       {"defaultRadius", std::stod(formatShortest(g_app->viewer().sceneDefaultRadius()))},
+                       {"radiusGiven", g_app->viewer().state().radiusGiven}}.dump());
+}
+
+// The current scene's default AO radius as text ("42"), without the rest of obscura_scene().
+EMSCRIPTEN_KEEPALIVE const char* obscura_default_radius() {
+  return returned(formatShortest(g_app->viewer().sceneDefaultRadius()));
 }
 
 EMSCRIPTEN_KEEPALIVE const char* obscura_stats() { return returned(g_app->stats().dump()); }

@@ -7,6 +7,7 @@
 #include "gl/GlObjects.h"
 #include "platform/CameraControls.h"
 #include "scene/BuiltinScene.h"
+#include "scene/SceneScale.h"
 
 namespace obscura {
 
@@ -91,6 +92,7 @@ void Viewer::showScene(Scene scene, const std::string& name, const Camera& camer
   sceneBounds_ = scene_.worldBounds();
   sceneCamera_ = camera;
   state_.camera = camera;
+  state_.sceneLoaded(defaultAoRadius(scene_));  // the scene's own radius, unless a state text gave one
 }
 
 void Viewer::loadBuiltinScene() { showScene(makeBuiltinScene(), "built-in scene", builtinSceneCamera()); }

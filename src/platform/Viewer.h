@@ -28,14 +28,18 @@ class Viewer {
   Viewer(const Viewer&) = delete;
   Viewer& operator=(const Viewer&) = delete;
 
-  // --- Scenes. Each resets the camera to the scene's own view. A scene that fails to load throws (InputError for a
-  // bad file, GlError if the context refuses it) and leaves the current scene on screen.
+  // --- Scenes. Each resets the camera to the scene's own view, and the AO radius to the scene's default
+  // (scene/SceneScale.h: 5 % of its bounding-sphere diameter; the built-in scene's 1 m) unless a state text gave
+  // one (ViewerState::sceneLoaded). A scene that fails to load throws (InputError for a bad file, GlError if the
+  // context refuses it) and leaves the current scene on screen, radius included.
   void loadBuiltinScene();
   GltfLoadReport loadGltf(const std::vector<std::uint8_t>& bytes, const std::string& name,
                           const std::map<std::string, std::vector<std::uint8_t>>& sideFiles = {});
   GltfLoadReport loadGltfFile(const std::string& path);
   const std::string& sceneName() const { return sceneName_; }
   std::size_t sceneTriangles() const { return scene_.triangleCount(); }
+  // The AO radius the current scene gets when nobody sets one (defaultAoRadius).
+  float sceneDefaultRadius() const { return state_.defaultRadius; }
 
   // --- What is shown. Parameters and the view are set through the state (AoSettings::set, setViewMode, applyQuery).
   ViewerState& state() { return state_; }

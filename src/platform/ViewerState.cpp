@@ -82,6 +82,11 @@ const std::vector<std::string>& ViewerState::viewModes() { return frameViewNames
 
 void ViewerState::setViewMode(const std::string& name) { view = parseView(name); }
 
+void ViewerState::sceneLoaded(float radius) {
+  defaultRadius = radius;
+  if (!radiusGiven) settings.ao().radius = radius;
+}
+
 std::string ViewerState::toQuery() const {
   std::string query = "view=" + viewMode();
   auto add = [&](const std::string& key, const std::string& value) {
@@ -91,6 +96,7 @@ std::string ViewerState::toQuery() const {
   // remembered preset (which the AO also uses to pick its fitted estimator parameters) where it is not the default.
   // The parameters that follow are those differing from what those presets set.
   RenderSettings base;
+  base.ao().radius = defaultRadius;  // the scene's default; AoSettings' own default (1) is the built-in scene's
   const std::string framePreset = settings.get("preset");
   if (!framePreset.empty() && framePreset != base.get("preset")) {
     add("preset", framePreset);
@@ -112,7 +118,8 @@ std::string ViewerState::toQuery() const {
   for (const ParameterInfo& p : RenderSettings::parameters()) {
     if (p.name == "preset" || std::find(presetNames.begin(), presetNames.end(), p.name) != presetNames.end()) continue;
     const std::string value = settings.get(p.name);
-    if (value != base.get(p.name)) add(p.name, value);
+    // A radius a state text gave stays in the text, so that it keeps being given (kept across scenes) when applied.
+    if (value != base.get(p.name) || (radiusGiven && p.name == "ao.radius")) add(p.name, value);
   }
   add("eye", formatVector(camera.eye));
   add("target", formatVector(camera.target));
@@ -153,8 +160,10 @@ bool ViewerState::applyQuery(const std::string& query) {
     for (const ParameterInfo& p : RenderSettings::parameters()) {
       const bool byName = values.count(p.name) != 0, byAlias = !p.alias.empty() && values.count(p.alias) != 0;
       if (byName && byAlias) throw InputError(p.name + " is given twice (also as " + p.alias + ")");
-      if (take(p.name, &text) || (!p.alias.empty() && take(p.alias, &text)))
+      if (take(p.name, &text) || (!p.alias.empty() && take(p.alias, &text))) {
         next.settings.set(byName ? p.name : p.alias, text);
+        if (p.name == "ao.radius") next.radiusGiven = true;
+      }
     }
   } catch (const InputError& e) {
     throw InputError(std::string("state: ") + e.what());

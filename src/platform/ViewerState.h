@@ -4,7 +4,8 @@
 //   view=split&ao.radius=2&ao.samples=16&eye=3.2,2.6,6.2&target=-0.4,0.8,-1.6&up=0,1,0&fovy=55&near=0.1&far=40
 // Keys: view (frameViewNames(): final, split, and every target's debug view), every parameter of RenderSettings by
 // its name or alias ("radius" for "ao.radius": older links keep working), and the camera (eye, target, up as x,y,z;
-// fovy in degrees; near; far). The camera's size follows the window or canvas.
+// fovy in degrees; near; far). The camera's size follows the window or canvas. The AO radius is in the scene's units;
+// each scene loaded gets its own default radius unless a state text gave one (sceneLoaded).
 #include <string>
 #include <vector>
 
@@ -19,19 +20,31 @@ struct ViewerState {
   RenderSettings settings;
   Camera camera;
 
+  // The AO radius of the scene shown when nobody sets one (scene/SceneScale.h: defaultAoRadius; the built-in scene:
+  // 1). toQuery leaves ao.radius out at this value, so a URL holds a radius only once someone chose one.
+  float defaultRadius = 1.0f;
+  // Whether a state text (applyQuery: the page's URL, obscura-view's --state, the JS API's setState) gave the radius.
+  // Such a radius is kept when another scene is loaded; otherwise each scene loaded starts at its own default
+  // radius, whatever the keys or the controls had set for the previous one (sceneLoaded).
+  bool radiusGiven = false;
+  // A scene whose default AO radius is `radius` is now shown: records it, and sets ao.radius to it unless
+  // radiusGiven.
+  void sceneLoaded(float radius);
+
   // The view names a viewer offers, in order (the Renderer's: frameViewNames()).
   static const std::vector<std::string>& viewModes();
   std::string viewMode() const { return view.name; }
   void setViewMode(const std::string& name);  // throws InputError
 
   // The state as query-string text (no leading '?'), parameters by their full names. Parameters equal to their
-  // defaults (or to their preset's values) are left out; the view and the camera are always written.
+  // defaults (or to their preset's values; the radius: to defaultRadius, unless radiusGiven) are left out; the view
+  // and the camera are always written.
   std::string toQuery() const;
   // Applies query-string text (with or without a leading '?', '+' and %XX decoded) onto this state. Keys may come in
   // any order; parameters apply in the order of the parameter table ("preset" first, then each effect's, so
   // "ao.samples" precedes "ao.turns"). Throws InputError naming the key on anything unknown or invalid (or a
   // parameter given twice, by name and alias), leaving the state unchanged. Returns whether the text set the camera
-  // (any camera key).
+  // (any camera key). A radius in the text (ao.radius or radius) sets radiusGiven.
   bool applyQuery(const std::string& query);
 };
 

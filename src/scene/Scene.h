@@ -1,7 +1,8 @@
 #pragma once
-// A scene as the renderer consumes it: triangle meshes in local space, instances placing them in the world (metres,
-// right-handed, +y up), materials and RGBA8 images. Built by the glTF loader or by the built-in scene generator;
-// holds no GL objects (GpuScene uploads it).
+// A scene as the renderer consumes it: triangle meshes in local space, instances placing them in the world (in the
+// scene's own units: metres for the built-in scene, whatever a glTF file was authored in; right-handed, +y up),
+// materials and RGBA8 images. Built by the glTF loader or by the built-in scene generator; holds no GL objects
+// (GpuScene uploads it).
 #include <cstdint>
 #include <string>
 #include <vector>
@@ -69,6 +70,9 @@ struct Scene {
   std::vector<Material> materials;
   std::vector<Texture> textures;
   std::vector<Image> images;
+  // The AO radius the scene was designed for, in its units; 0 for none (a loaded file), when defaultAoRadius
+  // (scene/SceneScale.h) derives one from the scene's size. The built-in scene: 1 (metre).
+  float designedAoRadius = 0.0f;
 
   Bounds worldBounds() const;
   std::size_t triangleCount() const;
