@@ -3,6 +3,8 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <fstream>
+#include <iterator>
 #include <string>
 
 #include "TestSupport.h"
@@ -147,4 +149,25 @@ TEST(CompareCli, ReportsFiguresAndWritesThePictures) {
   const obscura::Image sbs = obscura::readPng(dir + "cmp-sbs.png");
   EXPECT_EQ(sbs.width, 3 * 64 + 2 * 4);
   EXPECT_EQ(sbs.height, 36);
+}
+
+// The furnished room in millimetres (assets/scenes/room-mm.glb, used by the accuracy views) is what its generator
+// writes: regenerating it gives the committed bytes, and the loader reads it in millimetres (a room about 6 m wide
+// is about 6000 units, so the default radius is hundreds of units).
+TEST(MakeRoom, TheCommittedRoomIsWhatTheGeneratorWrites) {
+  const std::string out = obscura::test::tempPath("room-mm.glb");
+  const ProcessResult made = obscura::test::runProcess(OBSCURA_MAKE_ROOM_BINARY, out);
+  ASSERT_EQ(made.status, 0) << made.err;
+  auto bytes = [](const std::string& path) {
+    std::ifstream file(path, std::ios::binary);
+    return std::string(std::istreambuf_iterator<char>(file), std::istreambuf_iterator<char>());
+  };
+  const std::string committed = bytes(obscura::test::sourceDir() + "/assets/scenes/room-mm.glb");
+  ASSERT_FALSE(committed.empty());
+  EXPECT_TRUE(bytes(out) == committed) << "re-run build/obscura-make-room assets/scenes/room-mm.glb and commit it";
+  const ProcessResult rendered =
+      render("--scene " + obscura::test::sourceDir() + "/assets/scenes/room-mm.glb --size 64x36 --view ao --out " +
+             obscura::test::tempPath("room.png"));
+  ASSERT_EQ(rendered.status, 0) << rendered.err;
+  EXPECT_NE(rendered.err.find("AO radius 430 "), std::string::npos) << rendered.err;
 }
