@@ -35,14 +35,35 @@
 
 const float kPi = 3.14159265359;
 const float kHalfPi = 1.57079632679;
-const float kFalloffFraction = 0.2;  // the horizon fades out over the last fifth of r
+const float kFalloffFraction = 0.05;  // the horizon fades out over the last twentieth of r
 
-// The cosine-weighted measure of the arc [h0, h1] about the projected normal at angle gamma (eq. 10).
-float arcVisibility(float h0, float h1, float gamma) {
-  float cosGamma = cos(gamma);
-  float sinGamma = sin(gamma);
-  return 0.25 * (-cos(2.0 * h0 - gamma) + cosGamma + 2.0 * h0 * sinGamma) +
-         0.25 * (-cos(2.0 * h1 - gamma) + cosGamma + 2.0 * h1 * sinGamma);
+// acos to about 0.01 rad with one square root (Lagarde's fit, as XeGTAO's XeGTAO_FastACos): GLSL's acos costs a
+// polynomial and more on CPU rasterisers, and AO needs no more precision than this.
+float fastAcos(float x) {
+  float a = abs(x);
+  float result = (-0.156583 * a + kHalfPi) * sqrt(1.0 - a);
+  return x >= 0.0 ? result : kPi - result;
+}
+
+// The 4x4 Bayer index 0 .. 15 of a pixel: 4 B2(x mod 2, y mod 2) + B2(floor(x/2) mod 2, floor(y/2) mod 2) with the
+// 2x2 matrix B2(a, b) = 2 |a - b| + b ([[0, 2], [3, 1]]), in arithmetic (GLSL ES 1.00 has no bitwise operators).
+float bayer4(vec2 pixel) {
+  vec2 low = mod(pixel, 2.0);
+  vec2 high = mod(floor(pixel * 0.5), 2.0);
+  return 4.0 * (2.0 * abs(low.x - low.y) + low.y) + 2.0 * abs(high.x - high.y) + high.y;
+}
+
+// One side's half of eq. 10, 1/4 (-cos(2h - gamma) + cos gamma + 2 h sin gamma), for the horizon of cosine c at
+// angle h = sideSign * acos(c), clamped to the hemisphere (|h - gamma| <= pi/2). No cosine is evaluated: unclamped,
+// cos(2h - gamma) = cos 2h cos gamma + sin 2h sin gamma with cos 2h = 2c^2 - 1 and sin 2h = 2 sin h c; clamped,
+// h = gamma +- pi/2 and cos(2h - gamma) = -cos gamma.
+float sideArc(float c, float sideSign, float gamma, float cosGamma, float sinGamma) {
+  float h = sideSign * fastAcos(c);
+  float limit = gamma + sideSign * kHalfPi;
+  bool clamped = sideSign * (h - limit) > 0.0;
+  float sinH = sideSign * sqrt(max(1.0 - c * c, 0.0));
+  float cosTwiceHMinusGamma = clamped ? -cosGamma : (2.0 * c * c - 1.0) * cosGamma + 2.0 * sinH * c * sinGamma;
+  return 0.25 * (-cosTwiceHMinusGamma + cosGamma + 2.0 * (clamped ? limit : h) * sinGamma);
 }
 
 // The highest horizon cosine along one side of a slice (direction `side` in pixels, unit length).
@@ -55,8 +76,9 @@ float sideHorizon(AoCentre c, vec3 V, vec2 side, float jitter, float log2DiskRad
     vec3 w = (tapPoint(tapPixel, log2(tapDistance)) - c.position) * u_invRadius;  // in units of r
     float distance = length(w);
     float cosine = dot(w, V) / max(distance, 1e-4);
-    // Taps within beta r of the tangent plane do not occlude (the tangent plane itself is no occluder).
-    float aboveTangent = step(bias, dot(w, c.normal));
+    // Taps within beta r of the tangent plane do not occlude (the tangent plane itself is no occluder); the step is a
+    // ramp over the next beta r (at least 0.01 r), so a tap does not flip in and out with depth quantisation.
+    float aboveTangent = clamp((dot(w, c.normal) - bias) / max(bias, 0.01), 0.0, 1.0);
     float weight = clamp((1.0 - distance) * (1.0 / kFalloffFraction), 0.0, 1.0) * aboveTangent;
     float tapHorizon = mix(-1.0, cosine, weight);
     // Higher: the new horizon. Lower (and in range): the thickness heuristic's partial step down.
@@ -75,9 +97,12 @@ void main() {
   float log2DiskRadius = log2(max(c.diskRadius, 1e-3));
   vec3 estimator = estimatorAt(log2DiskRadius);
   vec3 V = normalize(-c.position);
-  float noise = rotationAngle(c.aoPixel) * (1.0 / kTwoPi);  // [0, 1)
-  // The step jitter: a second, decorrelated fraction of the same hash.
-  float jitter = fract(noise * 7.0 + 0.5);
+  // The slices' rotation: a 4x4 ordered (Bayer) pattern, so every 4x4 block holds 16 evenly spaced angles and the
+  // bilateral blur (9 taps a direction at the medium preset) averages them all on a flat surface; the interleaved
+  // gradient noise SAO uses left diagonal streaks where two slices per pixel sampled a wall's foot. The steps'
+  // jitter keeps that noise.
+  float noise = (bayer4(c.aoPixel) + 0.5) * (1.0 / 16.0);  // [0, 1)
+  float jitter = rotationAngle(c.aoPixel) * (1.0 / kTwoPi);
 
   float visible = 0.0, open = 0.0;
   for (int slice = 0; slice < GTAO_SLICES; slice++) {
@@ -90,14 +115,15 @@ void main() {
     vec3 projectedNormal = c.normal - axis * dot(c.normal, axis);
     float projectedLength = length(projectedNormal);
     float cosGamma = clamp(dot(projectedNormal, V) / max(projectedLength, 1e-4), -1.0, 1.0);
-    float gamma = sign(dot(projectedNormal, T)) * acos(cosGamma);
+    float sinGamma = dot(projectedNormal, T) / max(projectedLength, 1e-4);
+    float gamma = sign(sinGamma) * fastAcos(cosGamma);
 
-    float h0 = -acos(clamp(sideHorizon(c, V, -d, jitter, log2DiskRadius, estimator.y), -1.0, 1.0));
-    float h1 = acos(clamp(sideHorizon(c, V, d, jitter, log2DiskRadius, estimator.y), -1.0, 1.0));
-    h0 = gamma + max(h0 - gamma, -kHalfPi);
-    h1 = gamma + min(h1 - gamma, kHalfPi);
-    visible += projectedLength * arcVisibility(h0, h1, gamma);
-    open += projectedLength * arcVisibility(gamma - kHalfPi, gamma + kHalfPi, gamma);
+    float c0 = clamp(sideHorizon(c, V, -d, jitter, log2DiskRadius, estimator.y), -1.0, 1.0);
+    float c1 = clamp(sideHorizon(c, V, d, jitter, log2DiskRadius, estimator.y), -1.0, 1.0);
+    visible += projectedLength *
+               (sideArc(c0, -1.0, gamma, cosGamma, sinGamma) + sideArc(c1, 1.0, gamma, cosGamma, sinGamma));
+    // An open sky: both horizons at the hemisphere's edge, eq. 10 = cos gamma + gamma sin gamma.
+    open += projectedLength * (cosGamma + gamma * sinGamma);
   }
   float visibility = clamp(visible / max(open, 1e-4), 0.0, 1.0);
   gl_FragColor = aoOutput(c, 1.0 - visibility, estimator);

@@ -88,18 +88,31 @@ TEST(DepthHierarchy, ChangesTheBlurredAoLittle) {
   Renderer renderer = test::makeRenderer();
   renderer.setScene(makeBuiltinScene());
   const Camera camera = builtinSceneCamera(320, 180);
-  AoSettings with, without;
-  without.depthHierarchy = false;
-  // Measured on llvmpipe: 0.0005, 0.22 and 0.51 (of 255); bounds about twice that. At 0.5 m nearly every tap is within
-  // 16 px and reads level 0, so the figure is close to nothing; the far radii are where the levels are read.
-  const std::pair<float, double> radiusAndBound[] = {{0.5f, 0.01}, {2.0f, 0.5}, {4.0f, 1.0}};
-  for (const auto& [radius, bound] : radiusAndBound) {
-    with.radius = without.radius = radius;
-    const Difference d = aoDifference(test::render(renderer, camera, with, View::Ao),
-                                      test::render(renderer, camera, without, View::Ao));
-    RecordProperty("mean_at_" + std::to_string(static_cast<int>(radius * 10)), std::to_string(d.mean));
+  // Bounds (of 255) about 1.5 to 2 times what llvmpipe measured. At 0.5 m nearly every tap is within 16 px and reads
+  // level 0, so the figure is close to nothing; the far radii are where the levels are read. Measured: SAO (hard cut
+  // at r) 0.010, 0.68, 0.92; GTAO 0.005, 0.98, 1.33: it keeps each side's highest horizon, so a far tap that reads
+  // its block's depth instead of its own moves that pixel's estimate more than SAO's mean of taps does.
+  struct Case {
+    AoEstimator estimator;
+    float radius;
+    double bound;
+  };
+  const Case cases[] = {{AoEstimator::Sao, 0.5f, 0.02}, {AoEstimator::Sao, 2.0f, 1.2},
+                        {AoEstimator::Sao, 4.0f, 1.6},  {AoEstimator::Gtao, 0.5f, 0.01},
+                        {AoEstimator::Gtao, 2.0f, 1.8}, {AoEstimator::Gtao, 4.0f, 2.4}};
+  for (const Case& c : cases) {
+    AoSettings with, without;
+    with.estimator = without.estimator = c.estimator;
+    without.depthHierarchy = false;
+    with.radius = without.radius = c.radius;
+    const Difference d =
+        aoDifference(test::render(renderer, camera, with, View::Ao), test::render(renderer, camera, without, View::Ao));
+    RecordProperty(
+        std::string(estimatorName(c.estimator)) + "_mean_at_" + std::to_string(static_cast<int>(c.radius * 10)),
+        std::to_string(d.mean));
     // Far taps read one real depth per block instead of their own texel: the estimate barely moves.
-    EXPECT_LE(d.mean, bound) << "radius " << radius << ": mean difference " << d.mean << "/255, max " << d.max;
+    EXPECT_LE(d.mean, c.bound) << estimatorName(c.estimator) << ", radius " << c.radius << ": mean difference "
+                               << d.mean << "/255, max " << d.max;
   }
 }
 

@@ -111,7 +111,7 @@ TEST(AoSettings, EstimatorParametersAreTunedUnlessSetExplicitly) {
   settings.set("preset", "high");
   EXPECT_EQ(settings.preset, QualityPreset::High);
   settings.set("radius", "2");
-  const EstimatorKnots tuned = tunedEstimatorKnots(AoEstimator::Sao, QualityPreset::High);
+  const EstimatorKnots tuned = tunedEstimatorKnots(settings.estimator, QualityPreset::High);
   for (int j = 0; j < kEstimatorKnots; ++j) {
     EXPECT_FLOAT_EQ(settings.estimatorKnots().at[j].intensity, tuned.at[j].intensity);
     EXPECT_FLOAT_EQ(settings.estimatorKnots().at[j].bias, tuned.at[j].bias);
@@ -150,7 +150,7 @@ TEST(AoSettings, TunedKnotsInterpolateInLogRadiusAndHoldAtTheEnds) {
     AoSettings settings;
     settings.applyPreset(preset.preset);
     EXPECT_NO_THROW(settings.validate()) << preset.name;
-    const EstimatorKnots knots = tunedEstimatorKnots(AoEstimator::Sao, preset.preset);
+    const EstimatorKnots knots = tunedEstimatorKnots(settings.estimator, preset.preset);
     for (int j = 0; j < kEstimatorKnots; ++j) {
       // At a knot, its own values; halfway (in log2) between two knots, their mean.
       EXPECT_FLOAT_EQ(knots.interpolate(estimatorKnotPixels(j)).intensity, knots.at[j].intensity);

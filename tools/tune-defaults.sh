@@ -1,21 +1,24 @@
 #!/usr/bin/env bash
-# Fits SAO's intensity, bias and contrast per quality preset and radius to the ray-traced reference, makes them the
-# defaults, and regenerates the accuracy report. One command, deterministic; re-run it after any change to the AO
+# Fits each AO estimator's intensity, bias and contrast per quality preset and radius in pixels to the ray-traced
+# reference, makes them the defaults, and regenerates the accuracy report. One command, deterministic; re-run it after any change to the AO
 # pipeline (passes, presets, shaders) and commit what it rewrites:
 #   src/core/TunedDefaults.inc   the fitted table AoSettings reads
 #   docs/accuracy.md             the generated tables (between the obscura-tune markers)
-#   docs/images/accuracy-*.png   reference | SAO | difference
+#   docs/images/accuracy-*.png   reference | AO | difference
 #   tests/golden/*.png           the golden images, which show the default (tuned) AO
 #   docs/images/builtin_*.png    the README's pictures (tools/render-docs-images.sh), likewise
-# Reference images are cached in build/tuning-cache (traced once per view and radius). About 3 minutes on two
-# cores, tracing the references included. Usage: tools/tune-defaults.sh
+# Reference images are cached in build/tuning-cache (traced once per view and radius, about a second each). About
+# 20 minutes on two cores (the fit: 16; the report: 2). Usage: tools/tune-defaults.sh
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
 tools/build.sh
 build/obscura-tune --views tools/tuning-views.json --fit src/core/TunedDefaults.inc
 tools/build.sh  # the core now reads the new table
-build/obscura-tune --views tools/tuning-views.json --report docs/accuracy.md --images docs/images
+# The report's browser column: what tools/browser-bench/estimator-costs.mjs measured last (bench-results/), if it ran.
+browser_costs=()
+if [ -f bench-results/browser-estimators.csv ]; then browser_costs=(--browser-ms bench-results/browser-estimators.csv); fi
+build/obscura-tune --views tools/tuning-views.json --report docs/accuracy.md --images docs/images "${browser_costs[@]}"
 OBSCURA_UPDATE_GOLDEN=1 ctest --test-dir build -R 'gpu\.osmesa\.Golden' >/dev/null
 tools/render-docs-images.sh
 echo "tune-defaults: rewrote src/core/TunedDefaults.inc, docs/accuracy.md, docs/images/*.png and tests/golden/*.png;"

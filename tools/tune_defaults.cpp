@@ -29,6 +29,7 @@
 #include <sstream>
 #include <thread>
 
+#include <glm/trigonometric.hpp>
 #include <nlohmann/json.hpp>
 
 #include "apps/SceneInput.h"
@@ -237,12 +238,13 @@ std::vector<TuningCase> loadReferences(TuningView& view, const Scene& scene, con
   for (size_t i = 0; i < view.mask.size(); ++i) {
     const auto code = static_cast<std::uint16_t>((codes.rgba[i * 4] << 8) | codes.rgba[i * 4 + 1]);
     if (view.mask[i])
-      view.viewDepth[i] = view.camera.near + LinearDepthPacking::depthFromCode(code) * (view.camera.far - view.camera.near);
+      view.viewDepth[i] =
+          view.camera.near + LinearDepthPacking::depthFromCode(code) * (view.camera.far - view.camera.near);
   }
   // h = min(projScale r / -z, maxScreenRadius * height), as SaoKernel::diskRadiusPixels at G-buffer resolution.
   const AoSettings defaults;
-  const float projScale = FrameCamera::from(view.camera, view.camera.width, view.camera.height)
-                              .projScale(view.camera.height);
+  const float projScale =
+      FrameCamera::from(view.camera, view.camera.width, view.camera.height).projScale(view.camera.height);
   const float maxPixels = defaults.maxScreenRadius * static_cast<float>(view.camera.height);
   for (TuningCase& c : cases) {
     c.radiusPixels.assign(view.mask.size(), 0.0f);
@@ -310,9 +312,10 @@ struct Score {
 
 // --- The fit -------------------------------------------------------------------------------------------------------
 
-// The search runs over (ln(sigma k), beta, ln k), beta a fraction of the radius. SAO's visibility is max(0, 1 - sigma S)^k for the tap sum S;
-// for large k it tends to exp(-sigma k S), so sigma and k trade against each other along sigma k = const. Searching
-// ln(sigma k) and ln k separately keeps that valley axis-aligned, where Nelder-Mead walks it quickly.
+// The search runs over (ln(sigma k), beta, ln k), beta a fraction of the radius. Every estimator's visibility is
+// max(0, 1 - sigma O)^k for its obscurance O; for large k it tends to exp(-sigma k O), so sigma and k trade against
+// each other along sigma k = const. Searching ln(sigma k) and ln k separately keeps that valley axis-aligned, where
+// Nelder-Mead walks it quickly.
 using Point = std::array<double, 3>;
 
 // The box the search stays in: inside AoSettings' ranges (intensity 0 .. 20, contrast 0.1 .. 10, bias 0 .. 1 m), and
@@ -443,10 +446,18 @@ std::string presetEnumName(const PresetInfo& preset) {
 }
 
 // Every estimator the table holds, in its order.
-constexpr AoEstimator kEstimators[] = {AoEstimator::Sao, AoEstimator::Gtao};
+constexpr AoEstimator kEstimators[] = {AoEstimator::Sao, AoEstimator::Gtao, AoEstimator::Hbao, AoEstimator::Vo,
+                                        AoEstimator::Crytek};
 
 std::string estimatorEnumName(AoEstimator estimator) {
-  return estimator == AoEstimator::Gtao ? "AoEstimator::Gtao" : "AoEstimator::Sao";
+  switch (estimator) {
+    case AoEstimator::Sao: return "AoEstimator::Sao";
+    case AoEstimator::Gtao: return "AoEstimator::Gtao";
+    case AoEstimator::Hbao: return "AoEstimator::Hbao";
+    case AoEstimator::Vo: return "AoEstimator::Vo";
+    case AoEstimator::Crytek: return "AoEstimator::Crytek";
+  }
+  return "AoEstimator::Sao";
 }
 
 std::string viewList(const TuningConfig& config) {
@@ -459,7 +470,20 @@ std::string viewList(const TuningConfig& config) {
 // (view x radius), rendered with one (sigma, beta, k) everywhere; Nelder-Mead minimises their pixel-weighted MAE.
 // Each pixel then interpolates the knots at its own radius in pixels (EstimatorKnots::interpolate). A knot with too
 // few pixels over all cases copies its neighbour's fit.
-void fit(std::vector<TuningCase>& cases, const TuningConfig& config, const std::string& tablePath) {
+// What --estimators and --presets keep (all when empty), for experiments on part of the table.
+struct Selection {
+  std::vector<AoEstimator> estimators;
+  std::vector<QualityPreset> presets;
+  bool has(AoEstimator e) const {
+    return estimators.empty() || std::find(estimators.begin(), estimators.end(), e) != estimators.end();
+  }
+  bool has(QualityPreset p) const {
+    return presets.empty() || std::find(presets.begin(), presets.end(), p) != presets.end();
+  }
+};
+
+void fit(std::vector<TuningCase>& cases, const TuningConfig& config, const Selection& selection,
+         const std::string& tablePath) {
   constexpr size_t kMinCasePixels = 200, kMinKnotPixels = 2000;
   struct Row {
     AoEstimator estimator;
@@ -468,6 +492,7 @@ void fit(std::vector<TuningCase>& cases, const TuningConfig& config, const std::
     EstimatorParameters fitted;
     double mae = 0, paperMae = 0;
     size_t pixels = 0;
+    bool kept = false;  // copied from the current table, not fitted
   };
   std::vector<Row> rows;
   const auto& presets = qualityPresets();
@@ -488,7 +513,8 @@ void fit(std::vector<TuningCase>& cases, const TuningConfig& config, const std::
   for (TuningCase& c : cases) {
     std::array<std::vector<std::uint32_t>, kEstimatorKnots> byKnot;
     for (size_t i = 0; i < c.radiusPixels.size(); ++i)
-      if (c.view->mask[i]) byKnot[static_cast<size_t>(knotOf(c.radiusPixels[i]))].push_back(static_cast<std::uint32_t>(i));
+      if (c.view->mask[i])
+        byKnot[static_cast<size_t>(knotOf(c.radiusPixels[i]))].push_back(static_cast<std::uint32_t>(i));
     for (size_t j = 0; j < byKnot.size(); ++j) {
       if (byKnot[j].size() < kMinCasePixels) continue;
       knotPixels[j] += byKnot[j].size();
@@ -509,63 +535,77 @@ void fit(std::vector<TuningCase>& cases, const TuningConfig& config, const std::
   };
 
   for (AoEstimator estimator : kEstimators) {
-  std::map<int, EstimatorParameters> leader;
-  for (const PresetInfo* preset : order) {
-    AoSettings base = settingsFor(preset->preset);
-    base.estimator = estimator;
-    std::map<int, Row> fitted;
-    for (int knot = 0; knot < kEstimatorKnots; ++knot) {
-      if (knotPixels[static_cast<size_t>(knot)] < kMinKnotPixels) continue;
-      const bool first = leader.count(knot) == 0;
-      EstimatorParameters start = kPaperEstimatorParameters;
-      if (!first) start = leader[knot];
-      else if (fitted.count(knot - 1)) start = fitted[knot - 1].fitted;
-      int evaluations = 0;
-      auto objective = [&](const Point& p) {
-        ++evaluations;
-        return knotMae(knot, withParameters(base, toParameters(p)));
-      };
-      const auto begin = std::chrono::steady_clock::now();
-      const Point step = first ? Point{0.4, 0.05, 0.4} : Point{0.15, 0.02, 0.15};
-      const Point best =
-          nelderMead(objective, fromParameters(start), step, first ? config.evaluations : config.followEvaluations);
-      Row row{estimator, preset, knot, toParameters(best)};
-      row.mae = knotMae(knot, withParameters(base, row.fitted));
-      row.paperMae = knotMae(knot, withParameters(base, kPaperEstimatorParameters));
-      row.pixels = knotPixels[static_cast<size_t>(knot)];
-      std::printf("  %-4s %-6s h = %3.0f px sigma %.3f beta %.4f k %.3f | MAE %.4f | paper MAE %.4f | %zu px in %zu "
-                  "cases, %d renders each, %.0f s\n",
-                  estimatorName(estimator), preset->name, static_cast<double>(estimatorKnotPixels(knot)),
-                  static_cast<double>(row.fitted.intensity), static_cast<double>(row.fitted.bias),
-                  static_cast<double>(row.fitted.contrast), row.mae, row.paperMae, row.pixels,
-                  members[static_cast<size_t>(knot)].size(), evaluations,
-                  std::chrono::duration<double>(std::chrono::steady_clock::now() - begin).count());
-      std::fflush(stdout);
-      if (first) leader[knot] = row.fitted;
-      fitted[knot] = row;
-    }
-    if (fitted.empty()) throw InputError("no knot has enough pixels: add views or radius factors");
-    for (int knot = 0; knot < kEstimatorKnots; ++knot) {
-      Row row;
-      if (fitted.count(knot)) {
-        row = fitted[knot];
-      } else {  // the nearest fitted knot's values
-        int nearest = fitted.begin()->first;
-        for (const auto& [k, r] : fitted)
-          if (std::abs(k - knot) < std::abs(nearest - knot)) nearest = k;
-        row = fitted[nearest];
-        row.knot = knot;
-        row.pixels = 0;
+    std::map<int, EstimatorParameters> leader;
+    for (const PresetInfo* preset : order) {
+      if (!selection.has(estimator) || !selection.has(preset->preset)) {
+        // Not fitted this time: the rows the core has now are kept, so a partial fit can extend the table.
+        const EstimatorKnots kept = tunedEstimatorKnots(estimator, preset->preset);
+        for (int knot = 0; knot < kEstimatorKnots; ++knot) {
+          Row row{estimator, preset, knot, kept.at[knot]};
+          row.kept = true;
+          rows.push_back(row);
+        }
+        continue;
       }
-      rows.push_back(row);
+      AoSettings base = settingsFor(preset->preset);
+      base.estimator = estimator;
+      std::map<int, Row> fitted;
+      for (int knot = 0; knot < kEstimatorKnots; ++knot) {
+        if (knotPixels[static_cast<size_t>(knot)] < kMinKnotPixels) continue;
+        const bool first = leader.count(knot) == 0;
+        EstimatorParameters start = kPaperEstimatorParameters;
+        if (!first)
+          start = leader[knot];
+        else if (fitted.count(knot - 1))
+          start = fitted[knot - 1].fitted;
+        int evaluations = 0;
+        auto objective = [&](const Point& p) {
+          ++evaluations;
+          return knotMae(knot, withParameters(base, toParameters(p)));
+        };
+        const auto begin = std::chrono::steady_clock::now();
+        const Point step = first ? Point{0.4, 0.05, 0.4} : Point{0.15, 0.02, 0.15};
+        const Point best =
+            nelderMead(objective, fromParameters(start), step, first ? config.evaluations : config.followEvaluations);
+        Row row{estimator, preset, knot, toParameters(best)};
+        row.mae = knotMae(knot, withParameters(base, row.fitted));
+        row.paperMae = knotMae(knot, withParameters(base, kPaperEstimatorParameters));
+        row.pixels = knotPixels[static_cast<size_t>(knot)];
+        std::printf(
+            "  %-4s %-6s h = %3.0f px sigma %.3f beta %.4f k %.3f | MAE %.4f | paper MAE %.4f | %zu px in %zu "
+            "cases, %d renders each, %.0f s\n",
+            estimatorName(estimator), preset->name, static_cast<double>(estimatorKnotPixels(knot)),
+            static_cast<double>(row.fitted.intensity), static_cast<double>(row.fitted.bias),
+            static_cast<double>(row.fitted.contrast), row.mae, row.paperMae, row.pixels,
+            members[static_cast<size_t>(knot)].size(), evaluations,
+            std::chrono::duration<double>(std::chrono::steady_clock::now() - begin).count());
+        std::fflush(stdout);
+        if (first) leader[knot] = row.fitted;
+        fitted[knot] = row;
+      }
+      if (fitted.empty()) throw InputError("no knot has enough pixels: add views or radius factors");
+      for (int knot = 0; knot < kEstimatorKnots; ++knot) {
+        Row row;
+        if (fitted.count(knot)) {
+          row = fitted[knot];
+        } else {  // the nearest fitted knot's values
+          int nearest = fitted.begin()->first;
+          for (const auto& [k, r] : fitted)
+            if (std::abs(k - knot) < std::abs(nearest - knot)) nearest = k;
+          row = fitted[nearest];
+          row.knot = knot;
+          row.pixels = 0;
+        }
+        rows.push_back(row);
+      }
     }
-  }
   }
 
   // Rows grouped by preset in qualityPresets() order, knots increasing, as tunedEstimatorKnots expects.
   std::ostringstream out;
   out << "// Generated by tools/tune-defaults.sh (obscura-tune --fit): do not edit by hand.\n"
-      << "// Each estimator's intensity sigma, bias beta (a fraction of the radius) and contrast k per quality preset, at\n"
+      << "// Each estimator's intensity sigma, bias beta (a fraction of the radius) and contrast k per quality preset, "
+         "at\n"
       << "// knots of"
       << " the projected radius in pixels (AoSettings.h), fitted to the ray-traced reference (obscura-reference,\n"
       << "// " << config.rays << " rays per pixel) at " << config.width << "x" << config.height
@@ -574,23 +614,26 @@ void fit(std::vector<TuningCase>& cases, const TuningConfig& config, const std::
   for (float f : config.radiusFactors) out << " " << radiusText(f);
   out << "\n// times each view's object size: " << viewList(config) << ".\n"
       << "// docs/accuracy.md explains the procedure.\n"
-      << "// {estimator, preset, radius in pixels (knot), {intensity sigma, bias beta (fraction of r), contrast k}},  // fitted | "
+      << "// {estimator, preset, radius in pixels (knot), {intensity sigma, bias beta (fraction of r), contrast k}},  "
+         "// fitted | "
          "SAO paper's values\n";
   for (AoEstimator estimator : kEstimators) {
-  for (const PresetInfo& preset : presets) {
-    for (const Row& row : rows) {
-      if (row.preset != &preset || row.estimator != estimator) continue;
-      char comment[160];
-      if (row.pixels)
-        std::snprintf(comment, sizeof comment, "  // MAE %.4f | paper MAE %.4f, %zu px", row.mae, row.paperMae,
-                      row.pixels);
-      else
-        std::snprintf(comment, sizeof comment, "  // too few pixels: the nearest fitted knot's values");
-      out << "{" << estimatorEnumName(estimator) << ", " << presetEnumName(preset) << ", "
-          << floatLiteral(estimatorKnotPixels(row.knot)) << ", {" << floatLiteral(row.fitted.intensity) << ", "
-          << floatLiteral(row.fitted.bias) << ", " << floatLiteral(row.fitted.contrast) << "}}," << comment << "\n";
+    for (const PresetInfo& preset : presets) {
+      for (const Row& row : rows) {
+        if (row.preset != &preset || row.estimator != estimator) continue;
+        char comment[160];
+        if (row.kept)
+          std::snprintf(comment, sizeof comment, "  // kept from the previous table (not fitted in this run)");
+        else if (row.pixels)
+          std::snprintf(comment, sizeof comment, "  // MAE %.4f | paper MAE %.4f, %zu px", row.mae, row.paperMae,
+                        row.pixels);
+        else
+          std::snprintf(comment, sizeof comment, "  // too few pixels: the nearest fitted knot's values");
+        out << "{" << estimatorEnumName(estimator) << ", " << presetEnumName(preset) << ", "
+            << floatLiteral(estimatorKnotPixels(row.knot)) << ", {" << floatLiteral(row.fitted.intensity) << ", "
+            << floatLiteral(row.fitted.bias) << ", " << floatLiteral(row.fitted.contrast) << "}}," << comment << "\n";
+      }
     }
-  }
   }
   std::ofstream file(tablePath);
   if (!(file << out.str())) throw InputError(tablePath + ": cannot write");
@@ -615,8 +658,118 @@ double aoMilliseconds(TuningView& view, const AoSettings& settings) {
 
 std::string passFail(bool met) { return met ? "met" : "**not met**"; }
 
+// --guard-band F: what a guard band (Gravas 2013, sec. 2.3.3.1: G-buffer pixels beyond the frame, so that taps near
+// its edges find geometry) would gain. Each view is rendered with the same eye and centre but a field of view and an
+// image F times larger in each direction (the frame in its middle, pixel for pixel the same rays), and the middle is
+// compared with the reference; the screen-space clamp is scaled back so only the extra pixels differ. Prints the
+// mean figures without and with the band, per radius factor.
+void guardBandStudy(std::vector<TuningCase>& cases, const HeadlessContext& context, float factor) {
+  const AoSettings defaults;
+  for (AoEstimator estimator : kEstimators) {
+    Score plain, banded;
+    std::map<float, std::pair<Score, Score>> byFactor;
+    for (TuningCase& c : cases) {
+      TuningView& view = *c.view;
+      AoSettings settings = defaults;
+      settings.estimator = estimator;
+      settings.radius = c.radius;
+      const AoComparison without =
+          compareAo(c.reference, GreyImage::fromRed(renderAo(view, settings)), view.mask, view.haloBand, false);
+      Camera wide = view.camera;
+      const int bandX = static_cast<int>(std::lround(0.5f * (factor - 1.0f) * static_cast<float>(view.camera.width)));
+      const int bandY = static_cast<int>(std::lround(0.5f * (factor - 1.0f) * static_cast<float>(view.camera.height)));
+      wide.width = view.camera.width + 2 * bandX;
+      wide.height = view.camera.height + 2 * bandY;
+      wide.fovyDegrees = glm::degrees(2.0f * std::atan(std::tan(0.5f * view.camera.fovyRadians()) *
+                                                        static_cast<float>(wide.height) /
+                                                        static_cast<float>(view.camera.height)));
+      AoSettings wideSettings = settings;
+      wideSettings.maxScreenRadius =
+          settings.maxScreenRadius * static_cast<float>(view.camera.height) / static_cast<float>(wide.height);
+      gl::RenderTarget target("guard band", wide.width, wide.height, GL_NEAREST, gl::RenderTarget::Depth::Renderbuffer,
+                              context.caps().depth24);
+      view.renderer->render(wide, wideSettings, obscura::View::Ao,
+                            OutputTarget{target.framebuffer(), wide.width, wide.height, {}});
+      const std::vector<std::uint8_t> rgba = target.readRgba();
+      Image middle{view.camera.width, view.camera.height,
+                   std::vector<std::uint8_t>(static_cast<size_t>(view.camera.width * view.camera.height) * 4)};
+      for (int y = 0; y < view.camera.height; ++y)
+        std::copy_n(&rgba[(static_cast<size_t>(y + bandY) * static_cast<size_t>(wide.width) + bandX) * 4],
+                    view.camera.width * 4, &middle.rgba[static_cast<size_t>(y) * view.camera.width * 4]);
+      const AoComparison with = compareAo(c.reference, GreyImage::fromRed(middle), view.mask, view.haloBand, false);
+      plain.add(without, c.whiteMae);
+      banded.add(with, c.whiteMae);
+      byFactor[c.factor].first.add(without, c.whiteMae);
+      byFactor[c.factor].second.add(with, c.whiteMae);
+    }
+    const Score a = plain.mean(), b = banded.mean();
+    std::printf("%-5s guard band x%.2f: MAE %.4f -> %.4f, Pearson %.3f -> %.3f |", estimatorName(estimator),
+                static_cast<double>(factor), a.mae, b.mae, a.pearson, b.pearson);
+    for (const auto& [f, pair] : byFactor)
+      std::printf(" r %sx: %.4f -> %.4f", radiusText(f).c_str(), pair.first.mean().mae, pair.second.mean().mae);
+    std::printf("\n");
+  }
+}
+
+// --evaluate: the issue's figures for each selected estimator and preset (default: the default preset), with the
+// table's parameters, on stdout. Quick (no SSIM): for trying a change to an estimator before fitting everything.
+void evaluate(std::vector<TuningCase>& cases, const Selection& selection) {
+  for (AoEstimator estimator : kEstimators) {
+    if (!selection.has(estimator)) continue;
+    for (const PresetInfo& preset : qualityPresets()) {
+      if (selection.presets.empty() ? preset.preset != AoSettings{}.preset : !selection.has(preset.preset)) continue;
+      AoSettings settings = settingsFor(preset.preset);
+      settings.estimator = estimator;
+      Score score;
+      std::map<float, Score> byFactor;
+      for (TuningCase& c : cases) {
+        const AoComparison m = measure(c, settings, false);
+        score.add(m, c.whiteMae);
+        byFactor[c.factor].add(m, c.whiteMae);
+      }
+      const Score s = score.mean();
+      std::printf("%-5s %-6s MAE %.4f Pearson %.3f halo/interior %.2f lowest skill %.2f |", estimatorName(estimator),
+                  preset.name, s.mae, s.pearson, s.haloMae / std::max(s.interiorMae, 1e-9), s.minSkill);
+      for (const auto& [factor, f] : byFactor)
+        std::printf(" r %sx: %.4f/%.3f", radiusText(factor).c_str(), f.mean().mae, f.mean().pearson);
+      std::printf("\n");
+    }
+  }
+}
+
+// The AO passes' milliseconds in the browser per estimator and preset, as tools/browser-bench/estimator-costs.mjs
+// writes them (estimator,preset,width,height,ao_ms,frame_ms): a C++ tool cannot drive a browser, so the report
+// reads what the script measured.
+struct BrowserCosts {
+  std::map<std::pair<AoEstimator, QualityPreset>, double> aoMs;
+  std::string size;  // "WxH", the page's size they were measured at
+};
+
+BrowserCosts loadBrowserCosts(const std::string& path) {
+  BrowserCosts costs;
+  if (path.empty()) return costs;
+  std::ifstream file(path);
+  if (!file) throw InputError(path + ": cannot open the browser costs (tools/browser-bench/estimator-costs.mjs)");
+  std::string line;
+  if (!std::getline(file, line) || line.rfind("estimator,preset,width,height,ao_ms", 0) != 0)
+    throw InputError(path + ": expected the header estimator,preset,width,height,ao_ms,frame_ms");
+  while (std::getline(file, line)) {
+    if (line.empty()) continue;
+    std::stringstream row(line);
+    std::vector<std::string> fields;
+    for (std::string field; std::getline(row, field, ',');) fields.push_back(field);
+    if (fields.size() < 5) throw InputError(path + ": short row '" + line + "'");
+    AoSettings parsed;
+    parsed.set("estimator", fields[0]);
+    costs.aoMs[{parsed.estimator, parsePreset(fields[1])}] = std::stod(fields[4]);
+    costs.size = fields[2] + "x" + fields[3];
+  }
+  return costs;
+}
+
 void report(std::vector<TuningCase>& cases, std::vector<TuningView>& views, const TuningConfig& config,
-            const std::string& docPath, const std::string& imageDir, const HeadlessContext& context) {
+            const std::string& docPath, const std::string& imageDir, const HeadlessContext& context,
+            const BrowserCosts& browser) {
   std::ostringstream md;
   md << "Generated by `tools/tune-defaults.sh` (`obscura-tune --report`) on " << context.caps().renderer << ", "
      << config.width << "x" << config.height << ", reference " << config.rays << " rays per pixel, " << views.size()
@@ -628,22 +781,30 @@ void report(std::vector<TuningCase>& cases, std::vector<TuningView>& views, cons
      << "(everything but the G-buffer and the composite), glFinish-bounded.\n\n";
 
   const AoSettings defaults;
-  std::map<QualityPreset, Score> byPreset;
-  std::map<float, Score> byFactor;  // default preset
+  std::map<std::pair<AoEstimator, QualityPreset>, Score> byEstimator;
+  std::map<std::pair<AoEstimator, QualityPreset>, std::vector<double>> milliseconds;  // at the report factor
+  std::map<float, Score> byFactor;  // default estimator and preset
   for (TuningCase& c : cases) {
-    for (const PresetInfo& preset : qualityPresets()) {
-      const AoSettings tuned = settingsFor(preset.preset);
-      const AoComparison m = measure(c, tuned);
-      Score& s = byPreset[preset.preset];
-      s.add(m, c.whiteMae);
-      s.paperMae += measure(c, withParameters(tuned, kPaperEstimatorParameters), false).mae;
-      if (preset.preset == defaults.preset) byFactor[c.factor].add(m, c.whiteMae);
+    for (AoEstimator estimator : kEstimators) {
+      for (const PresetInfo& preset : qualityPresets()) {
+        AoSettings tuned = settingsFor(preset.preset);
+        tuned.estimator = estimator;
+        const AoComparison m = measure(c, tuned);
+        Score& s = byEstimator[{estimator, preset.preset}];
+        s.add(m, c.whiteMae);
+        s.paperMae += measure(c, withParameters(tuned, kPaperEstimatorParameters), false).mae;
+        if (estimator == defaults.estimator && preset.preset == defaults.preset) byFactor[c.factor].add(m, c.whiteMae);
+        if (c.factor == config.reportFactor) {
+          tuned.radius = c.radius;
+          milliseconds[{estimator, preset.preset}].push_back(aoMilliseconds(*c.view, tuned));
+        }
+      }
     }
   }
-  const Score target = byPreset[defaults.preset].mean();
+  const Score target = byEstimator[{defaults.estimator, defaults.preset}].mean();
   const double haloRatio = target.haloMae / std::max(target.interiorMae, 1e-9);
-  md << "### Targets (issue 12), preset " << presetName(defaults.preset) << ", mean over the " << cases.size()
-     << " cases\n\n"
+  md << "### Targets (issue 12), " << estimatorName(defaults.estimator) << " (the default estimator), preset "
+     << presetName(defaults.preset) << ", mean over the " << cases.size() << " cases\n\n"
      << "| figure | target | reached | |\n|---|---|---|---|\n"
      << "| mean Pearson correlation | >= 0.93 | " << format("%.3f", target.pearson) << " | "
      << passFail(target.pearson >= 0.93) << " |\n"
@@ -653,18 +814,35 @@ void report(std::vector<TuningCase>& cases, std::vector<TuningView>& views, cons
      << "| lowest skill of any case | >= 0.5 | " << format("%.2f", target.minSkill) << " | "
      << passFail(target.minSkill >= 0.5) << " |\n\n";
 
-  md << "### Each preset, mean over the cases\n\n"
-     << "| preset | MAE | SSIM | Pearson | halo MAE | interior MAE | halo / interior | lowest skill | MAE, paper's "
-        "sigma/beta/k |\n|---|---|---|---|---|---|---|---|---|\n";
-  for (const PresetInfo& preset : qualityPresets()) {
-    const Score s = byPreset[preset.preset].mean();
-    md << "| " << preset.name << " | " << format("%.4f", s.mae) << " | " << format("%.3f", s.ssim) << " | "
-       << format("%.3f", s.pearson) << " | " << format("%.4f", s.haloMae) << " | " << format("%.4f", s.interiorMae)
-       << " | " << format("%.2f", s.haloMae / std::max(s.interiorMae, 1e-9)) << " | " << format("%.2f", s.minSkill)
-       << " | " << format("%.4f", s.paperMae) << " |\n";
+  md << "### Each estimator and preset, mean over the cases\n\n"
+     << "*AO ms*: natively, the mean over the views at " << radiusText(config.reportFactor)
+     << " object size of the median AO time, on this machine at " << config.width << "x" << config.height << "; "
+     << (browser.aoMs.empty()
+             ? std::string("in the browser: not measured (run tools/browser-bench/estimator-costs.mjs, then "
+                           "obscura-tune --report with --browser-ms)")
+             : "in the browser, the GPU time of the AO passes (timer queries) of the demo page at " + browser.size +
+                   " on 2CylinderEngine.glb at its default radius (tools/browser-bench/estimator-costs.mjs)")
+     << "; docs/benchmarks.md has both at 1280x720 natively and the whole frame in the browser.\n\n"
+     << "| estimator | preset | MAE | SSIM | Pearson | halo MAE | interior MAE | halo / interior | lowest skill | "
+        "AO ms | browser AO ms | MAE, paper's sigma/beta/k |\n|---|---|---|---|---|---|---|---|---|---|---|---|\n";
+  for (AoEstimator estimator : kEstimators) {
+    for (const PresetInfo& preset : qualityPresets()) {
+      const Score s = byEstimator[{estimator, preset.preset}].mean();
+      const std::vector<double>& ms = milliseconds[{estimator, preset.preset}];
+      double meanMs = 0.0;
+      for (double v : ms) meanMs += v / static_cast<double>(std::max<size_t>(ms.size(), 1));
+      md << "| " << estimatorName(estimator) << " | " << preset.name << " | " << format("%.4f", s.mae) << " | "
+         << format("%.3f", s.ssim) << " | " << format("%.3f", s.pearson) << " | " << format("%.4f", s.haloMae)
+         << " | " << format("%.4f", s.interiorMae) << " | " << format("%.2f", s.haloMae / std::max(s.interiorMae, 1e-9))
+         << " | " << format("%.2f", s.minSkill) << " | " << format("%.1f", meanMs) << " | ";
+      const auto inBrowser = browser.aoMs.find({estimator, preset.preset});
+      md << (inBrowser == browser.aoMs.end() ? std::string("-") : format("%.1f", inBrowser->second)) << " | "
+         << format("%.4f", s.paperMae) << " |\n";
+    }
   }
 
-  md << "\n### Each radius (in object sizes), preset " << presetName(defaults.preset) << ", mean over the views\n\n"
+  md << "\n### Each radius (in object sizes), " << estimatorName(defaults.estimator) << ", preset "
+     << presetName(defaults.preset) << ", mean over the views\n\n"
      << "| radius / object size | MAE | SSIM | Pearson | halo MAE | interior MAE | lowest skill |\n"
      << "|---|---|---|---|---|---|---|\n";
   for (const auto& [factor, score] : byFactor) {
@@ -674,9 +852,10 @@ void report(std::vector<TuningCase>& cases, std::vector<TuningView>& views, cons
        << " | " << format("%.2f", s.minSkill) << " |\n";
   }
 
-  md << "\n### Each view at " << radiusText(config.reportFactor) << " object size, preset "
-     << presetName(defaults.preset) << "\n\n"
-     << "| view | r (scene units) | MAE | RMSE | SSIM | Pearson | halo MAE | interior MAE | bias | skill | AO ms | MAE, "
+  md << "\n### Each view at " << radiusText(config.reportFactor) << " object size, "
+     << estimatorName(defaults.estimator) << ", preset " << presetName(defaults.preset) << "\n\n"
+     << "| view | r (scene units) | MAE | RMSE | SSIM | Pearson | halo MAE | interior MAE | bias | skill | AO ms | "
+        "MAE, "
         "paper's sigma/beta/k |\n|---|---|---|---|---|---|---|---|---|---|---|---|\n";
   for (TuningCase& c : cases) {
     if (c.factor != config.reportFactor) continue;
@@ -693,16 +872,18 @@ void report(std::vector<TuningCase>& cases, std::vector<TuningView>& views, cons
        << format("%.4f", paper.mae) << " |\n";
   }
 
-  md << "\n### The fitted knots, preset " << presetName(defaults.preset) << "\n\n"
+  md << "\n### The fitted knots, " << estimatorName(defaults.estimator) << ", preset " << presetName(defaults.preset)
+     << "\n\n"
      << "| radius in pixels | sigma | beta (fraction of r) | k |\n|---|---|---|---|\n";
   const EstimatorKnots knots = tunedEstimatorKnots(defaults.estimator, defaults.preset);
   for (int j = 0; j < kEstimatorKnots; ++j)
     md << "| " << radiusText(estimatorKnotPixels(j)) << " | " << format("%.3f", knots.at[j].intensity) << " | "
        << format("%.4f", knots.at[j].bias) << " | " << format("%.3f", knots.at[j].contrast) << " |\n";
 
-  md << "\n### Reference | SAO | difference\n\nPreset " << presetName(defaults.preset) << ", r = "
-     << radiusText(config.reportFactor) << " object size, tuned parameters. Difference: red where SAO is darker than "
-     << "the reference, blue where lighter, full colour at 0.25; grey: background.\n\n";
+  md << "\n### Reference | " << estimatorName(defaults.estimator) << " | difference\n\nPreset "
+     << presetName(defaults.preset) << ", r = " << radiusText(config.reportFactor)
+     << " object size, tuned parameters. Difference: red where the AO is darker than the reference, blue where "
+     << "lighter, full colour at 0.25; grey: background.\n\n";
   fs::create_directories(imageDir);
   const fs::path docDir = fs::path(docPath).parent_path();
   for (TuningCase& c : cases) {
@@ -714,7 +895,7 @@ void report(std::vector<TuningCase>& cases, std::vector<TuningView>& views, cons
     const std::string& name = c.view->spec.name;
     const fs::path file = fs::path(imageDir) / ("accuracy-" + name + ".png");
     writePng(file.string(), sideBySide({c.referenceAo, sao, diff}));
-    md << "**" << name << "** (r = " << radiusText(c.radius) << ")\n\n![" << name << ": reference | SAO | difference]("
+    md << "**" << name << "** (r = " << radiusText(c.radius) << ")\n\n![" << name << ": reference | AO | difference]("
        << fs::relative(file, docDir.empty() ? fs::path(".") : docDir).generic_string() << ")\n\n";
   }
 
@@ -735,7 +916,8 @@ void report(std::vector<TuningCase>& cases, std::vector<TuningView>& views, cons
 }
 
 std::string usage() {
-  return "usage: obscura-tune [--views FILE] [--cache DIR] [--fit TABLE.inc] [--report DOC.md --images DIR]\n"
+  return "usage: obscura-tune [--views FILE] [--cache DIR] [--fit TABLE.inc | --report DOC.md --images DIR\n"
+         "                    [--browser-ms CSV] | --evaluate | --guard-band F] [--estimators LIST] [--presets LIST]\n"
          "                    [--threads N] [--backend osmesa|egl]\n"
          "\n"
          "Fits SAO's intensity, bias and contrast per preset and radius to the ray-traced reference (--fit), or\n"
@@ -746,6 +928,11 @@ std::string usage() {
          "  --fit FILE     write the fitted table (src/core/TunedDefaults.inc)\n"
          "  --report FILE  rewrite the generated part of FILE (docs/accuracy.md)\n"
          "  --images DIR   where the report's pictures go (default docs/images)\n"
+         "  --browser-ms F the browser's AO milliseconds for the report's estimator table (the CSV of\n"
+         "                 tools/browser-bench/estimator-costs.mjs)\n"
+         "  --evaluate     print the mean figures of the current table's defaults (quick; for experiments)\n"
+         "  --guard-band F what a guard band would gain: the frame rendered F times larger, its middle compared\n"
+         "  --estimators LIST, --presets LIST   comma-separated: fit or evaluate only these (e.g. gtao; medium)\n"
          "  --threads N    ray-tracing threads (default: the number of cores)\n"
          "  --backend B    osmesa (default) or egl\n";
 }
@@ -755,9 +942,12 @@ std::string usage() {
 int main(int argc, char** argv) {
   try {
     std::string viewsPath = "tools/tuning-views.json", cache = "build/tuning-cache", tablePath, docPath,
-                imageDir = "docs/images";
+                imageDir = "docs/images", browserCostsPath;
     int threads = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
     HeadlessBackend backend = HeadlessBackend::OSMesa;
+    bool evaluateOnly = false;
+    float guardBand = 0.0f;
+    Selection selection;
     const std::vector<std::string> args(argv + 1, argv + argc);
     for (size_t i = 0; i < args.size(); ++i) {
       const std::string& arg = args[i];
@@ -773,12 +963,33 @@ int main(int argc, char** argv) {
       else if (arg == "--fit") tablePath = value();
       else if (arg == "--report") docPath = value();
       else if (arg == "--images") imageDir = value();
+      else if (arg == "--browser-ms") browserCostsPath = value();
       else if (arg == "--threads") threads = parseCount(arg, value(), 256);
       else if (arg == "--backend") backend = parseBackend(value());
+      else if (arg == "--evaluate") evaluateOnly = true;
+      else if (arg == "--guard-band") {
+        guardBand = std::stof(value());
+        if (!(guardBand > 1.0f && guardBand <= 2.0f)) throw InputError("--guard-band: expected a factor in (1, 2]");
+        evaluateOnly = true;
+      }
+      else if (arg == "--estimators" || arg == "--presets") {
+        std::stringstream list(value());
+        for (std::string name; std::getline(list, name, ',');) {
+          if (arg == "--presets") {
+            selection.presets.push_back(parsePreset(name));
+          } else {
+            AoSettings parsed;
+            parsed.set("estimator", name);
+            selection.estimators.push_back(parsed.estimator);
+          }
+        }
+      }
       else throw InputError("unknown option '" + arg + "' (see --help)");
     }
-    if (tablePath.empty() == docPath.empty()) throw InputError("expected exactly one of --fit and --report");
+    if (tablePath.empty() + docPath.empty() + !evaluateOnly != 2)
+      throw InputError("expected exactly one of --fit, --report and --evaluate");
     const TuningConfig config = loadConfig(viewsPath);
+    const BrowserCosts browserCosts = loadBrowserCosts(browserCostsPath);
 
     const auto start = std::chrono::steady_clock::now();
     HeadlessContext context(backend);
@@ -801,8 +1012,10 @@ int main(int argc, char** argv) {
                                                        GL_NEAREST, gl::RenderTarget::Depth::Renderbuffer,
                                                        context.caps().depth24);
     }
-    if (!tablePath.empty()) fit(cases, config, tablePath);
-    else report(cases, views, config, docPath, imageDir, context);
+    if (guardBand > 0.0f) guardBandStudy(cases, context, guardBand);
+    else if (evaluateOnly) evaluate(cases, selection);
+    else if (!tablePath.empty()) fit(cases, config, selection, tablePath);
+    else report(cases, views, config, docPath, imageDir, context, browserCosts);
     std::printf("obscura-tune: done in %.0f s\n",
                 std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
     return 0;

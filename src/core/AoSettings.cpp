@@ -30,7 +30,11 @@ const std::vector<Parameter<AoSettings>>& AoSettings::parameters() {
 
     t.push_back(choiceParameter<S, AoEstimator>("estimator", "obscurance estimator (docs/accuracy.md compares them)",
                                                 &S::estimator,
-                                                {{"sao", AoEstimator::Sao}, {"gtao", AoEstimator::Gtao}}));
+                                                {{"sao", AoEstimator::Sao},
+                                                 {"gtao", AoEstimator::Gtao},
+                                                 {"hbao", AoEstimator::Hbao},
+                                                 {"vo", AoEstimator::Vo},
+                                                 {"crytek", AoEstimator::Crytek}}));
     t.push_back(numberParameter<S>("radius", 1e-4, 1e6, "scene units",
                                    "world-space obscurance radius r (metres in the built-in scene)", &S::radius)
                     .primary());
@@ -96,7 +100,16 @@ const std::vector<PresetInfo>& qualityPresets() {
   return presets;
 }
 
-const char* estimatorName(AoEstimator estimator) { return estimator == AoEstimator::Gtao ? "gtao" : "sao"; }
+const char* estimatorName(AoEstimator estimator) {
+  switch (estimator) {
+    case AoEstimator::Sao: return "sao";
+    case AoEstimator::Gtao: return "gtao";
+    case AoEstimator::Hbao: return "hbao";
+    case AoEstimator::Vo: return "vo";
+    case AoEstimator::Crytek: return "crytek";
+  }
+  return "sao";
+}
 
 const char* falloffName(Falloff falloff) { return falloff == Falloff::Sao2012 ? "sao2012" : "alchemy2011"; }
 

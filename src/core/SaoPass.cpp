@@ -16,15 +16,30 @@ int hierarchyDefine(std::optional<DepthHierarchyPass::Storage> hierarchy) {
 }  // namespace
 
 SaoPass::GtaoSampling SaoPass::gtaoSampling(int samples) {
-  // One slice up to 15 taps (the blur averages the per-pixel slice angles), two up to 31, four from 32; the steps
-  // use what the slices leave, rounded, so "11 samples" costs 10 taps and "32" costs 32.
-  const int slices = samples >= 32 ? 4 : samples >= 16 ? 2 : 1;
+  // Two slices from 8 samples, four from 32; the steps use what the slices leave, rounded: "8 samples" is 2 x 2 x 2
+  // taps, "11" 2 x 2 x 3 = 12, "16" 2 x 2 x 4, "32" 4 x 2 x 4. Measured at 11 (docs/accuracy.md): one slice of 5 steps
+  // a side is a little more accurate than two of 3, but costs 40 % more on llvmpipe (93 against 65 ms at 1280x720).
+  const int slices = samples >= 32 ? 4 : samples >= 8 ? 2 : 1;
   return {slices, std::max(1, (samples + slices) / (2 * slices))};
 }
 
+SaoPass::HbaoSampling SaoPass::hbaoSampling(int samples) {
+  // Four directions (the HBAO talk's per-pixel rotated directions; four keeps opposite pairs, so a surface is seen
+  // from both sides) and the steps the budget leaves, rounded down: "8 samples" is 4 x 2, "11" 4 x 2 = 8, "16" 4 x 4,
+  // "24" 4 x 6. From 32 on, eight directions of samples / 8 steps, HBAO+'s 8 x 4 at 32. Below 4 samples, as many
+  // directions as samples (one step each), two opposite ones from 2 and 3.
+  const int directions = samples >= 32 ? 8 : samples >= 4 ? 4 : samples >= 2 ? 2 : 1;
+  return {directions, std::max(1, samples / directions)};
+}
+
+int SaoPass::voPairs(int samples) { return std::max(1, samples / 2); }
+
+int SaoPass::crytekPairs(int samples) { return std::max(1, samples / 2); }
+
 float SaoPass::intensityScale(const AoSettings& settings, float intensity) {
-  return settings.estimator == AoEstimator::Gtao ? intensity
-                                                 : SaoKernel::intensityScale(settings.falloff, intensity, settings.samples);
+  return settings.estimator == AoEstimator::Sao
+             ? SaoKernel::intensityScale(settings.falloff, intensity, settings.samples)
+             : intensity;
 }
 
 ProgramSpec SaoPass::programSpec(AoEstimator estimator, int samples, int spiralTurns, Falloff falloff,
@@ -44,7 +59,22 @@ ProgramSpec SaoPass::programSpec(AoEstimator estimator, int samples, int spiralT
     spec.fragmentFile = "gtao.frag";
     spec.defines.push_back({"GTAO_SLICES", std::to_string(sampling.slices)});
     spec.defines.push_back({"GTAO_STEPS", std::to_string(sampling.steps)});
-    spec.defines.push_back({"THIN_OCCLUDER_BLEND", "0.0"});
+    spec.defines.push_back({"THIN_OCCLUDER_BLEND", "0.1"});
+  } else if (estimator == AoEstimator::Hbao) {
+    const HbaoSampling sampling = hbaoSampling(samples);
+    spec.name = "hbao[directions=" + std::to_string(sampling.directions) + ",steps=" + std::to_string(sampling.steps) +
+                ",depth=" + depth + "]";
+    spec.fragmentFile = "hbao.frag";
+    spec.defines.push_back({"HBAO_DIRECTIONS", std::to_string(sampling.directions)});
+    spec.defines.push_back({"HBAO_STEPS", std::to_string(sampling.steps)});
+  } else if (estimator == AoEstimator::Vo) {
+    spec.name = "vo[pairs=" + std::to_string(voPairs(samples)) + ",depth=" + depth + "]";
+    spec.fragmentFile = "vo.frag";
+    spec.defines.push_back({"VO_PAIRS", std::to_string(voPairs(samples))});
+  } else if (estimator == AoEstimator::Crytek) {
+    spec.name = "crytek[pairs=" + std::to_string(crytekPairs(samples)) + ",depth=" + depth + "]";
+    spec.fragmentFile = "crytek.frag";
+    spec.defines.push_back({"CRYTEK_PAIRS", std::to_string(crytekPairs(samples))});
   } else {
     spec.name = "sao[samples=" + std::to_string(samples) + ",turns=" + std::to_string(spiralTurns) +
                 ",falloff=" + falloffName(falloff) + ",depth=" + depth + "]";
@@ -66,7 +96,12 @@ std::vector<ProgramSpec> SaoPass::programSpecs() {
       for (Falloff falloff : {Falloff::Sao2012, Falloff::Alchemy2011})
         specs.push_back(
             programSpec(AoEstimator::Sao, samples, SaoKernel::bestSpiralTurns(samples), falloff, hierarchy));
-      specs.push_back(programSpec(AoEstimator::Gtao, samples, 1, Falloff::Sao2012, hierarchy));
+      for (AoEstimator other : {AoEstimator::Gtao, AoEstimator::Hbao, AoEstimator::Vo, AoEstimator::Crytek}) {
+        ProgramSpec spec = programSpec(other, samples, 1, Falloff::Sao2012, hierarchy);
+        // Sample counts that split alike (HBAO's 8 and 11: 4 x 2) share a program: listed once.
+        if (std::none_of(specs.begin(), specs.end(), [&](const ProgramSpec& s) { return s.name == spec.name; }))
+          specs.push_back(std::move(spec));
+      }
     }
   }
   return specs;
@@ -88,10 +123,10 @@ SaoPass::Variant::Variant(gl::Program built, std::optional<Storage> storage)
       maxRadiusPixels(program.uniform("u_maxRadiusPixels")) {}
 
 const SaoPass::Variant& SaoPass::variant(const AoSettings& settings, std::optional<Storage> hierarchy) {
-  // GTAO's programs depend on neither the spiral nor the falloff.
-  const bool gtao = settings.estimator == AoEstimator::Gtao;
-  const auto key = std::make_tuple(settings.estimator, settings.samples, gtao ? 1 : settings.spiralTurns,
-                                   gtao ? Falloff::Sao2012 : settings.falloff, hierarchyDefine(hierarchy));
+  // Only SAO's programs depend on the spiral and the falloff.
+  const bool sao = settings.estimator == AoEstimator::Sao;
+  const auto key = std::make_tuple(settings.estimator, settings.samples, sao ? settings.spiralTurns : 1,
+                                   sao ? settings.falloff : Falloff::Sao2012, hierarchyDefine(hierarchy));
   auto it = variants_.find(key);
   if (it == variants_.end())
     it = variants_

@@ -1,8 +1,8 @@
 #pragma once
 // The obscurance estimator pass, SAO by default: from the G-buffer into the bound RGBA8 target, R = ambient
 // visibility, GB = the centre's 16-bit depth code (the blur's key, so the blur reads a single texture). Shaders:
-// shaders_es2/sao.frag (CPU mirror and equations: core/SaoKernel.h) or, with ao.estimator, gtao.frag; both share
-// lib/ao_estimator.glsl. Far taps read the depth hierarchy when one is given.
+// shaders_es2/sao.frag (CPU mirror and equations: core/SaoKernel.h) or, with ao.estimator, gtao.frag, hbao.frag,
+// vo.frag or crytek.frag; all share lib/ao_estimator.glsl. Far taps read the depth hierarchy when one is given.
 #include <map>
 #include <optional>
 #include <tuple>
@@ -22,13 +22,22 @@ class SaoPass {
   // (compile-time constants): no hierarchy (every tap reads the G-buffer), or the hierarchy in the given storage.
   static ProgramSpec programSpec(AoEstimator estimator, int samples, int spiralTurns, Falloff falloff,
                                  std::optional<Storage> hierarchy);
-  // GTAO's split of `samples` taps: slices per pixel and taps per side of each (2 x slices x steps <= samples + 1).
+  // GTAO's split of `samples` taps: slices per pixel and taps per side of each (2 x slices x steps, about samples).
   struct GtaoSampling {
     int slices, steps;
   };
   static GtaoSampling gtaoSampling(int samples);
+  // HBAO's split of `samples` taps: directions per pixel and taps per direction (directions x steps <= samples).
+  struct HbaoSampling {
+    int directions, steps;
+  };
+  static HbaoSampling hbaoSampling(int samples);
+  // Volumetric obscurance's paired line samples and Crytek's kernel of mirrored points: floor(samples / 2) pairs (at
+  // least one), so 2 x pairs <= samples taps (10 at the medium preset's 11).
+  static int voPairs(int samples);
+  static int crytekPairs(int samples);
   // The factor the estimator's obscurance is multiplied by before the contrast (lib/ao_estimator.glsl): SAO's
-  // 5 sigma / s or 2 sigma / s (SaoKernel::intensityScale), GTAO's sigma.
+  // 5 sigma / s or 2 sigma / s (SaoKernel::intensityScale); sigma for the others, whose obscurance is in [0, 1].
   static float intensityScale(const AoSettings& settings, float intensity);
   // Every variant the presets and the documented sample counts (4, 8, 11, 16, 24, 32) use.
   static std::vector<ProgramSpec> programSpecs();

@@ -7,8 +7,9 @@
 //                                      [--quick] [--extras | --no-extras] [--csv FILE] [--shots DIR]
 //
 // --quick: the smoke run (640x360, 1 warm-up frame, 2 rounds of 2 frames, no extras, CSV in the shots folder).
-// --no-extras: only the five renderers the comparison needs (the extras are three.js plain with antialias: true and
-// N8AOPostPass through pmndrs/postprocessing; on by default except with --quick).
+// --no-extras: only the five renderers the comparison needs (the extras are Obscura with the SAO estimator instead
+// of the default GTAO, three.js plain with antialias: true and N8AOPostPass through pmndrs/postprocessing; on by
+// default except with --quick).
 //
 // Each measured frame is draw + gl.finish() + a 1-pixel gl.readPixels on the renderer's own context. Every renderer
 // has its own page (its own window of the exact size, deviceScaleFactor 1); after a warm-up they take turns, N frames
@@ -95,6 +96,8 @@ function parseArgs(argv) {
 const RENDERERS = [
   { id: 'obscura-ao', label: 'Obscura, defaults (AO on)', kind: 'obscura', ao: true },
   { id: 'obscura-off', label: 'Obscura, AO off', kind: 'obscura', ao: false },
+  { id: 'obscura-sao', label: 'Obscura, AO on with the SAO estimator', kind: 'obscura', ao: true, estimator: 'sao',
+    extra: true },
   { id: 'three-plain', label: 'three.js plain', kind: 'three' },
   { id: 'three-sao', label: 'three.js + SAOPass', kind: 'three', ao: true },
   { id: 'three-n8ao', label: 'three.js + N8AOPass', kind: 'three', ao: true },
@@ -144,21 +147,23 @@ async function openObscura(browser, base, size, renderer, aoRadius) {
   await page.waitForFunction(() => document.body.dataset.ready === 'true', null, { timeout: 120000 });
   await page.addStyleTag({ content: '#panel { display: none !important; }' });
   await page.waitForFunction(() => window.obscura.stats().frames > 0, null, { timeout: 120000, polling: 50 });
-  const info = await page.evaluate(async ({ modelUrl, name, radius, ao }) => {
+  const info = await page.evaluate(async ({ modelUrl, name, radius, ao, estimator }) => {
     const obscura = window.obscura;
     const bytes = await (await fetch(modelUrl)).arrayBuffer();
     const scene = await obscura.loadScene(bytes, name);
     // Only `radius` and `ao` are set, through set(): the API that stays (radius becomes an alias of ao.radius).
     obscura.set('radius', radius);
     if (!ao) obscura.set('ao', 'off');
+    if (estimator) obscura.set('ao.estimator', estimator);
     const gl = obscura.canvas.getContext('webgl');  // Obscura's own context
     window.benchDraw = () => obscura.draw();
     window.benchGl = gl;
     obscura.draw();
     return { scene, state: obscura.state(), context: obscura.context, radius: obscura.get('radius'),
-             ao: obscura.get('ao'), drawingBuffer: [gl.drawingBufferWidth, gl.drawingBufferHeight],
+             ao: obscura.get('ao'), estimator: obscura.get('ao.estimator'), drawingBuffer: [gl.drawingBufferWidth, gl.drawingBufferHeight],
              contextAttributes: gl.getContextAttributes() };
-  }, { modelUrl: `${base}/model/${modelName}`, name: modelName, radius: aoRadius, ao: renderer.ao });
+  }, { modelUrl: `${base}/model/${modelName}`, name: modelName, radius: aoRadius, ao: renderer.ao,
+       estimator: renderer.estimator });
   return { context, page, info };
 }
 
