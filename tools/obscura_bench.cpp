@@ -1,18 +1,19 @@
 // obscura-bench: the performance figures of the AO pipeline, measured in one run (docs/benchmarks.md).
 //
-//   obscura-bench [--out DIR] [--frames N] [--backend osmesa|egl] [--quick]
+//   obscura-bench [--out DIR] [--frames N] [--backend osmesa|egl] [--quick] [--estimators-only]
 //
-// Prints tables and writes DIR/bench.csv (every measurement), DIR/ratios.csv, DIR/radius_sweep.csv and
-// DIR/radius_sweep.png (gnuplot). Every pass is bounded by glFinish on both sides and reported as the median over N
+// Prints tables and writes DIR/bench.csv (every measurement), DIR/ratios.csv, DIR/radius_sweep.csv,
+// DIR/radius_sweep.png (gnuplot) and DIR/estimators.csv. Every pass is bounded by glFinish on both sides and reported as the median over N
 // frames. The passes and effects are the effect table's (core/EffectTable.h): a new effect shows up by itself.
 // Sections:
 //   1. per-pass and per-effect ms at 640x360, 1280x720 and 1920x1080 on the built-in scene and on
 //      2CylinderEngine.glb, at the defaults (every effect on; each scene at its default AO radius, scene/SceneScale.h)
-//   2. radius sweep 0.25 .. 4 m, depth hierarchy on and off
-//   3. sample-count sweep 4 .. 32
-//   4. the quality presets
+//   2. radius sweep 0.25 .. 4 m, depth hierarchy on and off (SAO)
+//   3. sample-count sweep 4 .. 32 (SAO)
+//   4. the quality presets (the default estimator)
 //   5. ratios measured in this run: SAO / G-buffer, SAO(r = 4 m) / SAO(r = 0.5 m) with and without the hierarchy
 //      (goal <= 1.15 with it), SAO / a floor pass making the same fetches with no arithmetic
+//   6. every estimator (ao.estimator) at every preset, taking turns frame by frame (--estimators-only: this alone)
 #include <cstdio>
 #include <cstdlib>
 #include <tuple>
@@ -61,6 +62,7 @@ struct Options {
   int frames = 15;
   HeadlessBackend backend = HeadlessBackend::OSMesa;
   bool quick = false;
+  bool estimatorsOnly = false;  // section 6 alone
 };
 
 struct BenchScene {
@@ -272,10 +274,61 @@ Options parseOptions(int argc, char** argv) {
       options.frames = static_cast<int>(frames);
     } else if (arg == "--backend") options.backend = parseBackend(value());
     else if (arg == "--quick") options.quick = true;
+    else if (arg == "--estimators-only") options.estimatorsOnly = true;
     else throw InputError("unknown option '" + arg + "' (usage: obscura-bench [--out DIR] [--frames N] "
-                          "[--backend osmesa|egl] [--quick])");
+                          "[--backend osmesa|egl] [--quick] [--estimators-only])");
   }
   return options;
+}
+
+// Section 6: every estimator at every preset on the built-in scene, all taking turns frame by frame: the AO effect's
+// passes (hierarchy, estimator, blur, upsample) and the estimator pass alone; written to DIR/estimators.csv. With
+// docs/accuracy.md's error per estimator and preset, this is the cost side of "beats SAO at the same cost".
+void estimatorSection(Bench& bench, const BenchScene& scene, int w, int h, const std::string& outDir) {
+  const std::vector<AoEstimator> estimators = {AoEstimator::Sao, AoEstimator::Gtao, AoEstimator::Hbao,
+                                               AoEstimator::Vo, AoEstimator::Crytek};
+  const EffectEntry* aoEffect = nullptr;
+  for (const EffectEntry& effect : effectTable())
+    if (effect.info.name == "ao") aoEffect = &effect;
+  if (aoEffect == nullptr) throw std::logic_error("the effect table has no 'ao' effect");
+  std::vector<RenderSettings> configurations;
+  for (QualityPreset preset : allQualityPresets()) {
+    for (AoEstimator estimator : estimators) {
+      RenderSettings settings;
+      settings.applyPreset(preset);
+      AoSettings ao = settings.ao();
+      ao.estimator = estimator;
+      settings.ao() = ao;
+      configurations.push_back(settings);
+    }
+  }
+  const AoSettings defaults;
+  std::printf("\n6. Estimators, built-in scene %dx%d, r = %s: AO effect ms (its passes: hierarchy, estimator, blur, "
+              "upsample) / the estimator pass alone; all %zu configurations take turns frame by frame\n",
+              w, h, formatShortest(defaults.radius).c_str(), configurations.size());
+  const std::vector<PassTimes> times = bench.measure("estimators", scene, w, h, configurations);
+  std::printf("%-8s", "preset");
+  for (AoEstimator estimator : estimators) std::printf(" %17s", estimatorName(estimator));
+  std::printf("   %s\n", "each / sao (AO effect)");
+  std::ofstream csv(outDir + "/estimators.csv");
+  csv << "preset,estimator,width,height,ao_effect_ms,estimator_pass_ms,ao_effect_over_sao\n";
+  for (size_t p = 0; p < allQualityPresets().size(); ++p) {
+    const char* preset = presetName(allQualityPresets()[p]);
+    std::printf("%-8s", preset);
+    const double saoEffect = effectMs(times[p * estimators.size()], *aoEffect);
+    std::string relative;  // each estimator's AO effect over SAO's, at this preset
+    for (size_t e = 0; e < estimators.size(); ++e) {
+      const PassTimes& t = times[p * estimators.size() + e];
+      const double effect = effectMs(t, *aoEffect);
+      std::printf(" %8.2f / %6.2f", effect, at(t, "sao"));
+      char ratio[16];
+      std::snprintf(ratio, sizeof ratio, " %.2f", effect / saoEffect);
+      relative += ratio;
+      csv << preset << "," << estimatorName(estimators[e]) << "," << w << "," << h << "," << effect << ","
+          << at(t, "sao") << "," << effect / saoEffect << "\n";
+    }
+    std::printf("  %s\n", relative.c_str());
+  }
 }
 
 void writePlot(const std::string& dir) {
@@ -318,8 +371,19 @@ int main(int argc, char** argv) {
     const Camera engineCamera = Camera::fit(engine.worldBounds(), 1280, 720);
     scenes.push_back({"2CylinderEngine", std::move(engine), engineCamera});
     Bench bench(options, context);
-    const AoSettings defaults;
     const BenchScene& builtin = scenes[0];
+    if (options.estimatorsOnly) {
+      const int w = options.quick ? 640 : 1280, h = options.quick ? 360 : 720;
+      estimatorSection(bench, builtin, w, h, options.outDir);
+      std::printf("\nobscura-bench: wrote %s/bench.csv, estimators.csv\n", options.outDir.c_str());
+      return 0;
+    }
+    const AoSettings defaults;
+    // Sections 2, 3 and 5 study SAO's own machinery (the hierarchy against the radius, the spiral's taps, the fetch
+    // floor that copies SAO's spiral): they run SAO whatever the default estimator is. Sections 1 and 4 run the
+    // defaults (the "sao" pass is the estimator pass, whichever estimator); section 6 compares the estimators.
+    AoSettings saoDefaults = defaults;
+    saoDefaults.estimator = AoEstimator::Sao;
 
     // Each scene at its default radius, as obscura-render and the viewers choose it (scene/SceneScale.h).
     std::string sceneRadii;
@@ -357,7 +421,7 @@ int main(int argc, char** argv) {
     std::vector<RenderSettings> sweepSettings;
     for (float radius : radii) {
       for (bool hierarchy : {true, false}) {
-        AoSettings settings = defaults;
+        AoSettings settings = saoDefaults;
         settings.radius = radius;
         settings.depthHierarchy = hierarchy;
         sweepSettings.push_back(settings);
@@ -381,7 +445,7 @@ int main(int argc, char** argv) {
     std::printf("%10s %18s %18s\n", "radius m", "separate textures", "atlas");
     std::pair<double, double> storageAt[2];  // (separate, atlas) at r = 0.5 m and r = 4 m
     for (int i = 0; i < 2; ++i) {
-      AoSettings settings = defaults;
+      AoSettings settings = saoDefaults;
       settings.radius = i == 0 ? 0.5f : 4.0f;
       storageAt[i] = bench.measureStorages(builtin, w, h, settings);
       std::printf("%10.2f %18.2f %18.2f\n", settings.radius, storageAt[i].first, storageAt[i].second);
@@ -391,7 +455,7 @@ int main(int argc, char** argv) {
     const std::vector<int> sampleCounts = {4, 8, 11, 16, 24, 32};
     std::vector<RenderSettings> sampleSettings;
     for (int samples : sampleCounts) {
-      AoSettings settings = defaults;
+      AoSettings settings = saoDefaults;
       settings.samples = samples;
       settings.spiralTurns = SaoKernel::bestSpiralTurns(samples);
       sampleSettings.push_back(settings);
@@ -413,13 +477,13 @@ int main(int argc, char** argv) {
       printPassRow(presetName(allQualityPresets()[i]), w, h, presetTimes[i]);
 
     std::printf("\n5. Ratios (this run, built-in scene %dx%d)\n", w, h);
-    const PassTimes base = bench.measure("ratios", builtin, w, h, defaults);
+    const PassTimes base = bench.measure("ratios", builtin, w, h, saoDefaults);
     const Camera& camera = builtin.camera;
     const float distance = glm::length(camera.target - camera.eye);
     const float disk = std::min(static_cast<float>(h) / (2.0f * std::tan(camera.fovyRadians() * 0.5f)) *
-                                    defaults.radius / distance,
-                                defaults.maxScreenRadius * static_cast<float>(h));
-    const auto [sao, floor] = bench.measureAgainstFloor(builtin, w, h, defaults, disk);
+                                    saoDefaults.radius / distance,
+                                saoDefaults.maxScreenRadius * static_cast<float>(h));
+    const auto [sao, floor] = bench.measureAgainstFloor(builtin, w, h, saoDefaults, disk);
     const double saoMs = at(base, "sao"), gbufferMs = at(base, "gbuffer");
     // Printed and written to DIR/ratios.csv, each with the two figures it divides.
     std::ofstream ratios(options.outDir + "/ratios.csv");
@@ -436,10 +500,11 @@ int main(int argc, char** argv) {
           storageAt[0].first, "");
     ratio("SAO(r=4 m) / SAO(r=0.5 m), atlas", "sao_r4_over_r05_atlas", storageAt[1].second, storageAt[0].second, "");
     const std::string floorLabel =
-        "SAO / fetch floor (" + std::to_string(defaults.samples + 1) + " fetches, disk " +
+        "SAO / fetch floor (" + std::to_string(saoDefaults.samples + 1) + " fetches, disk " +
         std::to_string(static_cast<int>(std::lround(disk))) + " px)";
     ratio(floorLabel.c_str(), "sao_over_fetch_floor", sao, floor, "");
-    std::printf("\nobscura-bench: wrote %s/bench.csv, ratios.csv, radius_sweep.csv, radius_sweep.png\n",
+    estimatorSection(bench, builtin, w, h, options.outDir);
+    std::printf("\nobscura-bench: wrote %s/bench.csv, ratios.csv, radius_sweep.csv, radius_sweep.png, estimators.csv\n",
                 options.outDir.c_str());
     return 0;
   } catch (const InputError& e) {

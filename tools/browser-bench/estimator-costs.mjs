@@ -4,8 +4,9 @@
 // time while it redraws continuously. Writes a CSV that `obscura-tune --report --browser-ms FILE` folds into the
 // estimator x preset table of docs/accuracy.md.
 //
-// Usage: node tools/browser-bench/estimator-costs.mjs [--size WxH] [--samples N] [--csv FILE]
-//   (defaults 1280x720, 9 timer readings per case, bench-results/browser-estimators.csv)
+// Usage: node tools/browser-bench/estimator-costs.mjs [--size WxH] [--samples N] [--settle MS] [--csv FILE]
+//   (defaults 1280x720, 9 timer readings per case, 2500 ms for each case's shaders to compile and its first timer
+//   results to come back before the readings, bench-results/browser-estimators.csv)
 import fs from 'node:fs';
 import path from 'node:path';
 import { fileURLToPath } from 'node:url';
@@ -17,7 +18,8 @@ const model = '/usr/share/assimp/models/glTF2/2CylinderEngine-glTF-Binary/2Cylin
 const estimators = ['sao', 'gtao', 'hbao', 'vo', 'crytek'];
 const presets = ['low', 'medium', 'high', 'ultra'];
 
-const options = { size: '1280x720', samples: 9, csv: path.join(root, 'bench-results', 'browser-estimators.csv') };
+const options = { size: '1280x720', samples: 9, settle: 2500,
+                  csv: path.join(root, 'bench-results', 'browser-estimators.csv') };
 const argv = process.argv.slice(2);
 for (let i = 0; i < argv.length; ++i) {
   const value = () => {
@@ -26,11 +28,13 @@ for (let i = 0; i < argv.length; ++i) {
   };
   if (argv[i] === '--size') options.size = value();
   else if (argv[i] === '--samples') options.samples = Number(value());
+  else if (argv[i] === '--settle') options.settle = Number(value());
   else if (argv[i] === '--csv') options.csv = path.resolve(value());
   else throw new Error(`unknown option ${argv[i]} (see the header of ${path.basename(import.meta.url)})`);
 }
 const [width, height] = options.size.split('x').map(Number);
-if (!(width > 0 && height > 0 && options.samples > 0)) throw new Error('--size WxH and --samples N must be positive');
+if (!(width > 0 && height > 0 && options.samples > 0 && options.settle >= 0))
+  throw new Error('--size WxH and --samples N must be positive, --settle MS not negative');
 
 const median = (values) => {
   const sorted = [...values].sort((a, b) => a - b);
@@ -71,12 +75,12 @@ try {
   const rows = [];
   for (const estimator of estimators) {
     for (const preset of presets) {
-      const result = await page.evaluate(async ({ estimator, preset, aoPasses, samples }) => {
+      const result = await page.evaluate(async ({ estimator, preset, aoPasses, samples, settle }) => {
         const o = window.obscura;
         o.setState(`ao=on&ao.estimator=${estimator}&ao.preset=${preset}`);
         o.setContinuous(true);
         // Shader compilation and the first timer results come during the first frames: wait them out.
-        await new Promise((r) => setTimeout(r, 2500));
+        await new Promise((r) => setTimeout(r, settle));
         const ao = [], frame = [];
         let last = null;
         for (let tries = 0; ao.length < samples && tries < 20 * samples; ++tries) {
@@ -90,7 +94,7 @@ try {
         }
         o.setContinuous(false);
         return { ao, frame, state: o.get('ao.estimator') + '/' + o.get('ao.preset') };
-      }, { estimator, preset, aoPasses, samples: options.samples });
+      }, { estimator, preset, aoPasses, samples: options.samples, settle: options.settle });
       if (result.ao.length === 0) throw new Error(`${estimator} ${preset}: no timer results`);
       const row = { estimator, preset, aoMs: median(result.ao), frameMs: result.frame.length ? median(result.frame) : NaN,
                     readings: result.ao.length };
