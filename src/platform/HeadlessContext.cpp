@@ -26,13 +26,21 @@ struct HeadlessContext::Impl {
     auto getPlatformDisplay =
         reinterpret_cast<PFNEGLGETPLATFORMDISPLAYEXTPROC>(eglGetProcAddress("eglGetPlatformDisplayEXT"));
     if (!getPlatformDisplay) throw GlError("EGL: eglGetPlatformDisplayEXT is not available");
-    display = getPlatformDisplay(EGL_PLATFORM_SURFACELESS_MESA, EGL_DEFAULT_DISPLAY, nullptr);
-    if (display == EGL_NO_DISPLAY) throw GlError("EGL: no surfaceless display (is libegl-mesa0 installed?)");
+    // Mesa's surfaceless platform; where the vendor's EGL has none (NVIDIA's), the first device of
+    // EGL_EXT_platform_device, which is as headless.
     EGLint major = 0, minor = 0;
-    if (!eglInitialize(display, &major, &minor)) {
-      display = EGL_NO_DISPLAY;
-      throw GlError("EGL: cannot initialise the surfaceless display");
+    display = getPlatformDisplay(EGL_PLATFORM_SURFACELESS_MESA, EGL_DEFAULT_DISPLAY, nullptr);
+    if (display != EGL_NO_DISPLAY && !eglInitialize(display, &major, &minor)) display = EGL_NO_DISPLAY;
+    if (display == EGL_NO_DISPLAY) {
+      auto queryDevices = reinterpret_cast<PFNEGLQUERYDEVICESEXTPROC>(eglGetProcAddress("eglQueryDevicesEXT"));
+      EGLDeviceEXT device = nullptr;
+      EGLint devices = 0;
+      if (queryDevices && queryDevices(1, &device, &devices) && devices > 0)
+        display = getPlatformDisplay(EGL_PLATFORM_DEVICE_EXT, device, nullptr);
+      if (display != EGL_NO_DISPLAY && !eglInitialize(display, &major, &minor)) display = EGL_NO_DISPLAY;
     }
+    if (display == EGL_NO_DISPLAY)
+      throw GlError("EGL: no surfaceless display and no EGL device (is libegl-mesa0 installed?)");
     if (!eglBindAPI(EGL_OPENGL_ES_API)) throw GlError("EGL: OpenGL ES is not supported");
     // The surfaceless platform offers pbuffer configurations only (the default asks for a window).
     const EGLint configAttributes[] = {EGL_SURFACE_TYPE, EGL_PBUFFER_BIT, EGL_RENDERABLE_TYPE, EGL_OPENGL_ES2_BIT,
