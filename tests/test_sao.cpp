@@ -105,12 +105,16 @@ TEST(Sao, PlaneAtAGrazingAngleIsUnoccluded) {
       settings.falloff = falloff;
       const auto ao = test::render(renderer, camera, settings, View::AoRaw);
       const auto depth = test::render(renderer, camera, settings, View::Depth);
-      if (settings.estimator == AoEstimator::Crytek) {
-        // Exempt from the bound: Crytek's test (shaders_es2/crytek.frag) compares the depths of sample points with
-        // the depth buffer at the pixels they project to, with no normal, and on a plane this far from face-on the
-        // depth changes across one pixel (or across a hierarchy block, for far taps) by more than the bias, so some
-        // points just above the plane test as behind it: the original's self-occlusion at grazing angles. Held
-        // instead: it stays a sprinkle of pixels, at most 2 % (measured 213 of 16000 below 0.98, 1.3 %).
+      if (settings.estimator == AoEstimator::Crytek || settings.estimator == AoEstimator::Hbao) {
+        // Exempt from the bound, held to a fraction of the pixels instead. Crytek's test (shaders_es2/crytek.frag)
+        // compares the depths of sample points with the depth buffer at the pixels they project to, with no normal,
+        // and on a plane this far from face-on the depth changes across one pixel (or across a hierarchy block, for
+        // far taps) by more than the bias, so some points just above the plane test as behind it: the original's
+        // self-occlusion at grazing angles, a sprinkle of pixels (measured 64 of 16000 below 0.98 with its fitted
+        // intensity, 213 with the paper's): at most 2 %. HBAO's fitted angle bias is 0 at the largest radii in
+        // pixels, where it lowered the error against the reference, so a near tap whose quantised depth lifts its
+        // elevation counts, and the fitted contrast (k up to 5) darkens it: 5 pixels of 16000 (0.03 %): at most
+        // 0.1 %.
         size_t geometry = 0, darker = 0;
         for (int y = 0; y < ao.height; ++y)
           for (int x = 0; x < ao.width; ++x)
@@ -118,8 +122,9 @@ TEST(Sao, PlaneAtAGrazingAngleIsUnoccluded) {
               ++geometry;
               darker += ao.red(x, y) < 0.98f;
             }
-        EXPECT_LE(darker, geometry / 50) << name << ", " << falloffName(falloff) << ": " << darker << " of "
-                                         << geometry << " pixels below 0.98";
+        const size_t allowed = settings.estimator == AoEstimator::Crytek ? geometry / 50 : geometry / 1000;
+        EXPECT_LE(darker, allowed) << name << ", " << falloffName(falloff) << ": " << darker << " of " << geometry
+                                   << " pixels below 0.98";
         continue;
       }
       EXPECT_GE(minOverGeometry(ao, depth), 0.98f) << name << ", " << falloffName(falloff);
@@ -198,11 +203,12 @@ TEST(Sao, NearAndFarPlanesDoNotChangeTheAo) {
   };
   // HBAO's nearest taps, a pixel out, read depths whose quantisation moves their elevation by more than the angle
   // bias: 356 raw pixels beyond 2/255, by a few 255ths, which the blur averages (blurred max 1/255). Crytek's
-  // depth tests are all or nothing (no falloff), so a depth quantised differently flips whole tests: blurred max
-  // 7/255 (26 raw pixels). VO: 2/255, 19 raw pixels.
+  // depth tests are all or nothing (no falloff), so a depth quantised differently flips whole tests, and its fitted
+  // intensity (sigma about 10: one pair of five occluded on both sides darkens a pixel fully) makes a flipped test a
+  // flipped pixel: blurred max 19/255 (7 with the paper's sigma = 1). VO: 2/255, 19 raw pixels.
   for (const Bounds& bounds : {Bounds{AoEstimator::Sao, 5, 500}, Bounds{AoEstimator::Gtao, 5, 500},
                                Bounds{AoEstimator::Hbao, 5, 100}, Bounds{AoEstimator::Vo, 5, 500},
-                               Bounds{AoEstimator::Crytek, 9, 500}}) {
+                               Bounds{AoEstimator::Crytek, 24, 500}}) {
     AoSettings settings;
     settings.estimator = bounds.estimator;
     const char* name = estimatorName(bounds.estimator);

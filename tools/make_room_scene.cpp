@@ -103,10 +103,10 @@ Scene buildRoom() {
   b.sphere(table + glm::vec3(1080, kTableTop + 55, 560), 55, fabric);
   b.box(table + glm::vec3(1200, kTableTop, 200), table + glm::vec3(1450, kTableTop + 35, 380), books[0]);
 
-  // Four chairs around it.
-  chair(b, {table.x + 450, table.z - 330}, 2, wood, fabric);
-  chair(b, {table.x + 1150, table.z - 330}, 2, wood, fabric);
-  chair(b, {table.x + 450, table.z + kTableZ + 330}, 0, wood, fabric);
+  // Four chairs around it, facing it: two on the far side (facing +z), one on the near side (-z), one at the end (-x).
+  chair(b, {table.x + 450, table.z - 330}, 0, wood, fabric);
+  chair(b, {table.x + 1150, table.z - 330}, 0, wood, fabric);
+  chair(b, {table.x + 450, table.z + kTableZ + 330}, 2, wood, fabric);
   chair(b, {table.x + kTableX + 330, table.z + 450}, 3, wood, fabric);
 
   // Bookshelf against the back wall: sides, five shelves, books and boxes of several sizes (clutter).

@@ -52,36 +52,40 @@ ProgramSpec SaoPass::programSpec(AoEstimator estimator, int samples, int spiralT
                   {"LOG_MAX_OFFSET", std::to_string(SaoKernel::kLogMaxOffset)},
                   {"ESTIMATOR_KNOTS", std::to_string(kEstimatorKnots)},
                   {"FIRST_KNOT_PIXELS", std::to_string(static_cast<int>(kFirstKnotPixels))}};
-  if (estimator == AoEstimator::Gtao) {
-    const GtaoSampling sampling = gtaoSampling(samples);
-    spec.name = "gtao[slices=" + std::to_string(sampling.slices) + ",steps=" + std::to_string(sampling.steps) +
-                ",depth=" + depth + "]";
-    spec.fragmentFile = "gtao.frag";
-    spec.defines.push_back({"GTAO_SLICES", std::to_string(sampling.slices)});
-    spec.defines.push_back({"GTAO_STEPS", std::to_string(sampling.steps)});
-    spec.defines.push_back({"THIN_OCCLUDER_BLEND", "0.1"});
-  } else if (estimator == AoEstimator::Hbao) {
-    const HbaoSampling sampling = hbaoSampling(samples);
-    spec.name = "hbao[directions=" + std::to_string(sampling.directions) + ",steps=" + std::to_string(sampling.steps) +
-                ",depth=" + depth + "]";
-    spec.fragmentFile = "hbao.frag";
-    spec.defines.push_back({"HBAO_DIRECTIONS", std::to_string(sampling.directions)});
-    spec.defines.push_back({"HBAO_STEPS", std::to_string(sampling.steps)});
-  } else if (estimator == AoEstimator::Vo) {
-    spec.name = "vo[pairs=" + std::to_string(voPairs(samples)) + ",depth=" + depth + "]";
-    spec.fragmentFile = "vo.frag";
-    spec.defines.push_back({"VO_PAIRS", std::to_string(voPairs(samples))});
-  } else if (estimator == AoEstimator::Crytek) {
-    spec.name = "crytek[pairs=" + std::to_string(crytekPairs(samples)) + ",depth=" + depth + "]";
-    spec.fragmentFile = "crytek.frag";
-    spec.defines.push_back({"CRYTEK_PAIRS", std::to_string(crytekPairs(samples))});
-  } else {
-    spec.name = "sao[samples=" + std::to_string(samples) + ",turns=" + std::to_string(spiralTurns) +
-                ",falloff=" + falloffName(falloff) + ",depth=" + depth + "]";
-    spec.fragmentFile = "sao.frag";
-    spec.defines.push_back({"NUM_SAMPLES", std::to_string(samples)});
-    spec.defines.push_back({"NUM_SPIRAL_TURNS", std::to_string(spiralTurns)});
-    spec.defines.push_back({"FALLOFF_SAO2012", falloff == Falloff::Sao2012 ? "1" : "0"});
+  // The estimator's shader and its compile-time constants; the program's name lists them as label=value.
+  struct Constant {
+    const char* define;
+    const char* label;
+    int value;
+  };
+  auto use = [&](const std::string& shader, std::initializer_list<Constant> constants, const std::string& extra = "") {
+    spec.fragmentFile = shader + ".frag";
+    spec.name = shader + "[";
+    for (const Constant& c : constants) {
+      spec.defines.push_back({c.define, std::to_string(c.value)});
+      spec.name += std::string(c.label) + "=" + std::to_string(c.value) + ",";
+    }
+    spec.name += extra + "depth=" + depth + "]";
+  };
+  switch (estimator) {
+    case AoEstimator::Gtao: {
+      const GtaoSampling sampling = gtaoSampling(samples);
+      use("gtao", {{"GTAO_SLICES", "slices", sampling.slices}, {"GTAO_STEPS", "steps", sampling.steps}});
+      spec.defines.push_back({"THIN_OCCLUDER_BLEND", "0.1"});
+      break;
+    }
+    case AoEstimator::Hbao: {
+      const HbaoSampling sampling = hbaoSampling(samples);
+      use("hbao", {{"HBAO_DIRECTIONS", "directions", sampling.directions}, {"HBAO_STEPS", "steps", sampling.steps}});
+      break;
+    }
+    case AoEstimator::Vo: use("vo", {{"VO_PAIRS", "pairs", voPairs(samples)}}); break;
+    case AoEstimator::Crytek: use("crytek", {{"CRYTEK_PAIRS", "pairs", crytekPairs(samples)}}); break;
+    case AoEstimator::Sao:
+      use("sao", {{"NUM_SAMPLES", "samples", samples}, {"NUM_SPIRAL_TURNS", "turns", spiralTurns}},
+          std::string("falloff=") + falloffName(falloff) + ",");
+      spec.defines.push_back({"FALLOFF_SAO2012", falloff == Falloff::Sao2012 ? "1" : "0"});
+      break;
   }
   if (hierarchy == Storage::MipChain) spec.extensions = {"GL_EXT_shader_texture_lod"};
   return spec;
