@@ -55,9 +55,11 @@ function makeRenderer(options = {}) {
   return renderer;
 }
 
-// options: {mode, modelUrl, camera: {eye, target, up, fovy, near, far}, aoRadius}. Resolves to a description of
-// what was set up; afterwards window.benchDraw() draws one frame and window.benchGl is the renderer's context.
-window.benchSetup = async ({ mode, modelUrl, camera: c, aoRadius }) => {
+// options: {mode, modelUrl, camera: {eye, target, up, fovy, near, far}, aoRadius, aoOnly}. Resolves to a
+// description of what was set up; afterwards window.benchDraw() draws one frame and window.benchGl is the renderer's
+// context. aoOnly (peer-accuracy.mjs): the AO pass shows its ambient visibility alone, as each pass's own debug
+// output offers it (SAOPass's OUTPUT.SAO, N8AO's "AO" display mode), sRGB-encoded into the canvas.
+window.benchSetup = async ({ mode, modelUrl, camera: c, aoRadius, aoOnly = false }) => {
   const gltf = await new GLTFLoader().loadAsync(modelUrl);
   const scene = new THREE.Scene();
   scene.background = new THREE.Color().setRGB(...LIGHTING.background, THREE.SRGBColorSpace);
@@ -98,6 +100,7 @@ window.benchSetup = async ({ mode, modelUrl, camera: c, aoRadius }) => {
     composer.addPass(new RenderPass(scene, camera));
     const sao = new SAOPass(scene, camera);
     Object.assign(sao.params, saoParameters(aoRadius, c, renderer.domElement.height));
+    if (aoOnly) sao.params.output = SAOPass.OUTPUT.SAO;
     composer.addPass(sao);
     composer.addPass(new OutputPass());
     draw = () => composer.render();
@@ -109,6 +112,7 @@ window.benchSetup = async ({ mode, modelUrl, camera: c, aoRadius }) => {
     const composer = new EffectComposer(renderer);
     const n8ao = new N8AOPass(scene, camera, renderer.domElement.width, renderer.domElement.height);
     n8ao.configuration.aoRadius = aoRadius;  // world units; everything else stays at N8AO's defaults
+    if (aoOnly) n8ao.setDisplayMode('AO');
     composer.addPass(n8ao);
     draw = () => composer.render();
     info.setup = { pipeline: 'EffectComposer: N8AOPass', configuration: { ...n8ao.configuration } };
