@@ -4,8 +4,10 @@
 #include <gtest/gtest.h>
 
 #include <sys/wait.h>
+#include <unistd.h>
 
 #include <cmath>
+#include <cstdio>
 #include <cstdlib>
 #include <fstream>
 #include <sstream>
@@ -26,7 +28,11 @@ struct Result {
 
 // Runs a command line under its own Xvfb server (xvfb-run -a picks a free display number).
 Result runUnderXvfb(const std::string& command) {
-  const std::string log = ::testing::TempDir() + "obscura-view.log";
+  // A log of this process's own: ctest runs the tests of this file as separate processes side by side, and one
+  // shared log let a test read another's output.
+  static int runs = 0;
+  const std::string log = ::testing::TempDir() + "obscura-view-" + std::to_string(getpid()) + "-" +
+                          std::to_string(++runs) + ".log";
   const std::string full = "xvfb-run -a -s '-screen 0 640x480x24' " + command + " >" + log + " 2>&1";
   const int raw = std::system(full.c_str());
   Result result;
@@ -35,6 +41,7 @@ Result runUnderXvfb(const std::string& command) {
   std::stringstream text;
   text << file.rdbuf();
   result.output = text.str();
+  std::remove(log.c_str());
   return result;
 }
 
