@@ -1,6 +1,7 @@
-// obscura-tune: fits SAO's intensity sigma, bias beta and contrast k, per quality preset and radius in pixels, so
-// that its blurred AO best matches the ray-traced reference at the same radius over a set of views (each at several
-// radii, multiples of a typical object's size in that scene's units); writes the fitted table
+// obscura-tune: fits each AO estimator's intensity sigma, bias beta and contrast k (ao.estimator: SAO, GTAO, HBAO, VO,
+// Crytek), per quality preset and radius in pixels, so that its blurred AO best matches the ray-traced reference at
+// the same radius over a set of views (each at several radii, multiples of a typical object's size in that scene's
+// units); writes the fitted table
 // the core reads (src/core/TunedDefaults.inc), and the accuracy report (docs/accuracy.md and its images).
 // tools/tune-defaults.sh runs the whole procedure; see docs/accuracy.md.
 //
@@ -920,9 +921,9 @@ std::string usage() {
          "                    [--browser-ms CSV] | --evaluate | --guard-band F] [--estimators LIST] [--presets LIST]\n"
          "                    [--threads N] [--backend osmesa|egl]\n"
          "\n"
-         "Fits SAO's intensity, bias and contrast per preset and radius to the ray-traced reference (--fit), or\n"
-         "measures the current defaults against it and writes the accuracy report (--report). tools/tune-defaults.sh\n"
-         "runs both.\n"
+         "Fits each estimator's intensity, bias and contrast per preset and radius in pixels to the ray-traced\n"
+         "reference (--fit), or measures the current defaults against it and writes the accuracy report\n"
+         "(--report). tools/tune-defaults.sh runs both.\n"
          "  --views FILE   the views, radii and sizes (default tools/tuning-views.json)\n"
          "  --cache DIR    where reference images are kept between runs (default build/tuning-cache)\n"
          "  --fit FILE     write the fitted table (src/core/TunedDefaults.inc)\n"
