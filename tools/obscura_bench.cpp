@@ -3,8 +3,9 @@
 //   obscura-bench [--out DIR] [--frames N] [--backend osmesa|egl] [--quick] [--estimators-only]
 //
 // Prints tables and writes DIR/bench.csv (every measurement), DIR/ratios.csv, DIR/radius_sweep.csv,
-// DIR/radius_sweep.png (gnuplot) and DIR/estimators.csv. Every pass is bounded by glFinish on both sides and reported as the median over N
-// frames. The passes and effects are the effect table's (core/EffectTable.h): a new effect shows up by itself.
+// DIR/radius_sweep.png (gnuplot) and DIR/estimators.csv. Every pass is bounded by glFinish on both sides and
+// reported as the median over N frames. The passes and effects are the effect table's (core/EffectTable.h): a new
+// effect shows up by itself.
 // Sections:
 //   1. per-pass and per-effect ms at 640x360, 1280x720 and 1920x1080 on the built-in scene and on
 //      2CylinderEngine.glb, at the defaults (every effect on; each scene at its default AO radius, scene/SceneScale.h)

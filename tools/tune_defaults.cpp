@@ -181,7 +181,7 @@ struct TuningCase {
   float radius = 1.0f;  // in the scene's units
   Image referenceAo;
   GreyImage reference;
-  std::vector<float> radiusPixels;  // the SAO pass's projected radius h at each pixel (clamped as the shader does)
+  std::vector<float> radiusPixels;  // the estimator's projected radius h at each pixel (clamped as the shader does)
   double whiteMae = 0;              // MAE of an all-white image: what "no AO" would score
 };
 

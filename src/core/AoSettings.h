@@ -110,7 +110,8 @@ struct AoSettings : ParameterAccess<AoSettings> {
   void applyPreset(QualityPreset which);
   // Whether the settings still hold `which`'s values.
   bool matchesPreset(QualityPreset which) const;
-  // sigma, beta and k as the SAO pass uses them, per knot: the explicit values where set, the tuned ones elsewhere.
+  // sigma, beta and k as the estimator pass uses them, per knot: the explicit values where set, the tuned ones
+  // elsewhere.
   EstimatorKnots estimatorKnots() const;
   // The same at one projected radius (kShownKnotPixels: the value controls show for "auto").
   EstimatorParameters estimatorAt(float radiusPixels = kShownKnotPixels) const;

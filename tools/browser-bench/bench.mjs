@@ -160,7 +160,8 @@ async function openObscura(browser, base, size, renderer, aoRadius) {
     window.benchGl = gl;
     obscura.draw();
     return { scene, state: obscura.state(), context: obscura.context, radius: obscura.get('radius'),
-             ao: obscura.get('ao'), estimator: obscura.get('ao.estimator'), drawingBuffer: [gl.drawingBufferWidth, gl.drawingBufferHeight],
+             ao: obscura.get('ao'), estimator: obscura.get('ao.estimator'),
+             drawingBuffer: [gl.drawingBufferWidth, gl.drawingBufferHeight],
              contextAttributes: gl.getContextAttributes() };
   }, { modelUrl: `${base}/model/${modelName}`, name: modelName, radius: aoRadius, ao: renderer.ao,
        estimator: renderer.estimator });

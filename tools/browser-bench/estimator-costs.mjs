@@ -96,7 +96,8 @@ try {
         return { ao, frame, state: o.get('ao.estimator') + '/' + o.get('ao.preset') };
       }, { estimator, preset, aoPasses, samples: options.samples, settle: options.settle });
       if (result.ao.length === 0) throw new Error(`${estimator} ${preset}: no timer results`);
-      const row = { estimator, preset, aoMs: median(result.ao), frameMs: result.frame.length ? median(result.frame) : NaN,
+      const row = { estimator, preset, aoMs: median(result.ao),
+                    frameMs: result.frame.length ? median(result.frame) : NaN,
                     readings: result.ao.length };
       rows.push(row);
       console.log(`${estimator.padEnd(7)} ${preset.padEnd(7)} AO passes ${row.aoMs.toFixed(1).padStart(7)} ms   ` +

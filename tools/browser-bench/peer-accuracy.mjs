@@ -122,7 +122,9 @@ try {
           return { state: o.state(), pixels: Array.from(shot.pixels), width: shot.width, height: shot.height };
         }, { estimator: renderer.estimator, radius: view.radius, name: view.name,
              camera: view.camera ? JSON.parse(fs.readFileSync(view.camera, 'utf8')) : null });
-        if (result.width !== width || result.height !== height) throw new Error(`snapshot ${result.width}x${result.height}`);
+        if (result.width !== width || result.height !== height) {
+          throw new Error(`snapshot ${result.width}x${result.height}`);
+        }
         camera ??= cameraJson(result.state);
         pixels = result.pixels;
       } else {
@@ -131,7 +133,8 @@ try {
         const c = { eye: camera.eye, target: camera.target, up: camera.up, fovy: camera.fovy_deg, near: camera.near,
                     far: camera.far };
         await page.evaluate((o) => window.benchSetup(o),
-                            { mode: renderer.id, modelUrl: '/model.glb', camera: c, aoRadius: view.radius, aoOnly: true });
+                            { mode: renderer.id, modelUrl: '/model.glb', camera: c, aoRadius: view.radius,
+                              aoOnly: true });
         // A few frames (N8AO settles its configuration on its first frames), then one read in the same task as its
         // draw, before the canvas is presented and cleared.
         pixels = await page.evaluate(() => {
@@ -157,7 +160,8 @@ try {
     fs.writeFileSync(cameraFile, JSON.stringify(camera, null, 2));
     const stem = path.join(options.out, `${view.name}-reference`);
     execFileSync(path.join(options.build, 'obscura-reference'),
-                 ['--scene', view.model, '--camera', cameraFile, '--size', options.size, '--radius', String(view.radius),
+                 ['--scene', view.model, '--camera', cameraFile, '--size', options.size,
+                  '--radius', String(view.radius),
                   '--out', `${stem}.png`, '--mask-out', `${stem}-mask.png`, '--depth-out', `${stem}-depth.png`],
                  { stdio: ['ignore', 'ignore', 'inherit'] });
     console.log(`${view.name}: ${options.size}, r = ${view.radius}, eye (${camera.eye.map((x) => x.toFixed(1))}) ` +
