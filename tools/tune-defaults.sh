@@ -8,7 +8,7 @@
 #   tests/golden/*.png           the golden images, which show the default (tuned) AO
 #   docs/images/builtin_*.png    the README's pictures (tools/render-docs-images.sh), likewise
 # Reference images are cached in build/tuning-cache (traced once per view and radius, about a second each). About
-# 20 minutes on two cores (the fit: 16; the report: 2). Usage: tools/tune-defaults.sh
+# 45 minutes on two cores for the five estimators (the fit: about 38; the report: 5). Usage: tools/tune-defaults.sh
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
