@@ -50,7 +50,7 @@
 // just above it test as occluded. That self-occlusion is Crytek's, and the tests exempt it (tests/test_sao.cpp).
 //
 // Compile-time constants, beside those of lib/ao_estimator.glsl:
-//   CRYTEK_PAIRS   pairs of kernel points (SaoPass::crytekPairs: floor(samples / 2), at least 1)
+//   CRYTEK_PAIRS   pairs of kernel points (SaoPass::mirroredPairs: floor(samples / 2), at least 1)
 #include "lib/ao_estimator.glsl"
 
 const float kGoldenAngle = 2.39996322973;     // pi (3 - sqrt 5): Fibonacci sphere azimuths

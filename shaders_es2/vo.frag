@@ -36,7 +36,7 @@
 // in front of the ball below a wall's foot, and without a margin it counted as a thin occluder there.
 //
 // Compile-time constants, beside those of lib/ao_estimator.glsl:
-//   VO_PAIRS   pairs of taps per pixel (SaoPass::voPairs: floor(samples / 2), at least 1)
+//   VO_PAIRS   pairs of taps per pixel (SaoPass::mirroredPairs: floor(samples / 2), at least 1)
 #include "lib/ao_estimator.glsl"
 
 const float kGoldenAngle = 2.39996322973;  // pi (3 - sqrt 5), Vogel 1979

@@ -1,5 +1,6 @@
-// Regression guard: the default AO (and SAO, the other estimator) against the ray-traced reference, traced here at a
-// small size, on the built-in scene (metres) and on the furnished room (millimetres, at its default radius). The
+// Regression guard: the default AO (and every other estimator on the built-in scene) against the ray-traced
+// reference, traced here at a small size, on the built-in scene (metres) and on the furnished room (millimetres, at
+// its default radius). The
 // bounds are the figures reached when the defaults were last tuned (tools/tune-defaults.sh; measured by this test at
 // 320x180) plus headroom; a change to the AO pipeline that makes the defaults clearly worse fails here. After
 // re-running the tuning, update the figures below if they moved (docs/accuracy.md has the full tables).

@@ -48,8 +48,7 @@ std::vector<std::pair<const char*, AoSettings>> defaultAndPaperEstimators() {
 // Every estimator, blurred, with its fitted defaults.
 std::vector<AoSettings> everyEstimator() {
   std::vector<AoSettings> all;
-  for (AoEstimator estimator :
-       {AoEstimator::Sao, AoEstimator::Gtao, AoEstimator::Hbao, AoEstimator::Vo, AoEstimator::Crytek}) {
+  for (AoEstimator estimator : allAoEstimators()) {
     AoSettings settings;
     settings.estimator = estimator;
     all.push_back(settings);

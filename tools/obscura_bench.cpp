@@ -15,6 +15,7 @@
 //   5. ratios measured in this run: SAO / G-buffer, SAO(r = 4 m) / SAO(r = 0.5 m) with and without the hierarchy
 //      (goal <= 1.15 with it), SAO / a floor pass making the same fetches with no arithmetic
 //   6. every estimator (ao.estimator) at every preset, taking turns frame by frame (--estimators-only: this alone)
+#include <algorithm>
 #include <cstdio>
 #include <cstdlib>
 #include <tuple>
@@ -286,20 +287,17 @@ Options parseOptions(int argc, char** argv) {
 // passes (hierarchy, estimator, blur, upsample) and the estimator pass alone; written to DIR/estimators.csv. With
 // docs/accuracy.md's error per estimator and preset, this is the cost side of "beats SAO at the same cost".
 void estimatorSection(Bench& bench, const BenchScene& scene, int w, int h, const std::string& outDir) {
-  const std::vector<AoEstimator> estimators = {AoEstimator::Sao, AoEstimator::Gtao, AoEstimator::Hbao,
-                                               AoEstimator::Vo, AoEstimator::Crytek};
-  const EffectEntry* aoEffect = nullptr;
-  for (const EffectEntry& effect : effectTable())
-    if (effect.info.name == "ao") aoEffect = &effect;
-  if (aoEffect == nullptr) throw std::logic_error("the effect table has no 'ao' effect");
+  const std::vector<AoEstimator>& estimators = allAoEstimators();
+  const EffectEntry& aoEffect = effectEntry("ao");
+  // The column every other is divided by.
+  const size_t sao = static_cast<size_t>(
+      std::find(estimators.begin(), estimators.end(), AoEstimator::Sao) - estimators.begin());
   std::vector<RenderSettings> configurations;
   for (QualityPreset preset : allQualityPresets()) {
     for (AoEstimator estimator : estimators) {
       RenderSettings settings;
       settings.applyPreset(preset);
-      AoSettings ao = settings.ao();
-      ao.estimator = estimator;
-      settings.ao() = ao;
+      settings.ao().estimator = estimator;
       configurations.push_back(settings);
     }
   }
@@ -316,11 +314,11 @@ void estimatorSection(Bench& bench, const BenchScene& scene, int w, int h, const
   for (size_t p = 0; p < allQualityPresets().size(); ++p) {
     const char* preset = presetName(allQualityPresets()[p]);
     std::printf("%-8s", preset);
-    const double saoEffect = effectMs(times[p * estimators.size()], *aoEffect);
+    const double saoEffect = effectMs(times[p * estimators.size() + sao], aoEffect);
     std::string relative;  // each estimator's AO effect over SAO's, at this preset
     for (size_t e = 0; e < estimators.size(); ++e) {
       const PassTimes& t = times[p * estimators.size() + e];
-      const double effect = effectMs(t, *aoEffect);
+      const double effect = effectMs(t, aoEffect);
       std::printf(" %8.2f / %6.2f", effect, at(t, "sao"));
       char ratio[16];
       std::snprintf(ratio, sizeof ratio, " %.2f", effect / saoEffect);

@@ -6,25 +6,10 @@
 #include <iostream>
 
 #include "base/Error.h"
+#include "base/Text.h"
 #include "scene/ImageIo.h"
 
 namespace obscura {
-namespace {
-
-float parseNumber(const std::string& option, const std::string& text, double min, double max) {
-  char* end = nullptr;
-  const double value = std::strtod(text.c_str(), &end);
-  if (text.empty() || *end != '\0' || !std::isfinite(value))
-    throw InputError(option + ": expected a number, got '" + text + "'");
-  if (value < min || value > max) {
-    char message[160];
-    std::snprintf(message, sizeof message, "%s: %s is out of range (%g .. %g)", option.c_str(), text.c_str(), min, max);
-    throw InputError(message);
-  }
-  return static_cast<float>(value);
-}
-
-}  // namespace
 
 std::string compareUsage() {
   return "usage: obscura-compare A.png B.png [--mask M.png] [--depth D.png] [--halo-width K] [--halo-jump J]\n"

@@ -36,14 +36,7 @@ int parseCount(const std::string& option, const std::string& text, int max) {
 }
 
 namespace {
-float parseScale(const std::string& text) {
-  char* end = nullptr;
-  const double value = std::strtod(text.c_str(), &end);
-  if (text.empty() || *end != '\0' || !std::isfinite(value))
-    throw InputError("--scene-scale: expected a number, got '" + text + "'");
-  if (value < 1e-6 || value > 1e6) throw InputError("--scene-scale: " + text + " is out of range (1e-06 .. 1e+06)");
-  return static_cast<float>(value);
-}
+float parseScale(const std::string& text) { return parseNumber("--scene-scale", text, 1e-6, 1e6); }
 }  // namespace
 
 bool SceneInput::parseOption(const std::vector<std::string>& args, size_t& i) {

@@ -4,6 +4,8 @@
 #include <cstdio>
 #include <cstdlib>
 
+#include "base/Error.h"
+
 namespace obscura {
 
 std::string formatShortest(float value) {
@@ -19,6 +21,19 @@ std::string formatShortest(float value) {
     if (std::strtof(text, nullptr) == value) break;
   }
   return text;
+}
+
+float parseNumber(const std::string& option, const std::string& text, double min, double max) {
+  char* end = nullptr;
+  const double value = std::strtod(text.c_str(), &end);
+  if (text.empty() || *end != '\0' || !std::isfinite(value))
+    throw InputError(option + ": expected a number, got '" + text + "'");
+  if (value < min || value > max) {
+    char message[160];
+    std::snprintf(message, sizeof message, "%s: %s is out of range (%g .. %g)", option.c_str(), text.c_str(), min, max);
+    throw InputError(message);
+  }
+  return static_cast<float>(value);
 }
 
 }  // namespace obscura

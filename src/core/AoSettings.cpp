@@ -28,13 +28,10 @@ const std::vector<Parameter<AoSettings>>& AoSettings::parameters() {
     presetParameter.valid = [](const S&) { return true; };
     t.push_back(std::move(presetParameter).primary());
 
+    std::vector<std::pair<std::string, AoEstimator>> estimators;
+    for (AoEstimator choice : allAoEstimators()) estimators.emplace_back(estimatorName(choice), choice);
     t.push_back(choiceParameter<S, AoEstimator>("estimator", "obscurance estimator (docs/accuracy.md compares them)",
-                                                &S::estimator,
-                                                {{"sao", AoEstimator::Sao},
-                                                 {"gtao", AoEstimator::Gtao},
-                                                 {"hbao", AoEstimator::Hbao},
-                                                 {"vo", AoEstimator::Vo},
-                                                 {"crytek", AoEstimator::Crytek}}));
+                                                &S::estimator, estimators));
     t.push_back(numberParameter<S>("radius", 1e-4, 1e6, "scene units",
                                    "world-space obscurance radius r (metres in the built-in scene)", &S::radius)
                     .primary());
@@ -100,6 +97,12 @@ const std::vector<PresetInfo>& qualityPresets() {
   return presets;
 }
 
+const std::vector<AoEstimator>& allAoEstimators() {
+  static const std::vector<AoEstimator> all = {AoEstimator::Sao, AoEstimator::Gtao, AoEstimator::Hbao,
+                                               AoEstimator::Vo, AoEstimator::Crytek};
+  return all;
+}
+
 const char* estimatorName(AoEstimator estimator) {
   switch (estimator) {
     case AoEstimator::Sao: return "sao";
@@ -109,6 +112,15 @@ const char* estimatorName(AoEstimator estimator) {
     case AoEstimator::Crytek: return "crytek";
   }
   return "sao";
+}
+
+AoEstimator parseEstimator(const std::string& name) {
+  std::vector<std::string> names;
+  for (AoEstimator estimator : allAoEstimators()) {
+    if (name == estimatorName(estimator)) return estimator;
+    names.emplace_back(estimatorName(estimator));
+  }
+  throw InputError("estimator: expected " + parse::oneOf(names) + ", got '" + name + "'");
 }
 
 const char* falloffName(Falloff falloff) { return falloff == Falloff::Sao2012 ? "sao2012" : "alchemy2011"; }

@@ -20,7 +20,10 @@ enum class AoEstimator {
   Vo,      // Volumetric obscurance (Loos, Sloan, I3D 2010), paired line samples of a ball: shaders_es2/vo.frag
   Crytek,  // CryEngine 2's SSAO (Mittring, SIGGRAPH 2007 course), points in a sphere, the baseline: crytek.frag
 };
-const char* estimatorName(AoEstimator estimator);
+// Every estimator, in the order the settings, the fitted table and the reports list them.
+const std::vector<AoEstimator>& allAoEstimators();
+const char* estimatorName(AoEstimator estimator);  // "sao", "gtao", "hbao", "vo", "crytek": ao.estimator's values
+AoEstimator parseEstimator(const std::string& name);  // throws InputError
 
 // Per-tap distance falloff of the Alchemy estimator family (see SaoKernel.h for the equations).
 enum class Falloff {
@@ -65,8 +68,9 @@ struct AoSettings : ParameterAccess<AoSettings> {
   bool enabled = true;
 
   // --- Estimator (see SaoKernel.h) ---
-  // GTAO by default: against the ray-traced reference it beats SAO at every radius in pixels, at about the same cost
-  // (docs/accuracy.md has both, and the costs natively and in the browser); SAO stays one setting away.
+  // GTAO by default: against the ray-traced reference it beats SAO at every radius in pixels up to 64 and over the
+  // tuning views as a whole, at about the same cost on a GPU (docs/accuracy.md; docs/benchmarks.md section 6); SAO
+  // stays one setting away.
   AoEstimator estimator = AoEstimator::Gtao;
   // r: world-space obscurance radius, in the scene's units (metres for the built-in scene). The estimator measures
   // every distance in units of r, so a scene and its radius scaled together give the same AO.

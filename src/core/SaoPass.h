@@ -1,8 +1,8 @@
 #pragma once
-// The obscurance estimator pass, SAO by default: from the G-buffer into the bound RGBA8 target, R = ambient
-// visibility, GB = the centre's 16-bit depth code (the blur's key, so the blur reads a single texture). Shaders:
-// shaders_es2/sao.frag (CPU mirror and equations: core/SaoKernel.h) or, with ao.estimator, gtao.frag, hbao.frag,
-// vo.frag or crytek.frag; all share lib/ao_estimator.glsl. Far taps read the depth hierarchy when one is given.
+// The obscurance estimator pass (ao.estimator; GTAO by default): from the G-buffer into the bound RGBA8 target,
+// R = ambient visibility, GB = the centre's 16-bit depth code (the blur's key, so the blur reads a single texture).
+// Shaders: shaders_es2/gtao.frag, sao.frag (CPU mirror and equations: core/SaoKernel.h), hbao.frag, vo.frag or
+// crytek.frag; all share lib/ao_estimator.glsl. Far taps read the depth hierarchy when one is given.
 #include <map>
 #include <optional>
 #include <tuple>
@@ -32,10 +32,9 @@ class SaoPass {
     int directions, steps;
   };
   static HbaoSampling hbaoSampling(int samples);
-  // Volumetric obscurance's paired line samples and Crytek's kernel of mirrored points: floor(samples / 2) pairs (at
-  // least one), so 2 x pairs <= samples taps (10 at the medium preset's 11).
-  static int voPairs(int samples);
-  static int crytekPairs(int samples);
+  // The estimators that take their taps in mirrored pairs (volumetric obscurance's line samples, Crytek's kernel
+  // points): floor(samples / 2) pairs (at least one), so 2 x pairs <= samples taps (10 at the medium preset's 11).
+  static int mirroredPairs(int samples);
   // The factor the estimator's obscurance is multiplied by before the contrast (lib/ao_estimator.glsl): SAO's
   // 5 sigma / s or 2 sigma / s (SaoKernel::intensityScale); sigma for the others, whose obscurance is in [0, 1].
   static float intensityScale(const AoSettings& settings, float intensity);
