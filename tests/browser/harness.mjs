@@ -6,6 +6,7 @@ import path from 'node:path';
 import { fileURLToPath } from 'node:url';
 import { chromium } from 'playwright-core';
 import { startServer } from '../../tools/serve-web.mjs';
+import { chromiumLaunchOptions } from '../../tools/headless-chromium.mjs';
 
 export const sourceDir = path.resolve(path.dirname(fileURLToPath(import.meta.url)), '..', '..');
 export const siteDir = process.env.OBSCURA_WEB_SITE ?? path.join(sourceDir, 'build-web', 'site');
@@ -19,10 +20,6 @@ export const artifactDir = process.env.OBSCURA_BROWSER_ARTIFACTS ?? path.join(so
 export const viewport = { width: 640, height: 360 };
 export const deviceScaleFactor = 0.5;
 
-const chromiumFlags = ['--no-sandbox', '--disable-gpu', '--enable-unsafe-swiftshader', '--use-angle=swiftshader',
-                       '--disable-background-networking', '--disable-component-update', '--disable-sync',
-                       '--no-first-run', '--disable-quic'];
-
 // Starts the server and the browser; returns {baseUrl, browser, newContext(options), close()}. Playwright launches
 // Chromium with a fresh temporary profile (--user-data-dir) and deletes it on close.
 export async function startBrowser() {
@@ -31,7 +28,7 @@ export async function startBrowser() {
   }
   fs.mkdirSync(artifactDir, { recursive: true });
   const server = await startServer(siteDir);
-  const browser = await chromium.launch({ executablePath: '/usr/bin/chromium', headless: true, args: chromiumFlags });
+  const browser = await chromium.launch(chromiumLaunchOptions);
   return {
     baseUrl: `http://127.0.0.1:${server.address().port}/`,
     browser,

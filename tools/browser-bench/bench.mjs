@@ -27,6 +27,7 @@ import { chromium } from 'playwright-core';
 import { glbBoundingSphere } from './glb-bounds.mjs';
 import { decodePng } from '../../tests/browser/png.mjs';
 import { startServer } from '../serve-web.mjs';
+import { chromiumFlags, chromiumLaunchOptions } from '../headless-chromium.mjs';
 
 const benchDir = path.dirname(fileURLToPath(import.meta.url));
 const sourceDir = path.resolve(benchDir, '..', '..');
@@ -35,10 +36,6 @@ const modelPath = '/usr/share/assimp/models/glTF2/2CylinderEngine-glTF-Binary/2C
 const modelName = path.basename(modelPath);
 const AO_RADIUS_FRACTION = 0.05;  // of the bounding sphere's diameter, for every renderer
 
-// The browser tests' flags (tests/browser/harness.mjs): WebGL through ANGLE on SwiftShader, nothing from the network.
-const chromiumFlags = ['--no-sandbox', '--disable-gpu', '--enable-unsafe-swiftshader', '--use-angle=swiftshader',
-                       '--disable-background-networking', '--disable-component-update', '--disable-sync',
-                       '--no-first-run', '--disable-quic'];
 
 // --- Options ---------------------------------------------------------------------------------------------------------
 function parseArgs(argv) {
@@ -329,7 +326,7 @@ async function main() {
 
   const server = await startBenchServer();
   const base = `http://127.0.0.1:${server.address().port}`;
-  const browser = await chromium.launch({ executablePath: '/usr/bin/chromium', headless: true, args: chromiumFlags });
+  const browser = await chromium.launch(chromiumLaunchOptions);
   console.log(`browser: ${browser.version()} (headless, ${chromiumFlags.join(' ')})`);
   console.log(`machine: ${os.cpus().length} cores (${os.cpus()[0]?.model ?? '?'}), ${Math.round(os.totalmem() / 2 ** 30)} GiB`);
 

@@ -12,6 +12,7 @@ import path from 'node:path';
 import { fileURLToPath } from 'node:url';
 import { chromium } from 'playwright-core';
 import { startServer } from '../serve-web.mjs';
+import { chromiumLaunchOptions, parseOptions } from '../headless-chromium.mjs';
 
 const root = path.resolve(path.dirname(fileURLToPath(import.meta.url)), '..', '..');
 const model = '/usr/share/assimp/models/glTF2/2CylinderEngine-glTF-Binary/2CylinderEngine.glb';
@@ -20,18 +21,12 @@ const presets = ['low', 'medium', 'high', 'ultra'];
 
 const options = { size: '1280x720', samples: 9, settle: 2500,
                   csv: path.join(root, 'bench-results', 'browser-estimators.csv') };
-const argv = process.argv.slice(2);
-for (let i = 0; i < argv.length; ++i) {
-  const value = () => {
-    if (i + 1 >= argv.length) throw new Error(`${argv[i]} needs a value`);
-    return argv[++i];
-  };
-  if (argv[i] === '--size') options.size = value();
-  else if (argv[i] === '--samples') options.samples = Number(value());
-  else if (argv[i] === '--settle') options.settle = Number(value());
-  else if (argv[i] === '--csv') options.csv = path.resolve(value());
-  else throw new Error(`unknown option ${argv[i]} (see the header of ${path.basename(import.meta.url)})`);
-}
+parseOptions(process.argv.slice(2), {
+  '--size': (v) => { options.size = v; },
+  '--samples': (v) => { options.samples = Number(v); },
+  '--settle': (v) => { options.settle = Number(v); },
+  '--csv': (v) => { options.csv = path.resolve(v); },
+}, path.basename(import.meta.url));
 const [width, height] = options.size.split('x').map(Number);
 if (!(width > 0 && height > 0 && options.samples > 0 && options.settle >= 0))
   throw new Error('--size WxH and --samples N must be positive, --settle MS not negative');
@@ -44,10 +39,7 @@ const median = (values) => {
 
 // The site tools/build-web.sh builds, or the one the tests name.
 const server = await startServer(process.env.OBSCURA_WEB_SITE ?? path.join(root, 'build-web', 'site'));
-const browser = await chromium.launch({ executablePath: '/usr/bin/chromium', headless: true,
-  args: ['--no-sandbox', '--disable-gpu', '--enable-unsafe-swiftshader', '--use-angle=swiftshader',
-         '--disable-background-networking', '--disable-component-update', '--disable-sync', '--no-first-run',
-         '--disable-quic'] });
+const browser = await chromium.launch(chromiumLaunchOptions);
 try {
   const page = await (await browser.newContext({ viewport: { width, height }, deviceScaleFactor: 1 })).newPage();
   const errors = [];

@@ -15,6 +15,7 @@ import { execFileSync } from 'node:child_process';
 import { fileURLToPath } from 'node:url';
 import { chromium } from 'playwright-core';
 import { startServer } from '../serve-web.mjs';
+import { chromiumLaunchOptions, parseOptions } from '../headless-chromium.mjs';
 
 const here = path.dirname(fileURLToPath(import.meta.url));
 const root = path.resolve(here, '..', '..');
@@ -38,18 +39,12 @@ const RENDERERS = [
 
 const options = { size: '640x360', out: path.join(root, 'build', 'peer-accuracy'),
                   csv: path.join(root, 'bench-results', 'peer-accuracy.csv'), build: path.join(root, 'build') };
-const argv = process.argv.slice(2);
-for (let i = 0; i < argv.length; ++i) {
-  const value = () => {
-    if (i + 1 >= argv.length) throw new Error(`${argv[i]} needs a value`);
-    return argv[++i];
-  };
-  if (argv[i] === '--size') options.size = value();
-  else if (argv[i] === '--out') options.out = path.resolve(value());
-  else if (argv[i] === '--csv') options.csv = path.resolve(value());
-  else if (argv[i] === '--build') options.build = path.resolve(value());
-  else throw new Error(`unknown option ${argv[i]} (see the header of ${path.basename(import.meta.url)})`);
-}
+parseOptions(process.argv.slice(2), {
+  '--size': (v) => { options.size = v; },
+  '--out': (v) => { options.out = path.resolve(v); },
+  '--csv': (v) => { options.csv = path.resolve(v); },
+  '--build': (v) => { options.build = path.resolve(v); },
+}, path.basename(import.meta.url));
 const [width, height] = options.size.split('x').map(Number);
 if (!(width > 0 && height > 0)) throw new Error('--size WxH');
 fs.mkdirSync(options.out, { recursive: true });
@@ -88,10 +83,7 @@ function writeDataUrl(file, url) {
 
 const server = await startServer(null, 0, { '/site/': siteDir, '/bench/': here });
 const base = `http://127.0.0.1:${server.address().port}`;
-const browser = await chromium.launch({ executablePath: '/usr/bin/chromium', headless: true,
-  args: ['--no-sandbox', '--disable-gpu', '--enable-unsafe-swiftshader', '--use-angle=swiftshader',
-         '--disable-background-networking', '--disable-component-update', '--disable-sync', '--no-first-run',
-         '--disable-quic'] });
+const browser = await chromium.launch(chromiumLaunchOptions);
 const rows = [];
 try {
   for (const view of VIEWS) {

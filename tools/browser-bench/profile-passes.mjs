@@ -5,16 +5,14 @@ import path from 'node:path';
 import { fileURLToPath } from 'node:url';
 import { chromium } from 'playwright-core';
 import { startServer } from '../serve-web.mjs';
+import { chromiumLaunchOptions } from '../headless-chromium.mjs';
 
 const root = path.resolve(path.dirname(fileURLToPath(import.meta.url)), '..', '..');
 const model = '/usr/share/assimp/models/glTF2/2CylinderEngine-glTF-Binary/2CylinderEngine.glb';
 const [size = '1280x720', ...states] = process.argv.slice(2);
 const [width, height] = size.split('x').map(Number);
 const server = await startServer(path.join(root, 'build-web', 'site'));
-const browser = await chromium.launch({ executablePath: '/usr/bin/chromium', headless: true,
-  args: ['--no-sandbox', '--disable-gpu', '--enable-unsafe-swiftshader', '--use-angle=swiftshader',
-         '--disable-background-networking', '--disable-component-update', '--disable-sync', '--no-first-run',
-         '--disable-quic'] });
+const browser = await chromium.launch(chromiumLaunchOptions);
 const page = await (await browser.newContext({ viewport: { width, height }, deviceScaleFactor: 1 })).newPage();
 await page.goto(`http://127.0.0.1:${server.address().port}/`);
 await page.waitForFunction(() => document.body.dataset.ready === 'true', null, { timeout: 120000 });
