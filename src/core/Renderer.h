@@ -26,6 +26,7 @@
 #include "core/RenderTargetPool.h"
 #include "core/RendererOptions.h"
 #include "gl/GlCaps.h"
+#include "scene/Animation.h"
 #include "scene/Camera.h"
 #include "scene/Scene.h"
 
@@ -64,7 +65,13 @@ class PassTimer {
 
 struct FrameOptions {
   PassTimer* timer = nullptr;
-  double time = 0.0;  // seconds: the frame context's time (animation), delta time from the previous frame's
+  // Seconds on the scene's timeline: the pose drawn (scene/Animation.h), and the frame context's time.
+  double time = 0.0;
+  // The time of the pose motion vectors measure from. Unset: the previous frame's time (this frame's own when there
+  // is none, or the scene changed), so a paused timeline has no object motion. The CLI sets time - 1 / fps.
+  std::optional<double> previousTime;
+  AnimationChoice animation;  // which animations drive the pose (default: the first; none: the rest pose)
+  bool loop = true;           // the timeline wraps at the chosen animations' duration
   // Targets whose contents stay readable after the frame (retained()): tests and tools read them back. Their
   // writers run and their pooled targets are not reused within the frame.
   std::vector<std::string> retain;

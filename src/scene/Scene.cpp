@@ -1,6 +1,9 @@
 #include "scene/Scene.h"
 
+#include <algorithm>
+
 #include <glm/geometric.hpp>
+#include <glm/gtc/matrix_transform.hpp>
 
 namespace obscura {
 
@@ -24,6 +27,23 @@ std::size_t Scene::triangleCount() const {
   std::size_t count = 0;
   for (const Instance& instance : instances) count += meshes[static_cast<size_t>(instance.mesh)].indices.size() / 3;
   return count;
+}
+
+glm::mat4 Node::localRest() const {
+  if (hasMatrix) return matrix;
+  return glm::translate(glm::mat4(1.0f), translation) * glm::mat4_cast(rotation) * glm::scale(glm::mat4(1.0f), scale);
+}
+
+float Animation::duration() const {
+  float last = 0.0f;
+  for (const AnimationSampler& sampler : samplers)
+    if (!sampler.times.empty()) last = std::max(last, sampler.times.back());
+  return last;
+}
+
+bool Scene::animated() const {
+  if (!animations.empty() || !skins.empty()) return true;
+  return std::any_of(meshes.begin(), meshes.end(), [](const Mesh& m) { return !m.morphTargets.empty(); });
 }
 
 }  // namespace obscura

@@ -7,6 +7,8 @@
 #include <string>
 #include <vector>
 
+#include <glm/gtc/quaternion.hpp>
+#include <glm/gtc/type_precision.hpp>
 #include <glm/mat4x4.hpp>
 #include <glm/vec2.hpp>
 #include <glm/vec3.hpp>
@@ -42,17 +44,82 @@ struct Material {
   bool doubleSided = false;
 };
 
+// A morph target: per-vertex displacements added, times the target's weight, to the mesh's rest attributes.
+struct MorphTarget {
+  std::vector<glm::vec3> positions;  // one per vertex
+  std::vector<glm::vec3> normals;    // empty (the target moves no normal), or one per vertex
+};
+
 struct Mesh {
   std::vector<glm::vec3> positions;
   std::vector<glm::vec3> normals;    // one per position, unit length
   std::vector<glm::vec2> texcoords;  // empty, or one per position
   std::vector<std::uint32_t> indices;  // triangle list
   int material = -1;                   // -1: the default material
+  // Skinning (glTF JOINTS_0 / WEIGHTS_0): empty, or one per position. Joint indices index the instance's skin's
+  // `joints`; weights are non-negative and sum to 1 (the loader renormalises).
+  std::vector<glm::u16vec4> joints;
+  std::vector<glm::vec4> weights;
+  std::vector<MorphTarget> morphTargets;  // the node's morph weights scale them (Node::weights)
+  bool skinned() const { return !joints.empty(); }
+};
+
+// A node of the hierarchy: its rest transform (TRS, or a matrix that animation never targets) and, for nodes with
+// a morphed mesh, its rest morph weights (the glTF node's weights, else the mesh's, else zeros).
+struct Node {
+  std::string name;
+  int parent = -1;  // index into Scene::nodes, lower than this node's; -1: a root
+  glm::vec3 translation{0.0f};
+  glm::quat rotation{1.0f, 0.0f, 0.0f, 0.0f};  // w, x, y, z
+  glm::vec3 scale{1.0f};
+  bool hasMatrix = false;  // the local transform is `matrix` (a glTF matrix node: not animated)
+  glm::mat4 matrix{1.0f};
+  std::vector<float> weights;
+  glm::mat4 localRest() const;  // the local transform without animation
+};
+
+// A glTF skin: the nodes that are its joints and their inverse bind matrices. A skinned vertex's world position is
+// sum_i w_i * world(joints[j_i]) * inverseBind[j_i] * p; the skinned mesh's own node transform is ignored, as the glTF
+// spec says, and `skeleton` is only the hint of the common root.
+struct Skin {
+  std::string name;
+  std::vector<int> joints;                  // node indices
+  std::vector<glm::mat4> inverseBind;       // one per joint (identity where the file gives none)
+  int skeleton = -1;
 };
 
 struct Instance {
   int mesh = 0;
-  glm::mat4 world{1.0f};
+  glm::mat4 world{1.0f};  // at rest (the node's world matrix without animation)
+  int node = -1;          // the node that places it, -1: none (fixed at `world`)
+  int skin = -1;          // index into Scene::skins, -1: rigid (the mesh must then have no joints)
+};
+
+// glTF animation data, as loaded (validated: times finite and strictly increasing, values finite, counts agreeing
+// with the interpolation). scene/Animation.h samples it.
+enum class Interpolation { Linear, Step, CubicSpline };
+enum class AnimationPath { Translation, Rotation, Scale, Weights };
+
+struct AnimationSampler {
+  std::vector<float> times;   // seconds, strictly increasing, at least one
+  // Per key, `components` floats (3 for translation and scale, 4 for a rotation quaternion x, y, z, w, the node's
+  // morph target count for weights); CUBICSPLINE keys hold in-tangent, value, out-tangent, so 3 x that.
+  std::vector<float> values;
+  int components = 0;
+  Interpolation interpolation = Interpolation::Linear;
+};
+
+struct AnimationChannel {
+  int sampler = 0;  // index into Animation::samplers
+  int node = 0;     // index into Scene::nodes
+  AnimationPath path = AnimationPath::Translation;
+};
+
+struct Animation {
+  std::string name;  // may be empty
+  std::vector<AnimationSampler> samplers;
+  std::vector<AnimationChannel> channels;
+  float duration() const;  // the last key time over all samplers (0 for a single key)
 };
 
 struct Bounds {
@@ -70,12 +137,17 @@ struct Scene {
   std::vector<Material> materials;
   std::vector<Texture> textures;
   std::vector<Image> images;
+  std::vector<Node> nodes;        // empty for a scene without hierarchy (all instances fixed)
+  std::vector<Skin> skins;
+  std::vector<Animation> animations;
   // The AO radius the scene was designed for, in its units; 0 for none (a loaded file), when defaultAoRadius
   // (scene/SceneScale.h) derives one from the scene's size. The built-in scene: 1 (metre).
   float designedAoRadius = 0.0f;
 
-  Bounds worldBounds() const;
+  Bounds worldBounds() const;  // at rest
   std::size_t triangleCount() const;
+  // Something can move: an animation, or a skin or morph target a pose could change.
+  bool animated() const;
 };
 
 }  // namespace obscura

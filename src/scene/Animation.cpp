@@ -1,0 +1,3 @@
+#include "scene/Animation.h"
+
+namespace obscura {}  // namespace obscura
