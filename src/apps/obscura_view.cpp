@@ -46,9 +46,11 @@ const char* kUsage =
     "Each scene loaded gets its default AO radius, 5 % of its bounding-sphere diameter to two significant figures\n"
     "(the built-in scene: 1 m), unless --state gives one, which is then kept for every scene.\n"
     "  --size WxH         window size (default 1280x720)\n"
-    "  --state QUERY      view, parameters and camera as the web page's URL query, e.g. 'view=ao&radius=2'\n"
+    "  --state QUERY      view, parameters, timeline and camera as the web page's URL query, e.g. 'view=ao&radius=2'\n"
     "  --screenshot FILE  draw --frames frames (default 3), write the last one as PNG and exit\n"
     "\n"
+    "The animation (if the scene has any) starts paused at 0 s: space plays it; --state chooses it, e.g.\n"
+    "'animation=Walk&time=1.5&play=on'.\n"
     "Mouse: left drag orbits, right/middle or shift + left drag pans, the wheel zooms. Esc quits.\n"
     "Keys:\n";
 
@@ -63,7 +65,7 @@ Options parseOptions(int argc, char** argv) {
     if (arg == "--help" || arg == "-h") {
       std::cout << kUsage;
       for (const Viewer::KeyBinding& k : Viewer::keyBindings())
-        std::cout << "  " << k.key << "  " << k.description << "\n";
+        std::cout << "  " << k.label << "  " << k.description << "\n";
       std::exit(0);
     } else if (arg == "--size") {
       const std::string text = value();
@@ -98,6 +100,10 @@ class Input {
     glfwSetCharCallback(window, [](GLFWwindow* w, unsigned int codepoint) { self(w).character(codepoint); });
     glfwSetKeyCallback(window, [](GLFWwindow* w, int key, int, int action, int) {
       if (key == GLFW_KEY_ESCAPE && action == GLFW_PRESS) glfwSetWindowShouldClose(w, GLFW_TRUE);
+      // Keys that type no character reach the Viewer under their KeyboardEvent.key names, as on the page; held
+      // down, they repeat (frame steps).
+      if ((key == GLFW_KEY_LEFT || key == GLFW_KEY_RIGHT) && action != GLFW_RELEASE)
+        self(w).namedKey(key == GLFW_KEY_LEFT ? "ArrowLeft" : "ArrowRight");
     });
     glfwSetMouseButtonCallback(window, [](GLFWwindow* w, int button, int action, int mods) {
       self(w).button(w, button, action, mods);
@@ -148,8 +154,12 @@ class Input {
 
   void character(unsigned int codepoint) {
     if (codepoint >= 128) return;  // every binding is ASCII
+    namedKey(std::string(1, static_cast<char>(codepoint)));
+  }
+
+  void namedKey(const std::string& key) {
     try {
-      viewer_.handleKey(std::string(1, static_cast<char>(codepoint)));
+      viewer_.handleKey(key);
       message_.clear();
     } catch (const std::exception& e) {
       message_ = e.what();
@@ -201,6 +211,14 @@ std::string title(const Viewer& viewer, double frameMs, const GpuPassTimer& time
                                                              s.get("tonemap.exposure") + " EV"
                                                        : std::string("off")) +
          " - FXAA " + s.get("fxaa");
+  // The timeline, where the scene has something to play.
+  const Timeline& timeline = viewer.state().timeline;
+  if (timeline.duration() > 0.0) {
+    std::snprintf(text, sizeof text, " - %s %.2f / %.2f s, %s%s, x%g", timeline.playing() ? "playing" : "paused",
+                  timeline.time(), timeline.duration(), timeline.animationName().c_str(),
+                  timeline.loop() ? ", loop" : "", timeline.speed());
+    out += text;
+  }
   if (timer.hasResult()) {
     out += " - GPU";
     const std::vector<std::string>& passes = framePassNames();

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <cstdlib>
 
+#include "base/Error.h"
 #include "gl/GlObjects.h"
 #include "platform/CameraControls.h"
 #include "scene/BuiltinScene.h"
@@ -68,14 +69,38 @@ const std::vector<Viewer::KeyAction>& Viewer::keyActions() {
       {"(", "exposure - 0.5 EV", step("tonemap.exposure", -0.5)},
       {")", "exposure + 0.5 EV", step("tonemap.exposure", 0.5)},
       {"r", "reset the camera", [](Viewer& v) { v.resetCamera(); }},
+      {" ", "play / pause the animation",
+       [](Viewer& v) {
+         Timeline& timeline = v.requireTimeline();
+         if (timeline.playing()) timeline.pause();
+         else timeline.play();
+       }},
+      {"ArrowLeft", "animation: one frame back (1/60 s; pauses)",
+       [](Viewer& v) { v.requireTimeline().stepFrames(-1); }},
+      {"ArrowRight", "animation: one frame on (1/60 s; pauses)",
+       [](Viewer& v) { v.requireTimeline().stepFrames(1); }},
   };
   return actions;
 }
 
 std::vector<Viewer::KeyBinding> Viewer::keyBindings() {
   std::vector<KeyBinding> out;
-  for (const KeyAction& a : keyActions()) out.push_back({a.key, a.description});
+  for (const KeyAction& a : keyActions()) {
+    const std::string key = a.key;
+    const std::string label = key == " " ? "space" : key == "ArrowLeft" ? "left arrow"
+                              : key == "ArrowRight" ? "right arrow" : key;
+    out.push_back({key, label, a.description});
+  }
   return out;
+}
+
+Timeline& Viewer::requireTimeline() {
+  // A key that does nothing visible says why, where the controls of a page would be disabled.
+  if (!(state_.timeline.duration() > 0.0))
+    throw InputError(state_.timeline.hasAnimations()
+                         ? "nothing to play: animation '" + state_.timeline.animationName() + "' has no length"
+                         : "nothing to play: the scene has no animations");
+  return state_.timeline;
 }
 
 Viewer::Viewer(const gl::GlCaps& caps, const RendererOptions& options)
@@ -93,6 +118,7 @@ void Viewer::showScene(Scene scene, const std::string& name, const Camera& camer
   sceneCamera_ = camera;
   state_.camera = camera;
   state_.sceneLoaded(defaultAoRadius(scene_));  // the scene's own radius, unless a state text gave one
+  state_.timeline.sceneLoaded(scene_);           // its first animation, from time 0
 }
 
 void Viewer::loadBuiltinScene() { showScene(makeBuiltinScene(), "built-in scene", builtinSceneCamera()); }
@@ -152,10 +178,11 @@ bool Viewer::handleKey(const std::string& key) {
   return false;
 }
 
-void Viewer::render(GLuint framebuffer, int width, int height, PassTimer* timer, double timeSeconds) {
+void Viewer::render(GLuint framebuffer, int width, int height, PassTimer* timer, double clockSeconds) {
   // The size is remembered so a scene loaded next is framed for this aspect ratio.
   state_.camera.width = width;
   state_.camera.height = height;
+  state_.timeline.tick(clockSeconds);
   if (!renderer_) return;
   OutputTarget target;
   target.framebuffer = framebuffer;
@@ -163,7 +190,7 @@ void Viewer::render(GLuint framebuffer, int width, int height, PassTimer* timer,
   target.height = height;
   FrameOptions options;
   options.timer = timer;
-  options.time = timeSeconds;
+  state_.timeline.applyTo(options);  // time, animation, loop
   renderer_->render(state_.camera, state_.settings, state_.view, target, options);
 }
 

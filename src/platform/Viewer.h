@@ -51,18 +51,24 @@ class Viewer {
   void zoom(float factor);
   void resetCamera();
 
-  // --- Keys. One character each (what the keyboard types, e.g. "]"), the same on the desktop and on the web.
+  // --- Keys, the same on the desktop and on the web: what the keyboard types (e.g. "]", " " for space), or, for a
+  // key that types nothing, its KeyboardEvent.key name ("ArrowLeft", "ArrowRight"), which obscura-view maps from GLFW.
   struct KeyBinding {
     std::string key;
+    std::string label;  // the key as a person reads it: "space", "left arrow", else the key itself
     std::string description;
   };
   static std::vector<KeyBinding> keyBindings();
   // Applies the key's action; false if the key is not bound. Throws InputError if the action is refused.
   bool handleKey(const std::string& key);
 
-  // Draws one frame of the current state into `framebuffer` (0: the window's or canvas's own) at width x height, at
-  // `timeSeconds` (the frame context's clock). Does nothing while the context is lost.
-  void render(GLuint framebuffer, int width, int height, PassTimer* timer = nullptr, double timeSeconds = 0.0);
+  // Draws one frame of the current state into `framebuffer` (0: the window's or canvas's own) at width x height.
+  // `clockSeconds` is the front end's clock (any origin): a playing timeline first advances by its change since the
+  // previous frame (Timeline::tick); the frame shows the timeline's time. Does nothing while the context is lost
+  // (the timeline still advances).
+  void render(GLuint framebuffer, int width, int height, PassTimer* timer = nullptr, double clockSeconds = 0.0);
+  // Whether frames change by themselves (a timeline playing): a front end drawing on change only then draws on.
+  bool playing() const { return state_.timeline.playing(); }
 
   // --- Context loss. contextLost() drops every GL object without deleting it (its names belong to the lost context,
   // see gl::abandonContextObjects); contextRestored() rebuilds the Renderer and the GPU scene from the CPU scene for
@@ -81,6 +87,8 @@ class Viewer {
  private:
   struct KeyAction;
   static const std::vector<KeyAction>& keyActions();
+  // The timeline, for a key that plays or steps it; throws InputError saying why where nothing plays.
+  Timeline& requireTimeline();
   void showScene(Scene scene, const std::string& name, const Camera& camera);
   // Sets a numeric parameter to change(current value), clamped to the parameter's range.
   void adjustParameter(const std::string& name, const std::function<double(double)>& change);

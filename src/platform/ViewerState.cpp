@@ -121,6 +121,7 @@ std::string ViewerState::toQuery() const {
     // A radius a state text gave stays in the text, so that it keeps being given (kept across scenes) when applied.
     if (value != base.get(p.name) || (radiusGiven && p.name == "ao.radius")) add(p.name, value);
   }
+  timeline.writeQuery(add);
   add("eye", formatVector(camera.eye));
   add("target", formatVector(camera.target));
   add("up", formatVector(camera.up));
@@ -165,6 +166,8 @@ bool ViewerState::applyQuery(const std::string& query) {
         if (p.name == "ao.radius") next.radiusGiven = true;
       }
     }
+    for (const std::string& key : Timeline::queryKeys())
+      if (take(key, &text)) next.timeline.applyQueryValue(key, text);
   } catch (const InputError& e) {
     throw InputError(std::string("state: ") + e.what());
   }

@@ -1,16 +1,19 @@
 #pragma once
-// What a viewer shows, as one value: the view, the frame's parameters and the camera. The web page keeps it in its
-// URL (so a view can be shared) and obscura-view accepts the same text with --state, e.g.
-//   view=split&ao.radius=2&ao.samples=16&eye=3.2,2.6,6.2&target=-0.4,0.8,-1.6&up=0,1,0&fovy=55&near=0.1&far=40
+// What a viewer shows, as one value: the view, the frame's parameters, the timeline and the camera. The web page keeps
+// it in its URL (so a view can be shared) and obscura-view accepts the same text with --state, e.g.
+//   view=split&ao.radius=2&time=1.25&eye=3.2,2.6,6.2&target=-0.4,0.8,-1.6&up=0,1,0&fovy=55&near=0.1&far=40
 // Keys: view (frameViewNames(): final, split, and every target's debug view), every parameter of RenderSettings by
-// its name or alias ("radius" for "ao.radius": older links keep working), and the camera (eye, target, up as x,y,z;
-// fovy in degrees; near; far). The camera's size follows the window or canvas. The AO radius is in the scene's units;
-// each scene loaded gets its own default radius unless a state text gave one (sceneLoaded).
+// its name or alias ("radius" for "ao.radius": older links keep working), the timeline (animation: a name, an index,
+// all or none; time in seconds; speed; play and loop: on or off; Timeline.h) and the camera (eye, target, up as
+// x,y,z; fovy in degrees; near; far). The camera's size follows the window or canvas. The AO radius is in the
+// scene's units; each scene loaded gets its own default radius unless a state text gave one (sceneLoaded), and
+// starts at time 0 of its first animation.
 #include <string>
 #include <vector>
 
 #include "core/RenderSettings.h"
 #include "core/Renderer.h"
+#include "platform/Timeline.h"
 #include "scene/Camera.h"
 
 namespace obscura {
@@ -18,6 +21,7 @@ namespace obscura {
 struct ViewerState {
   View view = View::Final;
   RenderSettings settings;
+  Timeline timeline;
   Camera camera;
 
   // The AO radius of the scene shown when nobody sets one (scene/SceneScale.h: defaultAoRadius; the built-in scene:
@@ -37,14 +41,15 @@ struct ViewerState {
   void setViewMode(const std::string& name);  // throws InputError
 
   // The state as query-string text (no leading '?'), parameters by their full names. Parameters equal to their
-  // defaults (or to their preset's values; the radius: to defaultRadius, unless radiusGiven) are left out; the view
-  // and the camera are always written.
+  // defaults (or to their preset's values; the radius: to defaultRadius, unless radiusGiven) and the timeline's keys
+  // at their defaults (Timeline::writeQuery) are left out; the view and the camera are always written.
   std::string toQuery() const;
   // Applies query-string text (with or without a leading '?', '+' and %XX decoded) onto this state. Keys may come in
   // any order; parameters apply in the order of the parameter table ("preset" first, then each effect's, so
-  // "ao.samples" precedes "ao.turns"). Throws InputError naming the key on anything unknown or invalid (or a
-  // parameter given twice, by name and alias), leaving the state unchanged. Returns whether the text set the camera
-  // (any camera key). A radius in the text (ao.radius or radius) sets radiusGiven.
+  // "ao.samples" precedes "ao.turns"), the timeline's in Timeline::queryKeys()' order. Throws InputError naming the
+  // key on anything unknown or invalid (or a parameter given twice, by name and alias), leaving the state unchanged.
+  // Returns whether the text set the camera (any camera key). A radius in the text (ao.radius or radius) sets
+  // radiusGiven.
   bool applyQuery(const std::string& query);
 };
 
