@@ -1,12 +1,14 @@
 // The default AO radius (scene/SceneScale.h): 5 % of the scene's bounding-sphere diameter to two significant figures,
 // the built-in scene's own 1 m, scaling with the scene; and how a viewer's state applies it when scenes change
 // (ViewerState::sceneLoaded, radiusGiven, toQuery).
+#include <glm/gtc/matrix_transform.hpp>
 #include <gtest/gtest.h>
 
 #include "TestSupport.h"
 #include "apps/SceneInput.h"
 #include "core/RenderSettings.h"
 #include "platform/ViewerState.h"
+#include "scene/Animation.h"
 #include "scene/BuiltinScene.h"
 #include "scene/GltfLoader.h"
 #include "scene/SceneScale.h"
@@ -117,4 +119,71 @@ TEST(DefaultAoRadius, EachSceneLoadedGetsItsOwnUnlessAStateTextGaveOne) {
   // A refused text changes nothing, radiusGiven included.
   EXPECT_THROW(other.applyQuery("radius=2&view=sideways"), InputError);
   EXPECT_FALSE(other.radiusGiven);
+}
+
+// --scene-scale on a scene placed by its node hierarchy: posed at any time, every instance (rigid below an animated
+// root, or skinned by joints below it) lands where the unscaled pose times the scale puts it; a sampler the root
+// shares with a child's channel moves the child as before.
+TEST(SceneScale, ScalesAPosedSceneLikeItsRestPose) {
+  Scene scene;
+  Mesh triangle;
+  triangle.positions = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}};
+  triangle.normals = {{0, 0, 1}, {0, 0, 1}, {0, 0, 1}};
+  triangle.indices = {0, 1, 2};
+  scene.meshes.push_back(triangle);
+  Mesh skinned = triangle;
+  skinned.joints.assign(3, glm::u16vec4(0, 1, 0, 0));
+  skinned.weights.assign(3, glm::vec4(0.5f, 0.5f, 0.0f, 0.0f));
+  scene.meshes.push_back(skinned);
+  Node root, child;
+  root.translation = {1, 2, 3};
+  root.rotation = glm::angleAxis(0.5f, glm::normalize(glm::vec3(1, 1, 0)));
+  root.scale = glm::vec3(2.0f);
+  child.parent = 0;
+  child.translation = {0, 1, 0};
+  scene.nodes = {root, child};
+  Skin skin;
+  skin.joints = {0, 1};
+  skin.inverseBind = {glm::mat4(1.0f), glm::translate(glm::mat4(1.0f), glm::vec3(0, -1, 0))};
+  scene.skins.push_back(skin);
+  Instance rigid, deformed;
+  rigid.node = 1;
+  deformed.mesh = 1;
+  deformed.node = 1;
+  deformed.skin = 0;
+  scene.instances = {rigid, deformed};
+  Animation move;
+  AnimationSampler shared;  // translations, used by the root and by the child
+  shared.times = {0.0f, 1.0f};
+  shared.components = 3;
+  shared.values = {0, 0, 0, 4, 0, -2};
+  AnimationSampler grow;
+  grow.times = {0.0f, 1.0f};
+  grow.components = 3;
+  grow.interpolation = Interpolation::Step;
+  grow.values = {1, 1, 1, 3, 3, 3};
+  move.samplers = {shared, grow};
+  move.channels = {{0, 0, AnimationPath::Translation}, {0, 1, AnimationPath::Translation},
+                   {1, 0, AnimationPath::Scale}};
+  scene.animations.push_back(move);
+
+  const float s = 0.01f;
+  Scene scaled = scene;
+  scaleScene(scaled, s);
+  const glm::mat4 scaling = glm::scale(glm::mat4(1.0f), glm::vec3(s));
+  for (double time : {0.0, 0.3, 1.0}) {
+    const Scene a = posedScene(scene, evaluatePose(scene, time)), b = posedScene(scaled, evaluatePose(scaled, time));
+    ASSERT_EQ(a.instances.size(), b.instances.size());
+    for (size_t i = 0; i < a.instances.size(); ++i) {
+      const Mesh &ma = a.meshes[static_cast<size_t>(a.instances[i].mesh)],
+                 &mb = b.meshes[static_cast<size_t>(b.instances[i].mesh)];
+      for (size_t v = 0; v < ma.positions.size(); ++v) {
+        const glm::vec3 expected = glm::vec3(scaling * a.instances[i].world * glm::vec4(ma.positions[v], 1.0f));
+        const glm::vec3 got = glm::vec3(b.instances[i].world * glm::vec4(mb.positions[v], 1.0f));
+        EXPECT_LT(glm::length(got - expected), 1e-5f) << "instance " << i << " vertex " << v << " at " << time;
+      }
+    }
+  }
+  EXPECT_EQ(scaled.animations[0].samplers.size(), 3u) << "the shared sampler was copied for the root";
+  EXPECT_EQ(scaled.animations[0].samplers[0].values, shared.values) << "and the child's kept";
 }

@@ -12,12 +12,13 @@
 namespace obscura {
 
 std::string referenceUsage() {
-  return "usage: obscura-reference [--scene FILE [--scene-scale S]] [--camera CAM.json | --fit] [--size WxH]\n"
-         "                         [--radius R] [--rays N] [--threads N] [--view ao|depth|mask] [--out FILE.png]\n"
-         "                         [--depth-out FILE.png] [--mask-out FILE.png]\n"
+  return "usage: obscura-reference [--scene FILE [--scene-scale S]] [--time T] [--animation A]\n"
+         "                         [--camera CAM.json | --fit] [--size WxH] [--radius R] [--rays N] [--threads N]\n"
+         "                         [--view ao|depth|mask] [--out FILE.png] [--depth-out FILE.png] [--mask-out FILE.png]\n"
          "\n"
          "Ray-traces (Embree) the ambient visibility A = (1/pi) * integral of V_R(w) cos(theta) dw of the scene\n"
-         "obscura-render draws, with the same scene, camera and view conventions (docs/accuracy.md).\n" +
+         "obscura-render draws, with the same scene, moment of its animation, camera and view conventions\n"
+         "(docs/accuracy.md).\n" +
          sceneInputUsage() +
          "  --radius R        AO radius in scene units, as obscura-render's --radius (1e-4 .. 1e6; default: below)\n"
          "  --rays N          cosine-weighted hemisphere rays per pixel, a power of two (default 256)\n"
@@ -87,10 +88,12 @@ int runReference(const ReferenceOptions& options) {
     validateReferenceSettings(options.trace);
     const SceneInput::Loaded input = options.input.load();
     options.input.printWarnings("obscura-reference", input.warnings);
-    const Scene& scene = input.scene;
     const Camera& camera = input.camera;
     ReferenceSettings trace = options.trace;
-    if (!options.radiusGiven) trace.radius = chooseDefaultAoRadius("obscura-reference", "--radius", scene);
+    // The radius from the scene at rest, as obscura-render chooses it; the trace of the scene posed at --time with
+    // --animation, as obscura-render draws it.
+    if (!options.radiusGiven) trace.radius = chooseDefaultAoRadius("obscura-reference", "--radius", input.scene);
+    const Scene scene = input.posedAt(options.input.time);
 
     const auto start = std::chrono::steady_clock::now();
     const AoReferenceTracer tracer(scene, trace.threads);

@@ -12,7 +12,7 @@ namespace obscura {
 enum class ReferenceView { Ao, Depth, Mask };
 
 struct ReferenceOptions {
-  SceneInput input;  // --scene, --scene-scale, --camera, --fit, --size
+  SceneInput input;  // --scene, --scene-scale, --time, --animation, --camera, --fit, --size
   ReferenceSettings trace;
   // Whether --radius was given; if not, runReference takes the scene's default radius (chooseDefaultAoRadius: the
   // same as obscura-render's for the same scene).

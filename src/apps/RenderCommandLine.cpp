@@ -6,6 +6,7 @@
 #include <iostream>
 
 #include "base/Error.h"
+#include "base/Text.h"
 #include "gl/RenderTarget.h"
 #include "platform/FinishPassTimer.h"
 #include "scene/ImageIo.h"
@@ -14,15 +15,18 @@ namespace obscura {
 
 std::string renderUsage() {
   std::string usage =
-      "usage: obscura-render [--scene FILE [--scene-scale S]] [--camera CAM.json | --fit] [--size WxH] [--view V]\n"
-      "                      [--out FILE.png] [--NAME VALUE | --no-EFFECT ...] [--preset P] [--bench N]\n"
-      "                      [--backend osmesa|egl]\n"
+      "usage: obscura-render [--scene FILE [--scene-scale S]] [--time T] [--animation A] [--fps F] [--frames N]\n"
+      "                      [--camera CAM.json | --fit] [--size WxH] [--view V] [--out FILE.png]\n"
+      "                      [--NAME VALUE | --no-EFFECT ...] [--preset P] [--bench N] [--backend osmesa|egl]\n"
       "\n"
       "Renders a glTF 2.0 scene (default: the built-in scene) headless: the G-buffer, Scalable Ambient Obscurance,\n"
       "lighting, tone mapping and FXAA, or one of the frame's targets.\n"
       + sceneInputUsage() +
       "  --view V          " + parse::joinChoices(frameViewNames(), " | ") + "\n"
       "                    (default final; a target's view shows its values as they are: no tone curve, no FXAA)\n"
+      "  --fps F           frames per second (default 60): the frame before --time is 1/F earlier, which motion\n"
+      "                    vectors measure from\n"
+      "  --frames N        draw N frames, at T, T + 1/F, ... (the history carrying over), and write the last\n"
       "  --out FILE        output PNG (default obscura.png)\n"
       "  --bench N         render N frames and print per-pass milliseconds (glFinish-bounded)\n"
       "  --backend B       osmesa (default) or egl (Mesa EGL surfaceless, a true GLES 2 context)\n"
@@ -67,7 +71,9 @@ RenderOptions parseRenderCommandLine(const std::vector<std::string>& args) {
     } else if (arg == "--out") {
       options.outPath = value();
       if (options.outPath.empty()) throw InputError("--out: empty file name");
-    } else if (arg == "--bench") options.benchFrames = parseCount(arg, value(), 100000);
+    } else if (arg == "--fps") options.fps = parseNumber(arg, value(), 0.01, 10000.0);
+    else if (arg == "--frames") options.frames = parseCount(arg, value(), 100000);
+    else if (arg == "--bench") options.benchFrames = parseCount(arg, value(), 100000);
     else if (arg == "--backend") {
       try {
         options.backend = parseBackend(value());
@@ -123,12 +129,22 @@ int runRender(const RenderOptions& options) {
     target.width = camera.width;
     target.height = camera.height;
 
-    renderer.render(camera, settings, options.view, target);  // also warms up shader compilation
+    // The frames of the sequence: frame k at T + k / F, its previous frame 1 / F earlier (for the first, a frame
+    // that is not drawn). The first also warms up shader compilation.
+    const double interval = 1.0 / options.fps;
+    FrameOptions frame;
+    frame.animation = input.animation;
+    for (int k = 0; k < options.frames; ++k) {
+      frame.time = options.input.time + k * interval;
+      frame.previousTime = frame.time - interval;
+      renderer.render(camera, settings, options.view, target, frame);
+    }
     if (options.benchFrames > 0) {
+      // Each measured frame is the last frame again (the same time and motion).
       FinishPassTimer timer;
+      frame.timer = &timer;
       const auto start = std::chrono::steady_clock::now();
-      for (int frame = 0; frame < options.benchFrames; ++frame)
-        renderer.render(camera, settings, options.view, target, &timer);
+      for (int k = 0; k < options.benchFrames; ++k) renderer.render(camera, settings, options.view, target, frame);
       glFinish();
       const double total = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
       std::printf("obscura-render --bench: %dx%d, %d frames, view %s, %d AO samples, backend %s (%s)\n", camera.width,

@@ -12,13 +12,18 @@
 namespace obscura {
 
 struct RenderOptions {
-  SceneInput input;  // --scene, --scene-scale, --camera, --fit, --size
+  SceneInput input;  // --scene, --scene-scale, --time, --animation, --camera, --fit, --size
   View view = View::Final;
   std::string outPath = "obscura.png";
   RenderSettings settings;
   // Whether the command line gave the AO radius (--ao.radius or --radius); if not, runRender takes the scene's
   // default (chooseDefaultAoRadius, scene/SceneScale.h) once the scene is loaded.
   bool radiusGiven = false;
+  // --fps: the frame interval is 1 / fps; each frame's previous one is that much earlier (FrameOptions::previousTime,
+  // from which motion vectors measure). --frames: how many frames are drawn, at time, time + 1 / fps, ..., through
+  // one Renderer so that the history carries from frame to frame; the last is written.
+  double fps = 60.0;
+  int frames = 1;
   int benchFrames = 0;
   HeadlessBackend backend = HeadlessBackend::OSMesa;
   bool help = false;

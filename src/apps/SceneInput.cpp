@@ -36,7 +36,20 @@ int parseCount(const std::string& option, const std::string& text, int max) {
 }
 
 namespace {
+
 float parseScale(const std::string& text) { return parseNumber("--scene-scale", text, 1e-6, 1e6); }
+
+// Seconds as a double: a time the tools compute (obscura-render --frames: T + k / F) and one given must be the same
+// number, not the same float.
+double parseTime(const std::string& text) {
+  char* end = nullptr;
+  const double value = std::strtod(text.c_str(), &end);
+  if (text.empty() || *end != '\0' || !std::isfinite(value))
+    throw InputError("--time: expected a number of seconds, got '" + text + "'");
+  if (value < 0.0 || value > 1e6) throw InputError("--time: " + text + " is out of range (0 .. 1e+06 seconds)");
+  return value;
+}
+
 }  // namespace
 
 bool SceneInput::parseOption(const std::vector<std::string>& args, size_t& i) {
@@ -47,6 +60,11 @@ bool SceneInput::parseOption(const std::vector<std::string>& args, size_t& i) {
   };
   if (arg == "--scene") scenePath = value();
   else if (arg == "--scene-scale") sceneScale = parseScale(value());
+  else if (arg == "--time") time = parseTime(value());
+  else if (arg == "--animation") {
+    animation = value();
+    if (animation.empty()) throw InputError("--animation: expected a name, an index, all or none, got ''");
+  }
   else if (arg == "--camera") cameraPath = value();
   else if (arg == "--fit") fit = true;
   else if (arg == "--size") parseSize(value(), &width, &height);
@@ -65,6 +83,13 @@ SceneInput::Loaded SceneInput::load() const {
   loaded.scene = scenePath.empty() ? makeBuiltinScene() : loadGltfFile(scenePath, &report);
   loaded.warnings = std::move(report.warnings);
   if (sceneScale != 1.0f) scaleScene(loaded.scene, sceneScale);
+  if (!animation.empty()) {
+    try {
+      loaded.animation = parseAnimationChoice(loaded.scene, animation);
+    } catch (const InputError& e) {
+      throw InputError(std::string("--") + e.what());  // "--animation 'walk' is not in the scene; choices: ..."
+    }
+  }
   if (cameraPath.empty()) {
     // Fitted at the output size: the frustum's aspect decides how much room the bounds need.
     if (fit || !scenePath.empty())
@@ -79,6 +104,14 @@ SceneInput::Loaded SceneInput::load() const {
   return loaded;
 }
 
+Scene SceneInput::Loaded::posedAt(double time) const {
+  if (!scene.animated()) return scene;
+  PoseOptions options;
+  options.animation = animation;
+  options.loop = true;  // as FrameOptions' default, which obscura-render draws with
+  return posedScene(scene, evaluatePose(scene, time, options));
+}
+
 void SceneInput::printWarnings(const char* tool, const std::vector<std::string>& warnings) const {
   for (const std::string& warning : warnings)
     std::cerr << tool << ": warning: " << scenePath << ": " << warning << "\n";
@@ -87,8 +120,11 @@ void SceneInput::printWarnings(const char* tool, const std::vector<std::string>&
 std::string sceneInputUsage() {
   return "  --scene FILE      .gltf or .glb; default: the built-in scene\n"
          "  --scene-scale S   multiply the scene's positions by S (e.g. 0.001 for a model in millimetres)\n"
+         "  --time T          the moment of the scene's animation, in seconds (default 0; the timeline loops)\n"
+         "  --animation A     which animation plays: its name, its index, all (together) or none (the rest pose);\n"
+         "                    default: the first\n"
          "  --camera FILE     camera JSON {eye, target, up, fovy_deg, near, far, width, height}\n"
-         "  --fit             frame the scene's bounds (the default for --scene without --camera)\n"
+         "  --fit             frame the scene's bounds at rest (the default for --scene without --camera)\n"
          "  --size WxH        output size (overrides the camera's width and height; default 1280x720)\n";
 }
 
@@ -110,6 +146,46 @@ void scaleScene(Scene& scene, float scale) {
   const glm::mat4 scaling = glm::scale(glm::mat4(1.0f), glm::vec3(scale));
   for (Instance& instance : scene.instances) instance.world = scaling * instance.world;
   scene.designedAoRadius *= scale;  // a radius the scene was designed for scales with it (scene/SceneScale.h)
+
+  // A posed scene places its instances by the node hierarchy (scene/Animation.h), not by Instance::world: its roots
+  // take the scale, and every node and skin joint below them follows. S * T * R * Sc = T(s t) * R * (s Sc) for a
+  // uniform S, so a root's translation and scale are multiplied (a matrix root is premultiplied), and so are the
+  // animation keys that set them, which would otherwise replace the scaled values.
+  std::vector<bool> root(scene.nodes.size(), false);
+  for (size_t n = 0; n < scene.nodes.size(); ++n) {
+    Node& node = scene.nodes[n];
+    if (node.parent >= 0) continue;
+    root[n] = true;
+    node.matrix = scaling * node.matrix;
+    node.translation *= scale;
+    node.scale *= scale;
+  }
+  for (Animation& animation : scene.animations) {
+    auto scales = [&](const AnimationChannel& c) {
+      return c.node >= 0 && static_cast<size_t>(c.node) < root.size() && root[static_cast<size_t>(c.node)] &&
+             (c.path == AnimationPath::Translation || c.path == AnimationPath::Scale);
+    };
+    // A sampler shared with a channel that must stay as it is gets a scaled copy of its own.
+    std::vector<bool> keptBySome(animation.samplers.size(), false);
+    for (const AnimationChannel& channel : animation.channels)
+      if (!scales(channel)) keptBySome[static_cast<size_t>(channel.sampler)] = true;
+    std::vector<int> scaledSampler(animation.samplers.size(), -1);
+    for (AnimationChannel& channel : animation.channels) {
+      if (!scales(channel)) continue;
+      const auto original = static_cast<size_t>(channel.sampler);
+      if (scaledSampler[original] < 0) {
+        size_t target = original;
+        if (keptBySome[original]) {
+          target = animation.samplers.size();
+          animation.samplers.push_back(animation.samplers[original]);
+        }
+        // Values and CUBICSPLINE tangents alike: both are linear in the scaled quantity.
+        for (float& value : animation.samplers[target].values) value *= scale;
+        scaledSampler[original] = static_cast<int>(target);
+      }
+      channel.sampler = scaledSampler[original];
+    }
+  }
 }
 
 }  // namespace obscura

@@ -1,16 +1,19 @@
 #pragma once
-// What the command-line tools (obscura-render, obscura-reference, obscura-tune) share: the scene and the camera they
-// are asked for, so every tool reads the same options the same way and sees the same pixels, and the AO radius they
-// choose for a scene when none is given.
+// What the command-line tools (obscura-render, obscura-reference, obscura-tune) share: the scene, the moment of its
+// animation and the camera they are asked for, so every tool reads the same options the same way and sees the same
+// pixels, and the AO radius they choose for a scene when none is given.
 //
 //   --scene FILE       glTF 2.0 (.gltf or .glb); default: the built-in scene
 //   --scene-scale S    multiplies the scene's world positions (a model authored in millimetres: 0.001)
+//   --time T           the moment drawn, in seconds on the scene's timeline (default 0; looping)
+//   --animation A      which animation plays: a name, an index, all or none (the rest pose); default: the first
 //   --camera FILE      camera JSON (scene/Camera.h)
-//   --fit              frame the scene's bounds (the default for --scene without --camera)
+//   --fit              frame the scene's bounds at rest (the default for --scene without --camera)
 //   --size WxH         output size, overriding the camera's
 #include <string>
 #include <vector>
 
+#include "scene/Animation.h"
 #include "scene/Camera.h"
 #include "scene/Scene.h"
 
@@ -21,6 +24,8 @@ struct SceneInput {
   std::string cameraPath;  // empty: the built-in scene's camera, or --fit for a file
   bool fit = false;
   float sceneScale = 1.0f;
+  double time = 0.0;      // seconds on the scene's timeline (scene/Animation.h: looping, as the renderer's default)
+  std::string animation;  // as given (it names one of the scene's animations, so it is read once the scene is)
   int width = 0, height = 0;  // 0: from the camera (default 1280 x 720)
 
   // If args[i] is one of the options above, consumes it (and its value, advancing i) and returns true.
@@ -29,15 +34,22 @@ struct SceneInput {
   // Throws InputError if the options contradict each other (--camera with --fit).
   void check() const;
 
-  // What load() returns: the scene (scaled), its camera (the JSON file's, the one fitted to the scene at the
-  // output size, or the built-in scene's; --size applied) and the loader's warnings, not yet printed.
+  // What load() returns: the scene (scaled, at rest), the animation chosen (--animation read against the scene's
+  // animations; the first by default), its camera (the JSON file's, the one fitted to the scene's bounds at rest at
+  // the output size, or the built-in scene's; --size applied) and the loader's warnings, not yet printed.
   struct Loaded {
     Scene scene;
+    AnimationChoice animation;
     Camera camera;
     std::vector<std::string> warnings;
+    // The scene as posed at `time` (evaluatePose, posedScene: skinned and morphed meshes baked), for a tool that
+    // draws the scene itself rather than through the renderer (the ray-traced reference); a scene with nothing to
+    // pose comes back as it is.
+    Scene posedAt(double time) const;
   };
-  // Reads the camera file, then the scene. Throws InputError naming the file on a bad one. The warnings are left to
-  // the caller to print (printWarnings) once every input has been checked, so that a refusal stays one line.
+  // Reads the camera file, then the scene. Throws InputError naming the file on a bad one, and one listing the
+  // scene's animations for an --animation it does not have. The warnings are left to the caller to print
+  // (printWarnings) once every input has been checked, so that a refusal stays one line.
   Loaded load() const;
   // Prints `warnings` to stderr as "<tool>: warning: <file>: ...".
   void printWarnings(const char* tool, const std::vector<std::string>& warnings) const;
@@ -55,7 +67,8 @@ float chooseDefaultAoRadius(const char* tool, const char* option, const Scene& s
 // The --help lines saying so, for the tool's radius option.
 std::string defaultAoRadiusUsage(const std::string& option);
 
-// Multiplies every instance's world transform by a uniform scale.
+// Scales the scene's world uniformly: every instance's rest transform, and the node hierarchy's roots with the
+// animation keys that move or scale them, so that a posed (animated, skinned) scene scales alike.
 void scaleScene(Scene& scene, float scale);
 
 // "WxH" with both sides in 1 .. Camera::kMaxSize. Throws InputError("--size: ...").
