@@ -192,7 +192,7 @@ function buildControls(obscura) {
     $('#views').append(element('label', {}, radio, ` ${VIEW_LABELS[view] ?? view}`));
   }
 
-  const rows = [...obscura.keyBindings.map((b) => [b.key, b.description]), ...PAGE_KEYS, ...POINTER_HELP];
+  const rows = [...obscura.keyBindings.map((b) => [b.label, b.description]), ...PAGE_KEYS, ...POINTER_HELP];
   for (const [key, description] of rows) {
     $('#shortcuts').append(element('tr', {}, element('td', { textContent: key }),
                                    element('td', { textContent: description })));
@@ -201,10 +201,74 @@ function buildControls(obscura) {
 
 function refreshControls(obscura) {
   for (const control of controls) control.update();
+  refreshTimeline(obscura);
   const view = obscura.view;
   const radio = document.getElementById(`view-${view}`);
   if (radio) radio.checked = true;
   $('#split-divider').hidden = view !== 'split';
+}
+
+// --- Timeline ----------------------------------------------------------------------------------------------------
+
+// The animation's controls, shown where the scene has animations. The slider moves in frames of the frame step
+// (obscura's frameInterval, 1/60 s), so a time chosen with it is a whole frame; the speeds offered are these and
+// whatever speed a link gave.
+const SPEEDS = [0.1, 0.25, 0.5, 1, 2, 4];
+
+function wireTimeline(obscura) {
+  const act = (action) => {
+    try {
+      action();
+      showError('');
+    } catch (e) {
+      showError(e.message);
+      refreshTimeline(obscura);
+    }
+  };
+  $('#play').addEventListener('click', () => act(() => (obscura.playing ? obscura.pause() : obscura.play())));
+  $('#frame-back').addEventListener('click', () => act(() => obscura.stepFrames(-1)));
+  $('#frame-on').addEventListener('click', () => act(() => obscura.stepFrames(1)));
+  $('#animation').addEventListener('change', (e) => act(() => obscura.setAnimation(e.target.value)));
+  $('#time').addEventListener('input', (e) => {
+    act(() => obscura.setTime(Number(e.target.value) * obscura.timeline().frameInterval));
+  });
+  $('#speed').addEventListener('change', (e) => act(() => obscura.setSpeed(Number(e.target.value))));
+  $('#loop').addEventListener('change', (e) => act(() => obscura.setLoop(e.target.checked)));
+  obscura.addEventListener('timeupdate', () => refreshTimeline(obscura));
+}
+
+function refreshTimeline(obscura) {
+  const t = obscura.timeline();
+  $('#timeline').hidden = t.animations.length === 0;
+  if (!t.animations.length) return;
+  // The choices: every animation by index (a name may be shared or empty), then all together, then the rest pose.
+  const select = $('#animation');
+  const choices = [...t.animations.map((name, i) => [String(i), name || `animation ${i}`]),
+                   ['all', 'all together'], ['none', 'none (rest pose)']];
+  const signature = JSON.stringify(choices);
+  if (select.dataset.choices !== signature) {
+    select.replaceChildren(...choices.map(([value, label]) => element('option', { value, textContent: label })));
+    select.dataset.choices = signature;
+  }
+  const index = t.animations.indexOf(t.animation);
+  select.value = ['all', 'none'].includes(t.animation) ? t.animation : String(index >= 0 ? index : t.animation);
+
+  $('#play').textContent = t.playing ? 'Pause' : 'Play';
+  $('#play').disabled = $('#frame-back').disabled = $('#frame-on').disabled = t.duration <= 0;
+  const slider = $('#time');
+  slider.max = String(Math.max(1, Math.round(t.duration / t.frameInterval)));
+  if (!slider.matches(':active')) slider.value = String(Math.round(t.time / t.frameInterval));  // not under a drag
+  slider.disabled = t.duration <= 0;
+  $('#time-text').textContent = `${t.time.toFixed(2)} / ${t.duration.toFixed(2)} s`;
+
+  const speed = $('#speed');
+  const speeds = SPEEDS.includes(t.speed) ? SPEEDS : [...SPEEDS, t.speed].sort((a, b) => a - b);
+  if (speed.dataset.speeds !== String(speeds)) {
+    speed.replaceChildren(...speeds.map((v) => element('option', { value: String(v), textContent: `x ${v}` })));
+    speed.dataset.speeds = String(speeds);
+  }
+  speed.value = String(t.speed);
+  $('#loop').checked = t.loop;
 }
 
 // --- Stats -------------------------------------------------------------------------------------------------------
@@ -306,6 +370,10 @@ function wireKeys(obscura) {
     const target = e.target;
     if (target instanceof HTMLSelectElement ||
         (target instanceof HTMLInputElement && !['range', 'checkbox', 'radio'].includes(target.type))) return;
+    // A focused slider or radio button keeps its arrow keys (they move it); elsewhere they step the animation.
+    if (target instanceof HTMLInputElement && ['range', 'radio'].includes(target.type) && e.key.startsWith('Arrow')) {
+      return;
+    }
     if (e.key === 'h') {
       togglePanel();
     } else if (e.key === 'o') {
@@ -382,6 +450,7 @@ async function main() {
   refreshControls(obscura);
   obscura.addEventListener('change', () => refreshControls(obscura));
   wireScenes(obscura);
+  wireTimeline(obscura);
   wireKeys(obscura);
   wireUrl(obscura);
   $('#continuous').addEventListener('change', (e) => obscura.setContinuous(e.target.checked));

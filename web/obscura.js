@@ -35,7 +35,8 @@ export async function createObscura(canvas, { pointerControls = true, checkGlErr
   return obscura;
 }
 
-// Fires 'change' after every call that changes what is shown (parameters, view, camera, scene).
+// Fires 'change' after every call that changes what is shown (parameters, view, camera, scene, timeline), and
+// 'timeupdate' on every animation frame while the timeline plays.
 export class Obscura extends EventTarget {
   constructor(core, canvas) {
     super();
@@ -57,7 +58,8 @@ export class Obscura extends EventTarget {
   // ['final', 'split', then every target's debug view: 'normals', 'depth', 'mask', 'ao-raw', 'ao-blur-h', 'ao',
   //  'scene-color', 'shading-count', 'display-color']
   get views() { return this.description.views; }
-  // [{key, description}]: the keys handleKey() understands (the same as obscura-view's)
+  // [{key, label, description}]: the keys handleKey() understands (the same as obscura-view's); key is
+  // KeyboardEvent.key (' ' for space, 'ArrowLeft'), label how a person reads it ('space', 'left arrow')
   get keyBindings() { return this.description.keys; }
   // Every pass of the table, in frame order ('gbuffer', 'hierarchy', 'sao', ..., 'lighting', 'tonemap', 'fxaa',
   // 'view', 'present'): the keys of stats().passMs
@@ -161,6 +163,39 @@ export class Obscura extends EventTarget {
   scene() { return this.json('obscura_scene'); }
   // scene().defaultRadius alone (cheap: the page reads it on every change).
   get defaultRadius() { return Number(this.text('obscura_default_radius', [], [])); }
+
+  // --- Timeline (the scene's animations) -----------------------------------------------------------------------
+  // A scene starts paused at 0 s on its first animation. While it plays, frames are drawn on every animation frame
+  // and 'timeupdate' fires after each (no 'change': the time moves by itself); 'change' fires when playing stops.
+  // The time stays on the timeline: wrapped into [0, duration) while looping (the default), else clamped to
+  // [0, duration], where playing stops. Where nothing plays (no animations, or the animation 'none') the time stays 0.
+
+  // {animations, animation, time, duration, playing, speed, loop, frameInterval}: all of the below at once.
+  timeline() { return this.json('obscura_timeline'); }
+  // The scene's animation names in its order ('' for an unnamed one: choose it by index); [] for a still scene.
+  get animations() { return this.timeline().animations; }
+  // The animations playing: a name, an index (as text) where the animation has no name of its own, 'all' or 'none'.
+  get animation() { return this.timeline().animation; }
+  // Chooses by name, index (number or text), 'all' (every animation together) or 'none' (the rest pose); back to
+  // 0 s. Throws ObscuraError listing the choices.
+  setAnimation(choice) { this.call('obscura_set_animation', ['string'], [String(choice)]); }
+  // Seconds on the timeline, and its length (the chosen animations' longest; 0 when nothing plays).
+  get time() { return this.core._obscura_time(); }
+  get duration() { return this.timeline().duration; }
+  setTime(seconds) { this.call('obscura_set_time', ['number'], [Number(seconds)]); }
+  get playing() { return this.core._obscura_playing() !== 0; }
+  // Plays from the current time (from 0 at the end of a timeline that does not loop); does nothing where nothing
+  // plays.
+  play() { this.move('obscura_play'); }
+  pause() { this.move('obscura_pause'); }
+  // Pauses and moves by `frames` frame intervals (frameInterval: 1/60 s); negative steps back.
+  stepFrames(frames = 1) { this.move('obscura_step_frames', Math.trunc(frames)); }
+  // Playback speed, a factor on the clock (0.01 .. 100; default 1).
+  get speed() { return this.timeline().speed; }
+  setSpeed(factor) { this.call('obscura_set_speed', ['number'], [Number(factor)]); }
+  // Whether the timeline wraps at its end (default true).
+  get loop() { return this.timeline().loop; }
+  setLoop(loop) { this.move('obscura_set_loop', loop ? 1 : 0); }
 
   // --- Measurements ------------------------------------------------------------------------------------------------
   // Frames are drawn when something changed; continuous mode draws on every animation frame, so the timings stay
@@ -267,7 +302,28 @@ export class Obscura extends EventTarget {
     }
   }
 
-  changed() { this.dispatchEvent(new Event('change')); }
+  changed() {
+    this.dispatchEvent(new Event('change'));
+    this.followPlayback();
+  }
+
+  // While the timeline plays (whoever started it: play(), a key, setState), 'timeupdate' after every animation
+  // frame; when it stops by itself (the end of a timeline without loop), 'change'.
+  followPlayback() {
+    if (this.following || !this.playing) return;
+    this.following = true;
+    const follow = () => {
+      const playing = this.playing;
+      this.dispatchEvent(new Event('timeupdate'));
+      if (playing) {
+        requestAnimationFrame(follow);
+      } else {
+        this.following = false;
+        this.dispatchEvent(new Event('change'));
+      }
+    };
+    requestAnimationFrame(follow);
+  }
 }
 
 function readFile(file, onProgress) {

@@ -6,10 +6,12 @@
 //
 // Frames are drawn on requestAnimationFrame into the canvas the JS API handed over (platform/WebCanvas), through the
 // same Viewer session obscura-view uses: only when something changed (a parameter, the view, the camera, the scene,
-// the canvas size, a restored context), or on every animation frame in continuous mode, which the timings need.
+// the canvas size, a restored context), on every animation frame while the timeline plays, or on every animation
+// frame in continuous mode, which the timings need. The timeline's clock is requestAnimationFrame's time.
 #include <emscripten/emscripten.h>
 #include <emscripten/html5.h>
 
+#include <cmath>
 #include <cstdint>
 #include <exception>
 #include <map>
@@ -134,6 +136,7 @@ class WebApp {
     if (timer) timer->collectResults();
     int width = 0, height = 0;
     if (canvas_.fitToDisplay(viewer_.caps().maxRenderSize(), &width, &height)) frameWanted_ = true;
+    if (viewer_.playing()) frameWanted_ = true;  // a playing timeline changes every frame by itself
     if (!frameWanted_ && !continuous_) {
       lastFrameTime_ = 0.0;  // the next drawn frame does not follow this one
       return;
@@ -182,7 +185,7 @@ class WebApp {
   bool continuous_ = false;
   int width_ = 0, height_ = 0;
   double lastFrameTime_ = 0.0, frameMs_ = 0.0, cpuMs_ = 0.0;
-  double time_ = 0.0;  // seconds, the animation clock (the last animation frame's time)
+  double time_ = 0.0;  // seconds, the clock the timeline plays by (the last animation frame's time)
   double lastCpuMs_ = 0.0;  // time in the renderer of the last drawn frame, unsmoothed
   long frames_ = 0;
   int restores_ = 0;
@@ -273,7 +276,7 @@ EMSCRIPTEN_KEEPALIVE const char* obscura_describe() {
                        {"halfResolution", p.halfResolution}});
   Json keys = Json::array();
   for (const Viewer::KeyBinding& k : Viewer::keyBindings())
-    keys.push_back({{"key", k.key}, {"description", k.description}});
+    keys.push_back({{"key", k.key}, {"label", k.label}, {"description", k.description}});
   Json context = nullptr;
   if (g_app) {
     const gl::GlCaps& caps = g_app->viewer().caps();
@@ -402,6 +405,62 @@ EMSCRIPTEN_KEEPALIVE const char* obscura_scene() {
 // The current scene's default AO radius as text ("42"), without the rest of obscura_scene().
 EMSCRIPTEN_KEEPALIVE const char* obscura_default_radius() {
   return returned(formatShortest(g_app->viewer().sceneDefaultRadius()));
+}
+
+// The timeline (platform/Timeline.h): the scene's animation names ('' for an unnamed one), the choice ("none",
+// "all", a name, or an index where the animation has no name of its own), the time and the chosen animations'
+// duration in seconds, playing, speed, loop, and the frame step's interval.
+EMSCRIPTEN_KEEPALIVE const char* obscura_timeline() {
+  const Timeline& timeline = g_app->viewer().state().timeline;
+  return returned(Json{{"animations", timeline.animationNames()},
+                       {"animation", timeline.animationName()},
+                       {"time", timeline.time()},
+                       {"duration", timeline.duration()},
+                       {"playing", timeline.playing()},
+                       {"speed", timeline.speed()},
+                       {"loop", timeline.loop()},
+                       {"frameInterval", Timeline::kFrameInterval}}.dump());
+}
+
+// The time alone, without the JSON (the page reads it on every animation frame while playing).
+EMSCRIPTEN_KEEPALIVE double obscura_time() { return g_app->viewer().state().timeline.time(); }
+EMSCRIPTEN_KEEPALIVE int obscura_playing() { return g_app->viewer().state().timeline.playing() ? 1 : 0; }
+
+// Play does nothing where nothing plays (no animations, or "none"); both draw a frame for the change.
+EMSCRIPTEN_KEEPALIVE void obscura_play() {
+  g_app->viewer().state().timeline.play();
+  g_app->changed();
+}
+
+EMSCRIPTEN_KEEPALIVE void obscura_pause() {
+  g_app->viewer().state().timeline.pause();
+  g_app->changed();
+}
+
+EMSCRIPTEN_KEEPALIVE int obscura_set_time(double seconds) {
+  return change([seconds] {
+    if (!std::isfinite(seconds)) throw InputError("time: expected a finite number of seconds");
+    g_app->viewer().state().timeline.setTime(seconds);
+  });
+}
+
+// Pauses and moves by frames x the frame interval (1/60 s).
+EMSCRIPTEN_KEEPALIVE void obscura_step_frames(int frames) {
+  g_app->viewer().state().timeline.stepFrames(frames);
+  g_app->changed();
+}
+
+EMSCRIPTEN_KEEPALIVE int obscura_set_animation(const char* choice) {
+  return change([&] { g_app->viewer().state().timeline.setAnimation(choice); });
+}
+
+EMSCRIPTEN_KEEPALIVE int obscura_set_speed(double factor) {
+  return change([factor] { g_app->viewer().state().timeline.setSpeed(factor); });
+}
+
+EMSCRIPTEN_KEEPALIVE void obscura_set_loop(int loop) {
+  g_app->viewer().state().timeline.setLoop(loop != 0);
+  g_app->changed();
 }
 
 EMSCRIPTEN_KEEPALIVE const char* obscura_stats() { return returned(g_app->stats().dump()); }
