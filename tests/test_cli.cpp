@@ -47,6 +47,14 @@ TEST(Cli, BadInputExitsWithStatusTwoAndOneLine) {
       {"--fit --camera x.json", "--camera and --fit exclude each other"},
       {"--scene-scale 0", "--scene-scale: 0 is out of range"},
       {"--scene-scale big", "--scene-scale: expected a number"},
+      {"--time -1", "--time: -1 is out of range (0 .. 1e+06 seconds)"},
+      {"--time soon", "--time: expected a number of seconds, got 'soon'"},
+      {"--fps 0", "--fps: 0 is out of range"},
+      {"--frames 0", "--frames: 0 is out of range"},
+      {"--frames 2.5", "--frames: expected a whole number"},
+      {"--animation walk", "--animation 'walk' is not in the scene; choices: none, all"},
+      {"--scene " + obscura::test::assimpModels() + "/2CylinderEngine-glTF-Binary/2CylinderEngine.glb --animation 0",
+       "--animation 0 is not in the scene; the scene has no animations (choices: none, all)"},
       {"--scene " + obscura::test::assimpModels() + "/IndexOutOfRange/IndexOutOfRange.gltf", "index 255"},
       // A file the loader repairs with a warning, refused for another input: still one line, the refusal.
       {"--scene " + repairable + " --camera " + badCamera, badCamera + ": near: must be > 0"},
@@ -183,4 +191,73 @@ TEST(Cli, ChoosesTheSceneDefaultRadiusUnlessOneIsGiven) {
       << builtin.err;
   EXPECT_NE(run("--help").out.find("AO radius: without --ao.radius, 5 % of the scene's bounding-sphere diameter"),
             std::string::npos);
+}
+
+namespace {
+
+// Renders with `args` at 160x90 and returns the pixels (an empty vector, and a test failure, if it failed).
+std::vector<std::uint8_t> renderPixels(const std::string& args, const std::string& name) {
+  const std::string out = obscura::test::tempPath("timeline-" + name + ".png");
+  const obscura::test::ProcessResult r = run("--size 160x90 --out " + out + " " + args);
+  EXPECT_EQ(r.status, 0) << args << ": " << r.err;
+  return r.status == 0 ? obscura::readPng(out).rgba : std::vector<std::uint8_t>{};
+}
+
+double meanDifference(const std::vector<std::uint8_t>& a, const std::vector<std::uint8_t>& b) {
+  if (a.size() != b.size() || a.empty()) return 255.0;
+  double sum = 0.0;
+  for (size_t i = 0; i < a.size(); ++i) sum += std::abs(int(a[i]) - int(b[i]));
+  return sum / static_cast<double>(a.size());
+}
+
+}  // namespace
+
+// The timeline on the command line, on the built-in scene (it moves: one looping animation). --time picks the
+// moment: the moving parts stand elsewhere at 1 s than at 0 s; the animation by index or "all" (the only one) is the
+// default; "none" is the rest pose at any time; a name the scene lacks is refused in one line listing the scene's.
+TEST(Cli, TimeAndAnimationChooseThePose) {
+  const auto start = renderPixels("--view normals", "start"), later = renderPixels("--view normals --time 1", "1");
+  EXPECT_NE(start, later) << "the built-in scene moves";
+  EXPECT_EQ(renderPixels("--view normals --time 1 --animation 0", "index"), later);
+  EXPECT_EQ(renderPixels("--view normals --time 1 --animation all", "all"), later);
+  EXPECT_EQ(renderPixels("--view normals --time 1 --animation none", "none-1"),
+            renderPixels("--view normals --time 2.5 --animation none", "none-2.5"));
+
+  const obscura::test::ProcessResult bad = run("--out " + ::testing::TempDir() + "never.png --animation walk");
+  EXPECT_EQ(bad.status, 2);
+  EXPECT_NE(bad.err.find("obscura-render: --animation 'walk' is not in the scene; choices: none, all, 0 '"),
+            std::string::npos)
+      << bad.err;
+  EXPECT_EQ(std::count(bad.err.begin(), bad.err.end(), '\n'), 1) << bad.err;
+}
+
+// --frames N draws frames at T, T + 1/F, ... through one Renderer (the history carried from frame to frame) and
+// writes the last: the frame at T + (N - 1)/F, as drawn alone, up to what the history changes.
+TEST(Cli, FramesEndOnTheLastFramesTime) {
+  const auto sequence = renderPixels("--time 0.5 --fps 10 --frames 6", "sequence");
+  const auto alone = renderPixels("--time 1", "alone");
+  const auto first = renderPixels("--time 0.5", "first");
+  EXPECT_LT(meanDifference(sequence, alone), 0.5) << "the last frame is at 1 s";
+  EXPECT_GT(meanDifference(sequence, first), meanDifference(sequence, alone)) << "not at the first frame's time";
+  const obscura::test::ProcessResult help = run("--help");
+  for (const char* option : {"--time T", "--animation A", "--fps F", "--frames N"})
+    EXPECT_NE(help.out.find(option), std::string::npos) << option;
+}
+
+// glTF files that move (Debian's assimp test models): skinning (simple_skin, one unnamed animation) and morph targets
+// (AnimatedMorphCube, "Square") change the image with the time; animations go by name or index.
+TEST(Cli, SkinnedAndMorphedFilesMoveWithTheTime) {
+  const std::string models = obscura::test::assimpModels();
+  const std::string skin = "--scene " + models + "/simple_skin/simple_skin.gltf --view normals";
+  EXPECT_NE(renderPixels(skin, "skin-0"), renderPixels(skin + " --time 2", "skin-2"));
+  const std::string cube =
+      "--scene " + models + "/glTF-Sample-Models/AnimatedMorphCube-glTF/AnimatedMorphCube.gltf --view normals";
+  const auto cubeLater = renderPixels(cube + " --time 1", "cube-1");
+  EXPECT_NE(renderPixels(cube, "cube-0"), cubeLater);
+  EXPECT_EQ(renderPixels(cube + " --time 1 --animation Square", "cube-square"), cubeLater);
+  const obscura::test::ProcessResult bad =
+      run("--out " + ::testing::TempDir() + "never.png " + cube + " --animation 1");
+  EXPECT_EQ(bad.status, 2);
+  EXPECT_NE(bad.err.find("--animation 1 is not in the scene; choices: none, all, 0 'Square'\n"), std::string::npos)
+      << bad.err;
 }

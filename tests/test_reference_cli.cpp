@@ -40,6 +40,8 @@ TEST(ReferenceCli, BadInputExitsWithStatusTwoAndOneLine) {
       {"--size 5", "--size: expected WxH"},
       {"--scene-scale -2", "--scene-scale: -2 is out of range"},
       {"--fit --camera c.json", "--camera and --fit exclude each other"},
+      {"--time -2", "--time: -2 is out of range"},
+      {"--animation walk", "--animation 'walk' is not in the scene; choices: none, all"},
       {"--out", "--out: missing value"},
       {"--frobnicate", "unknown option '--frobnicate'"},
       {"--scene " + obscura::test::assimpModels() + "/IndexOutOfRange/IndexOutOfRange.gltf", "index 255"},
@@ -67,6 +69,35 @@ TEST(ReferenceCli, WritesTheSameViewsAsObscuraRender) {
     for (size_t i = 0; i < a.rgba.size(); i += 4) differing += std::abs(a.rgba[i] - b.rgba[i]) > 1;
     EXPECT_LE(differing, a.rgba.size() / 4 / 100) << view;
   }
+}
+
+// obscura-reference traces the scene posed as obscura-render draws it (the built-in scene moves): at --time 1 their
+// depth views agree as they do at rest, and differ from those at rest where the scene moved.
+TEST(ReferenceCli, TracesTheSceneAtTheTimeAndAnimationGiven) {
+  const std::string dir = obscura::test::tempPath("");  // a per-process prefix
+  auto depths = [&](const std::string& args, const std::string& name) {
+    const std::string traced = dir + "ref-time-" + name + ".png", drawn = dir + "sao-time-" + name + ".png";
+    const ProcessResult r = reference("--size 96x54 --rays 1 --view depth " + args + " --out " + traced);
+    EXPECT_EQ(r.status, 0) << r.err;
+    const ProcessResult d = render("--size 96x54 --view depth " + args + " --out " + drawn);
+    EXPECT_EQ(d.status, 0) << d.err;
+    return std::make_pair(obscura::readPng(traced), obscura::readPng(drawn));
+  };
+  // Pixels whose depth differs by more than the edge of a triangle crossing a pixel centre explains.
+  auto differing = [](const obscura::Image& a, const obscura::Image& b) {
+    size_t count = 0;
+    for (size_t i = 0; i < a.rgba.size() && i < b.rgba.size(); i += 4) count += std::abs(a.rgba[i] - b.rgba[i]) > 1;
+    return count;
+  };
+  const auto [tracedRest, drawnRest] = depths("", "rest");
+  const auto [tracedLater, drawnLater] = depths("--time 1 --animation 0", "later");
+  const size_t pixels = tracedRest.rgba.size() / 4;
+  EXPECT_LE(differing(tracedRest, drawnRest), pixels / 100);
+  EXPECT_LE(differing(tracedLater, drawnLater), pixels / 100) << "the same pose";
+  EXPECT_GT(differing(tracedLater, tracedRest), pixels / 500) << "another pose than at rest";
+  const std::string help = reference("--help").out;
+  EXPECT_NE(help.find("--time T"), std::string::npos);
+  EXPECT_NE(help.find("--animation A"), std::string::npos);
 }
 
 // Without --radius, obscura-reference takes the radius obscura-render takes for the same scene (scene/SceneScale.h:
