@@ -1,5 +1,5 @@
 // obscura-view end to end under Xvfb: a real window with an OpenGL ES context renders the built-in scene, the AO
-// view matches the headless renderer's, and AO visibly darkens the final image. The viewer's --screenshot option
+// view (and a moment of the animation) matches the headless renderer's, and AO visibly darkens the final image. The viewer's --screenshot option
 // reads its own back buffer after the last frame.
 #include <gtest/gtest.h>
 
@@ -92,6 +92,22 @@ TEST(DesktopViewer, AoViewMatchesTheHeadlessRenderer) {
   // the full-screen AO view may differ only by rounding.
   EXPECT_LE(sum / static_cast<double>(window.rgba.size()), 0.5) << "mean absolute difference (of 255)";
   EXPECT_LE(largest, 8);
+}
+
+// The timeline in --state: a paused frame at 1.25 s is obscura-render's --time 1.25 (the built-in scene moves), and
+// differs from the frame at 0 s.
+TEST(DesktopViewer, ATimeInTheStateMatchesTheHeadlessRenderersTime) {
+  const Image window = viewerScreenshot("view-time.png", "view=normals&time=1.25");
+  const Image headless = headlessRender("render-time.png", "--view normals --time 1.25");
+  const Image start = headlessRender("render-time-0.png", "--view normals");
+  ASSERT_EQ(window.rgba.size(), headless.rgba.size());
+  auto meanDifference = [](const Image& a, const Image& b) {
+    double sum = 0.0;
+    for (size_t i = 0; i < a.rgba.size(); ++i) sum += std::abs(a.rgba[i] - b.rgba[i]);
+    return sum / static_cast<double>(a.rgba.size());
+  };
+  EXPECT_LE(meanDifference(window, headless), 0.1) << "mean absolute difference (of 255)";
+  EXPECT_GT(meanDifference(window, start), 10.0 * meanDifference(window, headless)) << "not the frame at 0 s";
 }
 
 TEST(DesktopViewer, FinalFrameIsNotBlankAndShowsAo) {

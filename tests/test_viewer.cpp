@@ -18,10 +18,11 @@ namespace {
 
 constexpr int kWidth = 160, kHeight = 90;
 
-test::RenderedImage renderViewer(Viewer& viewer) {
+// `clockSeconds`: the front end's clock, which a playing timeline advances by.
+test::RenderedImage renderViewer(Viewer& viewer, double clockSeconds = 0.0) {
   const gl::RenderTarget output("viewer output", kWidth, kHeight, GL_NEAREST, gl::RenderTarget::Depth::Renderbuffer,
                                 test::context().caps().depth24);
-  viewer.render(output.framebuffer(), kWidth, kHeight);
+  viewer.render(output.framebuffer(), kWidth, kHeight, nullptr, clockSeconds);
   EXPECT_EQ(glGetError(), static_cast<GLenum>(GL_NO_ERROR));
   test::RenderedImage image;
   image.width = kWidth;
@@ -167,9 +168,64 @@ TEST(Viewer, KeysActThroughTheParameterTable) {
   std::set<std::string> keys;
   for (const Viewer::KeyBinding& binding : Viewer::keyBindings()) {
     EXPECT_TRUE(keys.insert(binding.key).second) << "key " << binding.key << " bound twice";
-    EXPECT_EQ(binding.key.size(), 1u);
+    // A character, or the KeyboardEvent.key name of a key that types none.
+    EXPECT_TRUE(binding.key.size() == 1u || binding.key == "ArrowLeft" || binding.key == "ArrowRight") << binding.key;
+    EXPECT_FALSE(binding.label.empty());
     EXPECT_FALSE(binding.description.empty());
   }
+}
+
+// The timeline through the Viewer (the built-in scene moves): paused, the clock changes nothing; space plays by the
+// clock given to render(); the arrows step frames and pause; the state text reproduces the frame in another viewer.
+TEST(Viewer, PlaysTheAnimationByTheClockAndStepsFramesByKeys) {
+  Viewer viewer(test::context().caps());
+  const Timeline& timeline = viewer.state().timeline;
+  ASSERT_GT(timeline.duration(), 1.5) << "the built-in scene has an animation";
+  viewer.state().setViewMode("normals");
+  const test::RenderedImage start = renderViewer(viewer, 10.0);
+  EXPECT_EQ(renderViewer(viewer, 11.0).rgba, start.rgba) << "paused";
+  EXPECT_EQ(timeline.time(), 0.0);
+
+  EXPECT_TRUE(viewer.handleKey(" "));
+  EXPECT_TRUE(viewer.playing());
+  renderViewer(viewer, 20.0);  // the first frame only starts the count
+  const test::RenderedImage played = renderViewer(viewer, 21.0);
+  EXPECT_DOUBLE_EQ(timeline.time(), 1.0);
+  EXPECT_NE(played.rgba, start.rgba) << "the scene moved";
+  viewer.handleKey(" ");
+  EXPECT_FALSE(viewer.playing());
+  EXPECT_EQ(renderViewer(viewer, 30.0).rgba, played.rgba) << "paused again: the same frame";
+
+  viewer.handleKey("ArrowRight");
+  EXPECT_DOUBLE_EQ(timeline.time(), 61 * Timeline::kFrameInterval);
+  viewer.handleKey("ArrowLeft");
+  viewer.handleKey("ArrowLeft");
+  EXPECT_DOUBLE_EQ(timeline.time(), 59 * Timeline::kFrameInterval);
+  const test::RenderedImage stepped = renderViewer(viewer, 31.0);
+  EXPECT_NE(stepped.rgba, played.rgba);
+
+  // The link's time is the same double, so another viewer draws the same pixels.
+  Viewer other(test::context().caps());
+  other.state().applyQuery(viewer.state().toQuery());
+  EXPECT_EQ(other.state().timeline.time(), timeline.time());
+  EXPECT_EQ(renderViewer(other, 5.0).rgba, stepped.rgba);
+
+  // Context loss keeps the timeline, and the restored context draws the same frame.
+  viewer.contextLost();
+  viewer.contextRestored(test::context().caps());
+  EXPECT_EQ(renderViewer(viewer, 40.0).rgba, stepped.rgba);
+
+  // A scene without animations: the keys say why nothing happens.
+  const std::string box = test::assimpModels() + "/BoxTextured-glTF-Binary/BoxTextured.glb";
+  viewer.loadGltf(readBytes(box), "BoxTextured.glb");
+  EXPECT_FALSE(viewer.state().timeline.hasAnimations());
+  try {
+    viewer.handleKey(" ");
+    ADD_FAILURE() << "space on a still scene";
+  } catch (const InputError& e) {
+    EXPECT_STREQ(e.what(), "nothing to play: the scene has no animations");
+  }
+  EXPECT_THROW(viewer.handleKey("ArrowRight"), InputError);
 }
 
 TEST(Viewer, ABadFileLeavesThePreviousSceneOnScreen) {

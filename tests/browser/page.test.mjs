@@ -145,8 +145,10 @@ describe('demo page', () => {
 
   test('keyboard shortcuts are listed and act', { timeout: 120000 }, async () => {
     const listed = await page.locator('#shortcuts td:first-child').allTextContents();
-    const bindings = await page.evaluate(() => window.obscura.keyBindings.map((b) => b.key));
+    // As a person reads them: 'space', 'left arrow' (keyBindings' labels), the others as typed.
+    const bindings = await page.evaluate(() => window.obscura.keyBindings.map((b) => b.label));
     for (const key of [...bindings, 'h', 'o']) assert.ok(listed.includes(key), `shortcut ${key} is listed`);
+    assert.ok(listed.includes('space') && listed.includes('right arrow'), listed.join(' '));
     const radius = Number(await page.evaluate(() => window.obscura.get('radius')));
     await page.locator('#view').click({ position: { x: 100, y: 100 } });
     await page.keyboard.press(']');
