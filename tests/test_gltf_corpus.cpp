@@ -264,6 +264,24 @@ TEST(TexturePreparation, FollowsWebGl1NonPowerOfTwoRules) {
   EXPECT_EQ(p.sampler.wrapS, 0x2901);
 }
 
+// The fuzzer's own seeds (tests/fuzz/seeds, for skins, morph targets and animations) are valid files: each loads,
+// with what moves read and consistent, so that the fuzzer starts from inputs that reach those code paths.
+TEST(GltfCorpus, FuzzerSeedsLoadWithTheirMotion) {
+  int count = 0;
+  for (const auto& entry : std::filesystem::directory_iterator(test::sourceDir() + "/tests/fuzz/seeds")) {
+    const std::string ext = entry.path().extension().string();
+    if (ext != ".gltf" && ext != ".glb") continue;
+    const std::string file = entry.path().string();
+    GltfLoadReport report;
+    const Scene scene = loadGltfFile(file, &report);
+    expectDrawable(scene, file);
+    EXPECT_FALSE(scene.animations.empty()) << file;
+    EXPECT_TRUE(scene.animated()) << file;
+    ++count;
+  }
+  EXPECT_EQ(count, 3);
+}
+
 // Inputs the fuzzer (tests/fuzz, tools/fuzz-gltf.sh) once broke the loader with; each must now be refused cleanly.
 // Under the sanitizer leg (tools/test-sanitizers.sh) a memory error here fails the suite.
 TEST(GltfCorpus, FuzzerRegressionsAreRefusedCleanly) {
