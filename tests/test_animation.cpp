@@ -32,7 +32,8 @@ AnimationSampler makeSampler(std::vector<float> times, std::vector<float> values
 void expectValues(const std::vector<float>& actual, const std::vector<float>& expected, const std::string& what,
                   float tolerance = 1e-5f) {
   ASSERT_EQ(actual.size(), expected.size()) << what;
-  for (size_t i = 0; i < actual.size(); ++i) EXPECT_NEAR(actual[i], expected[i], tolerance) << what << ", [" << i << "]";
+  for (size_t i = 0; i < actual.size(); ++i)
+    EXPECT_NEAR(actual[i], expected[i], tolerance) << what << ", [" << i << "]";
 }
 
 void expectNear(const glm::vec3& actual, const glm::vec3& expected, const std::string& what, float tolerance = 1e-5f) {
@@ -117,7 +118,8 @@ TEST(AnimationSampling, LinearRotationsSlerpAlongTheShorterArc) {
   for (float& c : negated) c = -c;
   s = makeSampler({0, 1}, concat({aboutZ(0), negated}), 4);
   const float r = std::sqrt(0.5f);
-  expectNear(rotate(sampleAnimation(s, 0.5f, true), x), glm::vec3(r, r, 0), "hemisphere flip: 45 degrees at the middle");
+  expectNear(rotate(sampleAnimation(s, 0.5f, true), x), glm::vec3(r, r, 0),
+             "hemisphere flip: 45 degrees at the middle");
   expectNear(rotate(sampleAnimation(s, 0.25f, true), x), glm::vec3(std::cos(glm::radians(22.5f)),
                                                                    std::sin(glm::radians(22.5f)), 0),
              "hemisphere flip: 22.5 degrees at a quarter");
@@ -229,7 +231,8 @@ TEST(AnimationPose, SkinsATwoBoneChainAsComputedByHand) {
   const ScenePose rest = evaluatePose(scene, 0.0);
   EXPECT_EQ(rest.instanceWorld[0], glm::mat4(1.0f)) << "a skinned instance is placed by its joints alone";
   const PosedVertices atRest = posedMesh(scene.meshes[0], rest.skinJoints[0], rest.instanceWeights[0]);
-  for (size_t v = 0; v < 3; ++v) expectNear(atRest.positions[v], mesh.positions[v], "rest, vertex " + std::to_string(v));
+  for (size_t v = 0; v < 3; ++v)
+    expectNear(atRest.positions[v], mesh.positions[v], "rest, vertex " + std::to_string(v));
 
   // t = 1. The knee's joint matrix is T(0,1,0) R90 T(0,-1,0):
   //   (1, 2, 0), the knee's alone: (1, 1, 0) -> (-1, 1, 0) -> (-1, 2, 0);

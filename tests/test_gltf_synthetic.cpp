@@ -683,9 +683,8 @@ TEST(GltfSynthetic, ReadsAnimationsOfEveryPathAndInterpolation) {
                    channel(3, mover, "weights"),     channel(0, outside, "translation"),
                    channel(0, mover, "pointer")};
   // KHR_animation_pointer's form: a target without a node.
-  channels.push_back({{"sampler", 0},
-                      {"target", {{"path", "pointer"},
-                                  {"extensions", {{"KHR_animation_pointer", {{"pointer", "/nodes/0/translation"}}}}}}}});
+  const json pointer = {{"KHR_animation_pointer", {{"pointer", "/nodes/0/translation"}}}};
+  channels.push_back({{"sampler", 0}, {"target", {{"path", "pointer"}, {"extensions", pointer}}}});
   addAnimation(gltf, samplers, channels, "everything");
   addAnimation(gltf, {sampler(gltf, {0.5f}, {0, 0, 0, 1}, "VEC4", 4)}, {channel(0, mover, "rotation")});
 

@@ -711,7 +711,8 @@ class SceneBuilder {
       if (source.weights.size() != count)
         ctx_.refuse("node " + std::to_string(nodeIndex) + " has " + std::to_string(source.weights.size()) +
                     " weights for its mesh's " + std::to_string(count) + " morph targets");
-      if (!allFinite(source.weights)) ctx_.refuse("node " + std::to_string(nodeIndex) + " has a weight that is not finite");
+      if (!allFinite(source.weights))
+        ctx_.refuse("node " + std::to_string(nodeIndex) + " has a weight that is not finite");
     }
     const std::vector<double>& chosen = !source.weights.empty() ? source.weights : mesh;
     std::vector<float> out(count, 0.0f);
