@@ -8,6 +8,7 @@
 #include "core/GBufferEffect.h"
 #include "core/LightingEffect.h"
 #include "core/TonemapEffect.h"
+#include "core/VelocityEffect.h"
 
 namespace obscura {
 
@@ -17,6 +18,7 @@ const std::vector<EffectEntry>& effectTable() {
   static const std::vector<EffectEntry> table = [] {
     std::vector<EffectEntry> rows = {
         EffectEntry::of<GBufferEffect>(),   // scene -> gbuffer (normal + 16-bit depth, own depth buffer)
+        EffectEntry::of<VelocityEffect>(),  // scene, gbuffer (and its depth) -> velocity (motion vectors)
         EffectEntry::of<AoEffect>(),        // gbuffer -> ao
         EffectEntry::of<LightingEffect>(),  // scene, ao, the G-buffer's depth -> scene-color (HDR)
         EffectEntry::of<TonemapEffect>(),   // scene-color -> display-color (sRGB, luma in alpha)
