@@ -147,6 +147,7 @@ void Renderer::beginFrame(const Camera& camera, const RenderSettings& settings, 
   lastPose_ = current;
   lastPoseOptions_ = poseOptions;
   if (options.timer) options.timer->end("pose");
+  checkErrors("pose");
 }
 
 void Renderer::endFrame() {
