@@ -52,7 +52,7 @@ TEST(Cli, BadInputExitsWithStatusTwoAndOneLine) {
       {"--fps 0", "--fps: 0 is out of range"},
       {"--frames 0", "--frames: 0 is out of range"},
       {"--frames 2.5", "--frames: expected a whole number"},
-      {"--animation walk", "--animation 'walk' is not in the scene; choices: none, all"},
+      {"--animation walk", "--animation 'walk' is not in the scene; "},
       {"--scene " + obscura::test::assimpModels() + "/2CylinderEngine-glTF-Binary/2CylinderEngine.glb --animation 0",
        "--animation 0 is not in the scene; the scene has no animations (choices: none, all)"},
       {"--scene " + obscura::test::assimpModels() + "/IndexOutOfRange/IndexOutOfRange.gltf", "index 255"},
@@ -212,33 +212,52 @@ double meanDifference(const std::vector<std::uint8_t>& a, const std::vector<std:
 
 }  // namespace
 
-// The timeline on the command line, on the built-in scene (it moves: one looping animation). --time picks the
-// moment: the moving parts stand elsewhere at 1 s than at 0 s; the animation by index or "all" (the only one) is the
-// default; "none" is the rest pose at any time; a name the scene lacks is refused in one line listing the scene's.
+// The timeline on the command line, on Debian's simple_skin (a skinned strip, one unnamed 5.5 s animation). --time
+// picks the moment: the strip bends otherwise at 2 s than at 0 s; the animation by index or "all" (the only one) is
+// the default; "none" is the rest pose at any time; an animation the scene lacks is refused in one line listing the
+// scene's.
 TEST(Cli, TimeAndAnimationChooseThePose) {
-  const auto start = renderPixels("--view normals", "start"), later = renderPixels("--view normals --time 1", "1");
-  EXPECT_NE(start, later) << "the built-in scene moves";
-  EXPECT_EQ(renderPixels("--view normals --time 1 --animation 0", "index"), later);
-  EXPECT_EQ(renderPixels("--view normals --time 1 --animation all", "all"), later);
-  EXPECT_EQ(renderPixels("--view normals --time 1 --animation none", "none-1"),
-            renderPixels("--view normals --time 2.5 --animation none", "none-2.5"));
+  const std::string skin = "--scene " + obscura::test::assimpModels() + "/simple_skin/simple_skin.gltf --view normals";
+  const auto start = renderPixels(skin, "start"), later = renderPixels(skin + " --time 2", "2");
+  EXPECT_NE(start, later) << "simple_skin moves";
+  EXPECT_EQ(renderPixels(skin + " --time 2 --animation 0", "index"), later);
+  EXPECT_EQ(renderPixels(skin + " --time 2 --animation all", "all"), later);
+  EXPECT_EQ(renderPixels(skin + " --time 2 --animation none", "none-2"),
+            renderPixels(skin + " --time 4.5 --animation none", "none-4.5"));
+  EXPECT_EQ(renderPixels(skin + " --time 7.5", "looped"), later) << "the timeline loops at 5.5 s";
 
-  const obscura::test::ProcessResult bad = run("--out " + ::testing::TempDir() + "never.png --animation walk");
+  const obscura::test::ProcessResult bad =
+      run("--out " + ::testing::TempDir() + "never.png " + skin + " --animation walk");
   EXPECT_EQ(bad.status, 2);
-  EXPECT_NE(bad.err.find("obscura-render: --animation 'walk' is not in the scene; choices: none, all, 0 '"),
+  EXPECT_NE(bad.err.find("obscura-render: --animation 'walk' is not in the scene; choices: none, all, 0\n"),
             std::string::npos)
       << bad.err;
   EXPECT_EQ(std::count(bad.err.begin(), bad.err.end(), '\n'), 1) << bad.err;
 }
 
+// --fps is the frame interval the motion vectors measure: a moving strip's velocity differs between 10 and 60 frames
+// per second; the rest pose has none at any rate.
+TEST(Cli, FpsSetsTheIntervalTheVelocityMeasures) {
+  const std::string skin = "--scene " + obscura::test::assimpModels() +
+                           "/simple_skin/simple_skin.gltf --view velocity --time 2";
+  EXPECT_NE(renderPixels(skin + " --fps 10", "velocity-10"), renderPixels(skin + " --fps 60", "velocity-60"));
+  EXPECT_EQ(renderPixels(skin + " --fps 10 --animation none", "still-10"),
+            renderPixels(skin + " --fps 60 --animation none", "still-60"));
+}
+
 // --frames N draws frames at T, T + 1/F, ... through one Renderer (the history carried from frame to frame) and
-// writes the last: the frame at T + (N - 1)/F, as drawn alone, up to what the history changes.
+// writes the last: the frame at T + (N - 1)/F, as drawn alone with the same --fps, up to what the history changes.
 TEST(Cli, FramesEndOnTheLastFramesTime) {
-  const auto sequence = renderPixels("--time 0.5 --fps 10 --frames 6", "sequence");
-  const auto alone = renderPixels("--time 1", "alone");
-  const auto first = renderPixels("--time 0.5", "first");
-  EXPECT_LT(meanDifference(sequence, alone), 0.5) << "the last frame is at 1 s";
-  EXPECT_GT(meanDifference(sequence, first), meanDifference(sequence, alone)) << "not at the first frame's time";
+  const std::string skin = "--scene " + obscura::test::assimpModels() + "/simple_skin/simple_skin.gltf --fps 10 ";
+  for (const char* view : {"final", "velocity"}) {
+    const std::string v = std::string("--view ") + view + " ";
+    const auto sequence = renderPixels(v + skin + "--time 1.5 --frames 6", std::string("sequence-") + view);
+    const auto alone = renderPixels(v + skin + "--time 2", std::string("alone-") + view);
+    const auto first = renderPixels(v + skin + "--time 1.5", std::string("first-") + view);
+    EXPECT_LT(meanDifference(sequence, alone), 0.5) << view << ": the last frame is at 2 s";
+    EXPECT_GT(meanDifference(sequence, first), meanDifference(sequence, alone))
+        << view << ": not at the first frame's time";
+  }
   const obscura::test::ProcessResult help = run("--help");
   for (const char* option : {"--time T", "--animation A", "--fps F", "--frames N"})
     EXPECT_NE(help.out.find(option), std::string::npos) << option;

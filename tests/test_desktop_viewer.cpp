@@ -45,11 +45,11 @@ Result runUnderXvfb(const std::string& command) {
   return result;
 }
 
-Image viewerScreenshot(const std::string& name, const std::string& state) {
+Image viewerScreenshot(const std::string& name, const std::string& state, const std::string& scene = "") {
   const std::string path = ::testing::TempDir() + name;
   std::remove(path.c_str());
-  const Result r = runUnderXvfb(std::string(OBSCURA_VIEW_BINARY) + " --size " + kSize + " --state '" + state +
-                                "' --screenshot " + path);
+  const Result r = runUnderXvfb(std::string(OBSCURA_VIEW_BINARY) + " " + scene + " --size " + kSize + " --state '" +
+                                state + "' --screenshot " + path);
   EXPECT_EQ(r.status, 0) << r.output;
   return readPng(path);
 }
@@ -94,12 +94,13 @@ TEST(DesktopViewer, AoViewMatchesTheHeadlessRenderer) {
   EXPECT_LE(largest, 8);
 }
 
-// The timeline in --state: a paused frame at 1.25 s is obscura-render's --time 1.25 (the built-in scene moves), and
-// differs from the frame at 0 s.
+// The timeline in --state: a paused frame of Debian's simple_skin (a skinned strip) at 2.25 s is obscura-render's
+// --time 2.25, and differs from the frame at 0 s.
 TEST(DesktopViewer, ATimeInTheStateMatchesTheHeadlessRenderersTime) {
-  const Image window = viewerScreenshot("view-time.png", "view=normals&time=1.25");
-  const Image headless = headlessRender("render-time.png", "--view normals --time 1.25");
-  const Image start = headlessRender("render-time-0.png", "--view normals");
+  const std::string skin = test::assimpModels() + "/simple_skin/simple_skin.gltf";
+  const Image window = viewerScreenshot("view-time.png", "view=normals&time=2.25", skin);
+  const Image headless = headlessRender("render-time.png", "--scene " + skin + " --view normals --time 2.25");
+  const Image start = headlessRender("render-time-0.png", "--scene " + skin + " --view normals");
   ASSERT_EQ(window.rgba.size(), headless.rgba.size());
   auto meanDifference = [](const Image& a, const Image& b) {
     double sum = 0.0;
