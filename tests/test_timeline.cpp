@@ -185,6 +185,26 @@ TEST(Timeline, ChoosesAnimationsByNameIndexAllOrNone) {
   EXPECT_THROW(timeline.setSpeed(1000.0), InputError);
 }
 
+// The key "n" cycles: each animation, all together (where there are several), none, the first again.
+TEST(Timeline, NextAnimationCyclesThroughEveryChoice) {
+  Timeline timeline = movingTimeline();
+  std::vector<std::string> seen;
+  for (int i = 0; i < 6; ++i) {
+    timeline.setTime(0.5);
+    timeline.nextAnimation();
+    EXPECT_EQ(timeline.time(), 0.0);
+    seen.push_back(timeline.animationName());
+  }
+  EXPECT_EQ(seen, (std::vector<std::string>{"spin", "2", "all", "none", "slide", "spin"}));
+  Scene one = movingScene();
+  one.animations.resize(1);
+  timeline.sceneLoaded(one);
+  timeline.nextAnimation();
+  EXPECT_EQ(timeline.animationName(), "none") << "no 'all' for a single animation";
+  timeline.nextAnimation();
+  EXPECT_EQ(timeline.animationName(), "slide");
+}
+
 // A still scene: nothing to choose or play, the time stays 0 and the state text holds no timeline key.
 TEST(Timeline, AStillSceneHasNothingToPlay) {
   Timeline timeline;

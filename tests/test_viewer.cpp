@@ -169,7 +169,9 @@ TEST(Viewer, KeysActThroughTheParameterTable) {
   for (const Viewer::KeyBinding& binding : Viewer::keyBindings()) {
     EXPECT_TRUE(keys.insert(binding.key).second) << "key " << binding.key << " bound twice";
     // A character, or the KeyboardEvent.key name of a key that types none.
-    EXPECT_TRUE(binding.key.size() == 1u || binding.key == "ArrowLeft" || binding.key == "ArrowRight") << binding.key;
+    EXPECT_TRUE(binding.key.size() == 1u || binding.key == "ArrowLeft" || binding.key == "ArrowRight" ||
+                binding.key == "Home")
+        << binding.key;
     EXPECT_FALSE(binding.label.empty());
     EXPECT_FALSE(binding.description.empty());
   }
@@ -206,6 +208,30 @@ TEST(Viewer, PlaysTheAnimationByTheClockAndStepsFramesByKeys) {
   EXPECT_DOUBLE_EQ(timeline.time(), 59 * Timeline::kFrameInterval);
   const test::RenderedImage stepped = renderViewer(viewer, 31.0);
   EXPECT_NE(stepped.rgba, played.rgba);
+
+  // Speed, loop and the animation by keys (the page has controls for them; the desktop window has only keys).
+  viewer.handleKey("*");
+  EXPECT_EQ(timeline.speed(), 2.0);
+  viewer.handleKey("/");
+  viewer.handleKey("/");
+  EXPECT_EQ(timeline.speed(), 0.5);
+  viewer.handleKey("/");
+  viewer.handleKey("*");
+  viewer.handleKey("*");
+  viewer.handleKey("l");
+  EXPECT_FALSE(timeline.loop());
+  viewer.handleKey("l");
+  viewer.handleKey("n");
+  EXPECT_EQ(timeline.animationName(), "none") << "one animation: each, then none";
+  EXPECT_THROW(viewer.handleKey(" "), InputError) << "nothing to play at rest";
+  viewer.handleKey("n");
+  EXPECT_EQ(timeline.animationName(), "0");
+  EXPECT_EQ(timeline.time(), 0.0);
+  viewer.handleKey("ArrowRight");
+  viewer.handleKey("Home");
+  EXPECT_EQ(timeline.time(), 0.0);
+  EXPECT_EQ(timeline.speed(), 1.0);
+  viewer.state().applyQuery("time=" + formatSeconds(59 * Timeline::kFrameInterval));
 
   // The link's time is the same double, so another viewer draws the same pixels.
   Viewer other(test::context().caps());

@@ -370,10 +370,10 @@ function wireKeys(obscura) {
     const target = e.target;
     if (target instanceof HTMLSelectElement ||
         (target instanceof HTMLInputElement && !['range', 'checkbox', 'radio'].includes(target.type))) return;
-    // A focused slider or radio button keeps its arrow keys (they move it); elsewhere they step the animation.
-    if (target instanceof HTMLInputElement && ['range', 'radio'].includes(target.type) && e.key.startsWith('Arrow')) {
-      return;
-    }
+    // A focused slider or radio button keeps its arrow and Home keys (they move it); elsewhere they step the
+    // animation and go back to its start.
+    if (target instanceof HTMLInputElement && ['range', 'radio'].includes(target.type) &&
+        (e.key.startsWith('Arrow') || e.key === 'Home')) return;
     if (e.key === 'h') {
       togglePanel();
     } else if (e.key === 'o') {

@@ -102,8 +102,10 @@ class Input {
       if (key == GLFW_KEY_ESCAPE && action == GLFW_PRESS) glfwSetWindowShouldClose(w, GLFW_TRUE);
       // Keys that type no character reach the Viewer under their KeyboardEvent.key names, as on the page; held
       // down, they repeat (frame steps).
-      if ((key == GLFW_KEY_LEFT || key == GLFW_KEY_RIGHT) && action != GLFW_RELEASE)
-        self(w).namedKey(key == GLFW_KEY_LEFT ? "ArrowLeft" : "ArrowRight");
+      if (action == GLFW_RELEASE) return;
+      if (key == GLFW_KEY_LEFT) self(w).namedKey("ArrowLeft");
+      else if (key == GLFW_KEY_RIGHT) self(w).namedKey("ArrowRight");
+      else if (key == GLFW_KEY_HOME && action == GLFW_PRESS) self(w).namedKey("Home");
     });
     glfwSetMouseButtonCallback(window, [](GLFWwindow* w, int button, int action, int mods) {
       self(w).button(w, button, action, mods);

@@ -37,6 +37,16 @@ void Timeline::setAnimation(const std::string& text) {
   if (duration() <= 0.0) playing_ = false;
 }
 
+void Timeline::nextAnimation() {
+  const int count = static_cast<int>(names_.size());
+  std::string next = "none";
+  if (animation_.kind == AnimationChoice::Kind::None) next = count > 0 ? "0" : "none";
+  else if (animation_.kind == AnimationChoice::Kind::One && animation_.index + 1 < count)
+    next = std::to_string(animation_.index + 1);
+  else if (animation_.kind == AnimationChoice::Kind::One && count > 1) next = "all";
+  setAnimation(next);
+}
+
 double Timeline::duration() const { return animations_ ? animationDuration(*animations_, animation_) : 0.0; }
 
 double Timeline::onTimeline(double seconds) const {

@@ -39,6 +39,9 @@ class Timeline {
   std::string animationName() const;
   // "none", "all", an index or a name (parseAnimationChoice); back to time 0. Throws InputError listing the choices.
   void setAnimation(const std::string& text);
+  // The next choice, in the order of a key that cycles them: each animation, then "all" (where there are several),
+  // then "none", then the first again; back to time 0.
+  void nextAnimation();
   // The chosen animations' length in seconds (the longest, for "all"); 0 when nothing plays.
   double duration() const;
 

@@ -71,14 +71,31 @@ const std::vector<Viewer::KeyAction>& Viewer::keyActions() {
       {"r", "reset the camera", [](Viewer& v) { v.resetCamera(); }},
       {" ", "play / pause the animation",
        [](Viewer& v) {
-         Timeline& timeline = v.requireTimeline();
+         Timeline& timeline = v.requireTimeline(true);
          if (timeline.playing()) timeline.pause();
          else timeline.play();
        }},
       {"ArrowLeft", "animation: one frame back (1/60 s; pauses)",
-       [](Viewer& v) { v.requireTimeline().stepFrames(-1); }},
+       [](Viewer& v) { v.requireTimeline(true).stepFrames(-1); }},
       {"ArrowRight", "animation: one frame on (1/60 s; pauses)",
-       [](Viewer& v) { v.requireTimeline().stepFrames(1); }},
+       [](Viewer& v) { v.requireTimeline(true).stepFrames(1); }},
+      {"Home", "animation: back to the start", [](Viewer& v) { v.requireTimeline(true).setTime(0.0); }},
+      {"n", "next animation (each, all together, none)", [](Viewer& v) { v.requireTimeline(false).nextAnimation(); }},
+      {"/", "animation speed / 2",
+       [](Viewer& v) {
+         Timeline& timeline = v.requireTimeline(false);
+         timeline.setSpeed(std::max(Timeline::kMinSpeed, timeline.speed() / 2.0));
+       }},
+      {"*", "animation speed x 2",
+       [](Viewer& v) {
+         Timeline& timeline = v.requireTimeline(false);
+         timeline.setSpeed(std::min(Timeline::kMaxSpeed, timeline.speed() * 2.0));
+       }},
+      {"l", "animation loop on / off",
+       [](Viewer& v) {
+         Timeline& timeline = v.requireTimeline(false);
+         timeline.setLoop(!timeline.loop());
+       }},
   };
   return actions;
 }
@@ -87,20 +104,25 @@ std::vector<Viewer::KeyBinding> Viewer::keyBindings() {
   std::vector<KeyBinding> out;
   for (const KeyAction& a : keyActions()) {
     const std::string key = a.key;
-    const std::string label = key == " " ? "space" : key == "ArrowLeft" ? "left arrow"
-                              : key == "ArrowRight" ? "right arrow" : key;
+    const std::string label = key == " "            ? "space"
+                              : key == "ArrowLeft"  ? "left arrow"
+                              : key == "ArrowRight" ? "right arrow"
+                              : key == "Home"       ? "home"
+                                                    : key;
     out.push_back({key, label, a.description});
   }
   return out;
 }
 
-Timeline& Viewer::requireTimeline() {
-  // A key that does nothing visible says why, where the controls of a page would be disabled.
-  if (!(state_.timeline.duration() > 0.0))
-    throw InputError(state_.timeline.hasAnimations()
-                         ? "nothing to play: animation '" + state_.timeline.animationName() + "' has no length"
-                         : "nothing to play: the scene has no animations");
-  return state_.timeline;
+Timeline& Viewer::requireTimeline(bool playable) {
+  // A key that would do nothing visible says why, where a page's controls would be hidden or disabled.
+  Timeline& timeline = state_.timeline;
+  if (!timeline.hasAnimations()) throw InputError("nothing to play: the scene has no animations");
+  if (playable && !(timeline.duration() > 0.0))
+    throw InputError(timeline.animation().kind == AnimationChoice::Kind::None
+                         ? "nothing to play: the animation chosen is none (the rest pose); n chooses another"
+                         : "nothing to play: animation " + timeline.animationName() + " lasts 0 s");
+  return timeline;
 }
 
 Viewer::Viewer(const gl::GlCaps& caps, const RendererOptions& options)

@@ -52,10 +52,11 @@ class Viewer {
   void resetCamera();
 
   // --- Keys, the same on the desktop and on the web: what the keyboard types (e.g. "]", " " for space), or, for a
-  // key that types nothing, its KeyboardEvent.key name ("ArrowLeft", "ArrowRight"), which obscura-view maps from GLFW.
+  // key that types nothing, its KeyboardEvent.key name ("ArrowLeft", "ArrowRight", "Home"), which obscura-view maps
+  // from GLFW.
   struct KeyBinding {
     std::string key;
-    std::string label;  // the key as a person reads it: "space", "left arrow", else the key itself
+    std::string label;  // the key as a person reads it: "space", "left arrow", "home", else the key itself
     std::string description;
   };
   static std::vector<KeyBinding> keyBindings();
@@ -87,8 +88,9 @@ class Viewer {
  private:
   struct KeyAction;
   static const std::vector<KeyAction>& keyActions();
-  // The timeline, for a key that plays or steps it; throws InputError saying why where nothing plays.
-  Timeline& requireTimeline();
+  // The timeline, for a key that acts on it: throws InputError saying why where the scene has no animations, or,
+  // for a key that plays or steps it (`playable`), where the chosen animation has no length ("none").
+  Timeline& requireTimeline(bool playable);
   void showScene(Scene scene, const std::string& name, const Camera& camera);
   // Sets a numeric parameter to change(current value), clamped to the parameter's range.
   void adjustParameter(const std::string& name, const std::function<double(double)>& change);
