@@ -17,6 +17,7 @@ FrameCamera FrameCamera::from(const Camera& camera, int width, int height, glm::
   const float aspect = static_cast<float>(width) / static_cast<float>(height);
   frame.view = camera.view();
   frame.projection = glm::perspective(frame.fovyRadians, aspect, camera.near, camera.far);
+  frame.unjitteredProjection = frame.projection;
   // A jitter of j pixels is 2 j / width in normalised device x. The projection's third column multiplies z_view, and
   // w = -z_view, so subtracting 2 j / width there moves every depth by the same +2 j / width after the division.
   frame.projection[2][0] -= 2.0f * jitterPixels.x / static_cast<float>(width);

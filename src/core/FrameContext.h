@@ -1,6 +1,7 @@
 #pragma once
 // What every pass of one frame shares: the camera of this frame and of the previous one, the sub-pixel jitter, the
-// frame's index and time, and the world matrices each scene instance had in the previous frame.
+// frame's index, and its time and the time of the pose motion vectors measure from (the scene's pose of both is in
+// GpuScene: setPose).
 //
 // "Previous" is history: it survives from one frame to the next and is dropped, together with the history targets
 // (core/RenderTargetPool.h), when the output size changes, the scene changes or the context is lost (a new
@@ -20,6 +21,7 @@ namespace obscura {
 struct FrameCamera {
   glm::mat4 view{1.0f};
   glm::mat4 projection{1.0f};  // jittered when the frame is (jitter below)
+  glm::mat4 unjitteredProjection{1.0f};  // the same without the jitter (motion vectors)
   ViewReconstruction reconstruction;
   float near = 0.1f, far = 100.0f, fovyRadians = 1.0f;
   int width = 1, height = 1;   // the output size; the camera's aspect follows it
@@ -37,10 +39,9 @@ struct FrameContext {
   std::uint64_t index = 0;     // frames this Renderer has drawn before this one
   int historyFrames = 0;       // consecutive earlier frames the history survived (0: this frame starts afresh)
   double time = 0.0;           // seconds (FrameOptions::time)
-  double deltaTime = 0.0;      // since the previous frame; 0 when !hasPrevious
-  // World matrix of each GpuScene instance in the previous frame, in the GpuScene's instance order (the current ones
-  // when !hasPrevious). Animation moves instances between frames; motion vectors read both.
-  std::vector<glm::mat4> previousWorld;
+  // The time of the previous pose (FrameOptions::previousTime, else the previous frame's time, else `time`).
+  double previousTime = 0.0;
+  double deltaTime = 0.0;      // time - previousTime
 };
 
 // Halton low-discrepancy sequence (radical inverse of `index` in `base`), index >= 1: the jitter of temporal

@@ -29,11 +29,12 @@ namespace {
 // The G-buffer alone reads the base colour only for the alpha test.
 MaterialKind readKind(int output, MaterialKind kind) { return output == 0 ? kind.forAlphaOnly() : kind; }
 
-ProgramSpec spec(int output, MaterialKind kind) {
+ProgramSpec spec(int output, MaterialKind kind, VertexKind vertex) {
   static const char* outputs[] = {"gbuffer", "base-color", "gbuffer+base-color"};
-  ProgramSpec s{"gbuffer[" + std::string(outputs[output]) + kind.nameSuffix() + "]", "geometry.vert", "gbuffer.frag",
-                {{"GBUFFER_OUTPUT", std::to_string(output)}}};
+  ProgramSpec s{"gbuffer[" + std::string(outputs[output]) + kind.nameSuffix() + vertex.nameSuffix() + "]",
+                "geometry.vert", "gbuffer.frag", {{"GBUFFER_OUTPUT", std::to_string(output)}}};
   for (auto& define : kind.defines()) s.defines.push_back(define);
+  for (auto& define : vertex.defines()) s.defines.push_back(define);
   if (output == 2) s.extensions = {"GL_EXT_draw_buffers"};
   return s;
 }
@@ -44,7 +45,8 @@ std::vector<ProgramSpec> GBufferEffect::programSpecs() {
   std::vector<ProgramSpec> specs;
   for (int output = 0; output < 3; ++output)
     for (MaterialKind kind : MaterialKind::all())
-      if (readKind(output, kind) == kind) specs.push_back(spec(output, kind));
+      if (readKind(output, kind) == kind) specs.push_back(spec(output, kind, {}));
+  for (VertexKind vertex : VertexKind::validated()) specs.push_back(spec(0, {}, vertex));
   return specs;
 }
 
@@ -56,11 +58,12 @@ GBufferEffect::Variant::Variant(gl::Program built)
       near(program.optionalUniform("u_near")),
       depthRange(program.optionalUniform("u_depthRange")) {}
 
-const GBufferEffect::Variant& GBufferEffect::variant(Output output, MaterialKind kind) {
+const GBufferEffect::Variant& GBufferEffect::variant(Output output, MaterialKind kind, VertexKind vertex) {
   const int o = static_cast<int>(output);
-  const auto key = std::make_pair(o, readKind(o, kind));
+  const auto key = std::make_tuple(o, readKind(o, kind), vertex.forCurrentFrame());
   auto it = variants_.find(key);
-  if (it == variants_.end()) it = variants_.emplace(key, Variant(resources_.build(spec(o, key.second)))).first;
+  if (it == variants_.end())
+    it = variants_.emplace(key, Variant(resources_.build(spec(o, std::get<1>(key), std::get<2>(key))))).first;
   return it->second;
 }
 
@@ -68,7 +71,7 @@ GBufferEffect::GBufferEffect(const EffectResources& resources)
     : resources_(resources), drawBuffers_(resources.caps.drawBuffers && resources.options.allowDrawBuffers) {
   // The variants of the pass every frame runs are built now, so a broken program fails when the renderer is made;
   // the others (the base colour alone, for its view) on first use.
-  for (MaterialKind kind : MaterialKind::all()) variant(drawBuffers_ ? Output::Both : Output::GBuffer, kind);
+  for (MaterialKind kind : MaterialKind::all()) variant(drawBuffers_ ? Output::Both : Output::GBuffer, kind, {});
 }
 
 void GBufferEffect::plan(FramePlanner& planner) {
@@ -105,8 +108,8 @@ void GBufferEffect::render(const PassContext& context, Output output) {
   glEnable(GL_DEPTH_TEST);
   glDepthFunc(GL_LESS);
 
-  context.scene().draw(camera.view, [&](MaterialKind kind) -> const GeometryUniforms& {
-    const Variant& v = variant(output, kind);
+  context.scene().draw(camera.view, [&](MaterialKind kind, VertexKind vertex) -> const GeometryUniforms& {
+    const Variant& v = variant(output, kind, vertex);
     v.program.use();
     gl::Program::set(v.projection, camera.projection);
     gl::Program::set(v.near, camera.near);

@@ -8,6 +8,7 @@
 // the material's base colour into "base-color", so the lighting can be a full-screen pass instead of drawing the
 // scene again: on a CPU rasteriser a pass over a 110k-triangle model costs about 50 ms whatever the size.
 #include <map>
+#include <tuple>
 #include <vector>
 
 #include "core/EffectTable.h"
@@ -36,11 +37,12 @@ class GBufferEffect : public Effect {
   // What a pass writes: the G-buffer, the base colour, or both at once (several render targets).
   enum class Output { GBuffer = 0, BaseColor = 1, Both = 2 };
   void render(const PassContext& context, Output output);
-  const Variant& variant(Output output, MaterialKind kind);
+  const Variant& variant(Output output, MaterialKind kind, VertexKind vertex);
 
   const EffectResources& resources_;
   bool drawBuffers_;  // the context can write both in one pass (and RendererOptions allows it)
-  std::map<std::pair<int, MaterialKind>, Variant> variants_;  // (output, the kind as that output reads it)
+  // (output, the material kind as that output reads it, the vertex kind)
+  std::map<std::tuple<int, MaterialKind, VertexKind>, Variant> variants_;
 };
 
 }  // namespace obscura

@@ -31,8 +31,9 @@ MaterialKind LightingEffect::readKind(const Form& form, MaterialKind kind) {
   return form.counting ? kind.forAlphaOnly() : kind;
 }
 
-ProgramSpec LightingEffect::spec(const Form& form, MaterialKind kind) {
-  std::string name = std::string("lighting[") + (form.deferred ? "deferred" : "forward" + kind.nameSuffix());
+ProgramSpec LightingEffect::spec(const Form& form, MaterialKind kind, VertexKind vertex) {
+  std::string name = std::string("lighting[") +
+                     (form.deferred ? "deferred" : "forward" + kind.nameSuffix() + vertex.nameSuffix());
   if (form.counting) name += ",count-shading";
   if (form.toneMap >= 0)
     name += std::string(",tonemap=") + toneMapOperatorName(static_cast<ToneMapOperator>(form.toneMap));
@@ -42,6 +43,8 @@ ProgramSpec LightingEffect::spec(const Form& form, MaterialKind kind) {
                  {"TONEMAP_INLINE", form.toneMap >= 0 ? "1" : "0"},
                  {"FAR_RAY", "0"}}};
   for (auto& define : kind.defines()) s.defines.push_back(define);
+  if (!form.deferred)
+    for (auto& define : vertex.defines()) s.defines.push_back(define);
   if (form.toneMap >= 0) s.defines.push_back(toneMapShaderDefine(static_cast<ToneMapOperator>(form.toneMap)));
   return s;
 }
@@ -53,8 +56,9 @@ std::vector<ProgramSpec> LightingEffect::programSpecs() {
       for (int toneMap = -1; toneMap < (counting ? 0 : kToneMapOperatorCount); ++toneMap)
         for (MaterialKind kind : MaterialKind::all()) {
           const Form form{deferred, counting, toneMap};
-          if (readKind(form, kind) == kind) specs.push_back(spec(form, kind));
+          if (readKind(form, kind) == kind) specs.push_back(spec(form, kind, {}));
         }
+  for (VertexKind vertex : VertexKind::validated()) specs.push_back(spec({false, false, -1}, {}, vertex));
   return specs;
 }
 
@@ -74,11 +78,12 @@ LightingEffect::Variant::Variant(gl::Program built, bool geometryStage)
       exposure(program.optionalUniform("u_exposure")),
       lumaInAlpha(program.optionalUniform("u_lumaInAlpha")) {}
 
-const LightingEffect::Variant& LightingEffect::variant(const Form& form, MaterialKind kind) {
-  const auto key = std::make_pair(form, readKind(form, kind));
+const LightingEffect::Variant& LightingEffect::variant(const Form& form, MaterialKind kind, VertexKind vertex) {
+  const auto key = std::make_tuple(form, readKind(form, kind), form.deferred ? VertexKind{} : vertex.forCurrentFrame());
   auto it = variants_.find(key);
   if (it == variants_.end()) {
-    it = variants_.emplace(key, Variant(resources_.build(spec(form, key.second)), !form.deferred)).first;
+    it = variants_.emplace(key, Variant(resources_.build(spec(form, std::get<1>(key), std::get<2>(key))),
+                                        !form.deferred)).first;
     // Resolve strictly what this form must use, so a misspelt or dropped uniform is caught where it matters.
     const gl::Program& program = it->second.program;
     if (!form.deferred) program.uniform("u_projection");
@@ -103,7 +108,7 @@ LightingEffect::LightingEffect(const EffectResources& resources)
                              LinearDepthPacking::channelFromByte(t[2]), LinearDepthPacking::channelFromByte(t[3]));
   // The form of the lit pass before the plan's alternatives, for every material, is built now, so a broken program
   // fails when the renderer is made.
-  for (MaterialKind kind : MaterialKind::all()) variant({false, false, -1}, kind);
+  for (MaterialKind kind : MaterialKind::all()) variant({false, false, -1}, kind, {});
 }
 
 void LightingEffect::plan(FramePlanner& planner) {
@@ -189,7 +194,7 @@ void LightingEffect::render(const PassContext& context, const Form& form, const 
       glClearColor(0.0f, 0.0f, 0.0f, 0.0f);
       glClear(GL_COLOR_BUFFER_BIT);
     }
-    const Variant& v = variant(form, {});
+    const Variant& v = variant(form, {}, {});
     v.program.use();
     setShading(v);
     context.texture("gbuffer").bind(0);
@@ -245,8 +250,8 @@ void LightingEffect::render(const PassContext& context, const Form& form, const 
     glEnable(GL_BLEND);
     glBlendFunc(GL_ONE, GL_ONE);
   }
-  context.scene().draw(camera.view, [&](MaterialKind kind) -> const GeometryUniforms& {
-    const Variant& v = variant(form, kind);
+  context.scene().draw(camera.view, [&](MaterialKind kind, VertexKind vertex) -> const GeometryUniforms& {
+    const Variant& v = variant(form, kind, vertex);
     v.program.use();
     Program::set(v.projection, camera.projection);
     setShading(v);

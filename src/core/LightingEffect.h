@@ -73,12 +73,13 @@ class LightingEffect : public Effect {
     GLint gbuffer, baseColor, background, exposure, lumaInAlpha;
   };
   static MaterialKind readKind(const Form& form, MaterialKind kind);
-  static ProgramSpec spec(const Form& form, MaterialKind kind);
-  const Variant& variant(const Form& form, MaterialKind kind);
+  static ProgramSpec spec(const Form& form, MaterialKind kind, VertexKind vertex);
+  const Variant& variant(const Form& form, MaterialKind kind, VertexKind vertex);
   void render(const PassContext& context, const Form& form, const std::string& output, float exposureScale);
 
   const EffectResources& resources_;
-  std::map<std::pair<Form, MaterialKind>, Variant> variants_;  // built on first use: (form, the kind it reads)
+  // Built on first use: (form, the material kind it reads, the vertex kind).
+  std::map<std::tuple<Form, MaterialKind, VertexKind>, Variant> variants_;
   gl::Texture2D white_;  // AO = 1 when the AO is off
   bool stencil_;         // the G-buffer's depth has stencil bits (RenderTargetPool): shade exactly once
   Lighting light_;

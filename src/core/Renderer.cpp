@@ -76,7 +76,10 @@ DepthHierarchyPass::Storage Renderer::hierarchyStorage() const { return ao_->hie
 void Renderer::setScene(const Scene& scene) {
   GpuScene::Options options;
   options.allowUint32Indices = options_.allowUint32Indices;
+  options.skinning = options_.skinning;
+  options.vertexLimits = options_.simulateVertexLimits;
   scene_ = GpuScene(scene, caps_, options);
+  sceneData_ = scene;
   dropHistory();
   checkErrors("");
 }
@@ -85,7 +88,7 @@ void Renderer::dropHistory() {
   if (hasPrevious_) ++historyDrops_;
   hasPrevious_ = false;
   historyFrames_ = 0;
-  previousWorld_.clear();
+  lastPose_ = ScenePose();
   pool_.dropHistory();
 }
 
@@ -107,7 +110,8 @@ void Renderer::checkErrors(const std::string& after) const {
 }
 
 void Renderer::beginFrame(const Camera& camera, const RenderSettings& settings, const OutputTarget& output,
-                          double time) {
+                          const FrameOptions& options) {
+  const double time = options.time;
   const glm::ivec2 size(output.width, output.height);
   if (size != lastSize_) {
     dropHistory();
@@ -128,16 +132,25 @@ void Renderer::beginFrame(const Camera& camera, const RenderSettings& settings, 
   frame.index = frameIndex_;
   frame.historyFrames = historyFrames_;
   frame.time = time;
-  frame.deltaTime = hasPrevious_ ? time - previousTime_ : 0.0;
-  frame.previousWorld = hasPrevious_ ? previousWorld_ : scene_.worldMatrices();
+  frame.previousTime = options.previousTime.value_or(hasPrevious_ ? previousTime_ : time);
+  frame.deltaTime = time - frame.previousTime;
   frame_ = std::move(frame);
+
+  // The scene's pose now and at the previous time (the last frame's pose when that is the one asked for).
+  const PoseOptions poseOptions{options.animation, options.loop};
+  const ScenePose current = evaluatePose(sceneData_, time, poseOptions);
+  const bool reuse = hasPrevious_ && !lastPose_.instanceWorld.empty() && frame_.previousTime == previousTime_ &&
+                     poseOptions.animation == lastPoseOptions_.animation && poseOptions.loop == lastPoseOptions_.loop;
+  const ScenePose previous = reuse ? lastPose_ : evaluatePose(sceneData_, frame_.previousTime, poseOptions);
+  scene_.setPose(current, previous);
+  lastPose_ = current;
+  lastPoseOptions_ = poseOptions;
 }
 
 void Renderer::endFrame() {
   pool_.endFrame();
   previousCamera_ = frame_.camera;
   previousTime_ = frame_.time;
-  previousWorld_ = scene_.worldMatrices();
   hasPrevious_ = true;
   ++historyFrames_;
   ++frameIndex_;
@@ -167,7 +180,7 @@ void Renderer::render(const Camera& camera, const RenderSettings& settings, cons
     throw InputError("output size " + std::to_string(output.width) + "x" + std::to_string(output.height) +
                      " is outside what this context can render (1 .. " + std::to_string(limit) + " per side)");
 
-  beginFrame(camera, settings, output, options.time);
+  beginFrame(camera, settings, output, options);
   if (view == View::Split) {
     // Two frames of one frame context into one output: the AO off, then the AO on over the right half.
     RenderSettings off = settings, on = settings;

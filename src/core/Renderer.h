@@ -115,7 +115,8 @@ class Renderer {
   size_t pooledTargets() const { return pool_.slotCount(); }
 
  private:
-  void beginFrame(const Camera& camera, const RenderSettings& settings, const OutputTarget& output, double time);
+  void beginFrame(const Camera& camera, const RenderSettings& settings, const OutputTarget& output,
+                  const FrameOptions& options);
   void endFrame();
   void dropHistory();
   // Every effect's passes for `view` (a target view, or the final image), resolved.
@@ -134,6 +135,7 @@ class Renderer {
   DebugViewPass views_;
   std::map<std::string, TargetInfo> targets_;     // every table target, by name
   GpuScene scene_;
+  Scene sceneData_;  // what the GPU scene was made from: posed every frame
   RenderTargetPool pool_;
   FramePlan plan_;
 
@@ -145,7 +147,9 @@ class Renderer {
   int historyDrops_ = 0;
   FrameCamera previousCamera_;
   double previousTime_ = 0.0;
-  std::vector<glm::mat4> previousWorld_;
+  // The last frame's pose, kept to be the next frame's previous one when it asks for that time.
+  ScenePose lastPose_;
+  PoseOptions lastPoseOptions_;
   glm::ivec2 lastSize_{0, 0};
 };
 

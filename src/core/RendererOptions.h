@@ -3,8 +3,16 @@
 #include <optional>
 
 #include "core/DepthHierarchyPass.h"
+#include "core/VertexKind.h"
 
 namespace obscura {
+
+// Limits of the vertex stage to simulate: the renderer uses the smaller of these and the context's. gles2Minimum()
+// is what every GLES 2 / WebGL 1 context guarantees: 128 uniform vectors, 8 attributes, no vertex texture units.
+struct VertexLimits {
+  int uniformVectors = 128, attributes = 8, textureUnits = 0;
+  static VertexLimits gles2Minimum() { return {}; }
+};
 
 struct RendererOptions {
   // glGetError after every pass (a GL error throws GlError naming the pass), and strict programs: a uniform a
@@ -19,6 +27,10 @@ struct RendererOptions {
   // How the depth hierarchy is stored; unset: the extension mip chain where available, else the atlas
   // (DepthHierarchyPass.h). Tests and benchmarks force each storage to compare them.
   std::optional<DepthHierarchyPass::Storage> hierarchyStorage;
+  // How skinned meshes are drawn; unset: the joint texture where the context has vertex textures and float
+  // textures, else the uniform palette (core/GpuScene.h). A path the context cannot take falls back the same way.
+  std::optional<SkinningPath> skinning;
+  std::optional<VertexLimits> simulateVertexLimits;  // tests run the GLES 2 minimums on any context
 };
 
 }  // namespace obscura

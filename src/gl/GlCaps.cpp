@@ -57,6 +57,11 @@ GlCaps GlCaps::query() {
   caps.drawBuffers = (caps.has("GL_EXT_draw_buffers") || caps.has("GL_WEBGL_draw_buffers")) && entryPoint;
   if (caps.drawBuffers) glGetIntegerv(GL_MAX_DRAW_BUFFERS_EXT, &caps.maxDrawBuffers);
 
+  caps.desktopGl = desktopGl;
+  caps.textureFloat = desktopGl || caps.has("GL_OES_texture_float");
+  glGetIntegerv(GL_MAX_VERTEX_UNIFORM_VECTORS, &caps.maxVertexUniformVectors);
+  glGetIntegerv(GL_MAX_VERTEX_ATTRIBS, &caps.maxVertexAttribs);
+  glGetIntegerv(GL_MAX_VERTEX_TEXTURE_IMAGE_UNITS, &caps.maxVertexTextureImageUnits);
   glGetIntegerv(GL_MAX_TEXTURE_SIZE, &caps.maxTextureSize);
   glGetIntegerv(GL_MAX_RENDERBUFFER_SIZE, &caps.maxRenderbufferSize);
   GLint viewport[2] = {0, 0};

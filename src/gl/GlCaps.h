@@ -22,6 +22,11 @@ struct GlCaps {
   bool timerQuery = false;              // EXT_disjoint_timer_query
   bool drawBuffers = false;             // EXT_draw_buffers / WEBGL_draw_buffers: several colour targets per pass
   GLint maxDrawBuffers = 1;
+  bool desktopGl = false;               // a desktop GL context running GLSL ES (OSMesa): sized float formats
+  bool textureFloat = false;            // OES_texture_float (core in desktop GL 3.0): RGBA float textures to sample
+  // The vertex stage's limits, which size skinning and morphing (core/GpuScene.h). GLES 2 guarantees 128 uniform
+  // vectors, 8 attributes and no texture units.
+  GLint maxVertexUniformVectors = 128, maxVertexAttribs = 8, maxVertexTextureImageUnits = 0;
   GLint maxTextureSize = 0, maxRenderbufferSize = 0, maxViewportWidth = 0, maxViewportHeight = 0;
 
   bool has(const std::string& extension) const { return extensions.count(extension) != 0; }

@@ -5,7 +5,7 @@
 namespace obscura::gl {
 namespace {
 constexpr int kTextureUnits = 8;  // the GLES 2 minimum for fragment shaders
-constexpr GLuint kAttributeSlots = 3;
+constexpr GLuint kAttributeSlots = 8;  // the GLES 2 minimum (skinned and morphed draws use them all)
 }  // namespace
 
 void restoreBaselineState() {

@@ -1,5 +1,6 @@
 #include "scene/MeshProcessing.h"
 
+#include <algorithm>
 #include <unordered_map>
 
 #include <glm/geometric.hpp>
@@ -47,33 +48,101 @@ void generateSmoothNormals(Mesh& mesh) {
   }
 }
 
-std::vector<Mesh> splitForShortIndices(const Mesh& mesh, std::uint32_t maxVertices) {
-  if (mesh.positions.size() <= maxVertices) return {mesh};
-  std::vector<Mesh> pieces;
-  const bool hasUv = !mesh.texcoords.empty();
+Mesh extractTriangles(const Mesh& mesh, const std::vector<std::uint32_t>& triangles) {
   Mesh piece;
+  piece.material = mesh.material;
+  piece.morphTargets.resize(mesh.morphTargets.size());
   std::unordered_map<std::uint32_t, std::uint32_t> remap;
-  auto flush = [&] {
-    if (!piece.indices.empty()) {
-      piece.material = mesh.material;
-      pieces.push_back(std::move(piece));
-    }
-    piece = Mesh();
-    remap.clear();
-  };
-  for (size_t t = 0; t + 2 < mesh.indices.size(); t += 3) {
-    // A triangle adds at most three new vertices: start a new piece if they might not fit.
-    if (piece.positions.size() + 3 > maxVertices) flush();
-    for (int k = 0; k < 3; ++k) {
-      const std::uint32_t source = mesh.indices[t + static_cast<size_t>(k)];
+  for (std::uint32_t t : triangles) {
+    for (size_t k = 0; k < 3; ++k) {
+      const std::uint32_t source = mesh.indices[3 * static_cast<size_t>(t) + k];
       auto [it, inserted] = remap.try_emplace(source, static_cast<std::uint32_t>(piece.positions.size()));
       if (inserted) {
         piece.positions.push_back(mesh.positions[source]);
         piece.normals.push_back(mesh.normals[source]);
-        if (hasUv) piece.texcoords.push_back(mesh.texcoords[source]);
+        if (!mesh.texcoords.empty()) piece.texcoords.push_back(mesh.texcoords[source]);
+        if (!mesh.joints.empty()) piece.joints.push_back(mesh.joints[source]);
+        if (!mesh.weights.empty()) piece.weights.push_back(mesh.weights[source]);
+        for (size_t m = 0; m < mesh.morphTargets.size(); ++m) {
+          piece.morphTargets[m].positions.push_back(mesh.morphTargets[m].positions[source]);
+          if (!mesh.morphTargets[m].normals.empty())
+            piece.morphTargets[m].normals.push_back(mesh.morphTargets[m].normals[source]);
+        }
       }
       piece.indices.push_back(it->second);
     }
+  }
+  return piece;
+}
+
+std::vector<Mesh> splitForShortIndices(const Mesh& mesh, std::uint32_t maxVertices) {
+  if (mesh.positions.size() <= maxVertices) return {mesh};
+  std::vector<Mesh> pieces;
+  std::vector<std::uint32_t> group;
+  std::unordered_map<std::uint32_t, bool> used;  // vertices of the current group
+  const auto triangleCount = static_cast<std::uint32_t>(mesh.indices.size() / 3);
+  for (std::uint32_t t = 0; t < triangleCount; ++t) {
+    // A triangle adds at most three new vertices: start a new piece if they might not fit.
+    if (used.size() + 3 > maxVertices) {
+      pieces.push_back(extractTriangles(mesh, group));
+      group.clear();
+      used.clear();
+    }
+    group.push_back(t);
+    for (size_t k = 0; k < 3; ++k) used[mesh.indices[3 * static_cast<size_t>(t) + k]] = true;
+  }
+  if (!group.empty()) pieces.push_back(extractTriangles(mesh, group));
+  return pieces;
+}
+
+std::vector<PalettePiece> splitForJointPalette(const Mesh& mesh, int paletteSize) {
+  std::vector<PalettePiece> pieces;
+  std::vector<std::uint32_t> group;
+  std::vector<int> palette;                   // skin joints of the current group, in order of first use
+  std::unordered_map<int, int> paletteIndex;  // skin joint -> palette entry
+  auto flush = [&] {
+    if (group.empty()) return;
+    PalettePiece piece{extractTriangles(mesh, group), palette};
+    // Renumber the influences into the palette; a zero-weight influence points at entry 0 (it contributes nothing).
+    for (size_t v = 0; v < piece.mesh.joints.size(); ++v)
+      for (int k = 0; k < 4; ++k) {
+        const auto found = paletteIndex.find(piece.mesh.joints[v][k]);
+        piece.mesh.joints[v][k] = piece.mesh.weights[v][k] != 0.0f && found != paletteIndex.end()
+                                      ? static_cast<std::uint16_t>(found->second)
+                                      : 0;
+      }
+    pieces.push_back(std::move(piece));
+    group.clear();
+    palette.clear();
+    paletteIndex.clear();
+  };
+  // The joints triangle t adds to the current palette.
+  auto newJoints = [&](std::uint32_t t) {
+    std::vector<int> needed;
+    for (size_t k = 0; k < 3; ++k) {
+      const std::uint32_t v = mesh.indices[3 * static_cast<size_t>(t) + k];
+      for (int i = 0; i < 4; ++i) {
+        const int joint = mesh.joints[v][i];
+        if (mesh.weights[v][i] != 0.0f && !paletteIndex.count(joint) &&
+            std::find(needed.begin(), needed.end(), joint) == needed.end())
+          needed.push_back(joint);
+      }
+    }
+    return needed;
+  };
+  const auto triangleCount = static_cast<std::uint32_t>(mesh.indices.size() / 3);
+  for (std::uint32_t t = 0; t < triangleCount; ++t) {
+    std::vector<int> needed = newJoints(t);
+    if (palette.size() + needed.size() > static_cast<size_t>(paletteSize)) {
+      flush();
+      needed = newJoints(t);
+      if (needed.size() > static_cast<size_t>(paletteSize)) return {};
+    }
+    for (int joint : needed) {
+      paletteIndex.emplace(joint, static_cast<int>(palette.size()));
+      palette.push_back(joint);
+    }
+    group.push_back(t);
   }
   flush();
   return pieces;

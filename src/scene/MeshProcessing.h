@@ -14,9 +14,25 @@ void generateFlatNormals(Mesh& mesh);
 // Smooth normals by area-weighted averaging over shared vertices (used by the built-in scene's generators).
 void generateSmoothNormals(Mesh& mesh);
 
+// The triangles listed (by triangle number) as a mesh of their own: the vertices they use, renumbered in order of
+// first use, with every per-vertex array (normals, texcoords, joints, weights, morph target deltas) carried along.
+Mesh extractTriangles(const Mesh& mesh, const std::vector<std::uint32_t>& triangles);
+
 // Splits a mesh into pieces whose indices all fit in 16 bits (fewer than 65536 distinct vertices each), for
 // contexts without OES_element_index_uint (core WebGL 1). Triangles stay whole and in order; a mesh that already
 // fits comes back as one piece.
 std::vector<Mesh> splitForShortIndices(const Mesh& mesh, std::uint32_t maxVertices = 65535);
+
+// A piece of a skinned mesh whose joints fit a uniform palette of a vertex stage: its joint indices are renumbered
+// into `palette`, which lists the skin joint each palette entry is.
+struct PalettePiece {
+  Mesh mesh;
+  std::vector<int> palette;
+};
+// Splits a skinned mesh into pieces that each use at most `paletteSize` joints (counting only joints with a non-zero
+// weight), greedily in triangle order, so that any skeleton can be drawn from uniforms alone (GLES 2 guarantees 128
+// vertex uniform vectors: about 40 joints as 3x4 matrices, half that with the previous frame's palette). Empty when
+// a single triangle needs more than `paletteSize` joints (at most 12 can: 3 vertices x 4 influences).
+std::vector<PalettePiece> splitForJointPalette(const Mesh& mesh, int paletteSize);
 
 }  // namespace obscura
