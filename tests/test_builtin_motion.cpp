@@ -41,7 +41,7 @@ FrameOptions at(double time, AnimationChoice animation = AnimationChoice::one(0)
 
 TEST(BuiltinMotion, AtTimeZeroTheFrameIsTheRestPose) {
   Renderer renderer = test::makeRenderer();
-  renderer.setScene(makeBuiltinScene());
+  renderer.setScene(makeBuiltinScene(BuiltinSceneOptions::withMotion()));
   const Camera camera = builtinSceneCamera(320, 180);
   for (const View& view : {View::Final, View::Ao}) {
     const test::RenderedImage playing = test::render(renderer, camera, RenderSettings(), view, at(0.0));
@@ -52,7 +52,7 @@ TEST(BuiltinMotion, AtTimeZeroTheFrameIsTheRestPose) {
 }
 
 TEST(BuiltinMotion, ThePendulumAndTheLimbAreDrawnWhereTheCpuMirrorPutsThem) {
-  const Scene scene = makeBuiltinScene();
+  const Scene scene = makeBuiltinScene(BuiltinSceneOptions::withMotion());
   const Camera camera = builtinSceneCamera(320, 180);
   RendererOptions gles2Minimum;
   gles2Minimum.simulateVertexLimits = VertexLimits::gles2Minimum();

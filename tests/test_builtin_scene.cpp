@@ -67,12 +67,14 @@ TEST(BuiltinScene, TheStillRoomIsTheRoomAsItWas) {
   EXPECT_TRUE(still.nodes.empty());
   EXPECT_FALSE(still.animated());
   EXPECT_EQ(still.designedAoRadius, 1.0f);
+  // For now the default (BuiltinScene.h says why).
+  EXPECT_EQ(makeBuiltinScene().triangleCount(), still.triangleCount());
 }
 
 // The moving scene begins with the still room, unchanged, and keeps within its bounds.
 TEST(BuiltinScene, TheMovingSceneAddsToTheStillRoom) {
   const Scene still = makeBuiltinScene(BuiltinSceneOptions::still());
-  const Scene moving = makeBuiltinScene();
+  const Scene moving = makeBuiltinScene(BuiltinSceneOptions::withMotion());
   ASSERT_GT(moving.meshes.size(), still.meshes.size());
   ASSERT_GT(moving.instances.size(), still.instances.size());
   for (size_t m = 0; m < still.meshes.size(); ++m) {
@@ -96,7 +98,7 @@ TEST(BuiltinScene, TheMovingSceneAddsToTheStillRoom) {
 }
 
 TEST(BuiltinScene, TheHierarchyTheSkinAndTheAnimationAreWellFormed) {
-  const Scene scene = makeBuiltinScene();
+  const Scene scene = makeBuiltinScene(BuiltinSceneOptions::withMotion());
   const ScenePose rest = evaluatePose(scene, 0.0, {AnimationChoice::none(), true});
   for (size_t n = 0; n < scene.nodes.size(); ++n) EXPECT_LT(scene.nodes[n].parent, static_cast<int>(n));
   EXPECT_GE(scene.nodes[static_cast<size_t>(nodeNamed(scene, "pendulum bob"))].parent, 0) << "a child node";
@@ -172,7 +174,7 @@ TEST(BuiltinScene, TheHierarchyTheSkinAndTheAnimationAreWellFormed) {
 // The first keys are the rest pose, bit for bit: at time 0 the moving scene is what a still render of it shows; and
 // the last keys are the first, so the loop closes without a jump.
 TEST(BuiltinScene, TheMotionRestsAtTimeZeroAndLoops) {
-  const Scene scene = makeBuiltinScene();
+  const Scene scene = makeBuiltinScene(BuiltinSceneOptions::withMotion());
   const ScenePose rest = evaluatePose(scene, 0.0, {AnimationChoice::none(), true});
   const ScenePose start = evaluatePose(scene, 0.0, playing(scene));
   EXPECT_EQ(start.nodeWorld, rest.nodeWorld);
@@ -198,7 +200,7 @@ TEST(BuiltinScene, TheMotionRestsAtTimeZeroAndLoops) {
 // Two times a half period apart: the pendulum's bob and the limb are elsewhere, the room is where it was.
 TEST(BuiltinScene, ThePendulumAndTheLimbMoveAndTheRoomDoesNot) {
   const Scene still = makeBuiltinScene(BuiltinSceneOptions::still());
-  const Scene scene = makeBuiltinScene();
+  const Scene scene = makeBuiltinScene(BuiltinSceneOptions::withMotion());
   const int pivot = nodeNamed(scene, "pendulum pivot"), bob = nodeNamed(scene, "pendulum bob");
   const float length = -scene.nodes[static_cast<size_t>(bob)].translation.y;
   const ScenePose a = evaluatePose(scene, 1.0, playing(scene));  // a quarter period: the swings at +amplitude
@@ -237,7 +239,7 @@ TEST(BuiltinScene, ThePendulumAndTheLimbMoveAndTheRoomDoesNot) {
 // The tip joint's CUBICSPLINE keys (every half second, with the sine's own derivative as tangents) follow
 // 40 degrees * sin(4 pi t / 4 s) between the keys, where straight lines between them would be 8 degrees off.
 TEST(BuiltinScene, TheCubicSplineFollowsTheSineBetweenItsKeys) {
-  const Scene scene = makeBuiltinScene();
+  const Scene scene = makeBuiltinScene(BuiltinSceneOptions::withMotion());
   const size_t middle = static_cast<size_t>(nodeNamed(scene, "limb middle"));
   const size_t tip = static_cast<size_t>(nodeNamed(scene, "limb tip"));
   for (double t : {0.25, 0.6, 1.3, 2.75, 3.9}) {
@@ -250,7 +252,7 @@ TEST(BuiltinScene, TheCubicSplineFollowsTheSineBetweenItsKeys) {
 
 // Over the whole loop the limb stays above the plinth it stands on and the bob clears the floor and the piers.
 TEST(BuiltinScene, NothingPassesThroughTheRoom) {
-  const Scene scene = makeBuiltinScene();
+  const Scene scene = makeBuiltinScene(BuiltinSceneOptions::withMotion());
   const Instance& limb = limbInstance(scene);
   const Mesh& mesh = scene.meshes[static_cast<size_t>(limb.mesh)];
   const float footY = mesh.positions[0].y;

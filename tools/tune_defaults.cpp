@@ -1004,8 +1004,8 @@ int main(int argc, char** argv) {
       view.spec.input.printWarnings("obscura-tune", input.warnings);
       Scene scene = std::move(input.scene);
       if (view.spec.input.scenePath.empty()) {
-        // The built-in views measure the still room (no pendulum, no limb): the scene the tuned defaults were fitted
-        // on and docs/accuracy.md's figures measured on, whose cached references stay valid (scene/BuiltinScene.h).
+        // The built-in views measure the still room (no pendulum, no limb), whatever SceneInput's default: the scene
+        // the tuned defaults were fitted on and docs/accuracy.md's figures measured on (scene/BuiltinScene.h).
         scene = makeBuiltinScene(BuiltinSceneOptions::still());
         if (view.spec.input.sceneScale != 1.0f) scaleScene(scene, view.spec.input.sceneScale);
       }
