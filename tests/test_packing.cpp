@@ -7,6 +7,7 @@
 
 #include "core/LinearDepthPacking.h"
 #include "core/NormalEncoding.h"
+#include "core/VelocityPacking.h"
 
 using namespace obscura;
 namespace ldp = obscura::LinearDepthPacking;
@@ -93,4 +94,19 @@ TEST(NormalEncoding, OctahedralBeatsTheSpheremapOnBackFacingNormals) {
   const EncodingError lambert = measure(NormalEncodingKind::LambertAzimuthal, dirs);
   // The spheremap is singular at (0, 0, -1): its error there is tens of degrees.
   EXPECT_GT(lambert.backFacingMax, 10.0 * octahedral.backFacingMax);
+}
+
+TEST(VelocityPacking, EveryCodeRoundTripsAndZeroIsExact) {
+  namespace vp = obscura::VelocityPacking;
+  for (std::uint32_t code = 1; code < 65536; ++code)
+    ASSERT_EQ(vp::codeFromComponent(vp::componentFromCode(static_cast<std::uint16_t>(code))), code);
+  EXPECT_EQ(vp::codeFromComponent(0.0f), 32768);
+  EXPECT_EQ(vp::componentFromCode(32768), 0.0f);
+  EXPECT_EQ(vp::codeFromComponent(5.0f), 65535) << "beyond the screen clamps";
+  EXPECT_EQ(vp::codeFromComponent(-5.0f), 1);
+  const glm::vec2 v(0.123456f, -0.654321f);
+  const auto bytes = vp::bytesFromVelocity(v);
+  const glm::vec2 back = vp::velocityFromBytes(bytes.data());
+  EXPECT_NEAR(back.x, v.x, 0.5f / vp::kStepsPerUnit);
+  EXPECT_NEAR(back.y, v.y, 0.5f / vp::kStepsPerUnit);
 }

@@ -94,6 +94,7 @@ TEST(Resources, AGlErrorRaisedInAPassNamesThatPass) {
     const View view = pass == "view"            ? View::Ao
                       : pass == "shading-count" ? View{"shading-count"}
                       : pass == "base-color"    ? View{"base-color"}
+                      : pass == "velocity"      ? View{"velocity"}
                                                 : View::Final;
     FrameOptions options;
     if (pass == "present") options.retain = {"display-color"};

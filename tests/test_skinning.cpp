@@ -15,78 +15,20 @@
 #include "TestSupport.h"
 #include "scene/Animation.h"
 #include "scene/Primitives.h"
+#include "scene/SkinnedTube.h"
 
 namespace obscura {
 namespace {
 
-constexpr float kTubeHeight = 4.0f;
-
-// A vertical tube (radius 0.3, height 4) skinned to a chain of `joints` joints along y, each vertex blended between
-// the two nearest joints; the chain bends about z over one second (LINEAR rotations on every joint), and its root
-// slides along x (so that the whole skin moves too).
-Scene bendingTube(int joints, int rings = 64, int sides = 16) {
+// A vertical tube (radius 0.3, height 4) skinned to a chain of `joints` joints along y that bends about z over one
+// second while its root slides along x (scene/SkinnedTube.h), on a floor.
+Scene bendingTube(int joints) {
   Scene scene;
-  Mesh tube;
-  const float segment = kTubeHeight / static_cast<float>(joints);
-  for (int r = 0; r <= rings; ++r) {
-    const float y = kTubeHeight * static_cast<float>(r) / static_cast<float>(rings);
-    const float along = y / segment - 0.5f;  // joint centres at (j + 0.5) segments
-    const int j0 = std::clamp(static_cast<int>(std::floor(along)), 0, joints - 1);
-    const int j1 = std::min(j0 + 1, joints - 1);
-    const float t = std::clamp(along - static_cast<float>(j0), 0.0f, 1.0f);
-    for (int s = 0; s < sides; ++s) {
-      const float a = 2.0f * 3.14159265f * static_cast<float>(s) / static_cast<float>(sides);
-      tube.positions.emplace_back(0.3f * std::cos(a), y, 0.3f * std::sin(a));
-      tube.normals.emplace_back(std::cos(a), 0.0f, std::sin(a));
-      tube.joints.emplace_back(j0, j1, 0, 0);
-      tube.weights.emplace_back(j1 == j0 ? 1.0f : 1.0f - t, j1 == j0 ? 0.0f : t, 0.0f, 0.0f);
-    }
-  }
-  for (int r = 0; r < rings; ++r)
-    for (int s = 0; s < sides; ++s) {
-      const auto a = static_cast<std::uint32_t>(r * sides + s);
-      const auto b = static_cast<std::uint32_t>(r * sides + (s + 1) % sides);
-      const auto c = a + static_cast<std::uint32_t>(sides), d = b + static_cast<std::uint32_t>(sides);
-      tube.indices.insert(tube.indices.end(), {a, c, b, b, c, d});
-    }
-  scene.meshes.push_back(tube);
-  scene.meshes.push_back(test::makeRectangle({-10, 0, 10}, {20, 0, 0}, {0, 0, -20}));  // a floor
-
-  Skin skin;
-  Animation bend;
-  bend.name = "bend";
-  for (int j = 0; j < joints; ++j) {
-    Node node;
-    node.name = "joint" + std::to_string(j);
-    node.parent = j - 1;
-    node.translation = glm::vec3(0.0f, j == 0 ? 0.0f : segment, 0.0f);
-    scene.nodes.push_back(node);
-    skin.joints.push_back(j);
-    skin.inverseBind.push_back(
-        glm::translate(glm::mat4(1.0f), glm::vec3(0.0f, -segment * static_cast<float>(j), 0.0f)));
-    AnimationSampler rotation;
-    rotation.times = {0.0f, 1.0f};
-    const glm::quat q = glm::angleAxis(1.2f / static_cast<float>(joints), glm::vec3(0, 0, 1));
-    rotation.values = std::vector<float>{0, 0, 0, 1, q.x, q.y, q.z, q.w};
-    rotation.components = 4;
-    bend.samplers.push_back(rotation);
-    bend.channels.push_back({j, j, AnimationPath::Rotation});
-  }
-  AnimationSampler slide;
-  slide.times = {0.0f, 1.0f};
-  slide.values = std::vector<float>{0, 0, 0, 0.5f, 0, 0};
-  slide.components = 3;
-  bend.samplers.push_back(slide);
-  bend.channels.push_back({joints, 0, AnimationPath::Translation});
-  scene.skins.push_back(skin);
-  scene.animations.push_back(bend);
-
-  Instance tubeInstance;
-  tubeInstance.mesh = 0;
-  tubeInstance.node = 0;
-  tubeInstance.skin = 0;
-  scene.instances.push_back(tubeInstance);
-  scene.instances.push_back(Instance{1, glm::mat4(1.0f), -1, -1});
+  SkinnedTubeShape shape;
+  shape.joints = joints;
+  addSkinnedTube(scene, shape, glm::vec3(0.0f));
+  scene.meshes.push_back(test::makeRectangle({-10, 0, 10}, {20, 0, 0}, {0, 0, -20}));
+  scene.instances.push_back(Instance{static_cast<int>(scene.meshes.size()) - 1, glm::mat4(1.0f), -1, -1});
   return scene;
 }
 

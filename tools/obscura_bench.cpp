@@ -15,6 +15,9 @@
 //   5. ratios measured in this run: SAO / G-buffer, SAO(r = 4 m) / SAO(r = 0.5 m) with and without the hierarchy
 //      (goal <= 1.15 with it), SAO / a floor pass making the same fetches with no arithmetic
 //   6. every estimator (ao.estimator) at every preset, taking turns frame by frame (--estimators-only: this alone)
+//   7. scenes that move (--motion-only: this alone): a skinned crowd drawn by every skinning path, the same pose
+//      baked into still meshes, and the velocity pass drawing only what moves or everything, all taking turns;
+//      per geometry pass (G-buffer, lighting, velocity) ms, written to DIR/motion.csv
 #include <algorithm>
 #include <cstdio>
 #include <cstdlib>
@@ -40,6 +43,9 @@
 #include "scene/BuiltinScene.h"
 #include "scene/GltfLoader.h"
 #include "scene/SceneScale.h"
+#include "scene/SkinnedTube.h"
+#include "scene/Animation.h"
+#include "scene/Primitives.h"
 
 using namespace obscura;
 
@@ -65,6 +71,7 @@ struct Options {
   HeadlessBackend backend = HeadlessBackend::OSMesa;
   bool quick = false;
   bool estimatorsOnly = false;  // section 6 alone
+  bool motionOnly = false;      // section 7 alone
 };
 
 struct BenchScene {
@@ -277,8 +284,9 @@ Options parseOptions(int argc, char** argv) {
     } else if (arg == "--backend") options.backend = parseBackend(value());
     else if (arg == "--quick") options.quick = true;
     else if (arg == "--estimators-only") options.estimatorsOnly = true;
+    else if (arg == "--motion-only") options.motionOnly = true;
     else throw InputError("unknown option '" + arg + "' (usage: obscura-bench [--out DIR] [--frames N] "
-                          "[--backend osmesa|egl] [--quick] [--estimators-only])");
+                          "[--backend osmesa|egl] [--quick] [--estimators-only] [--motion-only])");
   }
   return options;
 }
@@ -351,6 +359,93 @@ void writePlot(const std::string& dir) {
 
 }  // namespace
 
+// Section 7: the cost of skinning in each geometry pass and of the velocity pass. A crowd of skinned tubes (each
+// 64 x 16 quads on a chain of 40 joints, more than GLES 2's minimum palette of 16) on a floor, playing its bend; each
+// configuration is a Renderer of its own, all taking turns frame by frame at the same times:
+//   - still: the same pose baked into still meshes (posedScene), no skinning: the floor of the comparison;
+//   - texture, uniforms, uniforms at GLES 2's minimum limits (16-joint pieces), cpu: the skinning paths;
+//   - velocity drawing every instance instead of only those that moved (RendererOptions::velocityDrawsEverything);
+//   - the still scene's velocity: the full-screen camera motion alone.
+void motionSection(const Options& options, HeadlessContext& context, int w, int h) {
+  Scene crowd;
+  crowd.meshes.push_back(makeBox({-8.0f, -0.1f, -8.0f}, {8.0f, 0.0f, 8.0f}));
+  crowd.instances.push_back(Instance{0, glm::mat4(1.0f), -1, -1});
+  SkinnedTubeShape shape;
+  shape.joints = 40;
+  const int side = options.quick ? 3 : 5;
+  for (int i = 0; i < side; ++i)
+    for (int k = 0; k < side; ++k)
+      addSkinnedTube(crowd, shape, glm::vec3(2.0f * static_cast<float>(i - side / 2), 0.0f,
+                                             2.0f * static_cast<float>(k - side / 2)));
+  Camera camera = Camera::fit(crowd.worldBounds(), w, h);
+  struct Configuration {
+    std::string name;
+    RendererOptions renderer;
+    bool baked = false;
+  };
+  std::vector<Configuration> configurations(7);
+  configurations[0].name = "still (baked pose)";
+  configurations[0].baked = true;
+  configurations[1].name = "texture";
+  configurations[1].renderer.skinning = SkinningPath::Texture;
+  configurations[2].name = "uniforms";
+  configurations[2].renderer.skinning = SkinningPath::Uniforms;
+  configurations[3].name = "uniforms, GLES 2 minimum";
+  configurations[3].renderer.skinning = SkinningPath::Uniforms;
+  configurations[3].renderer.simulateVertexLimits = VertexLimits::gles2Minimum();
+  configurations[4].name = "cpu";
+  configurations[4].renderer.skinning = SkinningPath::Cpu;
+  configurations[5].name = "texture, velocity draws all";
+  configurations[5].renderer.skinning = SkinningPath::Texture;
+  configurations[5].renderer.velocityDrawsEverything = true;
+  configurations[6].name = "still, velocity draws all";
+  configurations[6].baked = true;
+  configurations[6].renderer.velocityDrawsEverything = true;
+
+  const Scene baked = posedScene(crowd, evaluatePose(crowd, 0.5));
+  std::vector<std::unique_ptr<Renderer>> renderers;
+  for (const Configuration& c : configurations) {
+    renderers.push_back(std::make_unique<Renderer>(context.caps(), c.renderer));
+    renderers.back()->setScene(c.baked ? baked : crowd);
+  }
+  const gl::RenderTarget output("bench output", w, h, GL_NEAREST, gl::RenderTarget::Depth::Renderbuffer,
+                                context.caps().depth24, context.caps().packedDepthStencil);
+  const OutputTarget target{output.framebuffer(), w, h, {}};
+  camera.width = w;
+  camera.height = h;
+  std::vector<FinishPassTimer> timers(configurations.size());
+  FrameOptions frame;
+  frame.retain = {"velocity"};  // the velocity pass runs (motion blur and TAA will read it)
+  const RenderSettings settings;
+  for (int f = -1; f < options.frames; ++f) {  // frame -1: the warm-up
+    frame.time = 0.25 + 0.5 * static_cast<double>(std::max(f, 0)) / options.frames;
+    for (size_t c = 0; c < configurations.size(); ++c) {
+      frame.timer = f < 0 ? nullptr : &timers[c];
+      renderers[c]->render(camera, settings, View::Final, target, frame);
+    }
+  }
+  std::printf("\n7. Motion, %dx%d: %d skinned tubes (%zu triangles, 40 joints each) on a floor, %s; ms per pass "
+              "(median of %d frames, all configurations taking turns)\n",
+              w, h, side * side, crowd.triangleCount(), context.caps().renderer.c_str(), options.frames);
+  const std::vector<std::string> passes = {"pose", "gbuffer", "lighting", "velocity"};
+  std::printf("%-30s %9s %9s %9s %9s %9s   %s\n", "configuration", "pose", "gbuffer", "lighting", "velocity", "frame",
+              "draws (cpu-deformed) in the last pass");
+  std::ofstream csv(options.outDir + "/motion.csv");
+  csv << "configuration,width,height,pass,median_ms\n";
+  for (size_t c = 0; c < configurations.size(); ++c) {
+    double frameMs = 0.0;
+    for (const std::string& pass : framePassNames()) frameMs += timers[c].medianMs(pass);
+    const GpuScene::Counts counts = renderers[c]->gpuScene().lastDrawCounts();
+    std::printf("%-30s %9.2f %9.2f %9.2f %9.2f %9.2f   %d (%d)\n", configurations[c].name.c_str(),
+                timers[c].medianMs("pose"), timers[c].medianMs("gbuffer"), timers[c].medianMs("lighting"), timers[c].medianMs("velocity"), frameMs,
+                counts.draws, counts.cpuDeformed);
+    for (const std::string& pass : passes)
+      csv << '"' << configurations[c].name << "\"," << w << "," << h << "," << pass << ","
+          << timers[c].medianMs(pass) << "\n";
+    csv << '"' << configurations[c].name << "\"," << w << "," << h << ",frame," << frameMs << "\n";
+  }
+}
+
 int main(int argc, char** argv) {
   try {
     const Options options = parseOptions(argc, argv);
@@ -373,6 +468,11 @@ int main(int argc, char** argv) {
     scenes.push_back({"2CylinderEngine", std::move(engine), engineCamera});
     Bench bench(options, context);
     const BenchScene& builtin = scenes[0];
+    if (options.motionOnly) {
+      motionSection(options, context, options.quick ? 640 : 1280, options.quick ? 360 : 720);
+      std::printf("\nobscura-bench: wrote %s/motion.csv\n", options.outDir.c_str());
+      return 0;
+    }
     if (options.estimatorsOnly) {
       const int w = options.quick ? 640 : 1280, h = options.quick ? 360 : 720;
       estimatorSection(bench, builtin, w, h, options.outDir);
@@ -505,7 +605,9 @@ int main(int argc, char** argv) {
         std::to_string(static_cast<int>(std::lround(disk))) + " px)";
     ratio(floorLabel.c_str(), "sao_over_fetch_floor", sao, floor, "");
     estimatorSection(bench, builtin, w, h, options.outDir);
-    std::printf("\nobscura-bench: wrote %s/bench.csv, ratios.csv, radius_sweep.csv, radius_sweep.png, estimators.csv\n",
+    motionSection(options, context, w, h);
+    std::printf("\nobscura-bench: wrote %s/bench.csv, ratios.csv, radius_sweep.csv, radius_sweep.png, estimators.csv, "
+                "motion.csv\n",
                 options.outDir.c_str());
     return 0;
   } catch (const InputError& e) {

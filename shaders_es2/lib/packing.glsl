@@ -51,3 +51,18 @@ float normalSimilarity(vec3 a, vec3 b) {
   w8 *= w8;
   return w8 * w2;
 }
+
+// Screen-space velocity (core/VelocityPacking.h): each component, in units of the screen's size (uv, [-1, 1]),
+// as a signed 16-bit code round(v * 32767) + 32768 in two bytes, high first: zero is exact (code 32768), the step is
+// 1/32767 of the screen (0.06 px at 1920), and a motion across more than the whole screen clamps.
+vec4 packVelocity(vec2 velocity) {
+  vec2 code = floor(clamp(velocity, -1.0, 1.0) * 32767.0 + 0.5) + 32768.0;
+  vec2 high = floor(code * (1.0 / 256.0));
+  vec2 low = code - high * 256.0;
+  return vec4(bytesToChannels(vec2(high.x, low.x)), bytesToChannels(vec2(high.y, low.y)));
+}
+
+vec2 unpackVelocity(vec4 texel) {
+  vec2 x = channelsToBytes(texel.rg), y = channelsToBytes(texel.ba);
+  return (vec2(x.x * 256.0 + x.y, y.x * 256.0 + y.y) - 32768.0) * (1.0 / 32767.0);
+}

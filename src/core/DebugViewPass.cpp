@@ -9,8 +9,9 @@ namespace {
 
 constexpr ViewDecoding kDecodings[] = {ViewDecoding::Grey,     ViewDecoding::Normals, ViewDecoding::Depth,
                                        ViewDecoding::Mask,     ViewDecoding::HdrColor, ViewDecoding::Color,
-                                       ViewDecoding::Count};
-constexpr const char* kDecodingNames[] = {"grey", "normals", "depth", "mask", "hdr-color", "color", "count"};
+                                       ViewDecoding::Count,    ViewDecoding::Velocity};
+constexpr const char* kDecodingNames[] = {"grey",  "normals", "depth", "mask",
+                                          "hdr-color", "color", "count", "velocity"};
 
 }  // namespace
 

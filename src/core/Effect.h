@@ -50,6 +50,7 @@ enum class ViewDecoding {
   HdrColor,  // the HDR encoding of lib/hdr.glsl, decoded, clamped to [0, 1]
   Color,     // RGB as stored
   Count,     // R holds a count / 255: grey 32/255 per count, white from 8 (the lighting's shading count)
+  Velocity,  // core/VelocityPacking.h decoded: RG = 0.5 + 8 v (v in uv units; grey 0.5 still), B = 0.5
 };
 
 struct TargetView {

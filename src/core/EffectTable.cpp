@@ -8,6 +8,7 @@
 #include "core/GBufferEffect.h"
 #include "core/LightingEffect.h"
 #include "core/TonemapEffect.h"
+#include "core/VelocityEffect.h"
 
 namespace obscura {
 
@@ -17,6 +18,7 @@ const std::vector<EffectEntry>& effectTable() {
   static const std::vector<EffectEntry> table = [] {
     std::vector<EffectEntry> rows = {
         EffectEntry::of<GBufferEffect>(),   // scene -> gbuffer (normal + 16-bit depth, own depth buffer)
+        EffectEntry::of<VelocityEffect>(),  // scene, gbuffer (and its depth) -> velocity (motion vectors)
         EffectEntry::of<AoEffect>(),        // gbuffer -> ao
         EffectEntry::of<LightingEffect>(),  // scene, ao, the G-buffer's depth -> scene-color (HDR)
         EffectEntry::of<TonemapEffect>(),   // scene-color -> display-color (sRGB, luma in alpha)
@@ -44,7 +46,9 @@ const EffectEntry& effectEntry(const std::string& effect) {
 
 const std::vector<std::string>& framePassNames() {
   static const std::vector<std::string> names = [] {
-    std::vector<std::string> out;
+    // "pose": the scene's animation, skinning and morphing work before the passes (Renderer::render: evaluating the
+    // pose, uploading joint textures and CPU-deformed vertices), timed like a pass.
+    std::vector<std::string> out = {"pose"};
     for (const EffectEntry& row : effectTable()) out.insert(out.end(), row.info.passes.begin(), row.info.passes.end());
     out.push_back("view");
     out.push_back("present");

@@ -137,6 +137,7 @@ void Renderer::beginFrame(const Camera& camera, const RenderSettings& settings, 
   frame_ = std::move(frame);
 
   // The scene's pose now and at the previous time (the last frame's pose when that is the one asked for).
+  if (options.timer) options.timer->begin("pose");
   const PoseOptions poseOptions{options.animation, options.loop};
   const ScenePose current = evaluatePose(sceneData_, time, poseOptions);
   const bool reuse = hasPrevious_ && !lastPose_.instanceWorld.empty() && frame_.previousTime == previousTime_ &&
@@ -145,6 +146,8 @@ void Renderer::beginFrame(const Camera& camera, const RenderSettings& settings, 
   scene_.setPose(current, previous);
   lastPose_ = current;
   lastPoseOptions_ = poseOptions;
+  if (options.timer) options.timer->end("pose");
+  checkErrors("pose");
 }
 
 void Renderer::endFrame() {

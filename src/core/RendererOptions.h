@@ -31,6 +31,9 @@ struct RendererOptions {
   // textures, else the uniform palette (core/GpuScene.h). A path the context cannot take falls back the same way.
   std::optional<SkinningPath> skinning;
   std::optional<VertexLimits> simulateVertexLimits;  // tests run the GLES 2 minimums on any context
+  // The velocity pass draws every instance, not only those that moved (core/VelocityEffect.h): the alternative the
+  // benchmark measures, and the tests' check that both give the same vectors.
+  bool velocityDrawsEverything = false;
 };
 
 }  // namespace obscura

@@ -1,0 +1,265 @@
+// Motion vectors (core/VelocityEffect.h): the packing on the GPU against its CPU mirror, a still scene gives zero,
+// known camera and object motions give the analytic velocity within the packing's quantisation, and every way of
+// drawing what moves (skinning paths, CPU deformation, every instance or only the moving ones) gives the same vectors.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <random>
+
+#include <glm/gtc/matrix_transform.hpp>
+
+#include "TestSupport.h"
+#include "core/ShaderLibrary.h"
+#include "core/VelocityPacking.h"
+#include "scene/Animation.h"
+#include "scene/Primitives.h"
+
+namespace obscura {
+namespace {
+
+namespace vp = VelocityPacking;
+
+TEST(GpuVelocityPacking, TheShaderPacksLikeTheCpuMirrorAndDecodesWhatItPacks) {
+  test::context();
+  std::vector<glm::vec4> values = {{0, 0, 0, 0}, {1, -1, 0, 0}, {-1.5f, 2.0f, 0, 0}, {1e-6f, -1e-6f, 0, 0}};
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<float> uniform(-1.1f, 1.1f);
+  while (values.size() < test::kPointSide * test::kPointSide) {
+    const glm::vec2 v(uniform(rng), uniform(rng));
+    // Skip values within a hair of a rounding boundary, where float evaluation order may legitimately differ.
+    const glm::vec2 scaled = v * vp::kStepsPerUnit;
+    if (std::abs(scaled.x - std::floor(scaled.x) - 0.5f) < 1e-2f) continue;
+    if (std::abs(scaled.y - std::floor(scaled.y) - 0.5f) < 1e-2f) continue;
+    values.emplace_back(v, 0.0f, 0.0f);
+  }
+  const char* vertex = R"(
+attribute vec2 a_position;
+attribute vec3 a_normal;
+varying vec2 v_value;
+void main() {
+  v_value = a_normal.xy;
+  gl_Position = vec4(a_position, 0.0, 1.0);
+  gl_PointSize = 1.0;
+}
+)";
+  for (bool roundTrip : {false, true}) {
+    // Packed, or packed, decoded and packed again: the decode must give back the same code.
+    const std::string fragment = std::string(R"(
+#include "lib/precision.glsl"
+#include "lib/packing.glsl"
+varying vec2 v_value;
+void main() {
+  vec4 texel = packVelocity(v_value);
+)") + (roundTrip ? "  texel = packVelocity(unpackVelocity(texel));\n" : "") + "  gl_FragColor = texel;\n}\n";
+    const gl::Program program("pack velocities", ShaderLibrary::composeText(vertex, {}, {}),
+                              ShaderLibrary::composeText(fragment, {}, {}));
+    const std::vector<std::uint8_t> pixels = test::drawPoints(program, values);
+    int mismatches = 0;
+    for (size_t i = 0; i < values.size(); ++i) {
+      const auto expected = vp::bytesFromVelocity(glm::vec2(values[i]));
+      for (size_t c = 0; c < 4; ++c)
+        if (pixels[i * 4 + c] != expected[c] && ++mismatches < 5)
+          ADD_FAILURE() << "velocity (" << values[i].x << ", " << values[i].y << ") byte " << c << ": GPU "
+                        << int(pixels[i * 4 + c]) << " CPU " << int(expected[c]) << (roundTrip ? " (round trip)" : "");
+    }
+    EXPECT_EQ(mismatches, 0);
+  }
+}
+
+// The raw velocity target of the last frame (rows top to bottom), decoded.
+std::vector<glm::vec2> readVelocity(Renderer& renderer) {
+  const std::vector<std::uint8_t> bytes = renderer.retained("velocity").readRgba();
+  std::vector<glm::vec2> out(bytes.size() / 4);
+  for (size_t p = 0; p < out.size(); ++p) out[p] = vp::velocityFromBytes(&bytes[p * 4]);
+  return out;
+}
+
+std::vector<glm::vec2> renderVelocity(Renderer& renderer, const Camera& camera, FrameOptions options) {
+  options.retain = {"velocity"};
+  test::render(renderer, camera, RenderSettings(), View::Final, options);
+  return readVelocity(renderer);
+}
+
+// The analytic motion of the world point seen at pixel (x, y) (rows from the top) through `now`, on the plane
+// z = planeZ, which moved by `worldMotion` since the previous frame seen through `before`.
+struct Projection {
+  glm::mat4 viewProjection;
+  glm::mat4 inverse;
+  static Projection of(const Camera& camera) {
+    const float aspect = static_cast<float>(camera.width) / static_cast<float>(camera.height);
+    const glm::mat4 vp = glm::perspective(camera.fovyRadians(), aspect, camera.near, camera.far) * camera.view();
+    return {vp, glm::inverse(vp)};
+  }
+};
+
+std::optional<glm::vec3> pointOnPlane(const Projection& now, int x, int y, int width, int height, float planeZ) {
+  const glm::vec2 ndc((static_cast<float>(x) + 0.5f) / static_cast<float>(width) * 2.0f - 1.0f,
+                      1.0f - (static_cast<float>(y) + 0.5f) / static_cast<float>(height) * 2.0f);
+  const glm::vec4 nearPoint = now.inverse * glm::vec4(ndc, -1.0f, 1.0f);
+  const glm::vec4 farPoint = now.inverse * glm::vec4(ndc, 1.0f, 1.0f);
+  const glm::vec3 a = glm::vec3(nearPoint) / nearPoint.w, b = glm::vec3(farPoint) / farPoint.w;
+  if (std::abs(b.z - a.z) < 1e-9f) return std::nullopt;
+  const float t = (planeZ - a.z) / (b.z - a.z);
+  if (t <= 0.0f) return std::nullopt;
+  return a + t * (b - a);
+}
+
+glm::vec2 uvOf(const Projection& projection, const glm::vec3& p) {
+  const glm::vec4 clip = projection.viewProjection * glm::vec4(p, 1.0f);
+  return glm::vec2(clip) / clip.w * 0.5f;
+}
+
+// A wall (z = 0) and, in front of it, a box (front face at z = 1) on a node that a translation animation moves
+// along +x at 1 m/s.
+Scene wallAndSlidingBox() {
+  Scene scene;
+  scene.meshes.push_back(test::makeRectangle({-30, -30, 0}, {60, 0, 0}, {0, 60, 0}));
+  scene.meshes.push_back(makeBox({-0.5f, -0.5f, 0.5f}, {0.5f, 0.5f, 1.0f}));
+  Node node;
+  scene.nodes.push_back(node);
+  Animation slide;
+  AnimationSampler sampler;
+  sampler.times = {0.0f, 10.0f};
+  sampler.values = std::vector<float>{-5, 0, 0, 5, 0, 0};
+  sampler.components = 3;
+  slide.samplers.push_back(sampler);
+  slide.channels.push_back({0, 0, AnimationPath::Translation});
+  scene.animations.push_back(slide);
+  scene.instances.push_back(Instance{0, glm::mat4(1.0f), -1, -1});
+  scene.instances.push_back(Instance{1, glm::mat4(1.0f), 0, -1});
+  return scene;
+}
+
+TEST(Velocity, AStillSceneAndAStillCameraGiveExactlyZero) {
+  Renderer renderer = test::makeRenderer();
+  renderer.setScene(wallAndSlidingBox());
+  const Camera camera = test::makeCamera({0.3f, 0.2f, 6.0f}, {0.0f, 0.0f, 0.0f}, 96, 64);
+  FrameOptions still;
+  still.time = 5.0;  // the box is moving at 5 s, but the previous pose is the same instant
+  for (int frame = 0; frame < 2; ++frame)
+    for (const glm::vec2& v : renderVelocity(renderer, camera, still)) ASSERT_EQ(v, glm::vec2(0.0f));
+}
+
+TEST(Velocity, ACameraPanGivesTheAnalyticMotion) {
+  Renderer renderer = test::makeRenderer();
+  Scene scene = wallAndSlidingBox();
+  scene.instances.pop_back();  // the wall alone
+  renderer.setScene(scene);
+  const int width = 120, height = 80;
+  Camera before = test::makeCamera({0.0f, 0.0f, 5.0f}, {0.0f, 0.0f, 0.0f}, width, height);
+  Camera now = test::makeCamera({0.25f, -0.1f, 5.2f}, {0.3f, 0.05f, 0.0f}, width, height);  // moves and turns
+  renderVelocity(renderer, before, {});
+  const std::vector<glm::vec2> velocity = renderVelocity(renderer, now, {});
+  const Projection p = Projection::of(now), q = Projection::of(before);
+  float worst = 0.0f;
+  for (int y = 0; y < height; ++y)
+    for (int x = 0; x < width; ++x) {
+      const auto point = pointOnPlane(p, x, y, width, height, 0.0f);
+      ASSERT_TRUE(point);
+      const glm::vec2 expected = uvOf(p, *point) - uvOf(q, *point);
+      worst = std::max(worst, glm::length(velocity[static_cast<size_t>(y * width + x)] - expected));
+    }
+  // The packing's step (1/32767 of the screen) and the 16-bit depth the motion is reconstructed from.
+  EXPECT_LT(worst, 3.0f / vp::kStepsPerUnit) << "worst error, in uv units";
+}
+
+TEST(Velocity, AMovingObjectGivesTheAnalyticMotionAndItsBackgroundNone) {
+  for (bool everything : {false, true}) {
+    RendererOptions options;
+    options.velocityDrawsEverything = everything;
+    Renderer renderer = test::makeRenderer(options);
+    renderer.setScene(wallAndSlidingBox());
+    const int width = 120, height = 80;
+    const Camera camera = test::makeCamera({0.0f, 0.0f, 5.0f}, {0.0f, 0.0f, 0.0f}, width, height);
+    FrameOptions frame;
+    frame.time = 5.0;          // the box at x = 0
+    frame.previousTime = 4.8;  // 0.2 m to the left before
+    const std::vector<glm::vec2> velocity = renderVelocity(renderer, camera, frame);
+    const Projection p = Projection::of(camera);
+    int onBox = 0, onWall = 0;
+    float worstBox = 0.0f, worstWall = 0.0f;
+    for (int y = 0; y < height; ++y)
+      for (int x = 0; x < width; ++x) {
+        const glm::vec2 v = velocity[static_cast<size_t>(y * width + x)];
+        const auto front = pointOnPlane(p, x, y, width, height, 1.0f);
+        // Inside the front face with a margin (edges rasterise either way), or clear of where the box is or was.
+        if (std::abs(front->x) < 0.45f && std::abs(front->y) < 0.45f) {
+          const glm::vec2 expected = uvOf(p, *front) - uvOf(p, *front - glm::vec3(0.2f, 0.0f, 0.0f));
+          worstBox = std::max(worstBox, glm::length(v - expected));
+          ++onBox;
+        } else if (std::abs(front->x) > 1.0f || std::abs(front->y) > 0.7f) {
+          worstWall = std::max(worstWall, glm::length(v));
+          ++onWall;
+        }
+      }
+    ASSERT_GT(onBox, 200);
+    ASSERT_GT(onWall, 2000);
+    EXPECT_LT(worstBox, 2.0f / vp::kStepsPerUnit) << (everything ? "drawing everything" : "drawing what moves");
+    EXPECT_EQ(worstWall, 0.0f) << "the wall does not move";
+  }
+}
+
+// The bending tube of test_skinning.cpp, simplified: a chain of three joints bending, on a floor.
+Scene bendingChain() {
+  Scene scene;
+  Mesh tube = makeBox({-0.3f, 0.0f, -0.3f}, {0.3f, 3.0f, 0.3f});
+  // Subdivide nothing: weight each vertex by height (the box's 8 corners spread over the joints).
+  for (const glm::vec3& v : tube.positions) {
+    const float t = v.y / 3.0f;
+    tube.joints.emplace_back(0, 1, 2, 0);
+    tube.weights.emplace_back(std::max(0.0f, 1.0f - 2.0f * t), 1.0f - std::abs(2.0f * t - 1.0f),
+                              std::max(0.0f, 2.0f * t - 1.0f), 0.0f);
+  }
+  scene.meshes.push_back(tube);
+  Skin skin;
+  Animation bend;
+  for (int j = 0; j < 3; ++j) {
+    Node node;
+    node.parent = j - 1;
+    node.translation = glm::vec3(0.0f, j == 0 ? 0.0f : 1.5f, 0.0f);
+    scene.nodes.push_back(node);
+    skin.joints.push_back(j);
+    skin.inverseBind.push_back(glm::translate(glm::mat4(1.0f), glm::vec3(0.0f, -1.5f * static_cast<float>(j), 0.0f)));
+    AnimationSampler rotation;
+    rotation.times = {0.0f, 1.0f};
+    const glm::quat q = glm::angleAxis(0.5f, glm::normalize(glm::vec3(0.2f, 0.3f, 1.0f)));
+    rotation.values = std::vector<float>{0, 0, 0, 1, q.x, q.y, q.z, q.w};
+    rotation.components = 4;
+    bend.samplers.push_back(rotation);
+    bend.channels.push_back({j, j, AnimationPath::Rotation});
+  }
+  scene.skins.push_back(skin);
+  scene.animations.push_back(bend);
+  Instance instance;
+  instance.node = 0;
+  instance.skin = 0;
+  scene.instances.push_back(instance);
+  return scene;
+}
+
+TEST(Velocity, EverySkinningPathGivesTheSameMotion) {
+  const Camera camera = test::makeCamera({0.5f, 1.5f, 7.0f}, {0.0f, 1.5f, 0.0f}, 96, 96);
+  FrameOptions frame;
+  frame.time = 0.6;
+  frame.previousTime = 0.5;
+  std::vector<std::vector<glm::vec2>> results;
+  for (SkinningPath path : {SkinningPath::Cpu, SkinningPath::Uniforms, SkinningPath::Texture}) {
+    RendererOptions options;
+    options.skinning = path;
+    Renderer renderer = test::makeRenderer(options);
+    renderer.setScene(bendingChain());
+    results.push_back(renderVelocity(renderer, camera, frame));
+  }
+  int moving = 0;
+  for (const glm::vec2& v : results[0]) moving += glm::length(v) > 1e-3f;
+  EXPECT_GT(moving, 300) << "the chain moves";
+  for (size_t r = 1; r < results.size(); ++r) {
+    int differing = 0;
+    for (size_t p = 0; p < results[0].size(); ++p) differing += glm::length(results[r][p] - results[0][p]) > 3e-4f;
+    // Silhouette pixels may rasterise differently through another float order.
+    EXPECT_LT(differing, moving / 50) << "path " << r << " against the CPU's";
+  }
+}
+
+}  // namespace
+}  // namespace obscura
