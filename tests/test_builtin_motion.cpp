@@ -1,13 +1,15 @@
 // The built-in scene's motion on the GPU (scene/BuiltinScene.h): at time 0 the frame is the rest pose's, bit for
-// bit, and later the pendulum and the limb are drawn where the CPU mirror (posedScene) puts them, by the default
-// skinning path and under GLES 2's minimum vertex limits.
+// bit; later the pendulum and the limb are drawn where the CPU mirror (posedScene) puts them, by the default
+// skinning path and under GLES 2's minimum vertex limits; and they alone have motion vectors.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cstdlib>
 #include <string>
 #include <utility>
 
 #include "TestSupport.h"
+#include "core/VelocityPacking.h"
 #include "scene/Animation.h"
 #include "scene/BuiltinScene.h"
 
@@ -79,4 +81,43 @@ TEST(BuiltinMotion, ThePendulumAndTheLimbAreDrawnWhereTheCpuMirrorPutsThem) {
       EXPECT_GT(moved, 0.004) << what << ": not the rest pose";
     }
   }
+}
+
+// Mid-swing (the pendulum and both limb joints at their fastest at 2 s), with a still camera: motion vectors where the
+// pendulum and the limb are, none on the room.
+TEST(BuiltinMotion, OnlyThePendulumAndTheLimbHaveMotionVectors) {
+  const Camera camera = builtinSceneCamera(320, 180);
+  Renderer renderer = test::makeRenderer();
+  renderer.setScene(makeBuiltinScene(BuiltinSceneOptions::withMotion()));
+  FrameOptions frame = at(2.0);
+  frame.previousTime = 1.95;
+  const test::RenderedImage depth = test::render(renderer, camera, RenderSettings(), View::Depth, frame);
+  frame.retain = {"velocity"};
+  test::render(renderer, camera, RenderSettings(), View::Final, frame);
+  const std::vector<std::uint8_t> velocity = renderer.retained("velocity").readRgba();  // rows top to bottom
+  // Where the moving objects are: the depth differs from the still room's.
+  Renderer room = test::makeRenderer();
+  room.setScene(makeBuiltinScene(BuiltinSceneOptions::still()));
+  const test::RenderedImage roomDepth = test::render(room, camera, RenderSettings(), View::Depth);
+  ASSERT_EQ(velocity.size(), depth.rgba.size());
+  auto objectNear = [&](int x, int y) {  // within a pixel: edges rasterise either way
+    for (int dy = -1; dy <= 1; ++dy)
+      for (int dx = -1; dx <= 1; ++dx) {
+        const int u = std::clamp(x + dx, 0, camera.width - 1), v = std::clamp(y + dy, 0, camera.height - 1);
+        const size_t p = (static_cast<size_t>(v) * static_cast<size_t>(camera.width) + static_cast<size_t>(u)) * 4;
+        if (depth.rgba[p] != roomDepth.rgba[p] || depth.rgba[p + 1] != roomDepth.rgba[p + 1]) return true;
+      }
+    return false;
+  };
+  int moving = 0, onRoom = 0;
+  for (int y = 0; y < camera.height; ++y)
+    for (int x = 0; x < camera.width; ++x) {
+      const size_t p = (static_cast<size_t>(y) * static_cast<size_t>(camera.width) + static_cast<size_t>(x)) * 4;
+      if (VelocityPacking::velocityFromBytes(&velocity[p]) == glm::vec2(0.0f)) continue;
+      ++moving;
+      if (!objectNear(x, y)) ++onRoom;
+    }
+  RecordProperty("moving_pixels", std::to_string(moving));
+  EXPECT_GT(moving, camera.width * camera.height / 250) << "pixels with motion";
+  EXPECT_EQ(onRoom, 0) << "pixels of the room with motion";
 }
