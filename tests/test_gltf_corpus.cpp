@@ -26,6 +26,60 @@ std::vector<std::string> corpus() {
   return files;
 }
 
+// What posing relies on from a loaded scene (scene/Scene.h): parents before children, indices in range, skinning
+// attributes per vertex with weights summing to 1 and joints inside the instance's skin, morph displacements per
+// vertex and rest weights per target, sampler values agreeing with their keys and channels.
+void expectConsistentMotion(const Scene& scene, const std::string& file) {
+  for (size_t n = 0; n < scene.nodes.size(); ++n) ASSERT_LT(scene.nodes[n].parent, static_cast<int>(n)) << file;
+  for (const Skin& skin : scene.skins) {
+    ASSERT_FALSE(skin.joints.empty()) << file;
+    ASSERT_EQ(skin.inverseBind.size(), skin.joints.size()) << file;
+    for (int joint : skin.joints) ASSERT_TRUE(joint >= 0 && static_cast<size_t>(joint) < scene.nodes.size()) << file;
+  }
+  for (const Instance& instance : scene.instances) {
+    ASSERT_TRUE(instance.node >= 0 && static_cast<size_t>(instance.node) < scene.nodes.size()) << file;
+    const Mesh& mesh = scene.meshes[static_cast<size_t>(instance.mesh)];
+    ASSERT_EQ(mesh.skinned(), instance.skin >= 0) << file;
+    if (instance.skin >= 0) {
+      ASSERT_LT(static_cast<size_t>(instance.skin), scene.skins.size()) << file;
+      const size_t jointCount = scene.skins[static_cast<size_t>(instance.skin)].joints.size();
+      for (const glm::u16vec4& joints : mesh.joints)
+        for (int c = 0; c < 4; ++c) ASSERT_LT(joints[c], jointCount) << file;
+    }
+    ASSERT_EQ(scene.nodes[static_cast<size_t>(instance.node)].weights.size(), mesh.morphTargets.size()) << file;
+  }
+  for (const Mesh& mesh : scene.meshes) {
+    if (mesh.skinned()) {
+      ASSERT_EQ(mesh.joints.size(), mesh.positions.size()) << file;
+      ASSERT_EQ(mesh.weights.size(), mesh.positions.size()) << file;
+      for (const glm::vec4& w : mesh.weights) ASSERT_NEAR(w.x + w.y + w.z + w.w, 1.0f, 1e-5f) << file;
+    }
+    for (const MorphTarget& target : mesh.morphTargets) {
+      ASSERT_EQ(target.positions.size(), mesh.positions.size()) << file;
+      ASSERT_TRUE(target.normals.empty() || target.normals.size() == mesh.positions.size()) << file;
+    }
+  }
+  for (const Animation& animation : scene.animations) {
+    for (const AnimationSampler& sampler : animation.samplers) {
+      ASSERT_FALSE(sampler.times.empty()) << file;
+      for (size_t k = 1; k < sampler.times.size(); ++k) ASSERT_GT(sampler.times[k], sampler.times[k - 1]) << file;
+      const size_t perKey = sampler.interpolation == Interpolation::CubicSpline ? 3 : 1;
+      ASSERT_EQ(sampler.values.size(), sampler.times.size() * perKey * static_cast<size_t>(sampler.components))
+          << file;
+    }
+    for (const AnimationChannel& channel : animation.channels) {
+      ASSERT_LT(static_cast<size_t>(channel.sampler), animation.samplers.size()) << file;
+      ASSERT_LT(static_cast<size_t>(channel.node), scene.nodes.size()) << file;
+      ASSERT_FALSE(scene.nodes[static_cast<size_t>(channel.node)].hasMatrix) << file;
+      const int components = animation.samplers[static_cast<size_t>(channel.sampler)].components;
+      if (channel.path == AnimationPath::Weights)
+        ASSERT_EQ(static_cast<size_t>(components), scene.nodes[static_cast<size_t>(channel.node)].weights.size())
+            << file;
+      else ASSERT_EQ(components, channel.path == AnimationPath::Rotation ? 4 : 3) << file;
+    }
+  }
+}
+
 // What the renderer relies on from a loaded scene.
 void expectDrawable(const Scene& scene, const std::string& file) {
   ASSERT_FALSE(scene.instances.empty()) << file;
@@ -47,6 +101,7 @@ void expectDrawable(const Scene& scene, const std::string& file) {
         << file;
   const Bounds bounds = scene.worldBounds();
   ASSERT_TRUE(std::isfinite(bounds.radius())) << file;
+  expectConsistentMotion(scene, file);
 }
 
 }  // namespace
@@ -110,6 +165,58 @@ TEST(GltfCorpus, RepairableFilesLoadWithAWarning) {
   expectDrawable(loadGltfFile(test::assimpModels() + "/issue_3269/texcoord_crash.gltf"), "texcoord_crash");
 }
 
+// The corpus's moving samples are read whole: their skins, morph targets and animations, not only the bind pose.
+TEST(GltfCorpus, AnimatedSamplesKeepTheirMotion) {
+  GltfLoadReport report;
+  const Scene skin = loadGltfFile(test::assimpModels() + "/simple_skin/simple_skin.gltf", &report);
+  expectDrawable(skin, "simple_skin");
+  EXPECT_TRUE(report.warnings.empty()) << report.warnings.front();
+  ASSERT_EQ(skin.nodes.size(), 3u);  // the skinned mesh's node, its child (joint 0) and grandchild (joint 1)
+  EXPECT_EQ(skin.nodes[1].parent, 0);
+  EXPECT_EQ(skin.nodes[2].parent, 1);
+  ASSERT_EQ(skin.skins.size(), 1u);
+  EXPECT_EQ(skin.skins[0].joints, (std::vector<int>{1, 2}));
+  // Both inverse bind matrices move by (-0.5, -1, 0) (the file's accessor min and max).
+  for (const glm::mat4& inverseBind : skin.skins[0].inverseBind)
+    EXPECT_EQ(glm::vec3(inverseBind[3]), glm::vec3(-0.5f, -1.0f, 0.0f));
+  ASSERT_EQ(skin.instances.size(), 1u);
+  EXPECT_EQ(skin.instances[0].skin, 0);
+  const Mesh& skinned = skin.meshes[static_cast<size_t>(skin.instances[0].mesh)];
+  // The file has no NORMAL: flat normals unweld its 10 vertices into 8 triangles' 24, each keeping its joints.
+  ASSERT_EQ(skinned.positions.size(), 24u);
+  ASSERT_EQ(skinned.joints.size(), 24u);
+  // Its strip of height 2 blends from joint 0 alone at the bottom to joint 1 alone at the top.
+  for (size_t v = 0; v < skinned.positions.size(); ++v) {
+    const float up = skinned.positions[v].y / 2.0f;
+    EXPECT_EQ(skinned.joints[v], glm::u16vec4(0, up > 0.0f ? 1 : 0, 0, 0)) << v << " (a slot of weight 0: joint 0)";
+    EXPECT_EQ(skinned.weights[v], glm::vec4(1.0f - up, up, 0, 0)) << v;
+  }
+  ASSERT_EQ(skin.animations.size(), 1u);
+  ASSERT_EQ(skin.animations[0].channels.size(), 1u);
+  EXPECT_EQ(skin.animations[0].channels[0].node, 2);
+  EXPECT_EQ(skin.animations[0].channels[0].path, AnimationPath::Rotation);
+  const AnimationSampler& turn = skin.animations[0].samplers[0];
+  EXPECT_EQ(turn.times.size(), 12u);
+  EXPECT_FLOAT_EQ(turn.times.back(), 5.5f);
+  EXPECT_EQ(turn.values.size(), 48u);
+
+  const Scene cube = loadGltfFile(test::assimpModels() +
+                                  "/glTF-Sample-Models/AnimatedMorphCube-glTF/AnimatedMorphCube.gltf");
+  expectDrawable(cube, "AnimatedMorphCube");
+  ASSERT_EQ(cube.meshes.size(), 1u);
+  ASSERT_EQ(cube.meshes[0].morphTargets.size(), 2u);  // "thin" and "angle"
+  for (const MorphTarget& target : cube.meshes[0].morphTargets) EXPECT_EQ(target.normals.size(), 24u);
+  ASSERT_EQ(cube.nodes.size(), 1u);
+  EXPECT_EQ(cube.nodes[0].weights, (std::vector<float>{0.0f, 0.0f}));
+  ASSERT_EQ(cube.animations.size(), 1u);
+  EXPECT_EQ(cube.animations[0].name, "Square");
+  ASSERT_EQ(cube.animations[0].channels.size(), 1u);
+  EXPECT_EQ(cube.animations[0].channels[0].path, AnimationPath::Weights);
+  EXPECT_EQ(cube.animations[0].samplers[0].components, 2);
+  EXPECT_EQ(cube.animations[0].samplers[0].times.size(), 127u);
+  EXPECT_NEAR(cube.animations[0].duration(), 4.2f, 1e-4f);
+}
+
 TEST(GltfLimits, AbsurdCountsAreRefusedNotAttempted) {
   GltfLimits tight;
   tight.maxAccessorElements = 10;  // the box has 24 vertices
@@ -155,6 +262,24 @@ TEST(TexturePreparation, FollowsWebGl1NonPowerOfTwoRules) {
   p = prepareTextureForGles2(npot, bogus, 4096);
   EXPECT_EQ(p.sampler.minFilter, 0x2703);
   EXPECT_EQ(p.sampler.wrapS, 0x2901);
+}
+
+// The fuzzer's own seeds (tests/fuzz/seeds, for skins, morph targets and animations) are valid files: each loads,
+// with what moves read and consistent, so that the fuzzer starts from inputs that reach those code paths.
+TEST(GltfCorpus, FuzzerSeedsLoadWithTheirMotion) {
+  int count = 0;
+  for (const auto& entry : std::filesystem::directory_iterator(test::sourceDir() + "/tests/fuzz/seeds")) {
+    const std::string ext = entry.path().extension().string();
+    if (ext != ".gltf" && ext != ".glb") continue;
+    const std::string file = entry.path().string();
+    GltfLoadReport report;
+    const Scene scene = loadGltfFile(file, &report);
+    expectDrawable(scene, file);
+    EXPECT_FALSE(scene.animations.empty()) << file;
+    EXPECT_TRUE(scene.animated()) << file;
+    ++count;
+  }
+  EXPECT_EQ(count, 3);
 }
 
 // Inputs the fuzzer (tests/fuzz, tools/fuzz-gltf.sh) once broke the loader with; each must now be refused cleanly.

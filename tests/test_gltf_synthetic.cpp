@@ -1,6 +1,7 @@
 // The glTF loader on small files built in the test, one feature or one fault at a time: index types, node
 // transforms, generated normals, texture coordinates and their KHR_texture_transform, materials, sparse accessors,
-// and the refusals the assimp corpus has no file for (strides, component types, ranges, absurd counts).
+// the node hierarchy, skins, morph targets and animations, and the refusals the assimp corpus has no file for
+// (strides, component types, ranges, absurd counts, and what moves: joints, key times and values, sampler counts).
 #include <gtest/gtest.h>
 
 #include <sys/resource.h>
@@ -19,7 +20,8 @@ using nlohmann::json;
 
 namespace {
 
-constexpr int kUnsignedByte = 5121, kUnsignedShort = 5123, kUnsignedInt = 5125, kFloat = 5126;
+constexpr int kByte = 5120, kUnsignedByte = 5121, kShort = 5122, kUnsignedShort = 5123, kUnsignedInt = 5125,
+              kFloat = 5126;
 
 // A .gltf document whose one buffer ("buffer.bin") is handed to the loader as a side file.
 class GltfBuilder {
@@ -57,6 +59,13 @@ class GltfBuilder {
   }
   int floats(const std::vector<float>& values, const char* type, int components) {
     return accessor(view(values), kFloat, values.size() / static_cast<size_t>(components), type);
+  }
+  // Integers of type T as an accessor of `componentType`, normalised or not.
+  template <typename T>
+  int integers(const std::vector<T>& values, int componentType, const char* type, int components, bool normalized) {
+    const int index = accessor(view(values), componentType, values.size() / static_cast<size_t>(components), type);
+    if (normalized) doc_["accessors"][static_cast<size_t>(index)]["normalized"] = true;
+    return index;
   }
 
   // A mesh of one primitive; returns the node that places it (with `node` merged in: matrix, TRS, children).
@@ -343,4 +352,610 @@ TEST(GltfSynthetic, AHugeCountOverAShortBufferIsRefusedBeforeAllocating) {
   const long grownMegabytes = (peakResidentKilobytes() - peakBefore) / 1024;
   EXPECT_NE(message.find("reads up to byte 360000000 of bufferView 0, which holds 48"), std::string::npos) << message;
   EXPECT_LT(grownMegabytes, 100) << "the peak resident size grew by " << grownMegabytes << " MB";
+}
+
+// ---- What moves: the node hierarchy, skins, morph targets, animations (issue 13) ----
+
+namespace {
+
+const std::vector<float> kQuadNormals = {0, 0, 1, 0, 0, 1, 0, 0, 1, 0, 0, 1};
+
+json quadAttributes(GltfBuilder& g) {
+  return {{"POSITION", g.floats(kQuad, "VEC3", 3)}, {"NORMAL", g.floats(kQuadNormals, "VEC3", 3)}};
+}
+int quadIndices(GltfBuilder& g) { return g.accessor(g.view(kQuadIndices), kUnsignedInt, 6, "SCALAR"); }
+
+// A sampler (as JSON) over float key times and float values of `type`.
+json sampler(GltfBuilder& g, const std::vector<float>& times, const std::vector<float>& values, const char* type,
+             int components, const char* interpolation = "LINEAR") {
+  return {{"input", g.floats(times, "SCALAR", 1)},
+          {"output", g.floats(values, type, components)},
+          {"interpolation", interpolation}};
+}
+json channel(int samplerIndex, int node, const char* path) {
+  return {{"sampler", samplerIndex}, {"target", {{"node", node}, {"path", path}}}};
+}
+void addAnimation(GltfBuilder& g, json samplers, json channels, const char* name = "") {
+  if (!g.doc().contains("animations")) g.doc()["animations"] = json::array();
+  json animation = {{"samplers", std::move(samplers)}, {"channels", std::move(channels)}};
+  if (*name) animation["name"] = name;
+  g.doc()["animations"].push_back(std::move(animation));
+}
+
+// The unit quad skinned to a two-joint chain: node 0 places the mesh with skin 0; node 1 ("hip", at the origin) is
+// the root joint, node 2 ("knee", one up) its child. Vertices 0 and 1 follow the hip, 2 and 3 the knee, unless the
+// caller gives other joints and weights.
+struct SkinnedQuad {
+  int meshNode = 0, hip = 1, knee = 2;
+};
+SkinnedQuad addSkinnedQuad(GltfBuilder& g,
+                           const std::vector<std::uint8_t>& joints = {0, 0, 0, 0, 0, 0, 0, 0, 1, 0, 0, 0, 1, 0, 0, 0},
+                           const std::vector<float>& weights = {1, 0, 0, 0, 1, 0, 0, 0, 1, 0, 0, 0, 1, 0, 0, 0}) {
+  json attributes = quadAttributes(g);
+  attributes["JOINTS_0"] = g.integers(joints, kUnsignedByte, "VEC4", 4, false);
+  attributes["WEIGHTS_0"] = g.floats(weights, "VEC4", 4);
+  SkinnedQuad quad;
+  quad.meshNode = g.meshNode(attributes, quadIndices(g), -1, {{"skin", 0}});
+  quad.knee = g.addNode({{"name", "knee"}, {"translation", {0, 1, 0}}});
+  quad.hip = g.addNode({{"name", "hip"}, {"children", {quad.knee}}});
+  // Inverse bind matrices (column-major): identity for the hip, a move down by one for the knee.
+  const std::vector<float> inverseBind = {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1,
+                                          1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, -1, 0, 1};
+  g.doc()["skins"] = json::array(
+      {{{"joints", {quad.hip, quad.knee}}, {"inverseBindMatrices", g.floats(inverseBind, "MAT4", 16)},
+        {"skeleton", quad.hip}, {"name", "legs"}}});
+  return quad;
+}
+
+// The quad with two morph targets: target 0 moves vertex 2 by +z (dense POSITION, with NORMAL deltas), target 1
+// moves vertex 3 by +x (a sparse POSITION accessor without a buffer view).
+int addMorphedQuad(GltfBuilder& g, json node = json::object(), json meshWeights = json()) {
+  const std::vector<float> lift = {0, 0, 0, 0, 0, 0, 0, 0, 1, 0, 0, 0};
+  const std::vector<float> tilt = {0, 0, 0, 0, 0, 0, 0, -0.5f, 0, 0, 0, 0};
+  const int sparse = g.accessor(-1, kFloat, 4, "VEC3");
+  const std::vector<std::uint8_t> which = {3};
+  const std::vector<float> moved = {1, 0, 0};
+  g.doc()["accessors"][static_cast<size_t>(sparse)]["sparse"] = {
+      {"count", 1},
+      {"indices", {{"bufferView", g.view(which)}, {"componentType", kUnsignedByte}}},
+      {"values", {{"bufferView", g.view(moved)}}}};
+  json primitive = {{"attributes", quadAttributes(g)},
+                    {"indices", quadIndices(g)},
+                    {"targets", {{{"POSITION", g.floats(lift, "VEC3", 3)}, {"NORMAL", g.floats(tilt, "VEC3", 3)}},
+                                 {{"POSITION", sparse}}}}};
+  json mesh = {{"primitives", {primitive}}};
+  if (!meshWeights.is_null()) mesh["weights"] = meshWeights;
+  g.doc()["meshes"].push_back(mesh);
+  node["mesh"] = g.doc()["meshes"].size() - 1;
+  return g.addNode(node);
+}
+
+bool hasWarning(const GltfLoadReport& report, const std::string& fragment) {
+  for (const std::string& w : report.warnings)
+    if (w.find(fragment) != std::string::npos) return true;
+  return false;
+}
+
+std::string warnings(const GltfLoadReport& report) {
+  std::string out;
+  for (const std::string& w : report.warnings) out += w + "\n";
+  return out;
+}
+
+}  // namespace
+
+TEST(GltfSynthetic, KeepsTheNodeHierarchyParentsFirst) {
+  GltfBuilder gltf;
+  const float h = std::sqrt(0.5f);
+  const json matrix = {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 5, 6, 7, 1};
+  const int leaf = gltf.meshNode(quadAttributes(gltf), quadIndices(gltf), -1, {{"name", "leaf"}, {"matrix", matrix}});
+  const int middle = gltf.addNode({{"name", "middle"}, {"translation", {1, 0, 0}}, {"rotation", {0, 0, h, h}},
+                                   {"scale", {2, 2, 2}}, {"children", {leaf}}});
+  gltf.addNode({{"name", "root"}, {"children", {middle}}});
+  const Scene scene = gltf.load();
+  // glTF order is leaf, middle, root; the scene's is root, middle, leaf.
+  ASSERT_EQ(scene.nodes.size(), 3u);
+  EXPECT_EQ(scene.nodes[0].name, "root");
+  EXPECT_EQ(scene.nodes[0].parent, -1);
+  EXPECT_EQ(scene.nodes[1].name, "middle");
+  EXPECT_EQ(scene.nodes[1].parent, 0);
+  EXPECT_FALSE(scene.nodes[1].hasMatrix);
+  expectNear(scene.nodes[1].translation, glm::vec3(1, 0, 0), "middle translation");
+  expectNear(scene.nodes[1].scale, glm::vec3(2), "middle scale");
+  EXPECT_NEAR(scene.nodes[1].rotation.z, h, 1e-6f);
+  EXPECT_NEAR(scene.nodes[1].rotation.w, h, 1e-6f);
+  EXPECT_EQ(scene.nodes[2].name, "leaf");
+  EXPECT_EQ(scene.nodes[2].parent, 1);
+  EXPECT_TRUE(scene.nodes[2].hasMatrix);
+  expectNear(glm::vec3(scene.nodes[2].matrix[3]), glm::vec3(5, 6, 7), "leaf matrix translation");
+  EXPECT_TRUE(scene.nodes[2].weights.empty());
+  EXPECT_TRUE(scene.skins.empty());
+  EXPECT_TRUE(scene.animations.empty());
+  ASSERT_EQ(scene.instances.size(), 1u);
+  EXPECT_EQ(scene.instances[0].node, 2);
+  EXPECT_EQ(scene.instances[0].skin, -1);
+  // The instance's world matrix is the product of the kept nodes' rest transforms.
+  const glm::mat4 world = scene.nodes[0].localRest() * scene.nodes[1].localRest() * scene.nodes[2].localRest();
+  for (int c = 0; c < 4; ++c) expectNear(glm::vec3(scene.instances[0].world[c]), glm::vec3(world[c]), "world column");
+  // (0, 0, 0) -> leaf (5, 6, 7) -> scale 2 (10, 12, 14) -> quarter turn about z (-12, 10, 14) -> + (1, 0, 0).
+  expectNear(glm::vec3(scene.instances[0].world * glm::vec4(0, 0, 0, 1)), glm::vec3(-11, 10, 14), "rest world");
+}
+
+TEST(GltfSynthetic, ANodeUnderTwoParentsGetsACopyPerPath) {
+  GltfBuilder gltf;
+  const int leaf = gltf.meshNode(quadAttributes(gltf), quadIndices(gltf));
+  gltf.addNode({{"translation", {-5, 0, 0}}, {"children", {leaf}}});
+  gltf.addNode({{"translation", {5, 0, 0}}, {"children", {leaf}}});
+  addAnimation(gltf, {sampler(gltf, {0, 1}, {0, 0, 0, 0, 1, 0}, "VEC3", 3)}, {channel(0, leaf, "translation")});
+  GltfLoadReport report;
+  const Scene scene = gltf.load(&report);
+  ASSERT_EQ(scene.nodes.size(), 4u);
+  ASSERT_EQ(scene.instances.size(), 2u);
+  EXPECT_NE(scene.instances[0].node, scene.instances[1].node);
+  EXPECT_TRUE(hasWarning(report, "more than one parent")) << warnings(report);
+  // The animation moves both copies.
+  ASSERT_EQ(scene.animations.size(), 1u);
+  ASSERT_EQ(scene.animations[0].channels.size(), 2u);
+  EXPECT_EQ(scene.animations[0].channels[0].node, scene.instances[0].node);
+  EXPECT_EQ(scene.animations[0].channels[1].node, scene.instances[1].node);
+  EXPECT_EQ(scene.animations[0].channels[0].sampler, scene.animations[0].channels[1].sampler);
+}
+
+TEST(GltfSynthetic, ReadsASkinAndRepairsItsWeights) {
+  GltfBuilder gltf;
+  // Vertex 0: the hip alone, other slots naming a joint that does not exist with weight zero (pointed at joint 0).
+  // Vertex 1: half hip, half knee. Vertex 2: no weight at all (follows its first joint, the knee, with weight 1).
+  // Vertex 3: weights summing to 4 (renormalised to a half each).
+  const std::vector<std::uint8_t> joints = {0, 9, 9, 9, 0, 1, 0, 0, 1, 7, 0, 0, 0, 1, 0, 0};
+  const std::vector<float> weights = {1, 0, 0, 0, 0.5f, 0.5f, 0, 0, 0, 0, 0, 0, 2, 2, 0, 0};
+  const SkinnedQuad quad = addSkinnedQuad(gltf, joints, weights);
+  GltfLoadReport report;
+  const Scene scene = gltf.load(&report);
+
+  ASSERT_EQ(scene.nodes.size(), 3u);  // the mesh node, then the hip and its knee
+  ASSERT_EQ(scene.skins.size(), 1u);
+  const Skin& skin = scene.skins[0];
+  EXPECT_EQ(skin.name, "legs");
+  ASSERT_EQ(skin.joints.size(), 2u);
+  EXPECT_EQ(scene.nodes[static_cast<size_t>(skin.joints[0])].name, "hip");
+  EXPECT_EQ(scene.nodes[static_cast<size_t>(skin.joints[1])].name, "knee");
+  EXPECT_EQ(skin.skeleton, skin.joints[0]);
+  EXPECT_EQ(skin.inverseBind[0], glm::mat4(1.0f));
+  expectNear(glm::vec3(skin.inverseBind[1][3]), glm::vec3(0, -1, 0), "the knee's inverse bind translation");
+  (void)quad;
+
+  ASSERT_EQ(scene.instances.size(), 1u);
+  EXPECT_EQ(scene.instances[0].skin, 0);
+  EXPECT_EQ(scene.instances[0].node, 0);
+  const Mesh& mesh = scene.meshes[static_cast<size_t>(scene.instances[0].mesh)];
+  ASSERT_TRUE(mesh.skinned());
+  ASSERT_EQ(mesh.joints.size(), 4u);
+  ASSERT_EQ(mesh.weights.size(), 4u);
+  EXPECT_EQ(mesh.joints[0], glm::u16vec4(0, 0, 0, 0));
+  EXPECT_EQ(mesh.weights[0], glm::vec4(1, 0, 0, 0));
+  EXPECT_EQ(mesh.joints[1], glm::u16vec4(0, 1, 0, 0));
+  EXPECT_EQ(mesh.weights[1], glm::vec4(0.5f, 0.5f, 0, 0));
+  EXPECT_EQ(mesh.joints[2], glm::u16vec4(1, 0, 0, 0));
+  EXPECT_EQ(mesh.weights[2], glm::vec4(1, 0, 0, 0));
+  EXPECT_EQ(mesh.joints[3], glm::u16vec4(0, 1, 0, 0));
+  EXPECT_EQ(mesh.weights[3], glm::vec4(0.5f, 0.5f, 0, 0));
+  EXPECT_TRUE(hasWarning(report, "WEIGHTS_0 of 1 vertices did not sum to 1; renormalised")) << warnings(report);
+  EXPECT_TRUE(hasWarning(report, "1 vertices have all WEIGHTS_0 zero")) << warnings(report);
+  EXPECT_TRUE(scene.animated());
+}
+
+TEST(GltfSynthetic, ReadsNormalisedIntegerWeightsAndIgnoresASecondSet) {
+  GltfBuilder gltf;
+  json attributes = quadAttributes(gltf);
+  const std::vector<std::uint16_t> joints = {0, 1, 0, 0, 0, 1, 0, 0, 0, 1, 0, 0, 0, 1, 0, 0};
+  // 3/4 and 1/4 as normalised unsigned shorts; vertex 3 has lost its second weight to WEIGHTS_1.
+  const std::vector<std::uint16_t> weights = {49151, 16384, 0, 0, 49151, 16384, 0, 0,
+                                              49151, 16384, 0, 0, 32768, 0, 0, 0};
+  attributes["JOINTS_0"] = gltf.integers(joints, kUnsignedShort, "VEC4", 4, false);
+  attributes["WEIGHTS_0"] = gltf.integers(weights, kUnsignedShort, "VEC4", 4, true);
+  attributes["JOINTS_1"] = attributes["JOINTS_0"];
+  attributes["WEIGHTS_1"] = attributes["WEIGHTS_0"];
+  const int meshNode = gltf.meshNode(attributes, quadIndices(gltf), -1, {{"skin", 0}});
+  const int joint0 = gltf.addNode(json::object()), joint1 = gltf.addNode(json::object());
+  gltf.doc()["skins"] = json::array({{{"joints", {joint0, joint1}}}});
+  GltfLoadReport report;
+  const Scene scene = gltf.load(&report);
+  (void)meshNode;
+  ASSERT_EQ(scene.skins.size(), 1u);
+  EXPECT_EQ(scene.skins[0].inverseBind[1], glm::mat4(1.0f)) << "identity without inverseBindMatrices";
+  EXPECT_EQ(scene.skins[0].skeleton, -1);
+  const Mesh& mesh = scene.meshes[0];
+  EXPECT_NEAR(mesh.weights[0].x, 0.75f, 1e-4f);
+  EXPECT_NEAR(mesh.weights[0].y, 0.25f, 1e-4f);
+  EXPECT_EQ(mesh.weights[3], glm::vec4(1, 0, 0, 0)) << "renormalised, its zero-weight joint slot pointed at 0";
+  EXPECT_EQ(mesh.joints[3], glm::u16vec4(0, 0, 0, 0));
+  EXPECT_TRUE(hasWarning(report, "JOINTS_1 / WEIGHTS_1 ignored")) << warnings(report);
+  EXPECT_TRUE(hasWarning(report, "WEIGHTS_0 of 1 vertices did not sum to 1")) << warnings(report);
+}
+
+TEST(GltfSynthetic, AJointedPrimitiveWithoutASkinIsDrawnRigid) {
+  GltfBuilder gltf;
+  const SkinnedQuad quad = addSkinnedQuad(gltf);
+  // A second node places the same mesh without a skin.
+  gltf.addNode({{"mesh", 0}, {"translation", {3, 0, 0}}});
+  GltfLoadReport report;
+  const Scene scene = gltf.load(&report);
+  (void)quad;
+  ASSERT_EQ(scene.instances.size(), 2u);
+  const Instance& skinned = scene.instances[0].skin >= 0 ? scene.instances[0] : scene.instances[1];
+  const Instance& rigid = scene.instances[0].skin >= 0 ? scene.instances[1] : scene.instances[0];
+  EXPECT_EQ(skinned.skin, 0);
+  EXPECT_EQ(rigid.skin, -1);
+  EXPECT_NE(skinned.mesh, rigid.mesh) << "one mesh per way of drawing it";
+  EXPECT_TRUE(scene.meshes[static_cast<size_t>(skinned.mesh)].skinned());
+  EXPECT_FALSE(scene.meshes[static_cast<size_t>(rigid.mesh)].skinned());
+  EXPECT_TRUE(scene.meshes[static_cast<size_t>(rigid.mesh)].weights.empty());
+  EXPECT_TRUE(hasWarning(report, "has JOINTS_0 but a node without a skin places it; drawn rigid")) << warnings(report);
+}
+
+TEST(GltfSynthetic, ReadsMorphTargetsAndRestWeights) {
+  GltfBuilder gltf;
+  const int meshDefaults = addMorphedQuad(gltf, {{"name", "mesh weights"}}, {0.25, 0.5});
+  const int own = gltf.addNode({{"name", "own weights"}, {"mesh", 0}, {"weights", {1, 0}}});
+  const int none = addMorphedQuad(gltf, {{"name", "no weights"}});
+  (void)meshDefaults, (void)own, (void)none;
+  const Scene scene = gltf.load();
+  ASSERT_EQ(scene.nodes.size(), 3u);
+  for (const Node& node : scene.nodes) {
+    if (node.name == "mesh weights") EXPECT_EQ(node.weights, (std::vector<float>{0.25f, 0.5f}));
+    else if (node.name == "own weights") EXPECT_EQ(node.weights, (std::vector<float>{1.0f, 0.0f}));
+    else EXPECT_EQ(node.weights, (std::vector<float>{0.0f, 0.0f})) << node.name;
+  }
+  const Mesh& mesh = scene.meshes[0];
+  ASSERT_EQ(mesh.morphTargets.size(), 2u);
+  const MorphTarget& lift = mesh.morphTargets[0];
+  ASSERT_EQ(lift.positions.size(), 4u);
+  ASSERT_EQ(lift.normals.size(), 4u);
+  expectNear(lift.positions[2], glm::vec3(0, 0, 1), "target 0 lifts vertex 2");
+  expectNear(lift.positions[0], glm::vec3(0), "target 0 leaves vertex 0");
+  expectNear(lift.normals[2], glm::vec3(0, -0.5f, 0), "target 0 tilts vertex 2's normal");
+  const MorphTarget& slide = mesh.morphTargets[1];
+  ASSERT_EQ(slide.positions.size(), 4u);
+  EXPECT_TRUE(slide.normals.empty());
+  expectNear(slide.positions[3], glm::vec3(1, 0, 0), "target 1 (sparse) moves vertex 3");
+  expectNear(slide.positions[1], glm::vec3(0), "target 1 leaves vertex 1");
+  EXPECT_TRUE(scene.animated());
+}
+
+TEST(GltfSynthetic, FlatNormalsOfAMorphedMeshFollowItsTargets) {
+  GltfBuilder gltf;
+  const std::vector<float> lift = {0, 0, 0, 0, 0, 0, 0, 0, 1, 0, 0, 0};  // vertex 2 up by one
+  json primitive = {{"attributes", {{"POSITION", gltf.floats(kQuad, "VEC3", 3)}}},
+                    {"indices", quadIndices(gltf)},
+                    {"targets", {{{"POSITION", gltf.floats(lift, "VEC3", 3)}}}}};
+  gltf.doc()["meshes"].push_back({{"primitives", {primitive}}});
+  gltf.addNode({{"mesh", 0}});
+  const Scene scene = gltf.load();
+  const Mesh& mesh = scene.meshes[0];
+  ASSERT_EQ(mesh.positions.size(), 6u);  // unwelded
+  ASSERT_EQ(mesh.morphTargets.size(), 1u);
+  const MorphTarget& target = mesh.morphTargets[0];
+  ASSERT_EQ(target.positions.size(), 6u);
+  ASSERT_EQ(target.normals.size(), 6u);
+  for (size_t v = 0; v < 6; ++v) {
+    // Fully applied, each face's normal is that of its displaced corners.
+    const size_t first = v / 3 * 3;
+    const glm::vec3 a = mesh.positions[first] + target.positions[first];
+    const glm::vec3 b = mesh.positions[first + 1] + target.positions[first + 1];
+    const glm::vec3 c = mesh.positions[first + 2] + target.positions[first + 2];
+    expectNear(mesh.normals[v] + target.normals[v], glm::normalize(glm::cross(b - a, c - a)),
+               "vertex " + std::to_string(v));
+  }
+  expectNear(target.positions[2], glm::vec3(0, 0, 1), "corner 2 of triangle 0 is vertex 2");
+}
+
+TEST(GltfSynthetic, AMorphedMeshKeepsTrianglesItsTargetsOpen) {
+  GltfBuilder gltf;
+  const std::vector<float> line = {0, 0, 0, 1, 0, 0, 2, 0, 0};  // collinear at rest
+  const std::vector<float> open = {0, 0, 0, 0, 1, 0, 0, 0, 0};
+  json primitive = {{"attributes", {{"POSITION", gltf.floats(line, "VEC3", 3)}}},
+                    {"targets", {{{"POSITION", gltf.floats(open, "VEC3", 3)}}}}};
+  gltf.doc()["meshes"].push_back({{"primitives", {primitive}}});
+  gltf.addNode({{"mesh", 0}, {"weights", {1}}});
+  const Scene scene = gltf.load();
+  EXPECT_EQ(scene.triangleCount(), 1u);
+}
+
+TEST(GltfSynthetic, ReadsAnimationsOfEveryPathAndInterpolation) {
+  GltfBuilder gltf;
+  const int mover = addMorphedQuad(gltf, {{"name", "mover"}});
+  const int outside = gltf.addNode({{"name", "outside"}});
+  gltf.doc()["scenes"] = json::array({{{"nodes", {mover}}}});
+  gltf.doc()["scene"] = 0;
+
+  const std::vector<std::int16_t> turn = {0, 0, 0, 32767, 0, 0, 32767, 0};  // identity, then half a turn about z
+  const std::vector<std::uint8_t> weightKeys = {0, 255, 255, 0};           // two targets, two keys
+  json samplers = {
+      sampler(gltf, {0, 1, 2}, {0, 0, 0, 1, 0, 0, 1, 2, 0}, "VEC3", 3),
+      {{"input", gltf.floats({0, 1}, "SCALAR", 1)},
+       {"output", gltf.integers(turn, kShort, "VEC4", 4, true)},
+       {"interpolation", "STEP"}},
+      sampler(gltf, {0, 1}, {0, 0, 0, 1, 1, 1, 0, 0, 0, 0, 0, 0, 2, 2, 2, 0, 0, 0}, "VEC3", 3, "CUBICSPLINE"),
+      {{"input", gltf.floats({0, 0.5f}, "SCALAR", 1)},
+       {"output", gltf.integers(weightKeys, kUnsignedByte, "SCALAR", 1, true)}},
+  };
+  json channels = {channel(0, mover, "translation"), channel(1, mover, "rotation"), channel(2, mover, "scale"),
+                   channel(3, mover, "weights"),     channel(0, outside, "translation"),
+                   channel(0, mover, "pointer")};
+  // KHR_animation_pointer's form: a target without a node.
+  const json pointer = {{"KHR_animation_pointer", {{"pointer", "/nodes/0/translation"}}}};
+  channels.push_back({{"sampler", 0}, {"target", {{"path", "pointer"}, {"extensions", pointer}}}});
+  addAnimation(gltf, samplers, channels, "everything");
+  addAnimation(gltf, {sampler(gltf, {0.5f}, {0, 0, 0, 1}, "VEC4", 4)}, {channel(0, mover, "rotation")});
+
+  GltfLoadReport report;
+  const Scene scene = gltf.load(&report);
+  ASSERT_EQ(scene.animations.size(), 2u);
+  const Animation& animation = scene.animations[0];
+  EXPECT_EQ(animation.name, "everything");
+  EXPECT_FLOAT_EQ(animation.duration(), 2.0f);
+  ASSERT_EQ(animation.channels.size(), 4u);
+  ASSERT_EQ(animation.samplers.size(), 4u);
+  const AnimationPath paths[] = {AnimationPath::Translation, AnimationPath::Rotation, AnimationPath::Scale,
+                                 AnimationPath::Weights};
+  for (size_t c = 0; c < 4; ++c) {
+    EXPECT_EQ(animation.channels[c].node, 0) << c;
+    EXPECT_EQ(animation.channels[c].path, paths[c]) << c;
+    EXPECT_EQ(animation.channels[c].sampler, static_cast<int>(c)) << c;
+  }
+  const AnimationSampler& translation = animation.samplers[0];
+  EXPECT_EQ(translation.interpolation, Interpolation::Linear);
+  EXPECT_EQ(translation.components, 3);
+  EXPECT_EQ(translation.times, (std::vector<float>{0, 1, 2}));
+  EXPECT_EQ(translation.values, (std::vector<float>{0, 0, 0, 1, 0, 0, 1, 2, 0}));
+  const AnimationSampler& rotation = animation.samplers[1];
+  EXPECT_EQ(rotation.interpolation, Interpolation::Step);
+  EXPECT_EQ(rotation.components, 4);
+  EXPECT_EQ(rotation.values, (std::vector<float>{0, 0, 0, 1, 0, 0, 1, 0})) << "normalised shorts, x y z w";
+  const AnimationSampler& scale = animation.samplers[2];
+  EXPECT_EQ(scale.interpolation, Interpolation::CubicSpline);
+  EXPECT_EQ(scale.values.size(), 18u) << "in-tangent, value, out-tangent per key";
+  EXPECT_FLOAT_EQ(scale.values[3], 1.0f);
+  EXPECT_FLOAT_EQ(scale.values[12], 2.0f);
+  const AnimationSampler& weights = animation.samplers[3];
+  EXPECT_EQ(weights.components, 2);
+  EXPECT_EQ(weights.values, (std::vector<float>{0, 1, 1, 0}));
+  EXPECT_EQ(scene.animations[1].name, "");
+  EXPECT_EQ(scene.animations[1].samplers[0].times, (std::vector<float>{0.5f}));
+
+  EXPECT_TRUE(hasWarning(report, "animation 0: 1 channels target nodes outside the default scene")) << warnings(report);
+  EXPECT_TRUE(hasWarning(report, "animation 0: 1 channels have a path other than")) << warnings(report);
+  EXPECT_TRUE(hasWarning(report, "animation 0: 1 channels have no target node")) << warnings(report);
+}
+
+TEST(GltfSynthetic, RefusesBadSkinsMorphsAndAnimationsWithOneLine) {
+  struct Case {
+    const char* name;
+    std::function<void(GltfBuilder&)> build;
+    const char* expect;
+    GltfLimits limits = {};
+  };
+  const auto translationAnimation = [](GltfBuilder& g, int node, std::vector<float> times, std::vector<float> values,
+                                       const char* interpolation = "LINEAR") {
+    addAnimation(g, {sampler(g, times, values, "VEC3", 3, interpolation)}, {channel(0, node, "translation")});
+  };
+  GltfLimits oneJoint;
+  oneJoint.maxSkinJoints = 1;
+  GltfLimits fewMorphs;
+  fewMorphs.maxMorphTargetVertices = 7;  // the morphed quad's two targets need 8
+  GltfLimits fewKeys;
+  fewKeys.maxAnimationValues = 10;
+  const float nan = std::nanf("");
+  const float inf = INFINITY;
+  const std::vector<Case> cases = {
+      {"a joint index beyond the skin's joints",
+       [](GltfBuilder& g) { addSkinnedQuad(g, {0, 0, 0, 0, 0, 0, 0, 0, 2, 0, 0, 0, 1, 0, 0, 0}); },
+       "mesh 0 primitive 0 has joint index 2 but skin 0 has 2 joints"},
+      {"a negative weight",
+       [](GltfBuilder& g) { addSkinnedQuad(g, {0, 1, 0, 0, 0, 0, 0, 0, 1, 0, 0, 0, 1, 0, 0, 0},
+                                           {1, -0.5f, 0, 0, 1, 0, 0, 0, 1, 0, 0, 0, 1, 0, 0, 0}); },
+       "mesh 0 primitive 0 WEIGHTS_0 0 is negative or not finite"},
+      {"a weight that is not finite",
+       [nan](GltfBuilder& g) { addSkinnedQuad(g, {0, 0, 0, 0, 0, 0, 0, 0, 1, 0, 0, 0, 1, 0, 0, 0},
+                                              {1, 0, 0, 0, nan, 0, 0, 0, 1, 0, 0, 0, 1, 0, 0, 0}); },
+       "WEIGHTS_0 1 is negative or not finite"},
+      {"JOINTS_0 without WEIGHTS_0",
+       [](GltfBuilder& g) {
+         json attributes = quadAttributes(g);
+         attributes["JOINTS_0"] = g.integers(std::vector<std::uint8_t>(16, 0), kUnsignedByte, "VEC4", 4, false);
+         g.meshNode(attributes, quadIndices(g), -1, {{"skin", 0}});
+         g.doc()["skins"] = json::array({{{"joints", {0}}}});
+       },
+       "has JOINTS_0 without WEIGHTS_0"},
+      {"normalised joints",
+       [](GltfBuilder& g) {
+         addSkinnedQuad(g);
+         g.doc()["accessors"][2]["normalized"] = true;
+       },
+       "JOINTS_0 (accessor 2) is normalized"},
+      {"weights of unsigned bytes, not normalised",
+       [](GltfBuilder& g) {
+         json attributes = quadAttributes(g);
+         attributes["JOINTS_0"] = g.integers(std::vector<std::uint8_t>(16, 0), kUnsignedByte, "VEC4", 4, false);
+         attributes["WEIGHTS_0"] = g.integers(std::vector<std::uint8_t>(16, 1), kUnsignedByte, "VEC4", 4, false);
+         g.meshNode(attributes, quadIndices(g), -1, {{"skin", 0}});
+         g.doc()["skins"] = json::array({{{"joints", {0}}}});
+       },
+       "WEIGHTS_0 (accessor 3) has component type UNSIGNED_BYTE without normalized: true"},
+      {"a skin over the joint limit", [](GltfBuilder& g) { addSkinnedQuad(g); },
+       "skin 0 has 2 joints, over the limit of 1", oneJoint},
+      {"a skin joint outside the default scene",
+       [](GltfBuilder& g) {
+         const SkinnedQuad quad = addSkinnedQuad(g);
+         g.doc()["scenes"] = json::array({{{"nodes", {quad.meshNode}}}});
+       },
+       "skin 0 joint 0 is node 2, which is not in the default scene"},
+      {"a skin joint that does not exist",
+       [](GltfBuilder& g) {
+         addSkinnedQuad(g);
+         g.doc()["skins"][0]["joints"][1] = 42;
+       },
+       "skin 0 joint 1 is node 42, which does not exist"},
+      {"fewer inverse bind matrices than joints",
+       [](GltfBuilder& g) {
+         addSkinnedQuad(g);
+         g.doc()["accessors"][g.doc()["skins"][0]["inverseBindMatrices"].get<size_t>()]["count"] = 1;
+       },
+       "skin 0 has 1 inverse bind matrices for 2 joints"},
+      {"a node referring to a skin that does not exist",
+       [](GltfBuilder& g) {
+         addSkinnedQuad(g);
+         g.doc()["nodes"][0]["skin"] = 3;
+       },
+       "node 0 refers to skin 3, which does not exist"},
+      {"primitives with different morph target counts",
+       [](GltfBuilder& g) {
+         addMorphedQuad(g);
+         json second = g.doc()["meshes"][0]["primitives"][0];
+         second["targets"].erase(1);
+         g.doc()["meshes"][0]["primitives"].push_back(second);
+       },
+       "mesh 0 primitive 1 has 1 morph targets but primitive 0 has 2"},
+      {"mesh weights for another target count", [](GltfBuilder& g) { addMorphedQuad(g, json::object(), {1}); },
+       "mesh 0 has 1 weights for 2 morph targets"},
+      {"node weights for another target count",
+       [](GltfBuilder& g) { addMorphedQuad(g, {{"weights", {1, 0, 0}}}); },
+       "node 0 has 3 weights for its mesh's 2 morph targets"},
+      {"a morph target shorter than the primitive",
+       [](GltfBuilder& g) {
+         addMorphedQuad(g);
+         g.doc()["meshes"][0]["primitives"][0]["targets"][0]["POSITION"] = g.floats({0, 0, 1}, "VEC3", 3);
+       },
+       "mesh 0 primitive 0 target 0 has 1 POSITION displacements for 4 positions"},
+      {"a morph target displacement that is not finite",
+       [inf](GltfBuilder& g) {
+         addMorphedQuad(g);
+         g.doc()["meshes"][0]["primitives"][0]["targets"][0]["POSITION"] =
+             g.floats({0, 0, 0, 0, 0, 0, 0, 0, inf, 0, 0, 0}, "VEC3", 3);
+       },
+       "mesh 0 primitive 0 target 0 POSITION has a displacement that is not finite"},
+      {"more morph target vertices than the limit", [](GltfBuilder& g) { addMorphedQuad(g); },
+       "more than 7 morph target vertices in the scene", fewMorphs},
+      {"a key time that is not finite",
+       [nan, translationAnimation](GltfBuilder& g) {
+         translationAnimation(g, g.meshNode(quadAttributes(g)), {0, nan}, {0, 0, 0, 1, 1, 1});
+       },
+       "animation 0 sampler 0 input time 1 is not finite"},
+      {"key times not strictly increasing",
+       [translationAnimation](GltfBuilder& g) {
+         translationAnimation(g, g.meshNode(quadAttributes(g)), {0, 1, 1}, {0, 0, 0, 1, 1, 1, 2, 2, 2});
+       },
+       "animation 0 sampler 0 input time 2 (1.000000) is not after the one before (1.000000)"},
+      {"a key value that is not finite",
+       [inf, translationAnimation](GltfBuilder& g) {
+         translationAnimation(g, g.meshNode(quadAttributes(g)), {0, 1}, {0, 0, 0, 1, inf, 1});
+       },
+       "animation 0 sampler 0 output has a value that is not finite"},
+      {"fewer output values than key times",
+       [translationAnimation](GltfBuilder& g) {
+         translationAnimation(g, g.meshNode(quadAttributes(g)), {0, 1, 2}, {0, 0, 0, 1, 1, 1});
+       },
+       "animation 0 sampler 0 has 2 output values for 3 key times (expected 3: 1 per key)"},
+      {"CUBICSPLINE without tangents",
+       [translationAnimation](GltfBuilder& g) {
+         translationAnimation(g, g.meshNode(quadAttributes(g)), {0, 1}, {0, 0, 0, 1, 1, 1}, "CUBICSPLINE");
+       },
+       "has 2 output values for 2 key times (expected 6: 3 per key for CUBICSPLINE)"},
+      {"weights keys not times the target count",
+       [](GltfBuilder& g) {
+         const int node = addMorphedQuad(g);
+         addAnimation(g, {sampler(g, {0, 1}, {0, 1}, "SCALAR", 1)}, {channel(0, node, "weights")});
+       },
+       "has 2 output values for 2 key times (expected 4: 1 per key, times 2 morph targets)"},
+      {"an unknown interpolation",
+       [translationAnimation](GltfBuilder& g) {
+         translationAnimation(g, g.meshNode(quadAttributes(g)), {0}, {0, 0, 0}, "BEZIER");
+       },
+       "animation 0 sampler 0 has interpolation 'BEZIER'"},
+      {"key times of unsigned bytes",
+       [](GltfBuilder& g) {
+         const int node = g.meshNode(quadAttributes(g));
+         addAnimation(g,
+                      {{{"input", g.integers(std::vector<std::uint8_t>{0, 1}, kUnsignedByte, "SCALAR", 1, false)},
+                        {"output", g.floats({0, 0, 0, 1, 1, 1}, "VEC3", 3)}}},
+                      {channel(0, node, "translation")});
+       },
+       "animation 0 sampler 0 input (accessor 2) has component type UNSIGNED_BYTE"},
+      {"a rotation of bytes not normalised",
+       [](GltfBuilder& g) {
+         const int node = g.meshNode(quadAttributes(g));
+         addAnimation(g,
+                      {{{"input", g.floats({0}, "SCALAR", 1)},
+                        {"output", g.integers(std::vector<std::int8_t>{0, 0, 0, 1}, kByte, "VEC4", 4, false)}}},
+                      {channel(0, node, "rotation")});
+       },
+       "animation 0 sampler 0 output (accessor 3) has component type BYTE without normalized: true"},
+      {"a translation of shorts",
+       [](GltfBuilder& g) {
+         const int node = g.meshNode(quadAttributes(g));
+         addAnimation(g,
+                      {{{"input", g.floats({0}, "SCALAR", 1)},
+                        {"output", g.integers(std::vector<std::int16_t>{0, 0, 0}, kShort, "VEC3", 3, true)}}},
+                      {channel(0, node, "translation")});
+       },
+       "animation 0 sampler 0 output (accessor 3) has component type SHORT, which glTF does not allow here"},
+      {"a zero rotation key",
+       [](GltfBuilder& g) {
+         const int node = g.meshNode(quadAttributes(g));
+         addAnimation(g, {sampler(g, {0, 1}, {0, 0, 0, 1, 0, 0, 0, 0}, "VEC4", 4)}, {channel(0, node, "rotation")});
+       },
+       "animation 0 sampler 0 output rotation 1 is a zero quaternion"},
+      {"a channel on a matrix node",
+       [translationAnimation](GltfBuilder& g) {
+         const int node = g.meshNode(quadAttributes(g), -1, -1,
+                                     {{"matrix", {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1}}});
+         translationAnimation(g, node, {0}, {0, 0, 0});
+       },
+       "animation 0 channel 0 animates node 0, which has a matrix (glTF allows animating only TRS nodes)"},
+      {"a weights channel on a node without morph targets",
+       [](GltfBuilder& g) {
+         const int node = g.meshNode(quadAttributes(g));
+         addAnimation(g, {sampler(g, {0}, {1}, "SCALAR", 1)}, {channel(0, node, "weights")});
+       },
+       "animation 0 channel 0 animates the weights of node 0, which has no morph targets"},
+      {"two channels on one node and path",
+       [](GltfBuilder& g) {
+         const int node = g.meshNode(quadAttributes(g));
+         addAnimation(g, {sampler(g, {0}, {0, 0, 0}, "VEC3", 3), sampler(g, {0}, {1, 1, 1}, "VEC3", 3)},
+                      {channel(0, node, "scale"), channel(1, node, "scale")});
+       },
+       "animation 0 channel 1 animates node 0 scale, as channel 0 does"},
+      {"one sampler for a translation and a rotation",
+       [](GltfBuilder& g) {
+         const int node = g.meshNode(quadAttributes(g));
+         addAnimation(g, {sampler(g, {0}, {0, 0, 0}, "VEC3", 3)},
+                      {channel(0, node, "translation"), channel(0, node, "rotation")});
+       },
+       "animation 0 channel 1 shares sampler 0 with a channel that needs other values"},
+      {"a channel on a node that does not exist",
+       [translationAnimation](GltfBuilder& g) {
+         g.meshNode(quadAttributes(g));
+         translationAnimation(g, 9, {0}, {0, 0, 0});
+       },
+       "animation 0 channel 0 targets node 9, which does not exist"},
+      {"a channel with a sampler that does not exist",
+       [](GltfBuilder& g) {
+         const int node = g.meshNode(quadAttributes(g));
+         addAnimation(g, {sampler(g, {0}, {0, 0, 0}, "VEC3", 3)}, {channel(4, node, "translation")});
+       },
+       "animation 0 channel 0 refers to sampler 4, which does not exist"},
+      {"more animation values than the limit",
+       [translationAnimation](GltfBuilder& g) {
+         translationAnimation(g, g.meshNode(quadAttributes(g)), {0, 1, 2}, {0, 0, 0, 1, 1, 1, 2, 2, 2});
+       },
+       "animation 0 sampler 0: more than 10 animation values in the scene", fewKeys},
+  };
+  for (const Case& c : cases) {
+    GltfBuilder gltf;
+    c.build(gltf);
+    const std::string message = gltf.refusal(c.limits);
+    EXPECT_EQ(message.rfind("synthetic.gltf: ", 0), 0u) << c.name << ": " << message;
+    EXPECT_NE(message.find(c.expect), std::string::npos) << c.name << ": " << message;
+    EXPECT_EQ(message.find('\n'), std::string::npos) << c.name << ": " << message;
+  }
 }

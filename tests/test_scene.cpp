@@ -187,3 +187,38 @@ TEST(CameraFit, FramesTheBoundsInsideTheFrustum) {
     EXPECT_LE(std::abs(clip.z), clip.w * 1.0001f);
   }
 }
+
+// Unwelding (flat normals) and the 16-bit split move vertices around; each vertex's joints, weights and morph
+// displacements must move with it. Here every attribute of vertex v encodes v, so any mix-up shows.
+TEST(MeshProcessing, VertexAttributesOfSkinningAndMorphingFollowTheirVertex) {
+  Mesh mesh = makeSphere(1.0f, 400, 200);  // 80 k vertices: the split makes several pieces
+  const size_t count = mesh.positions.size();
+  MorphTarget target;
+  for (size_t v = 0; v < count; ++v) {
+    const float f = static_cast<float>(v);
+    mesh.joints.push_back(glm::u16vec4(v % 7, v % 11, v % 13, v % 17));
+    mesh.weights.push_back(glm::vec4(f, 0, 0, 0));
+    target.positions.push_back(glm::vec3(0, f, 0));
+    target.normals.push_back(glm::vec3(0, 0, f));
+  }
+  mesh.morphTargets.push_back(target);
+  auto expectFollow = [](const Mesh& piece, const char* what) {
+    ASSERT_EQ(piece.joints.size(), piece.positions.size()) << what;
+    ASSERT_EQ(piece.weights.size(), piece.positions.size()) << what;
+    ASSERT_EQ(piece.morphTargets.size(), 1u) << what;
+    ASSERT_EQ(piece.morphTargets[0].positions.size(), piece.positions.size()) << what;
+    for (size_t v = 0; v < piece.positions.size(); ++v) {
+      const auto source = static_cast<size_t>(piece.weights[v].x);
+      ASSERT_EQ(piece.joints[v], glm::u16vec4(source % 7, source % 11, source % 13, source % 17)) << what;
+      ASSERT_EQ(piece.morphTargets[0].positions[v].y, static_cast<float>(source)) << what;
+    }
+  };
+  for (const Mesh& piece : splitForShortIndices(mesh)) {
+    expectFollow(piece, "split");
+    ASSERT_EQ(piece.morphTargets[0].normals.size(), piece.positions.size());
+    for (size_t v = 0; v < piece.positions.size(); ++v)
+      ASSERT_EQ(piece.morphTargets[0].normals[v].z, piece.weights[v].x);
+  }
+  generateFlatNormals(mesh);
+  expectFollow(mesh, "unwelded");
+}

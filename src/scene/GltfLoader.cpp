@@ -7,6 +7,7 @@
 #include <functional>
 #include <set>
 #include <string_view>
+#include <tuple>
 
 #include <glm/geometric.hpp>
 #include <glm/gtc/matrix_transform.hpp>
@@ -39,11 +40,18 @@ class Refusal {
   std::string file_;
 };
 
+// What the scene has read so far against the limits that span many accessors (GltfLimits).
+struct LoadBudget {
+  std::uint64_t morphTargetVertices = 0;
+  std::uint64_t animationValues = 0;
+};
+
 struct LoaderContext {
   const tinygltf::Model& model;
   const GltfLimits& limits;
   Refusal refuse;
   GltfLoadReport& report;
+  LoadBudget& budget;
 };
 
 int componentSize(int componentType) {
@@ -273,15 +281,18 @@ std::vector<std::uint32_t> triangleIndices(const LoaderContext& ctx, const tinyg
   return triangles;
 }
 
-// Removes triangles with repeated vertices or zero area; they cover no pixels and break normal generation.
+// Removes triangles with repeated vertices or zero area; they cover no pixels and break normal generation. A skinned
+// or morphed mesh keeps its zero-area triangles with three distinct corners: a pose can open them (three collinear
+// vertices following different joints, or a morph target that inflates a collapsed face).
 size_t dropDegenerateTriangles(Mesh& mesh) {
+  const bool poseCanChangeShape = mesh.skinned() || !mesh.morphTargets.empty();
   std::vector<std::uint32_t> kept;
   kept.reserve(mesh.indices.size());
   for (size_t t = 0; t + 2 < mesh.indices.size(); t += 3) {
     const std::uint32_t a = mesh.indices[t], b = mesh.indices[t + 1], c = mesh.indices[t + 2];
     if (a == b || b == c || a == c) continue;
     const glm::vec3 cross = glm::cross(mesh.positions[b] - mesh.positions[a], mesh.positions[c] - mesh.positions[a]);
-    if (!(glm::dot(cross, cross) > 0.0f)) continue;
+    if (!poseCanChangeShape && !(glm::dot(cross, cross) > 0.0f)) continue;
     kept.insert(kept.end(), {a, b, c});
   }
   const size_t dropped = (mesh.indices.size() - kept.size()) / 3;
@@ -331,8 +342,106 @@ glm::mat3 baseColorUvTransform(const LoaderContext& ctx, int materialIndex, cons
   return translationMatrix * rotationMatrix * scaleMatrix;
 }
 
+int attributeAccessor(const tinygltf::Primitive& primitive, const char* name) {
+  auto it = primitive.attributes.find(name);
+  return it == primitive.attributes.end() ? -1 : it->second;
+}
+
+bool allFinite(const std::vector<double>& values) {
+  return std::all_of(values.begin(), values.end(), [](double x) { return std::isfinite(x); });
+}
+
+// JOINTS_0 / WEIGHTS_0 (glTF 2.0 sec. 3.7.3.3): joints unsigned byte or short, not normalised; weights float or
+// normalised unsigned byte or short, not negative, summing to 1. Repairs, so that the vertex stage can rely on them:
+// weights are renormalised (a warning counts the vertices more than 1 % off, beyond what 8-bit quantisation
+// explains); all-zero weights become weight 1 on the first joint listed; slots of weight zero point at joint 0.
+void loadSkinAttributes(const LoaderContext& ctx, const tinygltf::Primitive& primitive, const std::string& what,
+                        size_t vertexCount, Mesh& mesh) {
+  const int jointsAccessor = attributeAccessor(primitive, "JOINTS_0");
+  const int weightsAccessor = attributeAccessor(primitive, "WEIGHTS_0");
+  if (weightsAccessor < 0) ctx.refuse(what + " has JOINTS_0 without WEIGHTS_0");
+  const std::vector<double> joints = readAccessor(
+      ctx, jointsAccessor, what + " JOINTS_0", 4,
+      {TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE, TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT});
+  if (ctx.model.accessors[static_cast<size_t>(jointsAccessor)].normalized)
+    ctx.refuse(what + " JOINTS_0 (accessor " + std::to_string(jointsAccessor) +
+               ") is normalized, which glTF does not allow for joint indices");
+  const std::vector<double> weights = readAccessor(
+      ctx, weightsAccessor, what + " WEIGHTS_0", 4,
+      {TINYGLTF_COMPONENT_TYPE_FLOAT, TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE, TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT});
+  const tinygltf::Accessor& weightsSource = ctx.model.accessors[static_cast<size_t>(weightsAccessor)];
+  if (weightsSource.componentType != TINYGLTF_COMPONENT_TYPE_FLOAT && !weightsSource.normalized)
+    ctx.refuse(what + " WEIGHTS_0 (accessor " + std::to_string(weightsAccessor) + ") has component type " +
+               componentTypeName(weightsSource.componentType) + " without normalized: true, which glTF does not allow");
+  if (joints.size() / 4 != vertexCount || weights.size() / 4 != vertexCount)
+    ctx.refuse(what + " has " + std::to_string(joints.size() / 4) + " JOINTS_0 and " +
+               std::to_string(weights.size() / 4) + " WEIGHTS_0 for " + std::to_string(vertexCount) + " positions");
+  mesh.joints.resize(vertexCount);
+  mesh.weights.resize(vertexCount);
+  size_t renormalised = 0, weightless = 0;
+  for (size_t v = 0; v < vertexCount; ++v) {
+    double sum = 0.0;
+    for (int c = 0; c < 4; ++c) {
+      const double w = weights[v * 4 + static_cast<size_t>(c)];
+      if (!std::isfinite(w) || w < 0.0)
+        ctx.refuse(what + " WEIGHTS_0 " + std::to_string(v) + " is negative or not finite");
+      sum += w;
+    }
+    glm::dvec4 w(weights[v * 4], weights[v * 4 + 1], weights[v * 4 + 2], weights[v * 4 + 3]);
+    if (!(sum > 0.0)) {
+      w = glm::dvec4(1.0, 0.0, 0.0, 0.0);
+      ++weightless;
+    } else {
+      if (std::abs(sum - 1.0) > 0.01) ++renormalised;
+      w /= sum;
+    }
+    for (int c = 0; c < 4; ++c) {
+      mesh.weights[v][c] = static_cast<float>(w[c]);
+      mesh.joints[v][c] = w[c] > 0.0 ? static_cast<std::uint16_t>(joints[v * 4 + static_cast<size_t>(c)]) : 0;
+    }
+  }
+  if (renormalised > 0)
+    ctx.report.warnings.push_back(what + ": WEIGHTS_0 of " + std::to_string(renormalised) +
+                                  " vertices did not sum to 1; renormalised");
+  if (weightless > 0)
+    ctx.report.warnings.push_back(what + ": " + std::to_string(weightless) +
+                                  " vertices have all WEIGHTS_0 zero; they follow their first joint");
+  if (attributeAccessor(primitive, "JOINTS_1") >= 0 || attributeAccessor(primitive, "WEIGHTS_1") >= 0)
+    ctx.report.warnings.push_back(what + ": JOINTS_1 / WEIGHTS_1 ignored (only four joints per vertex are drawn); "
+                                         "WEIGHTS_0 renormalised");
+}
+
+// Morph targets (glTF 2.0 sec. 3.7.2.2): per target, POSITION and NORMAL displacements, float VEC3, one per vertex
+// (sparse accessors welcome: targets are mostly zeros). TANGENT and any other attribute are ignored: nothing here
+// uses tangents. A target without POSITION displaces nothing.
+void loadMorphTargets(const LoaderContext& ctx, const tinygltf::Primitive& primitive, const std::string& what,
+                      size_t vertexCount, Mesh& mesh) {
+  for (size_t t = 0; t < primitive.targets.size(); ++t) {
+    const std::string target = what + " target " + std::to_string(t);
+    ctx.budget.morphTargetVertices += vertexCount;
+    if (ctx.budget.morphTargetVertices > ctx.limits.maxMorphTargetVertices)
+      ctx.refuse(target + ": more than " + std::to_string(ctx.limits.maxMorphTargetVertices) +
+                 " morph target vertices in the scene");
+    MorphTarget morph;
+    for (const char* name : {"POSITION", "NORMAL"}) {
+      auto it = primitive.targets[t].find(name);
+      if (it == primitive.targets[t].end()) continue;
+      const std::vector<double> deltas =
+          readAccessor(ctx, it->second, target + " " + name, 3, {TINYGLTF_COMPONENT_TYPE_FLOAT});
+      if (deltas.size() / 3 != vertexCount)
+        ctx.refuse(target + " has " + std::to_string(deltas.size() / 3) + " " + name + " displacements for " +
+                   std::to_string(vertexCount) + " positions");
+      if (!allFinite(deltas)) ctx.refuse(target + " " + name + " has a displacement that is not finite");
+      (std::strcmp(name, "POSITION") == 0 ? morph.positions : morph.normals) = toVectors<3>(deltas);
+    }
+    if (morph.positions.empty()) morph.positions.assign(vertexCount, glm::vec3(0.0f));
+    mesh.morphTargets.push_back(std::move(morph));
+  }
+}
+
+// One glTF primitive as a Mesh. `readSkin`: keep JOINTS_0 / WEIGHTS_0 (the node placing it has a skin).
 Mesh loadPrimitive(const LoaderContext& ctx, const tinygltf::Primitive& primitive, const std::string& what,
-                   bool* skipped) {
+                   bool readSkin, bool* skipped) {
   Mesh mesh;
   *skipped = false;
   const int mode = primitive.mode < 0 ? TINYGLTF_MODE_TRIANGLES : primitive.mode;
@@ -341,10 +450,7 @@ Mesh loadPrimitive(const LoaderContext& ctx, const tinygltf::Primitive& primitiv
     *skipped = true;  // points and lines have no surface to occlude
     return mesh;
   }
-  auto attribute = [&](const char* name) {
-    auto it = primitive.attributes.find(name);
-    return it == primitive.attributes.end() ? -1 : it->second;
-  };
+  auto attribute = [&](const char* name) { return attributeAccessor(primitive, name); };
   const int positionAccessor = attribute("POSITION");
   if (positionAccessor < 0) ctx.refuse(what + " has no POSITION attribute");
   mesh.positions = toVectors<3>(readAccessor(ctx, positionAccessor, what + " POSITION", 3,
@@ -399,6 +505,13 @@ Mesh loadPrimitive(const LoaderContext& ctx, const tinygltf::Primitive& primitiv
       for (glm::vec2& uv : mesh.texcoords) uv = glm::vec2(transform * glm::vec3(uv, 1.0f));
   }
 
+  if (readSkin) loadSkinAttributes(ctx, primitive, what, vertexCount, mesh);
+  loadMorphTargets(ctx, primitive, what, vertexCount, mesh);
+  // Normal displacements are relative to the file's normals; where those are replaced by flat ones,
+  // generateFlatNormals derives each target's from its displaced faces instead.
+  if (!normalsUsable)
+    for (MorphTarget& target : mesh.morphTargets) target.normals.clear();
+
   mesh.indices = triangleIndices(ctx, primitive, vertexCount, what);
   const size_t dropped = dropDegenerateTriangles(mesh);
   if (dropped > 0)
@@ -410,39 +523,39 @@ Mesh loadPrimitive(const LoaderContext& ctx, const tinygltf::Primitive& primitiv
   return mesh;
 }
 
-glm::mat4 nodeTransform(const LoaderContext& ctx, const tinygltf::Node& node, int index) {
-  auto finite = [](const std::vector<double>& v) {
-    return std::all_of(v.begin(), v.end(), [](double x) { return std::isfinite(x); });
-  };
-  if (node.matrix.size() == 16) {
-    if (!finite(node.matrix)) ctx.refuse("node " + std::to_string(index) + " has a non-finite matrix");
-    glm::mat4 m;
-    for (int i = 0; i < 16; ++i) glm::value_ptr(m)[i] = static_cast<float>(node.matrix[static_cast<size_t>(i)]);
-    return m;
+// A node's rest transform, checked: a matrix of 16 finite numbers, or finite TRS with a non-zero rotation (kept
+// normalised). A node with both keeps the matrix, as before nodes were kept.
+Node readNode(const LoaderContext& ctx, const tinygltf::Node& source, int index) {
+  const std::string what = "node " + std::to_string(index);
+  Node node;
+  node.name = source.name;
+  if (source.matrix.size() == 16) {
+    if (!allFinite(source.matrix)) ctx.refuse(what + " has a non-finite matrix");
+    node.hasMatrix = true;
+    for (int i = 0; i < 16; ++i)
+      glm::value_ptr(node.matrix)[i] = static_cast<float>(source.matrix[static_cast<size_t>(i)]);
+    return node;
   }
-  if (!node.matrix.empty()) ctx.refuse("node " + std::to_string(index) + " has a matrix of " +
-                                       std::to_string(node.matrix.size()) + " numbers, expected 16");
-  glm::mat4 m(1.0f);
-  if (!node.translation.empty()) {
-    if (node.translation.size() != 3 || !finite(node.translation))
-      ctx.refuse("node " + std::to_string(index) + " has an invalid translation");
-    m = glm::translate(m, glm::vec3(node.translation[0], node.translation[1], node.translation[2]));
+  if (!source.matrix.empty())
+    ctx.refuse(what + " has a matrix of " + std::to_string(source.matrix.size()) + " numbers, expected 16");
+  if (!source.translation.empty()) {
+    if (source.translation.size() != 3 || !allFinite(source.translation))
+      ctx.refuse(what + " has an invalid translation");
+    node.translation = glm::vec3(source.translation[0], source.translation[1], source.translation[2]);
   }
-  if (!node.rotation.empty()) {
-    if (node.rotation.size() != 4 || !finite(node.rotation))
-      ctx.refuse("node " + std::to_string(index) + " has an invalid rotation");
-    glm::quat q(static_cast<float>(node.rotation[3]), static_cast<float>(node.rotation[0]),
-                static_cast<float>(node.rotation[1]), static_cast<float>(node.rotation[2]));
+  if (!source.rotation.empty()) {
+    if (source.rotation.size() != 4 || !allFinite(source.rotation)) ctx.refuse(what + " has an invalid rotation");
+    const glm::quat q(static_cast<float>(source.rotation[3]), static_cast<float>(source.rotation[0]),
+                      static_cast<float>(source.rotation[1]), static_cast<float>(source.rotation[2]));
     const float length = glm::length(q);
-    if (length < 1e-6f) ctx.refuse("node " + std::to_string(index) + " has a zero rotation quaternion");
-    m *= glm::mat4_cast(q / length);
+    if (length < 1e-6f) ctx.refuse(what + " has a zero rotation quaternion");
+    node.rotation = q / length;
   }
-  if (!node.scale.empty()) {
-    if (node.scale.size() != 3 || !finite(node.scale))
-      ctx.refuse("node " + std::to_string(index) + " has an invalid scale");
-    m = glm::scale(m, glm::vec3(node.scale[0], node.scale[1], node.scale[2]));
+  if (!source.scale.empty()) {
+    if (source.scale.size() != 3 || !allFinite(source.scale)) ctx.refuse(what + " has an invalid scale");
+    node.scale = glm::vec3(source.scale[0], source.scale[1], source.scale[2]);
   }
-  return m;
+  return node;
 }
 
 void loadMaterials(const LoaderContext& ctx, Scene& scene) {
@@ -497,78 +610,404 @@ void loadMaterials(const LoaderContext& ctx, Scene& scene) {
   }
 }
 
-void loadNodes(const LoaderContext& ctx, Scene& scene) {
-  const tinygltf::Model& model = ctx.model;
-  // Each glTF (mesh, primitive) becomes one Mesh; remember where each glTF mesh's primitives start.
-  std::vector<std::vector<int>> primitiveMeshes(model.meshes.size());
-  std::vector<bool> loaded(model.meshes.size(), false);
-  int skippedPrimitives = 0;  // points and lines
-  auto meshPieces = [&](int meshIndex) -> const std::vector<int>& {
-    if (!loaded[static_cast<size_t>(meshIndex)]) {
-      loaded[static_cast<size_t>(meshIndex)] = true;
-      const tinygltf::Mesh& source = model.meshes[static_cast<size_t>(meshIndex)];
-      for (size_t p = 0; p < source.primitives.size(); ++p) {
-        bool skipped = false;
-        Mesh mesh = loadPrimitive(ctx, source.primitives[p],
-                                  "mesh " + std::to_string(meshIndex) + " primitive " + std::to_string(p), &skipped);
-        if (skipped) ++skippedPrimitives;
-        if (skipped || mesh.indices.empty()) continue;
-        primitiveMeshes[static_cast<size_t>(meshIndex)].push_back(static_cast<int>(scene.meshes.size()));
-        scene.meshes.push_back(std::move(mesh));
-      }
-    }
-    return primitiveMeshes[static_cast<size_t>(meshIndex)];
-  };
+// The default scene's nodes, meshes, skins and animations, as Scene data. Nodes are collected first (parents
+// before children), then every node's mesh is placed, loading each skin it needs, then the animations, whose
+// channels name the nodes collected.
+class SceneBuilder {
+ public:
+  SceneBuilder(const LoaderContext& ctx, Scene& scene)
+      : ctx_(ctx), model_(ctx.model), scene_(scene), copies_(ctx.model.nodes.size()) {}
 
-  std::uint64_t triangles = 0;
-  std::vector<int> path;  // nodes from the root to the current one, to detect cycles
-  std::function<void(int, const glm::mat4&)> visit = [&](int nodeIndex, const glm::mat4& parent) {
-    if (nodeIndex < 0 || static_cast<size_t>(nodeIndex) >= model.nodes.size())
-      ctx.refuse("node " + std::to_string(nodeIndex) + " is referenced but does not exist");
-    if (std::find(path.begin(), path.end(), nodeIndex) != path.end())
-      ctx.refuse("node hierarchy has a cycle through node " + std::to_string(nodeIndex));
-    if (static_cast<int>(path.size()) >= ctx.limits.maxNodeDepth)
-      ctx.refuse("node hierarchy is deeper than " + std::to_string(ctx.limits.maxNodeDepth) + " levels");
-    const tinygltf::Node& node = model.nodes[static_cast<size_t>(nodeIndex)];
-    const glm::mat4 world = parent * nodeTransform(ctx, node, nodeIndex);
-    if (node.mesh >= 0) {
-      if (static_cast<size_t>(node.mesh) >= model.meshes.size())
-        ctx.refuse("node " + std::to_string(nodeIndex) + " refers to mesh " + std::to_string(node.mesh) +
-                   ", which does not exist");
-      for (int meshIndex : meshPieces(node.mesh)) {
-        scene.instances.push_back({meshIndex, world});
-        triangles += scene.meshes[static_cast<size_t>(meshIndex)].indices.size() / 3;
-        if (scene.instances.size() > ctx.limits.maxInstances)
-          ctx.refuse("places more than " + std::to_string(ctx.limits.maxInstances) + " mesh instances");
-        if (triangles > ctx.limits.maxSceneTriangles)
-          ctx.refuse("has more than " + std::to_string(ctx.limits.maxSceneTriangles) + " triangles after instancing");
-      }
-    }
-    path.push_back(nodeIndex);
-    for (int child : node.children) visit(child, world);
-    path.pop_back();
-  };
+  void build() {
+    for (int root : roots()) visit(root, -1);
+    placeInstances();
+    loadAnimations();
+    if (scene_.instances.empty() && skippedPrimitives_ > 0)
+      ctx_.refuse("has only point or line primitives (" + std::to_string(skippedPrimitives_) +
+                  "), which have no surfaces to shade");
+  }
 
-  std::vector<int> roots;
-  if (!model.scenes.empty()) {
-    int sceneIndex = model.defaultScene >= 0 ? model.defaultScene : 0;
-    if (static_cast<size_t>(sceneIndex) >= model.scenes.size())
-      ctx.refuse("default scene " + std::to_string(sceneIndex) + " does not exist");
-    roots = model.scenes[static_cast<size_t>(sceneIndex)].nodes;
-  } else {
+ private:
+  std::vector<int> roots() const {
+    if (!model_.scenes.empty()) {
+      const int sceneIndex = model_.defaultScene >= 0 ? model_.defaultScene : 0;
+      if (static_cast<size_t>(sceneIndex) >= model_.scenes.size())
+        ctx_.refuse("default scene " + std::to_string(sceneIndex) + " does not exist");
+      return model_.scenes[static_cast<size_t>(sceneIndex)].nodes;
+    }
     // No scene: show every node that is nobody's child.
-    std::vector<bool> isChild(model.nodes.size(), false);
-    for (const tinygltf::Node& node : model.nodes)
+    std::vector<bool> isChild(model_.nodes.size(), false);
+    for (const tinygltf::Node& node : model_.nodes)
       for (int child : node.children)
         if (child >= 0 && static_cast<size_t>(child) < isChild.size()) isChild[static_cast<size_t>(child)] = true;
-    for (size_t i = 0; i < model.nodes.size(); ++i)
-      if (!isChild[i]) roots.push_back(static_cast<int>(i));
+    std::vector<int> out;
+    for (size_t i = 0; i < model_.nodes.size(); ++i)
+      if (!isChild[i]) out.push_back(static_cast<int>(i));
+    return out;
   }
-  for (int root : roots) visit(root, glm::mat4(1.0f));
-  if (scene.instances.empty() && skippedPrimitives > 0)
-    ctx.refuse("has only point or line primitives (" + std::to_string(skippedPrimitives) +
-               "), which have no surfaces to shade");
-}
+
+  // Depth first, so that a node's parent is always collected before it (Node::parent is lower than its index).
+  void visit(int nodeIndex, int parent) {
+    if (nodeIndex < 0 || static_cast<size_t>(nodeIndex) >= model_.nodes.size())
+      ctx_.refuse("node " + std::to_string(nodeIndex) + " is referenced but does not exist");
+    if (std::find(path_.begin(), path_.end(), nodeIndex) != path_.end())
+      ctx_.refuse("node hierarchy has a cycle through node " + std::to_string(nodeIndex));
+    if (static_cast<int>(path_.size()) >= ctx_.limits.maxNodeDepth)
+      ctx_.refuse("node hierarchy is deeper than " + std::to_string(ctx_.limits.maxNodeDepth) + " levels");
+    if (scene_.nodes.size() >= ctx_.limits.maxNodes)
+      ctx_.refuse("has more than " + std::to_string(ctx_.limits.maxNodes) + " nodes in its hierarchy");
+    const tinygltf::Node& source = model_.nodes[static_cast<size_t>(nodeIndex)];
+    Node node = readNode(ctx_, source, nodeIndex);
+    node.parent = parent;
+    if (source.mesh >= 0) {
+      if (static_cast<size_t>(source.mesh) >= model_.meshes.size())
+        ctx_.refuse("node " + std::to_string(nodeIndex) + " refers to mesh " + std::to_string(source.mesh) +
+                    ", which does not exist");
+      node.weights = restWeights(source, nodeIndex);
+    }
+    // glTF 2.0 (sec. 3.5.3) requires disjoint trees; a node under two parents has been drawn twice since before
+    // nodes were kept, so it still is: one Scene node per path.
+    if (!copies_[static_cast<size_t>(nodeIndex)].empty() && !warnedSharedNode_) {
+      warnedSharedNode_ = true;
+      ctx_.report.warnings.push_back("node " + std::to_string(nodeIndex) +
+                                     " has more than one parent (glTF requires disjoint trees); each path gets a copy");
+    }
+    const int index = static_cast<int>(scene_.nodes.size());
+    restWorld_.push_back((parent >= 0 ? restWorld_[static_cast<size_t>(parent)] : glm::mat4(1.0f)) * node.localRest());
+    scene_.nodes.push_back(std::move(node));
+    sourceNode_.push_back(nodeIndex);
+    copies_[static_cast<size_t>(nodeIndex)].push_back(index);
+    path_.push_back(nodeIndex);
+    for (int child : source.children) visit(child, index);
+    path_.pop_back();
+  }
+
+  // The morph target count of a glTF mesh: every primitive must have the same (glTF 2.0 sec. 3.7.2.2), and the
+  // mesh's default weights, when given, one per target.
+  size_t morphTargetCount(int meshIndex) {
+    auto found = targetCounts_.find(meshIndex);
+    if (found != targetCounts_.end()) return found->second;
+    const tinygltf::Mesh& mesh = model_.meshes[static_cast<size_t>(meshIndex)];
+    const std::string what = "mesh " + std::to_string(meshIndex);
+    const size_t count = mesh.primitives.empty() ? 0 : mesh.primitives[0].targets.size();
+    for (size_t p = 1; p < mesh.primitives.size(); ++p)
+      if (mesh.primitives[p].targets.size() != count)
+        ctx_.refuse(what + " primitive " + std::to_string(p) + " has " +
+                    std::to_string(mesh.primitives[p].targets.size()) + " morph targets but primitive 0 has " +
+                    std::to_string(count) + " (glTF requires the same in every primitive)");
+    if (!mesh.weights.empty() && mesh.weights.size() != count)
+      ctx_.refuse(what + " has " + std::to_string(mesh.weights.size()) + " weights for " + std::to_string(count) +
+                  " morph targets");
+    if (!allFinite(mesh.weights)) ctx_.refuse(what + " has a weight that is not finite");
+    targetCounts_[meshIndex] = count;
+    return count;
+  }
+
+  // A node's rest morph weights: its own, else its mesh's, else zeros; one per morph target.
+  std::vector<float> restWeights(const tinygltf::Node& source, int nodeIndex) {
+    const size_t count = morphTargetCount(source.mesh);
+    const std::vector<double>& mesh = model_.meshes[static_cast<size_t>(source.mesh)].weights;
+    if (!source.weights.empty()) {
+      if (source.weights.size() != count)
+        ctx_.refuse("node " + std::to_string(nodeIndex) + " has " + std::to_string(source.weights.size()) +
+                    " weights for its mesh's " + std::to_string(count) + " morph targets");
+      if (!allFinite(source.weights))
+        ctx_.refuse("node " + std::to_string(nodeIndex) + " has a weight that is not finite");
+    }
+    const std::vector<double>& chosen = !source.weights.empty() ? source.weights : mesh;
+    std::vector<float> out(count, 0.0f);
+    for (size_t i = 0; i < chosen.size() && i < count; ++i) out[i] = static_cast<float>(chosen[i]);
+    return out;
+  }
+
+  // The Scene mesh of a glTF primitive drawn skinned or rigid (-1: nothing to draw), loaded on first use.
+  int primitiveMesh(int meshIndex, size_t primitive, bool skinned) {
+    const auto key = std::make_tuple(meshIndex, primitive, skinned);
+    auto found = primitiveMeshes_.find(key);
+    if (found != primitiveMeshes_.end()) return found->second;
+    const tinygltf::Primitive& source = model_.meshes[static_cast<size_t>(meshIndex)].primitives[primitive];
+    const std::string what = "mesh " + std::to_string(meshIndex) + " primitive " + std::to_string(primitive);
+    bool skipped = false;
+    Mesh mesh = loadPrimitive(ctx_, source, what, skinned, &skipped);
+    if (skipped) ++skippedPrimitives_;
+    int index = -1;
+    if (!skipped && !mesh.indices.empty()) {
+      if (!skinned && attributeAccessor(source, "JOINTS_0") >= 0)
+        ctx_.report.warnings.push_back(what + " has JOINTS_0 but a node without a skin places it; drawn rigid");
+      int maxJoint = -1;
+      for (const glm::u16vec4& joints : mesh.joints)
+        for (int c = 0; c < 4; ++c) maxJoint = std::max(maxJoint, static_cast<int>(joints[c]));
+      index = static_cast<int>(scene_.meshes.size());
+      scene_.meshes.push_back(std::move(mesh));
+      maxJoint_.push_back(maxJoint);
+    }
+    primitiveMeshes_[key] = index;
+    return index;
+  }
+
+  // A glTF skin as a Scene skin (loaded on first use): its joints must be nodes of the loaded hierarchy.
+  int sceneSkin(int skinIndex) {
+    auto found = skins_.find(skinIndex);
+    if (found != skins_.end()) return found->second;
+    const tinygltf::Skin& source = model_.skins[static_cast<size_t>(skinIndex)];
+    const std::string what = "skin " + std::to_string(skinIndex);
+    if (source.joints.empty()) ctx_.refuse(what + " has no joints");
+    if (source.joints.size() > static_cast<size_t>(ctx_.limits.maxSkinJoints))
+      ctx_.refuse(what + " has " + std::to_string(source.joints.size()) + " joints, over the limit of " +
+                  std::to_string(ctx_.limits.maxSkinJoints));
+    Skin skin;
+    skin.name = source.name;
+    for (size_t j = 0; j < source.joints.size(); ++j) {
+      const int joint = source.joints[j];
+      if (joint < 0 || static_cast<size_t>(joint) >= model_.nodes.size())
+        ctx_.refuse(what + " joint " + std::to_string(j) + " is node " + std::to_string(joint) +
+                    ", which does not exist");
+      const std::vector<int>& copies = copies_[static_cast<size_t>(joint)];
+      if (copies.empty())
+        ctx_.refuse(what + " joint " + std::to_string(j) + " is node " + std::to_string(joint) +
+                    ", which is not in the default scene");
+      if (copies.size() > 1)
+        ctx_.report.warnings.push_back(what + " joint " + std::to_string(j) + " is node " + std::to_string(joint) +
+                                       ", reached by several paths; the first is used");
+      skin.joints.push_back(copies.front());
+    }
+    skin.inverseBind.assign(skin.joints.size(), glm::mat4(1.0f));
+    if (source.inverseBindMatrices >= 0) {
+      const std::vector<double> matrices = readAccessor(ctx_, source.inverseBindMatrices,
+                                                        what + " inverseBindMatrices", 16,
+                                                        {TINYGLTF_COMPONENT_TYPE_FLOAT});
+      if (matrices.size() / 16 < skin.joints.size())
+        ctx_.refuse(what + " has " + std::to_string(matrices.size() / 16) + " inverse bind matrices for " +
+                    std::to_string(skin.joints.size()) + " joints");
+      if (!allFinite(matrices)) ctx_.refuse(what + " has an inverse bind matrix that is not finite");
+      for (size_t j = 0; j < skin.joints.size(); ++j)
+        for (int i = 0; i < 16; ++i)
+          glm::value_ptr(skin.inverseBind[j])[i] = static_cast<float>(matrices[j * 16 + static_cast<size_t>(i)]);
+    }
+    // Only a hint of the joints' common root (glTF 2.0 sec. 3.7.3.2): kept where it is a loaded node.
+    if (source.skeleton >= 0 && static_cast<size_t>(source.skeleton) < model_.nodes.size() &&
+        !copies_[static_cast<size_t>(source.skeleton)].empty())
+      skin.skeleton = copies_[static_cast<size_t>(source.skeleton)].front();
+    const int index = static_cast<int>(scene_.skins.size());
+    scene_.skins.push_back(std::move(skin));
+    skins_[skinIndex] = index;
+    return index;
+  }
+
+  // One instance per drawable primitive of every node with a mesh, in node order, at the node's rest world matrix.
+  void placeInstances() {
+    std::uint64_t triangles = 0;
+    for (size_t n = 0; n < scene_.nodes.size(); ++n) {
+      const int nodeIndex = sourceNode_[n];
+      const tinygltf::Node& source = model_.nodes[static_cast<size_t>(nodeIndex)];
+      if (source.mesh < 0) continue;
+      if (source.skin >= 0 && static_cast<size_t>(source.skin) >= model_.skins.size())
+        ctx_.refuse("node " + std::to_string(nodeIndex) + " refers to skin " + std::to_string(source.skin) +
+                    ", which does not exist");
+      const tinygltf::Mesh& mesh = model_.meshes[static_cast<size_t>(source.mesh)];
+      bool anySkinned = false;
+      for (size_t p = 0; p < mesh.primitives.size(); ++p) {
+        const bool skinned = source.skin >= 0 && attributeAccessor(mesh.primitives[p], "JOINTS_0") >= 0;
+        const int meshIndex = primitiveMesh(source.mesh, p, skinned);
+        if (meshIndex < 0) continue;
+        Instance instance;
+        instance.mesh = meshIndex;
+        instance.world = restWorld_[n];
+        instance.node = static_cast<int>(n);
+        if (skinned) {
+          anySkinned = true;
+          instance.skin = sceneSkin(source.skin);
+          const size_t jointCount = scene_.skins[static_cast<size_t>(instance.skin)].joints.size();
+          const int maxJoint = maxJoint_[static_cast<size_t>(meshIndex)];
+          if (maxJoint >= static_cast<int>(jointCount))
+            ctx_.refuse("mesh " + std::to_string(source.mesh) + " primitive " + std::to_string(p) +
+                        " has joint index " + std::to_string(maxJoint) + " but skin " + std::to_string(source.skin) +
+                        " has " + std::to_string(jointCount) + " joints");
+        }
+        scene_.instances.push_back(instance);
+        triangles += scene_.meshes[static_cast<size_t>(meshIndex)].indices.size() / 3;
+        if (scene_.instances.size() > ctx_.limits.maxInstances)
+          ctx_.refuse("places more than " + std::to_string(ctx_.limits.maxInstances) + " mesh instances");
+        if (triangles > ctx_.limits.maxSceneTriangles)
+          ctx_.refuse("has more than " + std::to_string(ctx_.limits.maxSceneTriangles) + " triangles after instancing");
+      }
+      if (source.skin >= 0 && !anySkinned && !mesh.primitives.empty())
+        ctx_.report.warnings.push_back("node " + std::to_string(nodeIndex) + " has skin " +
+                                       std::to_string(source.skin) + " but its mesh has no JOINTS_0; drawn rigid");
+    }
+  }
+
+  // Reads a sampler for a channel of `path` with `components` values per key (glTF 2.0 sec. 3.11, 5.6):
+  // input float SCALAR times, finite and strictly increasing; output float VEC3 (translation, scale), VEC4 float
+  // or normalised integers (rotation), SCALAR float or normalised integers (weights, one per morph target per key).
+  AnimationSampler loadSampler(int animationIndex, int samplerIndex, AnimationPath path, int components) {
+    const tinygltf::AnimationSampler& source =
+        model_.animations[static_cast<size_t>(animationIndex)].samplers[static_cast<size_t>(samplerIndex)];
+    const std::string what = "animation " + std::to_string(animationIndex) + " sampler " + std::to_string(samplerIndex);
+    AnimationSampler sampler;
+    sampler.components = components;
+    if (source.interpolation == "LINEAR") sampler.interpolation = Interpolation::Linear;
+    else if (source.interpolation == "STEP") sampler.interpolation = Interpolation::Step;
+    else if (source.interpolation == "CUBICSPLINE") sampler.interpolation = Interpolation::CubicSpline;
+    else ctx_.refuse(what + " has interpolation '" + source.interpolation + "', not LINEAR, STEP or CUBICSPLINE");
+
+    // The budget is charged from the accessors' declared counts before reading them (readAccessor checks bounds).
+    for (int accessor : {source.input, source.output}) {
+      if (accessor < 0 || static_cast<size_t>(accessor) >= model_.accessors.size())
+        ctx_.refuse(what + " refers to accessor " + std::to_string(accessor) + ", which does not exist");
+      const tinygltf::Accessor& a = model_.accessors[static_cast<size_t>(accessor)];
+      ctx_.budget.animationValues += std::uint64_t(a.count) * std::max(componentCount(a.type), 1);
+    }
+    if (ctx_.budget.animationValues > ctx_.limits.maxAnimationValues)
+      ctx_.refuse(what + ": more than " + std::to_string(ctx_.limits.maxAnimationValues) +
+                  " animation values in the scene");
+
+    const std::vector<double> times = readAccessor(ctx_, source.input, what + " input", 1,
+                                                   {TINYGLTF_COMPONENT_TYPE_FLOAT});
+    if (times.empty()) ctx_.refuse(what + " input has no key times");
+    for (size_t k = 0; k < times.size(); ++k) {
+      if (!std::isfinite(times[k])) ctx_.refuse(what + " input time " + std::to_string(k) + " is not finite");
+      if (k > 0 && !(times[k] > times[k - 1]))
+        ctx_.refuse(what + " input time " + std::to_string(k) + " (" + std::to_string(times[k]) +
+                    ") is not after the one before (" + std::to_string(times[k - 1]) + ")");
+    }
+    if (times.front() < 0.0)
+      ctx_.report.warnings.push_back(what + " starts at " + std::to_string(times.front()) +
+                                     " s (glTF requires times >= 0); what comes before 0 never plays");
+
+    const bool vector = path != AnimationPath::Weights;
+    std::vector<int> allowed = {TINYGLTF_COMPONENT_TYPE_FLOAT};
+    if (path == AnimationPath::Rotation || path == AnimationPath::Weights)
+      allowed.insert(allowed.end(), {TINYGLTF_COMPONENT_TYPE_BYTE, TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE,
+                                     TINYGLTF_COMPONENT_TYPE_SHORT, TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT});
+    const std::vector<double> values =
+        readAccessor(ctx_, source.output, what + " output", vector ? components : 1, allowed);
+    const tinygltf::Accessor& output = model_.accessors[static_cast<size_t>(source.output)];
+    if (output.componentType != TINYGLTF_COMPONENT_TYPE_FLOAT && !output.normalized)
+      ctx_.refuse(what + " output (accessor " + std::to_string(source.output) + ") has component type " +
+                  componentTypeName(output.componentType) + " without normalized: true, which glTF does not allow");
+    const int perKey = sampler.interpolation == Interpolation::CubicSpline ? 3 : 1;
+    const std::uint64_t expected = std::uint64_t(times.size()) * perKey * std::uint64_t(components);
+    if (values.size() != expected)
+      ctx_.refuse(what + " has " + std::to_string(vector ? values.size() / components : values.size()) +
+                  " output values for " + std::to_string(times.size()) + " key times (expected " +
+                  std::to_string(vector ? expected / components : expected) + ": " +
+                  (perKey == 3 ? "3 per key for CUBICSPLINE" : "1 per key") +
+                  (vector ? "" : ", times " + std::to_string(components) + " morph targets") + ")");
+    if (!allFinite(values)) ctx_.refuse(what + " output has a value that is not finite");
+    if (path == AnimationPath::Rotation) {
+      // Key rotations (not CUBICSPLINE tangents) must be quaternions a slerp can normalise.
+      for (size_t k = 0; k < times.size(); ++k) {
+        const size_t at = (k * perKey + (perKey == 3 ? 1 : 0)) * 4;
+        const double length = std::sqrt(values[at] * values[at] + values[at + 1] * values[at + 1] +
+                                        values[at + 2] * values[at + 2] + values[at + 3] * values[at + 3]);
+        if (length < 1e-6) ctx_.refuse(what + " output rotation " + std::to_string(k) + " is a zero quaternion");
+      }
+    }
+    sampler.times.assign(times.begin(), times.end());
+    sampler.values.assign(values.begin(), values.end());
+    return sampler;
+  }
+
+  void loadAnimations() {
+    for (size_t a = 0; a < model_.animations.size(); ++a) {
+      const tinygltf::Animation& source = model_.animations[a];
+      const std::string what = "animation " + std::to_string(a);
+      Animation animation;
+      animation.name = source.name;
+      struct LoadedSampler {
+        int index;
+        AnimationPath path;
+        int components;
+      };
+      std::map<int, LoadedSampler> samplers;           // by glTF sampler
+      std::map<std::pair<int, std::string>, size_t> targets;  // (node, path) -> the first channel on it
+      int outsideHierarchy = 0, unknownPath = 0, withoutNode = 0;
+      for (size_t c = 0; c < source.channels.size(); ++c) {
+        const tinygltf::AnimationChannel& channel = source.channels[c];
+        const std::string channelWhat = what + " channel " + std::to_string(c);
+        if (channel.target_node < 0) {
+          ++withoutNode;
+          continue;
+        }
+        if (static_cast<size_t>(channel.target_node) >= model_.nodes.size())
+          ctx_.refuse(channelWhat + " targets node " + std::to_string(channel.target_node) + ", which does not exist");
+        AnimationPath path;
+        if (channel.target_path == "translation") path = AnimationPath::Translation;
+        else if (channel.target_path == "rotation") path = AnimationPath::Rotation;
+        else if (channel.target_path == "scale") path = AnimationPath::Scale;
+        else if (channel.target_path == "weights") path = AnimationPath::Weights;
+        else {
+          ++unknownPath;
+          continue;
+        }
+        if (channel.sampler < 0 || static_cast<size_t>(channel.sampler) >= source.samplers.size())
+          ctx_.refuse(channelWhat + " refers to sampler " + std::to_string(channel.sampler) +
+                      ", which does not exist");
+        // glTF 2.0 sec. 5.5: "Within one animation, each target ... MUST NOT be used more than once."
+        const auto target = std::make_pair(channel.target_node, channel.target_path);
+        if (targets.count(target))
+          ctx_.refuse(channelWhat + " animates node " + std::to_string(channel.target_node) + " " +
+                      channel.target_path + ", as channel " + std::to_string(targets[target]) + " does");
+        targets[target] = c;
+        const std::vector<int>& copies = copies_[static_cast<size_t>(channel.target_node)];
+        if (copies.empty()) {
+          ++outsideHierarchy;
+          continue;
+        }
+        // glTF 2.0 sec. 3.5.2: a node targeted by an animation has TRS, never a matrix.
+        if (scene_.nodes[static_cast<size_t>(copies.front())].hasMatrix)
+          ctx_.refuse(channelWhat + " animates node " + std::to_string(channel.target_node) +
+                      ", which has a matrix (glTF allows animating only TRS nodes)");
+        int components = path == AnimationPath::Rotation ? 4 : 3;
+        if (path == AnimationPath::Weights) {
+          components = static_cast<int>(scene_.nodes[static_cast<size_t>(copies.front())].weights.size());
+          if (components == 0)
+            ctx_.refuse(channelWhat + " animates the weights of node " + std::to_string(channel.target_node) +
+                        ", which has no morph targets");
+        }
+        auto loaded = samplers.find(channel.sampler);
+        if (loaded == samplers.end()) {
+          animation.samplers.push_back(loadSampler(static_cast<int>(a), channel.sampler, path, components));
+          loaded = samplers
+                       .emplace(channel.sampler,
+                                LoadedSampler{static_cast<int>(animation.samplers.size()) - 1, path, components})
+                       .first;
+        } else if (loaded->second.components != components ||
+                   (loaded->second.path == AnimationPath::Rotation) != (path == AnimationPath::Rotation)) {
+          ctx_.refuse(channelWhat + " shares sampler " + std::to_string(channel.sampler) +
+                      " with a channel that needs other values");
+        }
+        for (int node : copies) animation.channels.push_back({loaded->second.index, node, path});
+      }
+      if (outsideHierarchy > 0)
+        ctx_.report.warnings.push_back(what + ": " + std::to_string(outsideHierarchy) +
+                                       " channels target nodes outside the default scene; skipped");
+      if (unknownPath > 0)
+        ctx_.report.warnings.push_back(what + ": " + std::to_string(unknownPath) +
+                                       " channels have a path other than translation, rotation, scale or weights; "
+                                       "skipped");
+      if (withoutNode > 0)
+        ctx_.report.warnings.push_back(what + ": " + std::to_string(withoutNode) +
+                                       " channels have no target node; skipped");
+      scene_.animations.push_back(std::move(animation));
+    }
+  }
+
+  const LoaderContext& ctx_;
+  const tinygltf::Model& model_;
+  Scene& scene_;
+  std::vector<std::vector<int>> copies_;  // per glTF node: its Scene::nodes indices (several: reached by several paths)
+  std::vector<int> sourceNode_;           // per Scene node: its glTF node
+  std::vector<glm::mat4> restWorld_;      // per Scene node
+  std::vector<int> path_;                 // glTF nodes from the root to the one visited, to detect cycles
+  bool warnedSharedNode_ = false;
+  std::map<int, size_t> targetCounts_;                        // per glTF mesh
+  std::map<std::tuple<int, size_t, bool>, int> primitiveMeshes_;  // (mesh, primitive, skinned) -> Scene mesh
+  std::vector<int> maxJoint_;                                 // per Scene mesh: its highest joint index, -1: none
+  std::map<int, int> skins_;                                  // glTF skin -> Scene skin
+  int skippedPrimitives_ = 0;                                 // points and lines
+};
 
 struct ImageLoadContext {
   const GltfLimits* limits;
@@ -686,9 +1125,16 @@ std::string firstLine(const std::string& text) {
   return line.empty() ? "unknown error" : line;
 }
 
-// The asset's extensionsRequired, read before tinygltf parses the rest: a file that needs, say, Draco has
-// accessors without buffer views, and the user should hear about the extension rather than about accessor 0.
-std::vector<std::string> requiredExtensions(const std::vector<std::uint8_t>& bytes) {
+// What is read from the JSON before tinygltf parses it: the asset's extensionsRequired (a file that needs, say,
+// Draco has accessors without buffer views, and the user should hear about the extension rather than about
+// accessor 0), and per animation the channels whose target has no node (KHR_animation_pointer's), which tinygltf
+// 2.7 drops without a word.
+struct DocumentFacts {
+  std::vector<std::string> requiredExtensions;
+  std::vector<int> channelsWithoutNode;  // per animation
+};
+
+DocumentFacts scanDocument(const std::vector<std::uint8_t>& bytes) {
   std::string_view json(reinterpret_cast<const char*>(bytes.data()), bytes.size());
   if (bytes.size() >= 20 && std::memcmp(bytes.data(), "glTF", 4) == 0) {
     std::uint32_t chunkLength = 0, chunkType = 0;
@@ -698,10 +1144,22 @@ std::vector<std::string> requiredExtensions(const std::vector<std::uint8_t>& byt
     json = json.substr(20, chunkLength);
   }
   const nlohmann::json document = nlohmann::json::parse(json.begin(), json.end(), nullptr, false);
-  std::vector<std::string> out;
-  if (document.is_object() && document.contains("extensionsRequired") && document["extensionsRequired"].is_array())
+  DocumentFacts out;
+  if (!document.is_object()) return out;
+  if (document.contains("extensionsRequired") && document["extensionsRequired"].is_array())
     for (const auto& name : document["extensionsRequired"])
-      if (name.is_string()) out.push_back(name.get<std::string>());
+      if (name.is_string()) out.requiredExtensions.push_back(name.get<std::string>());
+  if (document.contains("animations") && document["animations"].is_array()) {
+    for (const auto& animation : document["animations"]) {
+      int count = 0;
+      if (animation.is_object() && animation.contains("channels") && animation["channels"].is_array())
+        for (const auto& channel : animation["channels"])
+          if (channel.is_object() && channel.contains("target") && channel["target"].is_object() &&
+              !channel["target"].contains("node"))
+            ++count;
+      out.channelsWithoutNode.push_back(count);
+    }
+  }
   return out;
 }
 
@@ -712,7 +1170,8 @@ Scene loadWithResolver(const std::vector<std::uint8_t>& bytes, const std::string
   if (bytes.size() > limits.maxFileBytes) refuse("file is larger than " + std::to_string(limits.maxFileBytes) + " bytes");
   if (bytes.size() > 0xFFFFFFFFull) refuse("file is larger than 4 GiB");
 
-  for (const std::string& ext : requiredExtensions(bytes))
+  const DocumentFacts facts = scanDocument(bytes);
+  for (const std::string& ext : facts.requiredExtensions)
     if (!kHarmlessRequiredExtensions.count(ext)) refuse("requires unsupported extension " + ext);
 
   tinygltf::TinyGLTF gltf;
@@ -738,15 +1197,20 @@ Scene loadWithResolver(const std::vector<std::uint8_t>& bytes, const std::string
   GltfLoadReport localReport;
   GltfLoadReport& out = report ? *report : localReport;
   if (!warn.empty()) out.warnings.push_back(firstLine(warn));
+  for (size_t a = 0; a < facts.channelsWithoutNode.size(); ++a)
+    if (facts.channelsWithoutNode[a] > 0)
+      out.warnings.push_back("animation " + std::to_string(a) + ": " + std::to_string(facts.channelsWithoutNode[a]) +
+                             " channels have no target node (KHR_animation_pointer?); skipped");
   for (const std::string& ext : model.extensionsRequired) {
     if (!kHarmlessRequiredExtensions.count(ext)) refuse("requires unsupported extension " + ext);
   }
 
-  const LoaderContext ctx{model, limits, refuse, out};
+  LoadBudget budget;
+  const LoaderContext ctx{model, limits, refuse, out, budget};
   Scene scene;
   scene.name = name;
   loadMaterials(ctx, scene);
-  loadNodes(ctx, scene);
+  SceneBuilder(ctx, scene).build();
   if (scene.instances.empty()) refuse("contains no triangle geometry in its default scene");
   const Bounds bounds = scene.worldBounds();
   const glm::vec3 extent = bounds.max - bounds.min;

@@ -11,24 +11,50 @@ void generateFlatNormals(Mesh& mesh) {
   Mesh flat;
   flat.material = mesh.material;
   const bool hasUv = !mesh.texcoords.empty();
+  const bool skinned = mesh.skinned();
   flat.positions.reserve(mesh.indices.size());
   flat.normals.reserve(mesh.indices.size());
-  for (size_t t = 0; t + 2 < mesh.indices.size(); t += 3) {
-    const glm::vec3 a = mesh.positions[mesh.indices[t]];
-    const glm::vec3 b = mesh.positions[mesh.indices[t + 1]];
-    const glm::vec3 c = mesh.positions[mesh.indices[t + 2]];
+  flat.morphTargets.resize(mesh.morphTargets.size());
+  std::vector<bool> targetMovesNormals(mesh.morphTargets.size(), false);
+  auto faceNormal = [](const glm::vec3& a, const glm::vec3& b, const glm::vec3& c, glm::vec3* n) {
     const glm::vec3 cross = glm::cross(b - a, c - a);
     const float length = glm::length(cross);
+    if (!(length > 0.0f)) return false;
+    *n = cross / length;
+    return true;
+  };
+  for (size_t t = 0; t + 2 < mesh.indices.size(); t += 3) {
+    const std::uint32_t corners[3] = {mesh.indices[t], mesh.indices[t + 1], mesh.indices[t + 2]};
+    const glm::vec3 a = mesh.positions[corners[0]], b = mesh.positions[corners[1]], c = mesh.positions[corners[2]];
     // Degenerate triangles get an arbitrary unit normal; they cover no pixels.
-    const glm::vec3 n = length > 0.0f ? cross / length : glm::vec3(0.0f, 1.0f, 0.0f);
-    for (int k = 0; k < 3; ++k) {
-      const std::uint32_t source = mesh.indices[t + static_cast<size_t>(k)];
+    glm::vec3 n(0.0f, 1.0f, 0.0f);
+    faceNormal(a, b, c, &n);
+    for (size_t m = 0; m < mesh.morphTargets.size(); ++m) {
+      // The target's normal displacement is the change of the face normal when the target is fully applied: exact
+      // at weights 0 and 1 of one target, an approximation between (the vertex stage renormalises).
+      const std::vector<glm::vec3>& d = mesh.morphTargets[m].positions;
+      glm::vec3 moved = n;
+      if (!faceNormal(a + d[corners[0]], b + d[corners[1]], c + d[corners[2]], &moved)) moved = n;
+      const glm::vec3 delta = moved - n;
+      if (delta != glm::vec3(0.0f)) targetMovesNormals[m] = true;
+      for (std::uint32_t corner : corners) {
+        flat.morphTargets[m].positions.push_back(d[corner]);
+        flat.morphTargets[m].normals.push_back(delta);
+      }
+    }
+    for (std::uint32_t source : corners) {
       flat.indices.push_back(static_cast<std::uint32_t>(flat.positions.size()));
       flat.positions.push_back(mesh.positions[source]);
       flat.normals.push_back(n);
       if (hasUv) flat.texcoords.push_back(mesh.texcoords[source]);
+      if (skinned) {
+        flat.joints.push_back(mesh.joints[source]);
+        flat.weights.push_back(mesh.weights[source]);
+      }
     }
   }
+  for (size_t m = 0; m < flat.morphTargets.size(); ++m)
+    if (!targetMovesNormals[m]) flat.morphTargets[m].normals.clear();
   mesh = std::move(flat);
 }
 

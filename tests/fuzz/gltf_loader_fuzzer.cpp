@@ -1,12 +1,14 @@
 // libFuzzer target for scene loading: any bytes, as .glb or .gltf, with a side file, must either load into a
-// drawable scene or be refused with an InputError. Anything else (a crash, a sanitizer report, another exception,
-// a hang) is a bug. Seeded with Debian's assimp-testmodels glTF files (tools/fuzz-gltf.sh).
+// drawable (and poseable) scene or be refused with an InputError. Anything else (a crash, a sanitizer report,
+// another exception, a hang) is a bug. Seeded with Debian's assimp-testmodels glTF files and tests/fuzz/seeds
+// (tools/fuzz-gltf.sh).
 #include <cstddef>
 #include <cstdint>
 #include <map>
 #include <vector>
 
 #include "base/Error.h"
+#include "scene/Animation.h"
 #include "scene/GltfLoader.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
@@ -21,8 +23,17 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   limits.maxImageDimension = 1024;
   try {
     const obscura::Scene scene = obscura::loadGltfMemory(bytes, "fuzz-input", sideFiles, nullptr, limits);
-    // Touch what the renderer will touch.
+    // Touch what the renderer will touch: the rest bounds, and a pose of every animation at once, looping and not,
+    // baked on the CPU (skinning and morphing read joint indices, weights and targets the loader vouched for).
     volatile float sink = scene.worldBounds().radius();
+    if (scene.animated()) {
+      obscura::PoseOptions options;
+      options.animation = obscura::AnimationChoice::all();
+      for (const double time : {0.37, 1e6}) {
+        options.loop = time < 1.0;
+        sink = obscura::posedScene(scene, obscura::evaluatePose(scene, time, options)).worldBounds().radius();
+      }
+    }
     (void)sink;
   } catch (const obscura::InputError&) {
     // Refused with a message: the expected outcome for most inputs.
