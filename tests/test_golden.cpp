@@ -1,6 +1,7 @@
 // Golden image of the built-in scene at its fixed camera. Regenerate (after an intended change) with
 //   OBSCURA_UPDATE_GOLDEN=1 ctest --test-dir build -R 'gpu\.osmesa\.Golden'   (tools/tune-defaults.sh does this too)
-// and commit tests/golden/*.png together with the change that explains it.
+// and commit tests/golden/*.png together with the change that explains it. The still room (no pendulum, no limb):
+// the image the tuned defaults were judged on; what moves is tested in test_scene.cpp.
 #include <gtest/gtest.h>
 
 #include <cstdlib>
@@ -15,7 +16,7 @@ namespace {
 
 void compareWithGolden(View view, const std::string& file) {
   Renderer renderer = test::makeRenderer();
-  renderer.setScene(makeBuiltinScene());
+  renderer.setScene(makeBuiltinScene(BuiltinSceneOptions::still()));
   const Camera camera = builtinSceneCamera(640, 360);
   const test::RenderedImage image = test::render(renderer, camera, AoSettings{}, view);
   Image rendered;

@@ -86,7 +86,7 @@ TEST(DepthHierarchy, EveryLevelHoldsTheRotatedGridPickAndItsPlaceInEveryStorage)
 
 TEST(DepthHierarchy, ChangesTheBlurredAoLittle) {
   Renderer renderer = test::makeRenderer();
-  renderer.setScene(makeBuiltinScene());
+  renderer.setScene(makeBuiltinScene(BuiltinSceneOptions::still()));  // the room the bounds below were measured on
   const Camera camera = builtinSceneCamera(320, 180);
   // Bounds (of 255) about 1.5 to 2 times what llvmpipe measured. At 0.5 m nearly every tap is within 16 px and reads
   // level 0, so the figure is close to nothing; the far radii are where the levels are read. Measured: SAO (hard cut
@@ -205,7 +205,7 @@ TEST(HalfResolution, UpsamplingDoesNotBleedAcrossADepthStep) {
 
 TEST(HalfResolution, StaysCloseToFullResolution) {
   Renderer renderer = test::makeRenderer();
-  renderer.setScene(makeBuiltinScene());
+  renderer.setScene(makeBuiltinScene(BuiltinSceneOptions::still()));  // the room the bound below was measured on
   const Camera camera = builtinSceneCamera(640, 360);
   AoSettings full, half;
   half.halfResolution = true;

@@ -124,7 +124,7 @@ TEST(Pipeline, WithoutAStencilBufferTheLightingPassShadesAlmostEveryPixelOnce) {
   const std::map<int, int> layers =
       shadingCounts(renderer, test::makeCamera({0.3f, 0.2f, 3.0f}, {0, 0, -3}, 160, 120), RenderSettings());
   EXPECT_EQ(layers.size(), 2u) << "surfaces a step apart or more are never shaded twice";
-  renderer.setScene(makeBuiltinScene());
+  renderer.setScene(makeBuiltinScene(BuiltinSceneOptions::still()));  // the room the figure below was measured on
   const std::map<int, int> builtin = shadingCounts(renderer, builtinSceneCamera(640, 360), RenderSettings());
   int twice = 0, covered = 0;
   for (const auto& [count, pixels] : builtin) {
@@ -399,7 +399,7 @@ TEST(Pipeline, PooledTargetsAreReusedWithinAFrameAndKeptAcrossFrames) {
 // the sampling differs between the sizes.
 TEST(Pipeline, FxaaMovesEdgesTowardsASupersampledReference) {
   Renderer renderer = test::makeRenderer();
-  renderer.setScene(makeBuiltinScene());
+  renderer.setScene(makeBuiltinScene(BuiltinSceneOptions::still()));  // the room the README's figures were measured on
   constexpr int kWidth = 240, kHeight = 135, kScale = 4;
   RenderSettings aliased, fxaa;
   aliased.set("ao", "off");

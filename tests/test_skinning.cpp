@@ -185,6 +185,33 @@ TEST(Skinning, ASkeletonLargerThanThePaletteRendersAsWithALargePalette) {
   }
 }
 
+// The forward lighting draws the skin again and shades only where its depth equals the G-buffer's: every covered
+// pixel must be shaded exactly once, so the deformation must give the same positions in both passes (geometry.vert's
+// invariant gl_Position), on every path.
+TEST(Skinning, TheForwardLightingShadesEverySkinnedPixelOnce) {
+  const Scene scene = bendingTube(40);
+  for (SkinningPath path : {SkinningPath::Texture, SkinningPath::Uniforms, SkinningPath::Cpu}) {
+    RendererOptions options;
+    options.skinning = path;
+    options.allowDrawBuffers = false;
+    if (path == SkinningPath::Uniforms) options.simulateVertexLimits = VertexLimits::gles2Minimum();
+    Renderer renderer = test::makeRenderer(options);
+    renderer.setScene(scene);
+    FrameOptions frame;
+    frame.time = 0.7;
+    const auto depth = test::render(renderer, frontCamera(), RenderSettings(), View::Depth, frame);
+    const auto count = test::render(renderer, frontCamera(), RenderSettings(), View{"shading-count"}, frame);
+    int covered = 0, wrong = 0;
+    for (size_t p = 0; p < depth.rgba.size(); p += 4) {
+      const bool geometry = depth.rgba[p] != 255;
+      covered += geometry;
+      wrong += geometry ? count.rgba[p] != 32 : count.rgba[p] != 0;  // 32/255 per shading
+    }
+    EXPECT_GT(covered, 1000);
+    EXPECT_EQ(wrong, 0) << skinningPathName(renderer.gpuScene().skinningPath());
+  }
+}
+
 TEST(MorphTargets, OnTheGpuAsFarAsAttributesAllowThenOnTheCpu) {
   RendererOptions minimum;
   minimum.simulateVertexLimits = VertexLimits::gles2Minimum();

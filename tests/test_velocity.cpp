@@ -13,6 +13,7 @@
 #include "core/VelocityPacking.h"
 #include "scene/Animation.h"
 #include "scene/Primitives.h"
+#include "scene/SkinnedTube.h"
 
 namespace obscura {
 namespace {
@@ -199,41 +200,13 @@ TEST(Velocity, AMovingObjectGivesTheAnalyticMotionAndItsBackgroundNone) {
   }
 }
 
-// The bending tube of test_skinning.cpp, simplified: a chain of three joints bending, on a floor.
+// A tube on a chain of three joints, bending and sliding (scene/SkinnedTube.h).
 Scene bendingChain() {
   Scene scene;
-  Mesh tube = makeBox({-0.3f, 0.0f, -0.3f}, {0.3f, 3.0f, 0.3f});
-  // Subdivide nothing: weight each vertex by height (the box's 8 corners spread over the joints).
-  for (const glm::vec3& v : tube.positions) {
-    const float t = v.y / 3.0f;
-    tube.joints.emplace_back(0, 1, 2, 0);
-    tube.weights.emplace_back(std::max(0.0f, 1.0f - 2.0f * t), 1.0f - std::abs(2.0f * t - 1.0f),
-                              std::max(0.0f, 2.0f * t - 1.0f), 0.0f);
-  }
-  scene.meshes.push_back(tube);
-  Skin skin;
-  Animation bend;
-  for (int j = 0; j < 3; ++j) {
-    Node node;
-    node.parent = j - 1;
-    node.translation = glm::vec3(0.0f, j == 0 ? 0.0f : 1.5f, 0.0f);
-    scene.nodes.push_back(node);
-    skin.joints.push_back(j);
-    skin.inverseBind.push_back(glm::translate(glm::mat4(1.0f), glm::vec3(0.0f, -1.5f * static_cast<float>(j), 0.0f)));
-    AnimationSampler rotation;
-    rotation.times = {0.0f, 1.0f};
-    const glm::quat q = glm::angleAxis(0.5f, glm::normalize(glm::vec3(0.2f, 0.3f, 1.0f)));
-    rotation.values = std::vector<float>{0, 0, 0, 1, q.x, q.y, q.z, q.w};
-    rotation.components = 4;
-    bend.samplers.push_back(rotation);
-    bend.channels.push_back({j, j, AnimationPath::Rotation});
-  }
-  scene.skins.push_back(skin);
-  scene.animations.push_back(bend);
-  Instance instance;
-  instance.node = 0;
-  instance.skin = 0;
-  scene.instances.push_back(instance);
+  SkinnedTubeShape shape;
+  shape.height = 3.0f;
+  shape.rings = 24;
+  addSkinnedTube(scene, shape, glm::vec3(0.0f));
   return scene;
 }
 

@@ -86,8 +86,9 @@ std::vector<float> sampleAnimation(const AnimationSampler& s, float t, bool rota
     const float* v = keyValue(s, key);
     std::copy(v, v + c, out.begin());
   };
-  // Clamp outside the keys (glTF 2.0: "before the first key, the first value; after the last, the last").
-  if (keys == 1 || t <= s.times.front()) {
+  // Clamp outside the keys (glTF 2.0: "before the first key, the first value; after the last, the last"); a time
+  // that is not a number is taken as the first key's.
+  if (keys == 1 || !(t > s.times.front())) {
     copyKey(0);
   } else if (t >= s.times.back()) {
     copyKey(keys - 1);

@@ -1,5 +1,6 @@
 #include "scene/Primitives.h"
 
+#include <algorithm>
 #include <cmath>
 
 #include <glm/geometric.hpp>
@@ -82,6 +83,38 @@ Mesh makeCylinder(float radius, float height, int slices) {
     m.normals.insert(m.normals.end(), 3, glm::vec3(0, 1, 0));
     m.texcoords.insert(m.texcoords.end(), 3, glm::vec2(0.5f));
     m.indices.insert(m.indices.end(), {top, top + 1, top + 2});
+  }
+  return m;
+}
+
+Mesh makeRoundedTube(float radius, float length, int slices, int rings) {
+  Mesh m;
+  const int capRows = std::max(2, slices / 4);  // the hemisphere's rows above the side's top ring, the pole last
+  const float top = length + radius;
+  auto addRow = [&](float y, float radial, float rise) {  // rise: the normal's y; radial: its part outwards
+    for (int i = 0; i <= slices; ++i) {
+      const float u = static_cast<float>(i) / static_cast<float>(slices);
+      const glm::vec3 d(std::cos(2.0f * kPi * u), 0.0f, -std::sin(2.0f * kPi * u));
+      m.positions.push_back(d * (radius * radial) + glm::vec3(0.0f, y, 0.0f));
+      m.normals.push_back(glm::normalize(d * radial + glm::vec3(0.0f, rise, 0.0f)));
+      m.texcoords.emplace_back(u, y / top);
+    }
+  };
+  for (int j = 0; j <= rings; ++j) addRow(length * static_cast<float>(j) / static_cast<float>(rings), 1.0f, 0.0f);
+  for (int k = 1; k <= capRows; ++k) {
+    const float elevation = 0.5f * kPi * static_cast<float>(k) / static_cast<float>(capRows);
+    const float radial = k == capRows ? 0.0f : std::cos(elevation);  // exactly 0 at the pole
+    addRow(length + radius * std::sin(elevation), radial, std::sin(elevation));
+  }
+  // Each row to the one above it, counter-clockwise seen from outside (as makeCylinder's sides).
+  const auto row = static_cast<std::uint32_t>(slices + 1);
+  const auto rows = static_cast<std::uint32_t>(rings + 1 + capRows);
+  for (std::uint32_t j = 0; j + 1 < rows; ++j) {
+    for (std::uint32_t i = 0; i < static_cast<std::uint32_t>(slices); ++i) {
+      const std::uint32_t a = j * row + i, b = a + row;
+      m.indices.insert(m.indices.end(), {a, a + 1, b + 1});
+      if (j + 2 != rows) m.indices.insert(m.indices.end(), {a, b + 1, b});  // the pole row: one triangle each
+    }
   }
   return m;
 }

@@ -17,6 +17,10 @@ Mesh makeBox(const glm::vec3& lo, const glm::vec3& hi, float uvPerMetre = 0.0f);
 Mesh makeSphere(float radius, int slices, int stacks);
 // Capped cylinder standing on y = 0 around the y axis, smooth sides.
 Mesh makeCylinder(float radius, float height, int slices);
+// Tube standing on y = 0 around the y axis: `length` of straight side in `rings` rings of vertices (so that a skin
+// can bend it smoothly), then a hemisphere of the same radius on top; open at the bottom, like makeCylinder, for it
+// stands on something. Smooth normals; its top is at length + radius.
+Mesh makeRoundedTube(float radius, float length, int slices, int rings);
 // Semicircular arch ring in the xy plane, centre at the origin, opening downwards, `depth` thick along z.
 Mesh makeArchRing(float innerRadius, float outerRadius, float depth, int segments);
 
