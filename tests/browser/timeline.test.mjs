@@ -1,7 +1,8 @@
-// The timeline in the page (the built-in scene moves: one looping animation): the Animation controls, space playing
-// and pausing (frames change while playing, not while paused), the arrows stepping frames, the URL's time reproducing
-// a frame pixel for pixel in a new page, the JS API (animations, setAnimation, setTime, timeupdate), a still scene
-// hiding the controls, and the timeline surviving a WebGL context loss.
+// The timeline in the page, on Debian's simple_skin (a skinned strip, one unnamed 5.5 s animation) loaded through the
+// API: the Animation controls, space playing and pausing (frames change while playing, not while paused), the arrows
+// stepping frames, the URL's state reproducing a frame pixel for pixel in a new page, the JS API (animations,
+// setAnimation, setTime, timeupdate), a still scene hiding the controls, and the timeline surviving a WebGL context
+// loss. Where the page's built-in scene moves (BuiltinSceneOptions), the URL alone reproduces its frame too.
 import assert from 'node:assert/strict';
 import { after, before, describe, test } from 'node:test';
 import { compareImages, openPage, readModel, snapshot, startBrowser, waitForDrawn } from './harness.mjs';
@@ -10,11 +11,17 @@ let session;
 let page;
 
 const timeline = (p = page) => p.evaluate(() => window.obscura.timeline());
+const skin = Array.from(readModel('simple_skin/simple_skin.gltf'));
+const loadSkin = (p) => p.evaluate(async (bytes) => {
+  await window.obscura.loadScene(new Uint8Array(bytes), 'simple_skin.gltf');
+}, skin);
 
 describe('timeline', () => {
   before(async () => {
     session = await startBrowser();
     page = await openPage(await session.newContext(), session.baseUrl);
+    await loadSkin(page);
+    await waitForDrawn(page);
   });
   after(async () => {
     if (page) assert.deepEqual(page.errors, [], 'console errors during the timeline tests');
@@ -23,8 +30,9 @@ describe('timeline', () => {
 
   test('starts paused at 0 s with the controls shown', { timeout: 120000 }, async () => {
     const t = await timeline();
-    assert.ok(t.animations.length >= 1, `the built-in scene has animations: ${JSON.stringify(t)}`);
-    assert.ok(t.duration > 1, `duration ${t.duration}`);
+    assert.deepEqual(t.animations, [''], 'one unnamed animation');
+    assert.equal(t.animation, '0');
+    assert.equal(t.duration, 5.5);
     assert.equal(t.time, 0);
     assert.equal(t.playing, false);
     assert.equal(t.loop, true);
@@ -32,6 +40,7 @@ describe('timeline', () => {
     assert.equal(t.frameInterval, 1 / 60);
     assert.equal(await page.locator('#timeline').isVisible(), true);
     assert.equal(await page.locator('#play').textContent(), 'Play');
+    assert.equal(await page.locator('#animation option:checked').textContent(), 'animation 0');
     // Idle: no frame is drawn while paused.
     const frames = (await page.evaluate(() => window.obscura.stats())).frames;
     await page.waitForTimeout(300);
@@ -70,14 +79,21 @@ describe('timeline', () => {
     await page.evaluate((t) => window.obscura.setTime(t), paused.time);  // back where it was paused
   });
 
-  test('the URL holds the time and reproduces the frame in a new page', { timeout: 120000 }, async () => {
+  test('the URL holds the time, and its state reproduces the frame in a new page', { timeout: 120000 }, async () => {
     const t = await timeline();
     assert.ok(t.time > 0 && !t.playing, JSON.stringify(t));
     await page.waitForFunction((time) => new URLSearchParams(location.search).get('time') === String(time), t.time);
     const url = await page.evaluate(() => location.href);
     const here = await snapshot(page);
+    // The scene is not in the URL: the new page loads the file, then applies the URL's state (as a user who has the
+    // file would), and draws the same pixels.
     const other = await openPage(await session.newContext(), url);
     try {
+      await loadSkin(other);
+      const state = new URL(url).searchParams;
+      state.delete('debug-gl');  // a page flag, not state
+      await other.evaluate((query) => window.obscura.setState(query), state.toString());
+      await waitForDrawn(other);
       const reopened = await timeline(other);
       assert.equal(reopened.time, t.time, 'the same double');
       assert.equal(reopened.playing, false);
@@ -87,6 +103,29 @@ describe('timeline', () => {
       assert.deepEqual(other.errors, []);
     } finally {
       await other.close();
+    }
+  });
+
+  test('where the built-in scene moves, its URL alone reproduces the frame', { timeout: 120000 }, async (t) => {
+    const probe = await openPage(await session.newContext(), session.baseUrl);
+    try {
+      const builtin = await timeline(probe);
+      if (builtin.duration <= 0) {
+        t.skip('the built-in scene is still (BuiltinSceneOptions: the still room is the default)');
+        return;
+      }
+      await probe.evaluate(() => {
+        window.obscura.setTime(1.2345);
+        window.obscura.stepFrames(1);
+      });
+      await probe.waitForFunction(() => new URLSearchParams(location.search).has('time'));
+      const here = await snapshot(probe);
+      const other = await openPage(await session.newContext(), await probe.evaluate(() => location.href));
+      assert.equal((await timeline(other)).time, (await timeline(probe)).time);
+      assert.equal(compareImages(here, await snapshot(other)).max, 0, 'the same pixels');
+      await other.close();
+    } finally {
+      await probe.close();
     }
   });
 
@@ -133,7 +172,8 @@ describe('timeline', () => {
     assert.equal(result.playsNone, false, 'nothing plays');
     assert.ok(Math.abs(result.wrapped - 0.25) < 1e-9, `wrapped to ${result.wrapped}`);
     assert.equal(result.clamped, true);
-    assert.match(result.badAnimation, /^ObscuraError: animation 'no such animation' is not in the scene; choices: none, all, 0/);
+    assert.match(result.badAnimation,
+                 /^ObscuraError: animation 'no such animation' is not in the scene; choices: none, all, 0$/);
     assert.match(result.badSpeed, /speed: 0 is out of range/);
     assert.ok(result.updates >= 3, `timeupdate events while playing: ${result.updates}`);
     assert.match(result.state, /&speed=2&/);
@@ -152,7 +192,7 @@ describe('timeline', () => {
     await page.locator('#view').click({ position: { x: 10, y: 10 } });
     await page.keyboard.press(' ');
     await page.waitForFunction(() => document.querySelector('#error').textContent.includes('nothing to play'));
-    await page.evaluate(() => window.obscura.loadBuiltinScene());
+    await loadSkin(page);
     await page.waitForFunction(() => !document.querySelector('#timeline').hidden);
   });
 });
@@ -161,8 +201,11 @@ describe('timeline and context loss', () => {
   test('the time survives a lost context, and playing goes on after it', { timeout: 120000 }, async () => {
     const session = await startBrowser();
     try {
-      const page = await openPage(await session.newContext(), `${session.baseUrl}?time=1.25&view=split`);
-      assert.equal((await timeline(page)).time, 1.25);
+      const page = await openPage(await session.newContext(), `${session.baseUrl}?view=split`);
+      await loadSkin(page);
+      await page.evaluate(() => window.obscura.setTime(0.25));  // the strip bends from 0 to 1 s
+      await waitForDrawn(page);
+      assert.equal((await timeline(page)).time, 0.25);
       const before = await snapshot(page);
       await page.evaluate(() => {
         window.loseContext = document.querySelector('#view').getContext('webgl').getExtension('WEBGL_lose_context');
@@ -172,13 +215,13 @@ describe('timeline and context loss', () => {
       await page.evaluate(() => window.loseContext.restoreContext());
       await page.waitForFunction(() => window.obscura.stats().contextRestores === 1, null, { timeout: 30000 });
       await waitForDrawn(page);
-      assert.equal((await timeline(page)).time, 1.25);
+      assert.equal((await timeline(page)).time, 0.25);
       const after = await snapshot(page);
       assert.equal(compareImages(before, after).max, 0, 'the same frame after the restore');
 
       const frames = (await page.evaluate(() => window.obscura.stats())).frames;
       await page.evaluate(() => window.obscura.play());
-      await page.waitForFunction((f) => window.obscura.stats().frames > f + 3 && window.obscura.time > 1.3, frames,
+      await page.waitForFunction((f) => window.obscura.stats().frames > f + 3 && window.obscura.time > 0.6, frames,
                                  { timeout: 60000, polling: 50 });
       await page.evaluate(() => window.obscura.pause());
       assert.ok(compareImages(after, await snapshot(page)).max > 0, 'the restored context plays the animation');
