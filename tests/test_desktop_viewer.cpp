@@ -1,6 +1,6 @@
 // obscura-view end to end under Xvfb: a real window with an OpenGL ES context renders the built-in scene, the AO
-// view (and a moment of the animation) matches the headless renderer's, and AO visibly darkens the final image. The viewer's --screenshot option
-// reads its own back buffer after the last frame.
+// view (and a moment of an animation) matches the headless renderer's, and AO visibly darkens the final image. The
+// viewer's --screenshot option reads its own back buffer after the last frame.
 #include <gtest/gtest.h>
 
 #include <sys/wait.h>

@@ -14,7 +14,8 @@ namespace obscura {
 std::string referenceUsage() {
   return "usage: obscura-reference [--scene FILE [--scene-scale S]] [--time T] [--animation A]\n"
          "                         [--camera CAM.json | --fit] [--size WxH] [--radius R] [--rays N] [--threads N]\n"
-         "                         [--view ao|depth|mask] [--out FILE.png] [--depth-out FILE.png] [--mask-out FILE.png]\n"
+         "                         [--view ao|depth|mask] [--out FILE.png] [--depth-out FILE.png]\n"
+         "                         [--mask-out FILE.png]\n"
          "\n"
          "Ray-traces (Embree) the ambient visibility A = (1/pi) * integral of V_R(w) cos(theta) dw of the scene\n"
          "obscura-render draws, with the same scene, moment of its animation, camera and view conventions\n"
