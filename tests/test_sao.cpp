@@ -243,10 +243,9 @@ TEST(Sao, NearAndFarPlanesDoNotChangeTheAo) {
 // it, so the built-in scene scaled by s and seen with its camera scaled by s (eye, target, near, far) gives the same
 // AO at radius s as the scene in metres at 1 m: within 1/255 everywhere, from millimetres to hectometres, at full
 // (medium) and half (low) resolution, for every estimator.
-// The still room: scaleScene (apps/SceneInput.h) scales instances' world matrices but not yet the nodes that the
-// moving scene's pendulum and limb are posed by, so scaled, those would stay in metres.
+// The moving scene (at rest): scaleScene scales the nodes its pendulum and limb are posed by too.
 TEST(Sao, ScalingTheSceneAndTheRadiusTogetherGivesTheSameAo) {
-  const Scene metres = makeBuiltinScene(BuiltinSceneOptions::still());
+  const Scene metres = makeBuiltinScene();
   const Camera camera = builtinSceneCamera(320, 180);
   Renderer renderer = test::makeRenderer();
   for (const auto& [estimator, preset] :

@@ -469,13 +469,13 @@ int main(int argc, char** argv) {
     scaleScene(engine, kEngineScale);
     const Camera engineCamera = Camera::fit(engine.worldBounds(), 1280, 720);
     scenes.push_back({"2CylinderEngine", std::move(engine), engineCamera});
-    Bench bench(options, context);
-    const BenchScene& builtin = scenes[0];
-    if (options.motionOnly) {
+    if (options.motionOnly) {  // before Bench, which starts DIR/bench.csv afresh
       motionSection(options, context, options.quick ? 640 : 1280, options.quick ? 360 : 720);
       std::printf("\nobscura-bench: wrote %s/motion.csv\n", options.outDir.c_str());
       return 0;
     }
+    Bench bench(options, context);
+    const BenchScene& builtin = scenes[0];
     if (options.estimatorsOnly) {
       const int w = options.quick ? 640 : 1280, h = options.quick ? 360 : 720;
       estimatorSection(bench, builtin, w, h, options.outDir);

@@ -3,20 +3,16 @@
 // floor and walls, a skirting ledge, columns on plinths, an arch on piers, stairs, spheres resting on the floor and
 // in a corner, and stacked boxes. Metres, +y up.
 //
-// On request (BuiltinSceneOptions::withMotion()) the room also holds what moves, so that motion (temporal
-// filtering, motion vectors, skinning) can be seen without a file: a pendulum swinging under the arch (a rigid
-// hierarchy: the bob's node is a child of the swinging pivot's) and a limb bending on a plinth left of the red sphere
-// (a skin of three bones in a chain), both driven by one looping animation, "motion", kBuiltinMotionSeconds long. Its
-// first keys are the rest pose, so at time 0 (or with no animation chosen) they stand still: the pendulum hangs
-// straight down, the limb stands upright.
+// By default (BuiltinSceneOptions::withMotion()) the room also holds what moves, so that motion (temporal filtering,
+// motion vectors, skinning) can be seen without a file: a pendulum swinging under the arch (a rigid hierarchy: the
+// bob's node is a child of the swinging pivot's) and a limb bending on a plinth left of the red sphere (a skin of
+// three bones in a chain), both driven by one looping animation, "motion", kBuiltinMotionSeconds long. Its first keys
+// are the rest pose, so at time 0 (where the viewers open, paused) or with no animation chosen they stand still:
+// the pendulum hangs straight down, the limb stands upright.
 //
 // The still room (BuiltinSceneOptions::still()) is the scene as it was before anything moved, exactly: the AO
 // accuracy figures, the tuned defaults (core/TunedDefaults.inc), the golden images and the benchmark figures were
 // all measured on it, so the tools and tests that hold those figures ask for it by name.
-//
-// For now the default is the still room: obscura-view and the web page pose the scene at the wall clock's
-// time, so with the motion by default their screenshot tests (tests/test_desktop_viewer.cpp, browser parity) would
-// catch the pendulum mid-swing; once they can pin the timeline, `moving` can default to true.
 #include "scene/Camera.h"
 #include "scene/Scene.h"
 
@@ -25,7 +21,7 @@ namespace obscura {
 struct BuiltinSceneOptions {
   // true: the room with the pendulum, the limb and their animation; false: the still room alone. The moving scene's
   // meshes, instances and materials begin with the still room's, unchanged, and add to them.
-  bool moving = false;
+  bool moving = true;
 
   static BuiltinSceneOptions still() { return {false}; }
   static BuiltinSceneOptions withMotion() { return {true}; }

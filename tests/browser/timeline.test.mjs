@@ -111,7 +111,7 @@ describe('timeline', () => {
     try {
       const builtin = await timeline(probe);
       if (builtin.duration <= 0) {
-        t.skip('the built-in scene is still (BuiltinSceneOptions: the still room is the default)');
+        t.skip('the built-in scene has no animation');
         return;
       }
       await probe.evaluate(() => {
