@@ -79,7 +79,14 @@ void Renderer::setScene(const Scene& scene) {
   options.skinning = options_.skinning;
   options.vertexLimits = options_.simulateVertexLimits;
   scene_ = GpuScene(scene, caps_, options);
-  sceneData_ = scene;
+  // What posing needs (the hierarchy, skins, animations, and the instances and meshes they deform), not the images,
+  // which the GPU holds now.
+  sceneData_ = Scene();
+  sceneData_.meshes = scene.meshes;
+  sceneData_.instances = scene.instances;
+  sceneData_.nodes = scene.nodes;
+  sceneData_.skins = scene.skins;
+  sceneData_.animations = scene.animations;
   dropHistory();
   checkErrors("");
 }

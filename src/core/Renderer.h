@@ -135,7 +135,7 @@ class Renderer {
   DebugViewPass views_;
   std::map<std::string, TargetInfo> targets_;     // every table target, by name
   GpuScene scene_;
-  Scene sceneData_;  // what the GPU scene was made from: posed every frame
+  Scene sceneData_;  // what the GPU scene was made from, without its images: posed every frame
   RenderTargetPool pool_;
   FramePlan plan_;
 
