@@ -4,7 +4,7 @@
 //                 1 normals: n * 0.5 + 0.5         4 HDR colour: lib/hdr.glsl decoded, clamped to [0, 1]
 //                 2 depth: G-buffer linear depth   5 colour: RGB as stored
 //                                                  6 count: R * 32 (a count / 255: 1 -> 32/255, 8 and more white)
-//                                                  7 velocity: RG = 0.5 + 8 v (uv units, clamped), B = 0.5
+//                                                  7 velocity: RG = 0.5 + 64 v (uv units, clamped), B = 0.5
 // The target may be smaller than the view (half-resolution AO): sampled NEAREST at the view's uv.
 #include "lib/precision.glsl"
 #include "lib/packing.glsl"
@@ -30,7 +30,7 @@ void main() {
 #elif VIEW_DECODING == 5
   gl_FragColor = vec4(texel.rgb, 1.0);
 #elif VIEW_DECODING == 7
-  gl_FragColor = vec4(clamp(0.5 + 8.0 * unpackVelocity(texel), 0.0, 1.0), 0.5, 1.0);
+  gl_FragColor = vec4(clamp(0.5 + 64.0 * unpackVelocity(texel), 0.0, 1.0), 0.5, 1.0);
 #else
   // Bytes written as (b + 0.25) / 255, so rounding and truncating targets both store 32 per count (lib/packing.glsl).
   gl_FragColor = vec4(vec3(min((floor(texel.r * 255.0 + 0.5) * 32.0 + 0.25) * (1.0 / 255.0), 1.0)), 1.0);

@@ -11,6 +11,9 @@ build/obscura-render --size 960x540 --view ao --out "$out/builtin_ao.png"
 build/obscura-render --size 960x540 --view ao-raw --out "$out/builtin_ao_raw.png"
 build/obscura-render --size 960x540 --view normals --out "$out/builtin_normals.png"
 build/obscura-render --size 960x540 --view depth --out "$out/builtin_depth.png"
+# Mid-swing, and the motion vectors of that frame (the pendulum and the limb; the camera is still).
+build/obscura-render --size 960x540 --time 1.2 --out "$out/builtin_moving.png"
+build/obscura-render --size 960x540 --time 1.2 --view velocity --out "$out/builtin_velocity.png"
 echo "render-docs-images: wrote $out/builtin_*.png"
 
 (cd tests/browser && npm ci --no-audit --no-fund --loglevel=error)

@@ -50,7 +50,8 @@ enum class ViewDecoding {
   HdrColor,  // the HDR encoding of lib/hdr.glsl, decoded, clamped to [0, 1]
   Color,     // RGB as stored
   Count,     // R holds a count / 255: grey 32/255 per count, white from 8 (the lighting's shading count)
-  Velocity,  // core/VelocityPacking.h decoded: RG = 0.5 + 8 v (v in uv units; grey 0.5 still), B = 0.5
+  Velocity,  // core/VelocityPacking.h decoded: RG = 0.5 + 64 v (v in uv units: white from 1/128 of the screen a
+             // frame; grey 0.5 still), B = 0.5
 };
 
 struct TargetView {
