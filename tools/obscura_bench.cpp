@@ -440,7 +440,8 @@ void motionSection(const Options& options, HeadlessContext& context, int w, int 
     for (const std::string& pass : framePassNames()) frameMs += timers[c].medianMs(pass);
     const GpuScene::Counts counts = renderers[c]->gpuScene().lastDrawCounts();
     std::printf("%-30s %9.2f %9.2f %9.2f %9.2f %9.2f   %d (%d)\n", configurations[c].name.c_str(),
-                timers[c].medianMs("pose"), timers[c].medianMs("gbuffer"), timers[c].medianMs("lighting"), timers[c].medianMs("velocity"), frameMs,
+                timers[c].medianMs("pose"), timers[c].medianMs("gbuffer"), timers[c].medianMs("lighting"),
+                timers[c].medianMs("velocity"), frameMs,
                 counts.draws, counts.cpuDeformed);
     for (const std::string& pass : passes)
       csv << '"' << configurations[c].name << "\"," << w << "," << h << "," << pass << ","
