@@ -11,7 +11,7 @@
 //      geometry.vert's PREVIOUS variant, depth-tested against the G-buffer (GL_LEQUAL, no depth writes: the same
 //      invariant positions), so only their visible fragments overwrite the camera's motion.
 // RendererOptions::velocityDrawsEverything draws every instance in step 2 instead: the measured alternative
-// (docs/benchmarks.md, "Motion vectors"), and the check that both give the same vectors.
+// (docs/benchmarks.md, section 7), and the check that both give the same vectors.
 #include <map>
 #include <tuple>
 
