@@ -52,6 +52,10 @@ TEST(Cli, BadInputExitsWithStatusTwoAndOneLine) {
       {"--fps 0", "--fps: 0 is out of range"},
       {"--frames 0", "--frames: 0 is out of range"},
       {"--frames 2.5", "--frames: expected a whole number"},
+      {"--accumulate 0", "--accumulate: 0 is out of range"},
+      {"--accumulate 4 --view ao", "--accumulate: writes the final image's reference; it takes no --view"},
+      {"--shutter 0.25", "--shutter and --supersample shape the reference: they need --accumulate N"},
+      {"--accumulate 4 --shutter 2", "--shutter: 2 is out of range"},
       {"--animation walk", "--animation 'walk' is not in the scene; "},
       {"--scene " + obscura::test::assimpModels() + "/2CylinderEngine-glTF-Binary/2CylinderEngine.glb --animation 0",
        "--animation 0 is not in the scene; the scene has no animations (choices: none, all)"},
@@ -260,6 +264,25 @@ TEST(Cli, FramesEndOnTheLastFramesTime) {
   }
   const obscura::test::ProcessResult help = run("--help");
   for (const char* option : {"--time T", "--animation A", "--fps F", "--frames N"})
+    EXPECT_NE(help.out.find(option), std::string::npos) << option;
+}
+
+// --accumulate N writes the shutter reference: over a still scene, the frame itself; over simple_skin's motion, the
+// mean of frames spread over the shutter, which lies between the frames at the shutter's ends.
+TEST(Cli, AccumulateWritesTheShutterReference) {
+  const std::string skin = "--scene " + obscura::test::assimpModels() + "/simple_skin/simple_skin.gltf --fps 2 ";
+  EXPECT_LT(meanDifference(renderPixels(skin + "--time 1 --animation none --accumulate 8", "still-reference"),
+                           renderPixels(skin + "--time 1 --animation none", "still-frame")),
+            0.01);
+  const auto reference = renderPixels(skin + "--time 1 --accumulate 16 --shutter 1", "moving-reference");
+  const auto opens = renderPixels(skin + "--time 0.75", "shutter-opens");
+  const auto closes = renderPixels(skin + "--time 1.25", "shutter-closes");
+  const auto middle = renderPixels(skin + "--time 1", "shutter-middle");
+  EXPECT_GT(meanDifference(opens, closes), 0.5) << "simple_skin moves over the shutter";
+  EXPECT_LT(meanDifference(reference, middle), meanDifference(opens, closes));
+  EXPECT_GT(meanDifference(reference, middle), 0.0) << "the reference integrates the motion";
+  const obscura::test::ProcessResult help = run("--help");
+  for (const char* option : {"--accumulate N", "--shutter S", "--supersample K"})
     EXPECT_NE(help.out.find(option), std::string::npos) << option;
 }
 

@@ -7,6 +7,7 @@
 
 #include "base/Error.h"
 #include "base/Text.h"
+#include "core/AccumulationReference.h"
 #include "gl/RenderTarget.h"
 #include "platform/FinishPassTimer.h"
 #include "scene/ImageIo.h"
@@ -18,6 +19,7 @@ std::string renderUsage() {
       "usage: obscura-render [--scene FILE [--scene-scale S]] [--time T] [--animation A] [--fps F] [--frames N]\n"
       "                      [--camera CAM.json | --fit] [--size WxH] [--view V] [--out FILE.png]\n"
       "                      [--NAME VALUE | --no-EFFECT ...] [--preset P] [--bench N] [--backend osmesa|egl]\n"
+      "                      [--accumulate N [--shutter S] [--supersample K]]\n"
       "\n"
       "Renders a glTF 2.0 scene (default: the built-in scene) headless: the G-buffer, Scalable Ambient Obscurance,\n"
       "lighting, tone mapping and FXAA, or one of the frame's targets.\n"
@@ -27,6 +29,10 @@ std::string renderUsage() {
       "  --fps F           frames per second (default 60): the frame before --time is 1/F earlier, which motion\n"
       "                    vectors measure from\n"
       "  --frames N        draw N frames, at T, T + 1/F, ... (the history carrying over), and write the last\n"
+      "  --accumulate N    write the brute-force reference instead of the frame: the mean of N renders with the\n"
+      "                    temporal effects off, at times spread over [T - S/(2F), T + S/(2F)]\n"
+      "  --shutter S       the reference's shutter, a fraction of the frame interval (default 0.5; 0: one instant)\n"
+      "  --supersample K   the reference's sub-frames rendered at K times the size, box-downsampled (default 1)\n"
       "  --out FILE        output PNG (default obscura.png)\n"
       "  --bench N         render N frames and print per-pass milliseconds (glFinish-bounded)\n"
       "  --backend B       osmesa (default) or egl (Mesa EGL surfaceless, a true GLES 2 context)\n"
@@ -73,6 +79,9 @@ RenderOptions parseRenderCommandLine(const std::vector<std::string>& args) {
       if (options.outPath.empty()) throw InputError("--out: empty file name");
     } else if (arg == "--fps") options.fps = parseNumber(arg, value(), 0.01, 10000.0);
     else if (arg == "--frames") options.frames = parseCount(arg, value(), 100000);
+    else if (arg == "--accumulate") options.accumulate = parseCount(arg, value(), 4096);
+    else if (arg == "--shutter") options.shutter = parseNumber(arg, value(), 0.0, 1.0);
+    else if (arg == "--supersample") options.supersample = parseCount(arg, value(), 16);
     else if (arg == "--bench") options.benchFrames = parseCount(arg, value(), 100000);
     else if (arg == "--backend") {
       try {
@@ -95,6 +104,10 @@ RenderOptions parseRenderCommandLine(const std::vector<std::string>& args) {
     }
   }
   options.input.check();
+  if (options.accumulate > 0 && (options.view != View::Final || options.benchFrames > 0 || options.frames != 1))
+    throw InputError("--accumulate: writes the final image's reference; it takes no --view, --frames or --bench");
+  if (options.accumulate == 0 && (options.shutter != 0.5 || options.supersample != 1))
+    throw InputError("--shutter and --supersample shape the reference: they need --accumulate N");
   return options;
 }
 
@@ -128,6 +141,19 @@ int runRender(const RenderOptions& options) {
     target.framebuffer = output.framebuffer();
     target.width = camera.width;
     target.height = camera.height;
+
+    if (options.accumulate > 0) {
+      AccumulationOptions accumulation;
+      accumulation.time = options.input.time;
+      accumulation.fps = options.fps;
+      accumulation.shutter = options.shutter;
+      accumulation.samples = options.accumulate;
+      accumulation.supersample = options.supersample;
+      accumulation.animation = input.animation;
+      writePng(options.outPath, accumulateShutter(renderer, [&](double) { return camera; }, settings, accumulation)
+                                    .toImage());
+      return 0;
+    }
 
     // The frames of the sequence: frame k at T + k / F, its previous frame 1 / F earlier (for the first, a frame
     // that is not drawn). The first also warms up shader compilation.
