@@ -52,6 +52,8 @@ TEST(Cli, BadInputExitsWithStatusTwoAndOneLine) {
       {"--fps 0", "--fps: 0 is out of range"},
       {"--frames 0", "--frames: 0 is out of range"},
       {"--frames 2.5", "--frames: expected a whole number"},
+      {"--view split --compare ao.radius", "--compare: expected a switch, one of ao, "},
+      {"--compare fxaa", "--compare: only --view split compares"},
       {"--accumulate 0", "--accumulate: 0 is out of range"},
       {"--accumulate 4 --view ao", "--accumulate: writes the final image's reference; it takes no --view"},
       {"--shutter 0.25", "--shutter and --supersample shape the reference: they need --accumulate N"},
@@ -284,6 +286,21 @@ TEST(Cli, AccumulateWritesTheShutterReference) {
   const obscura::test::ProcessResult help = run("--help");
   for (const char* option : {"--accumulate N", "--shutter S", "--supersample K"})
     EXPECT_NE(help.out.find(option), std::string::npos) << option;
+}
+
+// --compare chooses what --view split compares: FXAA's split differs from the AO's, and its left half is the frame
+// without FXAA (away from the middle, which FXAA's neighbourhood reaches across).
+TEST(Cli, CompareChoosesTheSplitViewsSwitch) {
+  const auto ao = renderPixels("--view split", "split-ao");
+  const auto fxaa = renderPixels("--view split --compare fxaa", "split-fxaa");
+  const auto noFxaa = renderPixels("--no-fxaa", "no-fxaa");
+  EXPECT_NE(ao, fxaa);
+  ASSERT_EQ(fxaa.size(), noFxaa.size());
+  size_t leftDiffers = 0;
+  for (int y = 0; y < 90; ++y)
+    for (int x = 0; x < 160 / 2 - 2; ++x)
+      for (int c = 0; c < 3; ++c) leftDiffers += fxaa[(y * 160 + x) * 4 + c] != noFxaa[(y * 160 + x) * 4 + c];
+  EXPECT_EQ(leftDiffers, 0u);
 }
 
 // glTF files that move (Debian's assimp test models): skinning (simple_skin, one unnamed animation) and morph targets

@@ -17,7 +17,7 @@ namespace obscura {
 std::string renderUsage() {
   std::string usage =
       "usage: obscura-render [--scene FILE [--scene-scale S]] [--time T] [--animation A] [--fps F] [--frames N]\n"
-      "                      [--camera CAM.json | --fit] [--size WxH] [--view V] [--out FILE.png]\n"
+      "                      [--camera CAM.json | --fit] [--size WxH] [--view V [--compare SWITCH]] [--out FILE.png]\n"
       "                      [--NAME VALUE | --no-EFFECT ...] [--preset P] [--bench N] [--backend osmesa|egl]\n"
       "                      [--accumulate N [--shutter S] [--supersample K]]\n"
       "\n"
@@ -26,6 +26,8 @@ std::string renderUsage() {
       + sceneInputUsage() +
       "  --view V          " + parse::joinChoices(frameViewNames(), " | ") + "\n"
       "                    (default final; a target's view shows its values as they are: no tone curve, no FXAA)\n"
+      "  --compare SWITCH  what --view split compares, off left | on right (default ao): " +
+      parse::joinChoices(splitSwitches(), ", ") + "\n"
       "  --fps F           frames per second (default 60): the frame before --time is 1/F earlier, which motion\n"
       "                    vectors measure from\n"
       "  --frames N        draw N frames, at T, T + 1/F, ... (the history carrying over), and write the last\n"
@@ -55,6 +57,7 @@ std::string renderUsage() {
 
 RenderOptions parseRenderCommandLine(const std::vector<std::string>& args) {
   RenderOptions options;
+  bool compareGiven = false;
   auto isParameter = [](const std::string& name) { return RenderSettings::find(name) != nullptr; };
   auto isSwitch = [](const std::string& name) {
     const ParameterInfo* p = RenderSettings::find(name);
@@ -70,7 +73,14 @@ RenderOptions parseRenderCommandLine(const std::vector<std::string>& args) {
     else if (options.input.parseOption(args, i)) continue;
     else if (arg == "--view") {
       try {
-        options.view = parseView(value());
+        options.view.name = parseView(value()).name;
+      } catch (const InputError& e) {
+        throw InputError(std::string("--") + e.what());
+      }
+    } else if (arg == "--compare") {
+      try {
+        options.view.compare = parseCompare(value());
+        compareGiven = true;
       } catch (const InputError& e) {
         throw InputError(std::string("--") + e.what());
       }
@@ -104,6 +114,7 @@ RenderOptions parseRenderCommandLine(const std::vector<std::string>& args) {
     }
   }
   options.input.check();
+  if (compareGiven && options.view != View::Split) throw InputError("--compare: only --view split compares");
   if (options.accumulate > 0 && (options.view != View::Final || options.benchFrames > 0 || options.frames != 1))
     throw InputError("--accumulate: writes the final image's reference; it takes no --view, --frames or --bench");
   if (options.accumulate == 0 && (options.shutter != 0.5 || options.supersample != 1))
