@@ -5,6 +5,7 @@
 // the figures are the blur's alone. Every figure is the mean absolute difference of the RGB channels, 0 .. 255.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -16,6 +17,7 @@
 #include "TestSupport.h"
 #include "core/AccumulationReference.h"
 #include "core/MotionBlurEffect.h"
+#include "core/VelocityPacking.h"
 #include "scene/BuiltinScene.h"
 #include "scene/ImageIo.h"
 #include "scene/Primitives.h"
@@ -331,6 +333,137 @@ TEST(MotionBlur, AThinFastObjectDoesNotVanish) {
   EXPECT_GT(referenceInk, 1000.0) << "the pole is seen";
   EXPECT_NEAR(blurredInk / referenceInk, 1.0, 0.25) << "the streak keeps the pole's share of the frame";
   expectTowardsReference(frames, "thin fast pole");
+}
+
+// TileMax and NeighborMax against their CPU mirror, on a frame where the camera pans fast and the built-in scene's
+// pendulum and limb move: from the velocity target the GPU wrote, the mirror computes each pixel's half-vector V
+// (velocity x shutter/2 x frame size, its length clamped to K), the largest V by length of each K x K tile (the
+// two passes, each result quantised through VelocityPacking as the targets are), then the largest of each 3 x 3 tiles
+// (the edge tile repeated outside the frame). 650 x 370 leaves partial tiles on the right and top edges.
+TEST(MotionBlur, TheTileAndNeighbourMaximaAgreeWithTheCpuMirror) {
+  constexpr int width = 650, height = 370;
+  Renderer renderer = test::makeRenderer();
+  renderer.setScene(makeBuiltinScene(BuiltinSceneOptions::withMotion()));
+  const Camera start = builtinSceneCamera(width, height);
+  const auto cameraAt = [&](double t) {
+    Camera camera = start;
+    const glm::vec3 forward = camera.target - camera.eye;
+    camera.target = camera.eye + glm::vec3(glm::rotate(glm::mat4(1.0f), static_cast<float>(3.0 * t),
+                                                       glm::vec3(0.0f, 1.0f, 0.0f)) *
+                                           glm::vec4(forward, 0.0f));
+    return camera;
+  };
+  const RenderSettings settings = blurSettings(true);
+  const MotionBlurSettings blur = settings.of<MotionBlurSettings>();
+  FrameOptions previous;
+  previous.time = 1.0 - 1.0 / kFps;
+  test::render(renderer, cameraAt(previous.time), settings, View::Final, previous);
+  FrameOptions frame = test::retaining({"velocity", "motion-tiles", "motion-neighbors"});
+  frame.time = 1.0;
+  frame.previousTime = previous.time;
+  test::render(renderer, cameraAt(frame.time), settings, View::Final, frame);
+
+  const int k = blur.tileSize(height);
+  const int tilesX = (width + k - 1) / k, tilesY = (height + k - 1) / k;
+  const glm::vec2 size(static_cast<float>(width), static_cast<float>(height));
+  const glm::vec2 halfExposure = 0.5f * blur.shutter * size;
+  const std::vector<std::uint8_t> velocity = renderer.retained("velocity").readRgba();
+  const gl::RenderTarget& tilesTarget = renderer.retained("motion-tiles");
+  const gl::RenderTarget& neighborsTarget = renderer.retained("motion-neighbors");
+  ASSERT_EQ(tilesTarget.width(), tilesX);
+  ASSERT_EQ(tilesTarget.height(), tilesY);
+  ASSERT_EQ(neighborsTarget.width(), tilesX);
+  const std::vector<std::uint8_t> tilesGpu = tilesTarget.readRgba(), neighborsGpu = neighborsTarget.readRgba();
+
+  // Images are read back rows top to bottom; the passes count rows from the bottom (gl_FragCoord).
+  const auto texel = [](const std::vector<std::uint8_t>& rgba, int w, int h, int x, int y) {
+    return &rgba[(static_cast<size_t>(h - 1 - y) * w + x) * 4];
+  };
+  const auto quantised = [&](glm::vec2 v) {
+    return VelocityPacking::velocityFromBytes(VelocityPacking::bytesFromVelocity(v / size).data()) * size;
+  };
+  const auto larger = [](glm::vec2 candidate, glm::vec2 largest) { return glm::dot(candidate, candidate) >
+                                                                          glm::dot(largest, largest); };
+  // V of each pixel.
+  std::vector<glm::vec2> halfVectors(static_cast<size_t>(width) * height);
+  for (int y = 0; y < height; ++y)
+    for (int x = 0; x < width; ++x) {
+      glm::vec2 v = VelocityPacking::velocityFromBytes(texel(velocity, width, height, x, y)) * halfExposure;
+      const float length = glm::length(v);
+      if (length > static_cast<float>(k)) v *= static_cast<float>(k) / length;
+      halfVectors[static_cast<size_t>(y) * width + x] = v;
+    }
+  // TileMax, in the passes' order: rows of K pixels, then columns of K of those.
+  std::vector<glm::vec2> columns(static_cast<size_t>(tilesX) * height), tiles(static_cast<size_t>(tilesX) * tilesY);
+  for (int y = 0; y < height; ++y)
+    for (int tx = 0; tx < tilesX; ++tx) {
+      glm::vec2 largest(0.0f);
+      bool first = true;
+      for (int x = tx * k; x < std::min(width, tx * k + k); ++x) {
+        const glm::vec2 v = halfVectors[static_cast<size_t>(y) * width + x];
+        if (first || larger(v, largest)) largest = v;
+        first = false;
+      }
+      columns[static_cast<size_t>(y) * tilesX + tx] = quantised(largest);
+    }
+  for (int ty = 0; ty < tilesY; ++ty)
+    for (int tx = 0; tx < tilesX; ++tx) {
+      glm::vec2 largest(0.0f);
+      bool first = true;
+      for (int y = ty * k; y < std::min(height, ty * k + k); ++y) {
+        const glm::vec2 v = columns[static_cast<size_t>(y) * tilesX + tx];
+        if (first || larger(v, largest)) largest = v;
+        first = false;
+      }
+      tiles[static_cast<size_t>(ty) * tilesX + tx] = quantised(largest);
+    }
+
+  // Compares the GPU's tiles with the mirror's: the lengths within 0.1 pixel everywhere (float order and a code of
+  // quantisation apart); the vectors too, where the motion is shorter than K (at most 1 % of tiles apart: near-ties).
+  int movingTiles = 0;
+  const auto compare = [&](const std::vector<std::uint8_t>& gpu, const std::vector<glm::vec2>& cpu, const char* what) {
+    int vectorMismatches = 0, clampedTiles = 0;
+    float worstLength = 0.0f;
+    for (int ty = 0; ty < tilesY; ++ty)
+      for (int tx = 0; tx < tilesX; ++tx) {
+        const glm::vec2 g = VelocityPacking::velocityFromBytes(texel(gpu, tilesX, tilesY, tx, ty)) * size;
+        const glm::vec2 c = cpu[static_cast<size_t>(ty) * tilesX + tx];
+        worstLength = std::max(worstLength, std::abs(glm::length(g) - glm::length(c)));
+        // Motions clamped to K are exactly as long as each other: which of them wins is float order.
+        const bool clamped = glm::length(c) > static_cast<float>(k) - 0.05f;
+        clampedTiles += clamped;
+        vectorMismatches += !clamped && glm::length(g - c) > 0.1f;
+        movingTiles += glm::length(c) > 1.0f;
+      }
+    std::printf("[ motion blur ] %s: %d x %d tiles of %d px, largest length difference %.4f px; of the %d tiles "
+                "below the clamp to K, %d vectors more than 0.1 px apart\n",
+                what, tilesX, tilesY, k, worstLength, tilesX * tilesY - clampedTiles, vectorMismatches);
+    EXPECT_LE(worstLength, 0.1f) << what;
+    EXPECT_LE(vectorMismatches, tilesX * tilesY / 100) << what;
+  };
+  compare(tilesGpu, tiles, "TileMax");
+
+  // NeighborMax: the largest of the 3 x 3 tiles around, rows from the bottom, left to right.
+  std::vector<glm::vec2> neighbors(tiles.size());
+  for (int ty = 0; ty < tilesY; ++ty)
+    for (int tx = 0; tx < tilesX; ++tx) {
+      glm::vec2 largest(0.0f);
+      bool first = true;
+      for (int dy = -1; dy <= 1; ++dy)
+        for (int dx = -1; dx <= 1; ++dx) {
+          const int u = std::clamp(tx + dx, 0, tilesX - 1), v = std::clamp(ty + dy, 0, tilesY - 1);
+          const glm::vec2 candidate = tiles[static_cast<size_t>(v) * tilesX + u];
+          if (first || larger(candidate, largest)) largest = candidate;
+          first = false;
+        }
+      neighbors[static_cast<size_t>(ty) * tilesX + tx] = quantised(largest);
+    }
+  compare(neighborsGpu, neighbors, "NeighborMax");
+  // The frame moves: most tiles hold motions of pixels, and the clamp to K is reached somewhere.
+  EXPECT_GT(movingTiles, tilesX * tilesY) << "over both comparisons";
+  float longest = 0.0f;
+  for (const glm::vec2& v : tiles) longest = std::max(longest, glm::length(v));
+  EXPECT_GT(longest, 0.95f * static_cast<float>(k)) << "the pan should reach the largest blur radius";
 }
 
 TEST(MotionBlurSettings, TheTileSizeScalesWithTheHeightAndTheParametersAreTheTables) {
