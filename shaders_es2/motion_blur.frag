@@ -8,7 +8,8 @@
 // MOTION_BLUR_PASS 1: tile columns: the largest V of each run of K pixels in a row, from the velocity target.
 // MOTION_BLUR_PASS 2: tiles: the largest of each run of K tile columns in a column (with pass 1: TileMax, K x K).
 // MOTION_BLUR_PASS 3: NeighborMax: the largest V of the 3 x 3 tiles around each tile.
-// MOTION_BLUR_PASS 4: the reconstruction (paper, Algorithm 3), on the display colour.
+// MOTION_BLUR_PASS 4: the reconstruction (paper, Algorithm 3, with each sample weighted as the share of the exposure
+//   it stands for: see the loop), on the display colour.
 #include "lib/precision.glsl"
 #include "lib/packing.glsl"
 
@@ -101,9 +102,8 @@ float viewDepth(vec2 uv) {
 // 1 where a surface at depth `a` is in front of one at depth `b`, falling to 0 once it is behind by the soft extent
 // (the paper's softDepthCompare).
 float inFront(float a, float b) { return clamp(1.0 - (a - b) / (kSoftDepth * min(a, b)), 0.0, 1.0); }
-// Whether a pixel blurred by a half-vector of length `len` reaches `distance` pixels (a cone: less, the farther).
-float cone(float distance, float len) { return clamp(1.0 - distance / len, 0.0, 1.0); }
-// The same with a hard but antialiased edge: both pixels blur across each other (paper, Algorithm 3).
+// Whether a pixel blurred by a half-vector of length `len` reaches `distance` pixels: the paper's cylinder test, a
+// hard but antialiased edge (Algorithm 3).
 float cylinder(float distance, float len) { return 1.0 - smoothstep(0.95 * len, 1.05 * len, distance); }
 
 // Per-pixel jitter of the sample positions (Jimenez 2014, interleaved gradient noise): it turns the banding of S
