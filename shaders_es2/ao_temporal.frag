@@ -49,6 +49,8 @@ varying vec2 v_uv;
 // Relative motion (G-buffer pixels per frame) between the centre and a point within the AO radius above which the
 // history is rectified.
 const float kRelativeMotion = 0.5;
+// How far (G-buffer pixels) the accumulated AO may lag behind something moving nearby.
+const float kLagPixels = 2.0;
 
 float interleavedGradientNoise(vec2 pixel) {
   float inner = 0.06711056 * pixel.x + 0.00583715 * pixel.y;
@@ -86,14 +88,16 @@ void main() {
   vec2 previousUv = uv - velocity;
 
   // Does anything within the AO radius move relative to this pixel? Only there can a still surface's AO change
-  // (a moving object's contact shadow on a still floor): 8 velocity taps at h and h / 2 (h the projected radius).
+  // (a moving object's contact shadow on a still floor): 16 velocity taps on two rings, at h and h / 2 (h the
+  // projected radius), 8 directions each, the inner ring between the outer's, all turned per frame so that what
+  // slips between them in one frame is caught in the next.
   float h = min(u_diskScale / -C.z, u_maxRadiusPixels);
   float motion = 0.0;
-  for (int i = 0; i < 8; i++) {
-    float angle = float(i) * 0.785398163;  // 8 directions, 45 degrees apart
-    float distance = mod(float(i), 2.0) < 0.5 ? h : 0.5 * h;
-    vec2 tapPixel = clamp(floor(uv * u_gbufferSize + distance * vec2(cos(angle), sin(angle))), vec2(0.0),
-                          u_gbufferSize - 1.0);
+  for (int i = 0; i < 16; i++) {
+    float outer = step(float(i), 7.5);  // taps 0 .. 7 on the outer ring
+    float angle = (float(i) + 0.5 * (1.0 - outer) + u_ditherOffset) * 0.785398163;  // 45 degrees apart
+    vec2 tapPixel = clamp(floor(uv * u_gbufferSize + h * (0.5 + 0.5 * outer) * vec2(cos(angle), sin(angle))),
+                          vec2(0.0), u_gbufferSize - 1.0);
     vec2 tapVelocity = unpackVelocity(texture2D(u_velocity, (tapPixel + 0.5) / u_gbufferSize));
     motion = max(motion, length((tapVelocity - velocity) * u_gbufferSize));
   }
@@ -114,7 +118,10 @@ void main() {
   float frames = kept ? channelsToBytes(vec2(history.a)).x : 0.0;
 
   // 4. Accumulation.
-  float m = min(frames + 1.0, u_maxFrames);
+  // Where something nearby moves, the mean also forgets faster: a history of m frames lags the moving object's
+  // shadow by about m / 2 frames of its motion, held to kLagPixels.
+  float maxFrames = rectify ? clamp(2.0 * kLagPixels / motion, 1.0, u_maxFrames) : u_maxFrames;
+  float m = min(frames + 1.0, floor(maxFrames));
   float accumulated = current.r;
   if (kept) {
     float previous = channelsToBytes(vec2(history.r)).x * (1.0 / 255.0);
