@@ -43,6 +43,8 @@ uniform vec2 u_previousDepthToRay;
 uniform mat4 u_previousViewToView;
 uniform float u_diskScale;        // pixels per scene unit at 1 m times r: h = u_diskScale / -z (AoCentre's)
 uniform float u_maxRadiusPixels;
+uniform float u_objectsMove;      // 1 when some instance's pose differs from the previous frame's
+uniform vec2 u_tapRotation;       // this frame's turn of the velocity taps: (cos, sin)
 
 varying vec2 v_uv;
 
@@ -51,6 +53,15 @@ varying vec2 v_uv;
 const float kRelativeMotion = 0.5;
 // How far (G-buffer pixels) the accumulated AO may lag behind something moving nearby.
 const float kLagPixels = 2.0;
+
+// A tap direction turned by this frame's rotation.
+vec2 turned(vec2 d) { return vec2(u_tapRotation.x * d.x - u_tapRotation.y * d.y, u_tapRotation.y * d.x + u_tapRotation.x * d.y); }
+
+// The motion of G-buffer pixel `pixel` relative to `velocity`, in G-buffer pixels per frame.
+float relativeMotion(vec2 pixel, vec2 velocity) {
+  vec2 tapPixel = clamp(floor(pixel), vec2(0.0), u_gbufferSize - 1.0);
+  return length((unpackVelocity(texture2D(u_velocity, (tapPixel + 0.5) / u_gbufferSize)) - velocity) * u_gbufferSize);
+}
 
 float interleavedGradientNoise(vec2 pixel) {
   float inner = 0.06711056 * pixel.x + 0.00583715 * pixel.y;
@@ -70,36 +81,27 @@ void main() {
   vec3 n = decodeNormal(texture2D(u_gbuffer, uv).rg);
   vec3 C = viewPositionOnRay(farPlaneRay(uv), code * (1.0 / 65535.0));
 
-  // 3. The range of this frame's AO around the pixel (background neighbours, R = 1, left out).
-  float low = current.r, high = current.r;
-  for (int y = -1; y <= 1; y++) {
-    for (int x = -1; x <= 1; x++) {
-      vec4 tap = texture2D(u_aoRaw, (clamp(aoPixel + vec2(float(x), float(y)), vec2(0.0), u_aoSize - 1.0) + 0.5) /
-                                        u_aoSize);
-      if (!isBackgroundCode(unpackDepthCode(tap.gb))) {
-        low = min(low, tap.r);
-        high = max(high, tap.r);
-      }
-    }
-  }
-
   // 1. Reprojection.
   vec2 velocity = unpackVelocity(texture2D(u_velocity, uv));
   vec2 previousUv = uv - velocity;
 
   // Does anything within the AO radius move relative to this pixel? Only there can a still surface's AO change
-  // (a moving object's contact shadow on a still floor): 16 velocity taps on two rings, at h and h / 2 (h the
-  // projected radius), 8 directions each, the inner ring between the outer's, all turned per frame so that what
-  // slips between them in one frame is caught in the next.
-  float h = min(u_diskScale / -C.z, u_maxRadiusPixels);
+  // (a moving object's contact shadow on a still floor), and only when some object moves at all (u_objectsMove: a
+  // camera moving through a still scene changes no AO; the reprojection follows it). 8 velocity taps, 4 at h on
+  // the axes and 4 at h / 2 on the diagonals (h the projected radius), the pattern turned every frame
+  // (u_tapRotation) so that what slips between the taps in one frame is caught in the next.
   float motion = 0.0;
-  for (int i = 0; i < 16; i++) {
-    float outer = step(float(i), 7.5);  // taps 0 .. 7 on the outer ring
-    float angle = (float(i) + 0.5 * (1.0 - outer) + u_ditherOffset) * 0.785398163;  // 45 degrees apart
-    vec2 tapPixel = clamp(floor(uv * u_gbufferSize + h * (0.5 + 0.5 * outer) * vec2(cos(angle), sin(angle))),
-                          vec2(0.0), u_gbufferSize - 1.0);
-    vec2 tapVelocity = unpackVelocity(texture2D(u_velocity, (tapPixel + 0.5) / u_gbufferSize));
-    motion = max(motion, length((tapVelocity - velocity) * u_gbufferSize));
+  if (u_objectsMove > 0.5) {
+    float h = min(u_diskScale / -C.z, u_maxRadiusPixels);
+    vec2 centrePixel = uv * u_gbufferSize;
+    motion = max(motion, relativeMotion(centrePixel + h * turned(vec2(1.0, 0.0)), velocity));
+    motion = max(motion, relativeMotion(centrePixel + h * turned(vec2(0.0, 1.0)), velocity));
+    motion = max(motion, relativeMotion(centrePixel + h * turned(vec2(-1.0, 0.0)), velocity));
+    motion = max(motion, relativeMotion(centrePixel + h * turned(vec2(0.0, -1.0)), velocity));
+    motion = max(motion, relativeMotion(centrePixel + h * turned(vec2(0.354, 0.354)), velocity));
+    motion = max(motion, relativeMotion(centrePixel + h * turned(vec2(-0.354, 0.354)), velocity));
+    motion = max(motion, relativeMotion(centrePixel + h * turned(vec2(-0.354, -0.354)), velocity));
+    motion = max(motion, relativeMotion(centrePixel + h * turned(vec2(0.354, -0.354)), velocity));
   }
   bool rectify = motion > kRelativeMotion;
   vec2 historyPixel = floor(previousUv * u_aoSize);
@@ -125,7 +127,21 @@ void main() {
   float accumulated = current.r;
   if (kept) {
     float previous = channelsToBytes(vec2(history.r)).x * (1.0 / 255.0);
-    if (rectify) previous = clamp(previous, low, high);
+    if (rectify) {
+      // 3. Rectification: the range of this frame's AO around the pixel (background neighbours, R = 1, left out).
+      float low = current.r, high = current.r;
+      for (int y = -1; y <= 1; y++) {
+        for (int x = -1; x <= 1; x++) {
+          vec4 tap = texture2D(u_aoRaw, (clamp(aoPixel + vec2(float(x), float(y)), vec2(0.0), u_aoSize - 1.0) + 0.5) /
+                                            u_aoSize);
+          if (!isBackgroundCode(unpackDepthCode(tap.gb))) {
+            low = min(low, tap.r);
+            high = max(high, tap.r);
+          }
+        }
+      }
+      previous = clamp(previous, low, high);
+    }
     accumulated = previous + (current.r - previous) / m;
   }
   float level = floor(clamp(accumulated, 0.0, 1.0) * 255.0 + fract(interleavedGradientNoise(aoPixel) + u_ditherOffset));

@@ -95,7 +95,7 @@ void AoEffect::plan(FramePlanner& planner) {
       RenderTargetPool::History& history = context.history("ao-temporal " + aoSize.name(), aoSize, GL_NEAREST);
       context.bindForWriting("ao-temporal");
       temporal_.render(context.texture(input), context.texture("velocity"), context.texture("gbuffer"), history,
-                       context.frame(), settings, aoScale, context.size("ao-temporal"));
+                       context.frame(), settings, aoScale, context.size("ao-temporal"), context.scene().anyMoving());
     };
     planner.add(std::move(accumulate));
   };

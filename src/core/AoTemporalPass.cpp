@@ -1,5 +1,7 @@
 #include "core/AoTemporalPass.h"
 
+#include <cmath>
+
 #include <glm/matrix.hpp>
 
 #include "core/AoTemporal.h"
@@ -31,11 +33,13 @@ AoTemporalPass::AoTemporalPass(const EffectResources& resources)
       previousDepthToRay_(program_.uniform("u_previousDepthToRay")),
       previousViewToView_(program_.uniform("u_previousViewToView")),
       diskScale_(program_.uniform("u_diskScale")),
-      maxRadiusPixels_(program_.uniform("u_maxRadiusPixels")) {}
+      maxRadiusPixels_(program_.uniform("u_maxRadiusPixels")),
+      objectsMove_(program_.uniform("u_objectsMove")),
+      tapRotation_(program_.uniform("u_tapRotation")) {}
 
 void AoTemporalPass::render(const gl::Texture2D& rawAo, const gl::Texture2D& velocity, const gl::Texture2D& gbuffer,
                             RenderTargetPool::History& history, const FrameContext& frame,
-                            const AoSettings& settings, int aoScale, glm::ivec2 aoSize) {
+                            const AoSettings& settings, int aoScale, glm::ivec2 aoSize, bool objectsMove) {
   using gl::Program;
   const Written now{frame.index, settings.estimator, settings.samples, aoScale, settings.radius};
   Written expected = now;
@@ -63,6 +67,11 @@ void AoTemporalPass::render(const gl::Texture2D& rawAo, const gl::Texture2D& vel
   // The projected AO radius, as the estimators have it (lib/ao_estimator.glsl: aoCentre).
   Program::set(diskScale_, frame.camera.projScale(gbuffer.height()) * settings.radius);
   Program::set(maxRadiusPixels_, settings.maxScreenRadius * static_cast<float>(gbuffer.height()));
+  Program::set(objectsMove_, objectsMove ? 1.0f : 0.0f);
+  // The velocity taps turn by the frame's rotation offset, an eighth of a turn at most (their pattern repeats every
+  // quarter turn; two rings 45 degrees apart).
+  const float turn = AoTemporal::frameOffset(frame.index).x * 0.25f * 3.14159265f;
+  Program::set(tapRotation_, glm::vec2(std::cos(turn), std::sin(turn)));
   reconstruction_.set(frame.camera.reconstruction);
   const ViewReconstruction& previous = frame.previousCamera.reconstruction;
   Program::set(previousFarHalfExtent_, previous.farHalfExtent);

@@ -21,9 +21,10 @@ class AoTemporalPass {
 
   explicit AoTemporalPass(const EffectResources& resources);
   // `history` sized like the AO; `aoScale` 1 or 2 (half resolution). The bound framebuffer is `aoSize` pixels.
+  // `objectsMove`: some instance's pose differs from the previous frame's (GpuScene::anyMoving).
   void render(const gl::Texture2D& rawAo, const gl::Texture2D& velocity, const gl::Texture2D& gbuffer,
               RenderTargetPool::History& history, const FrameContext& frame, const AoSettings& settings,
-              int aoScale, glm::ivec2 aoSize);
+              int aoScale, glm::ivec2 aoSize, bool objectsMove);
 
  private:
   // What must match for the history to hold this AO: a history written with other settings, or not in the previous
@@ -44,7 +45,7 @@ class AoTemporalPass {
   ReconstructionUniforms reconstruction_;
   GLint aoRaw_, history_, velocity_, gbuffer_, gbufferSize_, aoSize_, aoScale_, historyValid_, maxFrames_,
       planeTolerance_, ditherOffset_, previousFarHalfExtent_, previousFarPlane_, previousDepthToRay_,
-      previousViewToView_, diskScale_, maxRadiusPixels_;
+      previousViewToView_, diskScale_, maxRadiusPixels_, objectsMove_, tapRotation_;
   std::optional<Written> written_;
 };
 
