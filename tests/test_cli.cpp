@@ -52,6 +52,12 @@ TEST(Cli, BadInputExitsWithStatusTwoAndOneLine) {
       {"--fps 0", "--fps: 0 is out of range"},
       {"--frames 0", "--frames: 0 is out of range"},
       {"--frames 2.5", "--frames: expected a whole number"},
+      {"--view split --compare ao.radius", "--compare: expected a switch, one of ao, "},
+      {"--compare fxaa", "--compare: only --view split compares"},
+      {"--accumulate 0", "--accumulate: 0 is out of range"},
+      {"--accumulate 4 --view ao", "--accumulate: writes the final image's reference; it takes no --view"},
+      {"--shutter 0.25", "--shutter and --supersample shape the reference: they need --accumulate N"},
+      {"--accumulate 4 --shutter 2", "--shutter: 2 is out of range"},
       {"--animation walk", "--animation 'walk' is not in the scene; "},
       {"--scene " + obscura::test::assimpModels() + "/2CylinderEngine-glTF-Binary/2CylinderEngine.glb --animation 0",
        "--animation 0 is not in the scene; the scene has no animations (choices: none, all)"},
@@ -261,6 +267,40 @@ TEST(Cli, FramesEndOnTheLastFramesTime) {
   const obscura::test::ProcessResult help = run("--help");
   for (const char* option : {"--time T", "--animation A", "--fps F", "--frames N"})
     EXPECT_NE(help.out.find(option), std::string::npos) << option;
+}
+
+// --accumulate N writes the shutter reference: over a still scene, the frame itself; over simple_skin's motion, the
+// mean of frames spread over the shutter, which lies between the frames at the shutter's ends.
+TEST(Cli, AccumulateWritesTheShutterReference) {
+  const std::string skin = "--scene " + obscura::test::assimpModels() + "/simple_skin/simple_skin.gltf --fps 2 ";
+  EXPECT_LT(meanDifference(renderPixels(skin + "--time 1 --animation none --accumulate 8", "still-reference"),
+                           renderPixels(skin + "--time 1 --animation none", "still-frame")),
+            0.01);
+  const auto reference = renderPixels(skin + "--time 1 --accumulate 16 --shutter 1", "moving-reference");
+  const auto opens = renderPixels(skin + "--time 0.75", "shutter-opens");
+  const auto closes = renderPixels(skin + "--time 1.25", "shutter-closes");
+  const auto middle = renderPixels(skin + "--time 1", "shutter-middle");
+  EXPECT_GT(meanDifference(opens, closes), 0.5) << "simple_skin moves over the shutter";
+  EXPECT_LT(meanDifference(reference, middle), meanDifference(opens, closes));
+  EXPECT_GT(meanDifference(reference, middle), 0.0) << "the reference integrates the motion";
+  const obscura::test::ProcessResult help = run("--help");
+  for (const char* option : {"--accumulate N", "--shutter S", "--supersample K"})
+    EXPECT_NE(help.out.find(option), std::string::npos) << option;
+}
+
+// --compare chooses what --view split compares: FXAA's split differs from the AO's, and its left half is the frame
+// without FXAA (away from the middle, which FXAA's neighbourhood reaches across).
+TEST(Cli, CompareChoosesTheSplitViewsSwitch) {
+  const auto ao = renderPixels("--view split", "split-ao");
+  const auto fxaa = renderPixels("--view split --compare fxaa", "split-fxaa");
+  const auto noFxaa = renderPixels("--no-fxaa", "no-fxaa");
+  EXPECT_NE(ao, fxaa);
+  ASSERT_EQ(fxaa.size(), noFxaa.size());
+  size_t leftDiffers = 0;
+  for (int y = 0; y < 90; ++y)
+    for (int x = 0; x < 160 / 2 - 2; ++x)
+      for (int c = 0; c < 3; ++c) leftDiffers += fxaa[(y * 160 + x) * 4 + c] != noFxaa[(y * 160 + x) * 4 + c];
+  EXPECT_EQ(leftDiffers, 0u);
 }
 
 // glTF files that move (Debian's assimp test models): skinning (simple_skin, one unnamed animation) and morph targets

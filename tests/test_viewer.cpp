@@ -108,6 +108,40 @@ TEST(Viewer, SplitScreenShowsAoOffLeftAndOnRight) {
   EXPECT_EQ(rightDiffers, 0u);
 }
 
+// The split view compares any switch: with "fxaa", FXAA off on the left and on on the right, whatever the AO does;
+// the key c steps through the switches.
+TEST(Viewer, SplitScreenComparesTheChosenSwitch) {
+  Viewer viewer(test::context().caps());
+  viewer.state().settings.set("fxaa", "off");
+  const test::RenderedImage off = renderViewer(viewer);
+  viewer.state().settings.set("fxaa", "on");
+  const test::RenderedImage on = renderViewer(viewer);
+  viewer.state().applyQuery("view=split&compare=fxaa");
+  const test::RenderedImage split = renderViewer(viewer);
+  ASSERT_NE(off.rgba, on.rgba);
+  size_t leftDiffers = 0, rightDiffers = 0;
+  for (int y = 0; y < kHeight; ++y)
+    for (int x = 0; x < kWidth; ++x)
+      for (int c = 0; c < 3; ++c) {
+        // FXAA reads a pixel's neighbours: the columns next to the middle see the other half.
+        if (x < kWidth / 2 - 2) leftDiffers += split.channel(x, y, c) != off.channel(x, y, c);
+        if (x > kWidth / 2 + 1) rightDiffers += split.channel(x, y, c) != on.channel(x, y, c);
+      }
+  EXPECT_EQ(leftDiffers, 0u);
+  EXPECT_EQ(rightDiffers, 0u);
+
+  const std::vector<std::string>& switches = splitSwitches();
+  ASSERT_GT(switches.size(), 3u);
+  EXPECT_EQ(switches.front(), "ao");
+  viewer.state().view.compare = switches.back();
+  viewer.state().setViewMode("final");
+  EXPECT_TRUE(viewer.handleKey("c"));
+  EXPECT_EQ(viewer.state().viewMode(), "split");
+  EXPECT_EQ(viewer.state().view.compare, "ao") << "c wraps around to the first switch";
+  EXPECT_TRUE(viewer.handleKey("c"));
+  EXPECT_EQ(viewer.state().view.compare, switches[1]);
+}
+
 TEST(Viewer, KeysActThroughTheParameterTable) {
   Viewer viewer(test::context().caps());
   ViewerState& state = viewer.state();

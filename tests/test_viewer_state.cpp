@@ -22,6 +22,7 @@ TEST(ViewerState, RoundTripsThroughQueryTextExactly) {
   ViewerState changed;
   changed.camera = builtinSceneCamera();
   changed.setViewMode("split");
+  changed.view.compare = "fxaa";
   changed.settings.set("radius", "2.5");
   changed.settings.set("preset", "high");
   changed.settings.set("blur", "off");
@@ -35,15 +36,16 @@ TEST(ViewerState, RoundTripsThroughQueryTextExactly) {
     EXPECT_EQ(copy.toQuery(), original.toQuery());
     EXPECT_TRUE(sameCamera(copy.camera, original.camera)) << copy.toQuery();
     EXPECT_EQ(copy.viewMode(), original.viewMode());
+    EXPECT_EQ(copy.view.compare, original.view.compare);
     for (const ParameterInfo& p : RenderSettings::parameters())
       EXPECT_EQ(copy.settings.get(p.name), original.settings.get(p.name)) << p.name;
   }
   // Written under the full names, the frame's preset first; read back under the old names too (aliases).
   const std::string text = changed.toQuery();
-  EXPECT_EQ(text.rfind("view=split&preset=high&ao.radius=2.5&", 0), 0u) << text;
+  EXPECT_EQ(text.rfind("view=split&compare=fxaa&preset=high&ao.radius=2.5&", 0), 0u) << text;
   EXPECT_EQ(text.find("bias="), std::string::npos) << "defaults are left out: " << text;
   ViewerState old;
-  old.applyQuery("view=split&preset=high&radius=2.5&blur=off");
+  old.applyQuery("view=split&compare=fxaa&preset=high&radius=2.5&blur=off");
   EXPECT_EQ(old.toQuery().substr(0, text.find("&eye=")), text.substr(0, text.find("&eye=")));
 }
 
@@ -106,6 +108,8 @@ TEST(ViewerState, RefusesBadTextAndKeepsTheState) {
       {"radius=2&ao.radius=3", "ao.radius is given twice (also as radius)"},
       {"tonemap.operator=filmic", "state: tonemap.operator: expected linear, reinhard, aces, neutral or agx"},
       {"radius", "'radius' has no value"},
+      {"view=split&compare=ao.radius", "state: compare: expected a switch, one of ao, "},
+      {"compare=preset", "state: compare: expected a switch"},
   };
   ViewerState state;
   const std::string before = state.toQuery();

@@ -1,6 +1,7 @@
 // obscura-bench: the performance figures of the AO pipeline, measured in one run (docs/benchmarks.md).
 //
-//   obscura-bench [--out DIR] [--frames N] [--backend osmesa|egl] [--quick] [--estimators-only]
+//   obscura-bench [--out DIR] [--frames N] [--backend osmesa|egl] [--quick] [--estimators-only] [--motion-only]
+//                 [--effects-only] [--temporal-ao-only]
 //
 // Prints tables and writes DIR/bench.csv (every measurement), DIR/ratios.csv, DIR/radius_sweep.csv,
 // DIR/radius_sweep.png (gnuplot) and DIR/estimators.csv. Every pass is bounded by glFinish on both sides and
@@ -18,6 +19,9 @@
 //   7. scenes that move (--motion-only: this alone): a skinned crowd drawn by every skinning path, the same pose
 //      baked into still meshes, and the velocity pass drawing only what moves or everything, all taking turns (the
 //      AO off); ms of the pose and of each geometry pass (G-buffer, lighting, velocity), written to DIR/motion.csv
+//   8. every effect at 640x360 and 1280x720 (--effects-only: this alone): the moving built-in scene playing at 60
+//      frames per second, the defaults against every switch on (motion blur and TAA included), and the AO's
+//      temporal accumulation at 4 taps against the single frame; ms per effect, written to DIR/effects.csv
 //   9. temporal AO (--temporal-ao-only: this alone): the default AO in one frame against 4 taps accumulated by
 //      ao.temporal (default blur and a 5-tap one), and 4 taps alone, taking turns frame by frame at 640x360 and
 //      1280x720 on the still room (DIR/temporal_ao.csv)
@@ -75,6 +79,7 @@ struct Options {
   bool quick = false;
   bool estimatorsOnly = false;  // section 6 alone
   bool motionOnly = false;      // section 7 alone
+  bool effectsOnly = false;     // section 8 alone
   bool temporalAoOnly = false;  // section 9 alone
 };
 
@@ -289,9 +294,11 @@ Options parseOptions(int argc, char** argv) {
     else if (arg == "--quick") options.quick = true;
     else if (arg == "--estimators-only") options.estimatorsOnly = true;
     else if (arg == "--motion-only") options.motionOnly = true;
+    else if (arg == "--effects-only") options.effectsOnly = true;
     else if (arg == "--temporal-ao-only") options.temporalAoOnly = true;
     else throw InputError("unknown option '" + arg + "' (usage: obscura-bench [--out DIR] [--frames N] "
-                          "[--backend osmesa|egl] [--quick] [--estimators-only] [--motion-only] [--temporal-ao-only])");
+                          "[--backend osmesa|egl] [--quick] [--estimators-only] [--motion-only] [--effects-only] "
+                          "[--temporal-ao-only])");
   }
   return options;
 }
@@ -519,6 +526,74 @@ void motionSection(const Options& options, HeadlessContext& context, int w, int 
   }
 }
 
+// Section 8: what each effect costs, the temporal ones included, on the moving built-in scene played at 60 frames per
+// second (each frame's previous one 1/60 s earlier, so that motion blur and TAA have motion to work on and their
+// history carries). One Renderer per configuration (each keeps its own history), all taking turns frame by frame.
+void effectsSection(const Options& options, HeadlessContext& context, const std::vector<std::pair<int, int>>& sizes) {
+  const Scene scene = makeBuiltinScene();
+  struct Configuration {
+    std::string name;
+    RenderSettings settings;
+  };
+  std::vector<Configuration> configurations = {{"defaults", RenderSettings()}};
+  RenderSettings everything;
+  for (const EffectEntry& row : effectTable())
+    if (row.info.hasSwitch) everything.set(row.info.name, "on");
+  configurations.push_back({"every effect on", everything});
+  // The AO's temporal accumulation (where the table has it) at 4 taps a frame, beside 4 taps in a single frame.
+  if (RenderSettings::find("ao.temporal")) {
+    RenderSettings four;
+    four.set("ao.samples", "4");
+    configurations.push_back({"ao 4 taps", four});
+    four.set("ao.temporal", "on");
+    configurations.push_back({"ao temporal, 4 taps", four});
+  }
+  std::ofstream csv(options.outDir + "/effects.csv");
+  csv << "configuration,width,height,effect,median_ms\n";
+  std::printf("\n8. Every effect, the moving built-in scene playing at 60 fps, %s; ms per effect (the sum of its "
+              "passes; median of %d frames, all configurations taking turns)\n",
+              context.caps().renderer.c_str(), options.frames);
+  std::printf("%-22s %-10s", "configuration", "size");
+  for (const EffectEntry& effect : effectTable()) std::printf(" %11s", effect.info.name.c_str());
+  std::printf(" %9s\n", "frame");
+  for (auto [w, h] : sizes) {
+    const Camera camera = builtinSceneCamera(w, h);
+    const gl::RenderTarget output("bench output", w, h, GL_NEAREST, gl::RenderTarget::Depth::Renderbuffer,
+                                  context.caps().depth24, context.caps().packedDepthStencil);
+    const OutputTarget target{output.framebuffer(), w, h, {}};
+    std::vector<std::unique_ptr<Renderer>> renderers;
+    for (size_t c = 0; c < configurations.size(); ++c) {
+      renderers.push_back(std::make_unique<Renderer>(context.caps()));
+      renderers.back()->setScene(scene);
+    }
+    std::vector<FinishPassTimer> timers(configurations.size());
+    const int warmUp = 8;  // shaders built, histories filled
+    FrameOptions frame;
+    for (int f = -warmUp; f < options.frames; ++f) {
+      frame.time = 1.0 + (f + warmUp) / 60.0;
+      frame.previousTime = frame.time - 1.0 / 60.0;
+      for (size_t c = 0; c < configurations.size(); ++c) {
+        frame.timer = f < 0 ? nullptr : &timers[c];
+        renderers[c]->render(camera, configurations[c].settings, View::Final, target, frame);
+      }
+    }
+    for (size_t c = 0; c < configurations.size(); ++c) {
+      std::printf("%-22s %-10s", configurations[c].name.c_str(), (std::to_string(w) + "x" + std::to_string(h)).c_str());
+      double frameMs = 0.0;
+      for (const EffectEntry& effect : effectTable()) {
+        double ms = 0.0;
+        for (const std::string& pass : effect.info.passes) ms += timers[c].medianMs(pass);
+        frameMs += ms;
+        std::printf(" %11.2f", ms);
+        csv << '"' << configurations[c].name << "\"," << w << "," << h << "," << effect.info.name << "," << ms << "\n";
+      }
+      frameMs += timers[c].medianMs("pose");
+      std::printf(" %9.2f\n", frameMs);
+      csv << '"' << configurations[c].name << "\"," << w << "," << h << ",frame," << frameMs << "\n";
+    }
+  }
+}
+
 int main(int argc, char** argv) {
   try {
     const Options options = parseOptions(argc, argv);
@@ -547,6 +622,14 @@ int main(int argc, char** argv) {
     if (options.temporalAoOnly) {  // before Bench, which starts DIR/bench.csv afresh
       temporalAoSection(options, context, scenes[0]);
       std::printf("\nobscura-bench: wrote %s/temporal_ao.csv\n", options.outDir.c_str());
+      return 0;
+    }
+    const std::vector<std::pair<int, int>> effectSizes =
+        options.quick ? std::vector<std::pair<int, int>>{{320, 180}}
+                      : std::vector<std::pair<int, int>>{{640, 360}, {1280, 720}};
+    if (options.effectsOnly) {  // before Bench, which starts DIR/bench.csv afresh
+      effectsSection(options, context, effectSizes);
+      std::printf("\nobscura-bench: wrote %s/effects.csv\n", options.outDir.c_str());
       return 0;
     }
     Bench bench(options, context);
@@ -683,10 +766,11 @@ int main(int argc, char** argv) {
         std::to_string(static_cast<int>(std::lround(disk))) + " px)";
     ratio(floorLabel.c_str(), "sao_over_fetch_floor", sao, floor, "");
     estimatorSection(bench, builtin, w, h, options.outDir);
-    temporalAoSection(options, context, builtin);
     motionSection(options, context, w, h);
+    effectsSection(options, context, effectSizes);
+    temporalAoSection(options, context, builtin);
     std::printf("\nobscura-bench: wrote %s/bench.csv, ratios.csv, radius_sweep.csv, radius_sweep.png, estimators.csv, "
-                "temporal_ao.csv, motion.csv\n",
+                "motion.csv, effects.csv, temporal_ao.csv\n",
                 options.outDir.c_str());
     return 0;
   } catch (const InputError& e) {

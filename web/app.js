@@ -4,7 +4,7 @@
 // table marks primary up front and the others under "more".
 import { createObscura, ObscuraError } from './obscura.js';
 
-const VIEW_LABELS = { final: 'Final', split: 'Split: AO off | on', ao: 'AO', 'ao-raw': 'Raw AO', 'ao-blur-h': 'AO blur H',
+const VIEW_LABELS = { final: 'Final', split: 'Split: off | on', ao: 'AO', 'ao-raw': 'Raw AO', 'ao-blur-h': 'AO blur H',
                       normals: 'Normals', depth: 'Depth', mask: 'Mask', 'scene-color': 'HDR colour',
                       'display-color': 'Display colour', 'shading-count': 'Shading count',
                       'base-color': 'Base colour', velocity: 'Motion vectors' };
@@ -193,6 +193,20 @@ function buildControls(obscura) {
     $('#views').append(element('label', {}, radio, ` ${VIEW_LABELS[view] ?? view}`));
   }
 
+  // What the split view compares: each effect's switch by the effect's title, switches within an effect by name.
+  for (const name of obscura.compareSwitches) {
+    $('#compare').append(element('option', { value: name, textContent: compareLabel(obscura, name) }));
+  }
+  $('#compare').addEventListener('change', () => {
+    try {
+      obscura.setCompare($('#compare').value);
+      obscura.setView('split');
+      showError('');
+    } catch (e) {
+      showError(e.message);
+    }
+  });
+
   const rows = [...obscura.keyBindings.map((b) => [b.label, b.description]), ...PAGE_KEYS, ...POINTER_HELP];
   for (const [key, description] of rows) {
     $('#shortcuts').append(element('tr', {}, element('td', { textContent: key }),
@@ -207,6 +221,15 @@ function refreshControls(obscura) {
   const radio = document.getElementById(`view-${view}`);
   if (radio) radio.checked = true;
   $('#split-divider').hidden = view !== 'split';
+  const compare = obscura.compare;
+  $('#compare').value = compare;
+  $('#split-off').textContent = `${compareLabel(obscura, compare)} off`;
+  $('#split-on').textContent = `${compareLabel(obscura, compare)} on`;
+}
+
+function compareLabel(obscura, name) {
+  const effect = obscura.effects.find((e) => e.name === name);
+  return effect ? effect.title : name;
 }
 
 // --- Timeline ----------------------------------------------------------------------------------------------------

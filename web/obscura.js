@@ -58,6 +58,8 @@ export class Obscura extends EventTarget {
   // ['final', 'split', then every target's debug view: 'normals', 'depth', 'mask', 'ao-raw', 'ao-blur-h', 'ao',
   //  'scene-color', 'shading-count', 'display-color']
   get views() { return this.description.views; }
+  // ['ao', 'ao.blur', ..., 'tonemap', 'fxaa', ...]: every switch the 'split' view can compare, off left | on right
+  get compareSwitches() { return this.description.compareSwitches; }
   // [{key, label, description}]: the keys handleKey() understands (the same as obscura-view's); key is
   // KeyboardEvent.key (' ' for space, 'ArrowLeft'), label how a person reads it ('space', 'left arrow')
   get keyBindings() { return this.description.keys; }
@@ -85,6 +87,9 @@ export class Obscura extends EventTarget {
     return used;
   }
   setView(mode) { this.call('obscura_set_view', ['string'], [mode]); }
+  // The switch the 'split' view compares (one of compareSwitches; 'ao' at first; in the state as compare=).
+  get compare() { return this.text('obscura_compare', [], []); }
+  setCompare(name) { this.call('obscura_set_compare', ['string'], [name]); }
 
   // The whole state (view, parameters that differ from their defaults, camera) as query-string text, and back.
   // setState applies only what the text names and throws (changing nothing) on anything unknown or invalid. The

@@ -7,6 +7,7 @@
 
 #include "base/Error.h"
 #include "base/Text.h"
+#include "core/AccumulationReference.h"
 #include "gl/RenderTarget.h"
 #include "platform/FinishPassTimer.h"
 #include "scene/ImageIo.h"
@@ -16,17 +17,24 @@ namespace obscura {
 std::string renderUsage() {
   std::string usage =
       "usage: obscura-render [--scene FILE [--scene-scale S]] [--time T] [--animation A] [--fps F] [--frames N]\n"
-      "                      [--camera CAM.json | --fit] [--size WxH] [--view V] [--out FILE.png]\n"
+      "                      [--camera CAM.json | --fit] [--size WxH] [--view V [--compare SWITCH]] [--out FILE.png]\n"
       "                      [--NAME VALUE | --no-EFFECT ...] [--preset P] [--bench N] [--backend osmesa|egl]\n"
+      "                      [--accumulate N [--shutter S] [--supersample K]]\n"
       "\n"
       "Renders a glTF 2.0 scene (default: the built-in scene) headless: the G-buffer, Scalable Ambient Obscurance,\n"
       "lighting, tone mapping and FXAA, or one of the frame's targets.\n"
       + sceneInputUsage() +
       "  --view V          " + parse::joinChoices(frameViewNames(), " | ") + "\n"
       "                    (default final; a target's view shows its values as they are: no tone curve, no FXAA)\n"
+      "  --compare SWITCH  what --view split compares, off left | on right (default ao): " +
+      parse::joinChoices(splitSwitches(), ", ") + "\n"
       "  --fps F           frames per second (default 60): the frame before --time is 1/F earlier, which motion\n"
       "                    vectors measure from\n"
       "  --frames N        draw N frames, at T, T + 1/F, ... (the history carrying over), and write the last\n"
+      "  --accumulate N    write the brute-force reference instead of the frame: the mean of N renders with the\n"
+      "                    temporal effects off, at times spread over [T - S/(2F), T + S/(2F)]\n"
+      "  --shutter S       the reference's shutter, a fraction of the frame interval (default 0.5; 0: one instant)\n"
+      "  --supersample K   the reference's sub-frames rendered at K times the size, box-downsampled (default 1)\n"
       "  --out FILE        output PNG (default obscura.png)\n"
       "  --bench N         render N frames and print per-pass milliseconds (glFinish-bounded)\n"
       "  --backend B       osmesa (default) or egl (Mesa EGL surfaceless, a true GLES 2 context)\n"
@@ -49,6 +57,7 @@ std::string renderUsage() {
 
 RenderOptions parseRenderCommandLine(const std::vector<std::string>& args) {
   RenderOptions options;
+  bool compareGiven = false;
   auto isParameter = [](const std::string& name) { return RenderSettings::find(name) != nullptr; };
   auto isSwitch = [](const std::string& name) {
     const ParameterInfo* p = RenderSettings::find(name);
@@ -64,7 +73,14 @@ RenderOptions parseRenderCommandLine(const std::vector<std::string>& args) {
     else if (options.input.parseOption(args, i)) continue;
     else if (arg == "--view") {
       try {
-        options.view = parseView(value());
+        options.view.name = parseView(value()).name;
+      } catch (const InputError& e) {
+        throw InputError(std::string("--") + e.what());
+      }
+    } else if (arg == "--compare") {
+      try {
+        options.view.compare = parseCompare(value());
+        compareGiven = true;
       } catch (const InputError& e) {
         throw InputError(std::string("--") + e.what());
       }
@@ -73,6 +89,9 @@ RenderOptions parseRenderCommandLine(const std::vector<std::string>& args) {
       if (options.outPath.empty()) throw InputError("--out: empty file name");
     } else if (arg == "--fps") options.fps = parseNumber(arg, value(), 0.01, 10000.0);
     else if (arg == "--frames") options.frames = parseCount(arg, value(), 100000);
+    else if (arg == "--accumulate") options.accumulate = parseCount(arg, value(), 4096);
+    else if (arg == "--shutter") options.shutter = parseNumber(arg, value(), 0.0, 1.0);
+    else if (arg == "--supersample") options.supersample = parseCount(arg, value(), 16);
     else if (arg == "--bench") options.benchFrames = parseCount(arg, value(), 100000);
     else if (arg == "--backend") {
       try {
@@ -95,6 +114,11 @@ RenderOptions parseRenderCommandLine(const std::vector<std::string>& args) {
     }
   }
   options.input.check();
+  if (compareGiven && options.view != View::Split) throw InputError("--compare: only --view split compares");
+  if (options.accumulate > 0 && (options.view != View::Final || options.benchFrames > 0 || options.frames != 1))
+    throw InputError("--accumulate: writes the final image's reference; it takes no --view, --frames or --bench");
+  if (options.accumulate == 0 && (options.shutter != 0.5 || options.supersample != 1))
+    throw InputError("--shutter and --supersample shape the reference: they need --accumulate N");
   return options;
 }
 
@@ -128,6 +152,19 @@ int runRender(const RenderOptions& options) {
     target.framebuffer = output.framebuffer();
     target.width = camera.width;
     target.height = camera.height;
+
+    if (options.accumulate > 0) {
+      AccumulationOptions accumulation;
+      accumulation.time = options.input.time;
+      accumulation.fps = options.fps;
+      accumulation.shutter = options.shutter;
+      accumulation.samples = options.accumulate;
+      accumulation.supersample = options.supersample;
+      accumulation.animation = input.animation;
+      writePng(options.outPath, accumulateShutter(renderer, [&](double) { return camera; }, settings, accumulation)
+                                    .toImage());
+      return 0;
+    }
 
     // The frames of the sequence: frame k at T + k / F, its previous frame 1 / F earlier (for the first, a frame
     // that is not drawn). The first also warms up shader compilation.

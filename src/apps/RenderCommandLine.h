@@ -24,6 +24,11 @@ struct RenderOptions {
   // one Renderer so that the history carries from frame to frame; the last is written.
   double fps = 60.0;
   int frames = 1;
+  // --accumulate N: write the brute-force reference of core/AccumulationReference.h instead (N sub-frames over the
+  // --shutter interval, each --supersample times the size), for the final view only.
+  int accumulate = 0;
+  double shutter = 0.5;
+  int supersample = 1;
   int benchFrames = 0;
   HeadlessBackend backend = HeadlessBackend::OSMesa;
   bool help = false;

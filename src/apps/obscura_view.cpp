@@ -198,8 +198,10 @@ class Input {
 
 std::string title(const Viewer& viewer, double frameMs, const GpuPassTimer& timer, const std::string& message) {
   char text[512];
+  const View& view = viewer.state().view;
+  const std::string shown = view == View::Split ? "split: " + view.compare + " off | on" : view.name;
   std::snprintf(text, sizeof text, "Obscura - %s - %s - %.1f ms (%.0f fps)", viewer.sceneName().c_str(),
-                viewer.state().viewMode().c_str(), frameMs, frameMs > 0.0 ? 1000.0 / frameMs : 0.0);
+                shown.c_str(), frameMs, frameMs > 0.0 ? 1000.0 / frameMs : 0.0);
   std::string out = text;
   // What the keys change, as in use (bias, intensity and contrast on "auto" show their fitted values). The radius is
   // in the scene's units (metres only for the built-in scene), so it goes without a unit.

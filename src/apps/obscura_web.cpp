@@ -286,7 +286,7 @@ EMSCRIPTEN_KEEPALIVE const char* obscura_describe() {
                {"timerQuery", caps.timerQuery}};
   }
   return returned(Json{{"parameters", parameters}, {"effects", effects}, {"presets", presets},
-                       {"views", ViewerState::viewModes()}, {"keys", keys}, {"passes", framePassNames()},
+                       {"views", ViewerState::viewModes()}, {"compareSwitches", splitSwitches()}, {"keys", keys}, {"passes", framePassNames()},
                        {"context", context}}.dump());
 }
 
@@ -331,6 +331,12 @@ EMSCRIPTEN_KEEPALIVE int obscura_set_view(const char* mode) {
 }
 
 EMSCRIPTEN_KEEPALIVE const char* obscura_view() { return returned(g_app->viewer().state().viewMode()); }
+
+EMSCRIPTEN_KEEPALIVE int obscura_set_compare(const char* name) {
+  return change([&] { g_app->viewer().state().view.compare = parseCompare(name); });
+}
+
+EMSCRIPTEN_KEEPALIVE const char* obscura_compare() { return returned(g_app->viewer().state().view.compare); }
 
 EMSCRIPTEN_KEEPALIVE const char* obscura_state() { return returned(g_app->viewer().state().toQuery()); }
 

@@ -75,6 +75,9 @@ struct EffectInfo {
   bool jitters = false;             // on: the projection is jittered per frame (Halton 2, 3; FrameContext)
   std::vector<std::string> passes;  // every pass it may run, in order (timer and stats keys)
   std::vector<TargetInfo> targets;  // every target it may write
+  // On: its result depends on earlier frames or on the shutter (motion blur, TAA); references made by brute force
+  // switch these off and integrate instead (core/AccumulationReference.h). Last, so brace initialisers may omit it.
+  bool temporal = false;
 };
 
 // One pass of this frame: what it reads and writes, and how it draws. Reads of a target bind to its latest earlier

@@ -33,6 +33,23 @@ View parseView(const std::string& name) {
   throw InputError("view: expected " + parse::joinChoices(names, ", ") + ", got '" + name + "'");
 }
 
+const std::vector<std::string>& splitSwitches() {
+  static const std::vector<std::string> names = [] {
+    std::vector<std::string> out;
+    for (const ParameterInfo& p : RenderSettings::parameters())
+      if (p.kind == ParameterKind::Switch && !p.effect.empty()) out.push_back(p.name);
+    return out;
+  }();
+  return names;
+}
+
+std::string parseCompare(const std::string& name) {
+  const ParameterInfo* p = RenderSettings::find(name);
+  if (p && p->kind == ParameterKind::Switch && !p->effect.empty()) return p->name;
+  throw InputError("compare: expected a switch, one of " + parse::joinChoices(splitSwitches(), ", ") + ", got '" +
+                   name + "'");
+}
+
 Renderer::Renderer(const gl::GlCaps& caps, const RendererOptions& options)
     : caps_(requireUsable(caps)),
       options_(options),
@@ -116,6 +133,12 @@ void Renderer::checkErrors(const std::string& after) const {
   }
 }
 
+bool Renderer::jitters(const RenderSettings& settings) {
+  for (size_t row = 0; row < effectTable().size(); ++row)
+    if (effectTable()[row].info.jitters && settings.enabled(row)) return true;
+  return false;
+}
+
 void Renderer::beginFrame(const Camera& camera, const RenderSettings& settings, const OutputTarget& output,
                           const FrameOptions& options) {
   const double time = options.time;
@@ -127,11 +150,10 @@ void Renderer::beginFrame(const Camera& camera, const RenderSettings& settings, 
   pool_.beginFrame(size);
   // Sub-pixel jitter (Halton 2, 3, centred) while an effect that is on asks for it.
   glm::vec2 jitter(0.0f);
-  for (size_t row = 0; row < effectTable().size(); ++row)
-    if (effectTable()[row].info.jitters && settings.enabled(row)) {
-      const auto index = static_cast<std::uint32_t>(frameIndex_ % 8 + 1);
-      jitter = glm::vec2(halton(index, 2), halton(index, 3)) - 0.5f;
-    }
+  if (jitters(settings)) {
+    const auto index = static_cast<std::uint32_t>(frameIndex_ % 8 + 1);
+    jitter = glm::vec2(halton(index, 2), halton(index, 3)) - 0.5f;
+  }
   FrameContext frame;
   frame.camera = FrameCamera::from(camera, output.width, output.height, jitter);
   frame.hasPrevious = hasPrevious_;
@@ -190,17 +212,24 @@ void Renderer::render(const Camera& camera, const RenderSettings& settings, cons
     throw InputError("output size " + std::to_string(output.width) + "x" + std::to_string(output.height) +
                      " is outside what this context can render (1 .. " + std::to_string(limit) + " per side)");
 
-  beginFrame(camera, settings, output, options);
   if (view == View::Split) {
-    // Two frames of one frame context into one output: the AO off, then the AO on over the right half.
+    // Two frames of one frame context into one output: the compared switch off, then on over the right half. The
+    // frame starts as the right half's (its jitter, when that half has temporal antialiasing); the left half draws
+    // without the jitter where it has none of its own, as it would alone.
     RenderSettings off = settings, on = settings;
-    off.ao().enabled = false;
-    on.ao().enabled = true;
+    const std::string compared = parseCompare(view.compare);
+    off.set(compared, "off");
+    on.set(compared, "on");
+    beginFrame(camera, on, output, options);
+    const FrameContext right = frame_;
+    if (!jitters(off)) frame_.camera = FrameCamera::from(camera, output.width, output.height);
     run(off, View::Final, output, options);
-    OutputTarget right = output;
-    right.region = {output.width / 2, 0, output.width - output.width / 2, output.height};
-    run(on, View::Final, right, options);
+    frame_ = right;
+    OutputTarget rightHalf = output;
+    rightHalf.region = {output.width / 2, 0, output.width - output.width / 2, output.height};
+    run(on, View::Final, rightHalf, options);
   } else {
+    beginFrame(camera, settings, output, options);
     parseView(view.name);
     run(settings, view, output, options);
   }

@@ -34,10 +34,12 @@ namespace obscura {
 
 class AoEffect;
 
-// What a frame shows: "final" (the finished image), "split" (the final image with the AO off left of the middle and
-// on right of it), or the name of a target's debug view ("ao", "normals", "scene-color", ...: frameViewNames()).
+// What a frame shows: "final" (the finished image), "split" (the final image with one switch, `compare`, off left of
+// the middle and on right of it: the AO by default, or any effect's, or a switch within one, "ao.temporal"), or the
+// name of a target's debug view ("ao", "normals", "scene-color", ...: frameViewNames()).
 struct View {
   std::string name = "final";
+  std::string compare = "ao";  // split: the switch parameter compared (splitSwitches())
 
   static const View Final, Split, Ao, AoRaw, Normals, Depth, Mask;
   bool operator==(const View& other) const { return name == other.name; }
@@ -53,6 +55,11 @@ inline const View View::Mask{"mask"};
 
 // One of frameViewNames(); throws InputError listing them.
 View parseView(const std::string& name);
+// The switches the split view can compare: every switch parameter of the frame ("ao", "ao.blur", ..., "fxaa"), full
+// names, in table order.
+const std::vector<std::string>& splitSwitches();
+// The full name of a switch parameter (or its alias) the split view can compare; throws InputError listing them.
+std::string parseCompare(const std::string& name);
 
 // Receives the start and end of each pass that runs, by its name (framePassNames(); per-pass timings:
 // glFinish-bounded natively, timer queries on the web).
@@ -119,6 +126,8 @@ class Renderer {
                   const FrameOptions& options);
   void endFrame();
   void dropHistory();
+  // Whether an effect that is on in `settings` asks for the sub-pixel jitter (EffectInfo::jitters).
+  static bool jitters(const RenderSettings& settings);
   // Every effect's passes for `view` (a target view, or the final image), resolved.
   FramePlan plan(const RenderSettings& settings, const FrameContext& frame, const View& view,
                  const std::vector<std::string>& retain);

@@ -36,7 +36,14 @@ const std::vector<Viewer::KeyAction>& Viewer::keyActions() {
       {"3", "raw AO", view("ao-raw")},
       {"4", "normals", view("normals")},
       {"5", "depth", view("depth")},
-      {"6", "split screen: AO off | on", view("split")},
+      {"6", "split screen: the compared switch (AO at first) off | on", view("split")},
+      {"c", "split screen, comparing the next switch (AO, its blur, ..., each effect)",
+       [](Viewer& v) {
+         const std::vector<std::string>& switches = splitSwitches();
+         const auto at = std::find(switches.begin(), switches.end(), v.state_.view.compare);
+         v.state_.view.compare = at == switches.end() || at + 1 == switches.end() ? switches.front() : *(at + 1);
+         v.state_.setViewMode("split");
+       }},
       {"a", "AO on / off", toggle("ao")},
       {"b", "blur on / off", toggle("ao.blur")},
       {"t", "tone mapping on / off", toggle("tonemap")},

@@ -80,7 +80,7 @@ std::string formatVector(const glm::vec3& v) {
 
 const std::vector<std::string>& ViewerState::viewModes() { return frameViewNames(); }
 
-void ViewerState::setViewMode(const std::string& name) { view = parseView(name); }
+void ViewerState::setViewMode(const std::string& name) { view.name = parseView(name).name; }
 
 void ViewerState::sceneLoaded(float radius) {
   defaultRadius = radius;
@@ -92,6 +92,7 @@ std::string ViewerState::toQuery() const {
   auto add = [&](const std::string& key, const std::string& value) {
     query += "&" + key + "=" + encodeComponent(value);
   };
+  if (view.compare != View().compare) add("compare", view.compare);
   // Presets first, as applyQuery applies them: the frame's preset when every effect holds one, else each effect's
   // remembered preset (which the AO also uses to pick its fitted estimator parameters) where it is not the default.
   // The parameters that follow are those differing from what those presets set.
@@ -158,6 +159,7 @@ bool ViewerState::applyQuery(const std::string& query) {
   std::string text;
   try {
     if (take("view", &text)) next.setViewMode(text);
+    if (take("compare", &text)) next.view.compare = parseCompare(text);
     for (const ParameterInfo& p : RenderSettings::parameters()) {
       const bool byName = values.count(p.name) != 0, byAlias = !p.alias.empty() && values.count(p.alias) != 0;
       if (byName && byAlias) throw InputError(p.name + " is given twice (also as " + p.alias + ")");

@@ -2,7 +2,8 @@
 // What a viewer shows, as one value: the view, the frame's parameters, the timeline and the camera. The web page keeps
 // it in its URL (so a view can be shared) and obscura-view accepts the same text with --state, e.g.
 //   view=split&ao.radius=2&time=1.25&eye=3.2,2.6,6.2&target=-0.4,0.8,-1.6&up=0,1,0&fovy=55&near=0.1&far=40
-// Keys: view (frameViewNames(): final, split, and every target's debug view), every parameter of RenderSettings by
+// Keys: view (frameViewNames(): final, split, and every target's debug view), compare (the switch the split view
+// compares: splitSwitches(); written when not "ao"), every parameter of RenderSettings by
 // its name or alias ("radius" for "ao.radius": older links keep working), the timeline (animation: a name, an index,
 // all or none; time in seconds; speed; play and loop: on or off; Timeline.h) and the camera (eye, target, up as
 // x,y,z; fovy in degrees; near; far). The camera's size follows the window or canvas. The AO radius is in the
@@ -38,7 +39,7 @@ struct ViewerState {
   // The view names a viewer offers, in order (the Renderer's: frameViewNames()).
   static const std::vector<std::string>& viewModes();
   std::string viewMode() const { return view.name; }
-  void setViewMode(const std::string& name);  // throws InputError
+  void setViewMode(const std::string& name);  // throws InputError (the compared switch is kept)
 
   // The state as query-string text (no leading '?'), parameters by their full names. Parameters equal to their
   // defaults (or to their preset's values; the radius: to defaultRadius, unless radiusGiven) and the timeline's keys

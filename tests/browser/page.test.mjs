@@ -272,6 +272,7 @@ describe('demo page', () => {
 
   test('a URL with camera and parameters reproduces the same image', { timeout: 120000 }, async () => {
     await page.locator('#view-split').check();
+    await page.locator('#compare').selectOption('ao.blur');  // the split view compares the AO's blur
     await page.locator('#param-ao-samples').fill('16');
     await page.locator('#param-ao-intensity').fill('650');  // 0 .. 20 linear: 13
     // Orbit and zoom with the mouse, as a user would.
@@ -280,7 +281,8 @@ describe('demo page', () => {
     await page.mouse.move(140, 185, { steps: 4 });
     await page.mouse.up();
     await page.mouse.wheel(0, -200);
-    await page.waitForFunction(() => location.search.includes('samples=16') && location.search.includes('view=split'));
+    await page.waitForFunction(() => location.search.includes('samples=16') && location.search.includes('view=split') &&
+                               location.search.includes('compare=ao.blur'));
     await page.waitForTimeout(300);  // the URL follows changes within 150 ms
     const url = await page.evaluate(() => location.href);
     assert.match(url, /eye=[-\d.]+,[-\d.]+,[-\d.]+/);
@@ -292,6 +294,8 @@ describe('demo page', () => {
       const state = await page.evaluate(() => window.obscura.state());
       assert.equal(await shared.evaluate(() => window.obscura.state()), state);
       assert.equal(await shared.locator('#view-split').isChecked(), true);
+      assert.equal(await shared.locator('#compare').inputValue(), 'ao.blur');
+      assert.equal(await shared.locator('#split-on').textContent(), 'ao.blur on');
       assert.equal(await shared.locator('#param-ao-samples + input').inputValue(), '16');
       const reproduced = await snapshot(shared);
       const difference = compareImages(original, reproduced);

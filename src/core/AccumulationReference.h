@@ -1,0 +1,68 @@
+#pragma once
+// References made by brute force for the effects that integrate over time or over the pixel (issue 14):
+//   - the shutter reference for motion blur: the mean of many renders with the temporal effects off, at times spread
+//     over the exposure interval [T - s/(2F), T + s/(2F)] (shutter s, frame rate F), the interval centred on the
+//     frame's time as a camera's shutter is (McGuire et al. 2012 blur the same interval);
+//   - the supersampling reference for antialiasing: the frame rendered at k times its size with the antialiasing off,
+//     box-downsampled (k x k pixels per output pixel). With a zero shutter the two combine: one instant,
+//     supersampled, the reference of temporal antialiasing on a moving scene.
+// Both average the final image's display values (sRGB-encoded, after the tone curve), which is what the effects they
+// judge are compared on and what a viewer sees; averaging linear light before the tone curve would brighten blurred
+// edges between bright and dark by at most the curve's non-linearity over the two (docs/temporal-effects.md).
+#include <cstdint>
+#include <functional>
+#include <vector>
+
+#include "core/RenderSettings.h"
+#include "core/Renderer.h"
+#include "scene/Animation.h"
+#include "scene/Camera.h"
+#include "scene/Scene.h"
+
+namespace obscura {
+
+// `settings` with every effect whose EffectInfo::temporal is set switched off, and the AO's accumulation over frames
+// (ao.temporal):
+// what each sub-frame of a reference is rendered with.
+RenderSettings withoutTemporalEffects(const RenderSettings& settings);
+
+// The times of `samples` sub-frames spread evenly over [T - s/(2F), T + s/(2F)]: the midpoints of `samples` equal
+// strata (stratified, so 64 samples leave no gaps a 64-tap blur would fill). A zero shutter gives `samples` copies
+// of T. Throws InputError for samples < 1, fps <= 0 or a shutter outside [0, 1].
+std::vector<double> shutterSampleTimes(double time, double fps, double shutter, int samples);
+
+// An image of display values in [0, 1] with more precision than 8 bits: a mean of renders.
+struct LinearImage {
+  int width = 0, height = 0;
+  std::vector<float> rgba;  // width * height * 4, rows top to bottom (like Image)
+
+  float at(int x, int y, int c) const { return rgba[(static_cast<size_t>(y) * width + x) * 4 + c]; }
+  // Rounded to 8 bits per channel (for PNGs).
+  Image toImage() const;
+  static LinearImage from(const std::vector<std::uint8_t>& rgba, int width, int height);
+};
+
+// The mean of `factor` x `factor` blocks of an RGBA8 image whose sides are multiples of `factor`. Throws InputError
+// otherwise.
+LinearImage downsampleBox(const std::vector<std::uint8_t>& rgba, int width, int height, int factor);
+
+struct AccumulationOptions {
+  double time = 0.0;     // T, seconds on the scene's timeline
+  double fps = 60.0;     // F
+  double shutter = 0.5;  // s: the fraction of the frame interval the shutter stays open (0: one instant)
+  int samples = 64;      // sub-frames
+  int supersample = 1;   // each sub-frame rendered at this many times the camera's size and box-downsampled
+  AnimationChoice animation;
+  bool loop = true;
+};
+
+// The mean of `options.samples` final images rendered with withoutTemporalEffects(settings) at shutterSampleTimes(),
+// each through `cameraAt(t)` (a camera pan: the camera of each sub-frame; its size is the image's) at `supersample`
+// times that size and box-downsampled. Renders into targets of its own through `renderer`, whose scene it draws;
+// afterwards the renderer's history is that of the last sub-frame, so a caller rendering an effect after this
+// renders that effect's frames anew (its previous frame first). Throws InputError when the supersampled size
+// exceeds what the context can render.
+LinearImage accumulateShutter(Renderer& renderer, const std::function<Camera(double)>& cameraAt,
+                              const RenderSettings& settings, const AccumulationOptions& options);
+
+}  // namespace obscura

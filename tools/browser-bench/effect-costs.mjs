@@ -1,0 +1,125 @@
+// What each effect costs in the browser: the GPU milliseconds of its passes (from EXT_disjoint_timer_query, which
+// SwiftShader offers) in the demo page's frame of the built-in scene, playing its animation so that motion blur and
+// the temporal effects have motion to work on, at each size asked. Every effect of the table is measured with its
+// switch on (the others at their defaults), and the AO's temporal accumulation beside the single-frame AO. Writes a
+// CSV; docs/benchmarks.md ("Every effect at two sizes") shows the figures.
+//
+// Usage: node tools/browser-bench/effect-costs.mjs [--sizes 640x360,1280x720] [--samples N] [--settle MS] [--csv FILE]
+//   (defaults: both sizes, 7 timer readings per case, 2500 ms for each case's shaders to compile and its first
+//   timer results to come back, bench-results/browser-effects.csv)
+import fs from 'node:fs';
+import path from 'node:path';
+import { fileURLToPath } from 'node:url';
+import { chromium } from 'playwright-core';
+import { startServer } from '../serve-web.mjs';
+import { chromiumLaunchOptions, parseOptions } from '../headless-chromium.mjs';
+
+const root = path.resolve(path.dirname(fileURLToPath(import.meta.url)), '..', '..');
+const options = { sizes: '640x360,1280x720', samples: 7, settle: 2500,
+                  csv: path.join(root, 'bench-results', 'browser-effects.csv') };
+parseOptions(process.argv.slice(2), {
+  '--sizes': (v) => { options.sizes = v; },
+  '--samples': (v) => { options.samples = Number(v); },
+  '--settle': (v) => { options.settle = Number(v); },
+  '--csv': (v) => { options.csv = path.resolve(v); },
+}, path.basename(import.meta.url));
+const sizes = options.sizes.split(',').map((s) => s.split('x').map(Number));
+if (!sizes.every(([w, h]) => w > 0 && h > 0) || !(options.samples > 0 && options.settle >= 0))
+  throw new Error('--sizes WxH,... and --samples N must be positive, --settle MS not negative');
+
+const median = (values) => {
+  const sorted = [...values].sort((a, b) => a - b);
+  const mid = sorted.length >> 1;
+  return sorted.length % 2 ? sorted[mid] : 0.5 * (sorted[mid - 1] + sorted[mid]);
+};
+
+// The cases: each effect with its switch on (its own passes timed), and the AO's variants that the issues set
+// targets for (the temporal accumulation at 4 taps against the single frame's default), where the table has them.
+function casesOf(description) {
+  const names = new Set(description.parameters.map((p) => p.name));
+  // An effect whose passes do not run in the final frame (the motion vectors, which only the motion effects read;
+  // the tone curve, which the lighting applies) is timed again showing its target's view.
+  const cases = description.effects.map((e) => ({
+    label: e.name, effect: e.name, passes: e.passes, state: e.switch ? `${e.name}=on` : '',
+    fallbackView: e.targets.flatMap((t) => t.views)[0] }));
+  const ao = description.effects.find((e) => e.name === 'ao');
+  if (ao && names.has('ao.temporal')) {
+    cases.push({ label: 'ao 4 taps', effect: 'ao', passes: ao.passes, state: 'ao=on&ao.samples=4' });
+    cases.push({ label: 'ao temporal 4 taps', effect: 'ao', passes: ao.passes,
+                 state: 'ao=on&ao.temporal=on&ao.samples=4' });
+  }
+  return cases;
+}
+
+const server = await startServer(process.env.OBSCURA_WEB_SITE ?? path.join(root, 'build-web', 'site'));
+const browser = await chromium.launch(chromiumLaunchOptions);
+const rows = [];
+try {
+  for (const [width, height] of sizes) {
+    const page = await (await browser.newContext({ viewport: { width, height }, deviceScaleFactor: 1 })).newPage();
+    const errors = [];
+    page.on('pageerror', (e) => errors.push(String(e)));
+    await page.goto(`http://127.0.0.1:${server.address().port}/`);
+    await page.waitForFunction(() => document.body.dataset.ready === 'true', null, { timeout: 120000 });
+    await page.addStyleTag({ content: '#panel { display: none !important; }' });
+    const description = await page.evaluate(() => {
+      const o = window.obscura;
+      return { effects: o.effects, parameters: o.parameters, timerQuery: o.context.timerQuery,
+               renderer: o.context.renderer };
+    });
+    if (!description.timerQuery) throw new Error('this browser offers no EXT_disjoint_timer_query: no per-pass times');
+    console.log(`${width}x${height}, ${description.renderer}, the built-in scene playing`);
+    for (const c of casesOf(description)) {
+      const measure = (state) => page.evaluate(async ({ state, passes, samples, settle }) => {
+        const o = window.obscura;
+        // From the defaults each time (a setState only changes what it names), playing from 1 s.
+        const query = new URLSearchParams();
+        for (const p of o.parameters) if (p.name !== 'preset' && !p.name.endsWith('.preset')) query.set(p.name, p.default);
+        for (const [key, value] of new URLSearchParams(state)) query.set(key, value);
+        query.set('time', '1');
+        query.set('play', 'on');
+        if (!query.has('view')) query.set('view', 'final');
+        o.setState(query.toString());
+        o.setContinuous(true);
+        await new Promise((r) => setTimeout(r, settle));
+        const effect = [], frame = [];
+        let last = null;
+        for (let tries = 0; effect.length < samples && tries < 20 * samples; ++tries) {
+          await new Promise((r) => setTimeout(r, 150));
+          const s = o.stats();
+          if (!s.passMs || s.frames === last) continue;
+          last = s.frames;
+          const timed = passes.filter((p) => s.passMs[p] !== null && s.passMs[p] !== undefined);
+          if (!timed.length) continue;
+          effect.push(timed.reduce((sum, p) => sum + s.passMs[p], 0));
+          if (s.frameMs > 0) frame.push(s.frameMs);
+        }
+        o.setContinuous(false);
+        o.pause();
+        return { effect, frame };
+      }, { state, passes: c.passes, samples: options.samples, settle: options.settle });
+      let result = await measure(c.state);
+      let label = c.label;
+      if (!result.effect.length && c.fallbackView) {
+        result = await measure(`${c.state}${c.state ? '&' : ''}view=${c.fallbackView}`);
+        label = `${c.label} (view ${c.fallbackView})`;
+      }
+      const row = { label, width, height,
+                    effectMs: result.effect.length ? median(result.effect) : NaN,
+                    frameMs: result.frame.length ? median(result.frame) : NaN, readings: result.effect.length };
+      rows.push(row);
+      console.log(`${label.padEnd(28)} ${row.effectMs.toFixed(2).padStart(8)} ms   frame ` +
+                  `${row.frameMs.toFixed(1).padStart(7)} ms   (${row.readings} readings)`);
+    }
+    if (errors.length) throw new Error(`page errors: ${errors.join('; ')}`);
+    await page.context().close();
+  }
+  fs.mkdirSync(path.dirname(options.csv), { recursive: true });
+  fs.writeFileSync(options.csv, 'effect,width,height,effect_ms,frame_ms,readings\n' +
+    rows.map((r) => `${r.label},${r.width},${r.height},${r.effectMs.toFixed(2)},${r.frameMs.toFixed(2)},${r.readings}`)
+      .join('\n') + '\n');
+  console.log(`wrote ${path.relative(root, options.csv)}`);
+} finally {
+  await browser.close();
+  server.stop();
+}
