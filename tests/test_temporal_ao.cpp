@@ -9,6 +9,7 @@
 #include <set>
 
 #include "TestSupport.h"
+#include "core/AccumulationReference.h"
 #include "core/AoTemporal.h"
 #include "metrics/AoMetrics.h"
 #include "reference/AoReferenceTracer.h"
@@ -88,6 +89,17 @@ TEST(TemporalAo, TheTangentPlaneTestKeepsTheSurfaceAndRejectsAnother) {
   EXPECT_FALSE(AoTemporal::keepsHistory(n, c, c + 0.5f * n, 0.1f));
 }
 
+TEST(TemporalAo, IsASwitchOffByDefaultThatBruteForceReferencesTurnOff) {
+  RenderSettings settings;
+  EXPECT_EQ(settings.get("ao.temporal"), "off");
+  settings.set("ao.temporal", "on");
+  settings.set("ao.temporal-frames", "12");
+  EXPECT_TRUE(settings.ao().temporal);
+  EXPECT_EQ(settings.ao().temporalFrames, 12);
+  EXPECT_FALSE(withoutTemporalEffects(settings).ao().temporal);
+  EXPECT_TRUE(withoutTemporalEffects(settings).ao().enabled);
+}
+
 // --- The pass on the GPU ----------------------------------------------------------------------------------------
 
 RenderSettings temporalSettings(int samples, int maxFrames = 8) {
@@ -134,6 +146,23 @@ TEST(TemporalAo, TheHistoryCountsItsFramesAndIsDroppedOnResizeAndSceneChange) {
   RenderSettings sao = settings;
   sao.ao().estimator = AoEstimator::Sao;
   EXPECT_EQ(counts(renderTargets(renderer, builtinSceneCamera(80, 45), sao)), (std::set<int>{0, 1}));
+}
+
+TEST(TemporalAo, TheSplitViewDrawingTheAoTwiceAFrameKeepsAccumulating) {
+  // Comparing FXAA, both halves run the AO from one frame context: the second run reads the same previous history.
+  Renderer renderer = test::makeRenderer();
+  renderer.setScene(makeBuiltinScene(BuiltinSceneOptions::still()));
+  const Camera camera = builtinSceneCamera(96, 54);
+  View split = View::Split;
+  split.compare = "fxaa";
+  std::set<int> seen;
+  for (int frame = 1; frame <= 6; ++frame) {
+    test::render(renderer, camera, temporalSettings(4, 8), split, test::retaining({"ao-temporal"}));
+    const std::vector<std::uint8_t> bytes = renderer.retained("ao-temporal").readRgba();
+    seen.clear();
+    for (size_t i = 3; i < bytes.size(); i += 4) seen.insert(bytes[i]);
+  }
+  EXPECT_EQ(seen, (std::set<int>{0, 6}));
 }
 
 TEST(TemporalAo, ThePassIsTheCpuMirrorsRunningMeanOfTheRawFrames) {

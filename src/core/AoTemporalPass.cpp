@@ -44,7 +44,11 @@ void AoTemporalPass::render(const gl::Texture2D& rawAo, const gl::Texture2D& vel
   const Written now{frame.index, settings.estimator, settings.samples, aoScale, settings.radius};
   Written expected = now;
   expected.frame = frame.index - 1;
-  const bool historyValid = history.valid() && frame.hasPrevious && written_ && *written_ == expected;
+  // A second run in the same frame (the split view draws both halves from one frame context) reads the same
+  // previous history again, as validly as the first did.
+  const bool again = written_ && *written_ == now;
+  const bool historyValid =
+      history.valid() && frame.hasPrevious && (again ? historyWasValid_ : written_ && *written_ == expected);
 
   program_.use();
   rawAo.bind(0);
@@ -85,6 +89,7 @@ void AoTemporalPass::render(const gl::Texture2D& rawAo, const gl::Texture2D& vel
   glCopyTexSubImage2D(GL_TEXTURE_2D, 0, 0, 0, 0, 0, aoSize.x, aoSize.y);
   gl::restoreBaselineState();
   written_ = now;
+  historyWasValid_ = historyValid;
 }
 
 }  // namespace obscura

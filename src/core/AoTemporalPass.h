@@ -47,6 +47,7 @@ class AoTemporalPass {
       planeTolerance_, ditherOffset_, previousFarHalfExtent_, previousFarPlane_, previousDepthToRay_,
       previousViewToView_, diskScale_, maxRadiusPixels_, objectsMove_, tapRotation_;
   std::optional<Written> written_;
+  bool historyWasValid_ = false;  // in the frame written_ names
 };
 
 }  // namespace obscura
