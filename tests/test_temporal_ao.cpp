@@ -148,6 +148,40 @@ TEST(TemporalAo, TheHistoryCountsItsFramesAndIsDroppedOnResizeAndSceneChange) {
   EXPECT_EQ(counts(renderTargets(renderer, builtinSceneCamera(80, 45), sao)), (std::set<int>{0, 1}));
 }
 
+TEST(TemporalAo, SubPixelShiftsOfTheSamplesKeepTheHistory) {
+  // TAA's jitter moves every G-buffer sample by a fraction of a pixel each frame. Here the camera turns by a quarter
+  // pixel a frame, to and fro (Halton-like offsets), which moves the samples the same way: the nearest history texel
+  // then lies up to half a pixel off along the surface, and the tangent-plane test must keep it. Pixels losing their
+  // history are those near depth edges, where the nearest texel may be another surface.
+  Renderer renderer = test::makeRenderer();
+  renderer.setScene(makeBuiltinScene(BuiltinSceneOptions::still()));
+  const int maxFrames = 6;
+  const RenderSettings settings = temporalSettings(4, maxFrames);
+  const float offsets[] = {0.0f, 0.25f, -0.25f, 0.375f, -0.125f, 0.125f, -0.375f};
+  std::vector<std::uint8_t> bytes;
+  for (float offset : offsets) {
+    Camera camera = builtinSceneCamera(160, 90);
+    // A turn of `offset` pixels: the target moves sideways by offset pixels' worth of angle at its distance.
+    const float pixelAngle = glm::radians(camera.fovyDegrees) / static_cast<float>(camera.height);
+    const glm::vec3 forward = camera.target - camera.eye;
+    const glm::vec3 right = glm::normalize(glm::cross(forward, camera.up));
+    camera.target += right * (offset * pixelAngle * glm::length(forward));
+    FrameOptions options = test::retaining({"ao-temporal"});
+    test::render(renderer, camera, settings, View::Ao, options);
+    bytes = renderer.retained("ao-temporal").readRgba();
+  }
+  size_t geometry = 0, full = 0;
+  for (size_t i = 3; i < bytes.size(); i += 4) {
+    if (bytes[i] == 0) continue;
+    ++geometry;
+    full += bytes[i] == maxFrames;
+  }
+  const double kept = static_cast<double>(full) / static_cast<double>(geometry);
+  std::printf("sub-pixel shifts: %.1f %% of the geometry pixels hold %d frames after %zu frames\n", 100.0 * kept,
+              maxFrames, std::size(offsets));
+  EXPECT_GE(kept, 0.9);
+}
+
 TEST(TemporalAo, TheSplitViewDrawingTheAoTwiceAFrameKeepsAccumulating) {
   // Comparing FXAA, both halves run the AO from one frame context: the second run reads the same previous history.
   Renderer renderer = test::makeRenderer();
