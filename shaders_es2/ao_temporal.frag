@@ -10,9 +10,12 @@
 //      surface (a depth step) or a surface turned away (Q leaves the plane) all fail it, while a sub-pixel jitter or
 //      a slanted plane do not (a point moved along its own plane stays in it, as the bilateral blur's tangent-plane
 //      weight reasons). Outside the screen, on the background or without history, it is dropped too;
-//   3. rectification: the history's AO is clamped to the range of this frame's raw AO in the 3x3 neighbourhood, so
-//      a contact shadow that moved away (the floor under a moving object keeps its depth and normal) cannot linger
-//      as a trail (the neighbourhood clamp of temporal antialiasing, applied to AO as in Jimenez et al. 2016's GTAO);
+//   3. rectification, only where something within the AO radius moves relative to C (a moving object's contact
+//      shadow on a still floor, which keeps its depth and normal, would otherwise linger as a trail): the history's
+//      AO is clamped to the range of this frame's raw AO in the 3x3 neighbourhood (the neighbourhood clamp of
+//      temporal antialiasing) and the mean's memory is held to 2 kLagPixels / motion frames. Everywhere else the
+//      history is not clamped: a few taps give skewed per-pixel values (often 1, sometimes dark), whose 3x3 range
+//      often misses their mean, and a clamp everywhere biased the still room's AO light (docs/temporal-effects.md);
 //   4. accumulation: a running mean of at most N frames, A = H + (a - H) / m with m = min(n + 1, N) and n the frames
 //      the history holds (1 .. N, stored in A), 0 where it was rejected: the first N frames are an exact mean of
 //      every frame seen, after that an exponential average with weight 1/N.
@@ -49,13 +52,16 @@ uniform vec2 u_tapRotation;       // this frame's turn of the velocity taps: (co
 varying vec2 v_uv;
 
 // Relative motion (G-buffer pixels per frame) between the centre and a point within the AO radius above which the
-// history is rectified.
+// history is rectified (core/AoTemporal.h: kRelativeMotionPixels).
 const float kRelativeMotion = 0.5;
-// How far (G-buffer pixels) the accumulated AO may lag behind something moving nearby.
+// How far (G-buffer pixels) the accumulated AO may lag behind something moving nearby (kLagPixels: measured on the
+// sliding box of tests/test_temporal_ao.cpp, where 1 left more noise in the uncovered band and 4 a faint trail).
 const float kLagPixels = 2.0;
 
 // A tap direction turned by this frame's rotation.
-vec2 turned(vec2 d) { return vec2(u_tapRotation.x * d.x - u_tapRotation.y * d.y, u_tapRotation.y * d.x + u_tapRotation.x * d.y); }
+vec2 turned(vec2 d) {
+  return vec2(u_tapRotation.x * d.x - u_tapRotation.y * d.y, u_tapRotation.y * d.x + u_tapRotation.x * d.y);
+}
 
 // The motion of G-buffer pixel `pixel` relative to `velocity`, in G-buffer pixels per frame.
 float relativeMotion(vec2 pixel, vec2 velocity) {
@@ -122,8 +128,8 @@ void main() {
   // 4. Accumulation.
   // Where something nearby moves, the mean also forgets faster: a history of m frames lags the moving object's
   // shadow by about m / 2 frames of its motion, held to kLagPixels.
-  float maxFrames = rectify ? clamp(2.0 * kLagPixels / motion, 1.0, u_maxFrames) : u_maxFrames;
-  float m = min(frames + 1.0, floor(maxFrames));
+  float maxFrames = rectify ? clamp(floor(2.0 * kLagPixels / motion), 1.0, u_maxFrames) : u_maxFrames;
+  float m = min(frames + 1.0, maxFrames);
   float accumulated = current.r;
   if (kept) {
     float previous = channelsToBytes(vec2(history.r)).x * (1.0 / 255.0);

@@ -67,6 +67,14 @@ TEST(TemporalAo, TheRunningMeanIsExactForNFramesThenExponential) {
   EXPECT_NEAR(AoTemporal::accumulate(0.2f, 7, 0.9f, 0.8f, 1.0f, maxFrames).ao, 0.8f + (0.9f - 0.8f) / 8.0f, 1e-6f);
 }
 
+TEST(TemporalAo, SomethingMovingNearbyShortensTheMemory) {
+  EXPECT_EQ(AoTemporal::maxFramesAt(0.0f, 8), 8);
+  EXPECT_EQ(AoTemporal::maxFramesAt(0.5f, 8), 8);  // up to half a pixel a frame: not rectified
+  EXPECT_EQ(AoTemporal::maxFramesAt(1.0f, 8), 4);  // a pixel a frame: 4 frames, a lag of about 2 pixels
+  EXPECT_EQ(AoTemporal::maxFramesAt(3.0f, 8), 1);
+  EXPECT_EQ(AoTemporal::maxFramesAt(0.6f, 3), 3);
+}
+
 TEST(TemporalAo, StochasticRoundingIsUnbiased) {
   // Over the dither's values, the mean stored level is the value (nearest rounding would stall at the level).
   for (float ao : {0.0f, 0.1234f, 0.5f, 0.77f, 0.999f, 1.0f}) {

@@ -27,6 +27,14 @@ bool keepsHistory(const glm::vec3& normal, const glm::vec3& centre, const glm::v
   return std::abs(glm::dot(normal, historyPoint - centre)) <= tolerance;
 }
 
+bool rectifies(float relativeMotionPixels) { return relativeMotionPixels > kRelativeMotionPixels; }
+
+int maxFramesAt(float relativeMotionPixels, int maxFrames) {
+  if (!rectifies(relativeMotionPixels)) return maxFrames;
+  return static_cast<int>(std::clamp(std::floor(2.0f * kLagPixels / relativeMotionPixels), 1.0f,
+                                     static_cast<float>(maxFrames)));
+}
+
 Accumulated accumulate(float history, int historyFrames, float current, float low, float high, int maxFrames) {
   const int frames = std::min(historyFrames + 1, maxFrames);
   if (historyFrames <= 0) return {current, frames};

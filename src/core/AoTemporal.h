@@ -7,8 +7,9 @@
 //                   and 8 distances, each set stratified (the radical inverses fill the gaps evenly).
 //   rejection       the history is kept where the point Q it saw, moved into this frame's view space, lies within
 //                   `tolerance` of this pixel's tangent plane: |n . (Q - C)| <= tolerance.
-//   accumulation    A = H' + (a - H') / m, H' = clamp(H, low, high) (the 3x3 range of this frame's AO),
-//                   m = min(n + 1, N) (n the history's frames, 0 where rejected); m is stored as the A byte.
+//   accumulation    A = H' + (a - H') / m, m = min(n + 1, N') (n the history's frames, 0 where rejected), stored as
+//                   the A byte; where something nearby moves (rectifies), H' = clamp(H, low, high) (the 3x3 range
+//                   of this frame's AO) and N' = maxFramesAt(motion, N); elsewhere H' = H and N' = N.
 //   quantisation    floor(255 A + u), u = fract(ign(pixel) + d_f) in [0, 1): stochastic rounding, unbiased.
 #include <cstdint>
 
@@ -27,6 +28,14 @@ float ditherOffset(std::uint64_t frameIndex);
 
 // Whether the history's point Q (this frame's view space) belongs to the surface at C with normal n.
 bool keepsHistory(const glm::vec3& normal, const glm::vec3& centre, const glm::vec3& historyPoint, float tolerance);
+
+// Rectification (where something within the AO radius moves relative to the pixel by more than
+// kRelativeMotionPixels a frame): the mean's memory, held to a lag of about kLagPixels.
+constexpr float kRelativeMotionPixels = 0.5f;
+constexpr float kLagPixels = 2.0f;
+bool rectifies(float relativeMotionPixels);
+// N where nothing nearby moves; else clamp(floor(2 kLagPixels / motion), 1, N).
+int maxFramesAt(float relativeMotionPixels, int maxFrames);
 
 struct Accumulated {
   float ao;    // before quantisation
