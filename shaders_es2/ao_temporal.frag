@@ -110,7 +110,8 @@ void main() {
     motion = max(motion, relativeMotion(centrePixel + h * turned(vec2(0.354, -0.354)), velocity));
   }
   bool rectify = motion > kRelativeMotion;
-  vec2 historyPixel = floor(previousUv * u_aoSize);
+  // The AO pixel whose G-buffer pixel (u_aoScale times it: lib/ao_resolution.glsl) is nearest the previous position.
+  vec2 historyPixel = floor((previousUv * u_gbufferSize - 0.5) / u_aoScale + 0.5);
   vec4 history = texture2D(u_history, (historyPixel + 0.5) / u_aoSize);
   float historyCode = unpackDepthCode(history.gb);
 

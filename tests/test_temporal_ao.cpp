@@ -154,6 +154,17 @@ TEST(TemporalAo, TheHistoryCountsItsFramesAndIsDroppedOnResizeAndSceneChange) {
   RenderSettings sao = settings;
   sao.ao().estimator = AoEstimator::Sao;
   EXPECT_EQ(counts(renderTargets(renderer, builtinSceneCamera(80, 45), sao)), (std::set<int>{0, 1}));
+  EXPECT_EQ(counts(renderTargets(renderer, builtinSceneCamera(80, 45), sao)), (std::set<int>{0, 2}));
+  // A frame without the temporal AO: the history is not the previous frame's any more.
+  RenderSettings off = sao;
+  off.ao().temporal = false;
+  test::render(renderer, builtinSceneCamera(80, 45), off, View::Ao);
+  EXPECT_EQ(counts(renderTargets(renderer, builtinSceneCamera(80, 45), sao)), (std::set<int>{0, 1}));
+  // Half resolution: its own history, at its own size.
+  RenderSettings half = sao;
+  half.ao().halfResolution = true;
+  for (int frame = 1; frame <= 3; ++frame)
+    EXPECT_EQ(counts(renderTargets(renderer, builtinSceneCamera(80, 45), half)), (std::set<int>{0, frame}));
 }
 
 TEST(TemporalAo, SubPixelShiftsOfTheSamplesKeepTheHistory) {
