@@ -23,8 +23,8 @@
 //      frames per second, the defaults against every switch on (motion blur and TAA included), and the AO's
 //      temporal accumulation at 4 taps against the single frame; ms per effect, written to DIR/effects.csv
 //   9. temporal AO (--temporal-ao-only: this alone): the default AO in one frame against 4 taps accumulated by
-//      ao.temporal (default blur and a 5-tap one), and 4 taps alone, taking turns frame by frame at 640x360 and
-//      1280x720 on the still room (DIR/temporal_ao.csv)
+//      ao.temporal (default blur, a 5-tap and a 3-tap one), and 4 taps alone, taking turns frame by frame at 640x360
+//      and 1280x720 on the still room (DIR/temporal_ao.csv)
 #include <algorithm>
 #include <cstdio>
 #include <cstdlib>
@@ -352,8 +352,8 @@ void estimatorSection(Bench& bench, const BenchScene& scene, int w, int h, const
 
 // Section 9: what ao.temporal saves, on the still room. The default AO (GTAO, medium: 2 slices x 2 sides x 3 steps, a
 // 9-tap blur each way) in one frame; 4 taps a pixel (one side x 4 steps) accumulated by ao.temporal with the default
-// blur and with a 5-tap blur (blur-radius 2: the accumulated AO needs less); and the same 4 taps in one frame; all
-// taking turns frame by frame, each with its own Renderer (its own history). The accuracy side is
+// blur, a 5-tap and a 3-tap one (blur-radius 2 and 1: the accumulated AO needs less); and the same 4 taps in one
+// frame; all taking turns frame by frame, each with its own Renderer (its own history). The accuracy side is
 // tests/test_temporal_ao.cpp's (docs/temporal-effects.md, "Temporal AO"). The temporal frames also run the velocity
 // pass, which only they read here (TAA and motion blur read it too when they are on).
 void temporalAoSection(const Options& options, HeadlessContext& context, const BenchScene& scene) {
@@ -362,7 +362,7 @@ void temporalAoSection(const Options& options, HeadlessContext& context, const B
     const char* name;
     RenderSettings settings;
   };
-  std::vector<Configuration> configurations(4);
+  std::vector<Configuration> configurations(5);
   configurations[0].name = "default, one frame";
   configurations[1].name = "4 taps, temporal";
   configurations[1].settings.ao().samples = 4;
@@ -370,8 +370,11 @@ void temporalAoSection(const Options& options, HeadlessContext& context, const B
   configurations[2].name = "4 taps, temporal, blur 2";
   configurations[2].settings = configurations[1].settings;
   configurations[2].settings.ao().blurRadius = 2;
-  configurations[3].name = "4 taps, one frame";
-  configurations[3].settings.ao().samples = 4;
+  configurations[3].name = "4 taps, temporal, blur 1";
+  configurations[3].settings = configurations[1].settings;
+  configurations[3].settings.ao().blurRadius = 1;
+  configurations[4].name = "4 taps, one frame";
+  configurations[4].settings.ao().samples = 4;
   std::printf("\n9. Temporal AO, the still built-in room, %s: AO effect ms (estimator + ao-temporal + blur), each pass, "
               "and the velocity pass; median of %d frames, all taking turns\n",
               context.caps().renderer.c_str(), options.frames);
