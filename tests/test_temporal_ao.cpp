@@ -341,7 +341,8 @@ Scene floorAndSlidingBox() {
 TEST(TemporalAo, AMovingObjectLeavesNoTrail) {
   const Scene scene = floorAndSlidingBox();
   const int width = 240, height = 135;
-  // Far at 12 m: the depth view's 8 bits then tell the box's top (0.5 m nearer than the floor behind it) from the floor.
+  // Far at 12 m: the depth view's 8 bits then tell the box's top (0.5 m nearer than the floor behind it) from the
+  // floor.
   const Camera camera = test::makeCamera({0.0f, 4.0f, 6.0f}, {0.0f, 0.0f, 0.0f}, width, height, 0.1f, 12.0f);
   const double fps = 60.0, start = 1.8;
   const int frames = 16;

@@ -375,8 +375,8 @@ void temporalAoSection(const Options& options, HeadlessContext& context, const B
   configurations[3].settings.ao().blurRadius = 1;
   configurations[4].name = "4 taps, one frame";
   configurations[4].settings.ao().samples = 4;
-  std::printf("\n9. Temporal AO, the still built-in room, %s: AO effect ms (estimator + ao-temporal + blur), each pass, "
-              "and the velocity pass; median of %d frames, all taking turns\n",
+  std::printf("\n9. Temporal AO, the still built-in room, %s: AO effect ms (estimator + ao-temporal + blur), each "
+              "pass, and the velocity pass; median of %d frames, all taking turns\n",
               context.caps().renderer.c_str(), options.frames);
   std::printf("%-10s %-25s %9s %8s %11s %7s %7s %9s %10s\n", "size", "configuration", "AO effect", "sao",
               "ao-temporal", "blur-h", "blur-v", "velocity", "/ default");
