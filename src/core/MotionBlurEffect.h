@@ -61,7 +61,7 @@ class MotionBlurEffect : public Effect {
   struct TileProgram {
     explicit TileProgram(gl::Program built);
     gl::Program program;
-    GLint source, sourceSize, step, tile, frameSize, halfExposure = -1, maxRadius = -1;
+    GLint source, sourceSize, step, tile, targetSize, frameSize, halfExposure = -1, maxRadius = -1;
   };
   struct NeighborProgram {
     explicit NeighborProgram(gl::Program built);
