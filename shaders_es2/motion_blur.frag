@@ -8,11 +8,15 @@
 // MOTION_BLUR_PASS 1: tile columns: the largest V of each run of K pixels in a row, from the velocity target.
 // MOTION_BLUR_PASS 2: tiles: the largest of each run of K tile columns in a column (with pass 1: TileMax, K x K).
 // MOTION_BLUR_PASS 3: NeighborMax: the largest V of the 3 x 3 tiles around each tile.
-// MOTION_BLUR_PASS 4: the reconstruction (paper, Algorithm 3), on the display colour.
+// MOTION_BLUR_PASS 4: the reconstruction (paper, Algorithm 3, with each sample weighted as the share of the exposure
+//   it stands for: see the loop), on the display colour.
 #include "lib/precision.glsl"
 #include "lib/packing.glsl"
 
 uniform vec2 u_frameSize;  // the frame, pixels
+// Pixel coordinates come from the highp varying, not gl_FragCoord: that is only mediump in GLSL ES 1.00, and a half
+// float cannot hold a pixel centre beyond 1024 (llvmpipe really evaluates it so).
+varying vec2 v_uv;
 
 #if MOTION_BLUR_PASS == 1 || MOTION_BLUR_PASS == 4
 uniform vec2 u_halfExposure;  // 0.5 * shutter * frame size: a velocity texel (uv per frame) -> V in pixels
@@ -33,9 +37,10 @@ uniform sampler2D u_source;
 uniform vec2 u_sourceSize;  // texels
 uniform vec2 u_step;        // (1, 0): along rows (pass 1); (0, 1): along columns (pass 2)
 uniform float u_tile;       // K
+uniform vec2 u_targetSize;  // the texels this pass writes
 
 void main() {
-  vec2 first = floor(gl_FragCoord.xy) * (vec2(1.0) + u_step * (u_tile - 1.0)) + 0.5;
+  vec2 first = floor(v_uv * u_targetSize) * (vec2(1.0) + u_step * (u_tile - 1.0)) + 0.5;
   vec2 largest = vec2(0.0);
   float largestLength = -1.0;
   for (int i = 0; i < MAX_TILE; i++) {
@@ -59,10 +64,10 @@ void main() {
 
 #if MOTION_BLUR_PASS == 3
 uniform sampler2D u_tiles;
-uniform vec2 u_tilesSize;  // texels
+uniform vec2 u_tilesSize;  // texels (of the tiles read, and of the target written: the same)
 
 void main() {
-  vec2 centre = floor(gl_FragCoord.xy) + 0.5;
+  vec2 centre = floor(v_uv * u_tilesSize) + 0.5;
   vec2 largest = vec2(0.0);
   float largestLength = -1.0;
   for (int y = -1; y <= 1; y++) {
@@ -101,9 +106,8 @@ float viewDepth(vec2 uv) {
 // 1 where a surface at depth `a` is in front of one at depth `b`, falling to 0 once it is behind by the soft extent
 // (the paper's softDepthCompare).
 float inFront(float a, float b) { return clamp(1.0 - (a - b) / (kSoftDepth * min(a, b)), 0.0, 1.0); }
-// Whether a pixel blurred by a half-vector of length `len` reaches `distance` pixels (a cone: less, the farther).
-float cone(float distance, float len) { return clamp(1.0 - distance / len, 0.0, 1.0); }
-// The same with a hard but antialiased edge: both pixels blur across each other (paper, Algorithm 3).
+// Whether a pixel blurred by a half-vector of length `len` reaches `distance` pixels: the paper's cylinder test, a
+// hard but antialiased edge (Algorithm 3).
 float cylinder(float distance, float len) { return 1.0 - smoothstep(0.95 * len, 1.05 * len, distance); }
 
 // Per-pixel jitter of the sample positions (Jimenez 2014, interleaved gradient noise): it turns the banding of S
@@ -111,7 +115,7 @@ float cylinder(float distance, float len) { return 1.0 - smoothstep(0.95 * len, 
 float interleavedGradientNoise(vec2 pixel) { return fract(52.9829189 * fract(dot(pixel, vec2(0.06711056, 0.00583715)))); }
 
 void main() {
-  vec2 x = gl_FragCoord.xy;
+  vec2 x = floor(v_uv * u_frameSize) + 0.5;
   vec2 uvX = x / u_frameSize;
   vec4 colorX = texture2D(u_color, uvX);
   vec2 vN = unpackVelocity(texture2D(u_neighborMax, (floor(x / u_tile) + 0.5) / u_tilesSize)) * u_frameSize;

@@ -64,9 +64,10 @@ TEST(EffectTable, ListsTheFrameInOrderWithUniqueNames) {
   EXPECT_EQ(effects,
             (std::vector<std::string>{"gbuffer", "velocity", "ao", "lighting", "tonemap", "motion-blur", "fxaa"}));
   EXPECT_EQ(framePassNames(),
-            (std::vector<std::string>{"pose", "gbuffer", "base-color", "velocity", "hierarchy", "sao", "blur-h",
-                                      "blur-v", "upsample", "lighting", "shading-count", "tonemap", "motion-tiles-h",
-                                      "motion-tiles", "motion-neighbors", "motion-blur", "fxaa", "view", "present"}));
+            (std::vector<std::string>{"pose", "gbuffer", "base-color", "velocity", "hierarchy", "sao", "ao-temporal",
+                                      "blur-h", "blur-v", "upsample", "lighting", "shading-count", "tonemap",
+                                      "motion-tiles-h", "motion-tiles", "motion-neighbors", "motion-blur", "fxaa",
+                                      "view", "present"}));
   // Every target an effect declares is RGBA8 data with a documented encoding; packed data is never filtered.
   for (const TargetInfo& target : frameTargets()) {
     EXPECT_FALSE(target.encoding.empty()) << target.name;

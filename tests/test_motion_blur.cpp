@@ -143,9 +143,8 @@ double meanError(const test::RenderedImage& a, const LinearImage& reference,
 }
 
 // The pixels that move: where the reference, the sharp frame or the blurred one differ from another by more than
-// 2/255. Elsewhere the frames differ by the HDR encoding's rounding alone (at most 1/255: the frame with the blur
-// runs the tone curve as a pass of its own, on the encoded HDR colour; without it the lighting applies the curve
-// before encoding), which would add the same small error to both figures and hide their ratio.
+// 2/255. Elsewhere the frames differ by at most 1/255 (AStillSceneIsUnchanged: a rounding difference of the frame
+// drawn through the blur's passes), which would add the same small error to both figures and hide their ratio.
 std::function<bool(int, int)> moving(const Frames& frames) {
   return [&frames](int x, int y) {
     for (int c = 0; c < 3; ++c) {
@@ -321,7 +320,7 @@ TEST(MotionBlur, AThinFastObjectDoesNotVanish) {
   Renderer renderer = test::makeRenderer();
   renderer.setScene(background);
   // The frame without the pole, drawn the way each frame compared with it was (see moving()): with the blur on
-  // (nothing moves, so it is the tone-mapping pass's frame) for the blurred frame, off for the others.
+  // (nothing moves: the early exit's copy) for the blurred frame, off for the others.
   const test::RenderedImage empty = test::render(renderer, camera, blurSettings(false), View::Final);
   const test::RenderedImage emptyBlurPath = test::render(renderer, camera, blurSettings(true), View::Final);
   renderer.setScene(scene);

@@ -88,6 +88,7 @@ TEST(Resources, AGlErrorRaisedInAPassNamesThatPass) {
     if (pass == "base-color" && test::context().caps().drawBuffers) continue;
     AoSettings settings;
     settings.halfResolution = pass == "upsample";  // the upsampler runs only for half-resolution AO
+    settings.temporal = pass == "ao-temporal";
     // The frame's own passes run for a debug view, the shading count's and the base colour's for theirs, the present
     // pass when the final image is also kept after the frame, the tone-mapping pass when something else reads the
     // HDR colour (otherwise the lighting does its work).

@@ -14,7 +14,21 @@ build/obscura-render --size 960x540 --view depth --out "$out/builtin_depth.png"
 # Mid-swing, and the motion vectors of that frame (the pendulum and the limb; the camera is still).
 build/obscura-render --size 960x540 --time 1.2 --out "$out/builtin_moving.png"
 build/obscura-render --size 960x540 --time 1.2 --view velocity --out "$out/builtin_velocity.png"
-echo "render-docs-images: wrote $out/builtin_*.png"
+# Motion blur (docs/temporal-effects.md): the pendulum and the limb at 2 s, where the pendulum passes the bottom of
+# its swing fastest, at 10 frames per second with the shutter open the whole interval; sharp | blurred | the mean of
+# 64 renders over the exposure.
+mb="--size 960x540 --time 2 --fps 10"
+build/obscura-render $mb --out "$out/motion_sharp.png"
+build/obscura-render $mb --motion-blur on --motion-blur.shutter 1 --out "$out/motion_blur.png"
+build/obscura-render $mb --accumulate 64 --shutter 1 --out "$out/motion_reference.png"
+# Temporal AO: the still room's AO at 4 taps in one frame | 4 taps over 8 frames | the default (12 taps) | the
+# ray-traced reference.
+ao="--size 480x270 --animation none --view ao"
+build/obscura-render $ao --ao.samples 4 --out "$out/ao_4_taps.png"
+build/obscura-render $ao --ao.samples 4 --ao.temporal on --frames 8 --out "$out/ao_temporal_4_taps.png"
+build/obscura-render $ao --out "$out/ao_default.png"
+build/obscura-reference --size 480x270 --animation none --view ao --out "$out/ao_reference.png"
+echo "render-docs-images: wrote $out/builtin_*.png, motion_*.png, ao_*.png"
 
 (cd tests/browser && npm ci --no-audit --no-fund --loglevel=error)
 OBSCURA_UPDATE_SCREENSHOTS=1 node --test --test-name-pattern="page screenshots" tests/browser/page.test.mjs >/dev/null

@@ -81,6 +81,7 @@ MotionBlurEffect::TileProgram::TileProgram(gl::Program built)
       sourceSize(program.uniform("u_sourceSize")),
       step(program.uniform("u_step")),
       tile(program.uniform("u_tile")),
+      targetSize(program.uniform("u_targetSize")),
       frameSize(program.uniform("u_frameSize")) {}
 
 MotionBlurEffect::NeighborProgram::NeighborProgram(gl::Program built)
@@ -142,6 +143,7 @@ void MotionBlurEffect::plan(FramePlanner& planner) {
       gl::Program::set(p.sourceSize, glm::vec2(context.size(source)));
       gl::Program::set(p.step, step);
       gl::Program::set(p.tile, tile);
+      gl::Program::set(p.targetSize, glm::vec2(context.size(target)));
       gl::Program::set(p.frameSize, frame);
       if (p.halfExposure >= 0) {
         gl::Program::set(p.halfExposure, halfExposure);

@@ -16,8 +16,11 @@
 //   motion-tiles      motion-tile-columns -> motion-tiles   ... of each K x K tile (TileMax, separable)
 //   motion-neighbors  motion-tiles -> motion-neighbors  the largest V of the 3 x 3 tiles around (NeighborMax)
 //   motion-blur       display-color, velocity, gbuffer, motion-neighbors -> display-color: S samples along the
-//                     neighbourhood's V, jittered per pixel, each weighted by a soft depth comparison and the cone and
-//                     cylinder tests; a pixel whose neighbourhood moves less than half a pixel is copied unchanged.
+//                     neighbourhood's V, jittered per pixel, each classified by a soft depth comparison and the
+//                     cylinder tests (in front and reaching X, or behind and uncovered by X's own blur) and weighted
+//                     as the 1/S of the exposure it stands for; a pixel whose neighbourhood moves less than half a
+//                     pixel is copied unchanged. The paper's cone weights and its 1/|V[X]| centre weight were
+//                     measured first and left the inside of a moving edge too sharp (docs/temporal-effects.md).
 //
 // It blurs the display colour (after the tone curve, before FXAA): the space the brute-force reference
 // (core/AccumulationReference.h) averages and a viewer sees, and cheap to read (no HDR decode per tap). A camera
@@ -58,7 +61,7 @@ class MotionBlurEffect : public Effect {
   struct TileProgram {
     explicit TileProgram(gl::Program built);
     gl::Program program;
-    GLint source, sourceSize, step, tile, frameSize, halfExposure = -1, maxRadius = -1;
+    GLint source, sourceSize, step, tile, targetSize, frameSize, halfExposure = -1, maxRadius = -1;
   };
   struct NeighborProgram {
     explicit NeighborProgram(gl::Program built);

@@ -48,6 +48,7 @@ const std::vector<Viewer::KeyAction>& Viewer::keyActions() {
       {"b", "blur on / off", toggle("ao.blur")},
       {"t", "tone mapping on / off", toggle("tonemap")},
       {"f", "FXAA on / off", toggle("fxaa")},
+      {"m", "motion blur on / off", toggle("motion-blur")},
       {"p", "next quality preset",
        [](Viewer& v) {
          // From the preset the AO's settings came from, even after some of its values were changed.
