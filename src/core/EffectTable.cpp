@@ -7,6 +7,7 @@
 #include "core/FxaaEffect.h"
 #include "core/GBufferEffect.h"
 #include "core/LightingEffect.h"
+#include "core/TaaEffect.h"
 #include "core/TonemapEffect.h"
 #include "core/VelocityEffect.h"
 
@@ -21,6 +22,7 @@ const std::vector<EffectEntry>& effectTable() {
         EffectEntry::of<VelocityEffect>(),  // scene, gbuffer (and its depth) -> velocity (motion vectors)
         EffectEntry::of<AoEffect>(),        // gbuffer -> ao
         EffectEntry::of<LightingEffect>(),  // scene, ao, the G-buffer's depth -> scene-color (HDR)
+        EffectEntry::of<TaaEffect>(),       // scene-color, velocity, gbuffer, history -> scene-color (HDR)
         EffectEntry::of<TonemapEffect>(),   // scene-color -> display-color (sRGB, luma in alpha)
         EffectEntry::of<FxaaEffect>(),      // display-color -> display-color
     };
