@@ -18,6 +18,8 @@
 #include "core/TaaEffect.h"
 #include "core/TonemapEffect.h"
 #include "core/VelocityPacking.h"
+#include "gl/RenderTarget.h"
+#include "platform/Viewer.h"
 #include "scene/BuiltinScene.h"
 
 namespace obscura {
@@ -472,6 +474,29 @@ TEST(Taa, HistoryIsDroppedOnSceneChangeAndResize) {
   const test::RenderedImage resized = test::render(renderer, smaller, withTaa(), View::Final);
   EXPECT_GT(renderer.historyDrops(), before);
   EXPECT_EQ(resized.rgba, freshRoom.rgba) << "the first frame at the new size starts afresh";
+}
+
+// A front end that draws on change draws 16 frames after each change while TAA is on (a paused still image converges
+// over the jitter's phases), one otherwise; a lost context rebuilds the Renderer, whose history starts empty.
+TEST(Taa, ViewerDrawsTheJitterPhasesAfterAChangeAndStartsAfreshAfterContextLoss) {
+  Viewer viewer(test::context().caps());
+  EXPECT_EQ(viewer.framesPerChange(), 1);
+  viewer.state().settings.set("taa", "on");
+  EXPECT_EQ(viewer.framesPerChange(), kTaaJitterPhases);
+  const auto draw = [&] {
+    // Made per frame: a lost context abandons every GL object, this one included.
+    const gl::RenderTarget output("viewer output", kWidth, kHeight, GL_NEAREST, gl::RenderTarget::Depth::Renderbuffer,
+                                  test::context().caps().depth24);
+    viewer.render(output.framebuffer(), kWidth, kHeight);
+    EXPECT_EQ(glGetError(), static_cast<GLenum>(GL_NO_ERROR));
+  };
+  for (int frame = 0; frame < 4; ++frame) draw();
+  ASSERT_NE(viewer.renderer(), nullptr);
+  EXPECT_EQ(viewer.renderer()->lastFrame().historyFrames, 3);
+  viewer.contextLost();
+  viewer.contextRestored(test::context().caps());
+  draw();
+  EXPECT_EQ(viewer.renderer()->lastFrame().historyFrames, 0) << "the new Renderer has no history";
 }
 
 }  // namespace
