@@ -82,8 +82,7 @@ void main() {
       // The history at previousUv, Catmull-Rom filtered from 4x4 NEAREST texels, each decoded first (an encoded
       // texel cannot be filtered). Bilinear filtering, re-applied every frame a pixel moves, blurs the history a
       // little more each frame (a pan at a sixth of a pixel per frame was blurrier than no antialiasing); Catmull-Rom
-      // keeps it sharp (Karis 2014, slide 31), its negative lobes bounded by the clipping below. At a whole-pixel
-      // offset (a still view) the weights are (0, 1, 0, 0): the history texel itself.
+      // keeps it sharp (Karis 2014, slide 31), its negative lobes bounded by the clipping below.
       vec2 texelPosition = previousUv * u_size - 0.5;
       vec2 base = floor(texelPosition);
       vec2 f = texelPosition - base;
@@ -92,12 +91,18 @@ void main() {
       vec4 wy = vec4(f.y * (-0.5 + f.y * (1.0 - 0.5 * f.y)), 1.0 + f.y * f.y * (-2.5 + 1.5 * f.y),
                      f.y * (0.5 + f.y * (2.0 - 1.5 * f.y)), f.y * f.y * (-0.5 + 0.5 * f.y));
       vec3 history = vec3(0.0);
-      for (int j = 0; j < 4; j++) {
-        float weightY = j == 0 ? wy.x : (j == 1 ? wy.y : (j == 2 ? wy.z : wy.w));
-        for (int i = 0; i < 4; i++) {
-          float weightX = i == 0 ? wx.x : (i == 1 ? wx.y : (i == 2 ? wx.z : wx.w));
-          vec2 uv = (base + vec2(float(i) - 0.5, float(j) - 0.5)) * u_texel;
-          history += weightX * weightY * fetchWeighted(u_history, uv);
+      vec2 nearestTexel = floor(texelPosition + 0.5);
+      if (all(lessThan(abs(texelPosition - nearestTexel), vec2(1.0 / 512.0)))) {
+        // On a texel (a still view, the common case): its weights are (0, 1, 0, 0), one fetch.
+        history = fetchWeighted(u_history, (nearestTexel + 0.5) * u_texel);
+      } else {
+        for (int j = 0; j < 4; j++) {
+          float weightY = j == 0 ? wy.x : (j == 1 ? wy.y : (j == 2 ? wy.z : wy.w));
+          for (int i = 0; i < 4; i++) {
+            float weightX = i == 0 ? wx.x : (i == 1 ? wx.y : (i == 2 ? wx.z : wx.w));
+            vec2 uv = (base + vec2(float(i) - 0.5, float(j) - 0.5)) * u_texel;
+            history += weightX * weightY * fetchWeighted(u_history, uv);
+          }
         }
       }
       vec3 mean = sum * (1.0 / 9.0);
