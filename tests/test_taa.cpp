@@ -345,13 +345,13 @@ TEST(Taa, StillRoomAfter16FramesBeatsFxaaAndNoAntialiasingOnEdges) {
                 errors[r][3]);
   }
   ASSERT_GT(count, 300);
-  // Measured against the linear-light reference (1503 edge pixels; egl): no AA 6.73, FXAA 5.70, TAA 3.88 (32 % below
-  // FXAA, 42 % below no AA), TAA + FXAA 5.50.
-  EXPECT_LT(errors[0][2], 0.8f * errors[0][1]) << "TAA's edge error at least 20 % below FXAA's";
-  EXPECT_LT(errors[0][2], 0.65f * errors[0][0]) << "TAA's edge error at least 35 % below no antialiasing's";
-  EXPECT_LT(errors[0][3], errors[0][1]) << "TAA + FXAA below FXAA alone";
-  // Against the display-space average TAA (a filter of the light) still beats both (measured 6.66 / 5.60 / 3.46).
-  EXPECT_LT(errors[1][2], 0.8f * errors[1][1]);
+  // Measured against the linear-light reference (1503 edge pixels; egl / osmesa): no AA 6.73 / 6.67, FXAA 5.70 /
+  // 5.70, TAA 3.09 / 3.01 (46 % below FXAA, 54 % below no AA), TAA + FXAA 5.19 / 5.12.
+  EXPECT_LT(errors[0][2], 0.7f * errors[0][1]) << "TAA's edge error at least 30 % below FXAA's";
+  EXPECT_LT(errors[0][2], 0.6f * errors[0][0]) << "TAA's edge error at least 40 % below no antialiasing's";
+  EXPECT_LT(errors[0][3], 0.95f * errors[0][1]) << "TAA + FXAA at least 5 % below FXAA alone";
+  // Against the display-space average TAA (a filter of the light) still beats both (measured 6.66 / 5.60 / 2.65 egl).
+  EXPECT_LT(errors[1][2], 0.7f * errors[1][1]);
 }
 
 // Pixels something moves at (the velocity target, nonzero), for a frame with a still camera.
@@ -402,7 +402,7 @@ TEST(Taa, MovingPendulumLeavesNoGhostTrail) {
   std::printf("pendulum, %d uncovered pixels, MAE in levels: no AA %.2f, TAA %.2f; still pixels: no AA %.2f, TAA %.2f\n",
               bandCount, plainBand, taaBand, plainStill, taaStill);
   ASSERT_GT(bandCount, 30);
-  // Measured (egl): 42 uncovered pixels, no AA 10.08, TAA 5.70; elsewhere no AA 2.42, TAA 2.05.
+  // Measured (egl / osmesa): 42 uncovered pixels, no AA 10.08, TAA 5.81 / 5.92; elsewhere no AA 2.42, TAA 1.87 / 1.73.
   EXPECT_LE(taaBand, plainBand * 1.05f) << "the uncovered band: no worse than without TAA (5 % margin)";
   EXPECT_LT(taaStill, plainStill) << "and better where nothing moved";
 }
@@ -438,9 +438,10 @@ TEST(Taa, CameraPanLeavesNoTrail) {
   const float taaEdges = maskedError(linear(taa), reference, edges), plainEdges = maskedError(plain, reference, edges);
   std::printf("camera pan, MAE in levels: all no AA %.2f, TAA %.2f; edges no AA %.2f, TAA %.2f\n", plainAll, taaAll,
               plainEdges, taaEdges);
-  // Measured (egl): all no AA 2.36, TAA 2.29; edges no AA 7.71, TAA 7.56. While the view moves, TAA gains little on
-  // edges (the history is resampled every frame and clipped hard); what this holds is that it loses nothing: no
-  // trail, no blur beyond the frame without antialiasing.
+  // Measured (egl / osmesa): all no AA 2.36, TAA 2.20 / 2.06; edges no AA 7.71, TAA 7.13 / 7.05. While the view
+  // moves TAA gains less on edges (the history is resampled every frame and clipped); what this holds is that it
+  // loses nothing: no trail, no blur beyond the frame without antialiasing (bilinear resampling of the history,
+  // tried first, did blur: edges 8.08).
   EXPECT_LE(taaAll, plainAll);
   EXPECT_LE(taaEdges, plainEdges);
 }

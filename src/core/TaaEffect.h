@@ -8,6 +8,7 @@
 //     depth the surface had then, or the history there is dropped;
 //   - rectification: the history is clipped in YCoCg towards the neighbourhood's mean onto the box mean +- gamma
 //     sigma (Salvi 2016's variance clipping, clipped along the line to the mean as in Pedersen 2016, INSIDE);
+//   - the history resampled with Catmull-Rom from 4x4 texels, decoded one by one (one texel on a still view);
 //   - averaging in Karis' reversible tone-mapped space c / (1 + luma);
 //   - optional sharpening of what leaves the pass (never of the history).
 // It runs after the lighting, on HDR colour, so FXAA (on display colour, after tone mapping) may run after it.
@@ -55,8 +56,13 @@ glm::vec3 taaToneWeight(const glm::vec3& ycocg);
 glm::vec3 taaToneUnweight(const glm::vec3& weighted);
 glm::vec3 taaClipTowardsMean(const glm::vec3& history, const glm::vec3& mean, const glm::vec3& extent);
 
-// Variance clipping's gamma: Salvi 2016 suggests 1 (tight: little ghosting, more flicker) .. 1.25.
-constexpr float kTaaClipGamma = 1.0f;
+// Variance clipping's gamma, the box's half-size in standard deviations. Salvi 2016 suggests 1 (tight: little
+// ghosting, more flicker) .. 1.25. Measured by tests/test_taa.cpp (egl; edge MAE in levels, still room / camera
+// pan; pendulum's uncovered band): 0.75: 5.04 / 8.23, 5.79; 1: 3.88 / 7.56, 5.70; 1.25: 3.49 / 7.27, 5.82; 1.5: 3.09 /
+// 7.13, 5.81; 2: 2.95 / 6.98, 5.77. The band does not move (the depth test rejects the history there, not the
+// clipping); the gain flattens beyond 1.5, and a looser box keeps more of a history whose colour changed at the same
+// depth (shading, a texture), which these tests do not measure: 1.5.
+constexpr float kTaaClipGamma = 1.5f;
 
 // The jitter's phases (Renderer::beginFrame: Halton(2, 3) indices 1 .. 16).
 constexpr int kTaaJitterPhases = 16;
