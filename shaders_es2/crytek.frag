@@ -86,7 +86,7 @@ void main() {
   float radius = u_radius * shrink;
   float invRadius = u_invRadius / shrink;
   // The per-pixel reflection vector: uniform on the sphere from two decorrelated hash values.
-  float cosTheta = rotationAngle(c.aoPixel) * (2.0 / kTwoPi) - 1.0;
+  float cosTheta = radialJitter(c.aoPixel) * 2.0 - 1.0;
   float azimuth = rotationAngle(c.aoPixel.yx + vec2(11.0, 7.0));
   vec3 mirror = vec3(sqrt(max(1.0 - cosTheta * cosTheta, 0.0)) * vec2(cos(azimuth), sin(azimuth)), cosTheta);
 

@@ -29,7 +29,11 @@
 //
 // Compile-time constants, beside those of lib/ao_estimator.glsl:
 //   GTAO_SLICES   slices per pixel (each rotated by pi / GTAO_SLICES, all by the per-pixel angle)
-//   GTAO_STEPS    taps per side of a slice (so 2 x GTAO_SLICES x GTAO_STEPS taps in all)
+//   GTAO_STEPS    taps per side of a slice (so GTAO_SIDES x GTAO_SLICES x GTAO_STEPS taps in all)
+//   GTAO_SIDES    2: both sides of each slice. 1 (small budgets): one side per pixel, picked at random in
+//                 proportion to its open arc and weighted so that the expectation is the two-sided slice's (see
+//                 main); the budget buys twice the steps, a longer horizon search, whose maximum misses fewer
+//                 occluders than half as many taps (averaged over frames by the temporal AO, that bias would stay)
 //   THIN_OCCLUDER_BLEND  the thickness heuristic's blend (0: a height field)
 #include "lib/ao_estimator.glsl"
 
@@ -101,8 +105,13 @@ void main() {
   // bilateral blur (9 taps a direction at the medium preset) averages them all on a flat surface; the interleaved
   // gradient noise SAO uses left diagonal streaks where two slices per pixel sampled a wall's foot. The steps'
   // jitter keeps that noise.
-  float noise = (bayer4(c.aoPixel) + 0.5) * (1.0 / 16.0);  // [0, 1)
-  float jitter = rotationAngle(c.aoPixel) * (1.0 / kTwoPi);
+  // With ao.temporal, each frame moves every angle by a fraction of the Bayer step (u_frameOffset.x of 1/16, a
+  // Halton sequence), so 8 frames fill the 16 angles' gaps with 8 more each, and the steps' jitter moves too.
+  float noise = (bayer4(c.aoPixel) + fract(0.5 + u_frameOffset.x)) * (1.0 / 16.0);  // [0, 1)
+  float jitter = radialJitter(c.aoPixel);
+#if GTAO_SIDES == 1
+  float sideChoice = radialJitter(c.aoPixel.yx + vec2(5.0, 3.0));  // decorrelated from the steps' jitter
+#endif
 
   float visible = 0.0, open = 0.0;
   for (int slice = 0; slice < GTAO_SLICES; slice++) {
@@ -118,12 +127,25 @@ void main() {
     float sinGamma = dot(projectedNormal, T) / max(projectedLength, 1e-4);
     float gamma = sign(sinGamma) * fastAcos(cosGamma);
 
-    float c0 = clamp(sideHorizon(c, V, -d, jitter, log2DiskRadius, estimator.y), -1.0, 1.0);
+    // An open sky: both horizons at the hemisphere's edge, eq. 10 = cos gamma + gamma sin gamma.
+    float openSky = cosGamma + gamma * sinGamma;
+#if GTAO_SIDES == 1
+    // One side, drawn with probability o_s / (o_+ + o_-), its open arc's share (o_+ = 1/2 (cos gamma + gamma sin
+    // gamma) + pi/4 sin gamma: eq. 10's half with h_1 = gamma + pi/2), and weighted (o_+ + o_-) a_s / o_s: its
+    // expectation is a(h_0, h_1), the two-sided slice's, and the visibility stays in [0, 1].
+    float openPlus = 0.5 * openSky + 0.25 * kPi * sinGamma;
+    float sideSign = sideChoice * openSky < openPlus ? 1.0 : -1.0;
+    float openSide = sideSign > 0.0 ? openPlus : openSky - openPlus;
+    float cs = clamp(sideHorizon(c, V, sideSign * d, jitter, log2DiskRadius, estimator.y), -1.0, 1.0);
+    visible += projectedLength * openSky * sideArc(cs, sideSign, gamma, cosGamma, sinGamma) / max(openSide, 1e-4);
+    open += projectedLength * openSky;
+#else
     float c1 = clamp(sideHorizon(c, V, d, jitter, log2DiskRadius, estimator.y), -1.0, 1.0);
+    float c0 = clamp(sideHorizon(c, V, -d, jitter, log2DiskRadius, estimator.y), -1.0, 1.0);
     visible += projectedLength *
                (sideArc(c0, -1.0, gamma, cosGamma, sinGamma) + sideArc(c1, 1.0, gamma, cosGamma, sinGamma));
-    // An open sky: both horizons at the hemisphere's edge, eq. 10 = cos gamma + gamma sin gamma.
-    open += projectedLength * (cosGamma + gamma * sinGamma);
+    open += projectedLength * openSky;
+#endif
   }
   float visibility = clamp(visible / max(open, 1e-4), 0.0, 1.0);
   gl_FragColor = aoOutput(c, 1.0 - visibility, estimator);

@@ -88,7 +88,7 @@ void main() {
   // Per-pixel rotation (interleaved gradient noise) and a decorrelated step jitter: the same hash at a transposed,
   // shifted pixel.
   float rotation = rotationAngle(c.aoPixel) * (1.0 / float(HBAO_DIRECTIONS));
-  float jitter = rotationAngle(c.aoPixel.yx + vec2(11.0, 7.0)) * (1.0 / kTwoPi);
+  float jitter = radialJitter(c.aoPixel.yx + vec2(11.0, 7.0));
   // sin(atan(beta)): the angle bias.
   float sinBias = estimator.y * inversesqrt(1.0 + estimator.y * estimator.y);
 

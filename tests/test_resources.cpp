@@ -88,6 +88,7 @@ TEST(Resources, AGlErrorRaisedInAPassNamesThatPass) {
     if (pass == "base-color" && test::context().caps().drawBuffers) continue;
     AoSettings settings;
     settings.halfResolution = pass == "upsample";  // the upsampler runs only for half-resolution AO
+    settings.temporal = pass == "ao-temporal";
     // The frame's own passes run for a debug view, the shading count's and the base colour's for theirs, the present
     // pass when the final image is also kept after the frame, the tone-mapping pass when something else reads the
     // HDR colour (otherwise the lighting does its work).
@@ -96,13 +97,15 @@ TEST(Resources, AGlErrorRaisedInAPassNamesThatPass) {
                       : pass == "base-color"    ? View{"base-color"}
                       : pass == "velocity"      ? View{"velocity"}
                                                 : View::Final;
+    RenderSettings frame = settings;
+    if (pass.rfind("motion-", 0) == 0) frame.set("motion-blur", "on");  // its passes run only with the blur on
     FrameOptions options;
     if (pass == "present") options.retain = {"display-color"};
     if (pass == "tonemap") options.retain = {"scene-color"};
     ErrorAtTheEndOf timer(pass);
     options.timer = &timer;
     try {
-      renderer.render(camera, settings, view, OutputTarget{output.framebuffer(), camera.width, camera.height, {}},
+      renderer.render(camera, frame, view, OutputTarget{output.framebuffer(), camera.width, camera.height, {}},
                       options);
       ADD_FAILURE() << "the GL error raised in " << pass << " went unnoticed";
     } catch (const GlError& e) {

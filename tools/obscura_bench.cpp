@@ -1,7 +1,7 @@
 // obscura-bench: the performance figures of the AO pipeline, measured in one run (docs/benchmarks.md).
 //
 //   obscura-bench [--out DIR] [--frames N] [--backend osmesa|egl] [--quick] [--estimators-only] [--motion-only]
-//                 [--effects-only]
+//                 [--effects-only] [--temporal-ao-only]
 //
 // Prints tables and writes DIR/bench.csv (every measurement), DIR/ratios.csv, DIR/radius_sweep.csv,
 // DIR/radius_sweep.png (gnuplot) and DIR/estimators.csv. Every pass is bounded by glFinish on both sides and
@@ -22,6 +22,9 @@
 //   8. every effect at 640x360 and 1280x720 (--effects-only: this alone): the moving built-in scene playing at 60
 //      frames per second, the defaults against every switch on (motion blur and TAA included), and the AO's
 //      temporal accumulation at 4 taps against the single frame; ms per effect, written to DIR/effects.csv
+//   9. temporal AO (--temporal-ao-only: this alone): the default AO in one frame against 4 taps accumulated by
+//      ao.temporal (default blur, a 5-tap and a 3-tap one), and 4 taps alone, taking turns frame by frame at 640x360
+//      and 1280x720 on the still room (DIR/temporal_ao.csv)
 #include <algorithm>
 #include <cstdio>
 #include <cstdlib>
@@ -77,6 +80,7 @@ struct Options {
   bool estimatorsOnly = false;  // section 6 alone
   bool motionOnly = false;      // section 7 alone
   bool effectsOnly = false;     // section 8 alone
+  bool temporalAoOnly = false;  // section 9 alone
 };
 
 struct BenchScene {
@@ -291,8 +295,10 @@ Options parseOptions(int argc, char** argv) {
     else if (arg == "--estimators-only") options.estimatorsOnly = true;
     else if (arg == "--motion-only") options.motionOnly = true;
     else if (arg == "--effects-only") options.effectsOnly = true;
+    else if (arg == "--temporal-ao-only") options.temporalAoOnly = true;
     else throw InputError("unknown option '" + arg + "' (usage: obscura-bench [--out DIR] [--frames N] "
-                          "[--backend osmesa|egl] [--quick] [--estimators-only] [--motion-only] [--effects-only])");
+                          "[--backend osmesa|egl] [--quick] [--estimators-only] [--motion-only] [--effects-only] "
+                          "[--temporal-ao-only])");
   }
   return options;
 }
@@ -341,6 +347,73 @@ void estimatorSection(Bench& bench, const BenchScene& scene, int w, int h, const
           << at(t, "sao") << "," << effect / saoEffect << "\n";
     }
     std::printf("  %s\n", relative.c_str());
+  }
+}
+
+// Section 9: what ao.temporal saves, on the still room. The default AO (GTAO, medium: 2 slices x 2 sides x 3 steps, a
+// 9-tap blur each way) in one frame; 4 taps a pixel (one side x 4 steps) accumulated by ao.temporal with the default
+// blur, a 5-tap and a 3-tap one (blur-radius 2 and 1: the accumulated AO needs less); and the same 4 taps in one
+// frame; all taking turns frame by frame, each with its own Renderer (its own history). The accuracy side is
+// tests/test_temporal_ao.cpp's (docs/temporal-effects.md, "Temporal AO"). The temporal frames also run the velocity
+// pass, which only they read here (TAA and motion blur read it too when they are on).
+void temporalAoSection(const Options& options, HeadlessContext& context, const BenchScene& scene) {
+  const EffectEntry& aoEffect = effectEntry("ao");
+  struct Configuration {
+    const char* name;
+    RenderSettings settings;
+  };
+  std::vector<Configuration> configurations(5);
+  configurations[0].name = "default, one frame";
+  configurations[1].name = "4 taps, temporal";
+  configurations[1].settings.ao().samples = 4;
+  configurations[1].settings.ao().temporal = true;
+  configurations[2].name = "4 taps, temporal, blur 2";
+  configurations[2].settings = configurations[1].settings;
+  configurations[2].settings.ao().blurRadius = 2;
+  configurations[3].name = "4 taps, temporal, blur 1";
+  configurations[3].settings = configurations[1].settings;
+  configurations[3].settings.ao().blurRadius = 1;
+  configurations[4].name = "4 taps, one frame";
+  configurations[4].settings.ao().samples = 4;
+  std::printf("\n9. Temporal AO, the still built-in room, %s: AO effect ms (estimator + ao-temporal + blur), each "
+              "pass, and the velocity pass; median of %d frames, all taking turns\n",
+              context.caps().renderer.c_str(), options.frames);
+  std::printf("%-10s %-25s %9s %8s %11s %7s %7s %9s %10s\n", "size", "configuration", "AO effect", "sao",
+              "ao-temporal", "blur-h", "blur-v", "velocity", "/ default");
+  std::ofstream csv(options.outDir + "/temporal_ao.csv");
+  csv << "width,height,configuration,ao_effect_ms,sao_ms,ao_temporal_ms,blur_ms,velocity_ms\n";
+  for (auto [w, h] : {std::pair<int, int>{640, 360}, std::pair<int, int>{1280, 720}}) {
+    Camera camera = scene.camera;
+    camera.width = w;
+    camera.height = h;
+    const gl::RenderTarget output("bench output", w, h, GL_NEAREST, gl::RenderTarget::Depth::Renderbuffer,
+                                  context.caps().depth24, context.caps().packedDepthStencil);
+    const OutputTarget target{output.framebuffer(), w, h, {}};
+    std::vector<std::unique_ptr<Renderer>> renderers;
+    for (size_t c = 0; c < configurations.size(); ++c) {
+      renderers.push_back(std::make_unique<Renderer>(context.caps()));
+      renderers.back()->setScene(scene.scene);
+    }
+    std::vector<FinishPassTimer> timers(configurations.size());
+    const int warmUp = 8;  // shaders built, histories filled
+    FrameOptions frame;
+    for (int f = -warmUp; f < options.frames; ++f)
+      for (size_t c = 0; c < configurations.size(); ++c) {
+        frame.timer = f < 0 ? nullptr : &timers[c];
+        renderers[c]->render(camera, configurations[c].settings, View::Final, target, frame);
+      }
+    double reference = 0.0;
+    for (size_t c = 0; c < configurations.size(); ++c) {
+      double effect = 0.0;
+      for (const std::string& pass : aoEffect.info.passes) effect += timers[c].medianMs(pass);
+      if (c == 0) reference = effect;
+      const double blur = timers[c].medianMs("blur-h") + timers[c].medianMs("blur-v");
+      std::printf("%4dx%-5d %-25s %9.2f %8.2f %11.2f %7.2f %7.2f %9.2f %10.2f\n", w, h, configurations[c].name, effect,
+                  timers[c].medianMs("sao"), timers[c].medianMs("ao-temporal"), timers[c].medianMs("blur-h"),
+                  timers[c].medianMs("blur-v"), timers[c].medianMs("velocity"), effect / reference);
+      csv << w << "," << h << ",\"" << configurations[c].name << "\"," << effect << "," << timers[c].medianMs("sao")
+          << "," << timers[c].medianMs("ao-temporal") << "," << blur << "," << timers[c].medianMs("velocity") << "\n";
+    }
   }
 }
 
@@ -549,6 +622,11 @@ int main(int argc, char** argv) {
       std::printf("\nobscura-bench: wrote %s/motion.csv\n", options.outDir.c_str());
       return 0;
     }
+    if (options.temporalAoOnly) {  // before Bench, which starts DIR/bench.csv afresh
+      temporalAoSection(options, context, scenes[0]);
+      std::printf("\nobscura-bench: wrote %s/temporal_ao.csv\n", options.outDir.c_str());
+      return 0;
+    }
     const std::vector<std::pair<int, int>> effectSizes =
         options.quick ? std::vector<std::pair<int, int>>{{320, 180}}
                       : std::vector<std::pair<int, int>>{{640, 360}, {1280, 720}};
@@ -693,8 +771,9 @@ int main(int argc, char** argv) {
     estimatorSection(bench, builtin, w, h, options.outDir);
     motionSection(options, context, w, h);
     effectsSection(options, context, effectSizes);
+    temporalAoSection(options, context, builtin);
     std::printf("\nobscura-bench: wrote %s/bench.csv, ratios.csv, radius_sweep.csv, radius_sweep.png, estimators.csv, "
-                "motion.csv, effects.csv\n",
+                "motion.csv, effects.csv, temporal_ao.csv\n",
                 options.outDir.c_str());
     return 0;
   } catch (const InputError& e) {

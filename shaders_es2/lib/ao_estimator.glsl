@@ -25,6 +25,9 @@ uniform float u_invRadius;      // 1 / r
 // x = sigma * 5 / s (SAO 2012) or sigma * 2 / s (Alchemy 2011), y = beta as a fraction of r, z = contrast k.
 uniform vec3 u_estimatorKnots[ESTIMATOR_KNOTS];
 uniform float u_maxRadiusPixels;
+// Temporal AO's per-frame offsets (core/AoTemporal.h: frameOffset), as fractions: x of the taps' rotation (a turn),
+// y of their distance jitter. (0, 0) without ao.temporal.
+uniform vec2 u_frameOffset;
 #if DEPTH_HIERARCHY == 1
 uniform sampler2D u_level1;
 uniform sampler2D u_level2;
@@ -46,11 +49,17 @@ varying vec3 v_farRay;
 const float kTwoPi = 6.28318530718;
 
 // Interleaved gradient noise (Jimenez 2014): an arithmetic per-pixel hash in [0, 1).
-float rotationAngle(vec2 pixel) {
+float interleavedGradientNoise(vec2 pixel) {
   float inner = 0.06711056 * pixel.x + 0.00583715 * pixel.y;
-  float noise = 52.9829189 * (inner - floor(inner));
-  return kTwoPi * (noise - floor(noise));
+  return fract(52.9829189 * fract(inner));
 }
+
+// The per-pixel rotation of the taps, turned by u_frameOffset.x of a turn: each frame of the temporal AO
+// (ao.temporal, core/AoTemporal.h) samples new directions; 0 without it, which leaves the angle as it was.
+float rotationAngle(vec2 pixel) { return kTwoPi * fract(interleavedGradientNoise(pixel) + u_frameOffset.x); }
+
+// A per-pixel jitter of the tap distances in [0, 1), shifted by u_frameOffset.y per frame (as the rotation).
+float radialJitter(vec2 pixel) { return fract(interleavedGradientNoise(pixel) + u_frameOffset.y); }
 
 // The surface point a tap at G-buffer pixel `tapPixel`, 2^log2TapDistance pixels from the centre, reads.
 // SAO paper, sec. 3.3: a tap at distance h reads level m = clamp(floor(log2 h) - LOG_MAX_OFFSET, 0, MAX_MIP_LEVEL),

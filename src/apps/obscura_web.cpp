@@ -137,6 +137,11 @@ class WebApp {
     int width = 0, height = 0;
     if (canvas_.fitToDisplay(viewer_.caps().maxRenderSize(), &width, &height)) frameWanted_ = true;
     if (viewer_.playing()) frameWanted_ = true;  // a playing timeline changes every frame by itself
+    // The temporal AO accumulates over frames: a still view keeps drawing until its history holds
+    // ao.temporal-frames frames (the last drawn frame's history held historyFrames + 1).
+    const AoSettings& ao = viewer_.state().settings.ao();
+    if (const Renderer* renderer = viewer_.renderer())
+      if (ao.enabled && ao.temporal && renderer->lastFrame().historyFrames + 1 < ao.temporalFrames) frameWanted_ = true;
     if (!frameWanted_ && !continuous_ && settleFrames_ <= 0) {
       lastFrameTime_ = 0.0;  // the next drawn frame does not follow this one
       return;

@@ -13,6 +13,8 @@ RenderSettings withoutTemporalEffects(const RenderSettings& settings) {
   RenderSettings out = settings;
   for (const EffectEntry& row : effectTable())
     if (row.info.temporal && row.info.hasSwitch) out.set(row.info.name, "off");
+  // The AO's own accumulation over frames: a parameter of the AO, not an effect's switch.
+  out.set("ao.temporal", "off");
   return out;
 }
 

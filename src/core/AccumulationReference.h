@@ -21,8 +21,8 @@
 
 namespace obscura {
 
-// `settings` with every effect whose EffectInfo::temporal is set switched off:
-// what each sub-frame of a reference is rendered with.
+// `settings` with every effect whose EffectInfo::temporal is set switched off, and the AO's accumulation over frames
+// (ao.temporal): what each sub-frame of a reference is rendered with.
 RenderSettings withoutTemporalEffects(const RenderSettings& settings);
 
 // The times of `samples` sub-frames spread evenly over [T - s/(2F), T + s/(2F)]: the midpoints of `samples` equal

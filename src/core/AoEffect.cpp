@@ -1,5 +1,6 @@
 #include "core/AoEffect.h"
 
+#include "core/AoTemporal.h"
 #include "core/PassContext.h"
 
 namespace obscura {
@@ -14,20 +15,25 @@ EffectInfo AoEffect::info() {
           "Ambient obscurance",
           true,
           false,
-          {"hierarchy", "sao", "blur-h", "blur-v", "upsample"},
+          {"hierarchy", "sao", "ao-temporal", "blur-h", "blur-v", "upsample"},
           {{"depth-hierarchy",
             "SAO's depth levels 1 .. 5 (one picked pixel's depth per 2^m block, and where it lies in the block); kept "
             "by the effect as an atlas or a mip chain, not pooled",
             GL_NEAREST,
             {}},
            {"ao-raw", kAoEncoding, GL_NEAREST, {{"ao-raw", ViewDecoding::Grey}}},
+           {"ao-temporal",
+            std::string(kAoEncoding) + "; A: the frames its running mean holds (core/AoTemporal.h)",
+            GL_NEAREST,
+            {{"ao-temporal", ViewDecoding::Grey}}},
            {"ao-blur-h", kAoEncoding, GL_NEAREST, {{"ao-blur-h", ViewDecoding::Grey}}},
            {"ao", kAoEncoding, GL_NEAREST, {{"ao", ViewDecoding::Grey}}}}};
 }
 
 std::vector<ProgramSpec> AoEffect::programSpecs() {
   std::vector<ProgramSpec> specs = DepthHierarchyPass::programSpecs();
-  for (const auto& list : {SaoPass::programSpecs(), BilateralBlurPass::programSpecs(), AoUpsamplePass::programSpecs()})
+  for (const auto& list : {SaoPass::programSpecs(), AoTemporalPass::programSpecs(), BilateralBlurPass::programSpecs(),
+                           AoUpsamplePass::programSpecs()})
     specs.insert(specs.end(), list.begin(), list.end());
   return specs;
 }
@@ -37,6 +43,7 @@ AoEffect::AoEffect(const EffectResources& resources)
                  DepthHierarchyPass::storageFor(resources.caps, resources.options.hierarchyStorage),
                  resources.build(DepthHierarchyPass::programSpecs().front())),
       sao_(resources),
+      temporal_(resources),
       blur_(resources),
       upsample_(resources) {}
 
@@ -67,17 +74,44 @@ void AoEffect::plan(FramePlanner& planner) {
   sao.reads = {"gbuffer"};
   if (settings.depthHierarchy) sao.reads.push_back("depth-hierarchy");
   sao.writes = {{"ao-raw", aoSize, PassDecl::Write::Depth::None, ""}};
-  sao.run = [this, settings, aoScale](PassContext& context) {
+  // With ao.temporal, each frame's taps turn to new directions and distances (AoTemporal::frameOffset).
+  const bool temporal = settings.temporal || planner.viewTarget() == "ao-temporal";
+  sao.run = [this, settings, aoScale, temporal](PassContext& context) {
     context.bindForWriting("ao-raw");
     sao_.render(context.texture("gbuffer"), settings.depthHierarchy ? &hierarchy_ : nullptr, context.camera(),
-                settings, aoScale, context.size("ao-raw"));
+                settings, aoScale, context.size("ao-raw"),
+                temporal ? AoTemporal::frameOffset(context.frame().index) : glm::vec2(0.0f));
   };
   planner.add(std::move(sao));
+
+  auto addTemporal = [&](const char* input) {
+    PassDecl accumulate;
+    accumulate.name = "ao-temporal";
+    accumulate.reads = {input, "velocity", "gbuffer"};
+    accumulate.writes = {{"ao-temporal", aoSize, PassDecl::Write::Depth::None, ""}};
+    accumulate.run = [this, settings, aoScale, aoSize, input](PassContext& context) {
+      // One history per AO size: switching to half resolution does not read a full-size history. Asked for before
+      // binding: making its targets (the first time) binds their framebuffers.
+      RenderTargetPool::History& history = context.history("ao-temporal " + aoSize.name(), aoSize, GL_NEAREST);
+      context.bindForWriting("ao-temporal");
+      temporal_.render(context.texture(input), context.texture("velocity"), context.texture("gbuffer"), history,
+                       context.frame(), settings, aoScale, context.size("ao-temporal"), context.scene().anyMoving());
+    };
+    planner.add(std::move(accumulate));
+  };
+  // The raw AO is accumulated before the blur: the blur then averages converged values. After the blur (the
+  // blurred AO accumulated, its history rectified against the blurred frame) was as accurate on the still room and
+  // trailed more behind a moving object (docs/temporal-effects.md, "Temporal AO").
+  const char* unblurred = "ao-raw";
+  if (temporal) {
+    addTemporal("ao-raw");
+    unblurred = "ao-temporal";
+  }
 
   if (settings.blur && settings.blurRadius > 0) {
     for (const auto direction : {BilateralBlurPass::Direction::Horizontal, BilateralBlurPass::Direction::Vertical}) {
       const bool horizontal = direction == BilateralBlurPass::Direction::Horizontal;
-      const char* input = horizontal ? "ao-raw" : "ao-blur-h";
+      const char* input = horizontal ? unblurred : "ao-blur-h";
       const char* output = horizontal ? "ao-blur-h" : "ao";
       PassDecl blur;
       blur.name = horizontal ? "blur-h" : "blur-v";
@@ -91,7 +125,7 @@ void AoEffect::plan(FramePlanner& planner) {
       planner.add(std::move(blur));
     }
   } else {
-    planner.alias("ao", "ao-raw");
+    planner.alias("ao", unblurred);
   }
 
   if (half) {

@@ -6,13 +6,15 @@
 //   hierarchy  G-buffer -> depth-hierarchy (its own storage: an atlas 1.5 times the frame's width, or a mip chain;
 //              core/DepthHierarchyPass.h)
 //   sao        G-buffer (+ hierarchy) -> ao-raw (full or half size)
-//   blur-h     ao-raw -> ao-blur-h           blur-v   ao-blur-h -> ao      (without the blur, ao is ao-raw)
+//   ao-temporal  ao-raw, velocity, G-buffer, history -> ao-temporal (ao.temporal: core/AoTemporalPass.h)
+//   blur-h     ao-raw (or ao-temporal) -> ao-blur-h   blur-v   ao-blur-h -> ao   (without the blur, ao is its input)
 //   upsample   ao (half size) -> ao (full size), at half resolution
 // The lighting reads "ao".
 #include <optional>
 #include <vector>
 
 #include "core/AoSettings.h"
+#include "core/AoTemporalPass.h"
 #include "core/AoUpsamplePass.h"
 #include "core/BilateralBlurPass.h"
 #include "core/DepthHierarchyPass.h"
@@ -37,6 +39,7 @@ class AoEffect : public Effect {
  private:
   DepthHierarchyPass hierarchy_;
   SaoPass sao_;
+  AoTemporalPass temporal_;
   BilateralBlurPass blur_;
   AoUpsamplePass upsample_;
 };

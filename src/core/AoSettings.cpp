@@ -79,6 +79,12 @@ const std::vector<Parameter<AoSettings>>& AoSettings::parameters() {
     // ("preset" is now the frame's preset, which sets this one too.)
     for (Parameter<S>& p : t)
       if (p.info.name != "ao" && p.info.name != "preset") p.info.alias = p.info.name;
+    // Newer than prefixes: "ao." names only.
+    t.push_back(switchParameter<S>("temporal", "accumulate the AO over frames through the motion vectors",
+                                   &S::temporal)
+                    .primary());
+    t.push_back(integerParameter<S>("temporal-frames", 1, 64, "frames", "",
+                                    "longest memory of the temporal AO's running mean", &S::temporalFrames));
     return t;
   }();
   return table;

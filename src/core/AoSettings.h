@@ -104,6 +104,13 @@ struct AoSettings : ParameterAccess<AoSettings> {
   bool blurNormalAware = true;   // also weight by normals and by distance to the centre's tangent plane
   float blurDepthSigma = 0.1f;   // fraction of the radius: range weight exp(-(dz/sigma)^2)
 
+  // --- Temporal accumulation (core/AoTemporal.h) ---
+  // Off by default: on, each frame's taps turn to new directions and distances, and the AO before the blur is
+  // accumulated over frames through the motion vectors (a running mean of at most temporalFrames frames), with the
+  // history rejected where the surface it saw is not this pixel's (docs/temporal-effects.md, "Temporal AO").
+  bool temporal = false;
+  int temporalFrames = 8;  // N: the running mean's longest memory (the weight of a new frame is at least 1/N)
+
   // Every parameter, by its local name ("radius"; the switch is "ao"). set/get/effective come from ParameterAccess;
   // "auto" for bias, intensity or contrast returns that parameter to its tuned value, and "preset" reads as the
   // preset whose values the settings hold, or "" when they match none.

@@ -25,16 +25,18 @@ class FramePlanner;
 class PassContext;
 
 // A target's size relative to the frame (the output size). Half and quarter are floor(size / 2^k), at least 1 pixel
-// (SaoKernel::hierarchyLevelSize); tiles are ceil(size / tile), one texel per tile x tile pixels.
+// (SaoKernel::hierarchyLevelSize); tiles are ceil(size / tile), one texel per tile x tile pixels; tile columns are
+// ceil(width / tile) by the full height, one texel per tile x 1 pixels (the first half of a separable tile pass).
 struct TargetSize {
-  enum class Kind { Full, Half, Quarter, Tiles };
+  enum class Kind { Full, Half, Quarter, Tiles, TileColumns };
   Kind kind = Kind::Full;
-  int tile = 0;  // Tiles only
+  int tile = 0;  // Tiles and TileColumns only
 
   static TargetSize full() { return {Kind::Full, 0}; }
   static TargetSize half() { return {Kind::Half, 0}; }
   static TargetSize quarter() { return {Kind::Quarter, 0}; }
   static TargetSize tiles(int tile) { return {Kind::Tiles, tile}; }
+  static TargetSize tileColumns(int tile) { return {Kind::TileColumns, tile}; }
   glm::ivec2 of(glm::ivec2 frame) const;
   std::string name() const;  // "full", "half", "quarter", "tiles of 16"
   bool operator==(const TargetSize& o) const { return kind == o.kind && tile == o.tile; }

@@ -7,6 +7,7 @@
 #include "core/FxaaEffect.h"
 #include "core/GBufferEffect.h"
 #include "core/LightingEffect.h"
+#include "core/MotionBlurEffect.h"
 #include "core/TaaEffect.h"
 #include "core/TonemapEffect.h"
 #include "core/VelocityEffect.h"
@@ -24,6 +25,7 @@ const std::vector<EffectEntry>& effectTable() {
         EffectEntry::of<LightingEffect>(),  // scene, ao, the G-buffer's depth -> scene-color (HDR)
         EffectEntry::of<TaaEffect>(),       // scene-color, velocity, gbuffer, history -> scene-color (HDR)
         EffectEntry::of<TonemapEffect>(),   // scene-color -> display-color (sRGB, luma in alpha)
+        EffectEntry::of<MotionBlurEffect>(),  // display-color, velocity, gbuffer -> display-color
         EffectEntry::of<FxaaEffect>(),      // display-color -> display-color
     };
     // Names are how everything finds effects, passes and targets: each is used once.

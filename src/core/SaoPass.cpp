@@ -19,8 +19,12 @@ SaoPass::GtaoSampling SaoPass::gtaoSampling(int samples) {
   // Two slices from 8 samples, four from 32; the steps use what the slices leave, rounded: "8 samples" is 2 x 2 x 2
   // taps, "11" 2 x 2 x 3 = 12, "16" 2 x 2 x 4, "32" 4 x 2 x 4. Measured at 11 (docs/accuracy.md): one slice of 5 steps
   // a side is a little more accurate than two of 3, but costs 40 % more on llvmpipe (93 against 65 ms at 1280x720).
-  const int slices = samples >= 32 ? 4 : samples >= 8 ? 2 : 1;
-  return {slices, std::max(1, (samples + slices) / (2 * slices))};
+  // Below 8 samples one side of one slice takes every tap (gtao.frag, GTAO_SIDES): at 4 samples 1 x 1 x 4 against
+  // 1 x 2 x 2, whose two-tap horizons miss occluders (the built-in scene at 480x270 against the reference, 8
+  // frames of ao.temporal: docs/temporal-effects.md, "Temporal AO").
+  if (samples < 8) return {1, std::max(1, samples), 1};
+  const int slices = samples >= 32 ? 4 : 2;
+  return {slices, std::max(1, (samples + slices) / (2 * slices)), 2};
 }
 
 SaoPass::HbaoSampling SaoPass::hbaoSampling(int samples) {
@@ -68,7 +72,9 @@ ProgramSpec SaoPass::programSpec(AoEstimator estimator, int samples, int spiralT
   switch (estimator) {
     case AoEstimator::Gtao: {
       const GtaoSampling sampling = gtaoSampling(samples);
-      use("gtao", {{"GTAO_SLICES", "slices", sampling.slices}, {"GTAO_STEPS", "steps", sampling.steps}});
+      use("gtao", {{"GTAO_SLICES", "slices", sampling.slices},
+                   {"GTAO_STEPS", "steps", sampling.steps},
+                   {"GTAO_SIDES", "sides", sampling.sides}});
       // The thickness heuristic's step down (gtao.frag): 0.1 measured best against the reference, 0 and 0.25 worse
       // (docs/accuracy.md, "What was tried").
       spec.defines.push_back({"THIN_OCCLUDER_BLEND", "0.1"});
@@ -124,7 +130,8 @@ SaoPass::Variant::Variant(gl::Program built, std::optional<Storage> storage)
       radius(program.uniform("u_radius")),
       invRadius(program.uniform("u_invRadius")),
       estimatorKnots(program.uniform("u_estimatorKnots[0]")),
-      maxRadiusPixels(program.uniform("u_maxRadiusPixels")) {}
+      maxRadiusPixels(program.uniform("u_maxRadiusPixels")),
+      frameOffset(program.uniform("u_frameOffset")) {}
 
 const SaoPass::Variant& SaoPass::variant(const AoSettings& settings, std::optional<Storage> hierarchy) {
   // Only SAO's programs depend on the spiral and the falloff.
@@ -142,7 +149,7 @@ const SaoPass::Variant& SaoPass::variant(const AoSettings& settings, std::option
 }
 
 void SaoPass::render(const gl::Texture2D& gbuffer, const DepthHierarchyPass* hierarchy, const FrameCamera& camera,
-                     const AoSettings& settings, int aoScale, glm::ivec2 aoSize) {
+                     const AoSettings& settings, int aoScale, glm::ivec2 aoSize, glm::vec2 frameOffset) {
   using gl::Program;
   const std::optional<Storage> storage = hierarchy ? std::optional<Storage>(hierarchy->storage()) : std::nullopt;
   const Variant& sao = variant(settings, storage);
@@ -164,6 +171,7 @@ void SaoPass::render(const gl::Texture2D& gbuffer, const DepthHierarchyPass* hie
                                       knots.at[j].contrast};
   Program::set(sao.estimatorKnots, packed.data(), kEstimatorKnots);
   Program::set(sao.maxRadiusPixels, settings.maxScreenRadius * static_cast<float>(gbuffer.height()));
+  Program::set(sao.frameOffset, frameOffset);
   resources_.triangle.draw();
   gl::restoreBaselineState();
 }

@@ -22,9 +22,10 @@ class SaoPass {
   // (compile-time constants): no hierarchy (every tap reads the G-buffer), or the hierarchy in the given storage.
   static ProgramSpec programSpec(AoEstimator estimator, int samples, int spiralTurns, Falloff falloff,
                                  std::optional<Storage> hierarchy);
-  // GTAO's split of `samples` taps: slices per pixel and taps per side of each (2 x slices x steps, about samples).
+  // GTAO's split of `samples` taps: slices per pixel, sides of each (2, or 1 below 8 samples) and taps per side
+  // (sides x slices x steps, about samples).
   struct GtaoSampling {
-    int slices, steps;
+    int slices, steps, sides;
   };
   static GtaoSampling gtaoSampling(int samples);
   // HBAO's split of `samples` taps: directions per pixel and taps per direction (directions x steps <= samples).
@@ -44,8 +45,10 @@ class SaoPass {
   SaoPass(const EffectResources& resources) : resources_(resources) {}
   // Draws into the bound framebuffer, whose size is `aoSize`: the G-buffer's, or floor(size / 2) at half
   // resolution (`aoScale` 2). `hierarchy` null: every tap reads the G-buffer.
+  // `frameOffset`: the taps' per-frame rotation and distance jitter (AoTemporal::frameOffset; zero without
+  // ao.temporal).
   void render(const gl::Texture2D& gbuffer, const DepthHierarchyPass* hierarchy, const FrameCamera& camera,
-              const AoSettings& settings, int aoScale, glm::ivec2 aoSize);
+              const AoSettings& settings, int aoScale, glm::ivec2 aoSize, glm::vec2 frameOffset = glm::vec2(0.0f));
 
  private:
   struct Variant {
@@ -53,7 +56,8 @@ class SaoPass {
     gl::Program program;
     ReconstructionUniforms reconstruction;
     DepthHierarchyPass::SamplingUniforms hierarchy;
-    GLint gbuffer, gbufferSize, aoSize, aoScale, projScale, radius, invRadius, estimatorKnots, maxRadiusPixels;
+    GLint gbuffer, gbufferSize, aoSize, aoScale, projScale, radius, invRadius, estimatorKnots, maxRadiusPixels,
+        frameOffset;
   };
   const Variant& variant(const AoSettings& settings, std::optional<Storage> hierarchy);
 
