@@ -2,8 +2,8 @@
 //   0 resolve: this frame's jittered HDR colour blended with the reprojected history (Karis 2014, "High quality
 //     temporal supersampling"), written into the history target (lib/hdr.glsl's encoding: the measured choice,
 //     TaaEffect.h). The history is fetched at the position the velocity of the nearest surface in the 3x3
-//     neighbourhood says it had, rejected where the previous frame's depth there is not the depth that surface had
-//     (disocclusion), and clipped in YCoCg towards the neighbourhood's mean onto the box mean +- gamma sigma (Salvi's
+//     neighbourhood says it had, rejected where the previous frame's depth there lies outside the 3x3's depth range
+//     moved by the camera's motion (disocclusion), and clipped in YCoCg towards the neighbourhood's mean onto the box mean +- gamma sigma (Salvi's
 //     variance clipping). Everything is averaged in Karis' reversible tone-mapped space (lib/taa.glsl).
 //   1 output: the resolved colour into "scene-color", with optional sharpening (TAA_SHARPEN: an unsharp mask of the
 //     four neighbours, in the tone-mapped space, so that the history itself is never sharpened again).
@@ -47,7 +47,7 @@ void main() {
     if (i == 4) center = c;
     float code = unpackDepthCode(texture2D(u_gbuffer, uv).ba);
     codes[i] = code;
-    // Strictly nearer: ties keep the earlier sample, and the centre wins over a farther ring.
+    // Strictly nearer wins; of equal depths the earlier sample, or the centre.
     if (code < nearestCode - 0.5 || (i == 4 && code < nearestCode + 0.5)) {
       nearestCode = code;
       nearestOffset = offset;
