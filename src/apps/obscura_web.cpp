@@ -142,10 +142,12 @@ class WebApp {
     const AoSettings& ao = viewer_.state().settings.ao();
     if (const Renderer* renderer = viewer_.renderer())
       if (ao.enabled && ao.temporal && renderer->lastFrame().historyFrames + 1 < ao.temporalFrames) frameWanted_ = true;
-    if (!frameWanted_ && !continuous_) {
+    if (!frameWanted_ && !continuous_ && settleFrames_ <= 0) {
       lastFrameTime_ = 0.0;  // the next drawn frame does not follow this one
       return;
     }
+    // A change is drawn over framesPerChange() frames (temporal antialiasing converges over its jitter's phases).
+    if (frameWanted_) settleFrames_ = viewer_.framesPerChange();
     frameWanted_ = false;
     if (timer) timer->beginFrame();
     const double start = emscripten_get_now();
@@ -155,6 +157,7 @@ class WebApp {
       lastFrameTime_ = 0.0;
       return;
     }
+    if (settleFrames_ > 0) --settleFrames_;
     lastCpuMs_ = emscripten_get_now() - start;
     cpuMs_ = frames_ == 0 ? lastCpuMs_ : cpuMs_ + kSmoothing * (lastCpuMs_ - cpuMs_);
     // The frame time is the interval between animation frames drawn back to back (continuous mode, or a drag).
@@ -187,6 +190,7 @@ class WebApp {
   Viewer viewer_;
   std::unique_ptr<GpuPassTimer> timer_;
   bool frameWanted_ = true;  // something changed since the last drawn frame
+  int settleFrames_ = 0;     // frames still to draw after the last change
   bool continuous_ = false;
   int width_ = 0, height_ = 0;
   double lastFrameTime_ = 0.0, frameMs_ = 0.0, cpuMs_ = 0.0;

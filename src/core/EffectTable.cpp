@@ -8,6 +8,7 @@
 #include "core/GBufferEffect.h"
 #include "core/LightingEffect.h"
 #include "core/MotionBlurEffect.h"
+#include "core/TaaEffect.h"
 #include "core/TonemapEffect.h"
 #include "core/VelocityEffect.h"
 
@@ -22,6 +23,7 @@ const std::vector<EffectEntry>& effectTable() {
         EffectEntry::of<VelocityEffect>(),  // scene, gbuffer (and its depth) -> velocity (motion vectors)
         EffectEntry::of<AoEffect>(),        // gbuffer -> ao
         EffectEntry::of<LightingEffect>(),  // scene, ao, the G-buffer's depth -> scene-color (HDR)
+        EffectEntry::of<TaaEffect>(),       // scene-color, velocity, gbuffer, history -> scene-color (HDR)
         EffectEntry::of<TonemapEffect>(),   // scene-color -> display-color (sRGB, luma in alpha)
         EffectEntry::of<MotionBlurEffect>(),  // display-color, velocity, gbuffer -> display-color
         EffectEntry::of<FxaaEffect>(),      // display-color -> display-color

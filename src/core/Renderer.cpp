@@ -148,10 +148,11 @@ void Renderer::beginFrame(const Camera& camera, const RenderSettings& settings, 
     lastSize_ = size;
   }
   pool_.beginFrame(size);
-  // Sub-pixel jitter (Halton 2, 3, centred) while an effect that is on asks for it.
+  // Sub-pixel jitter (Halton 2, 3, centred) while an effect that is on asks for it: 16 phases, the frames a still
+  // image takes to converge under temporal antialiasing (TaaEffect.h).
   glm::vec2 jitter(0.0f);
   if (jitters(settings)) {
-    const auto index = static_cast<std::uint32_t>(frameIndex_ % 8 + 1);
+    const auto index = static_cast<std::uint32_t>(frameIndex_ % 16 + 1);
     jitter = glm::vec2(halton(index, 2), halton(index, 3)) - 0.5f;
   }
   FrameContext frame;

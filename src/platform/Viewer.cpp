@@ -5,6 +5,7 @@
 #include <cstdlib>
 
 #include "base/Error.h"
+#include "core/TaaEffect.h"
 #include "gl/GlObjects.h"
 #include "platform/CameraControls.h"
 #include "scene/BuiltinScene.h"
@@ -242,6 +243,12 @@ void Viewer::contextRestored(const gl::GlCaps& caps) {
   auto renderer = std::make_unique<Renderer>(caps_, options_);
   renderer->setScene(scene_);
   renderer_ = std::move(renderer);
+}
+
+int Viewer::framesPerChange() const {
+  for (size_t row = 0; row < effectTable().size(); ++row)
+    if (effectTable()[row].info.jitters && state_.settings.enabled(row)) return kTaaJitterPhases;
+  return 1;
 }
 
 }  // namespace obscura

@@ -70,6 +70,9 @@ class Viewer {
   void render(GLuint framebuffer, int width, int height, PassTimer* timer = nullptr, double clockSeconds = 0.0);
   // Whether frames change by themselves (a timeline playing): a front end drawing on change only then draws on.
   bool playing() const { return state_.timeline.playing(); }
+  // Frames a front end drawing on change only draws after each change, the first included: 1, or while an effect that
+  // jitters the projection is on (temporal antialiasing), the jitter's 16 phases, over which a still image converges.
+  int framesPerChange() const;
 
   // --- Context loss. contextLost() drops every GL object without deleting it (its names belong to the lost context,
   // see gl::abandonContextObjects); contextRestored() rebuilds the Renderer and the GPU scene from the CPU scene for
