@@ -98,7 +98,9 @@ TEST(Resources, AGlErrorRaisedInAPassNamesThatPass) {
                       : pass == "velocity"      ? View{"velocity"}
                                                 : View::Final;
     RenderSettings frame = settings;
-    if (pass.rfind("motion-", 0) == 0) frame.set("motion-blur", "on");  // its passes run only with the blur on
+    // The motion blur's passes and TAA's run only with their switches on.
+    if (pass.rfind("motion-", 0) == 0) frame.set("motion-blur", "on");
+    if (pass == "taa") frame.set("taa", "on");
     FrameOptions options;
     if (pass == "present") options.retain = {"display-color"};
     if (pass == "tonemap") options.retain = {"scene-color"};
