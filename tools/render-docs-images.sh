@@ -28,7 +28,14 @@ build/obscura-render $ao --ao.samples 4 --out "$out/ao_4_taps.png"
 build/obscura-render $ao --ao.samples 4 --ao.temporal on --frames 8 --out "$out/ao_temporal_4_taps.png"
 build/obscura-render $ao --out "$out/ao_default.png"
 build/obscura-reference --size 480x270 --animation none --view ao --out "$out/ao_reference.png"
-echo "render-docs-images: wrote $out/builtin_*.png, motion_*.png, ao_*.png"
+# Antialiasing (docs/temporal-effects.md), a close view of the arch, the pendulum's rod and the boxes: none | FXAA |
+# TAA after 16 frames | the frame rendered 4 times larger and box-downsampled.
+aa="--camera tools/docs-taa-camera.json --animation none"
+build/obscura-render $aa --no-fxaa --out "$out/aa_none.png"
+build/obscura-render $aa --out "$out/aa_fxaa.png"
+build/obscura-render $aa --taa on --no-fxaa --frames 16 --out "$out/aa_taa.png"
+build/obscura-render $aa --no-fxaa --accumulate 1 --shutter 0 --supersample 4 --out "$out/aa_reference.png"
+echo "render-docs-images: wrote $out/builtin_*.png, motion_*.png, ao_*.png, aa_*.png"
 
 (cd tests/browser && npm ci --no-audit --no-fund --loglevel=error)
 OBSCURA_UPDATE_SCREENSHOTS=1 node --test --test-name-pattern="page screenshots" tests/browser/page.test.mjs >/dev/null
