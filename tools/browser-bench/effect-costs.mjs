@@ -51,9 +51,16 @@ function casesOf(description) {
   return cases;
 }
 
+const rows = [];
+function writeCsv() {
+  fs.mkdirSync(path.dirname(options.csv), { recursive: true });
+  fs.writeFileSync(options.csv, 'effect,width,height,effect_ms,frame_ms,readings\n' +
+    rows.map((r) => `${r.label},${r.width},${r.height},${r.effectMs.toFixed(2)},${r.frameMs.toFixed(2)},${r.readings}`)
+      .join('\n') + '\n');
+}
+
 const server = await startServer(process.env.OBSCURA_WEB_SITE ?? path.join(root, 'build-web', 'site'));
 const browser = await chromium.launch(chromiumLaunchOptions);
-const rows = [];
 try {
   for (const [width, height] of sizes) {
     const page = await (await browser.newContext({ viewport: { width, height }, deviceScaleFactor: 1 })).newPage();
@@ -110,14 +117,11 @@ try {
       rows.push(row);
       console.log(`${label.padEnd(28)} ${row.effectMs.toFixed(2).padStart(8)} ms   frame ` +
                   `${row.frameMs.toFixed(1).padStart(7)} ms   (${row.readings} readings)`);
+      writeCsv();  // after every case, so a run cut short keeps what it measured
     }
     if (errors.length) throw new Error(`page errors: ${errors.join('; ')}`);
     await page.context().close();
   }
-  fs.mkdirSync(path.dirname(options.csv), { recursive: true });
-  fs.writeFileSync(options.csv, 'effect,width,height,effect_ms,frame_ms,readings\n' +
-    rows.map((r) => `${r.label},${r.width},${r.height},${r.effectMs.toFixed(2)},${r.frameMs.toFixed(2)},${r.readings}`)
-      .join('\n') + '\n');
   console.log(`wrote ${path.relative(root, options.csv)}`);
 } finally {
   await browser.close();
