@@ -14,6 +14,20 @@
 
 namespace obscura::test {
 
+const char* const kTwoValuePointVertex = R"(
+attribute vec2 a_position;
+attribute vec4 a_normal;
+attribute vec3 a_texcoord;
+varying vec4 v_first;
+varying vec3 v_second;
+void main() {
+  v_first = a_normal;
+  v_second = a_texcoord;
+  gl_Position = vec4(a_position, 0.0, 1.0);
+  gl_PointSize = 1.0;
+}
+)";
+
 HeadlessContext& context() {
   static std::unique_ptr<HeadlessContext> instance = [] {
     const char* backend = std::getenv("OBSCURA_TEST_BACKEND");
@@ -100,6 +114,21 @@ Scene sceneOf(std::vector<Mesh> meshes) {
     scene.instances.push_back({static_cast<int>(scene.meshes.size()) - 1, glm::mat4(1.0f)});
   }
   return scene;
+}
+
+int addSlidingInstance(Scene& scene, int mesh, const glm::vec3& from, const glm::vec3& to, float seconds) {
+  scene.nodes.push_back(Node{});
+  const int node = static_cast<int>(scene.nodes.size()) - 1;
+  if (scene.animations.empty()) scene.animations.emplace_back();
+  Animation& animation = scene.animations.front();
+  AnimationSampler sampler;
+  sampler.times = {0.0f, seconds};
+  sampler.values = {from.x, from.y, from.z, to.x, to.y, to.z};
+  sampler.components = 3;
+  animation.channels.push_back({static_cast<int>(animation.samplers.size()), node, AnimationPath::Translation});
+  animation.samplers.push_back(std::move(sampler));
+  scene.instances.push_back(Instance{mesh, glm::mat4(1.0f), node, -1});
+  return static_cast<int>(scene.instances.size()) - 1;
 }
 
 Mesh makeRectangle(const glm::vec3& origin, const glm::vec3& u, const glm::vec3& v) {

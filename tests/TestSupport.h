@@ -46,6 +46,9 @@ FrameOptions retaining(std::vector<std::string> targets);
 // a vec3 attribute takes xyz) and texcoord[i], where given, in a_texcoord (0 elsewhere), and returns the target's bytes
 // in that order (pixel i at 4 i).
 constexpr int kPointSide = 256;
+// The vertex shader for drawPoints with two values per point: a_normal (vec4) to v_first, a_texcoord (vec3) to
+// v_second.
+extern const char* const kTwoValuePointVertex;
 std::vector<std::uint8_t> drawPoints(const gl::Program& program, const std::vector<glm::vec4>& normal,
                                      const std::vector<glm::vec3>& texcoord = {});
 
@@ -53,6 +56,10 @@ std::vector<std::uint8_t> drawPoints(const gl::Program& program, const std::vect
 Scene sceneOf(std::vector<Mesh> meshes);
 // A rectangle in the plane through `origin` spanned by `u` and `v` (normal u x v), one quad.
 Mesh makeRectangle(const glm::vec3& origin, const glm::vec3& u, const glm::vec3& v);
+
+// Adds an instance of `mesh` (placed by its own vertices) on a new node that a LINEAR translation, in animation 0
+// (made if the scene has none), moves from `from` to `to` over `seconds`. Returns the instance's index.
+int addSlidingInstance(Scene& scene, int mesh, const glm::vec3& from, const glm::vec3& to, float seconds);
 
 // A floor (y = 0, 20 m square) and a 6 x 2 m quad standing on it in the plane z = 0 (x from -3 to 3, facing +z),
 // whose base colour (factor alpha 0.8 times a nearest, clamped texture) is below the 0.5 cutoff on its left half

@@ -24,19 +24,7 @@ namespace {
 constexpr int kSide = test::kPointSide;  // up to 65536 values per draw, one point each
 
 // Two per-point values travel in the attribute slots the programs bind by name: a_normal (vec4) and a_texcoord (vec3).
-const char* kPointVertex = R"(
-attribute vec2 a_position;
-attribute vec4 a_normal;
-attribute vec3 a_texcoord;
-varying vec4 v_first;
-varying vec3 v_second;
-void main() {
-  v_first = a_normal;
-  v_second = a_texcoord;
-  gl_Position = vec4(a_position, 0.0, 1.0);
-  gl_PointSize = 1.0;
-}
-)";
+const char* const kPointVertex = test::kTwoValuePointVertex;
 
 gl::Program buildProgram(const std::string& name, const std::string& vertex, const std::string& fragment,
                          const std::vector<std::pair<std::string, std::string>>& defines) {

@@ -127,19 +127,7 @@ TEST(TaaMirror, TransformsRoundTripAndClipHoldsTheBox) {
 // encoded again. The decoded colours agree within one 9-bit mantissa step of the brightest channel.
 TEST(TaaMirror, ResolveArithmeticMatchesTheGpu) {
   test::context();
-  const char* vertex = R"(
-attribute vec2 a_position;
-attribute vec4 a_normal;
-attribute vec3 a_texcoord;
-varying vec4 v_first;
-varying vec3 v_second;
-void main() {
-  v_first = a_normal;
-  v_second = a_texcoord;
-  gl_Position = vec4(a_position, 0.0, 1.0);
-  gl_PointSize = 1.0;
-}
-)";
+  const char* vertex = test::kTwoValuePointVertex;
   const char* fragment = R"(
 #include "lib/precision.glsl"
 #include "lib/hdr.glsl"

@@ -324,17 +324,8 @@ Scene floorAndSlidingBox() {
   Scene scene;
   scene.meshes.push_back(test::makeRectangle({-20, 0, 20}, {40, 0, 0}, {0, 0, -40}));
   scene.meshes.push_back(makeBox({-0.5f, 0.0f, -0.5f}, {0.5f, 1.0f, 0.5f}));
-  scene.nodes.push_back(Node{});
-  Animation slide;
-  AnimationSampler sampler;
-  sampler.times = {0.0f, 4.0f};
-  sampler.values = std::vector<float>{-6, 0, 0, 6, 0, 0};
-  sampler.components = 3;
-  slide.samplers.push_back(sampler);
-  slide.channels.push_back({0, 0, AnimationPath::Translation});
-  scene.animations.push_back(slide);
   scene.instances.push_back(Instance{0, glm::mat4(1.0f), -1, -1});
-  scene.instances.push_back(Instance{1, glm::mat4(1.0f), 0, -1});
+  test::addSlidingInstance(scene, 1, {-6, 0, 0}, {6, 0, 0}, 4.0f);
   return scene;
 }
 

@@ -116,18 +116,8 @@ Scene wallAndSlidingBox() {
   Scene scene;
   scene.meshes.push_back(test::makeRectangle({-30, -30, 0}, {60, 0, 0}, {0, 60, 0}));
   scene.meshes.push_back(makeBox({-0.5f, -0.5f, 0.5f}, {0.5f, 0.5f, 1.0f}));
-  Node node;
-  scene.nodes.push_back(node);
-  Animation slide;
-  AnimationSampler sampler;
-  sampler.times = {0.0f, 10.0f};
-  sampler.values = std::vector<float>{-5, 0, 0, 5, 0, 0};
-  sampler.components = 3;
-  slide.samplers.push_back(sampler);
-  slide.channels.push_back({0, 0, AnimationPath::Translation});
-  scene.animations.push_back(slide);
   scene.instances.push_back(Instance{0, glm::mat4(1.0f), -1, -1});
-  scene.instances.push_back(Instance{1, glm::mat4(1.0f), 0, -1});
+  test::addSlidingInstance(scene, 1, {-5, 0, 0}, {5, 0, 0}, 10.0f);
   return scene;
 }
 
