@@ -295,8 +295,8 @@ EMSCRIPTEN_KEEPALIVE const char* obscura_describe() {
                {"timerQuery", caps.timerQuery}};
   }
   return returned(Json{{"parameters", parameters}, {"effects", effects}, {"presets", presets},
-                       {"views", ViewerState::viewModes()}, {"compareSwitches", splitSwitches()}, {"keys", keys}, {"passes", framePassNames()},
-                       {"context", context}}.dump());
+                       {"views", ViewerState::viewModes()}, {"compareSwitches", splitSwitches()}, {"keys", keys},
+                       {"passes", framePassNames()}, {"context", context}}.dump());
 }
 
 EMSCRIPTEN_KEEPALIVE int obscura_set(const char* name, const char* value) {

@@ -105,6 +105,9 @@ class Renderer {
     render(camera, settings, view, output, options);
   }
 
+  // Whether an effect that is on in `settings` asks for the sub-pixel jitter (EffectInfo::jitters).
+  static bool jitters(const RenderSettings& settings);
+
   // Every program the frame may build, for the shader validation tools and tests.
   static std::vector<ProgramSpec> allProgramSpecs() { return frameProgramSpecs(); }
 
@@ -126,8 +129,7 @@ class Renderer {
                   const FrameOptions& options);
   void endFrame();
   void dropHistory();
-  // Whether an effect that is on in `settings` asks for the sub-pixel jitter (EffectInfo::jitters).
-  static bool jitters(const RenderSettings& settings);
+
   // Every effect's passes for `view` (a target view, or the final image), resolved.
   FramePlan plan(const RenderSettings& settings, const FrameContext& frame, const View& view,
                  const std::vector<std::string>& retain);

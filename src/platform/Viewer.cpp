@@ -245,10 +245,6 @@ void Viewer::contextRestored(const gl::GlCaps& caps) {
   renderer_ = std::move(renderer);
 }
 
-int Viewer::framesPerChange() const {
-  for (size_t row = 0; row < effectTable().size(); ++row)
-    if (effectTable()[row].info.jitters && state_.settings.enabled(row)) return kTaaJitterPhases;
-  return 1;
-}
+int Viewer::framesPerChange() const { return Renderer::jitters(state_.settings) ? kTaaJitterPhases : 1; }
 
 }  // namespace obscura
