@@ -91,6 +91,18 @@ AnimationSampler slide(const glm::vec3& from, const glm::vec3& to) {
   return sampler;
 }
 
+// `start` turning about its eye (about y) at `radiansPerSecond`: a camera pan, as a camera at each time.
+std::function<Camera(double)> turning(const Camera& start, double radiansPerSecond) {
+  return [start, radiansPerSecond](double t) {
+    Camera camera = start;
+    const glm::vec3 forward = camera.target - camera.eye;
+    camera.target = camera.eye + glm::vec3(glm::rotate(glm::mat4(1.0f), static_cast<float>(radiansPerSecond * t),
+                                                       glm::vec3(0.0f, 1.0f, 0.0f)) *
+                                           glm::vec4(forward, 0.0f));
+    return camera;
+  };
+}
+
 Scene floorScene() {
   Scene scene;
   addStill(scene, makeBox({-20.0f, -0.1f, -20.0f}, {20.0f, 0.0f, 20.0f}, 1.0f), {0.8f, 0.8f, 0.8f});
@@ -217,16 +229,8 @@ TEST(MotionBlur, ACameraPanMovesTowardsTheReference) {
   Renderer renderer = test::makeRenderer();
   renderer.setScene(makeBuiltinScene(BuiltinSceneOptions::still()));
   // The camera turns about its eye at 1.5 radians a second: the room sweeps across the frame.
-  const Camera start = builtinSceneCamera(kWidth, kHeight);
-  const auto cameraAt = [&](double t) {
-    Camera camera = start;
-    const glm::vec3 forward = camera.target - camera.eye;
-    camera.target = camera.eye + glm::vec3(glm::rotate(glm::mat4(1.0f), static_cast<float>(1.5 * t),
-                                                       glm::vec3(0.0f, 1.0f, 0.0f)) *
-                                           glm::vec4(forward, 0.0f));
-    return camera;
-  };
-  expectTowardsReference(renderFrames(renderer, cameraAt, 0.2), "camera pan");
+  expectTowardsReference(renderFrames(renderer, turning(builtinSceneCamera(kWidth, kHeight), 1.5), 0.2),
+                         "camera pan");
 }
 
 // Where nothing moves, nothing changes: every tile's neighbourhood moves less than half a pixel, and the early exit
@@ -350,15 +354,7 @@ TEST(MotionBlur, TheTileAndNeighbourMaximaAgreeWithTheCpuMirror) {
   constexpr int width = 650, height = 370;
   Renderer renderer = test::makeRenderer();
   renderer.setScene(makeBuiltinScene(BuiltinSceneOptions::withMotion()));
-  const Camera start = builtinSceneCamera(width, height);
-  const auto cameraAt = [&](double t) {
-    Camera camera = start;
-    const glm::vec3 forward = camera.target - camera.eye;
-    camera.target = camera.eye + glm::vec3(glm::rotate(glm::mat4(1.0f), static_cast<float>(3.0 * t),
-                                                       glm::vec3(0.0f, 1.0f, 0.0f)) *
-                                           glm::vec4(forward, 0.0f));
-    return camera;
-  };
+  const auto cameraAt = turning(builtinSceneCamera(width, height), 3.0);
   const RenderSettings settings = blurSettings(true);
   const MotionBlurSettings blur = settings.of<MotionBlurSettings>();
   FrameOptions previous;

@@ -356,6 +356,38 @@ void estimatorSection(Bench& bench, const BenchScene& scene, int w, int h, const
 // frame; all taking turns frame by frame, each with its own Renderer (its own history). The accuracy side is
 // tests/test_temporal_ao.cpp's (docs/temporal-effects.md, "Temporal AO"). The temporal frames also run the velocity
 // pass, which only they read here (TAA and motion blur read it too when they are on).
+// Per-pass times of `frames` frames of the final view at w x h for each of `configurations`, after 8 warm-up frames
+// (shaders built, histories filled), each configuration with a Renderer of its own (its own history), all taking
+// turns frame by frame. `play`: the scene's time advances at 60 frames per second from 1 s (each frame's previous
+// one 1/60 s earlier); otherwise it stays at 0.
+std::vector<FinishPassTimer> timeTakingTurns(const Options& options, HeadlessContext& context, const Scene& scene,
+                                             const Camera& camera, const std::vector<RenderSettings>& configurations,
+                                             bool play) {
+  const int w = camera.width, h = camera.height;
+  const gl::RenderTarget output("bench output", w, h, GL_NEAREST, gl::RenderTarget::Depth::Renderbuffer,
+                                context.caps().depth24, context.caps().packedDepthStencil);
+  const OutputTarget target{output.framebuffer(), w, h, {}};
+  std::vector<std::unique_ptr<Renderer>> renderers;
+  for (size_t c = 0; c < configurations.size(); ++c) {
+    renderers.push_back(std::make_unique<Renderer>(context.caps()));
+    renderers.back()->setScene(scene);
+  }
+  std::vector<FinishPassTimer> timers(configurations.size());
+  const int warmUp = 8;
+  FrameOptions frame;
+  for (int f = -warmUp; f < options.frames; ++f) {
+    if (play) {
+      frame.time = 1.0 + (f + warmUp) / 60.0;
+      frame.previousTime = frame.time - 1.0 / 60.0;
+    }
+    for (size_t c = 0; c < configurations.size(); ++c) {
+      frame.timer = f < 0 ? nullptr : &timers[c];
+      renderers[c]->render(camera, configurations[c], View::Final, target, frame);
+    }
+  }
+  return timers;
+}
+
 void temporalAoSection(const Options& options, HeadlessContext& context, const BenchScene& scene) {
   const EffectEntry& aoEffect = effectEntry("ao");
   struct Configuration {
@@ -386,22 +418,9 @@ void temporalAoSection(const Options& options, HeadlessContext& context, const B
     Camera camera = scene.camera;
     camera.width = w;
     camera.height = h;
-    const gl::RenderTarget output("bench output", w, h, GL_NEAREST, gl::RenderTarget::Depth::Renderbuffer,
-                                  context.caps().depth24, context.caps().packedDepthStencil);
-    const OutputTarget target{output.framebuffer(), w, h, {}};
-    std::vector<std::unique_ptr<Renderer>> renderers;
-    for (size_t c = 0; c < configurations.size(); ++c) {
-      renderers.push_back(std::make_unique<Renderer>(context.caps()));
-      renderers.back()->setScene(scene.scene);
-    }
-    std::vector<FinishPassTimer> timers(configurations.size());
-    const int warmUp = 8;  // shaders built, histories filled
-    FrameOptions frame;
-    for (int f = -warmUp; f < options.frames; ++f)
-      for (size_t c = 0; c < configurations.size(); ++c) {
-        frame.timer = f < 0 ? nullptr : &timers[c];
-        renderers[c]->render(camera, configurations[c].settings, View::Final, target, frame);
-      }
+    std::vector<RenderSettings> settings;
+    for (const auto& c : configurations) settings.push_back(c.settings);
+    const std::vector<FinishPassTimer> timers = timeTakingTurns(options, context, scene.scene, camera, settings, false);
     double reference = 0.0;
     for (size_t c = 0; c < configurations.size(); ++c) {
       double effect = 0.0;
@@ -560,26 +579,10 @@ void effectsSection(const Options& options, HeadlessContext& context, const std:
   for (const EffectEntry& effect : effectTable()) std::printf(" %11s", effect.info.name.c_str());
   std::printf(" %9s\n", "frame");
   for (auto [w, h] : sizes) {
-    const Camera camera = builtinSceneCamera(w, h);
-    const gl::RenderTarget output("bench output", w, h, GL_NEAREST, gl::RenderTarget::Depth::Renderbuffer,
-                                  context.caps().depth24, context.caps().packedDepthStencil);
-    const OutputTarget target{output.framebuffer(), w, h, {}};
-    std::vector<std::unique_ptr<Renderer>> renderers;
-    for (size_t c = 0; c < configurations.size(); ++c) {
-      renderers.push_back(std::make_unique<Renderer>(context.caps()));
-      renderers.back()->setScene(scene);
-    }
-    std::vector<FinishPassTimer> timers(configurations.size());
-    const int warmUp = 8;  // shaders built, histories filled
-    FrameOptions frame;
-    for (int f = -warmUp; f < options.frames; ++f) {
-      frame.time = 1.0 + (f + warmUp) / 60.0;
-      frame.previousTime = frame.time - 1.0 / 60.0;
-      for (size_t c = 0; c < configurations.size(); ++c) {
-        frame.timer = f < 0 ? nullptr : &timers[c];
-        renderers[c]->render(camera, configurations[c].settings, View::Final, target, frame);
-      }
-    }
+    std::vector<RenderSettings> settings;
+    for (const Configuration& c : configurations) settings.push_back(c.settings);
+    const std::vector<FinishPassTimer> timers =
+        timeTakingTurns(options, context, scene, builtinSceneCamera(w, h), settings, true);
     for (size_t c = 0; c < configurations.size(); ++c) {
       std::printf("%-22s %-10s", configurations[c].name.c_str(), (std::to_string(w) + "x" + std::to_string(h)).c_str());
       double frameMs = 0.0;

@@ -84,27 +84,24 @@ void AoEffect::plan(FramePlanner& planner) {
   };
   planner.add(std::move(sao));
 
-  auto addTemporal = [&](const char* input) {
-    PassDecl accumulate;
-    accumulate.name = "ao-temporal";
-    accumulate.reads = {input, "velocity", "gbuffer"};
-    accumulate.writes = {{"ao-temporal", aoSize, PassDecl::Write::Depth::None, ""}};
-    accumulate.run = [this, settings, aoScale, aoSize, input](PassContext& context) {
-      // One history per AO size: switching to half resolution does not read a full-size history. Asked for before
-      // binding: making its targets (the first time) binds their framebuffers.
-      RenderTargetPool::History& history = context.history("ao-temporal " + aoSize.name(), aoSize, GL_NEAREST);
-      context.bindForWriting("ao-temporal");
-      temporal_.render(context.texture(input), context.texture("velocity"), context.texture("gbuffer"), history,
-                       context.frame(), settings, aoScale, context.size("ao-temporal"), context.scene().anyMoving());
-    };
-    planner.add(std::move(accumulate));
-  };
   // The raw AO is accumulated before the blur: the blur then averages converged values. After the blur (the
   // blurred AO accumulated, its history rectified against the blurred frame) was as accurate on the still room and
   // trailed more behind a moving object (docs/temporal-effects.md, "Temporal AO").
   const char* unblurred = "ao-raw";
   if (temporal) {
-    addTemporal("ao-raw");
+    PassDecl accumulate;
+    accumulate.name = "ao-temporal";
+    accumulate.reads = {"ao-raw", "velocity", "gbuffer"};
+    accumulate.writes = {{"ao-temporal", aoSize, PassDecl::Write::Depth::None, ""}};
+    accumulate.run = [this, settings, aoScale, aoSize](PassContext& context) {
+      // One history per AO size: switching to half resolution does not read a full-size history. Asked for before
+      // binding: making its targets (the first time) binds their framebuffers.
+      RenderTargetPool::History& history = context.history("ao-temporal " + aoSize.name(), aoSize, GL_NEAREST);
+      context.bindForWriting("ao-temporal");
+      temporal_.render(context.texture("ao-raw"), context.texture("velocity"), context.texture("gbuffer"), history,
+                       context.frame(), settings, aoScale, context.size("ao-temporal"), context.scene().anyMoving());
+    };
+    planner.add(std::move(accumulate));
     unblurred = "ao-temporal";
   }
 
