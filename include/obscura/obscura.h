@@ -61,6 +61,10 @@ struct Camera {
   float far = 100.0f;
 };
 
+// Framebuffer::framebuffer meaning "whichever framebuffer is bound when the call is made" (for callers whose
+// framebuffers have no GL name Obscura can see: a WebGL page's own WebGLFramebuffer objects).
+constexpr unsigned int kBoundFramebuffer = 0xFFFFFFFFu;
+
 // A framebuffer of the caller's: its GL name (0: the window's or canvas's own) and size in pixels.
 struct Framebuffer {
   unsigned int framebuffer = 0;  // a GLuint
@@ -184,7 +188,8 @@ class Renderer {
   unsigned int ambientOcclusion(const Camera& camera);
   unsigned int ambientOcclusion(const Camera& camera, const GBuffer& gbuffer);
   // Multiplies the last ambientOcclusion() result into the caller's framebuffer (colour = colour x visibility;
-  // its alpha untouched), over all of it. The framebuffer must have that result's size.
+  // its alpha untouched), over all of it. The framebuffer must have that result's size; kBoundFramebuffer: the one
+  // bound now.
   void compositeAmbientOcclusion(const Framebuffer& target);
   // Any debug view of a frame whose G-buffer the caller gave ("ao", "ao-raw", "normals", "depth", "mask", ...)
   // into the caller's framebuffer of the G-buffer's size.

@@ -360,7 +360,7 @@ void Renderer::compositeAmbientOcclusion(const Framebuffer& target) {
       impl.composite = gl::Program("obscura-composite-ao", kCompositeVertex, kCompositeFragment, false);
       impl.compositeAo = impl.composite.uniform("u_ao");
     }
-    glBindFramebuffer(GL_FRAMEBUFFER, target.framebuffer);
+    if (target.framebuffer != kBoundFramebuffer) glBindFramebuffer(GL_FRAMEBUFFER, target.framebuffer);
     glViewport(0, 0, target.width, target.height);
     glEnable(GL_BLEND);
     glBlendFuncSeparate(GL_ZERO, GL_SRC_COLOR, GL_ZERO, GL_ONE);

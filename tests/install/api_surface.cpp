@@ -22,6 +22,7 @@ using namespace obscura::api;
 static_assert(OBSCURA_VERSION == OBSCURA_VERSION_MAJOR * 10000 + OBSCURA_VERSION_MINOR * 100 + OBSCURA_VERSION_PATCH);
 static_assert(std::is_base_of_v<std::runtime_error, Error>);
 static_assert(std::is_same_v<ProcAddressLoader, void* (*)(const char*)>);
+static_assert(kBoundFramebuffer == 0xFFFFFFFFu);
 [[maybe_unused]] const char* (*const kVersion)() = &version;
 [[maybe_unused]] const char* (*const kGBufferGlsl)() = &gbufferGlsl;
 [[maybe_unused]] void (*const kWritePng)(const std::string&, int, int, const std::vector<std::uint8_t>&) = &writePng;
