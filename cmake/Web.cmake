@@ -58,8 +58,8 @@ set(npm_sources
 set(npm_files "")
 foreach(source IN LISTS npm_sources)
   get_filename_component(name "${source}" NAME)
-  add_custom_command(OUTPUT "${OBSCURA_NPM_DIR}/${name}" COMMAND "${CMAKE_COMMAND}" -E copy "${source}" "${OBSCURA_NPM_DIR}/${name}"
-                     DEPENDS "${source}")
+  add_custom_command(OUTPUT "${OBSCURA_NPM_DIR}/${name}"
+                     COMMAND "${CMAKE_COMMAND}" -E copy "${source}" "${OBSCURA_NPM_DIR}/${name}" DEPENDS "${source}")
   list(APPEND npm_files "${OBSCURA_NPM_DIR}/${name}")
 endforeach()
 add_custom_command(OUTPUT "${OBSCURA_NPM_DIR}/obscura-core.js" "${OBSCURA_NPM_DIR}/obscura-core.wasm"

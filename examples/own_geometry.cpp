@@ -299,7 +299,8 @@ int main(int argc, char** argv) {
     glReadPixels(0, 0, width, height, GL_RGBA, GL_UNSIGNED_BYTE, pixels.data());
     std::vector<std::uint8_t> image(pixels.size());
     for (int y = 0; y < height; ++y)  // GL rows are bottom-up, PNG rows top-down
-      std::copy(pixels.begin() + static_cast<long>(y) * width * 4, pixels.begin() + static_cast<long>(y + 1) * width * 4,
+      std::copy(pixels.begin() + static_cast<long>(y) * width * 4,
+                pixels.begin() + static_cast<long>(y + 1) * width * 4,
                 image.begin() + static_cast<long>(height - 1 - y) * width * 4);
     writePng(argv[1], width, height, image);
     OffscreenFramebuffer aoView(width, height);
@@ -313,7 +314,7 @@ int main(int argc, char** argv) {
     int cx = 0, cy = 0, ox = 0, oy = 0;
     project(viewProjection, contact, width, height, &cx, &cy);
     project(viewProjection, open, width, height, &ox, &oy);
-    if (cx < 0 || cy < 0 || ox < 0 || oy < 0 || cx >= width || cx >= width || ox >= width || oy >= height ||
+    if (cx < 0 || cy < 0 || ox < 0 || oy < 0 || cx >= width || ox >= width || oy >= height ||
         cy >= height)
       throw std::runtime_error("the probe points are off screen");
     auto visibility = [&](int x, int y) { return ao[(static_cast<std::size_t>(y) * width + x) * 4] / 255.0; };

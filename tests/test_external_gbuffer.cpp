@@ -187,7 +187,8 @@ TEST_F(ExternalGBuffer, TheCallersOwnGeometryDrawnWithThePublicChunkGivesTheSame
   // The same bytes but where the two vertex stages round differently (a depth code's last bit, an edge pixel).
   int samePixels = 0;
   for (size_t i = 0; i < ownGBuffer.size(); i += 4)
-    samePixels += std::equal(ownGBuffer.begin() + long(i), ownGBuffer.begin() + long(i) + 4, callerGBuffer.begin() + long(i));
+    samePixels +=
+        std::equal(ownGBuffer.begin() + long(i), ownGBuffer.begin() + long(i) + 4, callerGBuffer.begin() + long(i));
   const double sameFraction = double(samePixels) / (kWidth * kHeight);
   EXPECT_GT(sameFraction, 0.99) << "G-buffer pixels identical: " << sameFraction;
 

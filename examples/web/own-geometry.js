@@ -70,7 +70,8 @@ function box(gl, lo, hi, color) {
 
 function perspective(fovy, aspect, near, far) {
   const f = 1 / Math.tan((fovy * Math.PI) / 360);
-  return [f / aspect, 0, 0, 0, 0, f, 0, 0, 0, 0, (far + near) / (near - far), -1, 0, 0, (2 * far * near) / (near - far), 0];
+  const depth = 1 / (near - far);
+  return [f / aspect, 0, 0, 0, 0, f, 0, 0, 0, 0, (far + near) * depth, -1, 0, 0, 2 * far * near * depth, 0];
 }
 function lookAt(eye, target, up) {
   const sub = (a, b) => a.map((v, i) => v - b[i]);
@@ -150,7 +151,8 @@ export async function startOwnGeometry(canvas, { checkGlErrors = false } = {}) {
     project(point) {
       const m = [perspective(camera.fovy, canvas.width / canvas.height, camera.near, camera.far),
                  lookAt(camera.eye, camera.target, camera.up)];
-      const apply = (a, v) => [0, 1, 2, 3].map((r) => a[r] * v[0] + a[4 + r] * v[1] + a[8 + r] * v[2] + a[12 + r] * v[3]);
+      const apply = (a, v) => [0, 1, 2, 3].map((r) => a[r] * v[0] + a[4 + r] * v[1] + a[8 + r] * v[2] +
+                                                      a[12 + r] * v[3]);
       const clip = apply(m[0], apply(m[1], [...point, 1]));
       return [Math.floor((clip[0] / clip[3] * 0.5 + 0.5) * canvas.width),
               canvas.height - 1 - Math.floor((clip[1] / clip[3] * 0.5 + 0.5) * canvas.height)];

@@ -94,7 +94,8 @@ describe('the npm package', () => {
     fs.mkdirSync(dist);
     fs.writeFileSync(path.join(project, 'bundled.js'),
                      "import { createObscura } from 'obscura-webgl';\n" +
-                     "window.obscura = await createObscura(document.querySelector('canvas'), { checkGlErrors: true });\n" +
+                     "const canvas = document.querySelector('canvas');\n" +
+                     'window.obscura = await createObscura(canvas, { checkGlErrors: true });\n' +
                      "document.body.dataset.ready = 'true';\n");
     run(bin('esbuild'), ['bundled.js', '--bundle', '--format=esm', '--outfile=dist/bundled.js', '--log-level=error'],
         project);

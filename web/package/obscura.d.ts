@@ -21,8 +21,8 @@ export interface CreateOptions {
 export function createObscura(canvas: HTMLCanvasElement, options?: CreateOptions): Promise<Obscura>;
 
 /** Starts Obscura's AO on the page's own WebGL 1 context (the one the page made on `canvas` first). */
-export function createAmbientOcclusion(canvas: HTMLCanvasElement,
-                                       options?: Omit<CreateOptions, 'pointerControls'>): Promise<ObscuraAmbientOcclusion>;
+export function createAmbientOcclusion(
+  canvas: HTMLCanvasElement, options?: Omit<CreateOptions, 'pointerControls'>): Promise<ObscuraAmbientOcclusion>;
 
 export type ParameterKind = 'switch' | 'number' | 'integer' | 'choice';
 
