@@ -118,7 +118,7 @@ describe('the npm package', () => {
   });
 
   test('the example page: several instances sized by CSS beside other content, and AO on the page\'s own geometry',
-       { timeout: 300000 }, async () => {
+       { timeout: 300000 }, async (t) => {
     for (const file of ['index.html', 'own-geometry.js']) {
       fs.copyFileSync(path.join(sourceDir, 'examples', 'web', file), path.join(project, file));
     }
@@ -177,6 +177,13 @@ describe('the npm package', () => {
     assert.equal(own.error, 0, 'no GL error on the shared context');
     assert.deepEqual(own.stats.passesRun.slice(0, 2), ['gbuffer', 'hierarchy']);
     const [contactAo, openAo] = own.withAo, [contactLit, openLit] = own.withoutAo;
+    t.diagnostic(`own geometry (R+G+B): contact ${contactAo} with AO, ${contactLit} without; open floor ${openAo}, ` +
+                 `${openLit}; passes ${own.stats.passesRun.join(' ')}`);
+    const artifacts = process.env.OBSCURA_BROWSER_ARTIFACTS;
+    if (artifacts) {
+      fs.mkdirSync(artifacts, { recursive: true });
+      await page.screenshot({ path: path.join(artifacts, 'npm-example-page.png'), fullPage: true });
+    }
     assert.ok(contactAo < contactLit * 0.85, `the contact is darkened: ${contactAo} against ${contactLit}`);
     assert.ok(openAo > openLit * 0.95, `open floor stays lit: ${openAo} against ${openLit}`);
     assert.deepEqual(page.errors, []);
