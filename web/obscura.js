@@ -85,7 +85,7 @@ export class ObscuraAmbientOcclusion {
   }
   // Runs the AO on the G-buffer drawn since beginGBuffer() for the camera it was drawn with ({eye, target, up: [x, y,
   // z], fovy (degrees), near, far}) and returns the AO as a WebGLTexture (RGB = visibility, A = 1; NEAREST; the
-  // G-buffer's size), owned by Obscura and valid until the next call. Leaves no framebuffer of the page's bound.
+  // G-buffer's size), owned by Obscura and valid until the next call. Leaves the canvas's framebuffer (null) bound.
   ambientOcclusion({ eye, target, up = [0, 1, 0], fovy = 50, near = 0.1, far = 100 }) {
     this.check(this.core._obscura_geometry_ambient_occlusion(eye[0], eye[1], eye[2], target[0], target[1], target[2],
                                                             up[0], up[1], up[2], fovy, near, far));

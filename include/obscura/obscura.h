@@ -184,7 +184,7 @@ class Renderer {
   // Runs the AO (its depth hierarchy, estimator, blur and upsampling, as the parameters say) on the G-buffer drawn
   // since beginGBuffer, or on the caller's own texture, and returns an RGBA8 texture of the same size that the
   // Renderer owns until the next call: RGB the ambient visibility (1 open, 0 fully occluded), A 1. The camera must
-  // be the one the G-buffer was drawn with.
+  // be the one the G-buffer was drawn with. Leaves the default framebuffer (0) bound.
   unsigned int ambientOcclusion(const Camera& camera);
   unsigned int ambientOcclusion(const Camera& camera, const GBuffer& gbuffer);
   // Multiplies the last ambientOcclusion() result into the caller's framebuffer (colour = colour x visibility;

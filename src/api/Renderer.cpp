@@ -324,6 +324,8 @@ unsigned int Renderer::ambientOcclusion(const Camera& camera, const GBuffer& gbu
   return guarded([&] {
     const gl::RenderTarget& result = impl_->resultTarget(gbuffer.width, gbuffer.height);
     renderView("ao", camera, gbuffer, {result.framebuffer(), result.width(), result.height()});
+    // Obscura's own framebuffer is no business of the caller's: the default one is bound, as documented.
+    glBindFramebuffer(GL_FRAMEBUFFER, 0);
     return static_cast<unsigned int>(result.color().id());
   });
 }
