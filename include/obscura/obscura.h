@@ -12,13 +12,15 @@
 //   renderer.render(renderer.sceneCamera(w, h), {fbo, w, h});
 //
 // AO on the caller's own geometry: draw the meshes into beginGBuffer() with the GLSL ES 1.00 chunk
-// obscura/obscura_gbuffer.glsl (or hand over an RGBA8 texture in the same layout), then ambientOcclusion() returns
-// the AO texture and compositeAmbientOcclusion() multiplies it into a framebuffer.
+// obscura_gbuffer.glsl (in <prefix>/share/obscura/glsl; also gbufferGlsl()), or hand over an RGBA8 texture in the
+// same layout; then ambientOcclusion() returns the AO texture and compositeAmbientOcclusion() multiplies it into a
+// framebuffer.
 //
 // Threading and GL: every call needs the context the Renderer was made on to be current, on the thread using it.
-// Calls leave the GL state as the baseline the renderer expects of every pass: no program, buffers, textures or vertex
-// attribute arrays bound, depth test, blending, culling, scissor and stencil off, texture unit 0 active; the
-// framebuffer binding is the caller's business. Errors throw obscura::api::Error.
+// Calls expect the GL state at the baseline every pass of Obscura starts from, and leave it there: no program,
+// buffers, textures or vertex attribute arrays bound, depth test, blending, culling, scissor, polygon offset and
+// stencil off, texture unit 0 active. The framebuffer binding is the caller's business: bind yours again after a
+// call. Errors throw obscura::api::Error.
 #include <cstddef>
 #include <cstdint>
 #include <map>
