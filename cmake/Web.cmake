@@ -13,7 +13,11 @@ endforeach()
 
 set(OBSCURA_SITE_DIR "${CMAKE_BINARY_DIR}/site")
 
-add_executable(obscura-web src/apps/obscura_web.cpp src/platform/WebCanvas.cpp)
+# The page's API (obscura_web.cpp) and the public C++ API on the page's own WebGL context (obscura_web_geometry.cpp:
+# AO on the page's geometry, web/obscura.js createAmbientOcclusion).
+add_executable(obscura-web src/apps/obscura_web.cpp src/platform/WebCanvas.cpp src/apps/obscura_web_geometry.cpp
+                           src/api/Renderer.cpp)
+target_include_directories(obscura-web PRIVATE include "${CMAKE_BINARY_DIR}/include")
 target_link_libraries(obscura-web PRIVATE obscura_viewer obscura_warnings)
 set_target_properties(obscura-web PROPERTIES OUTPUT_NAME obscura-core SUFFIX ".js"
                                              RUNTIME_OUTPUT_DIRECTORY "${OBSCURA_SITE_DIR}")
@@ -41,3 +45,26 @@ foreach(file IN LISTS web_files)
 endforeach()
 add_custom_target(obscura-site ALL DEPENDS ${site_files})
 add_dependencies(obscura-site obscura-web)
+
+# The npm package (obscura-webgl): the module, obscura.js, its TypeScript declarations, the public GLSL chunk, a
+# README and the license, with package.json at the project's version. `npm pack build-web/npm` makes the tarball
+# (tests/npm-package does, and installs it into a scratch project).
+set(OBSCURA_NPM_DIR "${CMAKE_BINARY_DIR}/npm")
+configure_file(web/package/package.json.in "${OBSCURA_NPM_DIR}/package.json" @ONLY)
+set(npm_sources
+  "${CMAKE_SOURCE_DIR}/web/obscura.js" "${CMAKE_SOURCE_DIR}/web/package/obscura.d.ts"
+  "${CMAKE_SOURCE_DIR}/web/package/README.md" "${CMAKE_SOURCE_DIR}/LICENSE"
+  "${CMAKE_SOURCE_DIR}/shaders_es2/lib/obscura_gbuffer.glsl")
+set(npm_files "")
+foreach(source IN LISTS npm_sources)
+  get_filename_component(name "${source}" NAME)
+  add_custom_command(OUTPUT "${OBSCURA_NPM_DIR}/${name}"
+                     COMMAND "${CMAKE_COMMAND}" -E copy "${source}" "${OBSCURA_NPM_DIR}/${name}" DEPENDS "${source}")
+  list(APPEND npm_files "${OBSCURA_NPM_DIR}/${name}")
+endforeach()
+add_custom_command(OUTPUT "${OBSCURA_NPM_DIR}/obscura-core.js" "${OBSCURA_NPM_DIR}/obscura-core.wasm"
+                   COMMAND "${CMAKE_COMMAND}" -E copy "${OBSCURA_SITE_DIR}/obscura-core.js"
+                           "${OBSCURA_SITE_DIR}/obscura-core.wasm" "${OBSCURA_NPM_DIR}"
+                   DEPENDS obscura-web)
+add_custom_target(obscura-npm ALL DEPENDS ${npm_files} "${OBSCURA_NPM_DIR}/obscura-core.js"
+                                          "${OBSCURA_NPM_DIR}/obscura-core.wasm")

@@ -1,8 +1,9 @@
 #!/usr/bin/env bash
 # Runs every test on a fresh Debian machine: installs what is missing, builds the native and the web versions,
-# installs the browser tests' and the browser benchmark's npm packages (tests/browser and tools/browser-bench, from
-# their package-lock.json files), then runs the whole suite: CPU and GPU unit tests, the command line, the desktop
-# viewer under Xvfb, the web page in headless Chromium and the browser benchmark's smoke run.
+# installs the browser tests', the npm package tests' and the browser benchmark's npm packages (tests/browser,
+# tests/npm-package and tools/browser-bench, from their package-lock.json files), then runs the whole suite: CPU and
+# GPU unit tests, the command line, the desktop viewer under Xvfb, the installed C++ package and its examples, the web
+# page and the npm package in headless Chromium and the browser benchmark's smoke run.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
@@ -12,6 +13,7 @@ tools/build.sh -DOBSCURA_WERROR=ON
 tools/build-web.sh -DOBSCURA_WERROR=ON
 (cd tests/browser && npm ci --no-audit --no-fund --loglevel=error)
 (cd tools/browser-bench && npm ci --no-audit --no-fund --loglevel=error)
+(cd tests/npm-package && npm ci --no-audit --no-fund --loglevel=error)
 ctest --test-dir build --output-on-failure -j"$(nproc 2>/dev/null || echo 2)"
 tools/test-sanitizers.sh
 tools/fuzz-gltf.sh 60

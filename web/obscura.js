@@ -26,13 +26,91 @@ export class ObscuraError extends Error {
 //   pointerControls (default true): orbit / pan / zoom with mouse, touch and wheel on the canvas.
 //   checkGlErrors (default false): glGetError after every pass; a GL error stops drawing and is logged as a console
 //     error naming the pass (for tests and debugging: each check waits for the GPU).
-export async function createObscura(canvas, { pointerControls = true, checkGlErrors = false } = {}) {
-  const core = await createObscuraCore({ canvas });
+//   wasmUrl: where obscura-core.wasm is served (default: beside this file, found through import.meta.url; bundlers
+//     that follow `new URL(..., import.meta.url)` copy the file and rewrite the URL).
+export async function createObscura(canvas, { pointerControls = true, checkGlErrors = false, wasmUrl } = {}) {
+  const core = await createObscuraCore(coreOptions(canvas, wasmUrl));
   const obscura = new Obscura(core, canvas);
   if (!core._obscura_create(checkGlErrors ? 1 : 0)) throw new ObscuraError(core.UTF8ToString(core._obscura_error()));
   obscura.description = obscura.json('obscura_describe');
   if (pointerControls) obscura.attachPointerControls();
   return obscura;
+}
+
+// The module's options: its canvas, and where its .wasm is (the literal `new URL('./obscura-core.wasm',
+// import.meta.url)` is what bundlers recognise as an asset to copy).
+function coreOptions(canvas, wasmUrl) {
+  const wasm = String(wasmUrl ?? new URL('./obscura-core.wasm', import.meta.url));
+  return { canvas, locateFile: (file, directory) => (file.endsWith('.wasm') ? wasm : directory + file) };
+}
+
+// AO on the page's own geometry (docs/api.md, "In the browser"): Obscura joins the WebGL 1 context the page made on
+// `canvas` (canvas.getContext('webgl') first; the module is handed that very context), draws nothing on its own
+// schedule and has no scene. Per frame the page calls beginGBuffer(), draws its meshes with a fragment shader built
+// on gbufferGlsl, then ambientOcclusion(camera) and composite(), or samples the returned texture itself.
+// Options: checkGlErrors (default false) and wasmUrl, as createObscura's.
+export async function createAmbientOcclusion(canvas, { checkGlErrors = false, wasmUrl } = {}) {
+  const core = await createObscuraCore(coreOptions(canvas, wasmUrl));
+  if (!core._obscura_geometry_create(checkGlErrors ? 1 : 0)) {
+    throw new ObscuraError(core.UTF8ToString(core._obscura_geometry_error()));
+  }
+  return new ObscuraAmbientOcclusion(core, canvas);
+}
+
+export class ObscuraAmbientOcclusion {
+  constructor(core, canvas) {
+    this.core = core;
+    this.canvas = canvas;
+    // The page's own context: the one the module draws with too.
+    this.gl = canvas.getContext('webgl');
+    this.description = JSON.parse(core.UTF8ToString(core._obscura_describe()));
+  }
+
+  // The library's version ('0.1.0').
+  get version() { return this.core.UTF8ToString(this.core._obscura_geometry_version()); }
+  // The GLSL ES 1.00 chunk obscura_gbuffer.glsl: after the page's `precision highp float;`, its fragment shader
+  // writes gl_FragColor = obscuraGBuffer(normalize(viewNormal), -viewPosition.z, near, far).
+  get gbufferGlsl() { return this.core.UTF8ToString(this.core._obscura_geometry_glsl()); }
+  // Every parameter of the frame, as Obscura's parameters (the AO's are those named 'ao' and 'ao.*').
+  get parameters() { return this.description.parameters; }
+  get(name) { return this.result('obscura_geometry_get', ['string'], [name]); }
+  set(name, value) {
+    this.check(this.core.ccall('obscura_geometry_set', 'number', ['string', 'string'], [name, String(value)]));
+  }
+
+  // Binds Obscura's G-buffer framebuffer (RGBA8 and a depth buffer) of width x height, cleared to the background,
+  // with its viewport set: the page draws its meshes next, depth test on.
+  beginGBuffer(width = this.gl.drawingBufferWidth, height = this.gl.drawingBufferHeight) {
+    this.check(this.core._obscura_geometry_begin(width, height));
+  }
+  // Runs the AO on the G-buffer drawn since beginGBuffer() for the camera it was drawn with ({eye, target, up: [x, y,
+  // z], fovy (degrees), near, far}) and returns the AO as a WebGLTexture (RGB = visibility, A = 1; NEAREST; the
+  // G-buffer's size), owned by Obscura and valid until the next call. Leaves the canvas's framebuffer (null) bound.
+  ambientOcclusion({ eye, target, up = [0, 1, 0], fovy = 50, near = 0.1, far = 100 }) {
+    this.check(this.core._obscura_geometry_ambient_occlusion(eye[0], eye[1], eye[2], target[0], target[1], target[2],
+                                                            up[0], up[1], up[2], fovy, near, far));
+    const gl = this.gl;
+    const previous = gl.getParameter(gl.TEXTURE_BINDING_2D);
+    this.check(this.core._obscura_geometry_bind_ao());
+    const texture = gl.getParameter(gl.TEXTURE_BINDING_2D);
+    gl.bindTexture(gl.TEXTURE_2D, previous);
+    return texture;
+  }
+  // Multiplies the last AO into the framebuffer the page has bound (its own, or null: the canvas), of that size.
+  composite(width = this.gl.drawingBufferWidth, height = this.gl.drawingBufferHeight) {
+    this.check(this.core._obscura_geometry_composite(width, height));
+  }
+  // {width, height, frames, cpuMs, passesRun, pooledTargets}
+  stats() { return JSON.parse(this.core.UTF8ToString(this.core._obscura_geometry_stats())); }
+
+  check(ok) {
+    if (!ok) throw new ObscuraError(this.core.UTF8ToString(this.core._obscura_geometry_error()));
+  }
+  result(name, types, values) {
+    const pointer = this.core.ccall(name, 'number', types, values);
+    this.check(pointer);
+    return this.core.UTF8ToString(pointer);
+  }
 }
 
 // Fires 'change' after every call that changes what is shown (parameters, view, camera, scene, timeline), and

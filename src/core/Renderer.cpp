@@ -72,13 +72,14 @@ Renderer::Renderer(const gl::GlCaps& caps, const RendererOptions& options)
 }
 
 FramePlan Renderer::plan(const RenderSettings& settings, const FrameContext& frame, const View& view,
-                         const std::vector<std::string>& retain) {
+                         const std::vector<std::string>& retain, GLuint externalGBuffer) {
   const auto [target, decoding] = viewTarget(view);
   FramePlanner planner(settings, frame, targets_);
   planner.setViewTarget(target);
   for (size_t row = 0; row < effects_.size(); ++row) {
     planner.beginEffect(effectTable()[row].info.name);
-    effects_[row]->plan(planner);
+    if (externalGBuffer != 0 && effectTable()[row].info.name == "gbuffer") planner.add(importGBuffer(externalGBuffer));
+    else effects_[row]->plan(planner);
   }
   planner.beginEffect("");
   if (!target.empty()) planner.add(views_.pass("view", target, decoding));
@@ -87,6 +88,36 @@ FramePlan Renderer::plan(const RenderSettings& settings, const FrameContext& fra
 }
 
 Renderer::~Renderer() = default;
+
+PassDecl Renderer::importGBuffer(GLuint texture) {
+  PassDecl pass;
+  pass.name = "gbuffer";
+  // Its own depth, cleared to the far plane: a pass that depth-tests against the G-buffer's sees nothing drawn.
+  pass.writes = {{"gbuffer", TargetSize::full(), PassDecl::Write::Depth::Own, ""}};
+  pass.run = [this, texture](PassContext& context) {
+    // The texture the plan lent `gbuffer`: the colour attachment of the framebuffer bound for writing it.
+    context.bindForWriting("gbuffer");
+    glClearDepthf(1.0f);
+    glClear(GL_DEPTH_BUFFER_BIT);
+    GLint destination = 0;
+    glGetFramebufferAttachmentParameteriv(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_FRAMEBUFFER_ATTACHMENT_OBJECT_NAME,
+                                          &destination);
+    if (!externalGBufferSource_) externalGBufferSource_ = gl::FramebufferHandle::create();
+    glBindFramebuffer(GL_FRAMEBUFFER, externalGBufferSource_.id());
+    glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, texture, 0);
+    if (glCheckFramebufferStatus(GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE)
+      throw GlError("the caller's G-buffer texture " + std::to_string(texture) +
+                    " cannot be read as an RGBA8 framebuffer attachment");
+    // A byte-exact copy (no filtering, no blending), the same on GLES 2 and WebGL 1.
+    const glm::ivec2 size = context.size("gbuffer");
+    glBindTexture(GL_TEXTURE_2D, static_cast<GLuint>(destination));
+    glCopyTexSubImage2D(GL_TEXTURE_2D, 0, 0, 0, 0, 0, size.x, size.y);
+    glBindTexture(GL_TEXTURE_2D, 0);
+    glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, 0, 0);
+    glBindFramebuffer(GL_FRAMEBUFFER, 0);
+  };
+  return pass;
+}
 
 DepthHierarchyPass::Storage Renderer::hierarchyStorage() const { return ao_->hierarchyStorage(); }
 
@@ -191,7 +222,7 @@ void Renderer::endFrame() {
 
 void Renderer::run(const RenderSettings& settings, const View& view, const OutputTarget& output,
                    const FrameOptions& options) {
-  plan_ = plan(settings, frame_, view, options.retain);
+  plan_ = plan(settings, frame_, view, options.retain, options.externalGBuffer);
 
   for (size_t i = 0; i < plan_.passes().size(); ++i) {
     const PlannedPass& pass = plan_.passes()[i];

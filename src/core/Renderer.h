@@ -82,6 +82,10 @@ struct FrameOptions {
   // Targets whose contents stay readable after the frame (retained()): tests and tools read them back. Their
   // writers run and their pooled targets are not reused within the frame.
   std::vector<std::string> retain;
+  // A G-buffer the caller drew (an RGBA8 texture of the output's size in the `gbuffer` target's layout:
+  // docs/api.md, shaders_es2/lib/obscura_gbuffer.glsl): the frame's `gbuffer` pass copies it instead of drawing the
+  // scene, and the effects read it as their own. The camera must be the one it was drawn with. 0: the scene's.
+  GLuint externalGBuffer = 0;
 };
 
 class Renderer {
@@ -132,7 +136,9 @@ class Renderer {
 
   // Every effect's passes for `view` (a target view, or the final image), resolved.
   FramePlan plan(const RenderSettings& settings, const FrameContext& frame, const View& view,
-                 const std::vector<std::string>& retain);
+                 const std::vector<std::string>& retain, GLuint externalGBuffer = 0);
+  // The `gbuffer` pass of a frame whose G-buffer the caller drew (FrameOptions::externalGBuffer): a copy.
+  PassDecl importGBuffer(GLuint texture);
   // Plans and runs one frame's passes for `view` into `output`.
   void run(const RenderSettings& settings, const View& view, const OutputTarget& output, const FrameOptions& options);
   void checkErrors(const std::string& after) const;
@@ -149,6 +155,7 @@ class Renderer {
   Scene sceneData_;  // what the GPU scene was made from, without its images: posed every frame
   RenderTargetPool pool_;
   FramePlan plan_;
+  gl::FramebufferHandle externalGBufferSource_;  // reads the caller's G-buffer texture (importGBuffer)
 
   // History: what the next frame's context calls "previous".
   FrameContext frame_;

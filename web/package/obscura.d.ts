@@ -1,0 +1,265 @@
+// TypeScript declarations of Obscura's JavaScript API (obscura.js). The reference is web/README.md; AO on the page's
+// own geometry: docs/api.md, "In the browser". Stable within a major version (CHANGELOG.md).
+
+/** A call the core refused: an unknown parameter, a value out of range, a file that is not valid glTF. `message` is
+ * one line meant for the user. */
+export class ObscuraError extends Error {
+  constructor(message: string);
+  readonly name: 'ObscuraError';
+}
+
+export interface CreateOptions {
+  /** Orbit / pan / zoom with mouse, touch and wheel on the canvas (default true). */
+  pointerControls?: boolean;
+  /** glGetError after every pass; a GL error stops drawing (for tests and debugging; default false). */
+  checkGlErrors?: boolean;
+  /** Where obscura-core.wasm is served (default: beside obscura.js, through import.meta.url). */
+  wasmUrl?: string | URL;
+}
+
+/** Starts Obscura on a canvas (its own WebGL 1 context, drawn on requestAnimationFrame when something changed). */
+export function createObscura(canvas: HTMLCanvasElement, options?: CreateOptions): Promise<Obscura>;
+
+/** Starts Obscura's AO on the page's own WebGL 1 context (the one the page made on `canvas` first). */
+export function createAmbientOcclusion(
+  canvas: HTMLCanvasElement, options?: Omit<CreateOptions, 'pointerControls'>): Promise<ObscuraAmbientOcclusion>;
+
+export type ParameterKind = 'switch' | 'number' | 'integer' | 'choice';
+
+export interface ParameterInfo {
+  /** Full name: 'ao.radius', 'tonemap.operator', 'fxaa'; 'preset' for the frame's quality preset. */
+  name: string;
+  /** The effect it belongs to ('' for 'preset'). */
+  effect: string;
+  /** An older name get/set/setState also take ('radius'). */
+  alias?: string;
+  kind: ParameterKind;
+  /** For people: '0.0001 .. 1e+06 (scene units)'. */
+  range: string;
+  help: string;
+  /** The default, as text. */
+  default: string;
+  /** Shown up front by the demo page. */
+  primary: boolean;
+  min?: number;
+  max?: number;
+  /** A switch's or a choice's values; for a number, words it takes besides numbers ('auto'). */
+  choices?: string[];
+}
+
+export interface TargetInfo {
+  name: string;
+  encoding: string;
+  views: string[];
+}
+
+export interface EffectInfo {
+  name: string;
+  title: string;
+  switch: boolean;
+  passes: string[];
+  targets: TargetInfo[];
+  parameters: string[];
+}
+
+export interface PresetInfo {
+  name: string;
+  samples: number;
+  turns: number;
+  blurRadius: number;
+  blurStride: number;
+  halfResolution: boolean;
+}
+
+export interface KeyBinding {
+  /** KeyboardEvent.key: ' ' for space, 'ArrowLeft'. */
+  key: string;
+  /** How a person reads it: 'space', 'left arrow'. */
+  label: string;
+  description: string;
+}
+
+export interface ContextInfo {
+  version: string;
+  renderer: string;
+  vendor: string;
+  shadingLanguage: string;
+  maxRenderSize: number;
+  depth24: boolean;
+  elementIndexUint: boolean;
+  timerQuery: boolean;
+  [more: string]: unknown;
+}
+
+export interface SceneInfo {
+  name: string;
+  triangles: number;
+  /** What the loader repaired or ignored. */
+  warnings: string[];
+  /** The AO radius the scene gets when nobody sets one, in its units. */
+  defaultRadius: number;
+  /** A state text gave the radius, so loading a scene keeps it. */
+  radiusGiven: boolean;
+  [more: string]: unknown;
+}
+
+export interface Timeline {
+  animations: string[];
+  animation: string;
+  time: number;
+  duration: number;
+  playing: boolean;
+  speed: number;
+  loop: boolean;
+  frameInterval: number;
+}
+
+export interface Stats {
+  width: number;
+  height: number;
+  continuous: boolean;
+  pending: boolean;
+  frameMs: number;
+  cpuMs: number;
+  lastCpuMs: number;
+  frames: number;
+  timerQueries: boolean;
+  /** GPU milliseconds per pass of a recent frame (null: the pass did not run), or null without timer queries. */
+  passMs: Record<string, number | null> | null;
+  passesRun: string[];
+  /** Passes whose work another pass did: {tonemap: 'lighting'}. */
+  passesDoneBy: Record<string, string>;
+  history: { frames: number; drops: number; frameIndex: number };
+  pooledTargets: number;
+  contextLost: boolean;
+  contextRestores: number;
+  glObjects: Record<string, number>;
+  /** Why frames stopped, or ''. */
+  error: string;
+  [more: string]: unknown;
+}
+
+export interface Snapshot {
+  width: number;
+  height: number;
+  /** RGBA8, rows top to bottom. */
+  pixels: Uint8Array;
+}
+
+export type SideFiles = Record<string, ArrayBuffer | Uint8Array>;
+
+/** Fires 'change' after every call that changes what is shown, and 'timeupdate' on every animation frame while the
+ * timeline plays. */
+export class Obscura extends EventTarget {
+  private constructor();
+  readonly canvas: HTMLCanvasElement;
+
+  // What the core offers.
+  readonly parameters: ParameterInfo[];
+  readonly effects: EffectInfo[];
+  readonly presets: PresetInfo[];
+  /** 'final', 'split', then every target's debug view ('normals', 'depth', 'ao', ...). */
+  readonly views: string[];
+  readonly compareSwitches: string[];
+  readonly keyBindings: KeyBinding[];
+  readonly passes: string[];
+  readonly context: ContextInfo;
+
+  // Parameters, view and state.
+  get(name: string): string;
+  effective(name: string): string;
+  set(name: string, value: string | number): void;
+  readonly view: string;
+  setView(view: string): void;
+  readonly compare: string;
+  setCompare(name: string): void;
+  /** 'separate' | 'atlas' | 'mipchain' | 'auto'; returns the storage now in use. */
+  setHierarchyStorage(name: string): string;
+  /** The view, the parameters that differ from their defaults, the timeline and the camera, as query-string text. */
+  state(): string;
+  setState(query: string): void;
+  handleKey(key: string): boolean;
+
+  // Camera.
+  orbit(dx: number, dy: number, viewportHeight?: number): void;
+  pan(dx: number, dy: number, viewportHeight?: number): void;
+  zoom(factor: number): void;
+  resetCamera(): void;
+
+  // Scenes.
+  loadScene(bytes: ArrayBuffer | Uint8Array, name: string, sideFiles?: SideFiles): Promise<SceneInfo>;
+  loadFiles(files: FileList | File[], options?: { onProgress?: (fraction: number) => void }): Promise<SceneInfo>;
+  loadBuiltinScene(): SceneInfo;
+  scene(): SceneInfo;
+  readonly defaultRadius: number;
+
+  // Timeline.
+  timeline(): Timeline;
+  readonly animations: string[];
+  readonly animation: string;
+  setAnimation(choice: string | number): void;
+  readonly time: number;
+  readonly duration: number;
+  setTime(seconds: number): void;
+  readonly playing: boolean;
+  play(): void;
+  pause(): void;
+  stepFrames(frames?: number): void;
+  readonly speed: number;
+  setSpeed(factor: number): void;
+  readonly loop: boolean;
+  setLoop(loop: boolean): void;
+
+  // Measurements.
+  setContinuous(continuous: boolean): void;
+  stats(): Stats;
+  draw(): void;
+  snapshot(): Snapshot;
+  attachPointerControls(): void;
+
+  addEventListener(type: 'change' | 'timeupdate', listener: (event: Event) => void,
+                   options?: boolean | AddEventListenerOptions): void;
+  addEventListener(type: string, listener: EventListenerOrEventListenerObject | null,
+                   options?: boolean | AddEventListenerOptions): void;
+}
+
+/** The camera the page drew its G-buffer with: eye, target and up in its world units, vertical field of view in
+ * degrees, and the near and far planes its projection used (the same as it gives obscuraGBuffer). */
+export interface Camera {
+  eye: [number, number, number] | number[];
+  target: [number, number, number] | number[];
+  up?: [number, number, number] | number[];
+  fovy?: number;
+  near?: number;
+  far?: number;
+}
+
+export interface AmbientOcclusionStats {
+  width: number;
+  height: number;
+  frames: number;
+  cpuMs: number;
+  passesRun: string[];
+  pooledTargets: number;
+}
+
+/** Obscura's AO on the page's own WebGL 1 context and geometry. */
+export class ObscuraAmbientOcclusion {
+  private constructor();
+  readonly canvas: HTMLCanvasElement;
+  /** The page's context, which Obscura draws with too. */
+  readonly gl: WebGLRenderingContext;
+  readonly version: string;
+  /** The GLSL ES 1.00 chunk obscura_gbuffer.glsl (obscuraGBuffer(viewNormal, viewDepth, near, far)). */
+  readonly gbufferGlsl: string;
+  readonly parameters: ParameterInfo[];
+  get(name: string): string;
+  set(name: string, value: string | number): void;
+  /** Binds Obscura's G-buffer framebuffer (cleared, viewport set); the page draws its meshes next. */
+  beginGBuffer(width?: number, height?: number): void;
+  /** The AO of the G-buffer drawn since beginGBuffer: RGB visibility, A 1; owned by Obscura. */
+  ambientOcclusion(camera: Camera): WebGLTexture;
+  /** Multiplies the last AO into the framebuffer the page has bound. */
+  composite(width?: number, height?: number): void;
+  stats(): AmbientOcclusionStats;
+}
