@@ -139,7 +139,6 @@ TEST(GltfCorpus, KnownBrokenFilesSayWhatIsWrong) {
       {"IndexOutOfRange/AllIndicesOutOfRange.gltf", "has index 65535 but only 24 vertices"},
       {"MissingBin/BoxTextured.gltf", "BoxTextured0.bin"},
       {"RecursiveNodes/RecursiveNodes.gltf", "cycle"},
-      {"draco/2CylinderEngine.gltf", "requires unsupported extension KHR_draco_mesh_compression"},
       {"BoxTextured-glTF-techniqueWebGL/BoxTextured.gltf", "requires unsupported extension KHR_technique_webgl"},
       {"glTF-Asset-Generator/Mesh_PrimitiveMode/Mesh_PrimitiveMode_00.gltf", "only point or line primitives"},
       {"TestNoRootNode/SceneWithoutNodes.gltf", "no triangle geometry"},

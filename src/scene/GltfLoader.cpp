@@ -18,6 +18,7 @@
 #include <tiny_gltf.h>
 
 #include "base/Error.h"
+#include "scene/GltfCompression.h"
 #include "scene/MeshProcessing.h"
 
 namespace obscura {
@@ -411,6 +412,20 @@ void loadSkinAttributes(const LoaderContext& ctx, const tinygltf::Primitive& pri
                                          "WEIGHTS_0 renormalised");
 }
 
+// A vertex attribute in the component types its use allows: glTF 2.0's (3.7.2.1), widened by KHR_mesh_quantization
+// when the file uses it (GltfCompression.h). Integer types read as integers unless the accessor is normalized.
+std::vector<double> readVertexAttribute(const LoaderContext& ctx, int accessorIndex, const std::string& what,
+                                        int components, const char* use) {
+  const AttributeTypes types = quantizedAttributeTypes(use, usesMeshQuantization(ctx.model));
+  std::vector<double> values = readAccessor(ctx, accessorIndex, what, components, types.allowed);
+  const tinygltf::Accessor& accessor = ctx.model.accessors[static_cast<size_t>(accessorIndex)];
+  if (!accessor.normalized && std::find(types.normalizedOnly.begin(), types.normalizedOnly.end(),
+                                        accessor.componentType) != types.normalizedOnly.end())
+    ctx.refuse(what + " (accessor " + std::to_string(accessorIndex) + ") has component type " +
+               componentTypeName(accessor.componentType) + " without normalized: true, which glTF does not allow");
+  return values;
+}
+
 // Morph targets (glTF 2.0 sec. 3.7.2.2): per target, POSITION and NORMAL displacements, float VEC3, one per vertex
 // (sparse accessors welcome: targets are mostly zeros). TANGENT and any other attribute are ignored: nothing here
 // uses tangents. A target without POSITION displaces nothing.
@@ -427,7 +442,8 @@ void loadMorphTargets(const LoaderContext& ctx, const tinygltf::Primitive& primi
       auto it = primitive.targets[t].find(name);
       if (it == primitive.targets[t].end()) continue;
       const std::vector<double> deltas =
-          readAccessor(ctx, it->second, target + " " + name, 3, {TINYGLTF_COMPONENT_TYPE_FLOAT});
+          readVertexAttribute(ctx, it->second, target + " " + name, 3,
+                              std::strcmp(name, "POSITION") == 0 ? "MORPH_POSITION" : "MORPH_NORMAL");
       if (deltas.size() / 3 != vertexCount)
         ctx.refuse(target + " has " + std::to_string(deltas.size() / 3) + " " + name + " displacements for " +
                    std::to_string(vertexCount) + " positions");
@@ -453,8 +469,7 @@ Mesh loadPrimitive(const LoaderContext& ctx, const tinygltf::Primitive& primitiv
   auto attribute = [&](const char* name) { return attributeAccessor(primitive, name); };
   const int positionAccessor = attribute("POSITION");
   if (positionAccessor < 0) ctx.refuse(what + " has no POSITION attribute");
-  mesh.positions = toVectors<3>(readAccessor(ctx, positionAccessor, what + " POSITION", 3,
-                                             {TINYGLTF_COMPONENT_TYPE_FLOAT}));
+  mesh.positions = toVectors<3>(readVertexAttribute(ctx, positionAccessor, what + " POSITION", 3, "POSITION"));
   for (size_t i = 0; i < mesh.positions.size(); ++i) {
     const glm::vec3& p = mesh.positions[i];
     if (!std::isfinite(p.x) || !std::isfinite(p.y) || !std::isfinite(p.z))
@@ -465,7 +480,7 @@ Mesh loadPrimitive(const LoaderContext& ctx, const tinygltf::Primitive& primitiv
   const int normalAccessor = attribute("NORMAL");
   bool normalsUsable = false;
   if (normalAccessor >= 0) {
-    mesh.normals = toVectors<3>(readAccessor(ctx, normalAccessor, what + " NORMAL", 3, {TINYGLTF_COMPONENT_TYPE_FLOAT}));
+    mesh.normals = toVectors<3>(readVertexAttribute(ctx, normalAccessor, what + " NORMAL", 3, "NORMAL"));
     if (mesh.normals.size() != vertexCount)
       ctx.refuse(what + " has " + std::to_string(mesh.normals.size()) + " normals for " +
                  std::to_string(vertexCount) + " positions");
@@ -484,15 +499,9 @@ Mesh loadPrimitive(const LoaderContext& ctx, const tinygltf::Primitive& primitiv
 
   const int uvAccessor = attribute("TEXCOORD_0");
   if (uvAccessor >= 0) {
-    mesh.texcoords = toVectors<2>(readAccessor(ctx, uvAccessor, what + " TEXCOORD_0", 2,
-                                               {TINYGLTF_COMPONENT_TYPE_FLOAT, TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE,
-                                                TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT}));
-    // glTF 2.0 (3.7.2.1) allows integer texture coordinates only normalised; raw integers would be read as
-    // coordinates hundreds of textures wide.
-    const tinygltf::Accessor& uvs = ctx.model.accessors[static_cast<size_t>(uvAccessor)];
-    if (uvs.componentType != TINYGLTF_COMPONENT_TYPE_FLOAT && !uvs.normalized)
-      ctx.refuse(what + " TEXCOORD_0 (accessor " + std::to_string(uvAccessor) + ") has component type " +
-                 componentTypeName(uvs.componentType) + " without normalized: true, which glTF does not allow");
+    // glTF 2.0 (3.7.2.1) allows integer texture coordinates only normalised (raw integers would be coordinates
+    // hundreds of textures wide); KHR_mesh_quantization allows them raw, scaled by KHR_texture_transform.
+    mesh.texcoords = toVectors<2>(readVertexAttribute(ctx, uvAccessor, what + " TEXCOORD_0", 2, "TEXCOORD"));
     if (mesh.texcoords.size() != vertexCount)
       ctx.refuse(what + " has " + std::to_string(mesh.texcoords.size()) + " texture coordinates for " +
                  std::to_string(vertexCount) + " positions");
@@ -1125,6 +1134,14 @@ std::string firstLine(const std::string& text) {
   return line.empty() ? "unknown error" : line;
 }
 
+// A required extension is loaded (compression, quantization), harmless, or the file is refused.
+void refuseUnlessSupported(const Refusal& refuse, const std::string& extension) {
+  if (kHarmlessRequiredExtensions.count(extension)) return;
+  std::string why;
+  if (compressionExtensionSupported(extension, &why)) return;
+  refuse(why.empty() ? "requires unsupported extension " + extension : why);
+}
+
 // What is read from the JSON before tinygltf parses it: the asset's extensionsRequired (a file that needs, say,
 // Draco has accessors without buffer views, and the user should hear about the extension rather than about
 // accessor 0), and per animation the channels whose target has no node (KHR_animation_pointer's), which tinygltf
@@ -1171,8 +1188,10 @@ Scene loadWithResolver(const std::vector<std::uint8_t>& bytes, const std::string
   if (bytes.size() > 0xFFFFFFFFull) refuse("file is larger than 4 GiB");
 
   const DocumentFacts facts = scanDocument(bytes);
-  for (const std::string& ext : facts.requiredExtensions)
-    if (!kHarmlessRequiredExtensions.count(ext)) refuse("requires unsupported extension " + ext);
+  for (const std::string& ext : facts.requiredExtensions) refuseUnlessSupported(refuse, ext);
+  // What tinygltf 2.7 refuses in compressed files, mended (GltfCompression.h).
+  const std::vector<std::uint8_t> prepared = prepareCompressedDocument(bytes);
+  const std::vector<std::uint8_t>& document = prepared.empty() ? bytes : prepared;
 
   tinygltf::TinyGLTF gltf;
   resolver.maxBytes = limits.maxFileBytes;
@@ -1185,10 +1204,10 @@ Scene loadWithResolver(const std::vector<std::uint8_t>& bytes, const std::string
   const bool binary = bytes.size() >= 4 && std::memcmp(bytes.data(), "glTF", 4) == 0;
   bool ok = false;
   try {
-    ok = binary ? gltf.LoadBinaryFromMemory(&model, &err, &warn, bytes.data(), static_cast<unsigned>(bytes.size()),
-                                            resolver.baseDir)
-                : gltf.LoadASCIIFromString(&model, &err, &warn, reinterpret_cast<const char*>(bytes.data()),
-                                           static_cast<unsigned>(bytes.size()), resolver.baseDir);
+    ok = binary ? gltf.LoadBinaryFromMemory(&model, &err, &warn, document.data(),
+                                            static_cast<unsigned>(document.size()), resolver.baseDir)
+                : gltf.LoadASCIIFromString(&model, &err, &warn, reinterpret_cast<const char*>(document.data()),
+                                           static_cast<unsigned>(document.size()), resolver.baseDir);
   } catch (const std::exception& e) {
     refuse(std::string("malformed glTF: ") + e.what());
   }
@@ -1201,9 +1220,8 @@ Scene loadWithResolver(const std::vector<std::uint8_t>& bytes, const std::string
     if (facts.channelsWithoutNode[a] > 0)
       out.warnings.push_back("animation " + std::to_string(a) + ": " + std::to_string(facts.channelsWithoutNode[a]) +
                              " channels have no target node (KHR_animation_pointer?); skipped");
-  for (const std::string& ext : model.extensionsRequired) {
-    if (!kHarmlessRequiredExtensions.count(ext)) refuse("requires unsupported extension " + ext);
-  }
+  for (const std::string& ext : model.extensionsRequired) refuseUnlessSupported(refuse, ext);
+  decompressGltfModel(model, name, limits, out);
 
   LoadBudget budget;
   const LoaderContext ctx{model, limits, refuse, out, budget};
