@@ -3,7 +3,9 @@
 // refused with one line naming what is missing, and the previous scene stays.
 import assert from 'node:assert/strict';
 import { after, before, describe, test } from 'node:test';
-import { openPage, readModel, snapshot, startBrowser, waitForDrawn } from './harness.mjs';
+import fs from 'node:fs';
+import path from 'node:path';
+import { openPage, readModel, snapshot, sourceDir, startBrowser, waitForDrawn } from './harness.mjs';
 
 let session;
 
@@ -51,6 +53,41 @@ describe('compressed glTF in the browser', () => {
       console.log(`Draco vs .glb mask: ${differing} of ${covered} covered pixels differ`);
       assert.ok(covered > 2000, `the engine covers only ${covered} pixels`);
       assert.ok(differing <= 0.01 * covered, `${differing} pixels differ`);
+      assert.deepEqual(page.errors, []);
+    } finally {
+      await page.close();
+    }
+  });
+
+  test('a meshopt file with quantized attributes, and points and lines, are drawn', { timeout: 180000 }, async () => {
+    const page = await openPage(await session.newContext(), `${session.baseUrl}?view=mask`);
+    try {
+      // The fuzzer's seed (tests/fuzz/seeds/make-compressed-seeds.mjs): a meshopt grid, u16 positions, octahedral
+      // normals, data only compressed.
+      const seed = fs.readFileSync(path.join(sourceDir, 'tests', 'fuzz', 'seeds', 'meshopt-quantized.glb'));
+      const grid = await load(page, 'meshopt-quantized.glb', seed);
+      assert.equal(grid.error, undefined, grid.error);
+      assert.equal(grid.scene.triangles, 128);
+      await waitForDrawn(page);
+      const covered = maskFraction(await snapshot(page));
+      assert.ok(covered > 2000, `the meshopt grid covers only ${covered} pixels`);
+      // Lines: white on the background in the final image, and nothing in the G-buffer's mask.
+      const lines = await load(page, 'Mesh_PrimitiveMode_01.gltf',
+                               readModel('glTF-Asset-Generator/Mesh_PrimitiveMode/Mesh_PrimitiveMode_01.gltf'),
+                               { 'Mesh_PrimitiveMode_01.bin':
+                                 readModel('glTF-Asset-Generator/Mesh_PrimitiveMode/Mesh_PrimitiveMode_01.bin') });
+      assert.equal(lines.error, undefined, lines.error);
+      await waitForDrawn(page);
+      assert.equal(maskFraction(await snapshot(page)), 0, 'lines are not in the G-buffer');
+      await page.evaluate(() => window.obscura.setView('final'));
+      await waitForDrawn(page);
+      const image = await snapshot(page);
+      let white = 0;
+      for (let i = 0; i < image.pixels.length; i += 4) {
+        white += image.pixels[i] > 200 && image.pixels[i + 1] > 200 && image.pixels[i + 2] > 200;
+      }
+      console.log(`lines: ${white} white pixels of ${image.pixels.length / 4}`);
+      assert.ok(white > 100, `only ${white} pixels of the lines`);
       assert.deepEqual(page.errors, []);
     } finally {
       await page.close();
