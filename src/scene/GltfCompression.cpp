@@ -70,20 +70,6 @@ struct DecodeBudget {
   }
 };
 
-// A new buffer holding `data` and a buffer view over all of it; returns the view's index.
-int appendBufferView(tinygltf::Model& model, std::vector<unsigned char> data, int byteStride) {
-  tinygltf::Buffer buffer;
-  buffer.data = std::move(data);
-  tinygltf::BufferView view;
-  view.buffer = static_cast<int>(model.buffers.size());
-  view.byteOffset = 0;
-  view.byteLength = buffer.data.size();
-  view.byteStride = static_cast<size_t>(byteStride);
-  model.buffers.push_back(std::move(buffer));
-  model.bufferViews.push_back(view);
-  return static_cast<int>(model.bufferViews.size()) - 1;
-}
-
 // The bytes [offset, offset + length) of buffer `index`, checked.
 const unsigned char* bufferRange(const tinygltf::Model& model, const std::string& file, const std::string& what,
                                  std::int64_t index, std::uint64_t offset, std::uint64_t length) {
@@ -183,6 +169,30 @@ void decodeMeshoptViews(tinygltf::Model& model, const std::string& file, const G
 // (https://github.com/KhronosGroup/glTF/tree/main/extensions/2.0/Khronos/KHR_draco_mesh_compression)
 
 #if OBSCURA_HAS_DRACO
+// A new buffer holding `data` and a buffer view over all of it; returns the view's index.
+int appendBufferView(tinygltf::Model& model, std::vector<unsigned char> data, int byteStride) {
+  tinygltf::Buffer buffer;
+  buffer.data = std::move(data);
+  tinygltf::BufferView view;
+  view.buffer = static_cast<int>(model.buffers.size());
+  view.byteOffset = 0;
+  view.byteLength = buffer.data.size();
+  view.byteStride = static_cast<size_t>(byteStride);
+  model.buffers.push_back(std::move(buffer));
+  model.bufferViews.push_back(view);
+  return static_cast<int>(model.bufferViews.size()) - 1;
+}
+
+int accessorComponents(int type) {
+  switch (type) {
+    case TINYGLTF_TYPE_SCALAR: return 1;
+    case TINYGLTF_TYPE_VEC2: return 2;
+    case TINYGLTF_TYPE_VEC3: return 3;
+    case TINYGLTF_TYPE_VEC4: return 4;
+    default: return 0;
+  }
+}
+
 template <typename T>
 std::vector<unsigned char> convertDracoAttribute(const draco::PointAttribute& attribute, size_t points,
                                                  int components, bool* ok) {
@@ -216,16 +226,6 @@ std::vector<unsigned char> convertDracoAttribute(const draco::PointAttribute& at
   }
 }
 #endif
-
-int accessorComponents(int type) {
-  switch (type) {
-    case TINYGLTF_TYPE_SCALAR: return 1;
-    case TINYGLTF_TYPE_VEC2: return 2;
-    case TINYGLTF_TYPE_VEC3: return 3;
-    case TINYGLTF_TYPE_VEC4: return 4;
-    default: return 0;
-  }
-}
 
 void decodeDracoPrimitives(tinygltf::Model& model, const std::string& file, const GltfLimits& limits,
                            GltfLoadReport& report, DecodeBudget& budget) {
