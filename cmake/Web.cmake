@@ -2,7 +2,8 @@
 # libraries are defined: the same libraries and shaders, plus the WebGL front-end (platform/WebCanvas) and the
 # exported C API (apps/obscura_web.cpp) that web/obscura.js wraps. The demo page is assembled in <build>/site:
 #   obscura-core.js + obscura-core.wasm   the module (an ES module factory: createObscuraCore)
-#   index.html, app.js, obscura.js, style.css   copied from web/
+#   index.html, app.js, obscura.js, gltf-decoders.js, style.css   copied from web/
+#   decoders/   the npm Draco and meshopt decoders (web/package.json)
 # Build with tools/build-web.sh.
 
 # The core reports bad input with exceptions (InputError): catching them needs exception support on every object
@@ -35,13 +36,28 @@ target_link_options(obscura-web PRIVATE
   -sEXPORTED_RUNTIME_METHODS=ccall,UTF8ToString)
 
 # The page's static files, copied whenever they change.
-set(web_files index.html app.js obscura.js style.css)
+set(web_files index.html app.js obscura.js gltf-decoders.js style.css)
 set(site_files "")
 foreach(file IN LISTS web_files)
   add_custom_command(OUTPUT "${OBSCURA_SITE_DIR}/${file}"
                      COMMAND "${CMAKE_COMMAND}" -E copy "${CMAKE_SOURCE_DIR}/web/${file}" "${OBSCURA_SITE_DIR}/${file}"
                      DEPENDS "${CMAKE_SOURCE_DIR}/web/${file}")
   list(APPEND site_files "${OBSCURA_SITE_DIR}/${file}")
+endforeach()
+# The npm glTF geometry decoders (web/package.json: draco3d, meshoptimizer), which tools/build-web.sh installs into
+# web/node_modules, into the site's decoders/ folder (web/gltf-decoders.js loads them from there).
+set(decoder_files "draco3d/draco_decoder_nodejs.js" "draco3d/draco_decoder.wasm"
+                  "meshoptimizer/meshopt_decoder.module.js")
+foreach(file IN LISTS decoder_files)
+  get_filename_component(name "${file}" NAME)
+  set(source "${CMAKE_SOURCE_DIR}/web/node_modules/${file}")
+  if(NOT EXISTS "${source}")
+    message(FATAL_ERROR "Missing ${source}: run npm ci in web/ (tools/build-web.sh does)")
+  endif()
+  add_custom_command(OUTPUT "${OBSCURA_SITE_DIR}/decoders/${name}"
+                     COMMAND "${CMAKE_COMMAND}" -E copy "${source}" "${OBSCURA_SITE_DIR}/decoders/${name}"
+                     DEPENDS "${source}")
+  list(APPEND site_files "${OBSCURA_SITE_DIR}/decoders/${name}")
 endforeach()
 add_custom_target(obscura-site ALL DEPENDS ${site_files})
 add_dependencies(obscura-site obscura-web)

@@ -82,7 +82,14 @@ void expectConsistentMotion(const Scene& scene, const std::string& file) {
 
 // What the renderer relies on from a loaded scene.
 void expectDrawable(const Scene& scene, const std::string& file) {
-  ASSERT_FALSE(scene.instances.empty()) << file;
+  ASSERT_FALSE(scene.instances.empty() && scene.lineInstances.empty()) << file;
+  for (const LineInstance& instance : scene.lineInstances) {
+    ASSERT_LT(static_cast<size_t>(instance.mesh), scene.lineMeshes.size()) << file;
+    const LineMesh& lines = scene.lineMeshes[static_cast<size_t>(instance.mesh)];
+    ASSERT_FALSE(lines.positions.empty()) << file;
+    ASSERT_TRUE(lines.points || lines.positions.size() % 2 == 0) << file;
+    ASSERT_TRUE(lines.colors.empty() || lines.colors.size() == lines.positions.size()) << file;
+  }
   for (const Instance& instance : scene.instances) {
     ASSERT_GE(instance.mesh, 0) << file;
     ASSERT_LT(static_cast<size_t>(instance.mesh), scene.meshes.size()) << file;
@@ -139,10 +146,8 @@ TEST(GltfCorpus, KnownBrokenFilesSayWhatIsWrong) {
       {"IndexOutOfRange/AllIndicesOutOfRange.gltf", "has index 65535 but only 24 vertices"},
       {"MissingBin/BoxTextured.gltf", "BoxTextured0.bin"},
       {"RecursiveNodes/RecursiveNodes.gltf", "cycle"},
-      {"draco/2CylinderEngine.gltf", "requires unsupported extension KHR_draco_mesh_compression"},
       {"BoxTextured-glTF-techniqueWebGL/BoxTextured.gltf", "requires unsupported extension KHR_technique_webgl"},
-      {"glTF-Asset-Generator/Mesh_PrimitiveMode/Mesh_PrimitiveMode_00.gltf", "only point or line primitives"},
-      {"TestNoRootNode/SceneWithoutNodes.gltf", "no triangle geometry"},
+      {"TestNoRootNode/SceneWithoutNodes.gltf", "no triangle, line or point geometry"},
   };
   for (const auto& [relative, fragment] : expected) {
     const std::string file = test::assimpModels() + "/" + relative;
@@ -152,6 +157,30 @@ TEST(GltfCorpus, KnownBrokenFilesSayWhatIsWrong) {
     } catch (const InputError& e) {
       EXPECT_NE(std::string(e.what()).find(fragment), std::string::npos) << e.what();
     }
+  }
+}
+
+// glTF-Asset-Generator's Mesh_PrimitiveMode: points, lines, line loops and strips, each without and with indices
+// (00 .. 03, 07 .. 10), are drawn as such; strips and loops become segment lists.
+TEST(GltfCorpus, PointAndLinePrimitivesLoadAsLines) {
+  struct Expected {
+    int file;
+    bool points;
+    size_t vertices;  // after strips and loops are expanded into segments
+  };
+  // 00 / 07: 1024 points; 01 / 08: 4 segments; 02 / 09: a loop of 4 (4 segments); 03 / 10: a strip of 5 (4).
+  const Expected expected[] = {{0, true, 1024}, {1, false, 8}, {2, false, 8}, {3, false, 8},
+                               {7, true, 1024}, {8, false, 8}, {9, false, 8}, {10, false, 8}};
+  for (const Expected& e : expected) {
+    char name[96];
+    std::snprintf(name, sizeof name, "/glTF-Asset-Generator/Mesh_PrimitiveMode/Mesh_PrimitiveMode_%02d.gltf", e.file);
+    const Scene scene = loadGltfFile(test::assimpModels() + name);
+    EXPECT_TRUE(scene.instances.empty()) << name;
+    ASSERT_EQ(scene.lineInstances.size(), 1u) << name;
+    ASSERT_EQ(scene.lineMeshes.size(), 1u) << name;
+    EXPECT_EQ(scene.lineMeshes[0].points, e.points) << name;
+    EXPECT_EQ(scene.lineMeshes[0].positions.size(), e.vertices) << name;
+    EXPECT_GT(scene.worldBounds().radius(), 0.1f) << name;  // the camera frames them
   }
 }
 
@@ -275,11 +304,18 @@ TEST(GltfCorpus, FuzzerSeedsLoadWithTheirMotion) {
     GltfLoadReport report;
     const Scene scene = loadGltfFile(file, &report);
     expectDrawable(scene, file);
+    ++count;
+    // The compressed seeds (make-compressed-seeds.mjs) are still; the others move.
+    if (entry.path().filename() == "meshopt-quantized.glb") {
+      EXPECT_EQ(scene.triangleCount(), 128u) << file;
+      EXPECT_EQ(scene.lineInstances.size(), 1u) << file;
+      continue;
+    }
+    if (entry.path().filename() == "draco-engine.glb") continue;
     EXPECT_FALSE(scene.animations.empty()) << file;
     EXPECT_TRUE(scene.animated()) << file;
-    ++count;
   }
-  EXPECT_EQ(count, 3);
+  EXPECT_EQ(count, 5);
 }
 
 // Inputs the fuzzer (tests/fuzz, tools/fuzz-gltf.sh) once broke the loader with; each must now be refused cleanly.

@@ -79,7 +79,11 @@ TEST(Resources, AGlErrorRaisedInAPassNamesThatPass) {
     }
   };
   Renderer renderer = test::makeRenderer();
-  renderer.setScene(makeBuiltinScene());
+  // The built-in scene with a line across it, so that the points-and-lines pass runs too.
+  Scene scene = makeBuiltinScene();
+  scene.lineMeshes.push_back({false, {glm::vec3(-1.0f, 1.0f, 0.0f), glm::vec3(1.0f, 1.0f, 0.0f)}, {}, -1});
+  scene.lineInstances.push_back({0, glm::mat4(1.0f), -1});
+  renderer.setScene(scene);
   const Camera camera = builtinSceneCamera(32, 24);
   const gl::RenderTarget output("output", camera.width, camera.height, GL_NEAREST,
                                 gl::RenderTarget::Depth::Renderbuffer, test::context().caps().depth24);

@@ -10,6 +10,8 @@ packages=(
   libosmesa6-dev libegl-dev libegl-mesa0 libgles-dev libglfw3-dev
   # header-only libraries
   libglm-dev libtinygltf-dev libstb-dev nlohmann-json3-dev
+  # compressed glTF geometry (KHR_draco_mesh_compression, EXT_meshopt_compression)
+  libdraco-dev libmeshoptimizer-dev
   # tests and tools
   libgtest-dev glslang-tools assimp-testmodels gnuplot-nox
   # sanitizers and fuzzing (clang's runtime)

@@ -11,6 +11,7 @@
 // Everything that describes effects and parameters (names, kinds, ranges, presets, views, passes, keys) comes from
 // the core's effect table, so a page never repeats it.
 import createObscuraCore from './obscura-core.js';
+import { decodeCompressedGltf } from './gltf-decoders.js';
 
 // A refused call: an unknown parameter, a value out of range, a file that is not valid glTF. `message` is one line
 // meant for the user.
@@ -199,9 +200,19 @@ export class Obscura extends EventTarget {
   // sideFiles, keyed by the URI the file uses: {'scene.bin': bytes, ...}. Resolves to scene(); on a bad file it
   // rejects with ObscuraError and the previous scene stays on screen. The AO radius becomes the new scene's
   // defaultRadius, unless setState() gave one (then it is kept); set('ao.radius', r) after loading overrides it.
+  // Draco (KHR_draco_mesh_compression) and meshopt (EXT_meshopt_compression) geometry is decoded first, by the npm
+  // decoders in the site's decoders/ folder (gltf-decoders.js); a missing decoder rejects with ObscuraError.
   async loadScene(bytes, name, sideFiles = {}) {
     // Let the page paint its progress indicator before the (synchronous) parse and upload.
     await new Promise((resolve) => requestAnimationFrame(() => setTimeout(resolve, 0)));
+    bytes = bytes instanceof Uint8Array ? bytes : new Uint8Array(bytes);
+    let decoded = null;
+    try {
+      decoded = await decodeCompressedGltf(bytes, sideFiles);
+    } catch (e) {
+      throw new ObscuraError(`${name}: ${e.message}`);
+    }
+    if (decoded) ({ bytes, sideFiles } = decoded);
     for (const [uri, data] of Object.entries(sideFiles)) {
       this.withBytes(data, (pointer, size) => this.core.ccall('obscura_add_side_file', null,
                                                              ['string', 'number', 'number'], [uri, pointer, size]));

@@ -7,6 +7,7 @@
 #include "core/FxaaEffect.h"
 #include "core/GBufferEffect.h"
 #include "core/LightingEffect.h"
+#include "core/LinesEffect.h"
 #include "core/MotionBlurEffect.h"
 #include "core/TaaEffect.h"
 #include "core/TonemapEffect.h"
@@ -23,6 +24,7 @@ const std::vector<EffectEntry>& effectTable() {
         EffectEntry::of<VelocityEffect>(),  // scene, gbuffer (and its depth) -> velocity (motion vectors)
         EffectEntry::of<AoEffect>(),        // gbuffer -> ao
         EffectEntry::of<LightingEffect>(),  // scene, ao, the G-buffer's depth -> scene-color (HDR)
+        EffectEntry::of<LinesEffect>(),     // scene-color, the G-buffer's depth, points and lines -> scene-color
         EffectEntry::of<TaaEffect>(),       // scene-color, velocity, gbuffer, history -> scene-color (HDR)
         EffectEntry::of<TonemapEffect>(),   // scene-color -> display-color (sRGB, luma in alpha)
         EffectEntry::of<MotionBlurEffect>(),  // display-color, velocity, gbuffer -> display-color

@@ -42,6 +42,7 @@ struct FrameContext {
   // The time of the previous pose (FrameOptions::previousTime, else the previous frame's time, else `time`).
   double previousTime = 0.0;
   double deltaTime = 0.0;      // time - previousTime
+  bool linesOrPoints = false;  // the scene has points or lines to draw (core/LinesEffect.h)
 };
 
 // Halton low-discrepancy sequence (radical inverse of `index` in `base`), index >= 1: the jitter of temporal

@@ -171,6 +171,7 @@ GpuScene::GpuScene(const Scene& scene, const gl::GlCaps& caps, const Options& op
   }
   glBindBuffer(GL_ARRAY_BUFFER, 0);
   glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, 0);
+  lines_ = GpuLines(scene);
 
   skins_.resize(scene.skins.size());
   for (size_t s = 0; s < scene.skins.size(); ++s) {
@@ -253,6 +254,7 @@ GeometryUniforms::GeometryUniforms(const gl::Program& program)
 }
 
 void GpuScene::setPose(const ScenePose& current, const ScenePose& previous) {
+  lines_.setPose(current);
   std::vector<bool> skinMoving(skins_.size(), false);
   for (size_t s = 0; s < skins_.size(); ++s) {
     SkinGpu& skin = skins_[s];

@@ -21,6 +21,7 @@
 
 #include <glm/mat4x4.hpp>
 
+#include "core/GpuLines.h"
 #include "core/MaterialKind.h"
 #include "core/RendererOptions.h"
 #include "core/VertexKind.h"
@@ -78,6 +79,8 @@ class GpuScene {
   void draw(const glm::mat4& view, const ProgramChoice& choose) const { draw(view, choose, DrawOptions{}); }
 
   std::size_t pieceCount() const { return pieces_.size(); }
+  // The scene's points and lines (not surfaces: no G-buffer, no AO), posed by setPose; core/LinesEffect.h draws them.
+  const GpuLines& lines() const { return lines_; }
   bool usesUint32Indices() const;
   // Something moves between the previous pose and this one (an instance, a joint or a morph weight).
   bool anyMoving() const;
@@ -138,6 +141,7 @@ class GpuScene {
   std::vector<InstanceGpu> instances_;
   std::vector<SkinGpu> skins_;
   std::vector<gl::TextureHandle> textures_;
+  GpuLines lines_;
   SkinningPath skinningPath_ = SkinningPath::Uniforms;
   int paletteSize_ = 0;
   VertexLimits limits_;

@@ -63,7 +63,8 @@ Renderer::Renderer(const gl::GlCaps& caps, const RendererOptions& options)
   }
   // The table must add up before any frame: plan one with every effect on, at the defaults, for the final image
   // and for every view (PipelineError names the pass and the target that does not).
-  const FrameContext probe;
+  FrameContext probe;
+  probe.linesOrPoints = true;  // so that the points-and-lines pass is checked too
   RenderSettings everyEffect;
   for (size_t row = 0; row < effectTable().size(); ++row)
     if (effectTable()[row].info.hasSwitch) everyEffect.set(effectTable()[row].info.name, "on");
@@ -195,6 +196,7 @@ void Renderer::beginFrame(const Camera& camera, const RenderSettings& settings, 
   frame.time = time;
   frame.previousTime = options.previousTime.value_or(hasPrevious_ ? previousTime_ : time);
   frame.deltaTime = time - frame.previousTime;
+  frame.linesOrPoints = !scene_.lines().empty();
   frame_ = std::move(frame);
 
   // The scene's pose now and at the previous time (the last frame's pose when that is the one asked for).

@@ -18,6 +18,7 @@
 #include <tiny_gltf.h>
 
 #include "base/Error.h"
+#include "scene/GltfCompression.h"
 #include "scene/MeshProcessing.h"
 
 namespace obscura {
@@ -411,6 +412,20 @@ void loadSkinAttributes(const LoaderContext& ctx, const tinygltf::Primitive& pri
                                          "WEIGHTS_0 renormalised");
 }
 
+// A vertex attribute in the component types its use allows: glTF 2.0's (3.7.2.1), widened by KHR_mesh_quantization
+// when the file uses it (GltfCompression.h). Integer types read as integers unless the accessor is normalized.
+std::vector<double> readVertexAttribute(const LoaderContext& ctx, int accessorIndex, const std::string& what,
+                                        int components, const char* use) {
+  const AttributeTypes types = quantizedAttributeTypes(use, usesMeshQuantization(ctx.model));
+  std::vector<double> values = readAccessor(ctx, accessorIndex, what, components, types.allowed);
+  const tinygltf::Accessor& accessor = ctx.model.accessors[static_cast<size_t>(accessorIndex)];
+  if (!accessor.normalized && std::find(types.normalizedOnly.begin(), types.normalizedOnly.end(),
+                                        accessor.componentType) != types.normalizedOnly.end())
+    ctx.refuse(what + " (accessor " + std::to_string(accessorIndex) + ") has component type " +
+               componentTypeName(accessor.componentType) + " without normalized: true, which glTF does not allow");
+  return values;
+}
+
 // Morph targets (glTF 2.0 sec. 3.7.2.2): per target, POSITION and NORMAL displacements, float VEC3, one per vertex
 // (sparse accessors welcome: targets are mostly zeros). TANGENT and any other attribute are ignored: nothing here
 // uses tangents. A target without POSITION displaces nothing.
@@ -427,7 +442,8 @@ void loadMorphTargets(const LoaderContext& ctx, const tinygltf::Primitive& primi
       auto it = primitive.targets[t].find(name);
       if (it == primitive.targets[t].end()) continue;
       const std::vector<double> deltas =
-          readAccessor(ctx, it->second, target + " " + name, 3, {TINYGLTF_COMPONENT_TYPE_FLOAT});
+          readVertexAttribute(ctx, it->second, target + " " + name, 3,
+                              std::strcmp(name, "POSITION") == 0 ? "MORPH_POSITION" : "MORPH_NORMAL");
       if (deltas.size() / 3 != vertexCount)
         ctx.refuse(target + " has " + std::to_string(deltas.size() / 3) + " " + name + " displacements for " +
                    std::to_string(vertexCount) + " positions");
@@ -447,14 +463,13 @@ Mesh loadPrimitive(const LoaderContext& ctx, const tinygltf::Primitive& primitiv
   const int mode = primitive.mode < 0 ? TINYGLTF_MODE_TRIANGLES : primitive.mode;
   if (mode != TINYGLTF_MODE_TRIANGLES && mode != TINYGLTF_MODE_TRIANGLE_STRIP && mode != TINYGLTF_MODE_TRIANGLE_FAN) {
     if (mode < 0 || mode > 6) ctx.refuse(what + " has primitive mode " + std::to_string(mode) + ", not a glTF mode");
-    *skipped = true;  // points and lines have no surface to occlude
+    *skipped = true;  // points and lines have no surface to occlude: loadLinePrimitive reads them
     return mesh;
   }
   auto attribute = [&](const char* name) { return attributeAccessor(primitive, name); };
   const int positionAccessor = attribute("POSITION");
   if (positionAccessor < 0) ctx.refuse(what + " has no POSITION attribute");
-  mesh.positions = toVectors<3>(readAccessor(ctx, positionAccessor, what + " POSITION", 3,
-                                             {TINYGLTF_COMPONENT_TYPE_FLOAT}));
+  mesh.positions = toVectors<3>(readVertexAttribute(ctx, positionAccessor, what + " POSITION", 3, "POSITION"));
   for (size_t i = 0; i < mesh.positions.size(); ++i) {
     const glm::vec3& p = mesh.positions[i];
     if (!std::isfinite(p.x) || !std::isfinite(p.y) || !std::isfinite(p.z))
@@ -465,7 +480,7 @@ Mesh loadPrimitive(const LoaderContext& ctx, const tinygltf::Primitive& primitiv
   const int normalAccessor = attribute("NORMAL");
   bool normalsUsable = false;
   if (normalAccessor >= 0) {
-    mesh.normals = toVectors<3>(readAccessor(ctx, normalAccessor, what + " NORMAL", 3, {TINYGLTF_COMPONENT_TYPE_FLOAT}));
+    mesh.normals = toVectors<3>(readVertexAttribute(ctx, normalAccessor, what + " NORMAL", 3, "NORMAL"));
     if (mesh.normals.size() != vertexCount)
       ctx.refuse(what + " has " + std::to_string(mesh.normals.size()) + " normals for " +
                  std::to_string(vertexCount) + " positions");
@@ -484,15 +499,9 @@ Mesh loadPrimitive(const LoaderContext& ctx, const tinygltf::Primitive& primitiv
 
   const int uvAccessor = attribute("TEXCOORD_0");
   if (uvAccessor >= 0) {
-    mesh.texcoords = toVectors<2>(readAccessor(ctx, uvAccessor, what + " TEXCOORD_0", 2,
-                                               {TINYGLTF_COMPONENT_TYPE_FLOAT, TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE,
-                                                TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT}));
-    // glTF 2.0 (3.7.2.1) allows integer texture coordinates only normalised; raw integers would be read as
-    // coordinates hundreds of textures wide.
-    const tinygltf::Accessor& uvs = ctx.model.accessors[static_cast<size_t>(uvAccessor)];
-    if (uvs.componentType != TINYGLTF_COMPONENT_TYPE_FLOAT && !uvs.normalized)
-      ctx.refuse(what + " TEXCOORD_0 (accessor " + std::to_string(uvAccessor) + ") has component type " +
-                 componentTypeName(uvs.componentType) + " without normalized: true, which glTF does not allow");
+    // glTF 2.0 (3.7.2.1) allows integer texture coordinates only normalised (raw integers would be coordinates
+    // hundreds of textures wide); KHR_mesh_quantization allows them raw, scaled by KHR_texture_transform.
+    mesh.texcoords = toVectors<2>(readVertexAttribute(ctx, uvAccessor, what + " TEXCOORD_0", 2, "TEXCOORD"));
     if (mesh.texcoords.size() != vertexCount)
       ctx.refuse(what + " has " + std::to_string(mesh.texcoords.size()) + " texture coordinates for " +
                  std::to_string(vertexCount) + " positions");
@@ -521,6 +530,83 @@ Mesh loadPrimitive(const LoaderContext& ctx, const tinygltf::Primitive& primitiv
   mesh.material = primitive.material;
   if (!normalsUsable) generateFlatNormals(mesh);
   return mesh;
+}
+
+// A POINTS, LINES, LINE_LOOP or LINE_STRIP primitive as a LineMesh: POSITION (float, or quantized under
+// KHR_mesh_quantization), COLOR_0 (float or normalised u8/u16, RGB or RGBA), indices as for triangles. Strips and
+// loops become segment lists; a zero-length segment is kept (it covers a pixel, as a point would).
+LineMesh loadLinePrimitive(const LoaderContext& ctx, const tinygltf::Primitive& primitive, const std::string& what) {
+  const int mode = primitive.mode;
+  LineMesh lines;
+  lines.points = mode == TINYGLTF_MODE_POINTS;
+  const int positionAccessor = attributeAccessor(primitive, "POSITION");
+  if (positionAccessor < 0) ctx.refuse(what + " has no POSITION attribute");
+  const std::vector<glm::vec3> positions =
+      toVectors<3>(readVertexAttribute(ctx, positionAccessor, what + " POSITION", 3, "POSITION"));
+  for (size_t i = 0; i < positions.size(); ++i)
+    if (!std::isfinite(positions[i].x) || !std::isfinite(positions[i].y) || !std::isfinite(positions[i].z))
+      ctx.refuse(what + " POSITION " + std::to_string(i) + " is not finite (NaN or Inf)");
+  std::vector<glm::vec4> colors;
+  const int colorAccessor = attributeAccessor(primitive, "COLOR_0");
+  if (colorAccessor >= 0) {
+    const tinygltf::Accessor& accessor = ctx.model.accessors.at(static_cast<size_t>(colorAccessor));
+    const int components = accessor.type == TINYGLTF_TYPE_VEC3 ? 3 : 4;
+    const std::vector<double> values =
+        readAccessor(ctx, colorAccessor, what + " COLOR_0", components,
+                     {TINYGLTF_COMPONENT_TYPE_FLOAT, TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE,
+                      TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT});
+    if (accessor.componentType != TINYGLTF_COMPONENT_TYPE_FLOAT && !accessor.normalized)
+      ctx.refuse(what + " COLOR_0 (accessor " + std::to_string(colorAccessor) + ") has component type " +
+                 componentTypeName(accessor.componentType) + " without normalized: true, which glTF does not allow");
+    if (values.size() / static_cast<size_t>(components) != positions.size())
+      ctx.refuse(what + " has " + std::to_string(values.size() / static_cast<size_t>(components)) +
+                 " colours for " + std::to_string(positions.size()) + " positions");
+    for (size_t i = 0; i < positions.size(); ++i) {
+      glm::vec4 c(1.0f);
+      for (int k = 0; k < components; ++k) {
+        const double v = values[i * static_cast<size_t>(components) + static_cast<size_t>(k)];
+        c[k] = std::isfinite(v) ? static_cast<float>(std::clamp(v, 0.0, 1.0)) : 0.0f;
+      }
+      colors.push_back(c);
+    }
+  }
+  std::vector<std::uint32_t> order;
+  if (primitive.indices >= 0) {
+    const std::vector<double> values =
+        readAccessor(ctx, primitive.indices, what + " indices", 1,
+                     {TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE, TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT,
+                      TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT});
+    for (double v : values) {
+      if (v >= static_cast<double>(positions.size()))
+        ctx.refuse(what + " has index " + std::to_string(static_cast<std::uint64_t>(v)) + " but only " +
+                   std::to_string(positions.size()) + " vertices");
+      order.push_back(static_cast<std::uint32_t>(v));
+    }
+  } else {
+    for (size_t i = 0; i < positions.size(); ++i) order.push_back(static_cast<std::uint32_t>(i));
+  }
+  std::vector<std::uint32_t> corners;  // points, or segment ends in pairs
+  if (mode == TINYGLTF_MODE_POINTS) {
+    corners = order;
+  } else if (mode == TINYGLTF_MODE_LINE) {
+    if (order.size() % 2 != 0)
+      ctx.report.warnings.push_back(what + ": index count " + std::to_string(order.size()) +
+                                    " is odd; the last partial line is ignored");
+    corners.assign(order.begin(), order.begin() + static_cast<std::ptrdiff_t>(order.size() / 2 * 2));
+  } else {
+    for (size_t i = 1; i < order.size(); ++i) corners.insert(corners.end(), {order[i - 1], order[i]});
+    if (mode == TINYGLTF_MODE_LINE_LOOP && order.size() > 2) corners.insert(corners.end(), {order.back(), order[0]});
+  }
+  if (corners.size() > ctx.limits.maxAccessorElements)
+    ctx.refuse(what + " expands to " + std::to_string(corners.size()) + " vertices, over the limit");
+  for (std::uint32_t c : corners) {
+    lines.positions.push_back(positions[c]);
+    if (!colors.empty()) lines.colors.push_back(colors[c]);
+  }
+  if (primitive.material >= 0 && static_cast<size_t>(primitive.material) >= ctx.model.materials.size())
+    ctx.refuse(what + " refers to material " + std::to_string(primitive.material) + ", which does not exist");
+  lines.material = primitive.material;
+  return lines;
 }
 
 // A node's rest transform, checked: a matrix of 16 finite numbers, or finite TRS with a non-zero rotation (kept
@@ -622,9 +708,6 @@ class SceneBuilder {
     for (int root : roots()) visit(root, -1);
     placeInstances();
     loadAnimations();
-    if (scene_.instances.empty() && skippedPrimitives_ > 0)
-      ctx_.refuse("has only point or line primitives (" + std::to_string(skippedPrimitives_) +
-                  "), which have no surfaces to shade");
   }
 
  private:
@@ -729,7 +812,13 @@ class SceneBuilder {
     const std::string what = "mesh " + std::to_string(meshIndex) + " primitive " + std::to_string(primitive);
     bool skipped = false;
     Mesh mesh = loadPrimitive(ctx_, source, what, skinned, &skipped);
-    if (skipped) ++skippedPrimitives_;
+    if (skipped) {
+      LineMesh lines = loadLinePrimitive(ctx_, source, what);
+      if (!lines.positions.empty()) {
+        lineMeshes_[key] = static_cast<int>(scene_.lineMeshes.size());
+        scene_.lineMeshes.push_back(std::move(lines));
+      }
+    }
     int index = -1;
     if (!skipped && !mesh.indices.empty()) {
       if (!skinned && attributeAccessor(source, "JOINTS_0") >= 0)
@@ -809,6 +898,12 @@ class SceneBuilder {
       for (size_t p = 0; p < mesh.primitives.size(); ++p) {
         const bool skinned = source.skin >= 0 && attributeAccessor(mesh.primitives[p], "JOINTS_0") >= 0;
         const int meshIndex = primitiveMesh(source.mesh, p, skinned);
+        const auto lines = lineMeshes_.find(std::make_tuple(source.mesh, p, skinned));
+        if (lines != lineMeshes_.end()) {
+          scene_.lineInstances.push_back({lines->second, restWorld_[n], static_cast<int>(n)});
+          if (scene_.lineInstances.size() > ctx_.limits.maxInstances)
+            ctx_.refuse("places more than " + std::to_string(ctx_.limits.maxInstances) + " point or line instances");
+        }
         if (meshIndex < 0) continue;
         Instance instance;
         instance.mesh = meshIndex;
@@ -1006,7 +1101,7 @@ class SceneBuilder {
   std::map<std::tuple<int, size_t, bool>, int> primitiveMeshes_;  // (mesh, primitive, skinned) -> Scene mesh
   std::vector<int> maxJoint_;                                 // per Scene mesh: its highest joint index, -1: none
   std::map<int, int> skins_;                                  // glTF skin -> Scene skin
-  int skippedPrimitives_ = 0;                                 // points and lines
+  std::map<std::tuple<int, size_t, bool>, int> lineMeshes_;  // (mesh, primitive, skinned) -> Scene::lineMeshes
 };
 
 struct ImageLoadContext {
@@ -1125,6 +1220,14 @@ std::string firstLine(const std::string& text) {
   return line.empty() ? "unknown error" : line;
 }
 
+// A required extension is loaded (compression, quantization), harmless, or the file is refused.
+void refuseUnlessSupported(const Refusal& refuse, const std::string& extension) {
+  if (kHarmlessRequiredExtensions.count(extension)) return;
+  std::string why;
+  if (compressionExtensionSupported(extension, &why)) return;
+  refuse(why.empty() ? "requires unsupported extension " + extension : why);
+}
+
 // What is read from the JSON before tinygltf parses it: the asset's extensionsRequired (a file that needs, say,
 // Draco has accessors without buffer views, and the user should hear about the extension rather than about
 // accessor 0), and per animation the channels whose target has no node (KHR_animation_pointer's), which tinygltf
@@ -1171,8 +1274,10 @@ Scene loadWithResolver(const std::vector<std::uint8_t>& bytes, const std::string
   if (bytes.size() > 0xFFFFFFFFull) refuse("file is larger than 4 GiB");
 
   const DocumentFacts facts = scanDocument(bytes);
-  for (const std::string& ext : facts.requiredExtensions)
-    if (!kHarmlessRequiredExtensions.count(ext)) refuse("requires unsupported extension " + ext);
+  for (const std::string& ext : facts.requiredExtensions) refuseUnlessSupported(refuse, ext);
+  // What tinygltf 2.7 refuses in compressed files, mended (GltfCompression.h).
+  const std::vector<std::uint8_t> prepared = prepareCompressedDocument(bytes);
+  const std::vector<std::uint8_t>& document = prepared.empty() ? bytes : prepared;
 
   tinygltf::TinyGLTF gltf;
   resolver.maxBytes = limits.maxFileBytes;
@@ -1185,10 +1290,10 @@ Scene loadWithResolver(const std::vector<std::uint8_t>& bytes, const std::string
   const bool binary = bytes.size() >= 4 && std::memcmp(bytes.data(), "glTF", 4) == 0;
   bool ok = false;
   try {
-    ok = binary ? gltf.LoadBinaryFromMemory(&model, &err, &warn, bytes.data(), static_cast<unsigned>(bytes.size()),
-                                            resolver.baseDir)
-                : gltf.LoadASCIIFromString(&model, &err, &warn, reinterpret_cast<const char*>(bytes.data()),
-                                           static_cast<unsigned>(bytes.size()), resolver.baseDir);
+    ok = binary ? gltf.LoadBinaryFromMemory(&model, &err, &warn, document.data(),
+                                            static_cast<unsigned>(document.size()), resolver.baseDir)
+                : gltf.LoadASCIIFromString(&model, &err, &warn, reinterpret_cast<const char*>(document.data()),
+                                           static_cast<unsigned>(document.size()), resolver.baseDir);
   } catch (const std::exception& e) {
     refuse(std::string("malformed glTF: ") + e.what());
   }
@@ -1201,9 +1306,8 @@ Scene loadWithResolver(const std::vector<std::uint8_t>& bytes, const std::string
     if (facts.channelsWithoutNode[a] > 0)
       out.warnings.push_back("animation " + std::to_string(a) + ": " + std::to_string(facts.channelsWithoutNode[a]) +
                              " channels have no target node (KHR_animation_pointer?); skipped");
-  for (const std::string& ext : model.extensionsRequired) {
-    if (!kHarmlessRequiredExtensions.count(ext)) refuse("requires unsupported extension " + ext);
-  }
+  for (const std::string& ext : model.extensionsRequired) refuseUnlessSupported(refuse, ext);
+  decompressGltfModel(model, name, limits, out);
 
   LoadBudget budget;
   const LoaderContext ctx{model, limits, refuse, out, budget};
@@ -1211,7 +1315,8 @@ Scene loadWithResolver(const std::vector<std::uint8_t>& bytes, const std::string
   scene.name = name;
   loadMaterials(ctx, scene);
   SceneBuilder(ctx, scene).build();
-  if (scene.instances.empty()) refuse("contains no triangle geometry in its default scene");
+  if (scene.instances.empty() && scene.lineInstances.empty())
+    refuse("contains no triangle, line or point geometry in its default scene");
   const Bounds bounds = scene.worldBounds();
   const glm::vec3 extent = bounds.max - bounds.min;
   if (!std::isfinite(extent.x + extent.y + extent.z)) refuse("scene bounds are not finite after node transforms");

@@ -20,6 +20,9 @@ Bounds Scene::worldBounds() const {
     for (const glm::vec3& p : meshes[static_cast<size_t>(instance.mesh)].positions)
       bounds.add(glm::vec3(instance.world * glm::vec4(p, 1.0f)));
   }
+  for (const LineInstance& instance : lineInstances)
+    for (const glm::vec3& p : lineMeshes[static_cast<size_t>(instance.mesh)].positions)
+      bounds.add(glm::vec3(instance.world * glm::vec4(p, 1.0f)));
   return bounds;
 }
 

@@ -88,6 +88,21 @@ struct Skin {
   int skeleton = -1;
 };
 
+// Points and lines (glTF modes POINTS, LINES, LINE_LOOP, LINE_STRIP): not surfaces, so they have no G-buffer entry and
+// no AO; core/LinesEffect.h draws them unlit into the lit image, depth-tested against the surfaces.
+struct LineMesh {
+  bool points = false;               // GL_POINTS, else GL_LINES
+  std::vector<glm::vec3> positions;  // points: one per point; lines: two per segment (strips and loops expanded)
+  std::vector<glm::vec4> colors;     // empty, or one per position: COLOR_0 (linear RGBA)
+  int material = -1;                 // its base colour factor tints them; -1: white
+};
+
+struct LineInstance {
+  int mesh = 0;           // index into Scene::lineMeshes
+  glm::mat4 world{1.0f};  // at rest
+  int node = -1;          // the node that places it (posed by animation; skins and morph targets are not applied)
+};
+
 struct Instance {
   int mesh = 0;
   glm::mat4 world{1.0f};  // at rest (the node's world matrix without animation)
@@ -140,11 +155,13 @@ struct Scene {
   std::vector<Node> nodes;        // empty for a scene without hierarchy (all instances fixed)
   std::vector<Skin> skins;
   std::vector<Animation> animations;
+  std::vector<LineMesh> lineMeshes;        // points and lines
+  std::vector<LineInstance> lineInstances;
   // The AO radius the scene was designed for, in its units; 0 for none (a loaded file), when defaultAoRadius
   // (scene/SceneScale.h) derives one from the scene's size. The built-in scene: 1 (metre).
   float designedAoRadius = 0.0f;
 
-  Bounds worldBounds() const;  // at rest
+  Bounds worldBounds() const;  // at rest, points and lines included
   std::size_t triangleCount() const;
   // Something can move: an animation, or a skin or morph target a pose could change.
   bool animated() const;
