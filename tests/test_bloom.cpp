@@ -129,7 +129,11 @@ TEST(Bloom, TheChainHasSixLevelsDownToAbout1Of64) {
 TEST(Bloom, HardwareFilteringOfEncodedTexelsIsWrong) {
   std::mt19937 random(15);
   std::uniform_real_distribution<float> exponent(-6.0f, 6.0f);
-  auto colour = [&] { return glm::vec3(std::exp2(exponent(random)), std::exp2(exponent(random)), std::exp2(exponent(random))); };
+  auto channel = [&] { return std::exp2(exponent(random)); };
+  auto colour = [&] {
+    const float r = channel(), g = channel();
+    return glm::vec3(r, g, channel());
+  };
   std::vector<std::pair<glm::vec3, glm::vec3>> pairs;
   for (int i = 0; i < 20000; ++i) pairs.emplace_back(colour(), colour());
   std::printf("hardware-filtered midpoint, error relative to the true mean's largest channel:\n");
@@ -227,7 +231,20 @@ TEST(Bloom, ASingleBrightPixelSpreadsIntoASymmetricFallingGlowCarryingTheStatedE
   EXPECT_NEAR(mx / energy, c + 0.5, 0.1);
   EXPECT_NEAR(my / energy, c + 0.5, 0.1);
   EXPECT_LT(transposed, 0.002 * peak) << "symmetric about the diagonal (RGB9E5's step)";
-  EXPECT_LT(mirrored, 0.15 * peak) << "left and right of the pixel alike";
+  // Left and right of the pixel along its row, relative to the glow there: each level's grid is centred on a corner
+  // of 2^k x 2^k blocks, not on the pixel, so the two sides differ a little (measured: see docs/bloom-and-fog.md).
+  std::printf("left/right asymmetry along the pixel's row, relative:");
+  double worstAsymmetry = 0.0, meanAsymmetry = 0.0;
+  for (int d = 1; d <= 64; ++d) {
+    const double right = out.at(c + d, c).g, left = out.at(c - d, c).g;
+    const double asymmetry = std::abs(right - left) / std::max(right, left);
+    if (d <= 12) std::printf(" %d: %.3f", d, asymmetry);
+    worstAsymmetry = std::max(worstAsymmetry, asymmetry);
+    meanAsymmetry += asymmetry / 64.0;
+  }
+  std::printf("; 1 .. 64 pixels: mean %.3f, worst %.3f\n", meanAsymmetry, worstAsymmetry);
+  EXPECT_LT(meanAsymmetry, 0.02);
+  EXPECT_LT(worstAsymmetry, 0.25);
   // Falling off: the mean glow over rings of one pixel's width around the pixel's centre decreases outwards.
   std::vector<double> ring(side, 0.0);
   std::vector<int> count(side, 0);

@@ -111,8 +111,9 @@ TEST(Fog, EachModeMatchesItsAnalyticFogFactorPerPixel) {
                              1.0f - (static_cast<float>(row) + 0.5f) / static_cast<float>(height));  // top to bottom
           const int code = gbuffer[i + 2] * 256 + gbuffer[i + 3];
           const bool isBackground = code == 65535;
-          const glm::vec3 p = isBackground ? frameCamera.reconstruction.farPlaneRay(uv)
-                                           : frameCamera.reconstruction.viewPosition(uv, static_cast<float>(code) / 65535.0f);
+          const ViewReconstruction& r = frameCamera.reconstruction;
+          const float depth = static_cast<float>(code) / 65535.0f;
+          const glm::vec3 p = isBackground ? r.farPlaneRay(uv) : r.viewPosition(uv, depth);
           const float f = fog.at(p, isBackground);
           partial += f > 0.05f && f < 0.95f;
           background += isBackground;

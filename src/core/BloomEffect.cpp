@@ -58,8 +58,8 @@ int bloomLevels(glm::ivec2 frame) {
 const std::vector<Parameter<BloomSettings>>& BloomSettings::parameters() {
   using S = BloomSettings;
   static const std::vector<Parameter<S>> table = {
-      switchParameter<S>("bloom", "bloom on or off (the light above the threshold, blurred to 1/64 of the frame, added)",
-                         &S::enabled)
+      switchParameter<S>("bloom", "bloom on or off (the light above the threshold, blurred to 1/64 of the frame, "
+                         "added)", &S::enabled)
           .primary(),
       numberParameter<S>("threshold", 0, 65408, "linear HDR",
                          "the brightness (largest channel) above which light blooms; nothing at or below it does",
@@ -72,7 +72,8 @@ const std::vector<Parameter<BloomSettings>>& BloomSettings::parameters() {
                          &S::intensity)
           .primary(),
       numberParameter<S>("radius", 0, 1, "",
-                         "the glow's width: the weight of the wider levels in each upsample (0: 1/2 only, 1: 1/64 only)",
+                         "the glow's width: the weight of the wider levels in each upsample (0: 1/2 only, 1: 1/64 "
+                         "only)",
                          &S::radius)
           .primary()};
   return table;
