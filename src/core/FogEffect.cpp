@@ -44,7 +44,7 @@ const std::vector<Parameter<FogSettings>>& FogSettings::parameters() {
   using S = FogSettings;
   static const std::vector<Parameter<S>> table = [] {
     std::vector<std::pair<std::string, FogMode>> modes;
-    for (FogMode mode : kFogModes) modes.emplace_back(fogModeName(mode), mode);
+    for (FogMode choice : kFogModes) modes.emplace_back(fogModeName(choice), choice);
     return std::vector<Parameter<S>>{
         switchParameter<S>("fog", "distance fog on or off (from the G-buffer's depth, before tone mapping)",
                            &S::enabled)
