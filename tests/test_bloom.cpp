@@ -183,6 +183,7 @@ TEST(Bloom, NoPixelAboveTheThresholdLeavesTheFrameUnchanged) {
     brightest = std::max(brightest, std::max(c.r, std::max(c.g, c.b)));
   }
   ASSERT_GT(brightest, 0.1f);
+  std::printf("the built-in scene's brightest channel: %.4f\n", brightest);
   auto worstChange = [&](float threshold) {
     RenderSettings settings = plain;
     settings.set("bloom", "on");
