@@ -10,7 +10,7 @@
 namespace obscura {
 namespace {
 
-const char* const kStageNames[] = {"prefilter", "down", "up", "composite"};
+const char* const kStageNames[] = {"prefilter", "down", "tent-x", "up", "composite"};
 
 ProgramSpec spec(int stage) {
   return ProgramSpec{std::string("bloom[") + kStageNames[stage] + "]",
@@ -81,19 +81,19 @@ const std::vector<Parameter<BloomSettings>>& BloomSettings::parameters() {
 
 EffectInfo BloomEffect::info() { return {"bloom", "Bloom", true, false, {"bloom"}, {}}; }
 
-std::vector<ProgramSpec> BloomEffect::programSpecs() { return {spec(0), spec(1), spec(2), spec(3)}; }
+std::vector<ProgramSpec> BloomEffect::programSpecs() { return {spec(0), spec(1), spec(2), spec(3), spec(4)}; }
 
 BloomEffect::BloomEffect(const EffectResources& resources) : resources_(resources) {
-  Stage* stages[] = {&prefilter_, &down_, &up_, &composite_};
-  for (int s = 0; s < 4; ++s) {
+  Stage* stages[] = {&prefilter_, &down_, &tentX_, &up_, &composite_};
+  for (int s = 0; s < 5; ++s) {
     Stage& stage = *stages[s];
     stage.program = resources_.build(spec(s));
     stage.source = stage.program.uniform("u_source");
     stage.sourceSize = stage.program.uniform("u_sourceSize");
     if (s == 0) stage.threshold = stage.program.uniform("u_threshold");
-    if (s >= 2) stage.level = stage.program.uniform("u_level");
-    if (s == 2) stage.radius = stage.program.uniform("u_radius");
-    if (s == 3) stage.intensity = stage.program.uniform("u_intensity");
+    if (s >= 3) stage.level = stage.program.uniform("u_level");
+    if (s == 3) stage.radius = stage.program.uniform("u_radius");
+    if (s == 4) stage.intensity = stage.program.uniform("u_intensity");
   }
 }
 
@@ -104,6 +104,7 @@ void BloomEffect::plan(FramePlanner& planner) {
     if (++plansOff_ >= 8 && !levels_.empty()) {
       levels_.clear();
       ups_.clear();
+      alongX_.clear();
       size_ = glm::ivec2(0);
     }
     return;
@@ -125,6 +126,7 @@ void BloomEffect::resize(glm::ivec2 size) {
   size_ = size;
   levels_.clear();
   ups_.clear();
+  alongX_.clear();
   const int levels = bloomLevels(size);
   for (int k = 1; k <= levels; ++k) {
     const glm::ivec2 s = levelSize(size, k);
@@ -132,6 +134,12 @@ void BloomEffect::resize(glm::ivec2 size) {
                          false);
     if (k < levels)
       ups_.emplace_back("bloom up " + std::to_string(k), s.x, s.y, GL_NEAREST, gl::RenderTarget::Depth::None, false);
+  }
+  // The tent's first half for up k (and the composite, k = 0): level k's width, level k + 1's height.
+  for (int k = 0; k < levels; ++k) {
+    const glm::ivec2 s(k == 0 ? size.x : levelSize(size, k).x, levelSize(size, k + 1).y);
+    alongX_.emplace_back("bloom tent " + std::to_string(k), s.x, s.y, GL_NEAREST, gl::RenderTarget::Depth::None,
+                         false);
   }
 }
 
@@ -163,30 +171,41 @@ void BloomEffect::render(const BloomSettings& settings, const gl::Texture2D& sce
     resources_.triangle.draw();
   }
 
-  // Up again: up_k = mix(level_k, tent(up_k+1), radius), from the coarsest level.
-  up_.program.use();
-  Program::set(up_.source, 0);
-  Program::set(up_.level, 1);
-  Program::set(up_.radius, settings.radius);
-  for (int k = levels - 1; k >= 1; --k) {
-    ups_[static_cast<size_t>(k - 1)].bindForDrawing();
-    const gl::Texture2D& coarser =
-        k + 1 == levels ? levels_[static_cast<size_t>(k)].color() : ups_[static_cast<size_t>(k)].color();
+  // The tent's first half: `coarser` filtered along x into alongX_[k] (level k's width, its own height).
+  auto tentAlongX = [&](int k, const gl::Texture2D& coarser) {
+    alongX_[static_cast<size_t>(k)].bindForDrawing();
+    tentX_.program.use();
     coarser.bind(0);
+    Program::set(tentX_.source, 0);
+    Program::set(tentX_.sourceSize, sourceSize(coarser));
+    resources_.triangle.draw();
+    return &alongX_[static_cast<size_t>(k)].color();
+  };
+
+  // Up again: up_k = mix(level_k, tent(up_k+1), radius), from the coarsest level.
+  for (int k = levels - 1; k >= 1; --k) {
+    const gl::Texture2D* half = tentAlongX(
+        k, k + 1 == levels ? levels_[static_cast<size_t>(k)].color() : ups_[static_cast<size_t>(k)].color());
+    ups_[static_cast<size_t>(k - 1)].bindForDrawing();
+    up_.program.use();
+    half->bind(0);
     levels_[static_cast<size_t>(k - 1)].color().bind(1);
-    Program::set(up_.sourceSize, sourceSize(coarser));
+    Program::set(up_.source, 0);
+    Program::set(up_.level, 1);
+    Program::set(up_.radius, settings.radius);
+    Program::set(up_.sourceSize, sourceSize(*half));
     resources_.triangle.draw();
   }
 
   // The frame with its glow.
+  const gl::Texture2D* half = tentAlongX(0, levels == 1 ? levels_[0].color() : ups_[0].color());
   bindOutput();
   composite_.program.use();
-  const gl::Texture2D& glow = levels == 1 ? levels_[0].color() : ups_[0].color();
-  glow.bind(0);
+  half->bind(0);
   sceneColor.bind(1);
   Program::set(composite_.source, 0);
   Program::set(composite_.level, 1);
-  Program::set(composite_.sourceSize, sourceSize(glow));
+  Program::set(composite_.sourceSize, sourceSize(*half));
   Program::set(composite_.intensity, settings.intensity);
   resources_.triangle.draw();
   gl::restoreBaselineState();
