@@ -162,6 +162,11 @@ TEST(Cli, OldNamesNewNamesAndSwitches) {
   ASSERT_EQ(run("--size 96x64 --tonemap.operator agx --tonemap.exposure 1 --fxaa.preset ultra --out " + c).status, 0);
   ASSERT_EQ(run("--size 96x64 --no-tonemap --no-fxaa --no-ao --out " + d).status, 0);
   EXPECT_NE(obscura::readPng(c).rgba, obscura::readPng(d).rgba);
+  // A switch without a value (followed by another option, or last) is on.
+  const std::string e = obscura::test::tempPath("names-bare.png"), f = obscura::test::tempPath("names-on.png");
+  ASSERT_EQ(run("--size 96x64 --out " + e + " --bloom --fog --fog.mode exp2 --no-fxaa --taa").status, 0);
+  ASSERT_EQ(run("--size 96x64 --out " + f + " --bloom on --fog on --fog.mode exp2 --fxaa off --taa on").status, 0);
+  EXPECT_EQ(obscura::readPng(e).rgba, obscura::readPng(f).rgba);
 }
 
 // Without --ao.radius a scene gets 5 % of its bounding-sphere diameter to two significant figures (scene/SceneScale.h;

@@ -219,6 +219,9 @@ TEST(AoSettings, ParameterMetadataDescribesTheAcceptedValues) {
         }
         EXPECT_THROW(settings.set(p.name, "no-such-choice"), InputError) << p.name;
         break;
+      case ParameterKind::Color:
+        ADD_FAILURE() << p.name << ": the AO has no colour parameter";
+        break;
     }
   }
 }
@@ -351,6 +354,22 @@ TEST(RenderSettings, EveryParameterOfEveryEffectDescribesItsValuesAndRoundTrips)
         }
         EXPECT_THROW(settings.set(p.name, "no-such-choice"), InputError) << p.name;
         break;
+      case ParameterKind::Color: {
+        ASSERT_LT(p.min, p.max) << p.name;
+        // Linear triples round-trip in their shortest form; a colour picker's sRGB hex decodes to linear.
+        EXPECT_NO_THROW(settings.set(p.name, "0.25,0.5,1")) << p.name;
+        EXPECT_EQ(settings.get(p.name), "0.25,0.5,1") << p.name;
+        EXPECT_NO_THROW(settings.set(p.name, "#ff0000")) << p.name;
+        EXPECT_EQ(settings.get(p.name), "1,0,0") << p.name;
+        const std::string before = settings.get(p.name);
+        for (const char* bad : {"1,2", "1,2,3,4", "#12345", "#gg0000", "a,b,c", ""})
+          EXPECT_THROW(settings.set(p.name, bad), InputError) << p.name << "=" << bad;
+        char text[64];
+        std::snprintf(text, sizeof text, "0,0,%g", p.max + std::max(1.0, 0.01 * p.max));
+        EXPECT_THROW(settings.set(p.name, text), InputError) << p.name;
+        EXPECT_EQ(settings.get(p.name), before) << p.name << ": a refused value changes nothing";
+        break;
+      }
     }
     EXPECT_NO_THROW(settings.validate()) << p.name;
   }

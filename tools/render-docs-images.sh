@@ -35,7 +35,12 @@ build/obscura-render $aa --no-fxaa --out "$out/aa_none.png"
 build/obscura-render $aa --out "$out/aa_fxaa.png"
 build/obscura-render $aa --taa on --no-fxaa --frames 16 --out "$out/aa_taa.png"
 build/obscura-render $aa --no-fxaa --accumulate 1 --shutter 0 --supersample 4 --out "$out/aa_reference.png"
-echo "render-docs-images: wrote $out/builtin_*.png, motion_*.png, ao_*.png, aa_*.png"
+# Bloom and fog (docs/bloom-and-fog.md): bloom with a threshold low enough for the room's lit surfaces (0.95 at most),
+# and exponential fog thickest at the floor (height falloff).
+build/obscura-render --size 480x270 --bloom --bloom.threshold 0.2 --bloom.intensity 1.5 --out "$out/bloom.png"
+build/obscura-render --size 480x270 --fog --fog.density 0.6 --fog.height-falloff 0.8 --fog.color 0.7,0.75,0.8 \
+  --out "$out/fog_height.png"
+echo "render-docs-images: wrote $out/builtin_*.png, motion_*.png, ao_*.png, aa_*.png, bloom.png, fog_height.png"
 
 (cd tests/browser && npm ci --no-audit --no-fund --loglevel=error)
 OBSCURA_UPDATE_SCREENSHOTS=1 node --test --test-name-pattern="page screenshots" tests/browser/page.test.mjs >/dev/null

@@ -82,6 +82,16 @@ const controlId = (name) => `param-${name.replace(/\./g, '-')}`;
 const shortName = (parameter) => (parameter.name.startsWith(`${parameter.effect}.`)
   ? parameter.name.slice(parameter.effect.length + 1) : parameter.name).replace(/-/g, ' ');
 
+// A linear RGB triple as the sRGB "#rrggbb" a colour picker shows (IEC 61966-2-1, each channel clamped to 0 .. 1).
+function linearToSrgbHex(rgb) {
+  const encode = (v) => {
+    const c = Math.min(Math.max(Number.isFinite(v) ? v : 0, 0), 1);
+    const s = c <= 0.0031308 ? 12.92 * c : 1.055 * c ** (1 / 2.4) - 0.055;
+    return Math.round(s * 255).toString(16).padStart(2, '0');
+  };
+  return `#${rgb.map(encode).join('')}`;
+}
+
 function parameterControl(obscura, parameter) {
   const id = controlId(parameter.name);
   const label = element('label', { htmlFor: id, textContent: shortName(parameter),
@@ -112,6 +122,24 @@ function parameterControl(obscura, parameter) {
     select.addEventListener('change', () => apply(select.value));
     row.append(select);
     return { row, update: () => { select.value = obscura.get(parameter.name); } };
+  }
+  if (parameter.kind === 'color') {
+    // A linear colour: the picker shows (and sets, as "#rrggbb") its sRGB encoding clamped to 0 .. 1; the text field
+    // takes linear "r,g,b" beyond 1 too (HDR).
+    const picker = element('input', { type: 'color', id, title: 'sRGB' });
+    const text = element('input', { type: 'text', size: 14, title: parameter.range,
+                                    ariaLabel: `${parameter.name} value` });
+    picker.addEventListener('input', () => apply(picker.value));
+    text.addEventListener('change', () => apply(text.value));
+    row.append(picker, text);
+    return {
+      row,
+      update: () => {
+        const value = obscura.get(parameter.name);
+        picker.value = linearToSrgbHex(value.split(',').map(Number));
+        if (document.activeElement !== text) text.value = value;
+      },
+    };
   }
   let scale = sliderScale(parameter);
   const slider = element('input', { type: 'range', id, min: scale.min, max: scale.max, step: 1,

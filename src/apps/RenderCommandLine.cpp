@@ -18,11 +18,12 @@ std::string renderUsage() {
   std::string usage =
       "usage: obscura-render [--scene FILE [--scene-scale S]] [--time T] [--animation A] [--fps F] [--frames N]\n"
       "                      [--camera CAM.json | --fit] [--size WxH] [--view V [--compare SWITCH]] [--out FILE.png]\n"
-      "                      [--NAME VALUE | --no-EFFECT ...] [--preset P] [--bench N] [--backend osmesa|egl]\n"
+      "                      [--NAME VALUE | --EFFECT | --no-EFFECT ...] [--preset P] [--bench N]\n"
+      "                      [--backend osmesa|egl]\n"
       "                      [--accumulate N [--shutter S] [--supersample K]]\n"
       "\n"
       "Renders a glTF 2.0 scene (default: the built-in scene) headless: the G-buffer, Scalable Ambient Obscurance,\n"
-      "lighting, tone mapping and FXAA, or one of the frame's targets.\n"
+      "lighting, fog, bloom, tone mapping and FXAA, or one of the frame's targets.\n"
       + sceneInputUsage() +
       "  --view V          " + parse::joinChoices(frameViewNames(), " | ") + "\n"
       "                    (default final; a target's view shows its values as they are: no tone curve, no FXAA)\n"
@@ -39,6 +40,7 @@ std::string renderUsage() {
       "  --bench N         render N frames and print per-pass milliseconds (glFinish-bounded)\n"
       "  --backend B       osmesa (default) or egl (Mesa EGL surfaceless, a true GLES 2 context)\n"
       "  --no-EFFECT       shorthand for --EFFECT off (--no-ao, --no-tonemap, --no-fxaa; --no-blur: --ao.blur off)\n"
+      "  --EFFECT          with no value (last, or before another option): --EFFECT on (--bloom --fog)\n"
       "\n" + defaultAoRadiusUsage("--ao.radius") +
       "\nParameters (--NAME VALUE; in brackets, older names still accepted):\n";
   std::string effect = "-";
@@ -101,6 +103,9 @@ RenderOptions parseRenderCommandLine(const std::vector<std::string>& args) {
       }
     } else if (arg.rfind("--no-", 0) == 0 && isSwitch(arg.substr(5))) {
       options.settings.set(arg.substr(5), "off");  // --no-ao, --no-tonemap, --no-fxaa, --no-blur
+    } else if (arg.rfind("--", 0) == 0 && isSwitch(arg.substr(2)) &&
+               (i + 1 >= args.size() || args[i + 1].rfind("--", 0) == 0)) {
+      options.settings.set(arg.substr(2), "on");  // a bare switch: --bloom --fog
     } else if (arg.rfind("--", 0) == 0 && isParameter(arg.substr(2))) {
       const std::string name = arg.substr(2);
       try {

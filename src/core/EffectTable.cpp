@@ -3,7 +3,9 @@
 #include <set>
 
 #include "core/AoEffect.h"
+#include "core/BloomEffect.h"
 #include "core/DebugViewPass.h"
+#include "core/FogEffect.h"
 #include "core/FxaaEffect.h"
 #include "core/GBufferEffect.h"
 #include "core/LightingEffect.h"
@@ -25,7 +27,9 @@ const std::vector<EffectEntry>& effectTable() {
         EffectEntry::of<AoEffect>(),        // gbuffer -> ao
         EffectEntry::of<LightingEffect>(),  // scene, ao, the G-buffer's depth -> scene-color (HDR)
         EffectEntry::of<LinesEffect>(),     // scene-color, the G-buffer's depth, points and lines -> scene-color
+        EffectEntry::of<FogEffect>(),       // scene-color, gbuffer -> scene-color (HDR)
         EffectEntry::of<TaaEffect>(),       // scene-color, velocity, gbuffer, history -> scene-color (HDR)
+        EffectEntry::of<BloomEffect>(),     // scene-color -> scene-color (HDR, its own chain of 1/2 .. 1/64 targets)
         EffectEntry::of<TonemapEffect>(),   // scene-color -> display-color (sRGB, luma in alpha)
         EffectEntry::of<MotionBlurEffect>(),  // display-color, velocity, gbuffer -> display-color
         EffectEntry::of<FxaaEffect>(),      // display-color -> display-color

@@ -4,6 +4,8 @@
 #include <cstdio>
 #include <cstdlib>
 
+#include "core/ToneMapping.h"
+
 namespace obscura {
 
 const char* parameterKindName(ParameterKind kind) {
@@ -12,6 +14,7 @@ const char* parameterKindName(ParameterKind kind) {
     case ParameterKind::Number: return "number";
     case ParameterKind::Integer: return "integer";
     case ParameterKind::Choice: return "choice";
+    case ParameterKind::Color: return "color";
   }
   return "?";
 }
@@ -64,6 +67,37 @@ bool onOff(const std::string& name, const std::string& text) {
   if (text == "on" || text == "1" || text == "true") return true;
   if (text == "off" || text == "0" || text == "false") return false;
   throw InputError(name + ": expected on or off, got '" + text + "'");
+}
+
+glm::vec3 color(const std::string& name, const std::string& text, double min, double max) {
+  const std::string expected = name + ": expected r,g,b or #rrggbb, got '" + text + "'";
+  glm::vec3 value(0.0f);
+  if (!text.empty() && text[0] == '#') {
+    if (text.size() != 7) throw InputError(expected);
+    for (int c = 0; c < 3; ++c) {
+      const std::string hex = text.substr(1 + 2 * static_cast<size_t>(c), 2);
+      char* end = nullptr;
+      const long byte = std::strtol(hex.c_str(), &end, 16);
+      if (end != hex.c_str() + 2 || hex[0] == '-' || hex[0] == '+') throw InputError(expected);
+      value[c] = srgbToLinear(static_cast<float>(byte) / 255.0f);
+    }
+  } else {
+    size_t from = 0;
+    for (int c = 0; c < 3; ++c) {
+      const size_t comma = text.find(',', from);
+      if ((c < 2) != (comma != std::string::npos)) throw InputError(expected);
+      value[c] = number(name, text.substr(from, c < 2 ? comma - from : std::string::npos), min, max, "");
+      from = comma + 1;
+    }
+  }
+  for (int c = 0; c < 3; ++c)
+    if (value[c] < min || value[c] > max) throw InputError(name + ": " + text + " is outside " +
+                                                           numericRange(min, max, "", "") + " per channel");
+  return value;
+}
+
+std::string formatColor(const glm::vec3& linear) {
+  return formatShortest(linear.r) + "," + formatShortest(linear.g) + "," + formatShortest(linear.b);
 }
 
 std::string numericRange(double min, double max, const char* unit, const char* constraint) {

@@ -12,6 +12,8 @@
 #include <utility>
 #include <vector>
 
+#include <glm/vec3.hpp>
+
 #include "base/Error.h"
 #include "base/Text.h"
 
@@ -23,8 +25,9 @@ enum class ParameterKind {
   Number,   // a real number in min .. max
   Integer,  // a whole number in min .. max
   Choice,   // one of `choices`
+  Color,    // a linear RGB colour, each channel in min .. max: "r,g,b" (linear) or "#rrggbb" (sRGB-encoded)
 };
-const char* parameterKindName(ParameterKind kind);  // "switch", "number", "integer", "choice"
+const char* parameterKindName(ParameterKind kind);  // "switch", "number", "integer", "choice", "color"
 
 // The quality presets every effect with presets shares by name; the global "preset" parameter sets them all.
 enum class QualityPreset { Low, Medium, High, Ultra };
@@ -73,6 +76,9 @@ namespace parse {
 float number(const std::string& name, const std::string& text, double min, double max, const char* unit);
 int integer(const std::string& name, const std::string& text, double min, double max, const char* unit);
 bool onOff(const std::string& name, const std::string& text);
+// "r,g,b" (linear, each in min .. max) or "#rrggbb" (sRGB-encoded bytes, decoded to linear: a colour picker's value).
+glm::vec3 color(const std::string& name, const std::string& text, double min, double max);
+std::string formatColor(const glm::vec3& linear);  // "r,g,b", each number in its shortest exact form
 std::string numericRange(double min, double max, const char* unit, const char* constraint);
 std::string joinChoices(const std::vector<std::string>& choices, const char* separator);
 std::string oneOf(const std::vector<std::string>& choices);  // "a, b or c"
@@ -133,6 +139,22 @@ Parameter<S> integerParameter(const char* name, int min, int max, const char* un
   };
   p.get = [field](const S& s) { return std::to_string(s.*field); };
   p.valid = [=](const S& s) { return s.*field >= min && s.*field <= max; };
+  return p;
+}
+
+// A linear RGB colour (parse::color's forms; get() gives "r,g,b").
+template <typename S>
+Parameter<S> colorParameter(const char* name, double min, double max, const char* help, glm::vec3 S::*field) {
+  Parameter<S> p{{name, "r,g,b (linear, each " + parse::numericRange(min, max, "", "") + ") or #rrggbb (sRGB)", help,
+                  ParameterKind::Color, min, max, {}},
+                 {}, {}, {}, {}};
+  p.set = [=](S& s, const std::string& v) { s.*field = parse::color(name, v, min, max); };
+  p.get = [field](const S& s) { return parse::formatColor(s.*field); };
+  p.valid = [=](const S& s) {
+    for (int c = 0; c < 3; ++c)
+      if (!((s.*field)[c] >= static_cast<float>(min) && (s.*field)[c] <= static_cast<float>(max))) return false;
+    return true;
+  };
   return p;
 }
 

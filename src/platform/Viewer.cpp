@@ -50,6 +50,8 @@ const std::vector<Viewer::KeyAction>& Viewer::keyActions() {
       {"t", "tone mapping on / off", toggle("tonemap")},
       {"f", "FXAA on / off", toggle("fxaa")},
       {"m", "motion blur on / off", toggle("motion-blur")},
+      {"g", "bloom (glow) on / off", toggle("bloom")},
+      {"y", "fog on / off", toggle("fog")},
       {"p", "next quality preset",
        [](Viewer& v) {
          // From the preset the AO's settings came from, even after some of its values were changed.

@@ -108,6 +108,15 @@ describe('demo page', () => {
     assert.equal(await page.locator('#effect-ao details.more #param-ao-turns').count(), 1);
     assert.equal(await page.locator('#param-ao-turns').isVisible(), false, '"more" starts folded');
     assert.equal(await page.locator('#frame-parameters #param-preset').count(), 1, "the frame's preset on top");
+    // A colour (fog.color): a picker, whose sRGB value reaches the core as linear, and a text field for HDR values.
+    await page.locator('#param-fog-color').fill('#ff0000');
+    assert.equal(await page.evaluate(() => window.obscura.get('fog.color')), '1,0,0');
+    assert.equal(await page.locator('#param-fog-color + input').inputValue(), '1,0,0');
+    await page.locator('#param-fog-color + input').fill('2,1,0.5');
+    await page.locator('#param-fog-color + input').press('Enter');
+    assert.equal(await page.evaluate(() => window.obscura.get('fog.color')), '2,1,0.5');
+    assert.equal(await page.locator('#param-fog-color').inputValue(), '#ffffbc', 'the picker shows it clamped, sRGB');
+    await page.evaluate(() => window.obscura.set('fog.color', '0.5,0.6,0.7'));
 
     // The controls act: an operator, the exposure, the switch in the heading; folding a section hides its controls.
     await page.locator('#view-final').check();

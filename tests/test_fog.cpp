@@ -1,0 +1,160 @@
+// Distance fog (core/FogEffect.h): the CPU mirror against the lecture deck's equations written out again here, and
+// the GPU's fog pass read back per pixel against the mirror's fog factor at the distance reconstructed from the
+// G-buffer's depth, in each mode, with and without height falloff, the background included.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <string>
+
+#include <glm/geometric.hpp>
+#include <glm/gtc/matrix_transform.hpp>
+
+#include "TestSupport.h"
+#include "core/FogEffect.h"
+#include "core/HdrEncoding.h"
+#include "core/ViewReconstruction.h"
+#include "scene/BuiltinScene.h"
+
+using namespace obscura;
+
+namespace {
+
+FogSettings fogOf(FogMode mode, float heightFalloff) {
+  FogSettings s;
+  s.enabled = true;
+  s.mode = mode;
+  // For the built-in scene, whose surfaces lie 3 .. 15 m from its camera: every mode spans most of [0, 1] there.
+  s.density = mode == FogMode::Exponential ? 0.15f : 0.12f;
+  s.start = 3.0f;
+  s.end = 12.0f;
+  s.color = glm::vec3(0.6f, 0.7f, 2.5f);  // HDR, and unlike any surface colour
+  s.heightFalloff = heightFalloff;
+  return s;
+}
+
+}  // namespace
+
+TEST(Fog, TheMirrorIsTheDecksEquations) {
+  const glm::mat4 identity(1.0f);  // camera at the origin looking down -z, world up = view up
+  for (float d : {0.0f, 1.0f, 3.0f, 7.5f, 12.0f, 30.0f}) {
+    const glm::vec3 p(0.0f, 0.0f, -d);
+    FogSettings s = fogOf(FogMode::Linear, 0.0f);
+    EXPECT_NEAR(FogFactor::of(s, identity).at(p, false), std::clamp((12.0 - d) / (12.0 - 3.0), 0.0, 1.0), 1e-6) << d;
+    s = fogOf(FogMode::Exponential, 0.0f);
+    EXPECT_NEAR(FogFactor::of(s, identity).at(p, false), std::exp(-0.15 * d), 1e-6) << d;
+    s = fogOf(FogMode::SquaredExponential, 0.0f);
+    EXPECT_NEAR(FogFactor::of(s, identity).at(p, false), std::exp(-std::pow(0.12 * d, 2.0)), 1e-6) << d;
+  }
+  // The background is fully fogged in every mode without height falloff (exponential fog: 2^-126, the smallest
+  // normal float the factor is clamped to).
+  for (FogMode mode : {FogMode::Linear, FogMode::Exponential, FogMode::SquaredExponential})
+    EXPECT_LT(FogFactor::of(fogOf(mode, 0.0f), identity).at(glm::vec3(0.3f, 0.2f, -1.0f), true), 1e-37f);
+}
+
+TEST(Fog, HeightFalloffIsTheOpticalDepthOfExponentialHeightFog) {
+  // The camera 2 m up, looking along -z; exponential fog's f must be e^-(integral of the density along the ray),
+  // here integrated numerically, for rays climbing, level and descending.
+  const float b = 0.4f, h0 = 2.0f, density = 0.3f;
+  const glm::mat4 view = glm::translate(glm::mat4(1.0f), glm::vec3(0.0f, -h0, 0.0f));
+  FogSettings s = fogOf(FogMode::Exponential, b);
+  s.density = density;
+  const FogFactor fog = FogFactor::of(s, view);
+  for (const glm::vec3& direction : {glm::vec3(0.0f, 0.3f, -1.0f), glm::vec3(0.0f, 0.0f, -1.0f),
+                                     glm::vec3(0.2f, -0.15f, -1.0f)}) {
+    const glm::vec3 u = glm::normalize(direction);
+    for (float d : {0.5f, 4.0f, 12.0f}) {
+      double opticalDepth = 0.0;
+      const int steps = 20000;
+      for (int i = 0; i < steps; ++i) {
+        const double t = (i + 0.5) * d / steps;
+        opticalDepth += density * std::exp(-b * (h0 + t * u.y)) * d / steps;
+      }
+      EXPECT_NEAR(fog.at(u * d, false), std::exp(-opticalDepth), 2e-5) << "up " << u.y << ", d " << d;
+    }
+  }
+  // The background: a climbing ray sees the finite integral to infinity, a level or descending one endless fog.
+  const glm::vec3 up = glm::normalize(glm::vec3(0.0f, 0.5f, -1.0f));
+  EXPECT_NEAR(fog.at(up, true), std::exp(-density * std::exp(-b * h0) / (b * up.y)), 1e-6);
+  EXPECT_LT(fog.at(glm::vec3(0.0f, -0.1f, -1.0f), true), 1e-37f);
+}
+
+// Each mode's pass against the mirror: the frame rendered without fog gives each pixel's lit colour and depth, the
+// frame with fog the pass's result; expected = f c_s + (1 - f) c_f with f from FogFactor at the pixel's centre.
+TEST(Fog, EachModeMatchesItsAnalyticFogFactorPerPixel) {
+  Renderer renderer = test::makeRenderer();
+  renderer.setScene(makeBuiltinScene());
+  const int width = 160, height = 90;
+  const Camera camera = builtinSceneCamera(width, height);
+  const FrameCamera frameCamera = FrameCamera::from(camera, width, height);
+  RenderSettings plain;
+  plain.set("fxaa", "off");
+  test::render(renderer, camera, plain, View::Final, test::retaining({"scene-color", "gbuffer"}));
+  const std::vector<std::uint8_t> lit = renderer.retained("scene-color").readRgba();
+  const std::vector<std::uint8_t> gbuffer = renderer.retained("gbuffer").readRgba();
+
+  for (FogMode mode : {FogMode::Linear, FogMode::Exponential, FogMode::SquaredExponential}) {
+    for (float falloff : {0.0f, 0.35f}) {
+      const std::string what = std::string(fogModeName(mode)) + (falloff > 0.0f ? " with height falloff" : "");
+      RenderSettings settings = plain;
+      settings.of<FogSettings>() = fogOf(mode, falloff);
+      test::render(renderer, camera, settings, View::Final, test::retaining({"scene-color"}));
+      const std::vector<std::uint8_t> fogged = renderer.retained("scene-color").readRgba();
+      const FogFactor fog = FogFactor::of(settings.of<FogSettings>(), frameCamera.view);
+      float worst = 0.0f;
+      int partial = 0, background = 0;
+      for (int row = 0; row < height; ++row) {
+        for (int x = 0; x < width; ++x) {
+          const size_t i = (static_cast<size_t>(row) * width + x) * 4;
+          const glm::vec2 uv((static_cast<float>(x) + 0.5f) / static_cast<float>(width),
+                             1.0f - (static_cast<float>(row) + 0.5f) / static_cast<float>(height));  // top to bottom
+          const int code = gbuffer[i + 2] * 256 + gbuffer[i + 3];
+          const bool isBackground = code == 65535;
+          const ViewReconstruction& r = frameCamera.reconstruction;
+          const float depth = static_cast<float>(code) / 65535.0f;
+          const glm::vec3 p = isBackground ? r.farPlaneRay(uv) : r.viewPosition(uv, depth);
+          const float f = fog.at(p, isBackground);
+          partial += f > 0.05f && f < 0.95f;
+          background += isBackground;
+          const glm::vec3 surface = decodeHdr(HdrTexel{lit[i], lit[i + 1], lit[i + 2], lit[i + 3]});
+          const glm::vec3 expected = f * surface + (1.0f - f) * settings.of<FogSettings>().color;
+          const glm::vec3 got = decodeHdr(HdrTexel{fogged[i], fogged[i + 1], fogged[i + 2], fogged[i + 3]});
+          // Relative to the brightest channel: RGB9E5 keeps 9 bits of it (half a step: 1/1024).
+          const float largest = std::max(expected.r, std::max(expected.g, expected.b));
+          for (int c = 0; c < 3; ++c) worst = std::max(worst, std::abs(got[c] - expected[c]) / largest);
+        }
+      }
+      std::printf("fog %s: worst error %.5f of the brightest channel; %d of %d pixels partly fogged, %d background\n",
+                  what.c_str(), worst, partial, width * height, background);
+      EXPECT_LT(worst, 2.5f / 512.0f) << what;
+      EXPECT_GT(partial, width * height / 4) << what << ": the fog must vary over the frame for the test to tell";
+    }
+  }
+}
+
+// The fog runs after the lighting on HDR colour, so the lighting no longer applies the tone curve itself; with the
+// fog off, it does again (one pass fewer).
+TEST(Fog, TheLightingAbsorbsTheToneMappingOnlyWithoutFog) {
+  Renderer renderer = test::makeRenderer();
+  renderer.setScene(makeBuiltinScene());
+  const Camera camera = builtinSceneCamera(96, 64);
+  auto ran = [&](bool fog) {
+    RenderSettings settings;
+    settings.set("fog", fog ? "on" : "off");
+    test::render(renderer, camera, settings, View::Final);
+    std::vector<std::string> names;
+    for (const PlannedPass& pass : renderer.lastPlan().passes()) {
+      if (!pass.live) continue;
+      names.push_back(pass.decl.name);
+      for (const std::string& absorbed : pass.absorbed) names.push_back(absorbed + " (done by " + pass.decl.name + ")");
+    }
+    return names;
+  };
+  const std::vector<std::string> without = ran(false), with = ran(true);
+  EXPECT_EQ(std::count(without.begin(), without.end(), "tonemap"), 0);
+  EXPECT_EQ(std::count(without.begin(), without.end(), "tonemap (done by lighting)"), 1);
+  EXPECT_EQ(std::count(with.begin(), with.end(), "fog"), 1);
+  EXPECT_EQ(std::count(with.begin(), with.end(), "tonemap"), 1) << "runs after the fog";
+  EXPECT_EQ(std::count(with.begin(), with.end(), "tonemap (done by lighting)"), 0);
+}
