@@ -307,7 +307,9 @@ TEST(Bloom, ASmoothHdrGradientStaysMonotonic) {
 TEST(Bloom, RunsAfterTaaAndBeforeTheToneMappingWhichTheLightingThenLeavesAlone) {
   const std::vector<std::string>& passes = framePassNames();
   auto position = [&](const char* name) { return std::find(passes.begin(), passes.end(), name) - passes.begin(); };
-  EXPECT_EQ(position("fog"), position("lighting") + 2) << "fog right after the lighting (and its shading count)";
+  // The lighting, its shading count, then the points and lines (drawn lit, before the fog that covers them too).
+  EXPECT_EQ(position("lines"), position("lighting") + 2);
+  EXPECT_EQ(position("fog"), position("lines") + 1) << "fog right after the lit surfaces, lines and points";
   EXPECT_LT(position("taa"), position("bloom"));
   EXPECT_LT(position("bloom"), position("tonemap"));
   Renderer renderer = test::makeRenderer();
