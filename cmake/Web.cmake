@@ -62,13 +62,14 @@ endforeach()
 add_custom_target(obscura-site ALL DEPENDS ${site_files})
 add_dependencies(obscura-site obscura-web)
 
-# The npm package (obscura-webgl): the module, obscura.js, its TypeScript declarations, the public GLSL chunk, a
-# README and the license, with package.json at the project's version. `npm pack build-web/npm` makes the tarball
+# The npm package (obscura-webgl): the module, obscura.js, its TypeScript declarations, the glTF geometry decoders,
+# the public GLSL chunk, a README and the license, with package.json at the project's version. `npm pack build-web/npm` makes the tarball
 # (tests/npm-package does, and installs it into a scratch project).
 set(OBSCURA_NPM_DIR "${CMAKE_BINARY_DIR}/npm")
 configure_file(web/package/package.json.in "${OBSCURA_NPM_DIR}/package.json" @ONLY)
 set(npm_sources
-  "${CMAKE_SOURCE_DIR}/web/obscura.js" "${CMAKE_SOURCE_DIR}/web/package/obscura.d.ts"
+  "${CMAKE_SOURCE_DIR}/web/obscura.js" "${CMAKE_SOURCE_DIR}/web/gltf-decoders.js"
+  "${CMAKE_SOURCE_DIR}/web/package/obscura.d.ts"
   "${CMAKE_SOURCE_DIR}/web/package/README.md" "${CMAKE_SOURCE_DIR}/LICENSE"
   "${CMAKE_SOURCE_DIR}/shaders_es2/lib/obscura_gbuffer.glsl")
 set(npm_files "")
@@ -82,5 +83,15 @@ add_custom_command(OUTPUT "${OBSCURA_NPM_DIR}/obscura-core.js" "${OBSCURA_NPM_DI
                    COMMAND "${CMAKE_COMMAND}" -E copy "${OBSCURA_SITE_DIR}/obscura-core.js"
                            "${OBSCURA_SITE_DIR}/obscura-core.wasm" "${OBSCURA_NPM_DIR}"
                    DEPENDS obscura-web)
+# The glTF geometry decoders too, in decoders/ as on the site: obscura.js imports gltf-decoders.js, which fetches
+# them from there the first time a compressed file needs them.
+foreach(file IN LISTS decoder_files)
+  get_filename_component(name "${file}" NAME)
+  add_custom_command(OUTPUT "${OBSCURA_NPM_DIR}/decoders/${name}"
+                     COMMAND "${CMAKE_COMMAND}" -E copy "${CMAKE_SOURCE_DIR}/web/node_modules/${file}"
+                             "${OBSCURA_NPM_DIR}/decoders/${name}"
+                     DEPENDS "${CMAKE_SOURCE_DIR}/web/node_modules/${file}")
+  list(APPEND npm_files "${OBSCURA_NPM_DIR}/decoders/${name}")
+endforeach()
 add_custom_target(obscura-npm ALL DEPENDS ${npm_files} "${OBSCURA_NPM_DIR}/obscura-core.js"
                                           "${OBSCURA_NPM_DIR}/obscura-core.wasm")

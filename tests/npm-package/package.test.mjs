@@ -55,11 +55,13 @@ describe('the npm package', () => {
     if (work) fs.rmSync(work, { recursive: true, force: true });
   });
 
-  test('npm pack makes a tarball with the module, the .wasm, the declarations, a README and a license', () => {
+  test('npm pack makes a tarball with the module, the .wasm, the decoders, the declarations, a README and a license', () => {
     const [packed] = JSON.parse(run('npm', ['pack', npmDir, '--json', '--pack-destination', work], work));
     const files = packed.files.map((f) => f.path).sort();
-    assert.deepEqual(files, ['LICENSE', 'README.md', 'obscura-core.js', 'obscura-core.wasm', 'obscura.d.ts',
-                             'obscura.js', 'obscura_gbuffer.glsl', 'package.json']);
+    assert.deepEqual(files, ['LICENSE', 'README.md', 'decoders/draco_decoder.wasm', 'decoders/draco_decoder_nodejs.js',
+                             'decoders/meshopt_decoder.module.js', 'gltf-decoders.js', 'obscura-core.js',
+                             'obscura-core.wasm', 'obscura.d.ts', 'obscura.js', 'obscura_gbuffer.glsl',
+                             'package.json']);
     const manifest = JSON.parse(fs.readFileSync(path.join(npmDir, 'package.json'), 'utf8'));
     assert.match(manifest.version, /^\d+\.\d+\.\d+$/);
     assert.equal(manifest.exports['.'].types, './obscura.d.ts');
