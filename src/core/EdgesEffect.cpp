@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <string>
+#include <utility>
 
 #include <glm/geometric.hpp>
 
@@ -246,9 +247,10 @@ const EdgesEffect::DistanceProgram& EdgesEffect::distance(int radius) {
 
 const EdgesEffect::DrawProgram& EdgesEffect::draw(int radius, bool toon) {
   auto it = draws_.find({radius, toon});
-  if (it == draws_.end())
-    it = draws_.emplace(std::make_pair(radius, toon), DrawProgram(resources_.build(drawSpec(radius, toon)), radius, toon))
-             .first;
+  if (it == draws_.end()) {
+    DrawProgram built(resources_.build(drawSpec(radius, toon)), radius, toon);
+    it = draws_.emplace(std::make_pair(radius, toon), std::move(built)).first;
+  }
   return it->second;
 }
 
