@@ -7,7 +7,6 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
-#include <array>
 #include <cmath>
 #include <cstdio>
 #include <string>
@@ -20,6 +19,7 @@
 #include "core/EdgesEffect.h"
 #include "core/FrameContext.h"
 #include "core/ToneMapping.h"
+#include "gl/PipelineState.h"
 #include "scene/Primitives.h"
 
 using namespace obscura;
@@ -402,4 +402,35 @@ TEST(Edges, ASlantedPlaneIsNotAnEdge) {
     steepestFirstOrder = firstOrder;
   }
   EXPECT_GT(steepestFirstOrder, edges.depthThreshold) << "a first-order test would mark the steepest plane";
+}
+
+// The edges read display-color, not scene-color: the lighting still applies the tone curve itself. With every
+// effect on, the toon style and colour edges, the split view comparing the edges, and the mask's view, every pass
+// leaves the baseline GL state (the test renderer checks for GL errors after each pass).
+TEST(Edges, KeepTheToneMappingAbsorbedAndLeaveTheBaselineState) {
+  Renderer renderer = test::makeRenderer();
+  renderer.setScene(cubeOnAFloor());
+  const Camera camera = cubeCamera(4.0f);
+  RenderSettings settings;
+  settings.set("edges", "on");
+  test::render(renderer, camera, settings, View::Final);
+  std::vector<std::string> names;
+  for (const PlannedPass& pass : renderer.lastPlan().passes()) {
+    if (!pass.live) continue;
+    names.push_back(pass.decl.name);
+    for (const std::string& absorbed : pass.absorbed) names.push_back(absorbed + " (done by " + pass.decl.name + ")");
+  }
+  for (const char* expected : {"edges-detect", "edges-h", "edges", "tonemap (done by lighting)"})
+    EXPECT_EQ(std::count(names.begin(), names.end(), expected), 1) << expected;
+
+  for (const EffectEntry& row : effectTable())
+    if (row.info.hasSwitch) settings.set(row.info.name, "on");
+  settings.set("edges.style", "toon");
+  settings.set("edges.color-threshold", "0.1");
+  View split = View::Split;
+  split.compare = "edges";
+  for (const View& view : {View::Final, split, View{"edges-mask"}}) {
+    EXPECT_NO_THROW(test::render(renderer, camera, settings, view)) << view.name;
+    EXPECT_EQ(gl::baselineStateDifferences(), "") << view.name;
+  }
 }
