@@ -62,11 +62,11 @@ TEST(EffectTable, ListsTheFrameInOrderWithUniqueNames) {
   std::vector<std::string> effects;
   for (const EffectEntry& row : effectTable()) effects.push_back(row.info.name);
   EXPECT_EQ(effects, (std::vector<std::string>{"gbuffer", "velocity", "ao", "lighting", "lines", "fog", "taa", "bloom",
-                                                "tonemap", "motion-blur", "fxaa"}));
+                                                "tonemap", "edges", "motion-blur", "fxaa"}));
   EXPECT_EQ(framePassNames(),
             (std::vector<std::string>{"pose", "gbuffer", "base-color", "velocity", "hierarchy", "sao", "ao-temporal",
                                       "blur-h", "blur-v", "upsample", "lighting", "shading-count", "lines", "fog",
-                                      "taa", "bloom", "tonemap",
+                                      "taa", "bloom", "tonemap", "edges-detect", "edges-h", "edges",
                                       "motion-tiles-h", "motion-tiles", "motion-neighbors", "motion-blur", "fxaa",
                                       "view", "present"}));
   // Every target an effect declares is RGBA8 data with a documented encoding; packed data is never filtered.

@@ -102,10 +102,11 @@ TEST(Resources, AGlErrorRaisedInAPassNamesThatPass) {
                       : pass == "velocity"      ? View{"velocity"}
                                                 : View::Final;
     RenderSettings frame = settings;
-    // The motion blur's passes, TAA's, fog's and bloom's run only with their switches on.
+    // The motion blur's passes, TAA's, fog's, bloom's and the edges' run only with their switches on.
     if (pass.rfind("motion-", 0) == 0) frame.set("motion-blur", "on");
     if (pass == "taa") frame.set("taa", "on");
     if (pass == "fog" || pass == "bloom") frame.set(pass, "on");
+    if (pass.rfind("edges", 0) == 0) frame.set("edges", "on");
     FrameOptions options;
     if (pass == "present") options.retain = {"display-color"};
     if (pass == "tonemap") options.retain = {"scene-color"};

@@ -572,6 +572,15 @@ void effectsSection(const Options& options, HeadlessContext& context, const std:
     four.set("ao.temporal", "on");
     configurations.push_back({"ao temporal, 4 taps", four});
   }
+  // Edges over the defaults, where the table has them: the lines, and the toon style (issue 16). Before "bloom, fog",
+  // which the target lines below read as the last configuration.
+  if (RenderSettings::find("edges.style")) {
+    RenderSettings edges;
+    edges.set("edges", "on");
+    configurations.push_back({"edges", edges});
+    edges.set("edges.style", "toon");
+    configurations.push_back({"edges, toon", edges});
+  }
   // Bloom and fog over the defaults, where the table has them: their cost beside the G-buffer pass's, in one frame.
   const bool bloomAndFog = RenderSettings::find("bloom") && RenderSettings::find("fog");
   if (bloomAndFog) {

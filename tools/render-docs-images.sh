@@ -40,7 +40,11 @@ build/obscura-render $aa --no-fxaa --accumulate 1 --shutter 0 --supersample 4 --
 build/obscura-render --size 480x270 --bloom --bloom.threshold 0.2 --bloom.intensity 1.5 --out "$out/bloom.png"
 build/obscura-render --size 480x270 --fog --fog.density 0.6 --fog.height-falloff 0.8 --fog.color 0.7,0.75,0.8 \
   --out "$out/fog_height.png"
-echo "render-docs-images: wrote $out/builtin_*.png, motion_*.png, ao_*.png, aa_*.png, bloom.png, fog_height.png"
+# Edges (docs/edges.md): lines two pixels wide, and the toon style.
+build/obscura-render --size 480x270 --edges --edges.width 2 --out "$out/edges.png"
+build/obscura-render --size 480x270 --edges --edges.style toon --edges.width 2 --out "$out/edges_toon.png"
+echo "render-docs-images: wrote $out/builtin_*.png, motion_*.png, ao_*.png, aa_*.png, bloom.png, fog_height.png," \
+  "edges.png, edges_toon.png"
 
 (cd tests/browser && npm ci --no-audit --no-fund --loglevel=error)
 OBSCURA_UPDATE_SCREENSHOTS=1 node --test --test-name-pattern="page screenshots" tests/browser/page.test.mjs >/dev/null

@@ -117,6 +117,18 @@ describe('demo page', () => {
     assert.equal(await page.evaluate(() => window.obscura.get('fog.color')), '2,1,0.5');
     assert.equal(await page.locator('#param-fog-color').inputValue(), '#ffffbc', 'the picker shows it clamped, sRGB');
     await page.evaluate(() => window.obscura.set('fog.color', '0.5,0.6,0.7'));
+    // The edges' controls (issue 16): the switch in the heading draws lines, the style turns the shading to bands.
+    await page.locator('#view-final').check();
+    const unlined = await snapshot(page);
+    await page.locator('#param-edges').check();
+    assert.equal(await page.evaluate(() => window.obscura.get('edges')), 'on');
+    const lined = await snapshot(page);
+    assert.ok(compareImages(unlined, lined).r.differing > 0.01, 'the lines change the image');
+    await page.locator('#param-edges-style').selectOption('toon');
+    assert.equal(await page.evaluate(() => window.obscura.get('edges.style')), 'toon');
+    assert.ok(compareImages(lined, await snapshot(page)).r.differing > 0.1, 'the toon bands change the shading');
+    await page.locator('#param-edges').uncheck();
+    await page.evaluate(() => window.obscura.set('edges.style', 'lines'));
 
     // The controls act: an operator, the exposure, the switch in the heading; folding a section hides its controls.
     await page.locator('#view-final').check();

@@ -5,6 +5,7 @@
 // CSV; docs/benchmarks.md ("Every effect at two sizes") shows the figures.
 //
 // Usage: node tools/browser-bench/effect-costs.mjs [--sizes 640x360,1280x720] [--samples N] [--settle MS] [--csv FILE]
+//                                                  [--effects NAME,...]  (only these effects' cases; default: all)
 //   (defaults: both sizes, 7 timer readings per case, 2500 ms for each case's shaders to compile and its first
 //   timer results to come back, bench-results/browser-effects.csv)
 import fs from 'node:fs';
@@ -16,12 +17,13 @@ import { chromiumLaunchOptions, parseOptions } from '../headless-chromium.mjs';
 
 const root = path.resolve(path.dirname(fileURLToPath(import.meta.url)), '..', '..');
 const options = { sizes: '640x360,1280x720', samples: 7, settle: 2500,
-                  csv: path.join(root, 'bench-results', 'browser-effects.csv') };
+                  csv: path.join(root, 'bench-results', 'browser-effects.csv'), effects: '' };
 parseOptions(process.argv.slice(2), {
   '--sizes': (v) => { options.sizes = v; },
   '--samples': (v) => { options.samples = Number(v); },
   '--settle': (v) => { options.settle = Number(v); },
   '--csv': (v) => { options.csv = path.resolve(v); },
+  '--effects': (v) => { options.effects = v; },
 }, path.basename(import.meta.url));
 const sizes = options.sizes.split(',').map((s) => s.split('x').map(Number));
 if (!sizes.every(([w, h]) => w > 0 && h > 0) || !(options.samples > 0 && options.settle >= 0))
@@ -76,7 +78,8 @@ try {
     });
     if (!description.timerQuery) throw new Error('this browser offers no EXT_disjoint_timer_query: no per-pass times');
     console.log(`${width}x${height}, ${description.renderer}, the built-in scene playing`);
-    for (const c of casesOf(description)) {
+    const only = options.effects ? new Set(options.effects.split(',')) : null;
+    for (const c of casesOf(description).filter((c) => !only || only.has(c.effect))) {
       const measure = (state) => page.evaluate(async ({ state, passes, samples, settle }) => {
         const o = window.obscura;
         // From the defaults each time (a setState only changes what it names), playing from 1 s.
