@@ -105,6 +105,7 @@ TEST(Resources, AGlErrorRaisedInAPassNamesThatPass) {
     // The motion blur's passes and TAA's run only with their switches on.
     if (pass.rfind("motion-", 0) == 0) frame.set("motion-blur", "on");
     if (pass == "taa") frame.set("taa", "on");
+    if (pass.rfind("dof-", 0) == 0) frame.set("dof", "on");
     FrameOptions options;
     if (pass == "present") options.retain = {"display-color"};
     if (pass == "tonemap") options.retain = {"scene-color"};

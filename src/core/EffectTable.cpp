@@ -5,6 +5,7 @@
 #include "core/AoEffect.h"
 #include "core/BloomEffect.h"
 #include "core/DebugViewPass.h"
+#include "core/DepthOfFieldEffect.h"
 #include "core/FogEffect.h"
 #include "core/FxaaEffect.h"
 #include "core/GBufferEffect.h"
@@ -31,6 +32,7 @@ const std::vector<EffectEntry>& effectTable() {
         EffectEntry::of<TaaEffect>(),       // scene-color, velocity, gbuffer, history -> scene-color (HDR)
         EffectEntry::of<BloomEffect>(),     // scene-color -> scene-color (HDR, its own chain of 1/2 .. 1/64 targets)
         EffectEntry::of<TonemapEffect>(),   // scene-color -> display-color (sRGB, luma in alpha)
+        EffectEntry::of<DepthOfFieldEffect>(),  // display-color, gbuffer -> display-color (near and far fields)
         EffectEntry::of<MotionBlurEffect>(),  // display-color, velocity, gbuffer -> display-color
         EffectEntry::of<FxaaEffect>(),      // display-color -> display-color
     };
