@@ -102,10 +102,11 @@ TEST(Resources, AGlErrorRaisedInAPassNamesThatPass) {
                       : pass == "velocity"      ? View{"velocity"}
                                                 : View::Final;
     RenderSettings frame = settings;
-    // The motion blur's passes and TAA's run only with their switches on.
+    // The motion blur's passes, TAA's, depth of field's, fog's and bloom's run only with their switches on.
     if (pass.rfind("motion-", 0) == 0) frame.set("motion-blur", "on");
     if (pass == "taa") frame.set("taa", "on");
     if (pass.rfind("dof-", 0) == 0) frame.set("dof", "on");
+    if (pass == "fog" || pass == "bloom") frame.set(pass, "on");  // off by default too (issue 15 left them out here)
     FrameOptions options;
     if (pass == "present") options.retain = {"display-color"};
     if (pass == "tonemap") options.retain = {"scene-color"};
