@@ -40,7 +40,13 @@ build/obscura-render $aa --no-fxaa --accumulate 1 --shutter 0 --supersample 4 --
 build/obscura-render --size 480x270 --bloom --bloom.threshold 0.2 --bloom.intensity 1.5 --out "$out/bloom.png"
 build/obscura-render --size 480x270 --fog --fog.density 0.6 --fog.height-falloff 0.8 --fog.color 0.7,0.75,0.8 \
   --out "$out/fog_height.png"
-echo "render-docs-images: wrote $out/builtin_*.png, motion_*.png, ao_*.png, aa_*.png, bloom.png, fog_height.png"
+# Depth of field (docs/depth-of-field.md): an 85 mm lens at f/1.2 focused on the red sphere (autofocus on the point
+# 0.48, 0.58 of the frame); pinhole | depth of field | the mean of 64 pinhole renders over the lens (the reference).
+dof="--size 640x360 --dof.focal-length 85 --dof.fstop 1.2 --dof.focus-x 0.48 --dof.focus-y 0.58"
+build/obscura-render $dof --out "$out/dof_pinhole.png"
+build/obscura-render $dof --dof --out "$out/dof.png"
+build/obscura-render $dof --aperture 64 --out "$out/dof_reference.png"
+echo "render-docs-images: wrote $out/builtin_*.png, motion_*.png, ao_*.png, aa_*.png, bloom.png, fog_height.png, dof*.png"
 
 (cd tests/browser && npm ci --no-audit --no-fund --loglevel=error)
 OBSCURA_UPDATE_SCREENSHOTS=1 node --test --test-name-pattern="page screenshots" tests/browser/page.test.mjs >/dev/null
