@@ -5,8 +5,9 @@
 // CSV; docs/benchmarks.md ("Every effect at two sizes") shows the figures.
 //
 // Usage: node tools/browser-bench/effect-costs.mjs [--sizes 640x360,1280x720] [--samples N] [--settle MS] [--csv FILE]
+//                                                  [--effects NAME,...]
 //   (defaults: both sizes, 7 timer readings per case, 2500 ms for each case's shaders to compile and its first
-//   timer results to come back, bench-results/browser-effects.csv)
+//   timer results to come back, bench-results/browser-effects.csv; --effects: only the cases of these effects)
 import fs from 'node:fs';
 import path from 'node:path';
 import { fileURLToPath } from 'node:url';
@@ -22,6 +23,7 @@ parseOptions(process.argv.slice(2), {
   '--samples': (v) => { options.samples = Number(v); },
   '--settle': (v) => { options.settle = Number(v); },
   '--csv': (v) => { options.csv = path.resolve(v); },
+  '--effects': (v) => { options.effects = v.split(','); },
 }, path.basename(import.meta.url));
 const sizes = options.sizes.split(',').map((s) => s.split('x').map(Number));
 if (!sizes.every(([w, h]) => w > 0 && h > 0) || !(options.samples > 0 && options.settle >= 0))
@@ -48,7 +50,7 @@ function casesOf(description) {
     cases.push({ label: 'ao temporal 4 taps', effect: 'ao', passes: ao.passes,
                  state: 'ao=on&ao.temporal=on&ao.samples=4' });
   }
-  return cases;
+  return options.effects ? cases.filter((c) => options.effects.includes(c.effect)) : cases;
 }
 
 const rows = [];
