@@ -57,16 +57,16 @@ const std::vector<Parameter<DofSettings>>& DofSettings::parameters() {
     quality.get = [](const S& s) { return std::string(presetName(s.preset)); };
     quality.valid = [](const S&) { return true; };
     // The focus's "auto" resolves on the GPU (the G-buffer's depth at the focus point): nothing to show on the CPU.
-    Parameter<S> focus = autoNumberParameter<S>(
+    Parameter<S> focusParameter = autoNumberParameter<S>(
         "focus", 0.01, 1e5, "metres",
         "the distance in focus (along the view axis), or auto: the depth at the focus point",
         &S::focus, [](const S&) { return 0.0f; });
-    focus.effective = nullptr;
+    focusParameter.effective = nullptr;
     return std::vector<Parameter<S>>{
         switchParameter<S>("dof", "depth of field on or off (a thin lens: near and far fields gathered at half size)",
                            &S::enabled)
             .primary(),
-        std::move(focus).primary(),
+        std::move(focusParameter).primary(),
         numberParameter<S>("fstop", 0.5, 64, "", "the f-number N: the aperture's diameter is focal-length / N",
                            &S::fstop)
             .primary(),
