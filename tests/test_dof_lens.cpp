@@ -109,12 +109,12 @@ TEST(DofSettings, ParametersAndPresets) {
   settings.set("dof.focus", "auto");
   EXPECT_FALSE(settings.of<DofSettings>().focus.has_value());
   EXPECT_THROW(settings.set("dof.fstop", "0"), InputError);
-  EXPECT_THROW(settings.set("dof.quality", "best"), InputError);
+  EXPECT_THROW(settings.set("dof.preset", "best"), InputError);
   EXPECT_EQ(settings.of<DofSettings>().taps(), 24);
   settings.set("preset", "ultra");
-  EXPECT_EQ(settings.get("dof.quality"), "ultra");
+  EXPECT_EQ(settings.get("dof.preset"), "ultra");
   EXPECT_EQ(settings.of<DofSettings>().taps(), 64);
-  settings.set("dof.quality", "low");
+  settings.set("dof.preset", "low");
   EXPECT_EQ(settings.of<DofSettings>().taps(), 12);
   // The largest radius scales with the height and clamps to the tile passes' bound.
   EXPECT_FLOAT_EQ(settings.of<DofSettings>().maxRadiusPixels(720), 16.0f);

@@ -49,7 +49,9 @@ const std::vector<Parameter<DofSettings>>& DofSettings::parameters() {
   static const std::vector<Parameter<S>> table = [] {
     std::vector<std::string> presetNames;
     for (QualityPreset p : allQualityPresets()) presetNames.push_back(presetName(p));
-    Parameter<S> quality{{"quality", parse::joinChoices(presetNames, " | "),
+    // The issue's `dof.quality`, named `preset` as every effect's preset is (the viewers' state text writes
+    // EFFECT.preset for each effect with presets).
+    Parameter<S> quality{{"preset", parse::joinChoices(presetNames, " | "),
                           "quality preset: taps of each gather (12, 24, 40, 64)", ParameterKind::Choice, 0.0, 0.0,
                           presetNames},
                          {}, {}, {}, {}};

@@ -52,7 +52,7 @@ struct DofSettings : ParameterAccess<DofSettings> {
   float focalLength = 50.0f;   // F, millimetres
   float sensorHeight = 24.0f;  // h, millimetres (a full-frame sensor's 36 x 24)
   float maxRadius = 16.0f;     // the largest blur radius, pixels at 720 rows (scaled with the height)
-  QualityPreset preset = QualityPreset::Medium;  // dof.quality: the gather passes' taps
+  QualityPreset preset = QualityPreset::Medium;  // dof.preset: the gather passes' taps
 
   static const std::vector<Parameter<DofSettings>>& parameters();
   void validate() const { validateParameters("depth of field"); }

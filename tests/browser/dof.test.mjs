@@ -21,7 +21,7 @@ describe('depth of field', () => {
   });
 
   test('the controls come from the effect table', { timeout: 120000 }, async () => {
-    for (const name of ['dof', 'dof-focus', 'dof-fstop', 'dof-focal-length', 'dof-max-radius', 'dof-quality']) {
+    for (const name of ['dof', 'dof-focus', 'dof-fstop', 'dof-focal-length', 'dof-max-radius', 'dof-preset']) {
       assert.equal(await page.locator(`#param-${name}`).count(), 1, `#param-${name}`);
     }
     assert.equal(await page.evaluate(() => window.obscura.get('dof')), 'off');
