@@ -58,6 +58,9 @@ TEST(Cli, BadInputExitsWithStatusTwoAndOneLine) {
       {"--accumulate 4 --view ao", "--accumulate: writes the final image's reference; it takes no --view"},
       {"--shutter 0.25", "--shutter and --supersample shape the reference: they need --accumulate N"},
       {"--accumulate 4 --shutter 2", "--shutter: 2 is out of range"},
+      {"--aperture 4 --accumulate 4", "--aperture: the lens's reference is of one instant"},
+      {"--aperture 4 --view depth", "--aperture: writes the final image's reference; it takes no --view"},
+      {"--aperture 0", "--aperture: 0 is out of range"},
       {"--animation walk", "--animation 'walk' is not in the scene; "},
       {"--scene " + obscura::test::assimpModels() + "/2CylinderEngine-glTF-Binary/2CylinderEngine.glb --animation 0",
        "--animation 0 is not in the scene; the scene has no animations (choices: none, all)"},
@@ -291,6 +294,23 @@ TEST(Cli, AccumulateWritesTheShutterReference) {
   const obscura::test::ProcessResult help = run("--help");
   for (const char* option : {"--accumulate N", "--shutter S", "--supersample K"})
     EXPECT_NE(help.out.find(option), std::string::npos) << option;
+}
+
+// --aperture N writes depth of field's reference: with a pinhole-like lens (f/64) the frame without depth of field,
+// with a wide one (f/0.7) a blurred frame, nearer to the effect's frame than the sharp one is (the room's blur is
+// 1 to 7 pixels wide, where the half-size fields do least well: tests/test_dof.cpp holds the margin on a
+// scene made for it).
+TEST(Cli, ApertureWritesTheLensReference) {
+  const std::string lens = "--size 480x270 --no-ao --no-fxaa --dof.focus 6 ";
+  const auto sharp = renderPixels(lens, "pinhole");
+  EXPECT_LT(meanDifference(renderPixels(lens + "--dof.fstop 64 --aperture 8", "narrow-reference"), sharp), 0.1);
+  const auto reference = renderPixels(lens + "--dof.fstop 0.7 --aperture 32", "wide-reference");
+  const auto blurred = renderPixels(lens + "--dof.fstop 0.7 --dof", "wide-dof");
+  EXPECT_GT(meanDifference(reference, sharp), 0.5) << "a wide aperture blurs the room";
+  EXPECT_LT(meanDifference(reference, blurred), 0.9 * meanDifference(reference, sharp));
+  const obscura::test::ProcessResult help = run("--help");
+  EXPECT_NE(help.out.find("--aperture N"), std::string::npos);
+  EXPECT_NE(help.out.find("--dof.fstop"), std::string::npos);
 }
 
 // --compare chooses what --view split compares: FXAA's split differs from the AO's, and its left half is the frame

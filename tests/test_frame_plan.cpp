@@ -62,17 +62,20 @@ TEST(EffectTable, ListsTheFrameInOrderWithUniqueNames) {
   std::vector<std::string> effects;
   for (const EffectEntry& row : effectTable()) effects.push_back(row.info.name);
   EXPECT_EQ(effects, (std::vector<std::string>{"gbuffer", "velocity", "ao", "lighting", "lines", "fog", "taa", "bloom",
-                                                "tonemap", "edges", "motion-blur", "fxaa"}));
+                                                "tonemap", "edges", "dof", "motion-blur", "fxaa"}));
   EXPECT_EQ(framePassNames(),
             (std::vector<std::string>{"pose", "gbuffer", "base-color", "velocity", "hierarchy", "sao", "ao-temporal",
                                       "blur-h", "blur-v", "upsample", "lighting", "shading-count", "lines", "fog",
                                       "taa", "bloom", "tonemap", "edges-detect", "edges-h", "edges",
+                                      "dof-coc", "dof-downsample", "dof-tiles-h", "dof-tiles", "dof-neighbors",
+                                      "dof-near", "dof-far", "dof-composite",
                                       "motion-tiles-h", "motion-tiles", "motion-neighbors", "motion-blur", "fxaa",
                                       "view", "present"}));
-  // Every target an effect declares is RGBA8 data with a documented encoding; packed data is never filtered.
+  // Every target an effect declares is RGBA8 data with a documented encoding; packed data is never filtered (plain
+  // colours may be: the display colour, depth of field's premultiplied half-size fields).
   for (const TargetInfo& target : frameTargets()) {
     EXPECT_FALSE(target.encoding.empty()) << target.name;
-    if (target.name != "display-color") {
+    if (target.name != "display-color" && target.name != "dof-near" && target.name != "dof-far") {
       EXPECT_EQ(target.filter, GLenum(GL_NEAREST)) << target.name;
     }
   }

@@ -102,9 +102,11 @@ TEST(Resources, AGlErrorRaisedInAPassNamesThatPass) {
                       : pass == "velocity"      ? View{"velocity"}
                                                 : View::Final;
     RenderSettings frame = settings;
-    // The motion blur's passes, TAA's, fog's, bloom's and the edges' run only with their switches on.
+    // The motion blur's passes, TAA's, depth of field's, fog's, bloom's and the edges' run only with their switches
+    // on.
     if (pass.rfind("motion-", 0) == 0) frame.set("motion-blur", "on");
     if (pass == "taa") frame.set("taa", "on");
+    if (pass.rfind("dof-", 0) == 0) frame.set("dof", "on");
     if (pass == "fog" || pass == "bloom") frame.set(pass, "on");
     if (pass.rfind("edges", 0) == 0) frame.set("edges", "on");
     FrameOptions options;

@@ -43,8 +43,14 @@ build/obscura-render --size 480x270 --fog --fog.density 0.6 --fog.height-falloff
 # Edges (docs/edges.md): lines two pixels wide, and the toon style.
 build/obscura-render --size 480x270 --edges --edges.width 2 --out "$out/edges.png"
 build/obscura-render --size 480x270 --edges --edges.style toon --edges.width 2 --out "$out/edges_toon.png"
+# Depth of field (docs/depth-of-field.md): an 85 mm lens at f/1.2 focused on the red sphere (autofocus on the point
+# 0.48, 0.58 of the frame); pinhole | depth of field | the mean of 64 pinhole renders over the lens (the reference).
+dof="--size 640x360 --dof.focal-length 85 --dof.fstop 1.2 --dof.focus-x 0.48 --dof.focus-y 0.58"
+build/obscura-render $dof --out "$out/dof_pinhole.png"
+build/obscura-render $dof --dof --out "$out/dof.png"
+build/obscura-render $dof --aperture 64 --out "$out/dof_reference.png"
 echo "render-docs-images: wrote $out/builtin_*.png, motion_*.png, ao_*.png, aa_*.png, bloom.png, fog_height.png," \
-  "edges.png, edges_toon.png"
+  "edges.png, edges_toon.png, dof*.png"
 
 (cd tests/browser && npm ci --no-audit --no-fund --loglevel=error)
 OBSCURA_UPDATE_SCREENSHOTS=1 node --test --test-name-pattern="page screenshots" tests/browser/page.test.mjs >/dev/null

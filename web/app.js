@@ -168,7 +168,12 @@ function parameterControl(obscura, parameter) {
     ? element('input', { type: 'checkbox', id: `${id}-auto`, title: 'fitted to the ray-traced reference' })
     : null;
   if (auto) {
-    auto.addEventListener('change', () => apply(auto.checked ? 'auto' : obscura.effective(parameter.name)));
+    // dof.focus's 'auto' is resolved on the GPU and has no value here: unchecked, it takes the slider's.
+    const manual = () => {
+      const value = obscura.effective(parameter.name);
+      return Number.isFinite(Number(value)) ? value : String(scale.fromSlider(Number(slider.value)));
+    };
+    auto.addEventListener('change', () => apply(auto.checked ? 'auto' : manual()));
     row.append(element('label', { htmlFor: `${id}-auto`, className: 'auto', textContent: 'auto' }, auto));
   }
   return {

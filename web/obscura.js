@@ -157,6 +157,15 @@ export class Obscura extends EventTarget {
   effective(name) { return this.text('obscura_get_effective', ['string'], [name]); }
   // Sets a parameter from a string or number; throws ObscuraError with the core's message if refused.
   set(name, value) { this.call('obscura_set', ['string', 'string'], [name, String(value)]); }
+  // Autofocus depth of field on the point (x, y) of the canvas, CSS pixels from its top left: dof.focus becomes
+  // 'auto' and dof.focus-x, dof.focus-y the point as fractions of the canvas, so the lens focuses on the depth drawn
+  // there (in the URL, as the parameters are). Depth of field itself stays as it is.
+  focusAt(x, y) {
+    const fraction = (v, size) => String(Math.min(Math.max(size > 0 ? v / size : 0.5, 0), 1));
+    this.set('dof.focus', 'auto');
+    this.set('dof.focus-x', fraction(x, this.canvas.clientWidth));
+    this.set('dof.focus-y', fraction(y, this.canvas.clientHeight));
+  }
   get view() { return this.text('obscura_view', [], []); }
   // Forces how the depth hierarchy is stored: 'separate', 'atlas', 'mipchain' (needs EXT_shader_texture_lod and
   // OES_fbo_render_mipmap) or 'auto' (the best the context offers; the default). Returns the storage now in use.
@@ -325,7 +334,8 @@ export class Obscura extends EventTarget {
 
   // --- Pointer controls ----------------------------------------------------------------------------------------------
   // Left drag: orbit. Right or middle drag, or shift + left drag: pan. Wheel: zoom. Touch: one finger orbits, two
-  // fingers pinch to zoom and move together to pan.
+  // fingers pinch to zoom and move together to pan. A click (a left press released within 4 pixels of where it went
+  // down) with depth of field on focuses there (focusAt).
   attachPointerControls() {
     const canvas = this.canvas;
     const pointers = new Map();  // pointerId -> {x, y, pan}
@@ -333,11 +343,19 @@ export class Obscura extends EventTarget {
     canvas.addEventListener('contextmenu', (e) => e.preventDefault());
     canvas.addEventListener('pointerdown', (e) => {
       canvas.setPointerCapture(e.pointerId);
-      pointers.set(e.pointerId, { x: e.clientX, y: e.clientY, pan: e.button === 1 || e.button === 2 || e.shiftKey });
+      pointers.set(e.pointerId, { x: e.clientX, y: e.clientY, pan: e.button === 1 || e.button === 2 || e.shiftKey,
+                                  downX: e.clientX, downY: e.clientY, click: pointers.size === 0 && e.button === 0 });
       e.preventDefault();
     });
     const release = (e) => pointers.delete(e.pointerId);
-    canvas.addEventListener('pointerup', release);
+    canvas.addEventListener('pointerup', (e) => {
+      const pointer = pointers.get(e.pointerId);
+      release(e);
+      if (!pointer || !pointer.click || pointer.pan || this.get('dof') !== 'on') return;
+      if (Math.hypot(e.clientX - pointer.downX, e.clientY - pointer.downY) > 4) return;
+      const rect = canvas.getBoundingClientRect();
+      this.focusAt(e.clientX - rect.left, e.clientY - rect.top);
+    });
     canvas.addEventListener('pointercancel', release);
     canvas.addEventListener('pointermove', (e) => {
       const pointer = pointers.get(e.pointerId);

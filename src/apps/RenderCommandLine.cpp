@@ -20,7 +20,7 @@ std::string renderUsage() {
       "                      [--camera CAM.json | --fit] [--size WxH] [--view V [--compare SWITCH]] [--out FILE.png]\n"
       "                      [--NAME VALUE | --EFFECT | --no-EFFECT ...] [--preset P] [--bench N]\n"
       "                      [--backend osmesa|egl]\n"
-      "                      [--accumulate N [--shutter S] [--supersample K]]\n"
+      "                      [--accumulate N [--shutter S] [--supersample K]] [--aperture N [--supersample K]]\n"
       "\n"
       "Renders a glTF 2.0 scene (default: the built-in scene) headless: the G-buffer, Scalable Ambient Obscurance,\n"
       "lighting, fog, bloom, tone mapping and FXAA, or one of the frame's targets.\n"
@@ -36,6 +36,8 @@ std::string renderUsage() {
       "                    temporal effects off, at times spread over [T - S/(2F), T + S/(2F)]\n"
       "  --shutter S       the reference's shutter, a fraction of the frame interval (default 0.5; 0: one instant)\n"
       "  --supersample K   the reference's sub-frames rendered at K times the size, box-downsampled (default 1)\n"
+      "  --aperture N      write depth of field's reference instead of the frame: the mean of N pinhole renders\n"
+      "                    from points on the lens of the --dof.* parameters, each sheared to keep the focus plane\n"
       "  --out FILE        output PNG (default obscura.png)\n"
       "  --bench N         render N frames and print per-pass milliseconds (glFinish-bounded)\n"
       "  --backend B       osmesa (default) or egl (Mesa EGL surfaceless, a true GLES 2 context)\n"
@@ -94,6 +96,7 @@ RenderOptions parseRenderCommandLine(const std::vector<std::string>& args) {
     else if (arg == "--accumulate") options.accumulate = parseCount(arg, value(), 4096);
     else if (arg == "--shutter") options.shutter = parseNumber(arg, value(), 0.0, 1.0);
     else if (arg == "--supersample") options.supersample = parseCount(arg, value(), 16);
+    else if (arg == "--aperture") options.aperture = parseCount(arg, value(), 4096);
     else if (arg == "--bench") options.benchFrames = parseCount(arg, value(), 100000);
     else if (arg == "--backend") {
       try {
@@ -122,8 +125,12 @@ RenderOptions parseRenderCommandLine(const std::vector<std::string>& args) {
   if (compareGiven && options.view != View::Split) throw InputError("--compare: only --view split compares");
   if (options.accumulate > 0 && (options.view != View::Final || options.benchFrames > 0 || options.frames != 1))
     throw InputError("--accumulate: writes the final image's reference; it takes no --view, --frames or --bench");
-  if (options.accumulate == 0 && (options.shutter != 0.5 || options.supersample != 1))
-    throw InputError("--shutter and --supersample shape the reference: they need --accumulate N");
+  if (options.aperture > 0 && (options.accumulate > 0 || options.shutter != 0.5))
+    throw InputError("--aperture: the lens's reference is of one instant; it takes no --accumulate or --shutter");
+  if (options.aperture > 0 && (options.view != View::Final || options.benchFrames > 0 || options.frames != 1))
+    throw InputError("--aperture: writes the final image's reference; it takes no --view, --frames or --bench");
+  if (options.accumulate == 0 && options.aperture == 0 && (options.shutter != 0.5 || options.supersample != 1))
+    throw InputError("--shutter and --supersample shape the reference: they need --accumulate N (or --aperture N)");
   return options;
 }
 
@@ -168,6 +175,16 @@ int runRender(const RenderOptions& options) {
       accumulation.animation = input.animation;
       writePng(options.outPath, accumulateShutter(renderer, [&](double) { return camera; }, settings, accumulation)
                                     .toImage());
+      return 0;
+    }
+
+    if (options.aperture > 0) {
+      ApertureOptions aperture;
+      aperture.samples = options.aperture;
+      aperture.supersample = options.supersample;
+      aperture.time = options.input.time;
+      aperture.animation = input.animation;
+      writePng(options.outPath, accumulateAperture(renderer, camera, settings, aperture).toImage());
       return 0;
     }
 

@@ -29,6 +29,9 @@ struct RenderOptions {
   int accumulate = 0;
   double shutter = 0.5;
   int supersample = 1;
+  // --aperture N: write depth of field's reference of core/AccumulationReference.h instead (N pinhole renders from
+  // points on the lens of the dof.* settings, each --supersample times the size), for the final view only.
+  int aperture = 0;
   int benchFrames = 0;
   HeadlessBackend backend = HeadlessBackend::OSMesa;
   bool help = false;

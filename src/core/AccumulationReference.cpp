@@ -3,8 +3,12 @@
 #include <cmath>
 #include <string>
 
+#include <glm/geometric.hpp>
+
 #include "base/Error.h"
+#include "core/DepthOfFieldEffect.h"
 #include "core/EffectTable.h"
+#include "core/LinearDepthPacking.h"
 #include "gl/RenderTarget.h"
 
 namespace obscura {
@@ -60,14 +64,20 @@ LinearImage downsampleBox(const std::vector<std::uint8_t>& rgba, int width, int 
   return out;
 }
 
-LinearImage accumulateShutter(Renderer& renderer, const std::function<Camera(double)>& cameraAt,
-                              const RenderSettings& settings, const AccumulationOptions& options) {
-  if (options.supersample < 1) throw InputError("supersample: expected at least 1");
-  const std::vector<double> times =
-      shutterSampleTimes(options.time, options.fps, options.shutter, options.samples);
-  const RenderSettings subFrame = withoutTemporalEffects(settings);
-  const Camera first = cameraAt(times.front());
-  const int k = options.supersample;
+namespace {
+
+// One sub-frame of a reference: its camera (the image's size), time and projection shift (pixels of the image).
+struct SubFrame {
+  Camera camera;
+  double time = 0.0;
+  glm::vec2 shift{0.0f};
+};
+
+// The mean of the sub-frames' final images, each rendered at `k` times its size and box-downsampled.
+LinearImage meanOfRenders(Renderer& renderer, const std::vector<SubFrame>& subFrames, const RenderSettings& settings,
+                          int k, const AnimationChoice& animation, bool loop) {
+  if (k < 1) throw InputError("supersample: expected at least 1");
+  const Camera& first = subFrames.front().camera;
   const int width = first.width * k, height = first.height * k;
   const int limit = renderer.caps().maxRenderSize();
   if (width > limit || height > limit)
@@ -82,22 +92,89 @@ LinearImage accumulateShutter(Renderer& renderer, const std::function<Camera(dou
   sum.height = first.height;
   sum.rgba.assign(static_cast<size_t>(sum.width) * sum.height * 4, 0.0f);
   FrameOptions frame;
-  frame.animation = options.animation;
-  frame.loop = options.loop;
-  for (double t : times) {
-    Camera camera = cameraAt(t);
+  frame.animation = animation;
+  frame.loop = loop;
+  for (const SubFrame& sub : subFrames) {
+    Camera camera = sub.camera;
     if (camera.width != first.width || camera.height != first.height)
-      throw InputError("accumulateShutter: every sub-frame's camera must have the same size");
+      throw InputError("accumulation: every sub-frame's camera must have the same size");
     camera.width = width;
     camera.height = height;
-    frame.time = t;
-    frame.previousTime = t;  // nothing reads motion: the temporal effects are off
-    renderer.render(camera, subFrame, View::Final, OutputTarget{output.framebuffer(), width, height, {}}, frame);
+    frame.time = sub.time;
+    frame.previousTime = sub.time;  // nothing reads motion: the temporal effects are off
+    frame.projectionShift = sub.shift * static_cast<float>(k);
+    renderer.render(camera, settings, View::Final, OutputTarget{output.framebuffer(), width, height, {}}, frame);
     const LinearImage image = downsampleBox(output.readRgba(), width, height, k);
     for (size_t i = 0; i < sum.rgba.size(); ++i) sum.rgba[i] += image.rgba[i];
   }
-  for (float& v : sum.rgba) v /= static_cast<float>(times.size());
+  for (float& v : sum.rgba) v /= static_cast<float>(subFrames.size());
   return sum;
+}
+
+}  // namespace
+
+LinearImage accumulateShutter(Renderer& renderer, const std::function<Camera(double)>& cameraAt,
+                              const RenderSettings& settings, const AccumulationOptions& options) {
+  std::vector<SubFrame> subFrames;
+  for (double t : shutterSampleTimes(options.time, options.fps, options.shutter, options.samples))
+    subFrames.push_back({cameraAt(t), t, glm::vec2(0.0f)});
+  return meanOfRenders(renderer, subFrames, withoutTemporalEffects(settings), options.supersample, options.animation,
+                       options.loop);
+}
+
+glm::vec2 lensPoint(int i, int n) {
+  constexpr double kGoldenAngle = 2.39996322972865332;  // 2 pi (1 - 1 / phi)
+  const double r = std::sqrt((i + 0.5) / n), a = kGoldenAngle * i;
+  return {static_cast<float>(r * std::cos(a)), static_cast<float>(r * std::sin(a))};
+}
+
+float autofocusDistance(Renderer& renderer, const Camera& camera, const RenderSettings& settings, double time,
+                        const AnimationChoice& animation) {
+  RenderSettings pinhole = withoutTemporalEffects(settings);
+  pinhole.set("dof", "off");
+  const gl::RenderTarget output("autofocus frame", camera.width, camera.height, GL_NEAREST,
+                                gl::RenderTarget::Depth::Renderbuffer, renderer.caps().depth24,
+                                renderer.caps().packedDepthStencil);
+  FrameOptions frame;
+  frame.time = frame.previousTime.emplace(time);
+  frame.animation = animation;
+  frame.retain = {"gbuffer"};
+  renderer.render(camera, pinhole, View::Final, OutputTarget{output.framebuffer(), camera.width, camera.height, {}},
+                  frame);
+  const std::vector<std::uint8_t> gbuffer = renderer.retained("gbuffer").readRgba();
+  const glm::ivec2 pixel = settings.of<DofSettings>().focusPixel(camera.width, camera.height);
+  const std::uint8_t* texel = &gbuffer[(static_cast<size_t>(pixel.y) * camera.width + pixel.x) * 4];
+  const float depth = LinearDepthPacking::depthFromCode(LinearDepthPacking::codeFromBytes(texel[2], texel[3]));
+  return camera.near + depth * (camera.far - camera.near);
+}
+
+LinearImage accumulateAperture(Renderer& renderer, const Camera& camera, const RenderSettings& settings,
+                               const ApertureOptions& options) {
+  if (options.samples < 1) throw InputError("aperture samples: expected at least 1, got " +
+                                            std::to_string(options.samples));
+  const DofSettings& dof = settings.of<DofSettings>();
+  const ThinLens lens = ThinLens::of(dof, camera.height);
+  const float focus = lens.usableFocus(
+      dof.focus ? *dof.focus : autofocusDistance(renderer, camera, settings, options.time, options.animation));
+  const float projScale = static_cast<float>(camera.height) / (2.0f * std::tan(camera.fovyRadians() * 0.5f));
+  const float lensRadius = 0.5f * lens.pinholeAperture(focus, projScale);
+  // The camera's own axes: a lens point (x, y) moves the eye along them, the view direction unchanged.
+  const glm::vec3 forward = glm::normalize(camera.target - camera.eye);
+  const glm::vec3 right = glm::normalize(glm::cross(forward, camera.up));
+  const glm::vec3 up = glm::cross(right, forward);
+  std::vector<SubFrame> subFrames;
+  for (int i = 0; i < options.samples; ++i) {
+    const glm::vec2 a = lensPoint(i, options.samples) * lensRadius;  // metres on the lens
+    SubFrame sub{camera, options.time, glm::vec2(0.0f)};
+    sub.camera.eye += right * a.x + up * a.y;
+    sub.camera.target += right * a.x + up * a.y;
+    // A point on the plane in focus moves by -a projScale / P pixels in the moved camera's image: shear it back.
+    sub.shift = a * (projScale / focus);
+    subFrames.push_back(sub);
+  }
+  RenderSettings pinhole = withoutTemporalEffects(settings);
+  pinhole.set("dof", "off");
+  return meanOfRenders(renderer, subFrames, pinhole, options.supersample, options.animation, true);
 }
 
 }  // namespace obscura

@@ -6,12 +6,16 @@
 //   - the supersampling reference for antialiasing: the frame rendered at k times its size with the antialiasing off,
 //     box-downsampled (k x k pixels per output pixel). With a zero shutter the two combine: one instant,
 //     supersampled, the reference of temporal antialiasing on a moving scene.
-// Both average the final image's display values (sRGB-encoded, after the tone curve), which is what the effects they
+//   - the aperture reference for depth of field: the mean of many pinhole renders from points on the lens
+//     (accumulateAperture below).
+// All average the final image's display values (sRGB-encoded, after the tone curve), which is what the effects they
 // judge are compared on and what a viewer sees; averaging linear light before the tone curve would brighten blurred
 // edges between bright and dark by at most the curve's non-linearity over the two (docs/temporal-effects.md).
 #include <cstdint>
 #include <functional>
 #include <vector>
+
+#include <glm/vec2.hpp>
 
 #include "core/RenderSettings.h"
 #include "core/Renderer.h"
@@ -63,5 +67,29 @@ struct AccumulationOptions {
 // exceeds what the context can render.
 LinearImage accumulateShutter(Renderer& renderer, const std::function<Camera(double)>& cameraAt,
                               const RenderSettings& settings, const AccumulationOptions& options);
+
+// The aperture reference for depth of field (core/DepthOfFieldEffect.h): the mean of `samples` pinhole renders from
+// points spread over the thin lens of the settings' dof.* parameters (whether `dof` is on or not), each through the
+// camera moved to its lens point (looking the same way) with its frustum sheared so that the plane in focus stays
+// where it is in the image (FrameOptions::projectionShift): points on that plane land on the same pixel from every
+// lens point, and a point at depth D is spread over a disc of the thin lens's CoC. The lens points are Vogel's
+// golden-angle spiral over the disc (each stands for an equal share of its area). Sub-frames are rendered with
+// withoutTemporalEffects(settings) and the depth of field off, at `supersample` times the size. The focus is dof.focus,
+// or for `auto` the G-buffer's depth at the autofocus pixel (autofocusDistance). Throws InputError for samples < 1.
+struct ApertureOptions {
+  int samples = 64;
+  int supersample = 1;
+  double time = 0.0;
+  AnimationChoice animation;
+};
+LinearImage accumulateAperture(Renderer& renderer, const Camera& camera, const RenderSettings& settings,
+                               const ApertureOptions& options);
+// The lens point i of n: Vogel's spiral, radius sqrt((i + 1/2) / n), turned by the golden angle per point, in a disc
+// of radius 1.
+glm::vec2 lensPoint(int i, int n);
+// The depth along the view axis (metres) of the G-buffer at the settings' autofocus pixel: what dof.focus=auto
+// focuses on (the far plane where nothing was drawn). Renders one frame through `renderer`.
+float autofocusDistance(Renderer& renderer, const Camera& camera, const RenderSettings& settings, double time = 0.0,
+                        const AnimationChoice& animation = {});
 
 }  // namespace obscura

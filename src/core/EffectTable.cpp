@@ -5,6 +5,7 @@
 #include "core/AoEffect.h"
 #include "core/BloomEffect.h"
 #include "core/DebugViewPass.h"
+#include "core/DepthOfFieldEffect.h"
 #include "core/EdgesEffect.h"
 #include "core/FogEffect.h"
 #include "core/FxaaEffect.h"
@@ -33,6 +34,7 @@ const std::vector<EffectEntry>& effectTable() {
         EffectEntry::of<BloomEffect>(),     // scene-color -> scene-color (HDR, its own chain of 1/2 .. 1/64 targets)
         EffectEntry::of<TonemapEffect>(),   // scene-color -> display-color (sRGB, luma in alpha)
         EffectEntry::of<EdgesEffect>(),     // gbuffer, display-color -> display-color (lines; toon bands)
+        EffectEntry::of<DepthOfFieldEffect>(),  // display-color, gbuffer -> display-color (near and far fields)
         EffectEntry::of<MotionBlurEffect>(),  // display-color, velocity, gbuffer -> display-color
         EffectEntry::of<FxaaEffect>(),      // display-color -> display-color
     };

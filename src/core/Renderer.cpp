@@ -188,7 +188,7 @@ void Renderer::beginFrame(const Camera& camera, const RenderSettings& settings, 
     jitter = glm::vec2(halton(index, 2), halton(index, 3)) - 0.5f;
   }
   FrameContext frame;
-  frame.camera = FrameCamera::from(camera, output.width, output.height, jitter);
+  frame.camera = FrameCamera::from(camera, output.width, output.height, jitter + options.projectionShift);
   frame.hasPrevious = hasPrevious_;
   frame.previousCamera = hasPrevious_ ? previousCamera_ : frame.camera;
   frame.index = frameIndex_;

@@ -86,6 +86,10 @@ struct FrameOptions {
   // docs/api.md, shaders_es2/lib/obscura_gbuffer.glsl): the frame's `gbuffer` pass copies it instead of drawing the
   // scene, and the effects read it as their own. The camera must be the one it was drawn with. 0: the scene's.
   GLuint externalGBuffer = 0;
+  // A shift of the projection in pixels (x right, y up), added to the jitter: the sheared frustum of the aperture
+  // reference (core/AccumulationReference.h: accumulateAperture), whose camera sits off the lens's centre and looks
+  // through the same plane in focus. Reconstruction from depth ignores it, as it ignores the jitter.
+  glm::vec2 projectionShift{0.0f};
 };
 
 class Renderer {

@@ -6,6 +6,7 @@
 
 #include <glm/geometric.hpp>
 #include <glm/gtc/matrix_transform.hpp>
+#include <glm/trigonometric.hpp>
 #include <nlohmann/json.hpp>
 
 #include "base/Error.h"
@@ -73,7 +74,8 @@ Camera Camera::fromJson(const std::string& text, const std::string& source) {
       throw InputError(source + ": " + key + ": must be in 1 .. " + std::to_string(kMaxSize));
     out = static_cast<int>(value);
   };
-  static const char* known[] = {"eye", "target", "up", "fovy_deg", "near", "far", "width", "height"};
+  static const char* known[] = {"eye",  "target", "up",    "fovy_deg", "focal_length_mm", "sensor_height_mm",
+                                "near", "far",    "width", "height"};
   for (const auto& item : json.items()) {
     bool ok = false;
     for (const char* k : known) ok = ok || item.key() == k;
@@ -83,6 +85,19 @@ Camera Camera::fromJson(const std::string& text, const std::string& source) {
   vec3Field("target", camera.target, true);
   vec3Field("up", camera.up, false);
   numberField("fovy_deg", camera.fovyDegrees);
+  // A physical camera's lens: the field of view a sensor `h` tall sees through focal length F, 2 atan(h / (2 F)).
+  if (json.contains("focal_length_mm") || json.contains("sensor_height_mm")) {
+    if (json.contains("fovy_deg"))
+      throw InputError(source + ": fovy_deg: give either it or focal_length_mm (with sensor_height_mm), not both");
+    if (!json.contains("focal_length_mm"))
+      throw InputError(source + ": sensor_height_mm: needs focal_length_mm");
+    float focal = 0.0f, sensor = kDefaultSensorHeightMm;
+    numberField("focal_length_mm", focal);
+    numberField("sensor_height_mm", sensor);
+    if (!(focal > 0.0f && focal <= 1e5f)) throw InputError(source + ": focal_length_mm: must be in 0 .. 100000");
+    if (!(sensor > 0.0f && sensor <= 1e3f)) throw InputError(source + ": sensor_height_mm: must be in 0 .. 1000");
+    camera.fovyDegrees = glm::degrees(2.0f * std::atan(sensor / (2.0f * focal)));
+  }
   numberField("near", camera.near);
   numberField("far", camera.far);
   intField("width", camera.width);

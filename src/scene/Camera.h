@@ -3,7 +3,9 @@
 //
 // JSON form (camera files, the page's URL state):
 //   {"eye":[x,y,z], "target":[x,y,z], "up":[x,y,z], "fovy_deg":f, "near":n, "far":f, "width":W, "height":H}
-// eye and target are required; the rest default to up (0,1,0), fovy 50, near 0.1, far 100, 1280 x 720.
+// eye and target are required; the rest default to up (0,1,0), fovy 50, near 0.1, far 100, 1280 x 720. A physical
+// camera may give "focal_length_mm" (and "sensor_height_mm", default 24: full frame) instead of fovy_deg: the field of
+// view is then 2 atan(sensor / (2 focal)) (depth of field's lens, docs/depth-of-field.md). toJson writes fovy_deg.
 #include <string>
 
 #include <glm/mat4x4.hpp>
@@ -24,6 +26,7 @@ struct Camera {
   int height = 720;
 
   static constexpr int kMaxSize = 16384;
+  static constexpr float kDefaultSensorHeightMm = 24.0f;
 
   float aspect() const { return static_cast<float>(width) / static_cast<float>(height); }
   float fovyRadians() const;

@@ -7,7 +7,7 @@
 // Usage: node tools/browser-bench/effect-costs.mjs [--sizes 640x360,1280x720] [--samples N] [--settle MS] [--csv FILE]
 //                                                  [--effects NAME,...]  (only these effects' cases; default: all)
 //   (defaults: both sizes, 7 timer readings per case, 2500 ms for each case's shaders to compile and its first
-//   timer results to come back, bench-results/browser-effects.csv)
+//   timer results to come back, bench-results/browser-effects.csv; --effects: only the cases of these effects)
 import fs from 'node:fs';
 import path from 'node:path';
 import { fileURLToPath } from 'node:url';
@@ -23,7 +23,7 @@ parseOptions(process.argv.slice(2), {
   '--samples': (v) => { options.samples = Number(v); },
   '--settle': (v) => { options.settle = Number(v); },
   '--csv': (v) => { options.csv = path.resolve(v); },
-  '--effects': (v) => { options.effects = v; },
+  '--effects': (v) => { options.effects = v.split(','); },
 }, path.basename(import.meta.url));
 const sizes = options.sizes.split(',').map((s) => s.split('x').map(Number));
 if (!sizes.every(([w, h]) => w > 0 && h > 0) || !(options.samples > 0 && options.settle >= 0))
@@ -50,7 +50,7 @@ function casesOf(description) {
     cases.push({ label: 'ao temporal 4 taps', effect: 'ao', passes: ao.passes,
                  state: 'ao=on&ao.temporal=on&ao.samples=4' });
   }
-  return cases;
+  return options.effects ? cases.filter((c) => options.effects.includes(c.effect)) : cases;
 }
 
 const rows = [];
@@ -78,8 +78,7 @@ try {
     });
     if (!description.timerQuery) throw new Error('this browser offers no EXT_disjoint_timer_query: no per-pass times');
     console.log(`${width}x${height}, ${description.renderer}, the built-in scene playing`);
-    const only = options.effects ? new Set(options.effects.split(',')) : null;
-    for (const c of casesOf(description).filter((c) => !only || only.has(c.effect))) {
+    for (const c of casesOf(description)) {
       const measure = (state) => page.evaluate(async ({ state, passes, samples, settle }) => {
         const o = window.obscura;
         // From the defaults each time (a setState only changes what it names), playing from 1 s.

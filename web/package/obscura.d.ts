@@ -185,6 +185,8 @@ export class Obscura extends EventTarget {
   pan(dx: number, dy: number, viewportHeight?: number): void;
   zoom(factor: number): void;
   resetCamera(): void;
+  /** Depth of field's autofocus on (x, y), CSS pixels from the canvas's top left (dof.focus=auto, dof.focus-x/-y). */
+  focusAt(x: number, y: number): void;
 
   // Scenes.
   loadScene(bytes: ArrayBuffer | Uint8Array, name: string, sideFiles?: SideFiles): Promise<SceneInfo>;
