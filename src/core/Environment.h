@@ -27,7 +27,7 @@
 // of a level, each decoded, weighted bilinearly (wrapping in u, clamped in v), and two levels blended by the
 // fractional level. Two layouts give the same texel centres, so the same values:
 //   mip chain  EXT_shader_texture_lod: the roughness levels are mip levels 0 .. 5 of one 512 x 256 texture (6 .. 9
-//              hold copies, for completeness), read with texture2DLodEXT at integer levels.
+//              hold level 5's mean, for a complete chain), read with texture2DLodEXT at integer levels.
 //   atlas      otherwise (a documented fallback, core GLES 2 / WebGL 1): level 0 at the left, levels 1 .. 5 stacked
 //              in a column to its right (768 x 256), read with texture2D at computed coordinates.
 #include <array>
