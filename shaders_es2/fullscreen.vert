@@ -5,6 +5,11 @@
 #ifndef FAR_RAY
 #define FAR_RAY 1
 #endif
+// AT_FAR_PLANE 1: the triangle lies on the far plane (window depth 1), so a depth test LEQUAL passes only where
+// nothing was drawn (the forward lighting's background).
+#ifndef AT_FAR_PLANE
+#define AT_FAR_PLANE 0
+#endif
 
 attribute vec2 a_position;  // (-1,-1), (3,-1), (-1,3)
 
@@ -20,5 +25,9 @@ void main() {
 #if FAR_RAY
   v_farRay = farPlaneRay(v_uv);
 #endif
+#if AT_FAR_PLANE
+  gl_Position = vec4(a_position, 1.0, 1.0);
+#else
   gl_Position = vec4(a_position, 0.0, 1.0);
+#endif
 }

@@ -220,7 +220,8 @@ TEST(AoSettings, ParameterMetadataDescribesTheAcceptedValues) {
         EXPECT_THROW(settings.set(p.name, "no-such-choice"), InputError) << p.name;
         break;
       case ParameterKind::Color:
-        ADD_FAILURE() << p.name << ": the AO has no colour parameter";
+      case ParameterKind::Text:
+        ADD_FAILURE() << p.name << ": the AO has no colour or text parameter";
         break;
     }
   }
@@ -368,6 +369,19 @@ TEST(RenderSettings, EveryParameterOfEveryEffectDescribesItsValuesAndRoundTrips)
         std::snprintf(text, sizeof text, "0,0,%g", p.max + std::max(1.0, 0.01 * p.max));
         EXPECT_THROW(settings.set(p.name, text), InputError) << p.name;
         EXPECT_EQ(settings.get(p.name), before) << p.name << ": a refused value changes nothing";
+        break;
+      }
+      case ParameterKind::Text: {
+        // Built-in names and any other text (a path the effect opens when it runs) round-trip; nothing is refused.
+        ASSERT_FALSE(p.choices.empty()) << p.name;
+        for (const std::string& choice : p.choices) {
+          EXPECT_NO_THROW(settings.set(p.name, choice)) << p.name << "=" << choice;
+          EXPECT_EQ(settings.get(p.name), choice) << p.name;
+        }
+        EXPECT_NO_THROW(settings.set(p.name, "some/file.hdr")) << p.name;
+        EXPECT_EQ(settings.get(p.name), "some/file.hdr") << p.name;
+        EXPECT_THROW(settings.set(p.name, ""), InputError) << p.name;
+        EXPECT_EQ(settings.get(p.name), "some/file.hdr") << p.name << ": a refused value changes nothing";
         break;
       }
     }

@@ -49,8 +49,13 @@ dof="--size 640x360 --dof.focal-length 85 --dof.fstop 1.2 --dof.focus-x 0.48 --d
 build/obscura-render $dof --out "$out/dof_pinhole.png"
 build/obscura-render $dof --dof --out "$out/dof.png"
 build/obscura-render $dof --aperture 64 --out "$out/dof_reference.png"
+# Image-based ambient light (docs/lighting.md): the built-in sky (the default), and the made studio environment.
+build/obscura-make-environment assets/environments/studio.hdr
+build/obscura-render --size 480x270 --out "$out/lighting_sky.png"
+build/obscura-render --size 480x270 --lighting.environment assets/environments/studio.hdr \
+  --lighting.environment-intensity 1.5 --out "$out/lighting_studio.png"
 echo "render-docs-images: wrote $out/builtin_*.png, motion_*.png, ao_*.png, aa_*.png, bloom.png, fog_height.png," \
-  "edges.png, edges_toon.png, dof*.png"
+  "edges.png, edges_toon.png, dof*.png, lighting_*.png"
 
 (cd tests/browser && npm ci --no-audit --no-fund --loglevel=error)
 OBSCURA_UPDATE_SCREENSHOTS=1 node --test --test-name-pattern="page screenshots" tests/browser/page.test.mjs >/dev/null

@@ -123,6 +123,28 @@ function parameterControl(obscura, parameter) {
     row.append(select);
     return { row, update: () => { select.value = obscura.get(parameter.name); } };
   }
+  if (parameter.kind === 'text') {
+    // Named built-ins (lighting.environment: sky, uniform) in a list, which also shows a file in use; a dropped
+    // .hdr file sets it too (loadFiles).
+    const select = element('select', { id });
+    for (const choice of parameter.choices || []) {
+      select.append(element('option', { value: choice, textContent: choice }));
+    }
+    const other = element('option', { value: '', textContent: '', disabled: true });
+    select.append(other);
+    select.addEventListener('change', () => apply(select.value));
+    row.append(select, element('span', { className: 'hint', textContent: ' or drop a file', title: parameter.range }));
+    return {
+      row,
+      update: () => {
+        const value = obscura.get(parameter.name);
+        const builtIn = (parameter.choices || []).includes(value);
+        other.value = builtIn ? '' : value;
+        other.textContent = builtIn ? '' : value.split('/').pop();
+        select.value = value;
+      },
+    };
+  }
   if (parameter.kind === 'color') {
     // A linear colour: the picker shows (and sets, as "#rrggbb") its sRGB encoding clamped to 0 .. 1; the text field
     // takes linear "r,g,b" beyond 1 too (HDR).
@@ -377,6 +399,7 @@ async function loadFiles(obscura, files) {
   setStatus(`Loading ${Array.from(files).map((f) => f.name).join(', ')}…`);
   try {
     showScene(await obscura.loadFiles(files, { onProgress: (fraction) => { progress.value = fraction; } }));
+    refreshControls(obscura);  // an .hdr sets lighting.environment
   } catch (e) {
     // The core keeps the previous scene on screen; say why this one was refused.
     setStatus('');

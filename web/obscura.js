@@ -175,6 +175,13 @@ export class Obscura extends EventTarget {
     this.changed();
     return used;
   }
+  // Forces where the prefiltered environment's roughness levels live: 'mipchain' (read with EXT_shader_texture_lod),
+  // 'atlas' (the fallback without it) or 'auto' (the default). Returns the layout now in use; both give the same image.
+  setEnvironmentLayout(name) {
+    const used = this.text('obscura_set_environment_layout', ['string'], [name]);
+    this.changed();
+    return used;
+  }
   setView(mode) { this.call('obscura_set_view', ['string'], [mode]); }
   // The switch the 'split' view compares (one of compareSwitches; 'ao' at first; in the state as compare=).
   get compare() { return this.text('obscura_compare', [], []); }
@@ -236,8 +243,15 @@ export class Obscura extends EventTarget {
 
   // Reads File objects (from a file picker or a drop) and loads the one .glb or .gltf among them, the others being
   // its side files. onProgress(fraction) follows the reading.
+  // An .hdr among them (alone) becomes the environment instead (loadEnvironment); resolves to scene() either way.
   async loadFiles(files, { onProgress = () => {} } = {}) {
     files = Array.from(files);
+    const environments = files.filter((f) => /\.hdr$/i.test(f.name));
+    if (environments.length === 1 && files.length === 1) {
+      const file = environments[0];
+      await this.loadEnvironment(await readFile(file, (bytes) => onProgress(bytes / (file.size || 1))), file.name);
+      return this.scene();
+    }
     const scenes = files.filter((f) => /\.(glb|gltf)$/i.test(f.name));
     if (scenes.length !== 1) {
       throw new ObscuraError(scenes.length === 0
@@ -253,6 +267,19 @@ export class Obscura extends EventTarget {
     const sideFiles = {};
     files.forEach((file, i) => { if (file !== scenes[0]) sideFiles[file.name] = contents[i]; });
     return this.loadScene(contents[files.indexOf(scenes[0])], scenes[0].name, sideFiles);
+  }
+
+  // An equirectangular environment (.hdr, or a PNG of RGBE bytes) for the ambient light and the background: kept in
+  // the module's file system and set as lighting.environment (its path there). Rejects with ObscuraError on a file
+  // the core cannot decode; the environment in use stays then. set('lighting.environment', 'sky') goes back.
+  async loadEnvironment(bytes, name) {
+    bytes = bytes instanceof Uint8Array ? bytes : new Uint8Array(bytes);
+    const path = this.withBytes(bytes, (pointer, size) => this.core.ccall(
+      'obscura_add_environment', 'string', ['string', 'number', 'number'], [name, pointer, size]));
+    if (!path) throw new ObscuraError(this.core.UTF8ToString(this.core._obscura_error()));
+    this.set('lighting.environment', path);
+    this.changed();
+    return path;
   }
 
   loadBuiltinScene() {

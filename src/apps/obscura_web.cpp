@@ -14,6 +14,7 @@
 #include <cmath>
 #include <cstdint>
 #include <exception>
+#include <fstream>
 #include <map>
 #include <memory>
 #include <string>
@@ -21,9 +22,11 @@
 #include <vector>
 
 #include <nlohmann/json.hpp>
+#include <sys/stat.h>
 
 #include "base/Error.h"
 #include "base/Text.h"
+#include "core/Environment.h"
 #include "gl/GlObjects.h"
 #include "gl/RenderTarget.h"
 #include "platform/GpuPassTimer.h"
@@ -335,6 +338,27 @@ EMSCRIPTEN_KEEPALIVE const char* obscura_set_hierarchy_storage(const char* name)
   return returned(used);
 }
 
+// Forces where the prefiltered environment's levels live ("mipchain", read with EXT_shader_texture_lod; "atlas"; "auto":
+// the mip chain where the context has the extension) and returns the layout now in use; the page's tests compare
+// them on WebGL 1.
+EMSCRIPTEN_KEEPALIVE const char* obscura_set_environment_layout(const char* name) {
+  std::string used;
+  if (!attempt([&] {
+        RendererOptions options = g_app->viewer().rendererOptions();
+        options.environmentLayout.reset();  // "auto"
+        const std::string wanted = name;
+        if (wanted == "atlas") options.environmentLayout = EnvironmentLayout::Atlas;
+        else if (wanted == "mipchain") options.environmentLayout = EnvironmentLayout::MipChain;
+        else if (wanted != "auto")
+          throw InputError("environment layout: expected auto, atlas or mipchain, got '" + wanted + "'");
+        g_app->viewer().setRendererOptions(options);
+        used = environmentLayoutName(GpuEnvironment::layoutFor(g_app->viewer().caps(), options.environmentLayout));
+      }))
+    return nullptr;
+  g_app->changed();
+  return returned(used);
+}
+
 EMSCRIPTEN_KEEPALIVE int obscura_set_view(const char* mode) {
   return change([&] { g_app->viewer().state().setViewMode(mode); });
 }
@@ -398,6 +422,22 @@ EMSCRIPTEN_KEEPALIVE int obscura_load_scene(const char* name, const std::uint8_t
                                                            sideFiles);
     g_sceneWarnings = report.warnings;
   });
+}
+
+// An equirectangular environment (.hdr, or a PNG of RGBE bytes) from memory, kept in the module's memory file system
+// as /environments/<name> and decoded once here, so a bad file is refused now (the lighting keeps its environment).
+// Returns the path for lighting.environment, or "" (obscura_error() says why).
+EMSCRIPTEN_KEEPALIVE const char* obscura_add_environment(const char* name, const std::uint8_t* bytes, int size) {
+  std::string base = name;
+  const size_t slash = base.find_last_of("/\\");
+  if (slash != std::string::npos) base = base.substr(slash + 1);
+  const std::string path = "/environments/" + (base.empty() ? std::string("environment.hdr") : base);
+  const int ok = attempt([&] {
+    mkdir("/environments", 0777);  // exists already after the first: the error is harmless
+    std::ofstream(path, std::ios::binary).write(reinterpret_cast<const char*>(bytes), size);
+    loadEnvironmentImage(path);
+  });
+  return returned(ok ? path : "");
 }
 
 EMSCRIPTEN_KEEPALIVE int obscura_load_builtin_scene() {

@@ -2,12 +2,27 @@
 
 #include <glm/geometric.hpp>
 
+#include "base/Error.h"
 #include "core/HdrEncoding.h"
 #include "core/LinearDepthPacking.h"
 #include "core/PassContext.h"
 #include "gl/PipelineState.h"
 
 namespace obscura {
+
+const std::vector<Parameter<LightingSettings>>& LightingSettings::parameters() {
+  using S = LightingSettings;
+  static const std::vector<Parameter<S>> table = {
+      textParameter<S>("environment", "sky | uniform | a file path",
+                       "the ambient light and background: the built-in sky, a uniform white furnace (radiance 1), or "
+                       "an equirectangular .hdr (or RGBE .png) file",
+                       &S::environment, {"sky", "uniform"})
+          .primary(),
+      numberParameter<S>("environment-intensity", 0, 1000, "", "scales the environment's radiance (ambient light and "
+                         "background)", &S::environmentIntensity)
+          .primary()};
+  return table;
+}
 
 EffectInfo LightingEffect::info() {
   return {"lighting",
@@ -31,84 +46,149 @@ MaterialKind LightingEffect::readKind(const Form& form, MaterialKind kind) {
   return form.counting ? kind.forAlphaOnly() : kind;
 }
 
-ProgramSpec LightingEffect::spec(const Form& form, MaterialKind kind, VertexKind vertex) {
-  std::string name = std::string("lighting[") +
-                     (form.deferred ? "deferred" : "forward" + kind.nameSuffix() + vertex.nameSuffix());
+// The forms' programs. The background form is the deferred program's background alone, drawn over fullscreen.vert
+// at the far plane (AT_FAR_PLANE).
+ProgramSpec LightingEffect::spec(const Form& form, MaterialKind kind, VertexKind vertex, EnvironmentLayout layout) {
+  const bool fullscreen = form.deferred || form.background;
+  std::string name = "lighting[";
+  if (form.background) name += "background";
+  else if (form.deferred) name += "deferred";
+  else name += "forward" + kind.nameSuffix() + vertex.nameSuffix();
   if (form.counting) name += ",count-shading";
   if (form.toneMap >= 0)
     name += std::string(",tonemap=") + toneMapOperatorName(static_cast<ToneMapOperator>(form.toneMap));
-  ProgramSpec s{name + "]", form.deferred ? "fullscreen.vert" : "geometry.vert", "lighting.frag",
-                {{"DEFERRED", form.deferred ? "1" : "0"},
+  if (!form.counting) name += std::string(",") + environmentLayoutName(layout);
+  ProgramSpec s{name + "]", fullscreen ? "fullscreen.vert" : "geometry.vert", "lighting.frag",
+                {{"DEFERRED", fullscreen ? "1" : "0"},
+                 {"BACKGROUND", form.background ? "1" : "0"},
+                 {"AT_FAR_PLANE", form.background ? "1" : "0"},
                  {"COUNT_SHADING", form.counting ? "1" : "0"},
                  {"TONEMAP_INLINE", form.toneMap >= 0 ? "1" : "0"},
-                 {"FAR_RAY", "0"}}};
+                 // The deferred forms' view direction is the far-plane ray's.
+                 {"FAR_RAY", fullscreen && !form.counting ? "1" : "0"}}};
+  for (auto& define : GpuEnvironment::shaderDefines(layout)) s.defines.push_back(define);
+  if (layout == EnvironmentLayout::MipChain && !form.counting) s.extensions.push_back("GL_EXT_shader_texture_lod");
   for (auto& define : kind.defines()) s.defines.push_back(define);
-  if (!form.deferred)
+  if (!fullscreen)
     for (auto& define : vertex.defines()) s.defines.push_back(define);
   if (form.toneMap >= 0) s.defines.push_back(toneMapShaderDefine(static_cast<ToneMapOperator>(form.toneMap)));
   return s;
 }
 
+// Every form with the atlas (any GLES 2 context), and the shading forms again with the mip chain.
 std::vector<ProgramSpec> LightingEffect::programSpecs() {
   std::vector<ProgramSpec> specs;
-  for (bool deferred : {false, true})
-    for (bool counting : {true, false})
-      for (int toneMap = -1; toneMap < (counting ? 0 : kToneMapOperatorCount); ++toneMap)
-        for (MaterialKind kind : MaterialKind::all()) {
-          const Form form{deferred, counting, toneMap};
-          if (readKind(form, kind) == kind) specs.push_back(spec(form, kind, {}));
+  for (EnvironmentLayout layout : {EnvironmentLayout::Atlas, EnvironmentLayout::MipChain})
+    for (bool deferred : {false, true})
+      for (bool counting : {true, false}) {
+        if (counting && layout == EnvironmentLayout::MipChain) continue;
+        for (int toneMap = -1; toneMap < (counting ? 0 : kToneMapOperatorCount); ++toneMap) {
+          for (MaterialKind kind : MaterialKind::all()) {
+            const Form form{deferred, counting, toneMap, false};
+            if (readKind(form, kind) == kind) specs.push_back(spec(form, kind, {}, layout));
+          }
+          if (!deferred && !counting) specs.push_back(spec({false, false, toneMap, true}, {}, {}, layout));
         }
-  for (VertexKind vertex : VertexKind::validated()) specs.push_back(spec({false, false, -1}, {}, vertex));
+      }
+  for (VertexKind vertex : VertexKind::validated())
+    specs.push_back(spec({false, false, -1, false}, {}, vertex, EnvironmentLayout::Atlas));
   return specs;
 }
 
 LightingEffect::Variant::Variant(gl::Program built, bool geometryStage)
     : program(std::move(built)),
       geometry(geometryStage ? GeometryUniforms(program) : GeometryUniforms()),
+      farHalfExtent(program.optionalUniform("u_farHalfExtent")),
+      farPlane(program.optionalUniform("u_farPlane")),
       projection(program.optionalUniform("u_projection")),
       lightDirection(program.optionalUniform("u_lightDirection")),
-      viewUp(program.optionalUniform("u_viewUp")),
       lightColor(program.optionalUniform("u_lightColor")),
-      skyColor(program.optionalUniform("u_skyColor")),
-      groundColor(program.optionalUniform("u_groundColor")),
+      viewToWorld(program.optionalUniform("u_viewToWorld")),
       ao(program.optionalUniform("u_ao")),
+      environment(program.optionalUniform("u_environment")),
+      environmentBrdf(program.optionalUniform("u_environmentBrdf")),
+      shIrradiance(program.optionalUniform("u_shIrradiance")),
+      environmentIntensity(program.optionalUniform("u_environmentIntensity")),
       gbuffer(program.optionalUniform("u_gbuffer")),
       baseColor(program.optionalUniform("u_baseColor")),
-      background(program.optionalUniform("u_background")),
       exposure(program.optionalUniform("u_exposure")),
       lumaInAlpha(program.optionalUniform("u_lumaInAlpha")) {}
 
 const LightingEffect::Variant& LightingEffect::variant(const Form& form, MaterialKind kind, VertexKind vertex) {
-  const auto key = std::make_tuple(form, readKind(form, kind), form.deferred ? VertexKind{} : vertex.forCurrentFrame());
+  const bool fullscreen = form.deferred || form.background;
+  const auto key = std::make_tuple(form, readKind(form, kind), fullscreen ? VertexKind{} : vertex.forCurrentFrame());
   auto it = variants_.find(key);
   if (it == variants_.end()) {
-    it = variants_.emplace(key, Variant(resources_.build(spec(form, std::get<1>(key), std::get<2>(key))),
-                                        !form.deferred)).first;
+    it = variants_.emplace(key, Variant(resources_.build(spec(form, std::get<1>(key), std::get<2>(key), layout_)),
+                                        !fullscreen)).first;
     // Resolve strictly what this form must use, so a misspelt or dropped uniform is caught where it matters.
     const gl::Program& program = it->second.program;
-    if (!form.deferred) program.uniform("u_projection");
+    if (!fullscreen) program.uniform("u_projection");
     if (!form.counting)
-      for (const char* name : {"u_lightDirection", "u_viewUp", "u_lightColor", "u_skyColor", "u_groundColor", "u_ao"})
+      for (const char* name : {"u_viewToWorld", "u_environment", "u_environmentIntensity"}) program.uniform(name);
+    if (fullscreen && !form.counting)
+      for (const char* name : {"u_farHalfExtent", "u_farPlane"}) program.uniform(name);
+    if (!form.counting && !form.background)
+      for (const char* name : {"u_lightDirection", "u_lightColor", "u_ao", "u_shIrradiance", "u_environmentBrdf"})
         program.uniform(name);
     if (form.deferred) program.uniform("u_gbuffer");
-    if (form.deferred && !form.counting)
-      for (const char* name : {"u_baseColor", "u_background"}) program.uniform(name);
+    if (form.deferred && !form.counting) program.uniform("u_baseColor");
     if (form.toneMap >= 0)
       for (const char* name : {"u_exposure", "u_lumaInAlpha"}) program.uniform(name);
   }
   return it->second;
 }
 
+// A file that cannot be read is reported once (InputError: the command line stops, the page shows it) and the
+// environment in use stays, so a stale path (a page's URL naming a file dropped in an earlier visit) does not fail
+// every frame.
+void LightingEffect::useEnvironment(const LightingSettings& settings) {
+  if (environment_ && environmentName_ == settings.environment) return;
+  const std::string name = settings.environment;
+  environmentName_ = name;
+  struct Prepared {
+    PrefilteredEnvironment specular;
+    ShIrradiance sh;
+    explicit Prepared(const EnvironmentImage& image)
+        : specular(PrefilteredEnvironment::of(image)), sh(ShIrradiance::project(image)) {}
+  };
+  // The built-in environments are prepared once per process: every Renderer starts with the sky, and its
+  // prefiltering is the dearest part of making one.
+  if (name == "sky" && light_.directionToLight == Lighting{}.directionToLight) {
+    static const Prepared sky(ProceduralSky{Lighting{}.directionToLight}.image(kEnvironmentWidth, kEnvironmentHeight));
+    environment_ = std::make_unique<GpuEnvironment>(layout_, sky.specular, sky.sh);
+    return;
+  }
+  if (name == "uniform") {
+    static const Prepared furnace(uniformEnvironment(glm::vec3(1.0f)));
+    environment_ = std::make_unique<GpuEnvironment>(layout_, furnace.specular, furnace.sh);
+    return;
+  }
+  EnvironmentImage image;
+  try {
+    image = name == "sky" ? ProceduralSky{light_.directionToLight}.image(kEnvironmentWidth, kEnvironmentHeight)
+                          : loadEnvironmentImage(name);
+  } catch (const InputError&) {
+    if (!environment_) useEnvironment(LightingSettings{});
+    environmentName_ = name;
+    throw;
+  }
+  const Prepared prepared(image);
+  environment_ = std::make_unique<GpuEnvironment>(layout_, prepared.specular, prepared.sh);
+}
+
 LightingEffect::LightingEffect(const EffectResources& resources)
     : resources_(resources),
       white_(1, 1, GL_NEAREST, std::vector<std::uint8_t>{255, 255, 255, 255}.data()),
-      stencil_(resources.caps.packedDepthStencil) {
+      stencil_(resources.caps.packedDepthStencil),
+      layout_(GpuEnvironment::layoutFor(resources.caps, resources.options.environmentLayout)) {
   const HdrTexel t = encodeHdr(light_.background);
   backgroundHdr_ = glm::vec4(LinearDepthPacking::channelFromByte(t[0]), LinearDepthPacking::channelFromByte(t[1]),
                              LinearDepthPacking::channelFromByte(t[2]), LinearDepthPacking::channelFromByte(t[3]));
   // The form of the lit pass before the plan's alternatives, for every material, is built now, so a broken program
   // fails when the renderer is made.
-  for (MaterialKind kind : MaterialKind::all()) variant({false, false, -1}, kind, {});
+  for (MaterialKind kind : MaterialKind::all()) variant({false, false, -1, false}, kind, {});
+  useEnvironment(LightingSettings{});
 }
 
 void LightingEffect::plan(FramePlanner& planner) {
@@ -117,13 +197,18 @@ void LightingEffect::plan(FramePlanner& planner) {
   if (planner.settings().ao().enabled) reads.push_back("ao");
   const ToneMapInUse tone = ToneMapInUse::of(planner.settings().of<TonemapSettings>());
   const int op = static_cast<int>(tone.op);
+  const LightingSettings& lighting = planner.settings().of<LightingSettings>();
+  useEnvironment(lighting);
   auto with = [&](std::vector<std::string> more) {
     std::vector<std::string> all = reads;
     all.insert(all.end(), more.begin(), more.end());
     return all;
   };
-  auto runAs = [this, scale = tone.exposureScale](Form form, std::string output) {
-    return [this, form, output, scale](PassContext& context) { render(context, form, output, scale); };
+  auto runAs = [this, scale = tone.exposureScale, intensity = lighting.environmentIntensity](Form form,
+                                                                                              std::string output) {
+    return [this, form, output, scale, intensity](PassContext& context) {
+      render(context, form, output, scale, intensity);
+    };
   };
 
   for (const char* output : {"scene-color", "shading-count"}) {
@@ -137,12 +222,12 @@ void LightingEffect::plan(FramePlanner& planner) {
     pass.reads = reads;
     pass.optionalReads = {"gbuffer"};  // its depth, when the G-buffer pass runs anyway
     pass.writes = {{output, TargetSize::full(), Write::Depth::Shared, "gbuffer"}};
-    pass.run = runAs({false, counting, -1}, output);
+    pass.run = runAs({false, counting, -1, false}, output);
     using Alternative = PassDecl::Alternative;
     if (counting) {
       pass.alternatives.push_back(Alternative{{"base-color"}, "", false, {"gbuffer"},
                                               {{output, TargetSize::full(), Write::Depth::None, ""}},
-                                              runAs({true, true, -1}, output)});
+                                              runAs({true, true, -1, false}, output)});
     } else {
       const std::vector<Write> toDisplay = {{"display-color", TargetSize::full(), Write::Depth::None, ""}};
       const std::vector<Write> toDisplayShared = {
@@ -152,12 +237,12 @@ void LightingEffect::plan(FramePlanner& planner) {
       // own); else the pass as declared.
       pass.alternatives = {
           Alternative{{"base-color"}, "tonemap", true, with({"gbuffer", "base-color"}), toDisplay,
-                      runAs({true, false, op}, "display-color")},
+                      runAs({true, false, op, false}, "display-color")},
           Alternative{{"base-color"}, "", false, with({"gbuffer", "base-color"}),
-                      {{output, TargetSize::full(), Write::Depth::None, ""}}, runAs({true, false, -1}, output)},
+                      {{output, TargetSize::full(), Write::Depth::None, ""}}, runAs({true, false, -1, false}, output)},
           Alternative{{"gbuffer"}, "tonemap", false, with({"gbuffer"}), toDisplayShared,
-                      runAs({false, false, op}, "display-color")},
-          Alternative{{}, "tonemap", false, reads, toDisplayOwn, runAs({false, false, op}, "display-color")},
+                      runAs({false, false, op, false}, "display-color")},
+          Alternative{{}, "tonemap", false, reads, toDisplayOwn, runAs({false, false, op, false}, "display-color")},
       };
     }
     planner.add(std::move(pass));
@@ -165,7 +250,7 @@ void LightingEffect::plan(FramePlanner& planner) {
 }
 
 void LightingEffect::render(const PassContext& context, const Form& form, const std::string& output,
-                            float exposureScale) {
+                            float exposureScale, float environmentIntensity) {
   using gl::Program;
   const FrameCamera& camera = context.camera();
   context.bindForWriting(output);
@@ -174,19 +259,31 @@ void LightingEffect::render(const PassContext& context, const Form& form, const 
 
   const glm::mat3 viewRotation(camera.view);
   const glm::vec3 lightDirection = glm::normalize(viewRotation * light_.directionToLight);
-  const glm::vec3 viewUp = viewRotation * glm::vec3(0.0f, 1.0f, 0.0f);
+  const glm::mat3 viewToWorld = glm::transpose(viewRotation);  // the view's rotation is orthonormal
+  // Units 0 .. 2: the G-buffer or the material's texture, the AO, the base colour; 4 the joints (GpuScene).
+  constexpr int kEnvironmentUnit = 3, kEnvironmentBrdfUnit = 5;
   auto setShading = [&](const Variant& v) {
     if (form.counting) return;
     Program::set(v.lightDirection, lightDirection);
-    Program::set(v.viewUp, viewUp);
     Program::set(v.lightColor, light_.lightColor);
-    Program::set(v.skyColor, light_.skyColor);
-    Program::set(v.groundColor, light_.groundColor);
+    Program::set(v.viewToWorld, viewToWorld);
     Program::set(v.ao, 1);
+    Program::set(v.environment, kEnvironmentUnit);
+    Program::set(v.environmentBrdf, kEnvironmentBrdfUnit);
+    Program::set(v.farHalfExtent, camera.reconstruction.farHalfExtent);
+    Program::set(v.farPlane, camera.reconstruction.far);
+    Program::set(v.shIrradiance, environment_->irradiancePolynomial().data(), 9);
+    Program::set(v.environmentIntensity, environmentIntensity);
     Program::set(v.exposure, exposureScale);
     Program::set(v.lumaInAlpha, lumaInAlpha ? 1.0f : 0.0f);
   };
   (context.has("ao") ? context.texture("ao") : white_).bind(1);
+  if (!form.counting) {
+    glActiveTexture(GL_TEXTURE0 + kEnvironmentBrdfUnit);
+    glBindTexture(GL_TEXTURE_2D, environment_->brdfTexture());
+    glActiveTexture(GL_TEXTURE0 + kEnvironmentUnit);
+    glBindTexture(GL_TEXTURE_2D, environment_->texture());
+  }
 
   if (form.deferred) {
     // Every pixel once, background included: no clear, no depth.
@@ -202,7 +299,6 @@ void LightingEffect::render(const PassContext& context, const Form& form, const 
     if (!form.counting) {
       context.texture("base-color").bind(2);
       Program::set(v.baseColor, 2);
-      Program::set(v.background, light_.background);
     }
     if (form.counting) {
       glEnable(GL_BLEND);
@@ -257,6 +353,17 @@ void LightingEffect::render(const PassContext& context, const Form& form, const 
     setShading(v);
     return v.geometry;
   });
+  if (!form.counting) {
+    // The background: the environment where the depth is still 1 (nothing drawn), a full-screen triangle on the far
+    // plane tested LEQUAL against it, writing no depth.
+    const Variant& v = variant({false, false, form.toneMap, true}, {}, {});
+    v.program.use();
+    setShading(v);
+    glDisable(GL_POLYGON_OFFSET_FILL);
+    glDepthFunc(GL_LEQUAL);
+    glDepthMask(GL_FALSE);
+    resources_.triangle.draw();
+  }
   gl::restoreBaselineState();
 }
 

@@ -1,8 +1,10 @@
 #pragma once
-// The lit image (shaders_es2/lighting.frag): base colour under one directional light and a sky/ground hemisphere
-// ambient; the AO multiplies the ambient term only. It writes linear HDR colour in the RGBA8 encoding of
-// lib/hdr.glsl into "scene-color", which later effects read. The pass takes one of these forms, chosen once the
-// frame's plan knows which passes run (PassDecl::Alternative):
+// The lit image (shaders_es2/lighting.frag): base colour under one directional light and the image-based ambient
+// light of core/Environment.h (lib/environment.glsl): diffuse irradiance from spherical harmonics and a prefiltered
+// specular environment, the built-in sky or an equirectangular image (lighting.environment); the AO multiplies the
+// ambient term only. Where no geometry is, the environment itself is seen. It writes linear HDR colour in the RGBA8
+// encoding of lib/hdr.glsl into "scene-color", which later effects read. The pass takes one of these forms, chosen
+// once the frame's plan knows which passes run (PassDecl::Alternative):
 //
 //   deferred  where the G-buffer pass wrote the base colour beside the G-buffer (several render targets): a
 //             full-screen pass reading the normal, the base colour and the AO. The scene is drawn once per frame.
@@ -13,7 +15,8 @@
 //             (core GLES 2 without OES_packed_depth_stencil), GL_LESS against the depth pulled one resolvable step
 //             nearer, writing depth, does nearly as well (tests/test_pipeline.cpp measures both). Without the
 //             G-buffer (no effect reads it: the AO off) it clears and tests a depth buffer of its own, and pays for
-//             the overdraw drawing front to back leaves.
+//             the overdraw drawing front to back leaves. Then a full-screen triangle on the far plane draws the
+//             environment where the depth is still 1 (the background; the deferred form shades it in its one pass).
 //   either, tone-mapped: when the tone-mapping pass is the only reader of the HDR colour (no effect works on it in
 //             between, no view shows it), the lighting applies the tone mapping itself (ToneMapInUse: exposure,
 //             curve, sRGB, luma in alpha) and writes "display-color": a full-screen pass and an HDR encode and
@@ -24,12 +27,16 @@
 // how many fragments each pixel shaded (additive blending of 1/255) instead of shading them; the view
 // "shading-count" shows 1 as grey 32/255. The tests read it to hold the once-per-pixel promise.
 #include <map>
+#include <memory>
+#include <string>
 #include <tuple>
 #include <vector>
 
 #include <glm/vec3.hpp>
 
 #include "core/EffectTable.h"
+#include "core/Environment.h"
+#include "core/FrameContext.h"
 #include "core/GpuScene.h"
 #include "core/TonemapEffect.h"
 #include "gl/RenderTarget.h"
@@ -37,17 +44,26 @@
 namespace obscura {
 
 struct Lighting {
-  // An overcast key light over a strong sky dome: ambient carries most of the light, so AO reads clearly.
+  // An overcast key light under a strong sky: ambient carries most of the light, so AO reads clearly. The built-in
+  // sky (ProceduralSky) puts its sun in the same direction.
   glm::vec3 directionToLight{0.45f, 0.8f, 0.35f};  // world space, normalised when used
   glm::vec3 lightColor{0.50f, 0.48f, 0.44f};
-  glm::vec3 skyColor{0.62f, 0.66f, 0.72f};
-  glm::vec3 groundColor{0.30f, 0.28f, 0.26f};
-  glm::vec3 background{0.349f, 0.415f, 0.501f};  // linear radiance where no geometry is (a pale blue sky)
+  glm::vec3 background{0.349f, 0.415f, 0.501f};  // the clear colour under the forward forms' drawn background
+};
+
+struct LightingSettings : ParameterAccess<LightingSettings> {
+  // "sky": the built-in ProceduralSky; "uniform": radiance 1 from every direction (the white furnace); else the path
+  // of an equirectangular .hdr, or a PNG of RGBE bytes (loadEnvironmentImage).
+  std::string environment = "sky";
+  float environmentIntensity = 1.0f;  // scales the environment's radiance: ambient light and background
+
+  static const std::vector<Parameter<LightingSettings>>& parameters();
+  void validate() const { validateParameters("lighting"); }
 };
 
 class LightingEffect : public Effect {
  public:
-  using Settings = NoSettings;
+  using Settings = LightingSettings;
   static constexpr bool kHasSwitch = false;
   static EffectInfo info();
   static std::vector<ProgramSpec> programSpecs();
@@ -57,25 +73,34 @@ class LightingEffect : public Effect {
 
  private:
   // One form of the pass: deferred or forward, tone-mapped here (an operator) or not, counting or shading.
+  // background: the forward forms' full-screen draw of the environment where the scene drew nothing.
   struct Form {
     bool deferred = false;
     bool counting = false;
     int toneMap = -1;  // -1: HDR output; else the ToneMapOperator applied here
+    bool background = false;
     bool operator<(const Form& o) const {
-      return std::tie(deferred, counting, toneMap) < std::tie(o.deferred, o.counting, o.toneMap);
+      return std::tie(deferred, counting, toneMap, background) <
+             std::tie(o.deferred, o.counting, o.toneMap, o.background);
     }
   };
   struct Variant {
     Variant(gl::Program built, bool geometryStage);
     gl::Program program;
     GeometryUniforms geometry;  // the forward forms' (geometry.vert)
-    GLint projection, lightDirection, viewUp, lightColor, skyColor, groundColor, ao;
-    GLint gbuffer, baseColor, background, exposure, lumaInAlpha;
+    // The full-screen forms' far-plane ray (fullscreen.vert); only its direction is used, so no depth-to-ray scale.
+    GLint farHalfExtent, farPlane;
+    GLint projection, lightDirection, lightColor, viewToWorld, ao;
+    GLint environment, environmentBrdf, shIrradiance, environmentIntensity;
+    GLint gbuffer, baseColor, exposure, lumaInAlpha;
   };
   static MaterialKind readKind(const Form& form, MaterialKind kind);
-  static ProgramSpec spec(const Form& form, MaterialKind kind, VertexKind vertex);
+  static ProgramSpec spec(const Form& form, MaterialKind kind, VertexKind vertex, EnvironmentLayout layout);
   const Variant& variant(const Form& form, MaterialKind kind, VertexKind vertex);
-  void render(const PassContext& context, const Form& form, const std::string& output, float exposureScale);
+  // Loads, projects and prefilters the environment the settings name, when it is not the one on the GPU.
+  void useEnvironment(const LightingSettings& settings);
+  void render(const PassContext& context, const Form& form, const std::string& output, float exposureScale,
+              float environmentIntensity);
 
   const EffectResources& resources_;
   // Built on first use: (form, the material kind it reads, the vertex kind).
@@ -83,7 +108,10 @@ class LightingEffect : public Effect {
   gl::Texture2D white_;  // AO = 1 when the AO is off
   bool stencil_;         // the G-buffer's depth has stencil bits (RenderTargetPool): shade exactly once
   Lighting light_;
-  glm::vec4 backgroundHdr_;  // the background's radiance in scene-color's encoding, as clear-colour channels
+  glm::vec4 backgroundHdr_;  // the clear colour's radiance in scene-color's encoding, as clear-colour channels
+  EnvironmentLayout layout_;              // where the prefiltered levels live (RendererOptions::environmentLayout)
+  std::string environmentName_;           // the lighting.environment value environment_ holds
+  std::unique_ptr<GpuEnvironment> environment_;
 };
 
 }  // namespace obscura

@@ -15,6 +15,7 @@ const char* parameterKindName(ParameterKind kind) {
     case ParameterKind::Integer: return "integer";
     case ParameterKind::Choice: return "choice";
     case ParameterKind::Color: return "color";
+    case ParameterKind::Text: return "text";
   }
   return "?";
 }

@@ -26,8 +26,9 @@ enum class ParameterKind {
   Integer,  // a whole number in min .. max
   Choice,   // one of `choices`
   Color,    // a linear RGB colour, each channel in min .. max: "r,g,b" (linear) or "#rrggbb" (sRGB-encoded)
+  Text,     // any non-empty text: one of `choices` (named built-ins) or a name of the caller's (a file path)
 };
-const char* parameterKindName(ParameterKind kind);  // "switch", "number", "integer", "choice", "color"
+const char* parameterKindName(ParameterKind kind);  // "switch", "number", "integer", "choice", "color", "text"
 
 // The quality presets every effect with presets shares by name; the global "preset" parameter sets them all.
 enum class QualityPreset { Low, Medium, High, Ultra };
@@ -155,6 +156,20 @@ Parameter<S> colorParameter(const char* name, double min, double max, const char
       if (!((s.*field)[c] >= static_cast<float>(min) && (s.*field)[c] <= static_cast<float>(max))) return false;
     return true;
   };
+  return p;
+}
+
+// Text: one of `builtIns` or any other non-empty text the effect interprets (a file path); `range` documents it.
+template <typename S>
+Parameter<S> textParameter(const char* name, const char* range, const char* help, std::string S::*field,
+                           std::vector<std::string> builtIns) {
+  Parameter<S> p{{name, range, help, ParameterKind::Text, 0.0, 0.0, std::move(builtIns)}, {}, {}, {}, {}};
+  p.set = [name, field](S& s, const std::string& v) {
+    if (v.empty()) throw InputError(std::string(name) + ": expected a name, got nothing");
+    s.*field = v;
+  };
+  p.get = [field](const S& s) { return s.*field; };
+  p.valid = [field](const S& s) { return !(s.*field).empty(); };
   return p;
 }
 

@@ -3,6 +3,7 @@
 #include <optional>
 
 #include "core/DepthHierarchyPass.h"
+#include "core/EnvironmentLayout.h"
 #include "core/VertexKind.h"
 
 namespace obscura {
@@ -27,6 +28,9 @@ struct RendererOptions {
   // How the depth hierarchy is stored; unset: the extension mip chain where available, else the atlas
   // (DepthHierarchyPass.h). Tests and benchmarks force each storage to compare them.
   std::optional<DepthHierarchyPass::Storage> hierarchyStorage;
+  // Where the prefiltered environment's roughness levels live; unset: the mip chain read with texture2DLodEXT where
+  // EXT_shader_texture_lod exists, else the atlas (core/Environment.h). Tests force the atlas to compare both.
+  std::optional<EnvironmentLayout> environmentLayout;
   // How skinned meshes are drawn; unset: the joint texture where the context has vertex textures and float
   // textures, else the uniform palette (core/GpuScene.h). A path the context cannot take falls back the same way.
   std::optional<SkinningPath> skinning;

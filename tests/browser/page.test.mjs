@@ -254,6 +254,45 @@ describe('demo page', () => {
     assert.deepEqual((await snapshot(page)).pixels, before.pixels, 'still the built-in scene');
   });
 
+  test('an .hdr file opened becomes the environment, and the list goes back to the sky', { timeout: 120000 },
+    async () => {
+      const sky = await snapshot(page);
+      // A 16 x 8 Radiance file, flat RGBE (stb reads unencoded scanlines): radiance (2, 0.5, 0.5) everywhere, bytes
+      // floor(c 2^(8 - 2)) with the exponent 2 + 128.
+      const header = Buffer.from('#?RADIANCE\nFORMAT=32-bit_rle_rgbe\n\n-Y 8 +X 16\n');
+      const texels = Buffer.alloc(16 * 8 * 4);
+      for (let i = 0; i < texels.length; i += 4) texels.set([128, 32, 32, 130], i);
+      await page.locator('#file-input').setInputFiles({ name: 'red.hdr', mimeType: 'application/octet-stream',
+                                                         buffer: Buffer.concat([header, texels]) });
+      await page.waitForFunction(() => window.obscura.get('lighting.environment') === '/environments/red.hdr', null,
+                                 { timeout: 60000 });
+      assert.equal(await page.locator('#param-lighting-environment').inputValue(), '/environments/red.hdr');
+      await waitForDrawn(page);
+      const red = await snapshot(page);
+      const difference = compareImages(sky, red);
+      assert.ok(difference.r.differing > 0.5, `the environment lights the scene and fills the background (${
+        difference.r.differing})`);
+      assert.match(await page.locator('#scene-name').textContent(), /^built-in scene/, 'the scene stays');
+
+      await page.locator('#param-lighting-environment').selectOption('sky');
+      assert.equal(await page.evaluate(() => window.obscura.get('lighting.environment')), 'sky');
+      await waitForDrawn(page);
+      assert.deepEqual((await snapshot(page)).pixels, sky.pixels, 'the sky again');
+
+      // The prefiltered levels in an atlas (no EXT_shader_texture_lod) give the image the mip chain gives.
+      const layout = await page.evaluate(() => window.obscura.setEnvironmentLayout('mipchain'));
+      await waitForDrawn(page);
+      const fromMips = await snapshot(page);
+      assert.equal(await page.evaluate(() => window.obscura.setEnvironmentLayout('atlas')), 'atlas');
+      await waitForDrawn(page);
+      const fromAtlas = await snapshot(page);
+      await page.evaluate(() => window.obscura.setEnvironmentLayout('auto'));
+      const between = compareImages(fromMips, fromAtlas);
+      console.log(`environment layouts on WebGL 1: ${layout} against atlas, largest difference ${between.r.max}, ` +
+                  `${between.g.max}, ${between.b.max} of 255`);
+      assert.ok(Math.max(between.r.max, between.g.max, between.b.max) <= 1, 'the same texels, filtered alike');
+    });
+
   test('loading 2CylinderEngine.glb with the file picker shows it, with a progress bar meanwhile',
        { timeout: 120000 }, async () => {
     const builtin = await snapshot(page);

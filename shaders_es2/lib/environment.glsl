@@ -1,0 +1,99 @@
+// Image-based ambient light (src/core/Environment.h holds the method, the CPU side and the mirrors of every function
+// here; docs/lighting.md the measurements). Needs lib/precision.glsl and lib/hdr.glsl first. Directions are world
+// space, y up; the environment is equirectangular, u = atan(x, -z) / 2 pi + 1/2, v = acos(y) / pi.
+//
+//   vec3 environmentIrradiance(vec3 n)      E(n) / pi from the nine spherical-harmonic terms (Ramamoorthi & Hanrahan
+//                                           2001, eq. 13): the radiance a white Lambertian surface reflects.
+//   vec3 environmentSpecular(vec3 r, float roughness)
+//                                           the prefiltered radiance (GGX, split sum: Karis 2013) towards r, levels
+//                                           for roughness 0, 0.2, .., 1, hand-filtered (the texels are RGB9E5).
+//   vec2 environmentBrdf(float roughness, float nDotV)
+//                                           the split sum's (A, B) from a 32 x 32 table integrated on the CPU
+//                                           (Karis 2013's IntegrateBRDF), bilinear: its bytes are plain linear values.
+//   vec3 ambientLight(n, v, diffuseColor, f0, roughness, occlusion)
+//                                           the ambient term: diffuse irradiance and specular environment.
+//
+// ENVIRONMENT_LOD 1: the levels are mip levels of u_environment (EXT_shader_texture_lod's texture2DLodEXT at integer
+// levels); 0: they lie side by side in one atlas (level 0 left, 1 .. 5 stacked to its right), read with texture2D.
+// Both fetch the same texel centres, NEAREST, so both give the same values (tests/test_environment.cpp).
+
+uniform sampler2D u_environment;     // NEAREST; RGB9E5 texels (lib/hdr.glsl)
+uniform vec3 u_shIrradiance[9];      // E(n) / pi = sum of these times 1, x, y, z, xy, yz, xz, x^2 - y^2, z^2
+uniform float u_environmentIntensity;
+uniform sampler2D u_environmentBrdf;  // LINEAR, clamped: A in R, B in G over (n.v, roughness)
+
+const float ENVIRONMENT_PI = 3.14159265;
+const float ENVIRONMENT_MAX_LEVEL = float(ENVIRONMENT_LEVELS - 1);
+
+vec3 environmentIrradiance(vec3 n) {
+  vec3 e = u_shIrradiance[0] + u_shIrradiance[1] * n.x + u_shIrradiance[2] * n.y + u_shIrradiance[3] * n.z +
+           u_shIrradiance[4] * (n.x * n.y) + u_shIrradiance[5] * (n.y * n.z) + u_shIrradiance[6] * (n.x * n.z) +
+           u_shIrradiance[7] * (n.x * n.x - n.y * n.y) + u_shIrradiance[8] * (n.z * n.z);
+  return max(e, 0.0) * u_environmentIntensity;
+}
+
+vec2 environmentUv(vec3 d) {
+  // atan(0, 0) is undefined: straight up or down, any u is the same place.
+  float u = abs(d.x) + abs(d.z) > 0.0 ? atan(d.x, -d.z) * (0.5 / ENVIRONMENT_PI) + 0.5 : 0.5;
+  return vec2(u, acos(clamp(d.y, -1.0, 1.0)) * (1.0 / ENVIRONMENT_PI));
+}
+
+// A level's size in texels: 512 x 256 / 2^level, rounded (exp2 need not be exact).
+vec2 environmentLevelSize(float level) {
+  return floor(vec2(ENVIRONMENT_WIDTH, ENVIRONMENT_HEIGHT) * exp2(-level) + 0.5);
+}
+
+// Texel (x, y) of a level, both whole numbers inside it, decoded.
+vec3 environmentTexel(vec2 texel, float level, vec2 size) {
+#if ENVIRONMENT_LOD
+  return decodeHdr(texture2DLodEXT(u_environment, (texel + 0.5) / size, level));
+#else
+  vec2 origin = level < 0.5 ? vec2(0.0)
+                            : vec2(ENVIRONMENT_WIDTH, floor(ENVIRONMENT_HEIGHT * (1.0 - exp2(1.0 - level)) + 0.5));
+  return decodeHdr(texture2D(u_environment, (origin + texel + 0.5) /
+                                                vec2(ENVIRONMENT_WIDTH * 1.5, ENVIRONMENT_HEIGHT)));
+#endif
+}
+
+// Bilinear between the level's texel centres around uv, wrapping in u and clamping in v (the hardware's filter would
+// blend encoded bytes).
+vec3 environmentLevel(vec2 uv, float level) {
+  vec2 size = environmentLevelSize(level);
+  vec2 p = uv * size - 0.5;
+  vec2 p0 = floor(p);
+  vec2 f = p - p0;
+  float x0 = mod(p0.x, size.x);
+  float x1 = mod(p0.x + 1.0, size.x);
+  float y0 = clamp(p0.y, 0.0, size.y - 1.0);
+  float y1 = clamp(p0.y + 1.0, 0.0, size.y - 1.0);
+  vec3 top = mix(environmentTexel(vec2(x0, y0), level, size), environmentTexel(vec2(x1, y0), level, size), f.x);
+  vec3 bottom = mix(environmentTexel(vec2(x0, y1), level, size), environmentTexel(vec2(x1, y1), level, size), f.x);
+  return mix(top, bottom, f.y);
+}
+
+vec3 environmentSpecular(vec3 r, float roughness) {
+  vec2 uv = environmentUv(normalize(r));
+  float lod = clamp(roughness, 0.0, 1.0) * ENVIRONMENT_MAX_LEVEL;
+  float level = floor(lod);
+  float f = lod - level;
+  vec3 c = environmentLevel(uv, level);
+  // A whole level (every material today: roughness 1) reads one level: four fetches instead of eight.
+  if (f > 0.0) c = mix(c, environmentLevel(uv, level + 1.0), f);
+  return c * u_environmentIntensity;
+}
+
+// The split sum's BRDF term: specular reflectance = F0 A + B.
+vec2 environmentBrdf(float roughness, float nDotV) {
+  return texture2D(u_environmentBrdf, vec2(nDotV, roughness)).rg;
+}
+
+// The ambient light of a surface with unit normal n and unit direction to the eye v (world space). The diffuse part
+// keeps what the specular lobe leaves, 1 - (F0 A + B), so a white dielectric in a white furnace reflects 1.
+// Occlusion (the AO) multiplies this term only.
+vec3 ambientLight(vec3 n, vec3 v, vec3 diffuseColor, vec3 f0, float roughness, float occlusion) {
+  vec2 ab = environmentBrdf(roughness, clamp(dot(n, v), 0.0, 1.0));
+  vec3 specularAlbedo = f0 * ab.x + ab.y;
+  vec3 diffuse = diffuseColor * (1.0 - specularAlbedo) * environmentIrradiance(n);
+  vec3 specular = specularAlbedo * environmentSpecular(reflect(-v, n), roughness);
+  return (diffuse + specular) * occlusion;
+}

@@ -1,0 +1,387 @@
+// Image-based ambient light (core/Environment.h, shaders_es2/lib/environment.glsl): the spherical-harmonic projection
+// against analytic coefficients, the irradiance against a numeric integration, the prefiltered specular levels against
+// the brute-force integral, Karis's (A, B) fit against the numerically integrated split sum, the shader against its
+// CPU mirror in both layouts (mip chain and atlas), and the white furnace through the whole frame.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <string>
+
+#include <glm/geometric.hpp>
+
+#include "TestSupport.h"
+#include "core/Environment.h"
+#include "core/HdrEncoding.h"
+#include "core/LightingEffect.h"
+#include "core/NormalEncoding.h"
+#include "scene/BuiltinScene.h"
+#include "scene/ImageIo.h"
+#include "scene/Primitives.h"
+
+#include <stb_image_write.h>
+
+using namespace obscura;
+
+namespace {
+
+constexpr double kPi = 3.14159265358979323846;
+
+// Directions spread over the sphere (a Fibonacci lattice), poles and the u seam (-z .. +z through -x: u = 0 / 1 at +z).
+std::vector<glm::vec3> testDirections(int count) {
+  std::vector<glm::vec3> out = {{0, 1, 0}, {0, -1, 0}, {0, 0, 1}, {0.01f, 0.3f, 1.0f}, {-0.01f, -0.2f, 1.0f}};
+  const double golden = kPi * (3.0 - std::sqrt(5.0));
+  for (int i = 0; i < count; ++i) {
+    const double y = 1.0 - 2.0 * (i + 0.5) / count, r = std::sqrt(1.0 - y * y), phi = golden * i;
+    out.emplace_back(static_cast<float>(r * std::cos(phi)), static_cast<float>(y),
+                     static_cast<float>(r * std::sin(phi)));
+  }
+  for (glm::vec3& d : out) d = glm::normalize(d);
+  return out;
+}
+
+float relativeError(const glm::vec3& got, const glm::vec3& expected) {
+  const float largest = std::max(expected.r, std::max(expected.g, expected.b));
+  float worst = 0.0f;
+  for (int c = 0; c < 3; ++c) worst = std::max(worst, std::abs(got[c] - expected[c]) / largest);
+  return worst;
+}
+
+EnvironmentImage builtinSky() { return ProceduralSky{}.image(kEnvironmentWidth, kEnvironmentHeight); }
+
+}  // namespace
+
+// R&H 2001: a constant environment L has L_00 = 2 sqrt(pi) L and nothing else; L(w) = 1 + a.w adds
+// L_1m = sqrt(4 pi / 3) a_m (Y_1m = sqrt(3 / 4 pi) (y, z, x)); the irradiance over pi is then 1 + (2/3) a.n exactly
+// (the clamped cosine's A_1 = 2 pi / 3).
+TEST(Environment, ShProjectionOfAConstantAndALinearEnvironmentGivesTheAnalyticCoefficients) {
+  const glm::vec3 constant(0.7f, 1.0f, 2.5f);
+  const ShIrradiance flat = ShIrradiance::project(uniformEnvironment(constant, 256, 128));
+  // The midpoint rule over 128 rows integrates y^2 (in L_20 and L_22) to 2e-5 of L_00.
+  EXPECT_NEAR(flat.coefficients[0].b, 2.5 * 2.0 * std::sqrt(kPi), 1e-4);
+  for (int i = 1; i < 9; ++i) EXPECT_LT(glm::length(flat.coefficients[i]), 1e-4f * flat.coefficients[0].b) << i;
+  for (const glm::vec3& n : testDirections(20)) EXPECT_LT(relativeError(flat.reflectedRadiance(n), constant), 1e-4f);
+
+  const glm::vec3 a(0.3f, -0.2f, 0.5f);
+  EnvironmentImage linear(256, 128);
+  for (int y = 0; y < linear.height; ++y)
+    for (int x = 0; x < linear.width; ++x) linear.at(x, y) = glm::vec3(1.0f + glm::dot(a, linear.texelDirection(x, y)));
+  const ShIrradiance sh = ShIrradiance::project(linear);
+  const double k1 = std::sqrt(4.0 * kPi / 3.0);
+  EXPECT_NEAR(sh.coefficients[0].r, 2.0 * std::sqrt(kPi), 1e-4);
+  // The midpoint rule over rows integrates y^2 and z^2 to 2e-5 relative at 128 rows.
+  EXPECT_NEAR(sh.coefficients[1].r, k1 * a.y, 2e-4);  // L_1-1: y
+  EXPECT_NEAR(sh.coefficients[2].r, k1 * a.z, 2e-4);  // L_10: z
+  EXPECT_NEAR(sh.coefficients[3].r, k1 * a.x, 2e-4);  // L_11: x
+  for (int i = 4; i < 9; ++i) EXPECT_NEAR(sh.coefficients[i].r, 0.0, 2e-4) << i;
+  float worst = 0.0f;
+  for (const glm::vec3& n : testDirections(40))
+    worst = std::max(worst, std::abs(sh.reflectedRadiance(n).r - (1.0f + 2.0f / 3.0f * glm::dot(a, n))));
+  std::printf("SH of 1 + a.w: worst irradiance / pi error %.2e (exact: 1 + 2/3 a.n)\n", worst);
+  EXPECT_LT(worst, 2e-4f);
+}
+
+// The built-in sky's irradiance from nine coefficients against the cosine-weighted integral over every texel.
+TEST(Environment, ShIrradianceOfTheSkyMatchesTheIntegratedIrradiance) {
+  const EnvironmentImage sky = builtinSky();
+  const ShIrradiance sh = ShIrradiance::project(sky);
+  float worst = 0.0f, sum = 0.0f;
+  const std::vector<glm::vec3> normals = testDirections(40);
+  for (const glm::vec3& n : normals) {
+    glm::dvec3 e(0.0);
+    for (int y = 0; y < sky.height; ++y)
+      for (int x = 0; x < sky.width; ++x)
+        e += glm::dvec3(sky.at(x, y)) *
+             (std::max(0.0, static_cast<double>(glm::dot(n, sky.texelDirection(x, y)))) * sky.texelSolidAngle(y));
+    const glm::vec3 expected(e / kPi);
+    const float error = relativeError(sh.reflectedRadiance(n), expected);
+    worst = std::max(worst, error);
+    sum += error;
+  }
+  std::printf("sky irradiance from 9 SH terms: worst %.4f, mean %.4f of the integral's brightest channel\n", worst,
+              sum / static_cast<float>(normals.size()));
+  // R&H's bound for order 2 is 9 % in the worst case for any lighting, 3 % for typical ones; the sun makes this one
+  // harder than a plain gradient.
+  EXPECT_LT(worst, 0.06f);
+}
+
+// P(r, roughness) as stored (RGB9E5, bilinear between texel centres) against the brute-force integral of
+// L(l) D(h) (n.l) over every texel of the source, at directions between texel centres.
+TEST(Environment, PrefilteredLevelsMatchTheBruteForceIntegral) {
+  const EnvironmentImage sky = builtinSky();
+  const auto start = std::chrono::steady_clock::now();
+  const PrefilteredEnvironment prefiltered = PrefilteredEnvironment::of(sky);
+  std::printf("prefiltering the 512 x 256 sky (default samples) took %.0f ms on this machine's CPU\n",
+              std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count());
+  const std::vector<glm::vec3> directions = testDirections(24);
+  for (int level = 1; level < kEnvironmentLevels; ++level) {
+    const float roughness = environmentLevelRoughness(level);
+    float worst = 0.0f, sum = 0.0f;
+    for (const glm::vec3& r : directions) {
+      const float error = relativeError(prefiltered.sample(r, roughness), prefilterReference(sky, r, roughness));
+      worst = std::max(worst, error);
+      sum += error;
+    }
+    std::printf("prefiltered roughness %.1f (%d x %d): worst %.4f, mean %.4f of the reference's brightest channel\n",
+                roughness, prefiltered.levels[level].width, prefiltered.levels[level].height, worst,
+                sum / static_cast<float>(directions.size()));
+    EXPECT_LT(worst, level == 1 ? 0.08f : 0.04f) << "roughness " << roughness;
+  }
+  // Roughness 0 is the environment itself.
+  for (const glm::vec3& r : directions)
+    EXPECT_LT(relativeError(prefiltered.sample(r, 0.0f), sky.radiance(r)), 2.0f / 512.0f);
+}
+
+// Why the shader filters by hand: the hardware's bilinear filter over RGB9E5 bytes, at the midpoint of two
+// neighbouring texels of the prefiltered sky, against the mean of the decoded texels.
+TEST(Environment, HardwareFilteringOfTheEncodedTexelsWouldBeWrong) {
+  const PrefilteredEnvironment prefiltered = PrefilteredEnvironment::of(builtinSky(), 256);
+  double sum = 0.0, worst = 0.0;
+  int count = 0, wrong = 0;
+  for (int level = 0; level < kEnvironmentLevels; ++level) {
+    const std::vector<HdrTexel> texels = prefiltered.encodedLevel(level);
+    const int w = prefiltered.levels[level].width;
+    for (size_t i = 0; i + 1 < texels.size(); ++i) {
+      if (static_cast<int>((i + 1) % static_cast<size_t>(w)) == 0) continue;
+      HdrTexel blended;
+      for (int c = 0; c < 4; ++c) blended[c] = static_cast<std::uint8_t>((texels[i][c] + texels[i + 1][c] + 1) / 2);
+      const glm::vec3 expected = 0.5f * (decodeHdr(texels[i]) + decodeHdr(texels[i + 1]));
+      const double error = relativeError(decodeHdr(blended), expected);
+      sum += error;
+      worst = std::max(worst, error);
+      wrong += error > 0.01;
+      ++count;
+    }
+  }
+  std::printf("hardware bilinear over RGB9E5 texels of the prefiltered sky: mean %.4f, worst %.3f relative error; "
+              "%d of %d neighbour pairs off by more than 1 %%\n",
+              sum / count, worst, wrong, count);
+  // Right where neighbours share an exponent, off by up to the whole value where it changes: seams along every
+  // exponent boundary of the smooth sky.
+  EXPECT_GT(worst, 0.25) << "if the bytes blended harmlessly, the hand filter would cost for nothing";
+  EXPECT_GT(wrong, 100);
+}
+
+// The two file forms: a Radiance .hdr (stb_image's loader) and a PNG of RGBE bytes, both of the sky, against it.
+TEST(Environment, LoadsRadianceHdrAndRgbePng) {
+  const EnvironmentImage sky = ProceduralSky{}.image(64, 32);
+  std::vector<float> rgb;
+  Image png;
+  png.width = sky.width;
+  png.height = sky.height;
+  for (const glm::vec3& c : sky.texels) {
+    rgb.insert(rgb.end(), {c.r, c.g, c.b});
+    const HdrTexel t = encodeHdr(c, HdrEncoding{HdrEncodingKind::Rgbe, 0.0f});
+    png.rgba.insert(png.rgba.end(), t.begin(), t.end());
+  }
+  const std::string hdrPath = test::tempPath("sky.hdr"), pngPath = test::tempPath("sky-rgbe.png");
+  ASSERT_TRUE(stbi_write_hdr(hdrPath.c_str(), sky.width, sky.height, 3, rgb.data()));
+  writePng(pngPath, png);
+  for (const std::string& path : {hdrPath, pngPath}) {
+    const EnvironmentImage loaded = loadEnvironmentImage(path);
+    ASSERT_EQ(loaded.width, sky.width) << path;
+    ASSERT_EQ(loaded.height, sky.height) << path;
+    float worst = 0.0f;
+    for (size_t i = 0; i < sky.texels.size(); ++i)
+      worst = std::max(worst, relativeError(loaded.texels[i], sky.texels[i]));
+    // RGBE keeps 8 bits of the brightest channel: a step of 1/128 .. 1/256 of it.
+    EXPECT_LT(worst, 1.0f / 120.0f) << path;
+  }
+  EXPECT_THROW(loadEnvironmentImage(test::tempPath("no-such.hdr")), InputError);
+}
+
+// The split sum's (A, B) as the shader reads them (the 32 x 32 table, bilinear) and Karis 2014's analytic fit, against
+// the integral (Karis 2013) between the table's texel centres, over roughness 0 .. 1 and n.v 0.05 .. 1.
+TEST(Environment, TheBrdfTableIsCloseToTheIntegratedSplitSum) {
+  struct Worst {
+    float a = 0.0f, b = 0.0f, dielectric = 0.0f, metal = 0.0f;
+    void add(const glm::vec2& got, const glm::vec2& expected) {
+      a = std::max(a, std::abs(got.x - expected.x));
+      b = std::max(b, std::abs(got.y - expected.y));
+      dielectric = std::max(dielectric, std::abs(0.04f * (got.x - expected.x) + got.y - expected.y));
+      metal = std::max(metal, std::abs(0.9f * (got.x - expected.x) + got.y - expected.y));
+    }
+  } table, fit;
+  for (int i = 0; i <= 20; ++i)
+    for (int j = 1; j <= 40; ++j) {
+      const float roughness = 0.05f * static_cast<float>(i), nDotV = 0.025f * static_cast<float>(j);
+      if (nDotV < 0.05f) continue;
+      const glm::vec2 integrated = envBrdfIntegrated(roughness, nDotV);
+      table.add(environmentBrdf(roughness, nDotV), integrated);
+      fit.add(envBrdfApprox(roughness, nDotV), integrated);
+    }
+  for (const auto& [name, w] : {std::make_pair("table", table), std::make_pair("EnvBRDFApprox", fit)})
+    std::printf("(A, B) %s against the integral: worst |A| %.4f, |B| %.4f; reflectance F0 0.04 %.4f, F0 0.9 %.4f\n",
+                name, w.a, w.b, w.dielectric, w.metal);
+  EXPECT_LT(table.a, 0.03f);
+  EXPECT_LT(table.b, 0.03f);
+  EXPECT_LT(table.dielectric, 0.03f);
+  EXPECT_GT(fit.metal, 2.0f * table.metal) << "the fit would do: no table, no texture unit";
+  // The integral itself: a mirror seen head-on reflects F0 (A = 1, B = 0).
+  const glm::vec2 mirror = envBrdfIntegrated(0.0f, 1.0f);
+  EXPECT_NEAR(mirror.x, 1.0f, 1e-3f);
+  EXPECT_NEAR(mirror.y, 0.0f, 1e-3f);
+}
+
+// The white furnace on the CPU: radiance 1 everywhere, a white rough dielectric reflects 1.
+TEST(Environment, AWhiteDielectricInAWhiteFurnaceReflectsOne) {
+  const EnvironmentImage furnace = uniformEnvironment(glm::vec3(1.0f));
+  const ShIrradiance sh = ShIrradiance::project(furnace);
+  const PrefilteredEnvironment specular = PrefilteredEnvironment::of(furnace, 256);
+  float worst = 0.0f;
+  for (float roughness : {0.3f, 0.6f, 1.0f})
+    for (const glm::vec3& n : testDirections(12))
+      for (float nDotV : {0.1f, 0.5f, 1.0f}) {
+        const glm::vec3 other = std::abs(n.y) < 0.9f ? glm::vec3(0, 1, 0) : glm::vec3(1, 0, 0);
+        const glm::vec3 side = glm::normalize(glm::cross(n, other));
+        const glm::vec3 v = nDotV * n + std::sqrt(1.0f - nDotV * nDotV) * side;
+        const glm::vec3 c = ambientLightMirror(sh, specular, n, v, glm::vec3(1.0f), glm::vec3(0.04f), roughness);
+        worst = std::max(worst, relativeError(c, glm::vec3(1.0f)));
+      }
+  std::printf("white furnace (CPU mirror): worst |c - 1| %.2e\n", worst);
+  EXPECT_LT(worst, 2e-3f);
+}
+
+namespace {
+
+// environmentSpecular() on the GPU, one point per (direction, roughness), its result RGB9E5-encoded.
+std::vector<glm::vec3> gpuSpecular(const GpuEnvironment& environment, const std::vector<glm::vec4>& queries) {
+  auto defines = GpuEnvironment::shaderDefines(environment.layout());
+  std::vector<std::string> extensions;
+  if (environment.layout() == EnvironmentLayout::MipChain) extensions.push_back("GL_EXT_shader_texture_lod");
+  const gl::Program program("environment-specular[" + std::string(environmentLayoutName(environment.layout())) + "]",
+                            ShaderLibrary::composeText(test::kTwoValuePointVertex, defines, {}),
+                            ShaderLibrary::composeText(R"(
+#include "lib/precision.glsl"
+#include "lib/hdr.glsl"
+#include "lib/environment.glsl"
+varying vec4 v_first;
+void main() { gl_FragColor = encodeHdr(environmentSpecular(v_first.xyz, v_first.w)); }
+)",
+                                                       defines, extensions));
+  program.use();
+  // Unit 3, as the lighting pass: drawPoints makes its target on unit 0 (and unbinds every unit after drawing).
+  glActiveTexture(GL_TEXTURE3);
+  glBindTexture(GL_TEXTURE_2D, environment.texture());
+  glActiveTexture(GL_TEXTURE0);
+  gl::Program::set(program.uniform("u_environment"), 3);
+  gl::Program::set(program.uniform("u_environmentIntensity"), 1.0f);
+  const std::vector<std::uint8_t> bytes = test::drawPoints(program, queries);
+  std::vector<glm::vec3> out;
+  for (size_t i = 0; i < queries.size(); ++i)
+    out.push_back(decodeHdr(HdrTexel{bytes[4 * i], bytes[4 * i + 1], bytes[4 * i + 2], bytes[4 * i + 3]}));
+  return out;
+}
+
+}  // namespace
+
+// The shader against its CPU mirror, in the mip chain (where the context has EXT_shader_texture_lod) and in the atlas
+// (the fallback, forced), and the two layouts against each other.
+TEST(Environment, TheShaderMatchesItsMirrorInBothLayouts) {
+  test::context();
+  const EnvironmentImage sky = builtinSky();
+  const PrefilteredEnvironment prefiltered = PrefilteredEnvironment::of(sky, 256);
+  const ShIrradiance sh = ShIrradiance::project(sky);
+  std::vector<glm::vec4> queries;
+  for (const glm::vec3& d : testDirections(200))
+    for (float roughness : {0.0f, 0.1f, 0.2f, 0.5f, 0.73f, 1.0f}) queries.emplace_back(d, roughness);
+  const EnvironmentLayout lodLayout = GpuEnvironment::layoutFor(test::context().caps(), EnvironmentLayout::MipChain);
+  if (lodLayout != EnvironmentLayout::MipChain)
+    std::printf("this context lacks EXT_shader_texture_lod: the mip chain is not tested here\n");
+  const GpuEnvironment atlas(EnvironmentLayout::Atlas, prefiltered, sh);
+  const GpuEnvironment mips(lodLayout, prefiltered, sh);
+  const std::vector<glm::vec3> fromAtlas = gpuSpecular(atlas, queries), fromMips = gpuSpecular(mips, queries);
+  float worstAtlas = 0.0f, worstMips = 0.0f, worstBetween = 0.0f;
+  for (size_t i = 0; i < queries.size(); ++i) {
+    const glm::vec3 expected = prefiltered.sample(glm::vec3(queries[i]), queries[i].w);
+    worstAtlas = std::max(worstAtlas, relativeError(fromAtlas[i], expected));
+    worstMips = std::max(worstMips, relativeError(fromMips[i], expected));
+    worstBetween = std::max(worstBetween, relativeError(fromMips[i], fromAtlas[i]));
+  }
+  std::printf("environmentSpecular, %zu queries: atlas %.5f, %s %.5f of the mirror's brightest channel; "
+              "between them %.5f\n",
+              queries.size(), worstAtlas, environmentLayoutName(lodLayout), worstMips, worstBetween);
+  // RGB9E5's half step (1/1024) on the result, plus the GPU's atan and acos placing the bilinear weights differently.
+  EXPECT_LT(worstAtlas, 4.0f / 512.0f);
+  EXPECT_LT(worstMips, 4.0f / 512.0f);
+  EXPECT_LT(worstBetween, 2.0f / 512.0f);
+}
+
+namespace {
+
+// A white sphere and a white floor under the uniform environment of radiance 1 (AO off): each lit pixel must be
+// 1 (ambient) + the direct light's base x colour x n.l, n from the G-buffer; the background 1. Returns the worst error
+// of the ambient part, and counts the pixels.
+float furnaceError(const RendererOptions& options, int& lit, int& background) {
+  Scene scene = test::sceneOf({makeSphere(1.0f, 48, 24), test::makeRectangle({-6, -1, 6}, {12, 0, 0}, {0, 0, -12})});
+  Renderer renderer = test::makeRenderer(options);
+  renderer.setScene(std::move(scene));
+  const int width = 96, height = 64;
+  const Camera camera = test::makeCamera({0.5f, 1.5f, 4.0f}, {0, 0, 0}, width, height);
+  RenderSettings settings;
+  settings.set("ao", "off");
+  settings.set("fxaa", "off");
+  settings.set("lighting.environment", "uniform");
+  test::render(renderer, camera, settings, View::Final, test::retaining({"scene-color", "gbuffer"}));
+  const std::vector<std::uint8_t> color = renderer.retained("scene-color").readRgba();
+  const std::vector<std::uint8_t> gbuffer = renderer.retained("gbuffer").readRgba();
+  const FrameCamera frameCamera = FrameCamera::from(camera, width, height);
+  const Lighting light;
+  const glm::vec3 toLight = glm::normalize(glm::mat3(frameCamera.view) * light.directionToLight);
+  float worst = 0.0f;
+  lit = background = 0;
+  for (size_t i = 0; i < color.size(); i += 4) {
+    const glm::vec3 got = decodeHdr(HdrTexel{color[i], color[i + 1], color[i + 2], color[i + 3]});
+    const bool isBackground = gbuffer[i + 2] == 255 && gbuffer[i + 3] == 255;
+    glm::vec3 direct(0.0f);
+    if (!isBackground) direct = light.lightColor * std::max(0.0f, glm::dot(decodeNormal(gbuffer[i], gbuffer[i + 1]),
+                                                                            toLight));
+    worst = std::max(worst, relativeError(got - direct, glm::vec3(1.0f)));
+    (isBackground ? background : lit) += 1;
+  }
+  return worst;
+}
+
+}  // namespace
+
+// The white furnace through the frame: deferred and forward, mip chain and atlas.
+TEST(Environment, TheWhiteFurnaceGivesOneThroughTheFrame) {
+  for (bool drawBuffers : {true, false})
+    for (EnvironmentLayout layout : {EnvironmentLayout::MipChain, EnvironmentLayout::Atlas}) {
+      RendererOptions options;
+      options.allowDrawBuffers = drawBuffers;
+      options.environmentLayout = layout;
+      int lit = 0, background = 0;
+      const float worst = furnaceError(options, lit, background);
+      const EnvironmentLayout used = GpuEnvironment::layoutFor(test::context().caps(), layout);
+      std::printf("white furnace, %s, %s: worst |ambient - 1| %.4f over %d lit and %d background pixels\n",
+                  drawBuffers ? "deferred" : "forward", environmentLayoutName(used), worst, lit, background);
+      EXPECT_GT(lit, 1000);
+      EXPECT_GT(background, 200);
+      // The direct light subtracted with the G-buffer's 8-bit octahedral normal (0.5 x 1 % at most) and RGB9E5.
+      EXPECT_LT(worst, 0.01f) << (drawBuffers ? "deferred" : "forward") << " " << environmentLayoutName(layout);
+    }
+}
+
+// The intensity scales the whole environment, the background included.
+TEST(Environment, TheIntensityScalesAmbientAndBackground) {
+  Renderer renderer = test::makeRenderer();
+  renderer.setScene(makeBuiltinScene());
+  const Camera camera = builtinSceneCamera(64, 48);
+  RenderSettings settings;
+  settings.set("ao", "off");
+  auto mean = [&](const char* intensity) {
+    settings.set("lighting.environment-intensity", intensity);
+    test::render(renderer, camera, settings, View::Final, test::retaining({"scene-color"}));
+    const std::vector<std::uint8_t> c = renderer.retained("scene-color").readRgba();
+    double sum = 0.0;
+    for (size_t i = 0; i < c.size(); i += 4) sum += decodeHdr(HdrTexel{c[i], c[i + 1], c[i + 2], c[i + 3]}).g;
+    return sum;
+  };
+  settings.set("bloom", "off");
+  const double one = mean("1"), two = mean("2"), none = mean("0");
+  EXPECT_GT(two - one, 0.5 * (one - none)) << "doubling the environment adds its share again";
+  EXPECT_NEAR(two - one, one - none, 0.01 * (one - none));
+}
