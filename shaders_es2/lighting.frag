@@ -1,11 +1,18 @@
-// The lit image: base colour under one directional light and a sky/ground hemisphere ambient. AO multiplies the
-// ambient term only (direct light is shadowed by shadow maps, not by AO). Variants (src/core/LightingEffect.h):
+// The lit image: glTF 2.0 metallic-roughness materials (lib/material.glsl, lib/pbr.glsl: Cook-Torrance with GGX,
+// Smith visibility and Schlick Fresnel) under the sun (one directional light), up to MAX_PUNCTUAL_LIGHTS
+// KHR_lights_punctual point and spot lights, an ambient term (ambientLight: today the sky/ground hemisphere) and the
+// material's emission. The AO darkens the ambient term only (diffuse directly, specular through Lagarde's specular
+// occlusion), combined with the material's baked occlusion by their product (docs/pbr.md measured the rule); direct
+// light is never darkened. Variants (src/core/LightingEffect.h):
 //
 //   DEFERRED 0        the scene drawn again with the G-buffer pass's vertex stage (geometry.vert), tested against
-//                     its depth; the material's base colour from lib/material.glsl (a variant per MaterialKind:
-//                     ALPHA_MASK 1 discards cut-outs, BASE_COLOR_TEXTURE 0 uses the factor alone).
+//                     its depth; the material from lib/material.glsl (a variant per MaterialKind: ALPHA_MASK 1
+//                     discards cut-outs, BASE_COLOR_TEXTURE 0 uses the factor alone, PBR_TEXTURES 1 samples the
+//                     metallic-roughness, normal, occlusion and emissive textures).
 //   DEFERRED 1        a full-screen pass (fullscreen.vert): the normal from the G-buffer, the base colour from the
-//                     target the G-buffer pass wrote beside it (several render targets). Each pixel once.
+//                     target the G-buffer pass wrote beside it (several render targets). Each pixel once. Only
+//                     scenes whose materials are all rough dielectrics without emission and without punctual lights
+//                     take it (Scene: Material::needsForwardLighting): it shades metallic 0, roughness 1.
 //   TONEMAP_INLINE 0  linear HDR colour in the RGBA8 encoding of lib/hdr.glsl, for the passes after it;
 //                  1  the tone mapping done here, where the tone-mapping pass would be this colour's only reader:
 //                     exposure, curve (TONEMAP_OPERATOR), sRGB, and the luma FXAA reads in alpha.
@@ -15,7 +22,11 @@
 #include "lib/packing.glsl"
 #include "lib/srgb.glsl"
 #include "lib/hdr.glsl"
+#if !DEFERRED && !COUNT_SHADING
+#define MATERIAL_SURFACE 1
+#endif
 #include "lib/material.glsl"
+#include "lib/pbr.glsl"
 
 #if DEFERRED
 uniform sampler2D u_gbuffer;    // RG normal, BA depth code
@@ -39,16 +50,60 @@ void main() {
 #else
 
 uniform sampler2D u_ao;          // AO in R, the frame's size (1x1 white when the AO is off)
-uniform vec3 u_lightDirection;   // view space, towards the light, unit
-uniform vec3 u_lightColor;
+uniform vec3 u_lightDirection;   // view space, towards the sun, unit
+uniform vec3 u_lightColor;       // the sun's illuminance: colour x intensity (lux)
 uniform vec3 u_skyColor;
 uniform vec3 u_groundColor;
 uniform vec3 u_viewUp;           // world up in view space
 
-vec3 shade(vec3 base, vec3 n, float ao) {
-  vec3 ambient = mix(u_groundColor, u_skyColor, dot(n, u_viewUp) * 0.5 + 0.5) * ao;
-  vec3 direct = u_lightColor * max(dot(n, u_lightDirection), 0.0);
-  return base * (ambient + direct);
+#if MAX_PUNCTUAL_LIGHTS > 0
+// KHR_lights_punctual, view space (core/LightingEffect.h: PunctualLightUniforms). An unused slot has colour 0.
+uniform vec4 u_lightPositionRange[MAX_PUNCTUAL_LIGHTS];  // xyz position, w 1 / range^4 (0: no range)
+uniform vec4 u_lightColorSpot[MAX_PUNCTUAL_LIGHTS];      // rgb colour x intensity (candela), a the spot's scale
+uniform vec4 u_lightSpot[MAX_PUNCTUAL_LIGHTS];           // xyz the spot's direction (towards where it shines),
+                                                         // w its offset: cone = clamp(cos * scale + offset, 0, 1)^2
+#endif
+
+// The ambient light: radiance from the sky/ground hemisphere, diffuse and specular, darkened by `occlusion` (the
+// screen-space AO times the material's baked occlusion): the diffuse term by it, the specular term by Lagarde's
+// specular occlusion of it. n the shading normal, v towards the eye (both unit, view space), diffuseColor and f0 the
+// material's (lib/pbr.glsl), roughness perceptual. One function, so an image-based ambient can replace its body.
+vec3 hemisphere(vec3 direction) { return mix(u_groundColor, u_skyColor, dot(direction, u_viewUp) * 0.5 + 0.5); }
+vec3 ambientLight(vec3 n, vec3 v, vec3 diffuseColor, vec3 f0, float roughness, float occlusion) {
+  float nv = max(dot(n, v), 1e-4);
+  // The hemisphere's radiance: the diffuse term sees its mean over the cosine lobe (the hemisphere light's
+  // irradiance / pi), the specular lobe the radiance around the mirror direction, widening to the diffuse's as the
+  // surface roughens.
+  vec3 diffuse = diffuseColor * hemisphere(n);
+  vec3 specularRadiance = mix(hemisphere(reflect(-v, n)), hemisphere(n), roughness * roughness);
+  vec2 scaleBias = environmentBrdf(nv, roughness);
+  vec3 specular = specularRadiance * (f0 * scaleBias.x + scaleBias.y);
+  return diffuse * occlusion + specular * specularOcclusion(nv, occlusion, roughness * roughness);
+}
+
+// The lit colour of a surface point: p its view-space position, n its shading normal (unit, facing the viewer).
+vec3 shade(vec3 base, float metallic, float roughness, vec3 p, vec3 n, float occlusion, vec3 emissive) {
+  vec3 v = -normalize(p);
+  roughness = clamp(roughness, PBR_MIN_ROUGHNESS, 1.0);
+  metallic = clamp(metallic, 0.0, 1.0);
+  vec3 diffuseColor = base * (1.0 - metallic);
+  vec3 f0 = mix(vec3(0.04), base, metallic);
+  vec3 color = ambientLight(n, v, diffuseColor, f0, roughness, occlusion) + emissive;
+  color += brdfCosine(n, v, u_lightDirection, diffuseColor, f0, roughness) * u_lightColor;
+#if MAX_PUNCTUAL_LIGHTS > 0
+  for (int i = 0; i < MAX_PUNCTUAL_LIGHTS; i++) {
+    vec3 toLight = u_lightPositionRange[i].xyz - p;
+    float d2 = max(dot(toLight, toLight), 1e-8);
+    vec3 l = toLight * inversesqrt(d2);
+    // KHR_lights_punctual: inverse square, windowed to 0 at the range (the extension's recommended
+    // clamp(1 - (d / range)^4, 0, 1)^2), times the spot's smooth cone.
+    float window = clamp(1.0 - d2 * d2 * u_lightPositionRange[i].w, 0.0, 1.0);
+    float cone = clamp(dot(u_lightSpot[i].xyz, -l) * u_lightColorSpot[i].a + u_lightSpot[i].w, 0.0, 1.0);
+    vec3 illuminance = u_lightColorSpot[i].rgb * (window * window * cone * cone / d2);
+    color += brdfCosine(n, v, l, diffuseColor, f0, roughness) * illuminance;
+  }
+#endif
+  return color;
 }
 
 #if TONEMAP_INLINE
@@ -63,17 +118,21 @@ vec4 encodeOutput(vec3 linear) { return encodeHdr(linear); }
 #endif
 
 #if DEFERRED
+#include "lib/reconstruct.glsl"
 uniform sampler2D u_baseColor;   // sRGB-encoded base colour
 uniform vec3 u_background;       // linear radiance where no geometry is
 
 void main() {
   vec4 g = texture2D(u_gbuffer, v_uv);
-  if (isBackgroundCode(unpackDepthCode(g.ba))) {
+  float code = unpackDepthCode(g.ba);
+  if (isBackgroundCode(code)) {
     gl_FragColor = encodeOutput(u_background);
     return;
   }
   vec3 base = srgbToLinear(texture2D(u_baseColor, v_uv).rgb);
-  gl_FragColor = encodeOutput(shade(base, decodeNormal(g.rg), texture2D(u_ao, v_uv).r));
+  // Only the view direction matters to the shading here (no punctual lights take this form): the far plane's ray.
+  vec3 p = farPlaneRay(v_uv);
+  gl_FragColor = encodeOutput(shade(base, 0.0, 1.0, p, decodeNormal(g.rg), texture2D(u_ao, v_uv).r, vec3(0.0)));
 }
 #else
 void main() {
@@ -81,12 +140,17 @@ void main() {
 #if ALPHA_MASK
   if (base.a < u_alphaCutoff) discard;
 #endif
+  Surface surface = surfaceAt(v_texcoord);
   vec3 n = normalize(v_viewNormal);
   if (!gl_FrontFacing) n = -n;
+  n = perturbedNormal(n, gl_FrontFacing);
   // This fragment's pixel centre in [0, 1]^2, from the interpolated clip position rather than gl_FragCoord, which is
   // only mediump in GLSL ES 1.00 and would address the wrong AO texel beyond 2048 pixels.
   vec2 screenUv = v_clipPosition.xy / v_clipPosition.w * 0.5 + 0.5;
-  gl_FragColor = encodeOutput(shade(base.rgb, n, texture2D(u_ao, screenUv).r));
+  // The baked occlusion and the screen-space AO: their product (docs/pbr.md).
+  float occlusion = texture2D(u_ao, screenUv).r * surface.occlusion;
+  gl_FragColor = encodeOutput(shade(base.rgb, surface.metallic, surface.roughness, v_viewPosition, n, occlusion,
+                                    surface.emissive));
 }
 #endif
 #endif

@@ -79,12 +79,15 @@ void GBufferEffect::plan(FramePlanner& planner) {
   PassDecl pass;
   pass.name = "gbuffer";
   pass.writes = {{"gbuffer", TargetSize::full(), Write::Depth::Own, ""}};
-  if (drawBuffers_) pass.writes.push_back({"base-color", TargetSize::full(), Write::Depth::None, ""});
-  const Output output = drawBuffers_ ? Output::Both : Output::GBuffer;
+  // The base colour beside the G-buffer, for the deferred lighting, unless the scene's materials need more than it
+  // carries (core/LightingEffect.h).
+  const bool both = drawBuffers_ && !planner.frame().forwardLighting;
+  if (both) pass.writes.push_back({"base-color", TargetSize::full(), Write::Depth::None, ""});
+  const Output output = both ? Output::Both : Output::GBuffer;
   pass.run = [this, output](PassContext& context) { render(context, output); };
   planner.add(std::move(pass));
-  // Without several render targets, the base colour has a pass of its own, for its view only.
-  if (!drawBuffers_ && planner.viewTarget() == "base-color") {
+  // Otherwise the base colour has a pass of its own, for its view only.
+  if (!both && planner.viewTarget() == "base-color") {
     PassDecl base;
     base.name = "base-color";
     base.writes = {{"base-color", TargetSize::full(), Write::Depth::Own, ""}};

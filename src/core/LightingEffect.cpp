@@ -1,6 +1,10 @@
 #include "core/LightingEffect.h"
 
+#include <algorithm>
+#include <cmath>
+
 #include <glm/geometric.hpp>
+#include <glm/trigonometric.hpp>
 
 #include "core/HdrEncoding.h"
 #include "core/LinearDepthPacking.h"
@@ -8,6 +12,61 @@
 #include "gl/PipelineState.h"
 
 namespace obscura {
+
+const std::vector<Parameter<LightingSettings>>& LightingSettings::parameters() {
+  using S = LightingSettings;
+  static const std::vector<Parameter<S>> table = {
+      numberParameter<S>("sun-elevation", -90, 90, "degrees", "the sun's height above the horizon", &S::sunElevation)
+          .primary(),
+      numberParameter<S>("sun-azimuth", -360, 360, "degrees", "the sun's direction, from +z towards +x",
+                         &S::sunAzimuth)
+          .primary(),
+      colorParameter<S>("sun-color", 0, 1, "the sun's colour (its illuminance is colour x intensity)", &S::sunColor),
+      numberParameter<S>("sun-intensity", 0, 100000, "lux",
+                         "the sun's illuminance per unit of colour (pi: a white matte surface facing the sun shows "
+                         "its colour)",
+                         &S::sunIntensity)
+          .primary()};
+  return table;
+}
+
+glm::vec3 LightingSettings::directionToSun() const {
+  const float elevation = glm::radians(sunElevation), azimuth = glm::radians(sunAzimuth);
+  return {std::cos(elevation) * std::sin(azimuth), std::sin(elevation), std::cos(elevation) * std::cos(azimuth)};
+}
+
+PunctualLightUniforms PunctualLightUniforms::of(const std::vector<PunctualLight>& lights, const glm::mat4& view) {
+  PunctualLightUniforms out;
+  // The lights that light the camera's surroundings most: intensity / distance^2 at the camera (view-space origin).
+  std::vector<std::pair<float, size_t>> order;
+  for (size_t i = 0; i < lights.size(); ++i) {
+    const glm::vec3 p(view * lights[i].world[3]);
+    const glm::vec3& c = lights[i].color;
+    order.emplace_back(-lights[i].intensity * std::max(c.r, std::max(c.g, c.b)) / std::max(glm::dot(p, p), 1e-6f), i);
+  }
+  std::stable_sort(order.begin(), order.end());
+  for (const auto& [key, index] : order) {
+    if (out.count == kMaxPunctualLights) break;
+    const PunctualLight& light = lights[index];
+    const auto k = static_cast<size_t>(out.count++);
+    const glm::mat4 toView = view * light.world;
+    const float range4 = light.range > 0.0f ? std::pow(light.range, 4.0f) : 0.0f;
+    out.positionRange[k] = glm::vec4(glm::vec3(toView[3]), range4 > 0.0f ? 1.0f / range4 : 0.0f);
+    // KHR_lights_punctual's cone: clamp(cos * scale + offset, 0, 1)^2, scale = 1 / max(cos inner - cos outer,
+    // 0.001), offset = -cos outer * scale. A point light: scale 0, offset 1 (cone 1 everywhere).
+    float scale = 0.0f, offset = 1.0f;
+    if (light.type == LightType::Spot) {
+      const float cosOuter = std::cos(light.outerConeAngle), cosInner = std::cos(light.innerConeAngle);
+      scale = 1.0f / std::max(cosInner - cosOuter, 0.001f);
+      offset = -cosOuter * scale;
+    }
+    out.colorSpot[k] = glm::vec4(light.color * light.intensity, scale);
+    // The light shines along its node's -z.
+    const glm::vec3 axis = glm::normalize(glm::vec3(toView * glm::vec4(0.0f, 0.0f, -1.0f, 0.0f)));
+    out.spot[k] = glm::vec4(axis, offset);
+  }
+  return out;
+}
 
 EffectInfo LightingEffect::info() {
   return {"lighting",
@@ -41,6 +100,7 @@ ProgramSpec LightingEffect::spec(const Form& form, MaterialKind kind, VertexKind
                 {{"DEFERRED", form.deferred ? "1" : "0"},
                  {"COUNT_SHADING", form.counting ? "1" : "0"},
                  {"TONEMAP_INLINE", form.toneMap >= 0 ? "1" : "0"},
+                 {"MAX_PUNCTUAL_LIGHTS", std::to_string(form.deferred ? 0 : kMaxPunctualLights)},
                  {"FAR_RAY", "0"}}};
   for (auto& define : kind.defines()) s.defines.push_back(define);
   if (!form.deferred)
@@ -76,7 +136,11 @@ LightingEffect::Variant::Variant(gl::Program built, bool geometryStage)
       baseColor(program.optionalUniform("u_baseColor")),
       background(program.optionalUniform("u_background")),
       exposure(program.optionalUniform("u_exposure")),
-      lumaInAlpha(program.optionalUniform("u_lumaInAlpha")) {}
+      lumaInAlpha(program.optionalUniform("u_lumaInAlpha")),
+      lightPositionRange(program.optionalUniform("u_lightPositionRange[0]")),
+      lightColorSpot(program.optionalUniform("u_lightColorSpot[0]")),
+      lightSpot(program.optionalUniform("u_lightSpot[0]")),
+      reconstruction(geometryStage ? ReconstructionUniforms() : ReconstructionUniforms(program)) {}
 
 const LightingEffect::Variant& LightingEffect::variant(const Form& form, MaterialKind kind, VertexKind vertex) {
   const auto key = std::make_tuple(form, readKind(form, kind), form.deferred ? VertexKind{} : vertex.forCurrentFrame());
@@ -92,7 +156,9 @@ const LightingEffect::Variant& LightingEffect::variant(const Form& form, Materia
         program.uniform(name);
     if (form.deferred) program.uniform("u_gbuffer");
     if (form.deferred && !form.counting)
-      for (const char* name : {"u_baseColor", "u_background"}) program.uniform(name);
+      for (const char* name : {"u_baseColor", "u_background", "u_farHalfExtent"}) program.uniform(name);
+    if (!form.deferred && !form.counting)
+      for (const char* name : {"u_metallicRoughness", "u_emissive", "u_lightPositionRange[0]"}) program.uniform(name);
     if (form.toneMap >= 0)
       for (const char* name : {"u_exposure", "u_lumaInAlpha"}) program.uniform(name);
   }
@@ -103,7 +169,7 @@ LightingEffect::LightingEffect(const EffectResources& resources)
     : resources_(resources),
       white_(1, 1, GL_NEAREST, std::vector<std::uint8_t>{255, 255, 255, 255}.data()),
       stencil_(resources.caps.packedDepthStencil) {
-  const HdrTexel t = encodeHdr(light_.background);
+  const HdrTexel t = encodeHdr(light_.background);  // the background's radiance
   backgroundHdr_ = glm::vec4(LinearDepthPacking::channelFromByte(t[0]), LinearDepthPacking::channelFromByte(t[1]),
                              LinearDepthPacking::channelFromByte(t[2]), LinearDepthPacking::channelFromByte(t[3]));
   // The form of the lit pass before the plan's alternatives, for every material, is built now, so a broken program
@@ -122,8 +188,11 @@ void LightingEffect::plan(FramePlanner& planner) {
     all.insert(all.end(), more.begin(), more.end());
     return all;
   };
-  auto runAs = [this, scale = tone.exposureScale](Form form, std::string output) {
-    return [this, form, output, scale](PassContext& context) { render(context, form, output, scale); };
+  const LightingSettings settings = planner.settings().of<LightingSettings>();
+  auto runAs = [this, scale = tone.exposureScale, settings](Form form, std::string output) {
+    return [this, form, output, scale, settings](PassContext& context) {
+      render(context, form, output, scale, settings);
+    };
   };
 
   for (const char* output : {"scene-color", "shading-count"}) {
@@ -165,7 +234,7 @@ void LightingEffect::plan(FramePlanner& planner) {
 }
 
 void LightingEffect::render(const PassContext& context, const Form& form, const std::string& output,
-                            float exposureScale) {
+                            float exposureScale, const LightingSettings& settings) {
   using gl::Program;
   const FrameCamera& camera = context.camera();
   context.bindForWriting(output);
@@ -173,13 +242,20 @@ void LightingEffect::render(const PassContext& context, const Form& form, const 
   const ToneMapInUse tone{static_cast<ToneMapOperator>(std::max(form.toneMap, 0)), exposureScale};
 
   const glm::mat3 viewRotation(camera.view);
-  const glm::vec3 lightDirection = glm::normalize(viewRotation * light_.directionToLight);
+  const glm::vec3 lightDirection = glm::normalize(viewRotation * settings.directionToSun());
   const glm::vec3 viewUp = viewRotation * glm::vec3(0.0f, 1.0f, 0.0f);
+  const PunctualLightUniforms lights =
+      form.deferred ? PunctualLightUniforms{} : PunctualLightUniforms::of(context.scene().lights(), camera.view);
   auto setShading = [&](const Variant& v) {
     if (form.counting) return;
     Program::set(v.lightDirection, lightDirection);
     Program::set(v.viewUp, viewUp);
-    Program::set(v.lightColor, light_.lightColor);
+    Program::set(v.lightColor, settings.sunColor * settings.sunIntensity);
+    if (v.lightPositionRange >= 0) {
+      glUniform4fv(v.lightPositionRange, kMaxPunctualLights, &lights.positionRange[0].x);
+      glUniform4fv(v.lightColorSpot, kMaxPunctualLights, &lights.colorSpot[0].x);
+      glUniform4fv(v.lightSpot, kMaxPunctualLights, &lights.spot[0].x);
+    }
     Program::set(v.skyColor, light_.skyColor);
     Program::set(v.groundColor, light_.groundColor);
     Program::set(v.ao, 1);
@@ -203,6 +279,7 @@ void LightingEffect::render(const PassContext& context, const Form& form, const 
       context.texture("base-color").bind(2);
       Program::set(v.baseColor, 2);
       Program::set(v.background, light_.background);
+      v.reconstruction.set(camera.reconstruction);
     }
     if (form.counting) {
       glEnable(GL_BLEND);
