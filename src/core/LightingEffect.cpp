@@ -140,7 +140,8 @@ LightingEffect::Variant::Variant(gl::Program built, bool geometryStage)
       lightPositionRange(program.optionalUniform("u_lightPositionRange[0]")),
       lightColorSpot(program.optionalUniform("u_lightColorSpot[0]")),
       lightSpot(program.optionalUniform("u_lightSpot[0]")),
-      reconstruction(geometryStage ? ReconstructionUniforms() : ReconstructionUniforms(program)) {}
+      farHalfExtent(program.optionalUniform("u_farHalfExtent")),
+      farPlane(program.optionalUniform("u_farPlane")) {}
 
 const LightingEffect::Variant& LightingEffect::variant(const Form& form, MaterialKind kind, VertexKind vertex) {
   const auto key = std::make_tuple(form, readKind(form, kind), form.deferred ? VertexKind{} : vertex.forCurrentFrame());
@@ -156,7 +157,7 @@ const LightingEffect::Variant& LightingEffect::variant(const Form& form, Materia
         program.uniform(name);
     if (form.deferred) program.uniform("u_gbuffer");
     if (form.deferred && !form.counting)
-      for (const char* name : {"u_baseColor", "u_background", "u_farHalfExtent"}) program.uniform(name);
+      for (const char* name : {"u_baseColor", "u_background", "u_farHalfExtent", "u_farPlane"}) program.uniform(name);
     if (!form.deferred && !form.counting)
       for (const char* name : {"u_metallicRoughness", "u_emissive", "u_lightPositionRange[0]"}) program.uniform(name);
     if (form.toneMap >= 0)
@@ -279,7 +280,8 @@ void LightingEffect::render(const PassContext& context, const Form& form, const 
       context.texture("base-color").bind(2);
       Program::set(v.baseColor, 2);
       Program::set(v.background, light_.background);
-      v.reconstruction.set(camera.reconstruction);
+      Program::set(v.farHalfExtent, camera.reconstruction.farHalfExtent);
+      Program::set(v.farPlane, camera.reconstruction.far);
     }
     if (form.counting) {
       glEnable(GL_BLEND);

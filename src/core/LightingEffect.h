@@ -108,7 +108,7 @@ class LightingEffect : public Effect {
     GLint projection, lightDirection, viewUp, lightColor, skyColor, groundColor, ao;
     GLint gbuffer, baseColor, background, exposure, lumaInAlpha;
     GLint lightPositionRange, lightColorSpot, lightSpot;
-    ReconstructionUniforms reconstruction;  // the deferred form's view rays
+    GLint farHalfExtent, farPlane;  // the deferred form's view rays (lib/reconstruct.glsl's farPlaneRay)
   };
   static MaterialKind readKind(const Form& form, MaterialKind kind);
   static ProgramSpec spec(const Form& form, MaterialKind kind, VertexKind vertex);
