@@ -2,7 +2,7 @@
 // Smith visibility and Schlick Fresnel) under the sun (one directional light), up to MAX_PUNCTUAL_LIGHTS
 // KHR_lights_punctual point and spot lights, an ambient term (ambientLight: today the sky/ground hemisphere) and the
 // material's emission. The AO darkens the ambient term only (diffuse directly, specular through Lagarde's specular
-// occlusion), combined with the material's baked occlusion by their product (docs/pbr.md measured the rule); direct
+// occlusion), combined with the material's baked occlusion by their minimum (docs/pbr.md measured the rule); direct
 // light is never darkened. Variants (src/core/LightingEffect.h):
 //
 //   DEFERRED 0        the scene drawn again with the G-buffer pass's vertex stage (geometry.vert), tested against
@@ -147,8 +147,9 @@ void main() {
   // This fragment's pixel centre in [0, 1]^2, from the interpolated clip position rather than gl_FragCoord, which is
   // only mediump in GLSL ES 1.00 and would address the wrong AO texel beyond 2048 pixels.
   vec2 screenUv = v_clipPosition.xy / v_clipPosition.w * 0.5 + 0.5;
-  // The baked occlusion and the screen-space AO: their product (docs/pbr.md).
-  float occlusion = texture2D(u_ao, screenUv).r * surface.occlusion;
+  // The baked occlusion and the screen-space AO: their minimum, not their product (measured against the ray-traced
+  // reference: docs/pbr.md, tests/test_baked_occlusion.cpp); both see much of the same occlusion.
+  float occlusion = min(texture2D(u_ao, screenUv).r, surface.occlusion);
   gl_FragColor = encodeOutput(shade(base.rgb, surface.metallic, surface.roughness, v_viewPosition, n, occlusion,
                                     surface.emissive));
 }

@@ -17,6 +17,7 @@
 #include "TestSupport.h"
 #include "core/HdrEncoding.h"
 #include "core/LightingEffect.h"
+#include "core/NormalEncoding.h"
 #include "core/PbrShading.h"
 #include "scene/GltfLoader.h"
 #include "scene/MeshProcessing.h"
@@ -458,4 +459,74 @@ TEST(Pbr, TheLoaderReadsEveryMaterialInputAndTheLights) {
     }
   }
   EXPECT_EQ(normalMapped, 1);
+}
+
+// Where the AO goes: it darkens the ambient term only. In a corner (a floor, a wall and a box) with the AO on, the
+// sun's contribution (the frame minus the same frame with the sun at intensity 0) is the one the AO-off frames give,
+// pixel for pixel; and the ambient term (the frame without the sun) is the mirror's ambientLight at the pixel's AO
+// (the diffuse part times it, the specular part times Lagarde's specular occlusion), read from the G-buffer's
+// normal and depth and the AO target.
+TEST(Pbr, TheAoDarkensTheAmbientTermOnly) {
+  const int width = 160, height = 90;
+  Material material;
+  material.baseColorFactor = glm::vec4(0.8f, 0.7f, 0.6f, 1.0f);
+  material.metallicFactor = 0.5f;
+  material.roughnessFactor = 0.4f;
+  Scene scene = test::sceneOf({test::makeRectangle({-4, 0, 4}, {8, 0, 0}, {0, 0, -8}),  // floor, +y
+                               test::makeRectangle({-4, 0, -1}, {8, 0, 0}, {0, 3, 0}),  // wall, +z
+                               makeBox({-0.6f, 0.0f, -0.8f}, {0.4f, 0.8f, 0.2f})});
+  scene.materials.push_back(material);
+  for (Mesh& mesh : scene.meshes) mesh.material = 0;
+  const Camera camera = test::makeCamera({1.5f, 1.6f, 3.0f}, {-0.2f, 0.3f, -0.5f}, width, height, 0.1f, 30.0f);
+  Renderer renderer = test::makeRenderer();
+  renderer.setScene(scene);
+  auto frame = [&](bool ao, float sun) {
+    RenderSettings settings = plainSettings();
+    settings.set("ao", ao ? "on" : "off");
+    settings.of<LightingSettings>().sunIntensity = sun;
+    test::render(renderer, camera, settings, View::Final,
+                 test::retaining(ao ? std::vector<std::string>{"scene-color", "ao", "gbuffer"}
+                                    : std::vector<std::string>{"scene-color"}));
+    HdrFrame f{width, height, renderer.retained("scene-color").readRgba()};
+    return f;
+  };
+  const HdrFrame litOff = frame(false, 3.14159265f), darkOff = frame(false, 0.0f);
+  const HdrFrame lit = frame(true, 3.14159265f), dark = frame(true, 0.0f);
+  const std::vector<std::uint8_t> ao = renderer.retained("ao").readRgba();
+  const std::vector<std::uint8_t> gbuffer = renderer.retained("gbuffer").readRgba();
+  const FrameCamera view = FrameCamera::from(camera, width, height);
+  const LightingSettings sun;
+  const pbr::Hemisphere hemisphere = [&] {
+    pbr::Hemisphere h = sceneHemisphere();
+    h.up = glm::dvec3(glm::mat3(view.view) * glm::vec3(0, 1, 0));
+    return h;
+  }();
+  const pbr::SurfaceParameters s{{0.8, 0.7, 0.6}, 0.5, 0.4};
+  double worstDirect = 0.0, worstAmbient = 0.0;
+  int occluded = 0, covered = 0;
+  for (int row = 0; row < height; ++row)
+    for (int x = 0; x < width; ++x) {
+      const size_t i = (static_cast<size_t>(row) * width + x) * 4;
+      const int code = gbuffer[i + 2] * 256 + gbuffer[i + 3];
+      if (code == 65535) continue;
+      ++covered;
+      const glm::dvec3 directOn = lit.at(x, row) - dark.at(x, row), directOff = litOff.at(x, row) - darkOff.at(x, row);
+      const double scale = std::max({litOff.at(x, row).r, litOff.at(x, row).g, litOff.at(x, row).b});
+      worstDirect = std::max(worstDirect, glm::length(directOn - directOff) / scale);
+      // The ambient against the mirror, at pixels away from edges (the G-buffer's normal is the face's there).
+      const glm::vec2 uv((static_cast<float>(x) + 0.5f) / width, 1.0f - (static_cast<float>(row) + 0.5f) / height);
+      const glm::dvec3 p(view.reconstruction.viewPosition(uv, static_cast<float>(code) / 65535.0f));
+      const glm::dvec3 n(decodeNormal(gbuffer[i], gbuffer[i + 1]));
+      const double visibility = ao[i] / 255.0;
+      occluded += visibility < 0.8;
+      const glm::dvec3 expected = pbr::ambientLight(hemisphere, n, -glm::normalize(p), s, visibility);
+      worstAmbient = std::max(worstAmbient, worstRelative(dark.at(x, row), expected));
+    }
+  std::printf("AO on the ambient only: %d pixels, %d with AO below 0.8; the sun's light with the AO on differs from "
+              "it with the AO off by %.5f at most; the ambient's worst error against the mirror %.4f\n",
+              covered, occluded, worstDirect, worstAmbient);
+  EXPECT_GT(occluded, covered / 20) << "the corner must be occluded for the test to tell";
+  EXPECT_LT(worstDirect, 0.01) << "direct light is never darkened by the AO";
+  // The G-buffer's normal is 8 bits per octahedral axis (about 0.5 degrees): the mirror's ambient is within 2 %.
+  EXPECT_LT(worstAmbient, 0.02);
 }

@@ -40,7 +40,11 @@ build/obscura-render $aa --no-fxaa --accumulate 1 --shutter 0 --supersample 4 --
 build/obscura-render --size 480x270 --bloom --bloom.threshold 0.2 --bloom.intensity 1.5 --out "$out/bloom.png"
 build/obscura-render --size 480x270 --fog --fog.density 0.6 --fog.height-falloff 0.8 --fog.color 0.7,0.75,0.8 \
   --out "$out/fog_height.png"
-echo "render-docs-images: wrote $out/builtin_*.png, motion_*.png, ao_*.png, aa_*.png, bloom.png, fog_height.png"
+# Materials and lights (docs/pbr.md): the metallic-roughness sample, and with bloom on its emission and highlights.
+pbr="--scene assets/scenes/pbr-samples.glb --camera tools/docs-pbr-camera.json"
+build/obscura-render $pbr --out "$out/pbr_samples.png"
+build/obscura-render $pbr --bloom --out "$out/pbr_samples_bloom.png"
+echo "render-docs-images: wrote $out/builtin_*.png, motion_*.png, ao_*.png, aa_*.png, bloom.png, fog_height.png, pbr_*.png"
 
 (cd tests/browser && npm ci --no-audit --no-fund --loglevel=error)
 OBSCURA_UPDATE_SCREENSHOTS=1 node --test --test-name-pattern="page screenshots" tests/browser/page.test.mjs >/dev/null

@@ -4,8 +4,8 @@
 // diffuse, under the sun (lighting.sun-*), up to kMaxPunctualLights KHR_lights_punctual point and spot lights and the
 // sky/ground hemisphere ambient (ambientLight in lighting.frag), plus the material's emission. The AO darkens the
 // ambient term only: its diffuse part directly, its specular part through Lagarde's specular occlusion; the
-// material's baked occlusion texture multiplies the screen-space AO first (docs/pbr.md). Direct light is never
-// darkened. CPU mirror of the shading: core/PbrShading.h. It writes linear HDR colour in the RGBA8 encoding of
+// material's baked occlusion texture combines with the screen-space AO by their minimum (measured: docs/pbr.md).
+// Direct light is never darkened. CPU mirror of the shading: core/PbrShading.h. It writes linear HDR colour in the RGBA8 encoding of
 // lib/hdr.glsl into "scene-color", which later effects read. The pass takes one of these forms, chosen once the
 // frame's plan knows which passes run (PassDecl::Alternative):
 //
