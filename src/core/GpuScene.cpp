@@ -120,8 +120,8 @@ GpuScene::GpuScene(const Scene& scene, const gl::GlCaps& caps, const Options& op
                        usable(m.emissiveTexture)};
     gpu.pbr = std::any_of(gpu.pbrTextures.begin(), gpu.pbrTextures.end(), [](int t) { return t >= 0; });
     // A missing normal texture: scale 0 leaves the geometric normal whatever the neutral texel holds.
-    gpu.metallicRoughness = glm::vec4(m.metallicFactor, m.roughnessFactor, gpu.pbrTextures[1] >= 0 ? m.normalScale : 0.0f,
-                                      m.occlusionStrength);
+    const float normalScale = gpu.pbrTextures[1] >= 0 ? m.normalScale : 0.0f;
+    gpu.metallicRoughness = glm::vec4(m.metallicFactor, m.roughnessFactor, normalScale, m.occlusionStrength);
     gpu.emissive = m.emissiveFactor * m.emissiveStrength;
     for (int slot = 0; slot < kTextureSlots; ++slot) {
       const glm::mat3& t = m.uvTransforms[static_cast<size_t>(slot)];

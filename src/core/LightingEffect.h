@@ -3,11 +3,11 @@
 // shaded with Cook-Torrance (GGX distribution, height-correlated Smith visibility, Schlick Fresnel) over a Lambertian
 // diffuse, under the sun (lighting.sun-*), up to kMaxPunctualLights KHR_lights_punctual point and spot lights and the
 // sky/ground hemisphere ambient (ambientLight in lighting.frag), plus the material's emission. The AO darkens the
-// ambient term only: its diffuse part directly, its specular part through Lagarde's specular occlusion; the
-// material's baked occlusion texture combines with the screen-space AO by their minimum (measured: docs/pbr.md).
-// Direct light is never darkened. CPU mirror of the shading: core/PbrShading.h. It writes linear HDR colour in the RGBA8 encoding of
-// lib/hdr.glsl into "scene-color", which later effects read. The pass takes one of these forms, chosen once the
-// frame's plan knows which passes run (PassDecl::Alternative):
+// ambient term only: its diffuse part directly, its specular part through Lagarde's specular occlusion; the material's
+// baked occlusion texture combines with the screen-space AO by their minimum (measured: docs/pbr.md). Direct light is
+// never darkened. CPU mirror of the shading: core/PbrShading.h. It writes linear HDR colour in the RGBA8 encoding of
+// lib/hdr.glsl into "scene-color", which later effects read. The pass takes one of these forms, chosen once the frame's
+// plan knows which passes run (PassDecl::Alternative):
 //
 //   deferred  where the G-buffer pass wrote the base colour beside the G-buffer (several render targets): a
 //             full-screen pass reading the normal, the base colour and the AO. The scene is drawn once per frame.

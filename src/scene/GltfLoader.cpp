@@ -758,7 +758,8 @@ void loadMaterials(const LoaderContext& ctx, Scene& scene) {
     material.occlusionTexture =
         slot(TextureSlot::Occlusion, source.occlusionTexture.index, source.occlusionTexture.texCoord,
              source.occlusionTexture.extensions, "occlusionTexture");
-    material.occlusionStrength = static_cast<float>(std::clamp(finite(source.occlusionTexture.strength, 1.0), 0.0, 1.0));
+    material.occlusionStrength =
+        static_cast<float>(std::clamp(finite(source.occlusionTexture.strength, 1.0), 0.0, 1.0));
     material.emissiveTexture = slot(TextureSlot::Emissive, source.emissiveTexture.index,
                                     source.emissiveTexture.texCoord, source.emissiveTexture.extensions,
                                     "emissiveTexture");
@@ -776,7 +777,8 @@ void loadMaterials(const LoaderContext& ctx, Scene& scene) {
     }
     // The base colour's transform: baked into TEXCOORD_0 (loadPrimitive) unless other slots need the coordinates.
     if (material.hasPbrTextures() && material.baseColorTexture >= 0)
-      material.uvTransforms[0] = uvTransform(ctx, textureInfo.index, textureInfo.extensions, name + " baseColorTexture");
+      material.uvTransforms[0] =
+          uvTransform(ctx, textureInfo.index, textureInfo.extensions, name + " baseColorTexture");
     if (source.alphaMode == "MASK") material.alphaMode = AlphaMode::Mask;
     else if (source.alphaMode == "BLEND") material.alphaMode = AlphaMode::Blend;
     material.alphaCutoff = std::isfinite(source.alphaCutoff) ? static_cast<float>(source.alphaCutoff) : 0.5f;
