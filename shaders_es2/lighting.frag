@@ -12,7 +12,7 @@
 //   DEFERRED 1        a full-screen pass (fullscreen.vert): the normal from the G-buffer, the base colour from the
 //                     target the G-buffer pass wrote beside it (several render targets). Each pixel once. Only
 //                     scenes whose materials are all rough dielectrics without emission and without punctual lights
-//                     take it (Scene: Material::needsForwardLighting): it shades metallic 0, roughness 1.
+//                     take it (scene/Scene.h: Material::needsForwardLighting): it shades metallic 0, roughness 1.
 //   TONEMAP_INLINE 0  linear HDR colour in the RGBA8 encoding of lib/hdr.glsl, for the passes after it;
 //                  1  the tone mapping done here, where the tone-mapping pass would be this colour's only reader:
 //                     exposure, curve (TONEMAP_OPERATOR), sRGB, and the luma FXAA reads in alpha.
@@ -65,9 +65,10 @@ uniform vec4 u_lightSpot[MAX_PUNCTUAL_LIGHTS];           // xyz the spot's direc
 #endif
 
 // The ambient light: radiance from the sky/ground hemisphere, diffuse and specular, darkened by `occlusion` (the
-// screen-space AO times the material's baked occlusion): the diffuse term by it, the specular term by Lagarde's
-// specular occlusion of it. n the shading normal, v towards the eye (both unit, view space), diffuseColor and f0 the
-// material's (lib/pbr.glsl), roughness perceptual. One function, so an image-based ambient can replace its body.
+// screen-space AO and the material's baked occlusion, their minimum): the diffuse term by it, the specular term by
+// Lagarde's specular occlusion of it. n the shading normal, v towards the eye (both unit, view space), diffuseColor
+// and f0 the material's (lib/pbr.glsl), roughness perceptual. One function, so an image-based ambient can replace
+// its body.
 vec3 hemisphere(vec3 direction) { return mix(u_groundColor, u_skyColor, dot(direction, u_viewUp) * 0.5 + 0.5); }
 vec3 ambientLight(vec3 n, vec3 v, vec3 diffuseColor, vec3 f0, float roughness, float occlusion) {
   float nv = max(dot(n, v), 1e-4);

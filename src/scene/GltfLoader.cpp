@@ -349,8 +349,12 @@ const tinygltf::Material* materialOf(const LoaderContext& ctx, int materialIndex
 // The material samples textures besides the base colour (Material::hasPbrTextures): its slots' transforms then go to
 // the vertex stage, and the base colour's is not baked into TEXCOORD_0.
 bool hasPbrTextures(const tinygltf::Material& m) {
-  return m.pbrMetallicRoughness.metallicRoughnessTexture.index >= 0 || m.normalTexture.index >= 0 ||
-         m.occlusionTexture.index >= 0 || m.emissiveTexture.index >= 0;
+  // As loadMaterials keeps them: a slot on another TEXCOORD is ignored.
+  auto used = [](int index, int texCoord) { return index >= 0 && texCoord == 0; };
+  const auto& mr = m.pbrMetallicRoughness.metallicRoughnessTexture;
+  return used(mr.index, mr.texCoord) || used(m.normalTexture.index, m.normalTexture.texCoord) ||
+         used(m.occlusionTexture.index, m.occlusionTexture.texCoord) ||
+         used(m.emissiveTexture.index, m.emissiveTexture.texCoord);
 }
 
 // The base colour's transform where the loader bakes it into TEXCOORD_0 (a material with no other texture); identity
