@@ -4,8 +4,13 @@
 // base-color view on a context without several render targets).
 // ALPHA_MASK 1: the variant for alphaMode MASK materials, which discards cut-out fragments. Opaque materials use the
 // variant without discard, so the depth test may run before the fragment shader (early depth rejection).
+// GBUFFER_SHADING_NORMAL 1 (RendererOptions::gbufferShadingNormals, PBR_TEXTURES materials): the normal is the
+// shading normal, the normal texture applied as the lighting pass applies it (lib/material.glsl).
 #include "lib/precision.glsl"
 #include "lib/packing.glsl"
+#if GBUFFER_SHADING_NORMAL
+#define MATERIAL_SURFACE 1
+#endif
 #include "lib/material.glsl"
 #include "lib/srgb.glsl"
 
@@ -23,6 +28,9 @@ void main() {
   vec3 n = normalize(v_viewNormal);
   // Double-sided materials show their back faces: turn the normal towards the viewer.
   if (!gl_FrontFacing) n = -n;
+#if GBUFFER_SHADING_NORMAL
+  n = perturbedNormal(n, gl_FrontFacing);
+#endif
   float linearDepth = (-v_viewPosition.z - u_near) / u_depthRange;
   vec4 gbuffer = vec4(encodeNormal(n), packLinearDepth(linearDepth));
 #if GBUFFER_OUTPUT == 0

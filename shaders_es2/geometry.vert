@@ -28,6 +28,9 @@
 #ifndef CPU_DEFORMED
 #define CPU_DEFORMED 0
 #endif
+#ifndef PBR_TEXTURES
+#define PBR_TEXTURES 0
+#endif
 
 attribute vec3 a_position;
 attribute vec3 a_normal;
@@ -41,6 +44,22 @@ varying vec3 v_viewPosition;
 varying vec3 v_viewNormal;
 varying vec2 v_texcoord;
 varying vec4 v_clipPosition;  // read by the lighting pass to address the AO texture in highp
+
+#if PBR_TEXTURES
+// PBR_TEXTURES 1 (core/MaterialKind.h): the tangent frame for the normal texture, and each texture slot's
+// coordinates through its KHR_texture_transform (affine in uv, so transforming per vertex is exact):
+// u_uvTransforms[2 k], [2 k + 1] are the rows of slot k's 3x3 matrix (base colour, metallic-roughness, normal,
+// occlusion, emissive: scene/Scene.h TextureSlot).
+attribute vec4 a_tangent;
+uniform vec3 u_uvTransforms[10];
+varying vec4 v_viewTangent;
+varying vec4 v_uvMetallicNormal;
+varying vec4 v_uvOcclusionEmissive;
+vec2 slotUv(int slot) {
+  vec3 uv = vec3(a_texcoord, 1.0);
+  return vec2(dot(u_uvTransforms[2 * slot], uv), dot(u_uvTransforms[2 * slot + 1], uv));
+}
+#endif
 
 #if PREVIOUS
 uniform mat4 u_unjitteredProjection;    // this frame's projection without the sub-pixel jitter
@@ -194,15 +213,29 @@ void main() {
   vec3 position = a_position;
   vec3 normal = a_normal;
 #endif
+#if PBR_TEXTURES
+  vec3 tangent = a_tangent.xyz;  // morph targets' TANGENT displacements are not applied
+#endif
 #if SKINNING
   SkinRows skin = blendJoints(false);
   position = skinPoint(skin, position);
   normal = skinVector(skin, normal);
+#if PBR_TEXTURES
+  tangent = skinVector(skin, tangent);
+#endif
 #endif
   vec4 viewPosition = u_modelView * vec4(position, 1.0);
   v_viewPosition = viewPosition.xyz;
   v_viewNormal = u_normalMatrix * normal;
+#if PBR_TEXTURES
+  v_texcoord = slotUv(0);
+  v_uvMetallicNormal = vec4(slotUv(1), slotUv(2));
+  v_uvOcclusionEmissive = vec4(slotUv(3), slotUv(4));
+  // The tangent is a direction on the surface: the model-view's linear part (not the normal matrix) carries it.
+  v_viewTangent = vec4(mat3(u_modelView[0].xyz, u_modelView[1].xyz, u_modelView[2].xyz) * tangent, a_tangent.w);
+#else
   v_texcoord = a_texcoord;
+#endif
   gl_Position = u_projection * viewPosition;
   v_clipPosition = gl_Position;
 

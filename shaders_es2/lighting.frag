@@ -1,13 +1,19 @@
-// The lit image: base colour under one directional light and the image-based ambient light of lib/environment.glsl
-// (spherical-harmonic irradiance and a prefiltered specular environment; the background shows the environment).
-// AO multiplies the ambient term only (direct light is shadowed by shadow maps, not by AO). Today's materials are
-// rough dielectrics: F0 0.04, roughness 1. Variants (src/core/LightingEffect.h):
+// The lit image: glTF 2.0 metallic-roughness materials (lib/material.glsl, lib/pbr.glsl: Cook-Torrance with GGX,
+// Smith visibility and Schlick Fresnel) under the sun (one directional light), up to MAX_PUNCTUAL_LIGHTS
+// KHR_lights_punctual point and spot lights, the image-based ambient light of lib/environment.glsl (spherical-harmonic
+// irradiance and a prefiltered specular environment; the background shows the environment) and the material's
+// emission. The AO darkens the ambient term only (diffuse directly, specular through Lagarde's specular occlusion),
+// combined with the material's baked occlusion by their minimum (docs/pbr.md measured the rule); direct light is
+// never darkened. Variants (src/core/LightingEffect.h):
 //
 //   DEFERRED 0        the scene drawn again with the G-buffer pass's vertex stage (geometry.vert), tested against
-//                     its depth; the material's base colour from lib/material.glsl (a variant per MaterialKind:
-//                     ALPHA_MASK 1 discards cut-outs, BASE_COLOR_TEXTURE 0 uses the factor alone).
+//                     its depth; the material from lib/material.glsl (a variant per MaterialKind: ALPHA_MASK 1
+//                     discards cut-outs, BASE_COLOR_TEXTURE 0 uses the factor alone, PBR_TEXTURES 1 samples the
+//                     metallic-roughness, normal, occlusion and emissive textures).
 //   DEFERRED 1        a full-screen pass (fullscreen.vert): the normal from the G-buffer, the base colour from the
-//                     target the G-buffer pass wrote beside it (several render targets). Each pixel once.
+//                     target the G-buffer pass wrote beside it (several render targets). Each pixel once. Only
+//                     scenes whose materials are all rough dielectrics without emission and without punctual lights
+//                     take it (scene/Scene.h: Material::needsForwardLighting): it shades metallic 0, roughness 1.
 //   TONEMAP_INLINE 0  linear HDR colour in the RGBA8 encoding of lib/hdr.glsl, for the passes after it;
 //                  1  the tone mapping done here, where the tone-mapping pass would be this colour's only reader:
 //                     exposure, curve (TONEMAP_OPERATOR), sRGB, and the luma FXAA reads in alpha.
@@ -19,7 +25,11 @@
 #include "lib/packing.glsl"
 #include "lib/srgb.glsl"
 #include "lib/hdr.glsl"
+#if !DEFERRED && !COUNT_SHADING
+#define MATERIAL_SURFACE 1
+#endif
 #include "lib/material.glsl"
+#include "lib/pbr.glsl"
 
 #if DEFERRED
 uniform sampler2D u_gbuffer;    // RG normal, BA depth code
@@ -48,18 +58,56 @@ void main() {
 #include "lib/environment.glsl"
 
 uniform sampler2D u_ao;          // AO in R, the frame's size (1x1 white when the AO is off)
-uniform vec3 u_lightDirection;   // view space, towards the light, unit
-uniform vec3 u_lightColor;
+uniform vec3 u_lightDirection;   // view space, towards the sun, unit
+uniform vec3 u_lightColor;       // the sun's illuminance: colour x intensity (lux)
 uniform mat3 u_viewToWorld;      // the camera's rotation: view-space directions to world space
 
-const vec3 DIELECTRIC_F0 = vec3(0.04);  // glTF's dielectric specular reflectance at normal incidence
-const float MATERIAL_ROUGHNESS = 1.0;
+#if MAX_PUNCTUAL_LIGHTS > 0
+// KHR_lights_punctual, view space (core/LightingEffect.h: PunctualLightUniforms). An unused slot has colour 0.
+uniform vec4 u_lightPositionRange[MAX_PUNCTUAL_LIGHTS];  // xyz position, w 1 / range^4 (0: no range)
+uniform vec4 u_lightColorSpot[MAX_PUNCTUAL_LIGHTS];      // rgb colour x intensity (candela), a the spot's scale
+uniform vec4 u_lightSpot[MAX_PUNCTUAL_LIGHTS];           // xyz the spot's direction (towards where it shines),
+                                                         // w its offset: cone = clamp(cos * scale + offset, 0, 1)^2
+#endif
 
-// n: unit normal, toEye: unit direction to the eye, both view space.
-vec3 shade(vec3 base, vec3 n, vec3 toEye, float ao) {
-  vec3 ambient = ambientLight(u_viewToWorld * n, u_viewToWorld * toEye, base, DIELECTRIC_F0, MATERIAL_ROUGHNESS, ao);
-  vec3 direct = base * u_lightColor * max(dot(n, u_lightDirection), 0.0);
-  return ambient + direct;
+// The ambient light: the environment's radiance (lib/environment.glsl), diffuse and specular, darkened by `occlusion`
+// (the screen-space AO and the material's baked occlusion, their minimum): the diffuse term by it, the specular term
+// by Lagarde's specular occlusion of it. n the shading normal, v towards the eye (both unit, view space), diffuseColor
+// and f0 the material's (lib/pbr.glsl), roughness perceptual. The split sum's scale and bias come from the table
+// integrated on the CPU; the diffuse keeps the energy the specular does not take (so a white furnace gives 1).
+vec3 ambientLight(vec3 n, vec3 v, vec3 diffuseColor, vec3 f0, float roughness, float occlusion) {
+  float nv = clamp(dot(n, v), 1e-4, 1.0);
+  vec3 worldNormal = u_viewToWorld * n;
+  vec2 scaleBias = environmentBrdf(roughness, nv);
+  vec3 specularAlbedo = f0 * scaleBias.x + scaleBias.y;
+  vec3 diffuse = diffuseColor * (1.0 - specularAlbedo) * environmentIrradiance(worldNormal);
+  vec3 specular = specularAlbedo * environmentSpecular(u_viewToWorld * reflect(-v, n), roughness);
+  return diffuse * occlusion + specular * specularOcclusion(nv, occlusion, roughness * roughness);
+}
+
+// The lit colour of a surface point: p its view-space position, n its shading normal (unit, facing the viewer).
+vec3 shade(vec3 base, float metallic, float roughness, vec3 p, vec3 n, float occlusion, vec3 emissive) {
+  vec3 v = -normalize(p);
+  roughness = clamp(roughness, PBR_MIN_ROUGHNESS, 1.0);
+  metallic = clamp(metallic, 0.0, 1.0);
+  vec3 diffuseColor = base * (1.0 - metallic);
+  vec3 f0 = mix(vec3(0.04), base, metallic);
+  vec3 color = ambientLight(n, v, diffuseColor, f0, roughness, occlusion) + emissive;
+  color += brdfCosine(n, v, u_lightDirection, diffuseColor, f0, roughness) * u_lightColor;
+#if MAX_PUNCTUAL_LIGHTS > 0
+  for (int i = 0; i < MAX_PUNCTUAL_LIGHTS; i++) {
+    vec3 toLight = u_lightPositionRange[i].xyz - p;
+    float d2 = max(dot(toLight, toLight), 1e-8);
+    vec3 l = toLight * inversesqrt(d2);
+    // KHR_lights_punctual: inverse square, windowed to 0 at the range (the extension's recommended
+    // clamp(1 - (d / range)^4, 0, 1)^2), times the spot's smooth cone.
+    float window = clamp(1.0 - d2 * d2 * u_lightPositionRange[i].w, 0.0, 1.0);
+    float cone = clamp(dot(u_lightSpot[i].xyz, -l) * u_lightColorSpot[i].a + u_lightSpot[i].w, 0.0, 1.0);
+    vec3 illuminance = u_lightColorSpot[i].rgb * (window * window * cone * cone / d2);
+    color += brdfCosine(n, v, l, diffuseColor, f0, roughness) * illuminance;
+  }
+#endif
+  return color;
 }
 
 // What the eye sees where no geometry is, towards the view-space direction `ray`: the environment itself.
@@ -88,9 +136,9 @@ void main() {
     return;
   }
   vec3 base = srgbToLinear(texture2D(u_baseColor, v_uv).rgb);
-  // The far-plane ray points from the eye through the pixel, as the surface's position does.
-  vec3 toEye = -normalize(v_farRay);
-  gl_FragColor = encodeOutput(shade(base, decodeNormal(g.rg), toEye, texture2D(u_ao, v_uv).r));
+  // Only the view direction matters to the shading here (no punctual lights take this form): the far plane's ray
+  // points from the eye through the pixel, as the surface's position does.
+  gl_FragColor = encodeOutput(shade(base, 0.0, 1.0, v_farRay, decodeNormal(g.rg), texture2D(u_ao, v_uv).r, vec3(0.0)));
 }
 #else
 void main() {
@@ -98,12 +146,18 @@ void main() {
 #if ALPHA_MASK
   if (base.a < u_alphaCutoff) discard;
 #endif
+  Surface surface = surfaceAt(v_texcoord);
   vec3 n = normalize(v_viewNormal);
   if (!gl_FrontFacing) n = -n;
+  n = perturbedNormal(n, gl_FrontFacing);
   // This fragment's pixel centre in [0, 1]^2, from the interpolated clip position rather than gl_FragCoord, which is
   // only mediump in GLSL ES 1.00 and would address the wrong AO texel beyond 2048 pixels.
   vec2 screenUv = v_clipPosition.xy / v_clipPosition.w * 0.5 + 0.5;
-  gl_FragColor = encodeOutput(shade(base.rgb, n, -normalize(v_viewPosition), texture2D(u_ao, screenUv).r));
+  // The baked occlusion and the screen-space AO: their minimum, not their product (measured against the ray-traced
+  // reference: docs/pbr.md, tests/test_baked_occlusion.cpp); both see much of the same occlusion.
+  float occlusion = min(texture2D(u_ao, screenUv).r, surface.occlusion);
+  gl_FragColor = encodeOutput(shade(base.rgb, surface.metallic, surface.roughness, v_viewPosition, n, occlusion,
+                                    surface.emissive));
 }
 #endif
 #endif

@@ -56,6 +56,10 @@ EdgesSettings linesOf(float width) {
 RenderSettings plainFrame() {
   RenderSettings settings;
   settings.set("fxaa", "off");
+  // Grey light (a uniform environment, as dim as the old hemisphere's) on the grey scene, so that the red lines'
+  // coverage reads back from colour.
+  settings.set("lighting.environment", "uniform");
+  settings.set("lighting.environment-intensity", "0.45");
   return settings;
 }
 

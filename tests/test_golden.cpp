@@ -8,16 +8,16 @@
 
 #include "TestSupport.h"
 #include "scene/BuiltinScene.h"
+#include "scene/GltfLoader.h"
 #include "scene/ImageIo.h"
 
 using namespace obscura;
 
 namespace {
 
-void compareWithGolden(View view, const std::string& file) {
+void compareWithGolden(const Scene& scene, const Camera& camera, View view, const std::string& file) {
   Renderer renderer = test::makeRenderer();
-  renderer.setScene(makeBuiltinScene(BuiltinSceneOptions::still()));
-  const Camera camera = builtinSceneCamera(640, 360);
+  renderer.setScene(scene);
   const test::RenderedImage image = test::render(renderer, camera, AoSettings{}, view);
   Image rendered;
   rendered.width = image.width;
@@ -48,7 +48,20 @@ void compareWithGolden(View view, const std::string& file) {
   if (::testing::Test::HasFailure()) writePng("golden-actual-" + file, rendered);  // next to the test binary, for inspection
 }
 
+void compareWithGolden(View view, const std::string& file) {
+  compareWithGolden(makeBuiltinScene(BuiltinSceneOptions::still()), builtinSceneCamera(640, 360), view, file);
+}
+
 }  // namespace
 
+// One golden image per shading form: the built-in scene's rough dielectrics take the deferred lighting where the
+// context has several render targets (the forward one elsewhere: the same image, tests/test_pipeline.cpp); the
+// metallic-roughness sample (assets/scenes/pbr-samples.glb: every texture slot, KHR_lights_punctual) takes the
+// forward lighting with PBR_TEXTURES.
 TEST(Golden, BuiltinSceneFinal) { compareWithGolden(View::Final, "builtin_final.png"); }
 TEST(Golden, BuiltinSceneAo) { compareWithGolden(View::Ao, "builtin_ao.png"); }
+TEST(Golden, PbrSamplesFinal) {
+  const Scene scene = loadGltfFile(test::sourceDir() + "/assets/scenes/pbr-samples.glb");
+  compareWithGolden(scene, test::makeCamera({0.0f, 1.7f, 4.0f}, {0.0f, 0.55f, 0.0f}, 640, 360), View::Final,
+                    "pbr_samples_final.png");
+}

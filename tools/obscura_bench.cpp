@@ -649,6 +649,31 @@ void effectsSection(const Options& options, HeadlessContext& context, const std:
       dofLines.push_back(line);
     }
   }
+  // The metallic-roughness lighting (issue 15): the lighting pass on the PBR sample (assets/scenes/pbr-samples.glb:
+  // forward, PBR_TEXTURES, two punctual lights) beside the built-in scene's rough dielectrics (deferred where the
+  // context has several render targets), default settings, taking turns with nothing else.
+  const std::string samples = std::string(OBSCURA_SOURCE_DIR) + "/assets/scenes/pbr-samples.glb";
+  std::printf("\n8b. The lighting pass, metallic-roughness sample (%s) against the built-in scene; median ms of %d "
+              "frames\n",
+              samples.c_str(), options.frames);
+  const Scene pbrScene = loadGltfFile(samples);
+  for (auto [w, h] : sizes) {
+    Camera camera = builtinSceneCamera(w, h);
+    camera.eye = {0.0f, 1.7f, 4.0f};
+    camera.target = {0.0f, 0.55f, 0.0f};
+    const std::vector<FinishPassTimer> pbrTimes =
+        timeTakingTurns(options, context, pbrScene, camera, {RenderSettings()}, false);
+    const std::vector<FinishPassTimer> builtinTimes =
+        timeTakingTurns(options, context, scene, builtinSceneCamera(w, h), {RenderSettings()}, false);
+    const FinishPassTimer &pbr = pbrTimes[0], &builtin = builtinTimes[0];
+    std::printf("  %dx%d: lighting %.2f ms on the PBR sample (G-buffer %.2f ms), %.2f ms on the built-in scene "
+                "(G-buffer %.2f ms)\n",
+                w, h, pbr.medianMs("lighting"), pbr.medianMs("gbuffer"), builtin.medianMs("lighting"),
+                builtin.medianMs("gbuffer"));
+    csv << "\"pbr sample\"," << w << "," << h << ",lighting," << pbr.medianMs("lighting") << "\n";
+    csv << "\"built-in, defaults (lighting alone)\"," << w << "," << h << ",lighting," << builtin.medianMs("lighting")
+        << "\n";
+  }
   if (!targetLines.empty()) {
     std::printf("Bloom and fog against the G-buffer pass (configuration \"bloom, fog\"; target: bloom at 1280x720 "
                 "under the G-buffer pass):\n");

@@ -54,8 +54,12 @@ build/obscura-make-environment assets/environments/studio.hdr
 build/obscura-render --size 480x270 --out "$out/lighting_sky.png"
 build/obscura-render --size 480x270 --lighting.environment assets/environments/studio.hdr \
   --lighting.environment-intensity 1.5 --out "$out/lighting_studio.png"
+# Materials and lights (docs/pbr.md): the metallic-roughness sample, and with bloom on its emission and highlights.
+pbr="--scene assets/scenes/pbr-samples.glb --camera tools/docs-pbr-camera.json"
+build/obscura-render $pbr --out "$out/pbr_samples.png"
+build/obscura-render $pbr --bloom --out "$out/pbr_samples_bloom.png"
 echo "render-docs-images: wrote $out/builtin_*.png, motion_*.png, ao_*.png, aa_*.png, bloom.png, fog_height.png," \
-  "edges.png, edges_toon.png, dof*.png, lighting_*.png"
+  "edges.png, edges_toon.png, dof*.png, lighting_*.png, pbr_*.png"
 
 (cd tests/browser && npm ci --no-audit --no-fund --loglevel=error)
 OBSCURA_UPDATE_SCREENSHOTS=1 node --test --test-name-pattern="page screenshots" tests/browser/page.test.mjs >/dev/null

@@ -10,8 +10,7 @@
 //   vec2 environmentBrdf(float roughness, float nDotV)
 //                                           the split sum's (A, B) from a 32 x 32 table integrated on the CPU
 //                                           (Karis 2013's IntegrateBRDF), bilinear: its bytes are plain linear values.
-//   vec3 ambientLight(n, v, diffuseColor, f0, roughness, occlusion)
-//                                           the ambient term: diffuse irradiance and specular environment.
+// lighting.frag's ambientLight combines them into the ambient term, with the material and the occlusion.
 //
 // ENVIRONMENT_LOD 1: the levels are mip levels of u_environment (EXT_shader_texture_lod's texture2DLodEXT at integer
 // levels); 0: they lie side by side in one atlas (level 0 left, 1 .. 5 stacked to its right), read with texture2D.
@@ -87,13 +86,3 @@ vec2 environmentBrdf(float roughness, float nDotV) {
   return texture2D(u_environmentBrdf, vec2(nDotV, roughness)).rg;
 }
 
-// The ambient light of a surface with unit normal n and unit direction to the eye v (world space). The diffuse part
-// keeps what the specular lobe leaves, 1 - (F0 A + B), so a white dielectric in a white furnace reflects 1.
-// Occlusion (the AO) multiplies this term only.
-vec3 ambientLight(vec3 n, vec3 v, vec3 diffuseColor, vec3 f0, float roughness, float occlusion) {
-  vec2 ab = environmentBrdf(roughness, clamp(dot(n, v), 0.0, 1.0));
-  vec3 specularAlbedo = f0 * ab.x + ab.y;
-  vec3 diffuse = diffuseColor * (1.0 - specularAlbedo) * environmentIrradiance(n);
-  vec3 specular = specularAlbedo * environmentSpecular(reflect(-v, n), roughness);
-  return (diffuse + specular) * occlusion;
-}

@@ -68,7 +68,7 @@ struct EnvironmentImage {
 };
 
 // The built-in sky: a zenith-to-horizon gradient, a ground below, and a sun disc with a glow around it towards
-// `sunDirection` (the direct light's direction, Lighting::directionToLight).
+// `sunDirection` (the default sun's direction, LightingSettings::directionToSun).
 struct ProceduralSky {
   glm::vec3 sunDirection{0.45f, 0.8f, 0.35f};  // normalised when used
   glm::vec3 zenith{0.30f, 0.45f, 0.75f};

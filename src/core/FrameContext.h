@@ -43,6 +43,8 @@ struct FrameContext {
   double previousTime = 0.0;
   double deltaTime = 0.0;      // time - previousTime
   bool linesOrPoints = false;  // the scene has points or lines to draw (core/LinesEffect.h)
+  // The scene needs the forward lighting (GpuScene::needsForwardLighting): the G-buffer writes no base colour.
+  bool forwardLighting = false;
 };
 
 // Halton low-discrepancy sequence (radical inverse of `index` in `base`), index >= 1: the jitter of temporal

@@ -26,13 +26,22 @@ EffectInfo GBufferEffect::info() {
 
 namespace {
 
-// The G-buffer alone reads the base colour only for the alpha test.
-MaterialKind readKind(int output, MaterialKind kind) { return output == 0 ? kind.forAlphaOnly() : kind; }
+// The G-buffer alone reads the base colour only for the alpha test, and the other textures only for the shading
+// normal (RendererOptions::gbufferShadingNormals).
+MaterialKind readKind(int output, MaterialKind kind, bool shadingNormals) {
+  if (output != 0) return kind;
+  MaterialKind read = kind.forAlphaOnly();
+  read.pbr = shadingNormals && kind.pbr;
+  return read;
+}
 
-ProgramSpec spec(int output, MaterialKind kind, VertexKind vertex) {
+ProgramSpec spec(int output, MaterialKind kind, VertexKind vertex, bool shadingNormals) {
   static const char* outputs[] = {"gbuffer", "base-color", "gbuffer+base-color"};
-  ProgramSpec s{"gbuffer[" + std::string(outputs[output]) + kind.nameSuffix() + vertex.nameSuffix() + "]",
-                "geometry.vert", "gbuffer.frag", {{"GBUFFER_OUTPUT", std::to_string(output)}}};
+  const bool shading = shadingNormals && kind.pbr && output != 1;
+  ProgramSpec s{"gbuffer[" + std::string(outputs[output]) + kind.nameSuffix() + vertex.nameSuffix() +
+                    (shading ? ",shading-normal" : "") + "]",
+                "geometry.vert", "gbuffer.frag",
+                {{"GBUFFER_OUTPUT", std::to_string(output)}, {"GBUFFER_SHADING_NORMAL", shading ? "1" : "0"}}};
   for (auto& define : kind.defines()) s.defines.push_back(define);
   for (auto& define : vertex.defines()) s.defines.push_back(define);
   if (output == 2) s.extensions = {"GL_EXT_draw_buffers"};
@@ -43,10 +52,12 @@ ProgramSpec spec(int output, MaterialKind kind, VertexKind vertex) {
 
 std::vector<ProgramSpec> GBufferEffect::programSpecs() {
   std::vector<ProgramSpec> specs;
-  for (int output = 0; output < 3; ++output)
-    for (MaterialKind kind : MaterialKind::all())
-      if (readKind(output, kind) == kind) specs.push_back(spec(output, kind, {}));
-  for (VertexKind vertex : VertexKind::validated()) specs.push_back(spec(0, {}, vertex));
+  for (bool shadingNormals : {false, true})
+    for (int output = 0; output < 3; ++output)
+      for (MaterialKind kind : MaterialKind::all())
+        if (readKind(output, kind, shadingNormals) == kind && (!shadingNormals || kind.pbr))
+          specs.push_back(spec(output, kind, {}, shadingNormals));
+  for (VertexKind vertex : VertexKind::validated()) specs.push_back(spec(0, {}, vertex, false));
   return specs;
 }
 
@@ -60,15 +71,19 @@ GBufferEffect::Variant::Variant(gl::Program built)
 
 const GBufferEffect::Variant& GBufferEffect::variant(Output output, MaterialKind kind, VertexKind vertex) {
   const int o = static_cast<int>(output);
-  const auto key = std::make_tuple(o, readKind(o, kind), vertex.forCurrentFrame());
+  const auto key = std::make_tuple(o, readKind(o, kind, shadingNormals_), vertex.forCurrentFrame());
   auto it = variants_.find(key);
   if (it == variants_.end())
-    it = variants_.emplace(key, Variant(resources_.build(spec(o, std::get<1>(key), std::get<2>(key))))).first;
+    it = variants_
+             .emplace(key, Variant(resources_.build(spec(o, std::get<1>(key), std::get<2>(key), shadingNormals_))))
+             .first;
   return it->second;
 }
 
 GBufferEffect::GBufferEffect(const EffectResources& resources)
-    : resources_(resources), drawBuffers_(resources.caps.drawBuffers && resources.options.allowDrawBuffers) {
+    : resources_(resources),
+      drawBuffers_(resources.caps.drawBuffers && resources.options.allowDrawBuffers),
+      shadingNormals_(resources.options.gbufferShadingNormals) {
   // The variants of the pass every frame runs are built now, so a broken program fails when the renderer is made;
   // the others (the base colour alone, for its view) on first use.
   for (MaterialKind kind : MaterialKind::all()) variant(drawBuffers_ ? Output::Both : Output::GBuffer, kind, {});
@@ -79,12 +94,15 @@ void GBufferEffect::plan(FramePlanner& planner) {
   PassDecl pass;
   pass.name = "gbuffer";
   pass.writes = {{"gbuffer", TargetSize::full(), Write::Depth::Own, ""}};
-  if (drawBuffers_) pass.writes.push_back({"base-color", TargetSize::full(), Write::Depth::None, ""});
-  const Output output = drawBuffers_ ? Output::Both : Output::GBuffer;
+  // The base colour beside the G-buffer, for the deferred lighting, unless the scene's materials need more than it
+  // carries (core/LightingEffect.h).
+  const bool both = drawBuffers_ && !planner.frame().forwardLighting;
+  if (both) pass.writes.push_back({"base-color", TargetSize::full(), Write::Depth::None, ""});
+  const Output output = both ? Output::Both : Output::GBuffer;
   pass.run = [this, output](PassContext& context) { render(context, output); };
   planner.add(std::move(pass));
-  // Without several render targets, the base colour has a pass of its own, for its view only.
-  if (!drawBuffers_ && planner.viewTarget() == "base-color") {
+  // Otherwise the base colour has a pass of its own, for its view only.
+  if (!both && planner.viewTarget() == "base-color") {
     PassDecl base;
     base.name = "base-color";
     base.writes = {{"base-color", TargetSize::full(), Write::Depth::Own, ""}};

@@ -41,6 +41,7 @@ class GBufferEffect : public Effect {
 
   const EffectResources& resources_;
   bool drawBuffers_;  // the context can write both in one pass (and RendererOptions allows it)
+  bool shadingNormals_;  // RendererOptions::gbufferShadingNormals
   // (output, the material kind as that output reads it, the vertex kind)
   std::map<std::tuple<int, MaterialKind, VertexKind>, Variant> variants_;
 };

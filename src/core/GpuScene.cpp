@@ -36,6 +36,10 @@ constexpr int kReservedUniformVectors = 32;
 constexpr int kMaxPaletteJoints = 128;
 // The texture unit of the joint texture: after those the passes' fragment stages use (0..3).
 constexpr int kJointTextureUnit = 4;
+// The units of a PBR_TEXTURES material's metallic-roughness, normal, occlusion and emissive textures: beside the
+// base colour's 0, the lighting pass's AO on 1 and the joint texture's 4, seven units in all, within GLES 2's
+// guaranteed eight.
+constexpr int kPbrTextureUnits[4] = {2, 3, 5, 6};
 // GL_RGBA32F: a desktop context needs the sized format to keep floats; GLES 2 / WebGL 1 with OES_texture_float take
 // GL_RGBA with type GL_FLOAT.
 constexpr GLenum kRgba32f = 0x8814;
@@ -105,16 +109,33 @@ GpuScene::GpuScene(const Scene& scene, const gl::GlCaps& caps, const Options& op
     else
       textures_.emplace_back();
   }
+  auto usable = [&](int texture) { return texture >= 0 && textures_[static_cast<size_t>(texture)] ? texture : -1; };
   for (const Material& m : scene.materials) {
     MaterialGpu gpu;
     gpu.baseColorFactor = m.baseColorFactor;
-    gpu.texture = m.baseColorTexture >= 0 && textures_[static_cast<size_t>(m.baseColorTexture)] ? m.baseColorTexture
-                                                                                                 : -1;
+    gpu.texture = usable(m.baseColorTexture);
     gpu.alphaCutoff = m.alphaMode == AlphaMode::Mask ? m.alphaCutoff : -1.0f;
     gpu.doubleSided = m.doubleSided;
+    gpu.pbrTextures = {usable(m.metallicRoughnessTexture), usable(m.normalTexture), usable(m.occlusionTexture),
+                       usable(m.emissiveTexture)};
+    gpu.pbr = std::any_of(gpu.pbrTextures.begin(), gpu.pbrTextures.end(), [](int t) { return t >= 0; });
+    // A missing normal texture: scale 0 leaves the geometric normal whatever the neutral texel holds.
+    const float normalScale = gpu.pbrTextures[1] >= 0 ? m.normalScale : 0.0f;
+    gpu.metallicRoughness = glm::vec4(m.metallicFactor, m.roughnessFactor, normalScale, m.occlusionStrength);
+    gpu.emissive = m.emissiveFactor * m.emissiveStrength;
+    for (int slot = 0; slot < kTextureSlots; ++slot) {
+      const glm::mat3& t = m.uvTransforms[static_cast<size_t>(slot)];
+      // Rows of the 3x3 matrix (glm is column-major: t[column][row]).
+      gpu.uvRows[static_cast<size_t>(2 * slot)] = glm::vec3(t[0][0], t[1][0], t[2][0]);
+      gpu.uvRows[static_cast<size_t>(2 * slot + 1)] = glm::vec3(t[0][1], t[1][1], t[2][1]);
+    }
     materials_.push_back(gpu);
   }
-  materials_.push_back(MaterialGpu{});  // the glTF default material
+  materials_.push_back(MaterialGpu{});  // the default material (Material{}: a white rough dielectric)
+  // Neutral texels for the slots a PBR_TEXTURES material lacks: white (the factor alone) and the flat normal.
+  const std::uint8_t white[4] = {255, 255, 255, 255}, flat[4] = {128, 128, 255, 255};
+  neutralWhite_ = gl::Texture2D(1, 1, GL_NEAREST, white);
+  neutralNormal_ = gl::Texture2D(1, 1, GL_NEAREST, flat);
 
   // Upload each mesh once (as one or more pieces), then point instances at the pieces.
   struct MeshPieces {
@@ -122,7 +143,15 @@ GpuScene::GpuScene(const Scene& scene, const gl::GlCaps& caps, const Options& op
     bool cpuSkinned = false;
   };
   std::vector<MeshPieces> meshPieces;
-  for (const Mesh& mesh : scene.meshes) {
+  for (const Mesh& source : scene.meshes) {
+    // A mesh drawn with PBR textures needs tangents (the vertex stage's a_tangent): the file's, else generated.
+    const bool pbr = source.material >= 0 && materials_[static_cast<size_t>(source.material)].pbr;
+    Mesh withTangents;
+    if (pbr && source.tangents.size() != source.positions.size()) {
+      withTangents = source;
+      generateTangents(withTangents);
+    }
+    const Mesh& mesh = withTangents.positions.empty() ? source : withTangents;
     MeshPieces placed;
     placed.first = static_cast<int>(pieces_.size());
     std::vector<PalettePiece> parts;
@@ -161,6 +190,7 @@ GpuScene::GpuScene(const Scene& scene, const gl::GlCaps& caps, const Options& op
           piece.morphPositions.push_back(vec3Buffer(target.positions));
           piece.morphNormals.push_back(target.normals.empty() ? gl::BufferHandle() : vec3Buffer(target.normals));
         }
+        if (pbr) piece.tangents = arrayBuffer(piece16.tangents.data(), piece16.tangents.size() * sizeof(glm::vec4));
         piece.palette = part.palette;
         if (piece16.skinned() || !piece16.morphTargets.empty()) piece.source = std::move(piece16);
         pieces_.push_back(std::move(piece));
@@ -213,6 +243,11 @@ GpuScene::GpuScene(const Scene& scene, const gl::GlCaps& caps, const Options& op
     gpu.morphed = !mesh.morphTargets.empty();
     instances_.push_back(std::move(gpu));
   }
+  lights_ = scene.lights;
+  needsForwardLighting_ = !scene.lights.empty();
+  for (const Mesh& mesh : scene.meshes)
+    if (mesh.material >= 0 && scene.materials[static_cast<size_t>(mesh.material)].needsForwardLighting())
+      needsForwardLighting_ = true;
   // The rest pose, until the first setPose.
   const ScenePose rest = evaluatePose(scene, 0.0, PoseOptions{AnimationChoice::none(), false});
   setPose(rest, rest);
@@ -237,6 +272,11 @@ GeometryUniforms::GeometryUniforms(const gl::Program& program)
       baseColorFactor(program.optionalUniform("u_baseColorFactor")),
       baseColorTexture(program.optionalUniform("u_baseColorTexture")),
       alphaCutoff(program.optionalUniform("u_alphaCutoff")),
+      metallicRoughness(program.optionalUniform("u_metallicRoughness")),
+      emissive(program.optionalUniform("u_emissive")),
+      uvTransforms(program.optionalUniform("u_uvTransforms[0]")),
+      pbrTextures{program.optionalUniform("u_metallicRoughnessTexture"), program.optionalUniform("u_normalTexture"),
+                  program.optionalUniform("u_occlusionTexture"), program.optionalUniform("u_emissiveTexture")},
       joints(program.optionalUniform("u_joints[0]")),
       previousJoints(program.optionalUniform("u_previousJoints[0]")),
       jointTexture(program.optionalUniform("u_jointTexture")),
@@ -246,7 +286,8 @@ GeometryUniforms::GeometryUniforms(const gl::Program& program)
       previousModel(program.optionalUniform("u_previousModel")),
       jointsAttribute(glGetAttribLocation(program.id(), "a_joints")),
       weightsAttribute(glGetAttribLocation(program.id(), "a_weights")),
-      previousPositionAttribute(glGetAttribLocation(program.id(), "a_previousPosition")) {
+      previousPositionAttribute(glGetAttribLocation(program.id(), "a_previousPosition")),
+      tangentAttribute(glGetAttribLocation(program.id(), "a_tangent")) {
   for (int t = 0; t < VertexKind::kMaxMorphTargets; ++t) {
     morphPositionAttribute[t] = glGetAttribLocation(program.id(), ("a_morphPosition" + std::to_string(t)).c_str());
     morphNormalAttribute[t] = glGetAttribLocation(program.id(), ("a_morphNormal" + std::to_string(t)).c_str());
@@ -255,6 +296,9 @@ GeometryUniforms::GeometryUniforms(const gl::Program& program)
 
 void GpuScene::setPose(const ScenePose& current, const ScenePose& previous) {
   lines_.setPose(current);
+  for (PunctualLight& light : lights_)
+    if (light.node >= 0 && static_cast<size_t>(light.node) < current.nodeWorld.size())
+      light.world = current.nodeWorld[static_cast<size_t>(light.node)];
   std::vector<bool> skinMoving(skins_.size(), false);
   for (size_t s = 0; s < skins_.size(); ++s) {
     SkinGpu& skin = skins_[s];
@@ -391,11 +435,23 @@ void GpuScene::draw(const glm::mat4& view, const ProgramChoice& choose, const Dr
   };
   glActiveTexture(GL_TEXTURE0);
   bool jointTextureBound = false;
+  bool pbrTexturesBound = false;
   for (const auto& [key, instancePointer] : order) {
     const InstanceGpu& instance = *instancePointer;
     const MaterialGpu& material = materials_[static_cast<size_t>(instance.material)];
-    const MaterialKind materialKind{material.alphaCutoff >= 0.0f, material.texture >= 0};
+    const MaterialKind materialKind{material.alphaCutoff >= 0.0f, material.texture >= 0, material.pbr};
     if (material.texture >= 0) glBindTexture(GL_TEXTURE_2D, textures_[static_cast<size_t>(material.texture)].id());
+    if (material.pbr) {
+      for (size_t slot = 0; slot < material.pbrTextures.size(); ++slot) {
+        glActiveTexture(static_cast<GLenum>(GL_TEXTURE0 + kPbrTextureUnits[slot]));
+        const int texture = material.pbrTextures[slot];
+        glBindTexture(GL_TEXTURE_2D, texture >= 0  ? textures_[static_cast<size_t>(texture)].id()
+                                     : slot == 1 ? neutralNormal_.id()
+                                                 : neutralWhite_.id());
+      }
+      glActiveTexture(GL_TEXTURE0);
+      pbrTexturesBound = true;
+    }
     if (material.doubleSided) glDisable(GL_CULL_FACE);
     else glEnable(GL_CULL_FACE);
     const glm::mat4 modelView = view * instance.world;
@@ -413,6 +469,7 @@ void GpuScene::draw(const glm::mat4& view, const ProgramChoice& choose, const Dr
         programVertex = vertexKind;
         Program::set(uniforms->baseColorTexture, 0);
         Program::set(uniforms->jointTexture, kJointTextureUnit);
+        for (size_t slot = 0; slot < 4; ++slot) Program::set(uniforms->pbrTextures[slot], kPbrTextureUnits[slot]);
       }
       if (newProgram || p == instance.firstPiece) {
         Program::set(uniforms->modelView, modelView);
@@ -420,6 +477,10 @@ void GpuScene::draw(const glm::mat4& view, const ProgramChoice& choose, const Dr
         Program::set(uniforms->previousModel, instance.previousWorld);
         Program::set(uniforms->baseColorFactor, material.baseColorFactor);
         Program::set(uniforms->alphaCutoff, material.alphaCutoff);
+        Program::set(uniforms->metallicRoughness, material.metallicRoughness);
+        Program::set(uniforms->emissive, material.emissive);
+        if (uniforms->uvTransforms >= 0)
+          glUniform3fv(uniforms->uvTransforms, 2 * kTextureSlots, &material.uvRows[0].x);
         if (vertexKind.morphTargets > 0) {
           glm::vec4 now(0.0f), before(0.0f);
           for (size_t k = 0; k < instance.gpuTargets.size(); ++k) {
@@ -466,6 +527,8 @@ void GpuScene::draw(const glm::mat4& view, const ProgramChoice& choose, const Dr
       glVertexAttribPointer(gl::kAttribTexcoord, 2, GL_FLOAT, GL_FALSE, stride,
                             reinterpret_cast<const void*>(6 * sizeof(float)));
       if (deformed) attribute(uniforms->previousPositionAttribute, vertices, 3, stride, 8 * sizeof(float));
+      // CPU-deformed vertices keep their rest tangents (an approximation: only the normal map's frame is off).
+      if (piece.tangents) attribute(uniforms->tangentAttribute, piece.tangents.id(), 4, 0, 0);
       if (vertexKind.skinning != VertexKind::None) {
         const GLsizei skinStride = 8 * sizeof(float);
         attribute(uniforms->jointsAttribute, piece.skinAttributes.id(), 4, skinStride, 0);
@@ -490,6 +553,13 @@ void GpuScene::draw(const glm::mat4& view, const ProgramChoice& choose, const Dr
   if (jointTextureBound) {
     glActiveTexture(static_cast<GLenum>(GL_TEXTURE0 + kJointTextureUnit));
     glBindTexture(GL_TEXTURE_2D, 0);
+    glActiveTexture(GL_TEXTURE0);
+  }
+  if (pbrTexturesBound) {
+    for (int unit : kPbrTextureUnits) {
+      glActiveTexture(static_cast<GLenum>(GL_TEXTURE0 + unit));
+      glBindTexture(GL_TEXTURE_2D, 0);
+    }
     glActiveTexture(GL_TEXTURE0);
   }
   glBindTexture(GL_TEXTURE_2D, 0);

@@ -16,6 +16,7 @@
 // Morph targets go to the vertex stage as attributes as far as the context's vertex attributes allow (2 targets with
 // normals on a rigid mesh at GLES 2's 8, capped at 4), choosing per draw the targets with a non-zero weight now or in
 // the previous frame; a draw that needs more is morphed on the CPU that frame.
+#include <array>
 #include <functional>
 #include <vector>
 
@@ -28,6 +29,7 @@
 #include "gl/GlCaps.h"
 #include "gl/GlObjects.h"
 #include "gl/Program.h"
+#include "gl/RenderTarget.h"
 #include "scene/Animation.h"
 #include "scene/Scene.h"
 
@@ -41,9 +43,11 @@ struct GeometryUniforms {
   GeometryUniforms() = default;
   explicit GeometryUniforms(const gl::Program& program);
   GLint modelView = -1, normalMatrix = -1, baseColorFactor = -1, baseColorTexture = -1, alphaCutoff = -1;
+  GLint metallicRoughness = -1, emissive = -1, uvTransforms = -1;
+  GLint pbrTextures[4] = {-1, -1, -1, -1};  // metallic-roughness, normal, occlusion, emissive samplers
   GLint joints = -1, previousJoints = -1, jointTexture = -1, jointTextureSize = -1;
   GLint morphWeights = -1, previousMorphWeights = -1, previousModel = -1;
-  GLint jointsAttribute = -1, weightsAttribute = -1, previousPositionAttribute = -1;
+  GLint jointsAttribute = -1, weightsAttribute = -1, previousPositionAttribute = -1, tangentAttribute = -1;
   GLint morphPositionAttribute[VertexKind::kMaxMorphTargets] = {-1, -1, -1, -1};
   GLint morphNormalAttribute[VertexKind::kMaxMorphTargets] = {-1, -1, -1, -1};
 };
@@ -79,6 +83,11 @@ class GpuScene {
   void draw(const glm::mat4& view, const ProgramChoice& choose) const { draw(view, choose, DrawOptions{}); }
 
   std::size_t pieceCount() const { return pieces_.size(); }
+  // A material the deferred lighting cannot shade (Material::needsForwardLighting) is drawn, or the scene has
+  // punctual lights: the lighting takes its forward form (core/LightingEffect.h).
+  bool needsForwardLighting() const { return needsForwardLighting_; }
+  // The scene's KHR_lights_punctual lights, placed by this frame's pose (setPose).
+  const std::vector<PunctualLight>& lights() const { return lights_; }
   // The scene's points and lines (not surfaces: no G-buffer, no AO), posed by setPose; core/LinesEffect.h draws them.
   const GpuLines& lines() const { return lines_; }
   bool usesUint32Indices() const;
@@ -101,6 +110,7 @@ class GpuScene {
     GLenum indexType = GL_UNSIGNED_SHORT;
     gl::BufferHandle skinAttributes;  // joints (4 floats) then weights (4 floats) per vertex; none if rigid
     std::vector<gl::BufferHandle> morphPositions, morphNormals;  // per target (normals: none if the target has none)
+    gl::BufferHandle tangents;  // vec4 per vertex, for PBR_TEXTURES materials; none otherwise
     std::vector<int> palette;  // the uniform path: the skin joint of each palette entry
     Mesh source;               // kept for CPU deformation (skinned on the CPU path, or morphed): the piece's mesh
   };
@@ -109,6 +119,11 @@ class GpuScene {
     int texture = -1;  // index into textures_, -1: none (the factor alone)
     float alphaCutoff = -1.0f;
     bool doubleSided = false;
+    bool pbr = false;  // PBR_TEXTURES: pbrTextures has one
+    std::array<int, 4> pbrTextures{-1, -1, -1, -1};  // metallic-roughness, normal, occlusion, emissive; -1: neutral
+    glm::vec4 metallicRoughness{0.0f, 1.0f, 0.0f, 1.0f};  // metallic, roughness, normal scale, occlusion strength
+    glm::vec3 emissive{0.0f};                              // factor x strength
+    std::array<glm::vec3, 2 * kTextureSlots> uvRows{};     // each slot's KHR_texture_transform, as two rows
   };
   struct InstanceGpu {
     glm::mat4 world{1.0f}, previousWorld{1.0f};
@@ -141,6 +156,9 @@ class GpuScene {
   std::vector<InstanceGpu> instances_;
   std::vector<SkinGpu> skins_;
   std::vector<gl::TextureHandle> textures_;
+  gl::Texture2D neutralWhite_, neutralNormal_;
+  std::vector<PunctualLight> lights_;
+  bool needsForwardLighting_ = false;
   GpuLines lines_;
   SkinningPath skinningPath_ = SkinningPath::Uniforms;
   int paletteSize_ = 0;

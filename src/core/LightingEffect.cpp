@@ -1,6 +1,10 @@
 #include "core/LightingEffect.h"
 
+#include <algorithm>
+#include <cmath>
+
 #include <glm/geometric.hpp>
+#include <glm/trigonometric.hpp>
 
 #include "base/Error.h"
 #include "core/HdrEncoding.h"
@@ -13,6 +17,16 @@ namespace obscura {
 const std::vector<Parameter<LightingSettings>>& LightingSettings::parameters() {
   using S = LightingSettings;
   static const std::vector<Parameter<S>> table = {
+      numberParameter<S>("sun-elevation", -90, 90, "degrees", "the sun's height above the horizon", &S::sunElevation)
+          .primary(),
+      numberParameter<S>("sun-azimuth", -360, 360, "degrees", "the sun's direction, from +z towards +x",
+                         &S::sunAzimuth)
+          .primary(),
+      colorParameter<S>("sun-color", 0, 1, "the sun's colour (its illuminance is colour x intensity)", &S::sunColor),
+      numberParameter<S>("sun-intensity", 0, 100000, "lux",
+                         "the sun's illuminance per unit of colour (pi: a white matte surface facing the sun shows "
+                         "its colour)",
+                         &S::sunIntensity),
       textParameter<S>("environment", "sky | uniform | a file path",
                        "the ambient light and background: the built-in sky, a uniform white furnace (radiance 1), or "
                        "an equirectangular .hdr (or RGBE .png) file",
@@ -22,6 +36,44 @@ const std::vector<Parameter<LightingSettings>>& LightingSettings::parameters() {
                          "background)", &S::environmentIntensity)
           .primary()};
   return table;
+}
+
+glm::vec3 LightingSettings::directionToSun() const {
+  const float elevation = glm::radians(sunElevation), azimuth = glm::radians(sunAzimuth);
+  return {std::cos(elevation) * std::sin(azimuth), std::sin(elevation), std::cos(elevation) * std::cos(azimuth)};
+}
+
+PunctualLightUniforms PunctualLightUniforms::of(const std::vector<PunctualLight>& lights, const glm::mat4& view) {
+  PunctualLightUniforms out;
+  // The lights that light the camera's surroundings most: intensity / distance^2 at the camera (view-space origin).
+  std::vector<std::pair<float, size_t>> order;
+  for (size_t i = 0; i < lights.size(); ++i) {
+    const glm::vec3 p(view * lights[i].world[3]);
+    const glm::vec3& c = lights[i].color;
+    order.emplace_back(-lights[i].intensity * std::max(c.r, std::max(c.g, c.b)) / std::max(glm::dot(p, p), 1e-6f), i);
+  }
+  std::stable_sort(order.begin(), order.end());
+  for (const auto& [key, index] : order) {
+    if (out.count == kMaxPunctualLights) break;
+    const PunctualLight& light = lights[index];
+    const auto k = static_cast<size_t>(out.count++);
+    const glm::mat4 toView = view * light.world;
+    const float range4 = light.range > 0.0f ? std::pow(light.range, 4.0f) : 0.0f;
+    out.positionRange[k] = glm::vec4(glm::vec3(toView[3]), range4 > 0.0f ? 1.0f / range4 : 0.0f);
+    // KHR_lights_punctual's cone: clamp(cos * scale + offset, 0, 1)^2, scale = 1 / max(cos inner - cos outer,
+    // 0.001), offset = -cos outer * scale. A point light: scale 0, offset 1 (cone 1 everywhere).
+    float scale = 0.0f, offset = 1.0f;
+    if (light.type == LightType::Spot) {
+      const float cosOuter = std::cos(light.outerConeAngle), cosInner = std::cos(light.innerConeAngle);
+      scale = 1.0f / std::max(cosInner - cosOuter, 0.001f);
+      offset = -cosOuter * scale;
+    }
+    out.colorSpot[k] = glm::vec4(light.color * light.intensity, scale);
+    // The light shines along its node's -z.
+    const glm::vec3 axis = glm::normalize(glm::vec3(toView * glm::vec4(0.0f, 0.0f, -1.0f, 0.0f)));
+    out.spot[k] = glm::vec4(axis, offset);
+  }
+  return out;
 }
 
 EffectInfo LightingEffect::info() {
@@ -64,6 +116,7 @@ ProgramSpec LightingEffect::spec(const Form& form, MaterialKind kind, VertexKind
                  {"AT_FAR_PLANE", form.background ? "1" : "0"},
                  {"COUNT_SHADING", form.counting ? "1" : "0"},
                  {"TONEMAP_INLINE", form.toneMap >= 0 ? "1" : "0"},
+                 {"MAX_PUNCTUAL_LIGHTS", std::to_string(fullscreen ? 0 : kMaxPunctualLights)},
                  // The deferred forms' view direction is the far-plane ray's.
                  {"FAR_RAY", fullscreen && !form.counting ? "1" : "0"}}};
   for (auto& define : GpuEnvironment::shaderDefines(layout)) s.defines.push_back(define);
@@ -112,7 +165,10 @@ LightingEffect::Variant::Variant(gl::Program built, bool geometryStage)
       gbuffer(program.optionalUniform("u_gbuffer")),
       baseColor(program.optionalUniform("u_baseColor")),
       exposure(program.optionalUniform("u_exposure")),
-      lumaInAlpha(program.optionalUniform("u_lumaInAlpha")) {}
+      lumaInAlpha(program.optionalUniform("u_lumaInAlpha")),
+      lightPositionRange(program.optionalUniform("u_lightPositionRange[0]")),
+      lightColorSpot(program.optionalUniform("u_lightColorSpot[0]")),
+      lightSpot(program.optionalUniform("u_lightSpot[0]")) {}
 
 const LightingEffect::Variant& LightingEffect::variant(const Form& form, MaterialKind kind, VertexKind vertex) {
   const bool fullscreen = form.deferred || form.background;
@@ -133,6 +189,8 @@ const LightingEffect::Variant& LightingEffect::variant(const Form& form, Materia
         program.uniform(name);
     if (form.deferred) program.uniform("u_gbuffer");
     if (form.deferred && !form.counting) program.uniform("u_baseColor");
+    if (!fullscreen && !form.counting)
+      for (const char* name : {"u_metallicRoughness", "u_emissive", "u_lightPositionRange[0]"}) program.uniform(name);
     if (form.toneMap >= 0)
       for (const char* name : {"u_exposure", "u_lumaInAlpha"}) program.uniform(name);
   }
@@ -154,8 +212,11 @@ void LightingEffect::useEnvironment(const LightingSettings& settings) {
   };
   // The built-in environments are prepared once per process: every Renderer starts with the sky, and its
   // prefiltering is the dearest part of making one.
-  if (name == "sky" && light_.directionToLight == Lighting{}.directionToLight) {
-    static const Prepared sky(ProceduralSky{Lighting{}.directionToLight}.image(kEnvironmentWidth, kEnvironmentHeight));
+  // The sky's sun stands where the default sun does: lighting.sun-* move the direct light, not the sky (prefiltering
+  // a sky again costs seconds, too slow for a slider).
+  if (name == "sky") {
+    static const Prepared sky(
+        ProceduralSky{LightingSettings{}.directionToSun()}.image(kEnvironmentWidth, kEnvironmentHeight));
     environment_ = std::make_unique<GpuEnvironment>(layout_, sky.specular, sky.sh);
     return;
   }
@@ -166,8 +227,7 @@ void LightingEffect::useEnvironment(const LightingSettings& settings) {
   }
   EnvironmentImage image;
   try {
-    image = name == "sky" ? ProceduralSky{light_.directionToLight}.image(kEnvironmentWidth, kEnvironmentHeight)
-                          : loadEnvironmentImage(name);
+    image = loadEnvironmentImage(name);
   } catch (const InputError&) {
     if (!environment_) useEnvironment(LightingSettings{});
     environmentName_ = name;
@@ -204,10 +264,9 @@ void LightingEffect::plan(FramePlanner& planner) {
     all.insert(all.end(), more.begin(), more.end());
     return all;
   };
-  auto runAs = [this, scale = tone.exposureScale, intensity = lighting.environmentIntensity](Form form,
-                                                                                              std::string output) {
-    return [this, form, output, scale, intensity](PassContext& context) {
-      render(context, form, output, scale, intensity);
+  auto runAs = [this, scale = tone.exposureScale, lighting](Form form, std::string output) {
+    return [this, form, output, scale, lighting](PassContext& context) {
+      render(context, form, output, scale, lighting);
     };
   };
 
@@ -250,7 +309,7 @@ void LightingEffect::plan(FramePlanner& planner) {
 }
 
 void LightingEffect::render(const PassContext& context, const Form& form, const std::string& output,
-                            float exposureScale, float environmentIntensity) {
+                            float exposureScale, const LightingSettings& settings) {
   using gl::Program;
   const FrameCamera& camera = context.camera();
   context.bindForWriting(output);
@@ -258,22 +317,34 @@ void LightingEffect::render(const PassContext& context, const Form& form, const 
   const ToneMapInUse tone{static_cast<ToneMapOperator>(std::max(form.toneMap, 0)), exposureScale};
 
   const glm::mat3 viewRotation(camera.view);
-  const glm::vec3 lightDirection = glm::normalize(viewRotation * light_.directionToLight);
+  const glm::vec3 lightDirection = glm::normalize(viewRotation * settings.directionToSun());
   const glm::mat3 viewToWorld = glm::transpose(viewRotation);  // the view's rotation is orthonormal
-  // Units 0 .. 2: the G-buffer or the material's texture, the AO, the base colour; 4 the joints (GpuScene).
-  constexpr int kEnvironmentUnit = 3, kEnvironmentBrdfUnit = 5;
+  const bool fullscreen = form.deferred || form.background;
+  const PunctualLightUniforms lights =
+      fullscreen ? PunctualLightUniforms{} : PunctualLightUniforms::of(context.scene().lights(), camera.view);
+  // Units 0 .. 2: the G-buffer or the material's base colour texture, the AO, the base colour or the
+  // metallic-roughness texture; 3, 5, 6 the normal, occlusion and emissive textures; 4 the joints (GpuScene). The
+  // environment takes 7, its BRDF table 8 where vertex textures exist (their contexts have more than GLES 2's 8
+  // combined units in practice), else 4, which the joints then never use.
+  const int kEnvironmentUnit = 7;
+  const int kEnvironmentBrdfUnit = resources_.caps.maxVertexTextureImageUnits > 0 ? 8 : 4;
   auto setShading = [&](const Variant& v) {
     if (form.counting) return;
     Program::set(v.lightDirection, lightDirection);
-    Program::set(v.lightColor, light_.lightColor);
+    Program::set(v.lightColor, settings.sunColor * settings.sunIntensity);
     Program::set(v.viewToWorld, viewToWorld);
+    if (v.lightPositionRange >= 0) {
+      glUniform4fv(v.lightPositionRange, kMaxPunctualLights, &lights.positionRange[0].x);
+      glUniform4fv(v.lightColorSpot, kMaxPunctualLights, &lights.colorSpot[0].x);
+      glUniform4fv(v.lightSpot, kMaxPunctualLights, &lights.spot[0].x);
+    }
     Program::set(v.ao, 1);
     Program::set(v.environment, kEnvironmentUnit);
     Program::set(v.environmentBrdf, kEnvironmentBrdfUnit);
     Program::set(v.farHalfExtent, camera.reconstruction.farHalfExtent);
     Program::set(v.farPlane, camera.reconstruction.far);
     Program::set(v.shIrradiance, environment_->irradiancePolynomial().data(), 9);
-    Program::set(v.environmentIntensity, environmentIntensity);
+    Program::set(v.environmentIntensity, settings.environmentIntensity);
     Program::set(v.exposure, exposureScale);
     Program::set(v.lumaInAlpha, lumaInAlpha ? 1.0f : 0.0f);
   };

@@ -1,13 +1,22 @@
 #pragma once
-// The lit image (shaders_es2/lighting.frag): base colour under one directional light and the image-based ambient
-// light of core/Environment.h (lib/environment.glsl): diffuse irradiance from spherical harmonics and a prefiltered
-// specular environment, the built-in sky or an equirectangular image (lighting.environment); the AO multiplies the
-// ambient term only. Where no geometry is, the environment itself is seen. It writes linear HDR colour in the RGBA8
-// encoding of lib/hdr.glsl into "scene-color", which later effects read. The pass takes one of these forms, chosen
-// once the frame's plan knows which passes run (PassDecl::Alternative):
+// The lit image (shaders_es2/lighting.frag, lib/pbr.glsl, lib/material.glsl, lib/environment.glsl): glTF 2.0
+// metallic-roughness materials shaded with Cook-Torrance (GGX distribution, height-correlated Smith visibility,
+// Schlick Fresnel) over a Lambertian diffuse, under the sun (lighting.sun-*), up to kMaxPunctualLights
+// KHR_lights_punctual point and spot lights and the image-based ambient light of core/Environment.h (diffuse
+// irradiance from spherical harmonics and a prefiltered specular environment, the built-in sky or an equirectangular
+// image: lighting.environment), plus the material's emission. The AO darkens the ambient term only: its diffuse part
+// directly, its specular part through Lagarde's specular occlusion; the material's baked occlusion texture combines
+// with the screen-space AO by their minimum (measured: docs/pbr.md). Direct light is never darkened. Where no
+// geometry is, the environment itself is seen. CPU mirror of the shading: core/PbrShading.h. It writes linear HDR
+// colour in the RGBA8 encoding of lib/hdr.glsl into "scene-color", which later effects read. The pass takes one of
+// these forms, chosen once the frame's plan knows which passes run (PassDecl::Alternative):
 //
 //   deferred  where the G-buffer pass wrote the base colour beside the G-buffer (several render targets): a
 //             full-screen pass reading the normal, the base colour and the AO. The scene is drawn once per frame.
+//             The base-colour target carries nothing else, so the G-buffer writes it only where every material
+//             drawn is a rough dielectric (metallic 0, roughness 1, no emission, no texture but the base colour's)
+//             and the scene has no punctual light (GpuScene::needsForwardLighting): the deferred form shades
+//             exactly those, and any other scene takes the forward form.
 //   forward   otherwise: the scene drawn again with the G-buffer pass's vertex shader text. When the G-buffer pass
 //             runs it shares its depth renderbuffer: both compute the same depths (gl_Position invariant), so
 //             GL_EQUAL, and a stencil test passing only the first fragment per pixel, shade each pixel once however
@@ -43,22 +52,41 @@
 
 namespace obscura {
 
-struct Lighting {
-  // An overcast key light under a strong sky: ambient carries most of the light, so AO reads clearly. The built-in
-  // sky (ProceduralSky) puts its sun in the same direction.
-  glm::vec3 directionToLight{0.45f, 0.8f, 0.35f};  // world space, normalised when used
-  glm::vec3 lightColor{0.50f, 0.48f, 0.44f};
-  glm::vec3 background{0.349f, 0.415f, 0.501f};  // the clear colour under the forward forms' drawn background
-};
-
+// The sun: an overcast key light over a strong sky dome, so that ambient carries most of the light and AO reads
+// clearly. Its illuminance is colour x intensity; the default intensity pi makes a white Lambertian surface facing it
+// reflect its colour, as the lighting did before the BRDF had its 1 / pi.
 struct LightingSettings : ParameterAccess<LightingSettings> {
+  float sunElevation = 54.525961f;  // degrees above the horizon (world +y up)
+  float sunAzimuth = 52.125016f;    // degrees from +z towards +x
+  glm::vec3 sunColor{0.50f, 0.48f, 0.44f};  // linear
+  float sunIntensity = 3.14159265f;         // lux per unit of colour
   // "sky": the built-in ProceduralSky; "uniform": radiance 1 from every direction (the white furnace); else the path
   // of an equirectangular .hdr, or a PNG of RGBE bytes (loadEnvironmentImage).
   std::string environment = "sky";
   float environmentIntensity = 1.0f;  // scales the environment's radiance: ambient light and background
 
+  glm::vec3 directionToSun() const;  // world space, unit
   static const std::vector<Parameter<LightingSettings>>& parameters();
   void validate() const { validateParameters("lighting"); }
+};
+
+// The fixed parts of the light.
+struct Lighting {
+  glm::vec3 background{0.349f, 0.415f, 0.501f};  // the clear colour under the forward forms' drawn background
+};
+
+// KHR_lights_punctual lights per draw: the forward lighting's loop bound (MAX_PUNCTUAL_LIGHTS), three uniform vectors
+// each. A frame with more lights takes, for every draw, the kMaxPunctualLights that light the camera's surroundings
+// most (the largest intensity / distance^2 at the camera).
+inline constexpr int kMaxPunctualLights = 4;
+
+// The view-space uniforms of the punctual lights (lighting.frag), derived once per frame on the CPU.
+struct PunctualLightUniforms {
+  glm::vec4 positionRange[kMaxPunctualLights]{};  // xyz position, w 1 / range^4 (0: no range)
+  glm::vec4 colorSpot[kMaxPunctualLights]{};      // rgb colour x intensity, a the cone's scale
+  glm::vec4 spot[kMaxPunctualLights]{};           // xyz the spot's direction, w the cone's offset
+  int count = 0;
+  static PunctualLightUniforms of(const std::vector<PunctualLight>& lights, const glm::mat4& view);
 };
 
 class LightingEffect : public Effect {
@@ -93,6 +121,7 @@ class LightingEffect : public Effect {
     GLint projection, lightDirection, lightColor, viewToWorld, ao;
     GLint environment, environmentBrdf, shIrradiance, environmentIntensity;
     GLint gbuffer, baseColor, exposure, lumaInAlpha;
+    GLint lightPositionRange, lightColorSpot, lightSpot;
   };
   static MaterialKind readKind(const Form& form, MaterialKind kind);
   static ProgramSpec spec(const Form& form, MaterialKind kind, VertexKind vertex, EnvironmentLayout layout);
@@ -100,7 +129,7 @@ class LightingEffect : public Effect {
   // Loads, projects and prefilters the environment the settings name, when it is not the one on the GPU.
   void useEnvironment(const LightingSettings& settings);
   void render(const PassContext& context, const Form& form, const std::string& output, float exposureScale,
-              float environmentIntensity);
+              const LightingSettings& settings);
 
   const EffectResources& resources_;
   // Built on first use: (form, the material kind it reads, the vertex kind).

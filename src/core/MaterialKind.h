@@ -13,22 +13,34 @@ namespace obscura {
 struct MaterialKind {
   bool masked = false;    // alphaMode MASK: cut-out fragments are discarded (ALPHA_MASK 1)
   bool textured = false;  // a base-colour texture to sample (BASE_COLOR_TEXTURE 1); without one, the factor alone
+  // Metallic-roughness, normal, occlusion or emissive textures to sample (PBR_TEXTURES 1: all four, a missing one
+  // bound to a neutral texel; the vertex stage adds the tangent frame and each slot's transformed coordinates).
+  bool pbr = false;
 
-  bool operator<(const MaterialKind& o) const { return std::tie(masked, textured) < std::tie(o.masked, o.textured); }
-  bool operator==(const MaterialKind& o) const { return masked == o.masked && textured == o.textured; }
+  auto key() const { return std::tie(masked, textured, pbr); }
+  bool operator<(const MaterialKind& o) const { return key() < o.key(); }
+  bool operator==(const MaterialKind& o) const { return key() == o.key(); }
 
   // The kind as far as a fragment stage that reads the base colour only for the alpha test sees it: an opaque
-  // material's texture makes no difference there (one program serves both).
-  MaterialKind forAlphaOnly() const { return {masked, masked && textured}; }
+  // material's texture makes no difference there (one program serves both), nor do the other textures.
+  MaterialKind forAlphaOnly() const { return {masked, masked && textured, false}; }
 
-  // ",opaque" / ",mask", then ",texture" where textured: for program names.
+  // ",opaque" / ",mask", then ",texture" where textured, ",pbr" where pbr: for program names.
   std::string nameSuffix() const {
-    return std::string(masked ? ",mask" : ",opaque") + (textured ? ",texture" : "");
+    return std::string(masked ? ",mask" : ",opaque") + (textured ? ",texture" : "") + (pbr ? ",pbr" : "");
   }
   std::vector<std::pair<std::string, std::string>> defines() const {
-    return {{"ALPHA_MASK", masked ? "1" : "0"}, {"BASE_COLOR_TEXTURE", textured ? "1" : "0"}};
+    return {{"ALPHA_MASK", masked ? "1" : "0"},
+            {"BASE_COLOR_TEXTURE", textured ? "1" : "0"},
+            {"PBR_TEXTURES", pbr ? "1" : "0"}};
   }
-  static std::vector<MaterialKind> all() { return {{false, false}, {false, true}, {true, false}, {true, true}}; }
+  static std::vector<MaterialKind> all() {
+    std::vector<MaterialKind> kinds;
+    for (bool pbr : {false, true})
+      for (bool masked : {false, true})
+        for (bool textured : {false, true}) kinds.push_back({masked, textured, pbr});
+    return kinds;
+  }
 };
 
 }  // namespace obscura

@@ -68,8 +68,11 @@ Renderer::Renderer(const gl::GlCaps& caps, const RendererOptions& options)
   RenderSettings everyEffect;
   for (size_t row = 0; row < effectTable().size(); ++row)
     if (effectTable()[row].info.hasSwitch) everyEffect.set(effectTable()[row].info.name, "on");
-  for (const std::string& name : frameViewNames())
-    if (name != "split") plan(everyEffect, probe, View{name}, {});
+  for (bool forwardLighting : {false, true}) {  // a scene the deferred lighting can shade, and one it cannot
+    probe.forwardLighting = forwardLighting;
+    for (const std::string& name : frameViewNames())
+      if (name != "split") plan(everyEffect, probe, View{name}, {});
+  }
 }
 
 FramePlan Renderer::plan(const RenderSettings& settings, const FrameContext& frame, const View& view,
@@ -197,6 +200,7 @@ void Renderer::beginFrame(const Camera& camera, const RenderSettings& settings, 
   frame.previousTime = options.previousTime.value_or(hasPrevious_ ? previousTime_ : time);
   frame.deltaTime = time - frame.previousTime;
   frame.linesOrPoints = !scene_.lines().empty();
+  frame.forwardLighting = scene_.needsForwardLighting();
   frame_ = std::move(frame);
 
   // The scene's pose now and at the previous time (the last frame's pose when that is the one asked for).

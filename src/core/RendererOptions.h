@@ -38,6 +38,10 @@ struct RendererOptions {
   // The velocity pass draws every instance, not only those that moved (core/VelocityEffect.h): the alternative the
   // benchmark measures, and the tests' check that both give the same vectors.
   bool velocityDrawsEverything = false;
+  // The G-buffer's normal is the shading normal (the normal texture applied, as the lighting shades) rather than the
+  // interpolated vertex normal. Off: measured against the ray-traced AO, the AO is closer with the geometric normal
+  // (docs/pbr.md; tests/test_baked_occlusion.cpp measures both).
+  bool gbufferShadingNormals = false;
 };
 
 }  // namespace obscura

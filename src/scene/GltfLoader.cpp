@@ -301,17 +301,15 @@ size_t dropDegenerateTriangles(Mesh& mesh) {
   return dropped;
 }
 
-// KHR_texture_transform on the base colour texture, as the matrix that maps TEXCOORD_0 to the coordinates sampled:
+// KHR_texture_transform on one texture, as the matrix that maps TEXCOORD_0 to the coordinates sampled:
 // uv' = T(offset) * R(rotation) * S(scale) * uv. The extension's README lists R as the usual counter-clockwise matrix,
 // but in glTF's UV space (v pointing down) the sample model TextureTransformTest, Babylon.js and three.js all use
 // u' = cos r u + sin r v, v' = -sin r u + cos r v (KhronosGroup/glTF issue #1563); so does this.
-// Identity when the material has no such extension. Scales and offsets that are not finite are refused.
-glm::mat3 baseColorUvTransform(const LoaderContext& ctx, int materialIndex, const std::string& what) {
-  if (materialIndex < 0 || static_cast<size_t>(materialIndex) >= ctx.model.materials.size()) return glm::mat3(1.0f);
-  const tinygltf::TextureInfo& info = ctx.model.materials[static_cast<size_t>(materialIndex)]
-                                          .pbrMetallicRoughness.baseColorTexture;
-  const auto it = info.extensions.find("KHR_texture_transform");
-  if (info.index < 0 || it == info.extensions.end() || !it->second.IsObject()) return glm::mat3(1.0f);
+// Identity when the texture has no such extension. Scales and offsets that are not finite are refused.
+glm::mat3 uvTransform(const LoaderContext& ctx, int textureIndex, const tinygltf::ExtensionMap& extensions,
+                      const std::string& what) {
+  const auto it = extensions.find("KHR_texture_transform");
+  if (textureIndex < 0 || it == extensions.end() || !it->second.IsObject()) return glm::mat3(1.0f);
   const tinygltf::Value& transform = it->second;
   auto pair = [&](const char* key, glm::vec2 fallback) {
     if (!transform.Has(key)) return fallback;
@@ -341,6 +339,31 @@ glm::mat3 baseColorUvTransform(const LoaderContext& ctx, int materialIndex, cons
   const glm::mat3 rotationMatrix(c, -s, 0, s, c, 0, 0, 0, 1);
   const glm::mat3 scaleMatrix(scale.x, 0, 0, 0, scale.y, 0, 0, 0, 1);
   return translationMatrix * rotationMatrix * scaleMatrix;
+}
+
+const tinygltf::Material* materialOf(const LoaderContext& ctx, int materialIndex) {
+  if (materialIndex < 0 || static_cast<size_t>(materialIndex) >= ctx.model.materials.size()) return nullptr;
+  return &ctx.model.materials[static_cast<size_t>(materialIndex)];
+}
+
+// The material samples textures besides the base colour (Material::hasPbrTextures): its slots' transforms then go to
+// the vertex stage, and the base colour's is not baked into TEXCOORD_0.
+bool hasPbrTextures(const tinygltf::Material& m) {
+  // As loadMaterials keeps them: a slot on another TEXCOORD is ignored.
+  auto used = [](int index, int texCoord) { return index >= 0 && texCoord == 0; };
+  const auto& mr = m.pbrMetallicRoughness.metallicRoughnessTexture;
+  return used(mr.index, mr.texCoord) || used(m.normalTexture.index, m.normalTexture.texCoord) ||
+         used(m.occlusionTexture.index, m.occlusionTexture.texCoord) ||
+         used(m.emissiveTexture.index, m.emissiveTexture.texCoord);
+}
+
+// The base colour's transform where the loader bakes it into TEXCOORD_0 (a material with no other texture); identity
+// otherwise.
+glm::mat3 baseColorUvTransform(const LoaderContext& ctx, int materialIndex, const std::string& what) {
+  const tinygltf::Material* material = materialOf(ctx, materialIndex);
+  if (!material || hasPbrTextures(*material)) return glm::mat3(1.0f);
+  const tinygltf::TextureInfo& info = material->pbrMetallicRoughness.baseColorTexture;
+  return uvTransform(ctx, info.index, info.extensions, what);
 }
 
 int attributeAccessor(const tinygltf::Primitive& primitive, const char* name) {
@@ -514,6 +537,25 @@ Mesh loadPrimitive(const LoaderContext& ctx, const tinygltf::Primitive& primitiv
       for (glm::vec2& uv : mesh.texcoords) uv = glm::vec2(transform * glm::vec3(uv, 1.0f));
   }
 
+  const int tangentAccessor = attribute("TANGENT");
+  const tinygltf::Material* material = materialOf(ctx, primitive.material);
+  const bool normalMapped = material && material->normalTexture.index >= 0;
+  if (tangentAccessor >= 0 && normalMapped && normalsUsable) {
+    const std::vector<double> tangents = readVertexAttribute(ctx, tangentAccessor, what + " TANGENT", 4, "NORMAL");
+    if (tangents.size() / 4 != vertexCount)
+      ctx.refuse(what + " has " + std::to_string(tangents.size() / 4) + " tangents for " +
+                 std::to_string(vertexCount) + " positions");
+    mesh.tangents = toVectors<4>(tangents);
+    for (size_t v = 0; v < vertexCount; ++v) {
+      glm::vec4& t = mesh.tangents[v];
+      const float length = glm::length(glm::vec3(t));
+      // glTF: XYZ unit, W +-1. Tolerate slightly off ones; a broken one takes a perpendicular of the normal.
+      const glm::vec3 xyz = std::isfinite(length) && length > 1e-6f ? glm::vec3(t) / length
+                                                                     : anyPerpendicular(mesh.normals[v]);
+      t = glm::vec4(xyz, t.w < 0.0f ? -1.0f : 1.0f);
+    }
+  }
+
   if (readSkin) loadSkinAttributes(ctx, primitive, what, vertexCount, mesh);
   loadMorphTargets(ctx, primitive, what, vertexCount, mesh);
   // Normal displacements are relative to the file's normals; where those are replaced by flat ones,
@@ -529,6 +571,8 @@ Mesh loadPrimitive(const LoaderContext& ctx, const tinygltf::Primitive& primitiv
     ctx.refuse(what + " refers to material " + std::to_string(primitive.material) + ", which does not exist");
   mesh.material = primitive.material;
   if (!normalsUsable) generateFlatNormals(mesh);
+  // glTF 2.0 (3.7.2.1): without TANGENT, tangents are computed (MikkTSpace) where a normal texture needs them.
+  if (normalMapped && mesh.tangents.empty()) generateTangents(mesh);
   return mesh;
 }
 
@@ -676,6 +720,8 @@ void loadMaterials(const LoaderContext& ctx, Scene& scene) {
   for (size_t i = 0; i < model.materials.size(); ++i) {
     const tinygltf::Material& source = model.materials[i];
     Material material;
+    material.metallicFactor = 1.0f;  // glTF's defaults (a Material made in code is a dielectric)
+    material.roughnessFactor = 1.0f;
     const auto& factor = source.pbrMetallicRoughness.baseColorFactor;
     if (factor.size() == 4 && std::all_of(factor.begin(), factor.end(), [](double v) { return std::isfinite(v); }))
       material.baseColorFactor = glm::clamp(glm::vec4(factor[0], factor[1], factor[2], factor[3]), 0.0f, 1.0f);
@@ -688,6 +734,55 @@ void loadMaterials(const LoaderContext& ctx, Scene& scene) {
       else ctx.report.warnings.push_back("material " + std::to_string(i) + ": base colour uses TEXCOORD_" +
                                          std::to_string(textureInfo.texCoord) + ", only TEXCOORD_0 is read");
     }
+    const std::string name = "material " + std::to_string(i);
+    // A texture of another slot: checked, TEXCOORD_0 only, its KHR_texture_transform kept for the vertex stage.
+    auto slot = [&](TextureSlot which, int index, int texCoord, const tinygltf::ExtensionMap& extensions,
+                    const char* slotName) {
+      if (index < 0) return -1;
+      if (static_cast<size_t>(index) >= scene.textures.size())
+        ctx.refuse(name + " refers to texture " + std::to_string(index) + ", which does not exist");
+      if (texCoord != 0) {
+        ctx.report.warnings.push_back(name + ": " + slotName + " uses TEXCOORD_" + std::to_string(texCoord) +
+                                      ", only TEXCOORD_0 is read; the slot is ignored");
+        return -1;
+      }
+      material.uvTransforms[static_cast<size_t>(which)] = uvTransform(ctx, index, extensions, name + " " + slotName);
+      return index;
+    };
+    auto finite = [](double v, double fallback) { return std::isfinite(v) ? v : fallback; };
+    const auto& pbr = source.pbrMetallicRoughness;
+    material.metallicFactor = static_cast<float>(std::clamp(finite(pbr.metallicFactor, 1.0), 0.0, 1.0));
+    material.roughnessFactor = static_cast<float>(std::clamp(finite(pbr.roughnessFactor, 1.0), 0.0, 1.0));
+    material.metallicRoughnessTexture =
+        slot(TextureSlot::MetallicRoughness, pbr.metallicRoughnessTexture.index, pbr.metallicRoughnessTexture.texCoord,
+             pbr.metallicRoughnessTexture.extensions, "metallicRoughnessTexture");
+    material.normalTexture = slot(TextureSlot::Normal, source.normalTexture.index, source.normalTexture.texCoord,
+                                  source.normalTexture.extensions, "normalTexture");
+    material.normalScale = static_cast<float>(finite(source.normalTexture.scale, 1.0));
+    material.occlusionTexture =
+        slot(TextureSlot::Occlusion, source.occlusionTexture.index, source.occlusionTexture.texCoord,
+             source.occlusionTexture.extensions, "occlusionTexture");
+    material.occlusionStrength =
+        static_cast<float>(std::clamp(finite(source.occlusionTexture.strength, 1.0), 0.0, 1.0));
+    material.emissiveTexture = slot(TextureSlot::Emissive, source.emissiveTexture.index,
+                                    source.emissiveTexture.texCoord, source.emissiveTexture.extensions,
+                                    "emissiveTexture");
+    if (source.emissiveFactor.size() == 3)
+      material.emissiveFactor = glm::clamp(glm::vec3(finite(source.emissiveFactor[0], 0.0),
+                                                     finite(source.emissiveFactor[1], 0.0),
+                                                     finite(source.emissiveFactor[2], 0.0)),
+                                           0.0f, 1.0f);
+    const auto strength = source.extensions.find("KHR_materials_emissive_strength");
+    if (strength != source.extensions.end() && strength->second.IsObject() &&
+        strength->second.Has("emissiveStrength") && strength->second.Get("emissiveStrength").IsNumber()) {
+      const double value = strength->second.Get("emissiveStrength").GetNumberAsDouble();
+      if (!std::isfinite(value) || value < 0.0) ctx.refuse(name + ": emissiveStrength is negative or not finite");
+      material.emissiveStrength = static_cast<float>(value);
+    }
+    // The base colour's transform: baked into TEXCOORD_0 (loadPrimitive) unless other slots need the coordinates.
+    if (material.hasPbrTextures() && material.baseColorTexture >= 0)
+      material.uvTransforms[0] =
+          uvTransform(ctx, textureInfo.index, textureInfo.extensions, name + " baseColorTexture");
     if (source.alphaMode == "MASK") material.alphaMode = AlphaMode::Mask;
     else if (source.alphaMode == "BLEND") material.alphaMode = AlphaMode::Blend;
     material.alphaCutoff = std::isfinite(source.alphaCutoff) ? static_cast<float>(source.alphaCutoff) : 0.5f;
@@ -757,12 +852,52 @@ class SceneBuilder {
     }
     const int index = static_cast<int>(scene_.nodes.size());
     restWorld_.push_back((parent >= 0 ? restWorld_[static_cast<size_t>(parent)] : glm::mat4(1.0f)) * node.localRest());
+    addLight(source, nodeIndex, index);
     scene_.nodes.push_back(std::move(node));
     sourceNode_.push_back(nodeIndex);
     copies_[static_cast<size_t>(nodeIndex)].push_back(index);
     path_.push_back(nodeIndex);
     for (int child : source.children) visit(child, index);
     path_.pop_back();
+  }
+
+  // KHR_lights_punctual: the node's point or spot light (directional lights are not loaded: the sun is the
+  // renderer's own, core/LightingEffect.h).
+  void addLight(const tinygltf::Node& source, int nodeIndex, int index) {
+    const auto it = source.extensions.find("KHR_lights_punctual");
+    if (it == source.extensions.end() || !it->second.IsObject() || !it->second.Has("light")) return;
+    const tinygltf::Value& reference = it->second.Get("light");
+    const int lightIndex = reference.IsInt() ? reference.GetNumberAsInt() : -1;
+    if (lightIndex < 0 || static_cast<size_t>(lightIndex) >= model_.lights.size())
+      ctx_.refuse("node " + std::to_string(nodeIndex) + " refers to light " + std::to_string(lightIndex) +
+                  ", which does not exist");
+    const tinygltf::Light& light = model_.lights[static_cast<size_t>(lightIndex)];
+    const std::string what = "light " + std::to_string(lightIndex);
+    if (light.type == "directional") {
+      if (!warnedDirectional_)
+        ctx_.report.warnings.push_back(what + " is directional: not loaded (the renderer's sun is the directional "
+                                       "light; lighting.sun-*)");
+      warnedDirectional_ = true;
+      return;
+    }
+    if (light.type != "point" && light.type != "spot") ctx_.refuse(what + " has unknown type '" + light.type + "'");
+    PunctualLight out;
+    out.type = light.type == "spot" ? LightType::Spot : LightType::Point;
+    if (light.color.size() == 3 && allFinite(light.color))
+      out.color = glm::max(glm::vec3(light.color[0], light.color[1], light.color[2]), glm::vec3(0.0f));
+    if (!std::isfinite(light.intensity) || light.intensity < 0.0 || !std::isfinite(light.range) || light.range < 0.0)
+      ctx_.refuse(what + " has a negative or non-finite intensity or range");
+    out.intensity = static_cast<float>(light.intensity);
+    out.range = static_cast<float>(light.range);
+    const double inner = light.spot.innerConeAngle, outer = light.spot.outerConeAngle;
+    if (out.type == LightType::Spot &&
+        !(std::isfinite(inner) && std::isfinite(outer) && inner >= 0.0 && inner < outer && outer <= 1.5707963268))
+      ctx_.refuse(what + " needs 0 <= innerConeAngle < outerConeAngle <= pi/2");
+    out.innerConeAngle = static_cast<float>(inner);
+    out.outerConeAngle = static_cast<float>(outer);
+    out.node = index;
+    out.world = restWorld_[static_cast<size_t>(index)];
+    scene_.lights.push_back(out);
   }
 
   // The morph target count of a glTF mesh: every primitive must have the same (glTF 2.0 sec. 3.7.2.2), and the
@@ -1097,6 +1232,7 @@ class SceneBuilder {
   std::vector<glm::mat4> restWorld_;      // per Scene node
   std::vector<int> path_;                 // glTF nodes from the root to the one visited, to detect cycles
   bool warnedSharedNode_ = false;
+  bool warnedDirectional_ = false;
   std::map<int, size_t> targetCounts_;                        // per glTF mesh
   std::map<std::tuple<int, size_t, bool>, int> primitiveMeshes_;  // (mesh, primitive, skinned) -> Scene mesh
   std::vector<int> maxJoint_;                                 // per Scene mesh: its highest joint index, -1: none

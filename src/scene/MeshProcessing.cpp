@@ -1,6 +1,7 @@
 #include "scene/MeshProcessing.h"
 
 #include <algorithm>
+#include <cmath>
 #include <unordered_map>
 
 #include <glm/geometric.hpp>
@@ -47,6 +48,7 @@ void generateFlatNormals(Mesh& mesh) {
       flat.positions.push_back(mesh.positions[source]);
       flat.normals.push_back(n);
       if (hasUv) flat.texcoords.push_back(mesh.texcoords[source]);
+      if (!mesh.tangents.empty()) flat.tangents.push_back(mesh.tangents[source]);
       if (skinned) {
         flat.joints.push_back(mesh.joints[source]);
         flat.weights.push_back(mesh.weights[source]);
@@ -74,6 +76,58 @@ void generateSmoothNormals(Mesh& mesh) {
   }
 }
 
+glm::vec3 anyPerpendicular(const glm::vec3& n) {
+  // Cross with the axis least aligned with n: never degenerate for a unit n.
+  const glm::vec3 axis = std::abs(n.x) < 0.9f ? glm::vec3(1.0f, 0.0f, 0.0f) : glm::vec3(0.0f, 1.0f, 0.0f);
+  return glm::normalize(glm::cross(axis, n));
+}
+
+void generateTangents(Mesh& mesh) {
+  const size_t count = mesh.positions.size();
+  std::vector<glm::vec3> tangent(count, glm::vec3(0.0f)), bitangent(count, glm::vec3(0.0f));
+  if (mesh.texcoords.size() == count) {
+    for (size_t t = 0; t + 2 < mesh.indices.size(); t += 3) {
+      const std::uint32_t corner[3] = {mesh.indices[t], mesh.indices[t + 1], mesh.indices[t + 2]};
+      const glm::vec3 e1 = mesh.positions[corner[1]] - mesh.positions[corner[0]];
+      const glm::vec3 e2 = mesh.positions[corner[2]] - mesh.positions[corner[0]];
+      const glm::vec2 d1 = mesh.texcoords[corner[1]] - mesh.texcoords[corner[0]];
+      const glm::vec2 d2 = mesh.texcoords[corner[2]] - mesh.texcoords[corner[0]];
+      // The face's dP/du and dP/dv. MikkTSpace divides by the signed uv area too, so a mirrored face's gradients
+      // keep their geometric sense; a face without uv area contributes nothing (mikktspace.c: "degenerate").
+      const float det = d1.x * d2.y - d2.x * d1.y;
+      if (!(std::abs(det) > 1e-20f)) continue;
+      const glm::vec3 faceT = (e1 * d2.y - e2 * d1.y) / det;
+      const glm::vec3 faceB = (e2 * d1.x - e1 * d2.x) / det;
+      for (int k = 0; k < 3; ++k) {
+        const std::uint32_t v = corner[k];
+        const glm::vec3& n = mesh.normals[v];
+        // MikkTSpace: project onto the vertex normal's plane, normalise, weight by the corner's angle.
+        glm::vec3 pt = faceT - n * glm::dot(n, faceT), pb = faceB - n * glm::dot(n, faceB);
+        const float lt = glm::length(pt), lb = glm::length(pb);
+        if (lt > 0.0f) pt /= lt;
+        if (lb > 0.0f) pb /= lb;
+        const glm::vec3 a = mesh.positions[corner[(k + 1) % 3]] - mesh.positions[v];
+        const glm::vec3 b = mesh.positions[corner[(k + 2) % 3]] - mesh.positions[v];
+        const float la = glm::length(a), lbEdge = glm::length(b);
+        if (!(la > 0.0f && lbEdge > 0.0f)) continue;
+        const float angle = std::acos(std::clamp(glm::dot(a, b) / (la * lbEdge), -1.0f, 1.0f));
+        tangent[v] += angle * pt;
+        bitangent[v] += angle * pb;
+      }
+    }
+  }
+  mesh.tangents.resize(count);
+  for (size_t v = 0; v < count; ++v) {
+    const glm::vec3& n = mesh.normals[v];
+    glm::vec3 t = tangent[v] - n * glm::dot(n, tangent[v]);
+    const float length = glm::length(t);
+    t = length > 1e-12f ? t / length : anyPerpendicular(n);
+    // The bitangent's sign: +1 where (N x T) points along the accumulated dP/dv (right-handed uv), -1 where mirrored.
+    const float sign = glm::dot(glm::cross(n, t), bitangent[v]) < 0.0f ? -1.0f : 1.0f;
+    mesh.tangents[v] = glm::vec4(t, sign);
+  }
+}
+
 Mesh extractTriangles(const Mesh& mesh, const std::vector<std::uint32_t>& triangles) {
   Mesh piece;
   piece.material = mesh.material;
@@ -87,6 +141,7 @@ Mesh extractTriangles(const Mesh& mesh, const std::vector<std::uint32_t>& triang
         piece.positions.push_back(mesh.positions[source]);
         piece.normals.push_back(mesh.normals[source]);
         if (!mesh.texcoords.empty()) piece.texcoords.push_back(mesh.texcoords[source]);
+        if (!mesh.tangents.empty()) piece.tangents.push_back(mesh.tangents[source]);
         if (!mesh.joints.empty()) piece.joints.push_back(mesh.joints[source]);
         if (!mesh.weights.empty()) piece.weights.push_back(mesh.weights[source]);
         for (size_t m = 0; m < mesh.morphTargets.size(); ++m) {

@@ -16,6 +16,16 @@ void generateFlatNormals(Mesh& mesh);
 // Smooth normals by area-weighted averaging over shared vertices (used by the built-in scene's generators).
 void generateSmoothNormals(Mesh& mesh);
 
+// Per-vertex tangents (Mesh::tangents) for normal mapping where the file has none, as glTF 2.0 asks (sec. 3.7.2.1:
+// "client implementations SHOULD calculate tangents using default MikkTSpace algorithms"). Written by hand after
+// mikktspace.c (no packaged MikkTSpace library here): each corner's face tangent dP/du and bitangent dP/dv,
+// projected onto the vertex normal's plane and normalised, accumulated per vertex weighted by the corner's angle,
+// then orthogonalised against the normal (Gram-Schmidt); w is the bitangent's sign. Unlike mikktspace.c it does not
+// split a vertex whose corners' tangent frames disagree (a uv seam shared by one vertex): glTF files already split
+// their vertices at uv seams. A vertex without usable uv gradients gets any unit vector perpendicular to its normal.
+void generateTangents(Mesh& mesh);
+glm::vec3 anyPerpendicular(const glm::vec3& unitNormal);
+
 // The triangles listed (by triangle number) as a mesh of their own: the vertices they use, renumbered in order of
 // first use, with every per-vertex array (normals, texcoords, joints, weights, morph target deltas) carried along.
 Mesh extractTriangles(const Mesh& mesh, const std::vector<std::uint32_t>& triangles);

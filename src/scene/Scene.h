@@ -3,12 +3,14 @@
 // scene's own units: metres for the built-in scene, whatever a glTF file was authored in; right-handed, +y up),
 // materials and RGBA8 images. Built by the glTF loader or by the built-in scene generator; holds no GL objects
 // (GpuScene uploads it).
+#include <array>
 #include <cstdint>
 #include <string>
 #include <vector>
 
 #include <glm/gtc/quaternion.hpp>
 #include <glm/gtc/type_precision.hpp>
+#include <glm/mat3x3.hpp>
 #include <glm/mat4x4.hpp>
 #include <glm/vec2.hpp>
 #include <glm/vec3.hpp>
@@ -36,12 +38,56 @@ struct Texture {
 
 enum class AlphaMode { Opaque, Mask, Blend };
 
+// The texture slots of a glTF 2.0 metallic-roughness material, in the order of Material::uvTransforms.
+enum class TextureSlot { BaseColor = 0, MetallicRoughness = 1, Normal = 2, Occlusion = 3, Emissive = 4 };
+inline constexpr int kTextureSlots = 5;
+
+// glTF 2.0 metallic-roughness (core/LightingEffect.h shades it). A Material made in code is a rough dielectric
+// (metallic 0, roughness 1): what every scene made in code (the built-in scene, the tests) was drawn as before the
+// material model; the glTF loader sets the file's values, whose defaults are glTF's (metallic 1, roughness 1).
 struct Material {
   glm::vec4 baseColorFactor{1.0f};
   int baseColorTexture = -1;  // index into Scene::textures
+  float metallicFactor = 0.0f;
+  float roughnessFactor = 1.0f;
+  int metallicRoughnessTexture = -1;  // B metallic, G roughness (linear)
+  int normalTexture = -1;             // tangent-space normal (linear), needs tangents (Mesh::tangents)
+  float normalScale = 1.0f;
+  int occlusionTexture = -1;          // R the baked ambient occlusion (linear)
+  float occlusionStrength = 1.0f;
+  glm::vec3 emissiveFactor{0.0f};
+  int emissiveTexture = -1;           // sRGB
+  float emissiveStrength = 1.0f;      // KHR_materials_emissive_strength
+  // KHR_texture_transform per slot (TextureSlot order), uv' = T uv, applied in the vertex stage. The loader bakes a
+  // material's base-colour transform into the mesh's TEXCOORD_0 instead where the material has no other texture.
+  std::array<glm::mat3, kTextureSlots> uvTransforms{glm::mat3(1.0f), glm::mat3(1.0f), glm::mat3(1.0f),
+                                                     glm::mat3(1.0f), glm::mat3(1.0f)};
   AlphaMode alphaMode = AlphaMode::Opaque;
   float alphaCutoff = 0.5f;
   bool doubleSided = false;
+
+  // Textures besides the base colour (the PBR_TEXTURES shader variant: core/MaterialKind.h).
+  bool hasPbrTextures() const {
+    return metallicRoughnessTexture >= 0 || normalTexture >= 0 || occlusionTexture >= 0 || emissiveTexture >= 0;
+  }
+  // Anything the deferred lighting's base-colour target cannot carry (core/LightingEffect.h): the scene is then lit
+  // by the forward form.
+  bool needsForwardLighting() const {
+    return hasPbrTextures() || metallicFactor != 0.0f || roughnessFactor != 1.0f ||
+           emissiveFactor != glm::vec3(0.0f);
+  }
+};
+
+// KHR_lights_punctual: a point or spot light placed by a node (position: its origin; direction: its -z).
+enum class LightType { Point, Spot };
+struct PunctualLight {
+  LightType type = LightType::Point;
+  glm::vec3 color{1.0f};     // linear
+  float intensity = 1.0f;    // candela
+  float range = 0.0f;        // metres; 0: unlimited
+  float innerConeAngle = 0.0f, outerConeAngle = 0.7853982f;  // radians (spot)
+  int node = -1;             // index into Scene::nodes; -1: fixed at `world`
+  glm::mat4 world{1.0f};     // at rest
 };
 
 // A morph target: per-vertex displacements added, times the target's weight, to the mesh's rest attributes.
@@ -54,6 +100,9 @@ struct Mesh {
   std::vector<glm::vec3> positions;
   std::vector<glm::vec3> normals;    // one per position, unit length
   std::vector<glm::vec2> texcoords;  // empty, or one per position
+  // Empty, or one per position: xyz the unit tangent (along +u), w the bitangent's sign (+-1): B = w (N x T). From the
+  // file's TANGENT, else generated (scene/MeshProcessing.h: generateTangents) where a normal texture needs them.
+  std::vector<glm::vec4> tangents;
   std::vector<std::uint32_t> indices;  // triangle list
   int material = -1;                   // -1: the default material
   // Skinning (glTF JOINTS_0 / WEIGHTS_0): empty, or one per position. Joint indices index the instance's skin's
@@ -157,6 +206,7 @@ struct Scene {
   std::vector<Animation> animations;
   std::vector<LineMesh> lineMeshes;        // points and lines
   std::vector<LineInstance> lineInstances;
+  std::vector<PunctualLight> lights;       // KHR_lights_punctual point and spot lights
   // The AO radius the scene was designed for, in its units; 0 for none (a loaded file), when defaultAoRadius
   // (scene/SceneScale.h) derives one from the scene's size. The built-in scene: 1 (metre).
   float designedAoRadius = 0.0f;

@@ -1,7 +1,8 @@
 // What each effect costs in the browser: the GPU milliseconds of its passes (from EXT_disjoint_timer_query, which
 // SwiftShader offers) in the demo page's frame of the built-in scene, playing its animation so that motion blur and
 // the temporal effects have motion to work on, at each size asked. Every effect of the table is measured with its
-// switch on (the others at their defaults), and the AO's temporal accumulation beside the single-frame AO. Writes a
+// switch on (the others at their defaults), and the AO's temporal accumulation beside the single-frame AO; then the
+// lighting pass on the metallic-roughness sample (assets/scenes/pbr-samples.glb) loaded into the page. Writes a
 // CSV; docs/benchmarks.md ("Every effect at two sizes") shows the figures.
 //
 // Usage: node tools/browser-bench/effect-costs.mjs [--sizes 640x360,1280x720] [--samples N] [--settle MS] [--csv FILE]
@@ -78,41 +79,35 @@ try {
     });
     if (!description.timerQuery) throw new Error('this browser offers no EXT_disjoint_timer_query: no per-pass times');
     console.log(`${width}x${height}, ${description.renderer}, the built-in scene playing`);
-    for (const c of casesOf(description)) {
-      const measure = (state) => page.evaluate(async ({ state, passes, samples, settle }) => {
-        const o = window.obscura;
-        // From the defaults each time (a setState only changes what it names), playing from 1 s.
-        const query = new URLSearchParams();
-        for (const p of o.parameters) if (p.name !== 'preset' && !p.name.endsWith('.preset')) query.set(p.name, p.default);
-        for (const [key, value] of new URLSearchParams(state)) query.set(key, value);
-        query.set('time', '1');
-        query.set('play', 'on');
-        if (!query.has('view')) query.set('view', 'final');
-        o.setState(query.toString());
-        o.setContinuous(true);
-        await new Promise((r) => setTimeout(r, settle));
-        const effect = [], frame = [];
-        let last = null;
-        for (let tries = 0; effect.length < samples && tries < 20 * samples; ++tries) {
-          await new Promise((r) => setTimeout(r, 150));
-          const s = o.stats();
-          if (!s.passMs || s.frames === last) continue;
-          last = s.frames;
-          const timed = passes.filter((p) => s.passMs[p] !== null && s.passMs[p] !== undefined);
-          if (!timed.length) continue;
-          effect.push(timed.reduce((sum, p) => sum + s.passMs[p], 0));
-          if (s.frameMs > 0) frame.push(s.frameMs);
-        }
-        o.setContinuous(false);
-        o.pause();
-        return { effect, frame };
-      }, { state, passes: c.passes, samples: options.samples, settle: options.settle });
-      let result = await measure(c.state);
-      let label = c.label;
-      if (!result.effect.length && c.fallbackView) {
-        result = await measure(`${c.state}${c.state ? '&' : ''}view=${c.fallbackView}`);
-        label = `${c.label} (view ${c.fallbackView})`;
+    const measure = (state, passes) => page.evaluate(async ({ state, passes, samples, settle }) => {
+      const o = window.obscura;
+      // From the defaults each time (a setState only changes what it names), playing from 1 s.
+      const query = new URLSearchParams();
+      for (const p of o.parameters) if (p.name !== 'preset' && !p.name.endsWith('.preset')) query.set(p.name, p.default);
+      for (const [key, value] of new URLSearchParams(state)) query.set(key, value);
+      query.set('time', '1');
+      query.set('play', 'on');
+      if (!query.has('view')) query.set('view', 'final');
+      o.setState(query.toString());
+      o.setContinuous(true);
+      await new Promise((r) => setTimeout(r, settle));
+      const effect = [], frame = [];
+      let last = null;
+      for (let tries = 0; effect.length < samples && tries < 20 * samples; ++tries) {
+        await new Promise((r) => setTimeout(r, 150));
+        const s = o.stats();
+        if (!s.passMs || s.frames === last) continue;
+        last = s.frames;
+        const timed = passes.filter((p) => s.passMs[p] !== null && s.passMs[p] !== undefined);
+        if (!timed.length) continue;
+        effect.push(timed.reduce((sum, p) => sum + s.passMs[p], 0));
+        if (s.frameMs > 0) frame.push(s.frameMs);
       }
+      o.setContinuous(false);
+      o.pause();
+      return { effect, frame };
+    }, { state, passes, samples: options.samples, settle: options.settle });
+    const report = (label, result) => {
       const row = { label, width, height,
                     effectMs: result.effect.length ? median(result.effect) : NaN,
                     frameMs: result.frame.length ? median(result.frame) : NaN, readings: result.effect.length };
@@ -120,7 +115,23 @@ try {
       console.log(`${label.padEnd(28)} ${row.effectMs.toFixed(2).padStart(8)} ms   frame ` +
                   `${row.frameMs.toFixed(1).padStart(7)} ms   (${row.readings} readings)`);
       writeCsv();  // after every case, so a run cut short keeps what it measured
+    };
+    for (const c of casesOf(description)) {
+      let result = await measure(c.state, c.passes);
+      let label = c.label;
+      if (!result.effect.length && c.fallbackView) {
+        result = await measure(`${c.state}${c.state ? '&' : ''}view=${c.fallbackView}`, c.passes);
+        label = `${c.label} (view ${c.fallbackView})`;
+      }
+      report(label, result);
     }
+    // The metallic-roughness lighting (issue 15): the lighting pass on the PBR sample (assets/scenes/pbr-samples.glb:
+    // forward, every texture slot, two punctual lights), loaded with the file picker as a visitor would, defaults.
+    const lighting = description.effects.find((e) => e.name === 'lighting');
+    await page.locator('#file-input').setInputFiles(path.join(root, 'assets', 'scenes', 'pbr-samples.glb'));
+    await page.waitForFunction(
+      () => document.querySelector('#scene-name').textContent.startsWith('pbr-samples.glb'), null, { timeout: 60000 });
+    report('lighting, PBR sample', await measure('', lighting.passes));
     if (errors.length) throw new Error(`page errors: ${errors.join('; ')}`);
     await page.context().close();
   }
