@@ -24,7 +24,7 @@ export function createObscura(canvas: HTMLCanvasElement, options?: CreateOptions
 export function createAmbientOcclusion(
   canvas: HTMLCanvasElement, options?: Omit<CreateOptions, 'pointerControls'>): Promise<ObscuraAmbientOcclusion>;
 
-export type ParameterKind = 'switch' | 'number' | 'integer' | 'choice';
+export type ParameterKind = 'switch' | 'number' | 'integer' | 'choice' | 'color' | 'text';
 
 export interface ParameterInfo {
   /** Full name: 'ao.radius', 'tonemap.operator', 'fxaa'; 'preset' for the frame's quality preset. */
@@ -175,6 +175,8 @@ export class Obscura extends EventTarget {
   setCompare(name: string): void;
   /** 'separate' | 'atlas' | 'mipchain' | 'auto'; returns the storage now in use. */
   setHierarchyStorage(name: string): string;
+  /** 'mipchain' | 'atlas' | 'auto': where the prefiltered environment's levels live; returns the layout now in use. */
+  setEnvironmentLayout(name: string): string;
   /** The view, the parameters that differ from their defaults, the timeline and the camera, as query-string text. */
   state(): string;
   setState(query: string): void;
@@ -191,6 +193,8 @@ export class Obscura extends EventTarget {
   // Scenes.
   loadScene(bytes: ArrayBuffer | Uint8Array, name: string, sideFiles?: SideFiles): Promise<SceneInfo>;
   loadFiles(files: FileList | File[], options?: { onProgress?: (fraction: number) => void }): Promise<SceneInfo>;
+  /** An equirectangular .hdr (or a PNG of RGBE bytes) as lighting.environment; resolves to its path in the module. */
+  loadEnvironment(bytes: ArrayBuffer | Uint8Array, name: string): Promise<string>;
   loadBuiltinScene(): SceneInfo;
   scene(): SceneInfo;
   readonly defaultRadius: number;
