@@ -129,7 +129,11 @@ TEST(PointsAndLines, CorpusPointAndLineFilesDrawTheirPrimitives) {
     const Camera camera = Camera::fit(scene.worldBounds(), kWidth, kHeight);
     Renderer renderer = test::makeRenderer();
     renderer.setScene(scene);
-    const test::RenderedImage color = test::render(renderer, camera, RenderSettings(), View{"scene-color"});
+    // A dark environment: the background (the sky by default) is then no brighter than the threshold, and the lines,
+    // which are unlit, keep their colour.
+    RenderSettings settings;
+    settings.set("lighting.environment-intensity", "0");
+    const test::RenderedImage color = test::render(renderer, camera, settings, View{"scene-color"});
     const LineMesh& mesh = scene.lineMeshes[0];
     const glm::mat4 world = scene.lineInstances[0].world;
     std::vector<glm::vec2> projected;
