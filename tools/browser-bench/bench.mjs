@@ -151,6 +151,10 @@ async function openObscura(browser, base, size, renderer, aoRadius) {
     // Only `radius` and `ao` are set, through set(): the API that stays (radius becomes an alias of ao.radius).
     obscura.set('radius', radius);
     if (!ao) obscura.set('ao', 'off');
+    // A flat background, as three.js's (the framing check reads the model against it): a dim uniform environment,
+    // of the same cost as the default sky, which no lit part of the model matches.
+    obscura.set('lighting.environment', 'uniform');
+    obscura.set('lighting.environment-intensity', 0.3);
     if (estimator) obscura.set('ao.estimator', estimator);
     const gl = obscura.canvas.getContext('webgl');  // Obscura's own context
     window.benchDraw = () => obscura.draw();
