@@ -60,7 +60,9 @@ void main() {
 uniform sampler2D u_ao;          // AO in R, the frame's size (1x1 white when the AO is off)
 uniform vec3 u_lightDirection;   // view space, towards the sun, unit
 uniform vec3 u_lightColor;       // the sun's illuminance: colour x intensity (lux)
-uniform mat3 u_viewToWorld;      // the camera's rotation: view-space directions to world space
+// View-space directions to the environment's: the camera's rotation to world space, then the sky's turn about the
+// vertical that puts its sun at lighting.sun-azimuth (LightingEffect::environmentRotation).
+uniform mat3 u_viewToEnvironment;
 
 #if MAX_PUNCTUAL_LIGHTS > 0
 // KHR_lights_punctual, view space (core/LightingEffect.h: PunctualLightUniforms). An unused slot has colour 0.
@@ -77,11 +79,11 @@ uniform vec4 u_lightSpot[MAX_PUNCTUAL_LIGHTS];           // xyz the spot's direc
 // integrated on the CPU; the diffuse keeps the energy the specular does not take (so a white furnace gives 1).
 vec3 ambientLight(vec3 n, vec3 v, vec3 diffuseColor, vec3 f0, float roughness, float occlusion) {
   float nv = clamp(dot(n, v), 1e-4, 1.0);
-  vec3 worldNormal = u_viewToWorld * n;
+  vec3 environmentNormal = u_viewToEnvironment * n;
   vec2 scaleBias = environmentBrdf(roughness, nv);
   vec3 specularAlbedo = f0 * scaleBias.x + scaleBias.y;
-  vec3 diffuse = diffuseColor * (1.0 - specularAlbedo) * environmentIrradiance(worldNormal);
-  vec3 specular = specularAlbedo * environmentSpecular(u_viewToWorld * reflect(-v, n), roughness);
+  vec3 diffuse = diffuseColor * (1.0 - specularAlbedo) * environmentIrradiance(environmentNormal);
+  vec3 specular = specularAlbedo * environmentSpecular(u_viewToEnvironment * reflect(-v, n), roughness);
   return diffuse * occlusion + specular * specularOcclusion(nv, occlusion, roughness * roughness);
 }
 
@@ -111,7 +113,7 @@ vec3 shade(vec3 base, float metallic, float roughness, vec3 p, vec3 n, float occ
 }
 
 // What the eye sees where no geometry is, towards the view-space direction `ray`: the environment itself.
-vec3 background(vec3 ray) { return environmentSpecular(u_viewToWorld * ray, 0.0); }
+vec3 background(vec3 ray) { return environmentSpecular(u_viewToEnvironment * ray, 0.0); }
 
 #if TONEMAP_INLINE
 #include "lib/tonemap.glsl"

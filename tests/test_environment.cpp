@@ -379,3 +379,54 @@ TEST(Environment, TheIntensityScalesAmbientAndBackground) {
   EXPECT_GT(two - one, 0.5 * (one - none)) << "doubling the environment adds its share again";
   EXPECT_NEAR(two - one, one - none, 0.01 * (one - none));
 }
+
+// The built-in sky's sun stands where lighting.sun-* put the direct light: a narrow camera looking along
+// directionToSun() sees the sun's disc (radiance 40, 1.5 degrees across) centred, for the default sun, a sun turned
+// in azimuth (the sky turned about the vertical) and suns raised or lowered (the sky made again); the default sun's
+// place is then empty.
+TEST(Environment, TheSkysSunFollowsTheSunParameters) {
+  Renderer renderer = test::makeRenderer();
+  // Something to draw, out of sight below the camera.
+  renderer.setScene(test::sceneOf({test::makeRectangle({-1, -50, -1}, {2, 0, 0}, {0, 0, 2})}));
+  const int side = 65;
+  auto disc = [&](const char* elevation, const char* azimuth, const glm::vec3& lookAlong) {
+    RenderSettings settings;
+    settings.set("ao", "off");
+    settings.set("bloom", "off");
+    settings.set("lighting.sun-elevation", elevation);
+    settings.set("lighting.sun-azimuth", azimuth);
+    const Camera camera = test::makeCamera({0, 0, 0}, lookAlong, side, side, 0.1f, 100.0f, 10.0f);
+    test::render(renderer, camera, settings, View::Final, test::retaining({"scene-color"}));
+    const std::vector<std::uint8_t> c = renderer.retained("scene-color").readRgba();
+    glm::dvec2 sum(0.0);
+    int count = 0;
+    for (int row = 0; row < side; ++row)
+      for (int x = 0; x < side; ++x) {
+        const size_t i = (static_cast<size_t>(row) * side + x) * 4;
+        if (decodeHdr(HdrTexel{c[i], c[i + 1], c[i + 2], c[i + 3]}).g > 10.0f) {
+          sum += glm::dvec2(x + 0.5, row + 0.5);
+          ++count;
+        }
+      }
+    return std::make_pair(count, count ? sum / static_cast<double>(count) : glm::dvec2(-1.0));
+  };
+  struct Case {
+    const char *elevation, *azimuth;
+  };
+  const LightingSettings defaults;
+  for (const Case& c : {Case{"54.525961", "52.125016"}, Case{"54.525961", "140"}, Case{"20", "52.125016"},
+                        Case{"30", "-100"}}) {
+    LightingSettings sun;
+    sun.sunElevation = std::stof(c.elevation);
+    sun.sunAzimuth = std::stof(c.azimuth);
+    const auto [count, centre] = disc(c.elevation, c.azimuth, sun.directionToSun());
+    std::printf("sun at elevation %s, azimuth %s: %d disc pixels centred at (%.2f, %.2f) of (%.1f, %.1f)\n",
+                c.elevation, c.azimuth, count, centre.x, centre.y, side / 2.0, side / 2.0);
+    // 3 degrees across in a 10-degree frame of 65 pixels: about 19 pixels across, 280 in all.
+    EXPECT_GT(count, 200) << c.elevation << " " << c.azimuth;
+    EXPECT_LT(glm::length(centre - glm::dvec2(side / 2.0)), 0.5) << c.elevation << " " << c.azimuth;
+    if (sun.sunAzimuth != defaults.sunAzimuth || sun.sunElevation != defaults.sunElevation) {
+      EXPECT_EQ(disc(c.elevation, c.azimuth, defaults.directionToSun()).first, 0) << "the default sun's place";
+    }
+  }
+}

@@ -8,6 +8,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -364,6 +365,69 @@ TEST(Pbr, PunctualLightsMatchTheAnalyticFalloff) {
     EXPECT_GT(dark, 10) << c.name << ": the range or the cone must leave pixels unlit for the test to tell";
     EXPECT_GT(bright, 10) << c.name;
   }
+}
+
+// The punctual lights per draw follow the context's fragment uniform vectors (LightingEffect::punctualLightsPerDraw):
+// a renderer limited to GLES 2's 16 draws none of the file's lights (the sun and the ambient light the wall as
+// with the lights at intensity 0), one limited to 18 the strongest at the camera alone, and an unlimited one both.
+TEST(Pbr, PunctualLightsPerDrawFollowTheFragmentUniformVectors) {
+  EXPECT_EQ(LightingEffect::punctualLightsPerDraw(16), 0);
+  EXPECT_EQ(LightingEffect::punctualLightsPerDraw(18), 1);
+  EXPECT_EQ(LightingEffect::punctualLightsPerDraw(24), 3);
+  EXPECT_EQ(LightingEffect::punctualLightsPerDraw(27), 4);
+  EXPECT_EQ(LightingEffect::punctualLightsPerDraw(1024), 4);
+
+  Material material;
+  material.baseColorFactor = glm::vec4(0.7f, 0.7f, 0.7f, 1.0f);
+  material.roughnessFactor = 0.5f;
+  Scene scene = quadScene(material, 8.0f);
+  PunctualLight strong;
+  strong.type = LightType::Point;
+  strong.color = {1.0f, 0.8f, 0.6f};
+  strong.intensity = 6.0f;
+  strong.world = glm::translate(glm::mat4(1.0f), glm::vec3(0.6f, 0.0f, 1.0f));
+  PunctualLight weak = strong;
+  weak.color = {0.5f, 0.7f, 1.0f};
+  weak.intensity = 3.0f;
+  weak.world = glm::translate(glm::mat4(1.0f), glm::vec3(-0.6f, 0.0f, 1.0f));
+  scene.lights = {weak, strong};  // the order of the file is not the order of choice
+
+  auto render = [&](const Scene& s, std::optional<int> fragmentVectors) {
+    RendererOptions options;
+    if (fragmentVectors) options.simulateFragmentLimits = FragmentLimits{*fragmentVectors, 8, 8};
+    Renderer renderer = test::makeRenderer(options);
+    renderer.setScene(s);
+    const Camera camera = test::makeCamera({0, 0, 5}, {0, 0, 0}, kSide, kSide, 0.1f, 100.0f, kFovy);
+    test::render(renderer, camera, plainSettings(), View::Final, test::retaining({"scene-color"}));
+    return HdrFrame{kSide, kSide, renderer.retained("scene-color").readRgba()};
+  };
+  auto worstDifference = [](const HdrFrame& a, const HdrFrame& b) {
+    double worst = 0.0, mean = 0.0;
+    for (int row = 0; row < a.height; ++row)
+      for (int x = 0; x < a.width; ++x) {
+        const double d = worstRelative(a.at(x, row), b.at(x, row));
+        worst = std::max(worst, d);
+        mean += d / (a.width * a.height);
+      }
+    return std::make_pair(worst, mean);
+  };
+  Scene darkWeak = scene, dark = scene;
+  darkWeak.lights[0].intensity = 0.0f;
+  dark.lights[0].intensity = dark.lights[1].intensity = 0.0f;
+  const HdrFrame both = render(scene, std::nullopt), strongOnly = render(darkWeak, std::nullopt),
+                 none = render(dark, std::nullopt);
+  const auto [noneAt16, noneAt16Mean] = worstDifference(render(scene, 16), none);
+  const auto [oneAt18, oneAt18Mean] = worstDifference(render(scene, 18), strongOnly);
+  const auto [bothVsOne, bothVsOneMean] = worstDifference(both, strongOnly);
+  const auto [oneVsNone, oneVsNoneMean] = worstDifference(strongOnly, none);
+  std::printf("relative difference, worst | mean: 16 vectors vs no light %.4f | %.5f, 18 vectors vs the strong light "
+              "alone %.4f | %.5f; the weak light's own %.3f | %.4f, the strong light's %.3f | %.4f\n",
+              noneAt16, noneAt16Mean, oneAt18, oneAt18Mean, bothVsOne, bothVsOneMean, oneVsNone, oneVsNoneMean);
+  // RGB9E5 rounds each pixel's channels to about 1/512 of its brightest.
+  EXPECT_LT(noneAt16, 0.01);
+  EXPECT_LT(oneAt18, 0.01);
+  EXPECT_GT(bothVsOne, 0.1) << "the weak light must show for the test to tell";
+  EXPECT_GT(oneVsNone, 0.1);
 }
 
 // Tangents generated (scene/MeshProcessing.h) on meshes whose tangent frames are known: a rectangle (tangent along u,

@@ -4,10 +4,14 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cstdio>
+#include <tuple>
 
 #include "TestSupport.h"
 #include "base/Error.h"
+#include "core/LightingEffect.h"
 #include "core/ShaderLibrary.h"
+#include "gl/UniformPacking.h"
 
 using namespace obscura;
 
@@ -78,5 +82,52 @@ TEST(Shaders, SourcesAreGlslEs100WithoutForbiddenFeatures) {
       for (const char* forbidden : {"texelFetch", "textureSize", "<<", ">>", " ^ ", " | ", " & ", "uint", "flat "})
         EXPECT_EQ(source.find(forbidden), std::string::npos) << spec.name << " uses '" << forbidden << "'";
     }
+  }
+}
+
+// Every program fits the uniform vectors every GLES 2 context offers (128 in the vertex stage, 16 in the fragment
+// stage), counted as GLSL ES 1.00's Appendix A packs them (gl/UniformPacking.h): a driver that offers only the
+// minimum may refuse to link a program that needs more. The forward lighting with the punctual lights a 16-vector
+// context gets (none); its other light counts against LightingEffect.h's figures.
+TEST(Shaders, EveryProgramFitsTheGles2UniformVectors) {
+  const gl::GlCaps& caps = test::context().caps();
+  auto buildable = [&](const ProgramSpec& spec) {
+    return std::all_of(spec.extensions.begin(), spec.extensions.end(), [&](const std::string& e) { return caps.has(e); });
+  };
+  auto rowsOf = [](const ProgramSpec& spec) {
+    const gl::Program program = spec.build();
+    const gl::StageUniforms uniforms =
+        gl::activeUniformsByStage(program.id(), spec.vertexSource(), spec.fragmentSource());
+    return std::make_pair(gl::packedUniformRows(uniforms.vertex), gl::packedUniformRows(uniforms.fragment));
+  };
+  const int minimumLights = LightingEffect::punctualLightsPerDraw(FragmentLimits::gles2Minimum().uniformVectors);
+  EXPECT_EQ(minimumLights, 0);
+  std::vector<ProgramSpec> specs;
+  for (ProgramSpec& spec : Renderer::allProgramSpecs())
+    if (spec.name.rfind("lighting[", 0) != 0) specs.push_back(std::move(spec));
+  for (ProgramSpec& spec : LightingEffect::programSpecs(minimumLights)) specs.push_back(std::move(spec));
+  int worstVertex = 0, worstFragment = 0;
+  std::string worstVertexName, worstFragmentName;
+  for (const ProgramSpec& spec : specs) {
+    if (!buildable(spec)) continue;
+    const auto [vertex, fragment] = rowsOf(spec);
+    EXPECT_LE(vertex, 128) << spec.name;
+    EXPECT_LE(fragment, 16) << spec.name;
+    if (vertex > worstVertex) std::tie(worstVertex, worstVertexName) = std::make_pair(vertex, spec.name);
+    if (fragment > worstFragment) std::tie(worstFragment, worstFragmentName) = std::make_pair(fragment, spec.name);
+  }
+  std::printf("%zu programs; most vertex vectors %d (%s), most fragment vectors %d (%s); this context offers %d and "
+              "%d\n",
+              specs.size(), worstVertex, worstVertexName.c_str(), worstFragment, worstFragmentName.c_str(),
+              caps.maxVertexUniformVectors, caps.maxFragmentUniformVectors);
+
+  // The forward lighting's heaviest form (every PBR texture, alpha mask, tone mapping inline) with 0 .. 4 lights:
+  // exactly the figures punctualLightsPerDraw counts with.
+  for (int lights = 0; lights <= kMaxPunctualLights; ++lights) {
+    int most = 0;
+    for (const ProgramSpec& spec : LightingEffect::programSpecs(lights))
+      if (spec.name.find("forward,mask,texture,pbr,tonemap=aces,atlas") != std::string::npos)
+        most = std::max(most, rowsOf(spec).second);
+    EXPECT_EQ(most, kForwardLightingVectorsWithoutLights + lights * kVectorsPerPunctualLight) << lights << " lights";
   }
 }

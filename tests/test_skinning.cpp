@@ -185,6 +185,28 @@ TEST(Skinning, ASkeletonLargerThanThePaletteRendersAsWithALargePalette) {
   }
 }
 
+// A context with GLES 2's 8 combined texture units: the lighting's fragment stage may take all eight (core/
+// TextureUnits.h), so the joint texture has no unit of its own and the renderer takes the uniform palette, and the
+// environment's BRDF table the joints' unit. The image is the joint texture's, on a context with units to spare.
+TEST(Skinning, EightCombinedTextureUnitsTakeThePaletteAndTheSameImage) {
+  const Scene scene = bendingTube(40);
+  RendererOptions eight, plenty;
+  eight.skinning = plenty.skinning = SkinningPath::Texture;
+  eight.simulateFragmentLimits = FragmentLimits::gles2Minimum();
+  Renderer a = test::makeRenderer(eight), b = test::makeRenderer(plenty);
+  a.setScene(scene);
+  b.setScene(scene);
+  EXPECT_EQ(a.gpuScene().skinningPath(), SkinningPath::Uniforms);
+  ASSERT_EQ(b.gpuScene().skinningPath(), SkinningPath::Texture) << "this context has a ninth unit";
+  FrameOptions frame;
+  frame.time = 0.6;
+  for (const View& view : {View::Final, View::Normals}) {
+    const auto eightUnits = test::render(a, frontCamera(), RenderSettings(), view, frame);
+    const auto texture = test::render(b, frontCamera(), RenderSettings(), view, frame);
+    EXPECT_LT(differingFraction(eightUnits, texture, 2), 0.002) << view.name;
+  }
+}
+
 // The forward lighting draws the skin again and shades only where its depth equals the G-buffer's: every covered
 // pixel must be shaded exactly once, so the deformation must give the same positions in both passes (geometry.vert's
 // invariant gl_Position), on every path.

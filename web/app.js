@@ -181,7 +181,13 @@ function parameterControl(obscura, parameter) {
   const number = element('input', { type: 'number', min: parameter.min, max: parameter.max,
                                     step: parameter.kind === 'integer' ? 1 : 'any', title: parameter.range,
                                     ariaLabel: `${parameter.name} value` });
-  slider.addEventListener('input', () => apply(scale.fromSlider(Number(slider.value))));
+  // A slow parameter (parameter.slow: the sky is made again) is applied when the drag ends; the number follows it.
+  if (parameter.slow) {
+    slider.addEventListener('input', () => { number.value = String(scale.fromSlider(Number(slider.value))); });
+    slider.addEventListener('change', () => apply(scale.fromSlider(Number(slider.value))));
+  } else {
+    slider.addEventListener('input', () => apply(scale.fromSlider(Number(slider.value))));
+  }
   number.addEventListener('change', () => apply(number.value));
   row.append(slider, number);
   // Bias, intensity and contrast default to 'auto' (fitted to the ray-traced reference for the preset and radius):

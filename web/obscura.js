@@ -124,11 +124,12 @@ export class Obscura extends EventTarget {
   }
 
   // --- What the core offers (read once at start) ---------------------------------------------------------------
-  // [{name, effect, alias?, kind: 'switch'|'number'|'integer'|'choice'|'color', range, help, default, primary, min?,
-  //   max?, choices?}]: every parameter of the frame, "preset" (effect '') first, then each effect's ("ao",
-  // "ao.radius", ...), in frame order. alias: an older name set() and get() also take ('radius'). A number's choices
-  // are words it accepts besides numbers ('auto' for the AO's bias, intensity and contrast). A colour reads as linear
-  // 'r,g,b'; set() also takes sRGB '#rrggbb' (fog.color). primary: shown up front.
+  // [{name, effect, alias?, kind: 'switch'|'number'|'integer'|'choice'|'color'|'text', range, help, default,
+  //   primary, slow, min?, max?, choices?}]: every parameter of the frame, "preset" (effect '') first, then each
+  // effect's ("ao", "ao.radius", ...), in frame order. alias: an older name set() and get() also take ('radius'). A
+  // number's choices are words it accepts besides numbers ('auto' for the AO's bias, intensity and contrast). A
+  // colour reads as linear 'r,g,b'; set() also takes sRGB '#rrggbb' (fog.color). primary: shown up front. slow: a
+  // change takes a noticeable time (lighting.sun-elevation makes the sky again), so a slider applies it on release.
   get parameters() { return this.description.parameters; }
   // [{name, title, switch, passes: [...], targets: [{name, encoding, views: [...]}], parameters: [names]}]: the
   // effect table, in the order the frame runs it.

@@ -17,7 +17,9 @@
 // Both fetch the same texel centres, NEAREST, so both give the same values (tests/test_environment.cpp).
 
 uniform sampler2D u_environment;     // NEAREST; RGB9E5 texels (lib/hdr.glsl)
-uniform vec3 u_shIrradiance[9];      // E(n) / pi = sum of these times 1, x, y, z, xy, yz, xz, x^2 - y^2, z^2
+// E(n) / pi = the sum of nine RGB coefficients times 1, x, y, z, xy, yz, xz, x^2 - y^2, z^2: their 27 floats in
+// order, packed in 7 vec4 (7 fragment uniform vectors where 9 vec3 would take 9: GpuEnvironment::irradianceUniform).
+uniform vec4 u_shIrradiance[7];
 uniform float u_environmentIntensity;
 uniform sampler2D u_environmentBrdf;  // LINEAR, clamped: A in R, B in G over (n.v, roughness)
 
@@ -25,9 +27,11 @@ const float ENVIRONMENT_PI = 3.14159265;
 const float ENVIRONMENT_MAX_LEVEL = float(ENVIRONMENT_LEVELS - 1);
 
 vec3 environmentIrradiance(vec3 n) {
-  vec3 e = u_shIrradiance[0] + u_shIrradiance[1] * n.x + u_shIrradiance[2] * n.y + u_shIrradiance[3] * n.z +
-           u_shIrradiance[4] * (n.x * n.y) + u_shIrradiance[5] * (n.y * n.z) + u_shIrradiance[6] * (n.x * n.z) +
-           u_shIrradiance[7] * (n.x * n.x - n.y * n.y) + u_shIrradiance[8] * (n.z * n.z);
+  vec4 p0 = u_shIrradiance[0], p1 = u_shIrradiance[1], p2 = u_shIrradiance[2], p3 = u_shIrradiance[3];
+  vec4 p4 = u_shIrradiance[4], p5 = u_shIrradiance[5], p6 = u_shIrradiance[6];
+  vec3 e = p0.xyz + vec3(p0.w, p1.xy) * n.x + vec3(p1.zw, p2.x) * n.y + p2.yzw * n.z + p3.xyz * (n.x * n.y) +
+           vec3(p3.w, p4.xy) * (n.y * n.z) + vec3(p4.zw, p5.x) * (n.x * n.z) + p5.yzw * (n.x * n.x - n.y * n.y) +
+           p6.xyz * (n.z * n.z);
   return max(e, 0.0) * u_environmentIntensity;
 }
 

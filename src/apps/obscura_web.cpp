@@ -259,7 +259,7 @@ EMSCRIPTEN_KEEPALIVE const char* obscura_describe() {
   Json parameters = Json::array();
   for (const ParameterInfo& p : RenderSettings::parameters()) {
     Json item{{"name", p.name}, {"effect", p.effect}, {"kind", parameterKindName(p.kind)}, {"range", p.range},
-              {"help", p.help}, {"default", defaults.get(p.name)}, {"primary", p.primary}};
+              {"help", p.help}, {"default", defaults.get(p.name)}, {"primary", p.primary}, {"slow", p.slow}};
     if (!p.alias.empty()) item["alias"] = p.alias;
     if (p.kind == ParameterKind::Number || p.kind == ParameterKind::Integer) {
       item["min"] = p.min;

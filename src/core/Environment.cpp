@@ -427,6 +427,8 @@ GpuEnvironment::GpuEnvironment(EnvironmentLayout layout, const PrefilteredEnviro
       texture_(gl::TextureHandle::create()),
       brdf_(gl::TextureHandle::create()),
       polynomial_(sh.polynomial()) {
+  const float* floats = &polynomial_[0].x;  // glm::vec3 is three tightly packed floats
+  for (size_t i = 0; i < 27; ++i) packedPolynomial_[i / 4][static_cast<glm::length_t>(i % 4)] = floats[i];
   glActiveTexture(GL_TEXTURE0);
   // (A, B): plain linear bytes, so the hardware's bilinear filter is the right one.
   glBindTexture(GL_TEXTURE_2D, brdf_.id());

@@ -167,6 +167,10 @@ class GpuEnvironment {
   GLuint texture() const { return texture_.id(); }
   GLuint brdfTexture() const { return brdf_.id(); }  // environmentBrdfTable(), LINEAR
   const std::array<glm::vec3, 9>& irradiancePolynomial() const { return polynomial_; }
+  // The polynomial as the shader's u_shIrradiance holds it: its 27 floats in order in 7 vec4 (the last float 0), so
+  // it takes 7 fragment uniform vectors instead of the 9 that 9 vec3 take under GLSL ES 1.00's packing (Appendix A):
+  // the forward lighting must fit GLES 2's 16 (LightingEffect.h).
+  const std::array<glm::vec4, 7>& irradianceUniform() const { return packedPolynomial_; }
   // The shader's defines: ENVIRONMENT_LOD 1 (mip chain) or 0 (atlas), the level count and level 0's size.
   static std::vector<std::pair<std::string, std::string>> shaderDefines(EnvironmentLayout layout);
 
@@ -174,6 +178,7 @@ class GpuEnvironment {
   EnvironmentLayout layout_;
   gl::TextureHandle texture_, brdf_;
   std::array<glm::vec3, 9> polynomial_{};
+  std::array<glm::vec4, 7> packedPolynomial_{};
 };
 
 }  // namespace obscura

@@ -6,6 +6,7 @@
 #include <glm/gtc/matrix_inverse.hpp>
 
 #include "base/Error.h"
+#include "core/TextureUnits.h"
 #include "scene/MeshProcessing.h"
 #include "scene/TexturePreparation.h"
 
@@ -34,12 +35,9 @@ gl::TextureHandle uploadTexture(const Image& source, const SamplerState& sampler
 constexpr int kReservedUniformVectors = 32;
 // Joints per palette where uniforms are plenty: beyond it, uploading the palette per draw costs more than it saves.
 constexpr int kMaxPaletteJoints = 128;
-// The texture unit of the joint texture: after those the passes' fragment stages use (0..3).
-constexpr int kJointTextureUnit = 4;
-// The units of a PBR_TEXTURES material's metallic-roughness, normal, occlusion and emissive textures: beside the
-// base colour's 0, the lighting pass's AO on 1 and the joint texture's 4, seven units in all, within GLES 2's
-// guaranteed eight.
-constexpr int kPbrTextureUnits[4] = {2, 3, 5, 6};
+// The texture units: core/TextureUnits.h.
+constexpr int kJointTextureUnit = TextureUnits::kJoints;
+constexpr const int (&kPbrTextureUnits)[4] = TextureUnits::kPbr;
 // GL_RGBA32F: a desktop context needs the sized format to keep floats; GLES 2 / WebGL 1 with OES_texture_float take
 // GL_RGBA with type GL_FLOAT.
 constexpr GLenum kRgba32f = 0x8814;
@@ -93,7 +91,8 @@ GpuScene::GpuScene(const Scene& scene, const gl::GlCaps& caps, const Options& op
              std::min(caps.maxVertexTextureImageUnits, simulated.textureUnits)};
 
   // The skinning path: the one asked for where the context can take it, else the best it can.
-  const bool textureOk = limits_.textureUnits > 0 && caps.textureFloat;
+  // The joint texture needs a ninth texture unit (core/TextureUnits.h): the lighting's fragment stage may use eight.
+  const bool textureOk = limits_.textureUnits > 0 && caps.textureFloat && TextureUnits::jointTextureFits(caps);
   const int palette = std::min(kMaxPaletteJoints, (limits_.uniformVectors - kReservedUniformVectors) / 6);
   const bool uniformsOk = palette >= 12;  // a triangle may need 3 vertices x 4 joints
   const SkinningPath wanted = options.skinning.value_or(SkinningPath::Texture);

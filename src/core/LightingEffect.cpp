@@ -4,12 +4,14 @@
 #include <cmath>
 
 #include <glm/geometric.hpp>
+#include <glm/gtc/matrix_transform.hpp>
 #include <glm/trigonometric.hpp>
 
 #include "base/Error.h"
 #include "core/HdrEncoding.h"
 #include "core/LinearDepthPacking.h"
 #include "core/PassContext.h"
+#include "core/TextureUnits.h"
 #include "gl/PipelineState.h"
 
 namespace obscura {
@@ -17,8 +19,11 @@ namespace obscura {
 const std::vector<Parameter<LightingSettings>>& LightingSettings::parameters() {
   using S = LightingSettings;
   static const std::vector<Parameter<S>> table = {
-      numberParameter<S>("sun-elevation", -90, 90, "degrees", "the sun's height above the horizon", &S::sunElevation)
-          .primary(),
+      numberParameter<S>("sun-elevation", -90, 90, "degrees",
+                         "the sun's height above the horizon (with the sky: the sky is made again, about a second)",
+                         &S::sunElevation)
+          .primary()
+          .slow(),
       numberParameter<S>("sun-azimuth", -360, 360, "degrees", "the sun's direction, from +z towards +x",
                          &S::sunAzimuth)
           .primary(),
@@ -43,7 +48,9 @@ glm::vec3 LightingSettings::directionToSun() const {
   return {std::cos(elevation) * std::sin(azimuth), std::sin(elevation), std::cos(elevation) * std::cos(azimuth)};
 }
 
-PunctualLightUniforms PunctualLightUniforms::of(const std::vector<PunctualLight>& lights, const glm::mat4& view) {
+PunctualLightUniforms PunctualLightUniforms::of(const std::vector<PunctualLight>& lights, const glm::mat4& view,
+                                                int maxCount) {
+  maxCount = std::clamp(maxCount, 0, kMaxPunctualLights);
   PunctualLightUniforms out;
   // The lights that light the camera's surroundings most: intensity / distance^2 at the camera (view-space origin).
   std::vector<std::pair<float, size_t>> order;
@@ -54,7 +61,7 @@ PunctualLightUniforms PunctualLightUniforms::of(const std::vector<PunctualLight>
   }
   std::stable_sort(order.begin(), order.end());
   for (const auto& [key, index] : order) {
-    if (out.count == kMaxPunctualLights) break;
+    if (out.count == maxCount) break;
     const PunctualLight& light = lights[index];
     const auto k = static_cast<size_t>(out.count++);
     const glm::mat4 toView = view * light.world;
@@ -74,6 +81,19 @@ PunctualLightUniforms PunctualLightUniforms::of(const std::vector<PunctualLight>
     out.spot[k] = glm::vec4(axis, offset);
   }
   return out;
+}
+
+// The sky was made with its sun at the default azimuth: turning it about +y by (default - wanted) puts its sun at the
+// wanted azimuth (a turn by t about +y adds t to a direction's azimuth, measured from +z towards +x).
+glm::mat3 LightingEffect::environmentRotation(const LightingSettings& settings) {
+  if (settings.environment != "sky") return glm::mat3(1.0f);
+  const float turn = glm::radians(LightingSettings{}.sunAzimuth - settings.sunAzimuth);
+  return glm::mat3(glm::rotate(glm::mat4(1.0f), turn, glm::vec3(0.0f, 1.0f, 0.0f)));
+}
+
+int LightingEffect::punctualLightsPerDraw(int maxFragmentUniformVectors) {
+  return std::clamp((maxFragmentUniformVectors - kForwardLightingVectorsWithoutLights) / kVectorsPerPunctualLight, 0,
+                    kMaxPunctualLights);
 }
 
 EffectInfo LightingEffect::info() {
@@ -100,7 +120,8 @@ MaterialKind LightingEffect::readKind(const Form& form, MaterialKind kind) {
 
 // The forms' programs. The background form is the deferred program's background alone, drawn over fullscreen.vert
 // at the far plane (AT_FAR_PLANE).
-ProgramSpec LightingEffect::spec(const Form& form, MaterialKind kind, VertexKind vertex, EnvironmentLayout layout) {
+ProgramSpec LightingEffect::spec(const Form& form, MaterialKind kind, VertexKind vertex, EnvironmentLayout layout,
+                                 int lightsPerDraw) {
   const bool fullscreen = form.deferred || form.background;
   std::string name = "lighting[";
   if (form.background) name += "background";
@@ -116,7 +137,7 @@ ProgramSpec LightingEffect::spec(const Form& form, MaterialKind kind, VertexKind
                  {"AT_FAR_PLANE", form.background ? "1" : "0"},
                  {"COUNT_SHADING", form.counting ? "1" : "0"},
                  {"TONEMAP_INLINE", form.toneMap >= 0 ? "1" : "0"},
-                 {"MAX_PUNCTUAL_LIGHTS", std::to_string(fullscreen ? 0 : kMaxPunctualLights)},
+                 {"MAX_PUNCTUAL_LIGHTS", std::to_string(fullscreen ? 0 : lightsPerDraw)},
                  // The deferred forms' view direction is the far-plane ray's.
                  {"FAR_RAY", fullscreen && !form.counting ? "1" : "0"}}};
   for (auto& define : GpuEnvironment::shaderDefines(layout)) s.defines.push_back(define);
@@ -129,7 +150,7 @@ ProgramSpec LightingEffect::spec(const Form& form, MaterialKind kind, VertexKind
 }
 
 // Every form with the atlas (any GLES 2 context), and the shading forms again with the mip chain.
-std::vector<ProgramSpec> LightingEffect::programSpecs() {
+std::vector<ProgramSpec> LightingEffect::programSpecs(int lightsPerDraw) {
   std::vector<ProgramSpec> specs;
   for (EnvironmentLayout layout : {EnvironmentLayout::Atlas, EnvironmentLayout::MipChain})
     for (bool deferred : {false, true})
@@ -138,13 +159,13 @@ std::vector<ProgramSpec> LightingEffect::programSpecs() {
         for (int toneMap = -1; toneMap < (counting ? 0 : kToneMapOperatorCount); ++toneMap) {
           for (MaterialKind kind : MaterialKind::all()) {
             const Form form{deferred, counting, toneMap, false};
-            if (readKind(form, kind) == kind) specs.push_back(spec(form, kind, {}, layout));
+            if (readKind(form, kind) == kind) specs.push_back(spec(form, kind, {}, layout, lightsPerDraw));
           }
-          if (!deferred && !counting) specs.push_back(spec({false, false, toneMap, true}, {}, {}, layout));
+          if (!deferred && !counting) specs.push_back(spec({false, false, toneMap, true}, {}, {}, layout, 0));
         }
       }
   for (VertexKind vertex : VertexKind::validated())
-    specs.push_back(spec({false, false, -1, false}, {}, vertex, EnvironmentLayout::Atlas));
+    specs.push_back(spec({false, false, -1, false}, {}, vertex, EnvironmentLayout::Atlas, lightsPerDraw));
   return specs;
 }
 
@@ -156,7 +177,7 @@ LightingEffect::Variant::Variant(gl::Program built, bool geometryStage)
       projection(program.optionalUniform("u_projection")),
       lightDirection(program.optionalUniform("u_lightDirection")),
       lightColor(program.optionalUniform("u_lightColor")),
-      viewToWorld(program.optionalUniform("u_viewToWorld")),
+      viewToEnvironment(program.optionalUniform("u_viewToEnvironment")),
       ao(program.optionalUniform("u_ao")),
       environment(program.optionalUniform("u_environment")),
       environmentBrdf(program.optionalUniform("u_environmentBrdf")),
@@ -175,13 +196,16 @@ const LightingEffect::Variant& LightingEffect::variant(const Form& form, Materia
   const auto key = std::make_tuple(form, readKind(form, kind), fullscreen ? VertexKind{} : vertex.forCurrentFrame());
   auto it = variants_.find(key);
   if (it == variants_.end()) {
-    it = variants_.emplace(key, Variant(resources_.build(spec(form, std::get<1>(key), std::get<2>(key), layout_)),
-                                        !fullscreen)).first;
+    it = variants_
+             .emplace(key, Variant(resources_.build(spec(form, std::get<1>(key), std::get<2>(key), layout_,
+                                                         lightsPerDraw_)),
+                                   !fullscreen))
+             .first;
     // Resolve strictly what this form must use, so a misspelt or dropped uniform is caught where it matters.
     const gl::Program& program = it->second.program;
     if (!fullscreen) program.uniform("u_projection");
     if (!form.counting)
-      for (const char* name : {"u_viewToWorld", "u_environment", "u_environmentIntensity"}) program.uniform(name);
+      for (const char* name : {"u_viewToEnvironment", "u_environment", "u_environmentIntensity"}) program.uniform(name);
     if (fullscreen && !form.counting)
       for (const char* name : {"u_farHalfExtent", "u_farPlane"}) program.uniform(name);
     if (!form.counting && !form.background)
@@ -190,7 +214,8 @@ const LightingEffect::Variant& LightingEffect::variant(const Form& form, Materia
     if (form.deferred) program.uniform("u_gbuffer");
     if (form.deferred && !form.counting) program.uniform("u_baseColor");
     if (!fullscreen && !form.counting)
-      for (const char* name : {"u_metallicRoughness", "u_emissive", "u_lightPositionRange[0]"}) program.uniform(name);
+      for (const char* name : {"u_metallicRoughness", "u_emissive"}) program.uniform(name);
+    if (!fullscreen && !form.counting && lightsPerDraw_ > 0) program.uniform("u_lightPositionRange[0]");
     if (form.toneMap >= 0)
       for (const char* name : {"u_exposure", "u_lumaInAlpha"}) program.uniform(name);
   }
@@ -201,7 +226,9 @@ const LightingEffect::Variant& LightingEffect::variant(const Form& form, Materia
 // environment in use stays, so a stale path (a page's URL naming a file dropped in an earlier visit) does not fail
 // every frame.
 void LightingEffect::useEnvironment(const LightingSettings& settings) {
-  if (environment_ && environmentName_ == settings.environment) return;
+  const bool sky = settings.environment == "sky";
+  if (environment_ && environmentName_ == settings.environment && (!sky || skyElevation_ == settings.sunElevation))
+    return;
   const std::string name = settings.environment;
   environmentName_ = name;
   struct Prepared {
@@ -212,12 +239,21 @@ void LightingEffect::useEnvironment(const LightingSettings& settings) {
   };
   // The built-in environments are prepared once per process: every Renderer starts with the sky, and its
   // prefiltering is the dearest part of making one.
-  // The sky's sun stands where the default sun does: lighting.sun-* move the direct light, not the sky (prefiltering
-  // a sky again costs seconds, too slow for a slider).
-  if (name == "sky") {
-    static const Prepared sky(
-        ProceduralSky{LightingSettings{}.directionToSun()}.image(kEnvironmentWidth, kEnvironmentHeight));
-    environment_ = std::make_unique<GpuEnvironment>(layout_, sky.specular, sky.sh);
+  if (sky) {
+    // The sky's sun stands where lighting.sun-* put the direct light. Its azimuth turns the sky about the vertical
+    // (environmentRotation: free); its elevation changes the sky, which is made and prefiltered again (about a second
+    // on this machine's CPU: LightingSettings marks sun-elevation slow, so the page applies it when a drag ends).
+    LightingSettings defaults;
+    static const Prepared defaultSky(
+        ProceduralSky{defaults.directionToSun()}.image(kEnvironmentWidth, kEnvironmentHeight));
+    skyElevation_ = settings.sunElevation;
+    if (settings.sunElevation == defaults.sunElevation) {
+      environment_ = std::make_unique<GpuEnvironment>(layout_, defaultSky.specular, defaultSky.sh);
+      return;
+    }
+    defaults.sunElevation = settings.sunElevation;
+    const Prepared raised(ProceduralSky{defaults.directionToSun()}.image(kEnvironmentWidth, kEnvironmentHeight));
+    environment_ = std::make_unique<GpuEnvironment>(layout_, raised.specular, raised.sh);
     return;
   }
   if (name == "uniform") {
@@ -241,7 +277,9 @@ LightingEffect::LightingEffect(const EffectResources& resources)
     : resources_(resources),
       white_(1, 1, GL_NEAREST, std::vector<std::uint8_t>{255, 255, 255, 255}.data()),
       stencil_(resources.caps.packedDepthStencil),
-      layout_(GpuEnvironment::layoutFor(resources.caps, resources.options.environmentLayout)) {
+      layout_(GpuEnvironment::layoutFor(resources.caps, resources.options.environmentLayout)),
+      lightsPerDraw_(punctualLightsPerDraw(resources.caps.maxFragmentUniformVectors)),
+      environmentBrdfUnit_(TextureUnits::environmentBrdf(resources.caps)) {
   const HdrTexel t = encodeHdr(light_.background);
   backgroundHdr_ = glm::vec4(LinearDepthPacking::channelFromByte(t[0]), LinearDepthPacking::channelFromByte(t[1]),
                              LinearDepthPacking::channelFromByte(t[2]), LinearDepthPacking::channelFromByte(t[3]));
@@ -319,31 +357,30 @@ void LightingEffect::render(const PassContext& context, const Form& form, const 
   const glm::mat3 viewRotation(camera.view);
   const glm::vec3 lightDirection = glm::normalize(viewRotation * settings.directionToSun());
   const glm::mat3 viewToWorld = glm::transpose(viewRotation);  // the view's rotation is orthonormal
+  const glm::mat3 viewToEnvironment = environmentRotation(settings) * viewToWorld;
   const bool fullscreen = form.deferred || form.background;
   const PunctualLightUniforms lights =
-      fullscreen ? PunctualLightUniforms{} : PunctualLightUniforms::of(context.scene().lights(), camera.view);
-  // Units 0 .. 2: the G-buffer or the material's base colour texture, the AO, the base colour or the
-  // metallic-roughness texture; 3, 5, 6 the normal, occlusion and emissive textures; 4 the joints (GpuScene). The
-  // environment takes 7, its BRDF table 8 where vertex textures exist (their contexts have more than GLES 2's 8
-  // combined units in practice), else 4, which the joints then never use.
-  const int kEnvironmentUnit = 7;
-  const int kEnvironmentBrdfUnit = resources_.caps.maxVertexTextureImageUnits > 0 ? 8 : 4;
+      fullscreen ? PunctualLightUniforms{}
+                 : PunctualLightUniforms::of(context.scene().lights(), camera.view, lightsPerDraw_);
+  // The texture units: core/TextureUnits.h.
+  const int kEnvironmentUnit = TextureUnits::kEnvironment;
+  const int kEnvironmentBrdfUnit = environmentBrdfUnit_;
   auto setShading = [&](const Variant& v) {
     if (form.counting) return;
     Program::set(v.lightDirection, lightDirection);
     Program::set(v.lightColor, settings.sunColor * settings.sunIntensity);
-    Program::set(v.viewToWorld, viewToWorld);
+    Program::set(v.viewToEnvironment, viewToEnvironment);
     if (v.lightPositionRange >= 0) {
-      glUniform4fv(v.lightPositionRange, kMaxPunctualLights, &lights.positionRange[0].x);
-      glUniform4fv(v.lightColorSpot, kMaxPunctualLights, &lights.colorSpot[0].x);
-      glUniform4fv(v.lightSpot, kMaxPunctualLights, &lights.spot[0].x);
+      glUniform4fv(v.lightPositionRange, lightsPerDraw_, &lights.positionRange[0].x);
+      glUniform4fv(v.lightColorSpot, lightsPerDraw_, &lights.colorSpot[0].x);
+      glUniform4fv(v.lightSpot, lightsPerDraw_, &lights.spot[0].x);
     }
     Program::set(v.ao, 1);
     Program::set(v.environment, kEnvironmentUnit);
     Program::set(v.environmentBrdf, kEnvironmentBrdfUnit);
     Program::set(v.farHalfExtent, camera.reconstruction.farHalfExtent);
     Program::set(v.farPlane, camera.reconstruction.far);
-    Program::set(v.shIrradiance, environment_->irradiancePolynomial().data(), 9);
+    Program::set(v.shIrradiance, environment_->irradianceUniform().data(), 7);
     Program::set(v.environmentIntensity, settings.environmentIntensity);
     Program::set(v.exposure, exposureScale);
     Program::set(v.lumaInAlpha, lumaInAlpha ? 1.0f : 0.0f);

@@ -75,10 +75,16 @@ struct Lighting {
   glm::vec3 background{0.349f, 0.415f, 0.501f};  // the clear colour under the forward forms' drawn background
 };
 
-// KHR_lights_punctual lights per draw: the forward lighting's loop bound (MAX_PUNCTUAL_LIGHTS), three uniform vectors
-// each. A frame with more lights takes, for every draw, the kMaxPunctualLights that light the camera's surroundings
-// most (the largest intensity / distance^2 at the camera).
+// KHR_lights_punctual lights per draw: the forward lighting's loop bound (MAX_PUNCTUAL_LIGHTS), at most
+// kMaxPunctualLights, as many as the context's fragment uniform vectors hold (LightingEffect::punctualLightsPerDraw).
+// A frame with more lights takes, for every draw, those that light the camera's surroundings most (the largest
+// intensity / distance^2 at the camera).
 inline constexpr int kMaxPunctualLights = 4;
+// The fragment uniform vectors of the heaviest forward lighting program without punctual lights, as GLSL ES 1.00
+// packs them (Appendix A, section 7: gl/UniformPacking.h), and what each light adds (three vec4). tests/
+// test_uniform_limits.cpp packs every program the renderer builds and holds these figures.
+inline constexpr int kForwardLightingVectorsWithoutLights = 15;
+inline constexpr int kVectorsPerPunctualLight = 3;
 
 // The view-space uniforms of the punctual lights (lighting.frag), derived once per frame on the CPU.
 struct PunctualLightUniforms {
@@ -86,7 +92,8 @@ struct PunctualLightUniforms {
   glm::vec4 colorSpot[kMaxPunctualLights]{};      // rgb colour x intensity, a the cone's scale
   glm::vec4 spot[kMaxPunctualLights]{};           // xyz the spot's direction, w the cone's offset
   int count = 0;
-  static PunctualLightUniforms of(const std::vector<PunctualLight>& lights, const glm::mat4& view);
+  // The first maxCount (at most kMaxPunctualLights) by that order.
+  static PunctualLightUniforms of(const std::vector<PunctualLight>& lights, const glm::mat4& view, int maxCount);
 };
 
 class LightingEffect : public Effect {
@@ -94,7 +101,14 @@ class LightingEffect : public Effect {
   using Settings = LightingSettings;
   static constexpr bool kHasSwitch = false;
   static EffectInfo info();
-  static std::vector<ProgramSpec> programSpecs();
+  // Every variant, the forward ones with lightsPerDraw punctual lights.
+  static std::vector<ProgramSpec> programSpecs(int lightsPerDraw = kMaxPunctualLights);
+  // The punctual lights per draw a context of this many fragment uniform vectors holds: 4 from 27 vectors, 0 at
+  // GLES 2's minimum of 16 (the sun and the environment still light the scene).
+  static int punctualLightsPerDraw(int maxFragmentUniformVectors);
+  // World directions to the environment's: for the sky, the turn about +y that puts its sun at lighting.sun-azimuth;
+  // else the identity.
+  static glm::mat3 environmentRotation(const LightingSettings& settings);
 
   explicit LightingEffect(const EffectResources& resources);
   void plan(FramePlanner& planner) override;
@@ -118,13 +132,14 @@ class LightingEffect : public Effect {
     GeometryUniforms geometry;  // the forward forms' (geometry.vert)
     // The full-screen forms' far-plane ray (fullscreen.vert); only its direction is used, so no depth-to-ray scale.
     GLint farHalfExtent, farPlane;
-    GLint projection, lightDirection, lightColor, viewToWorld, ao;
+    GLint projection, lightDirection, lightColor, viewToEnvironment, ao;
     GLint environment, environmentBrdf, shIrradiance, environmentIntensity;
     GLint gbuffer, baseColor, exposure, lumaInAlpha;
     GLint lightPositionRange, lightColorSpot, lightSpot;
   };
   static MaterialKind readKind(const Form& form, MaterialKind kind);
-  static ProgramSpec spec(const Form& form, MaterialKind kind, VertexKind vertex, EnvironmentLayout layout);
+  static ProgramSpec spec(const Form& form, MaterialKind kind, VertexKind vertex, EnvironmentLayout layout,
+                          int lightsPerDraw);
   const Variant& variant(const Form& form, MaterialKind kind, VertexKind vertex);
   // Loads, projects and prefilters the environment the settings name, when it is not the one on the GPU.
   void useEnvironment(const LightingSettings& settings);
@@ -139,7 +154,10 @@ class LightingEffect : public Effect {
   Lighting light_;
   glm::vec4 backgroundHdr_;  // the clear colour's radiance in scene-color's encoding, as clear-colour channels
   EnvironmentLayout layout_;              // where the prefiltered levels live (RendererOptions::environmentLayout)
+  int lightsPerDraw_;                     // punctualLightsPerDraw of the context's fragment uniform vectors
+  int environmentBrdfUnit_;               // TextureUnits::environmentBrdf
   std::string environmentName_;           // the lighting.environment value environment_ holds
+  float skyElevation_ = 0.0f;             // the sun's elevation in the sky environment_ holds
   std::unique_ptr<GpuEnvironment> environment_;
 };
 

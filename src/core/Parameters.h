@@ -51,6 +51,9 @@ struct ParameterInfo {
   std::vector<std::string> choices;  // Switch and Choice, in the order to offer them; for a Number, words accepted
                                      // besides numbers ("auto": the AO estimator's fitted values)
   bool primary = false;              // user interfaces show it up front (the rest under "more")
+  // A change takes a noticeable time (lighting.sun-elevation makes and prefilters the sky again): a slider applies it
+  // when the drag ends, not at every step.
+  bool slow = false;
   std::string effect;                // the effect it belongs to; "" for the frame's own ("preset")
   std::string alias;                 // an older name still accepted everywhere ("radius" for "ao.radius"), or ""
 };
@@ -69,6 +72,11 @@ struct Parameter {
   // Marks it as shown up front by user interfaces.
   Parameter primary() && {
     info.primary = true;
+    return std::move(*this);
+  }
+  // Marks it as slow to change (ParameterInfo::slow).
+  Parameter slow() && {
+    info.slow = true;
     return std::move(*this);
   }
 };

@@ -1,5 +1,6 @@
 #include "core/Renderer.h"
 
+#include <algorithm>
 #include <cstdio>
 
 #include "base/Error.h"
@@ -13,6 +14,17 @@ const gl::GlCaps& requireUsable(const gl::GlCaps& caps) {
   if (!caps.fragmentHighp)
     throw GlError("this GL context has no highp float in fragment shaders (GL_HIGH_FLOAT precision is 0); "
                   "Obscura's 16-bit depth packing needs it");
+  return caps;
+}
+
+// The context's caps with the fragment limits a test simulates (RendererOptions::simulateFragmentLimits) applied, so
+// every effect reads the limits it must keep from one place. The vertex limits are GpuScene's (it sizes skinning).
+gl::GlCaps withSimulatedLimits(gl::GlCaps caps, const RendererOptions& options) {
+  if (const auto& fragment = options.simulateFragmentLimits) {
+    caps.maxFragmentUniformVectors = std::min(caps.maxFragmentUniformVectors, fragment->uniformVectors);
+    caps.maxTextureImageUnits = std::min(caps.maxTextureImageUnits, fragment->textureUnits);
+    caps.maxCombinedTextureImageUnits = std::min(caps.maxCombinedTextureImageUnits, fragment->combinedTextureUnits);
+  }
   return caps;
 }
 
@@ -51,7 +63,7 @@ std::string parseCompare(const std::string& name) {
 }
 
 Renderer::Renderer(const gl::GlCaps& caps, const RendererOptions& options)
-    : caps_(requireUsable(caps)),
+    : caps_(withSimulatedLimits(requireUsable(caps), options)),
       options_(options),
       resources_{caps_, options_, triangle_},
       views_(resources_),

@@ -15,6 +15,14 @@ struct VertexLimits {
   static VertexLimits gles2Minimum() { return {}; }
 };
 
+// Limits of the fragment stage (and the program's combined texture units) to simulate, as VertexLimits does for the
+// vertex stage. gles2Minimum(): 16 uniform vectors, 8 texture units in the fragment stage, 8 in all. They set the
+// punctual lights per draw (LightingEffect::punctualLightsPerDraw) and the texture units (core/TextureUnits.h).
+struct FragmentLimits {
+  int uniformVectors = 16, textureUnits = 8, combinedTextureUnits = 8;
+  static FragmentLimits gles2Minimum() { return {}; }
+};
+
 struct RendererOptions {
   // glGetError after every pass (a GL error throws GlError naming the pass), and strict programs: a uniform a
   // program does not have is an error (gl/Program.h). The tests and the page's debug-gl turn it on.
@@ -35,6 +43,7 @@ struct RendererOptions {
   // textures, else the uniform palette (core/GpuScene.h). A path the context cannot take falls back the same way.
   std::optional<SkinningPath> skinning;
   std::optional<VertexLimits> simulateVertexLimits;  // tests run the GLES 2 minimums on any context
+  std::optional<FragmentLimits> simulateFragmentLimits;
   // The velocity pass draws every instance, not only those that moved (core/VelocityEffect.h): the alternative the
   // benchmark measures, and the tests' check that both give the same vectors.
   bool velocityDrawsEverything = false;

@@ -62,6 +62,9 @@ GlCaps GlCaps::query() {
   glGetIntegerv(GL_MAX_VERTEX_UNIFORM_VECTORS, &caps.maxVertexUniformVectors);
   glGetIntegerv(GL_MAX_VERTEX_ATTRIBS, &caps.maxVertexAttribs);
   glGetIntegerv(GL_MAX_VERTEX_TEXTURE_IMAGE_UNITS, &caps.maxVertexTextureImageUnits);
+  glGetIntegerv(GL_MAX_FRAGMENT_UNIFORM_VECTORS, &caps.maxFragmentUniformVectors);
+  glGetIntegerv(GL_MAX_TEXTURE_IMAGE_UNITS, &caps.maxTextureImageUnits);
+  glGetIntegerv(GL_MAX_COMBINED_TEXTURE_IMAGE_UNITS, &caps.maxCombinedTextureImageUnits);
   glGetIntegerv(GL_MAX_TEXTURE_SIZE, &caps.maxTextureSize);
   glGetIntegerv(GL_MAX_RENDERBUFFER_SIZE, &caps.maxRenderbufferSize);
   GLint viewport[2] = {0, 0};

@@ -27,6 +27,10 @@ struct GlCaps {
   // The vertex stage's limits, which size skinning and morphing (core/GpuScene.h). GLES 2 guarantees 128 uniform
   // vectors, 8 attributes and no texture units.
   GLint maxVertexUniformVectors = 128, maxVertexAttribs = 8, maxVertexTextureImageUnits = 0;
+  // The fragment stage's and the whole program's: they size the lighting's punctual lights per draw and decide which
+  // texture units the lighting pass may take (core/TextureUnits.h). GLES 2 guarantees 16 uniform vectors, 8 texture
+  // units in the fragment stage and 8 in all.
+  GLint maxFragmentUniformVectors = 16, maxTextureImageUnits = 8, maxCombinedTextureImageUnits = 8;
   GLint maxTextureSize = 0, maxRenderbufferSize = 0, maxViewportWidth = 0, maxViewportHeight = 0;
 
   bool has(const std::string& extension) const { return extensions.count(extension) != 0; }

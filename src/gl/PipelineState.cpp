@@ -1,11 +1,21 @@
 #include "gl/PipelineState.h"
 
+#include <algorithm>
+
 #include "gl/GlApi.h"
 
 namespace obscura::gl {
 namespace {
-constexpr int kTextureUnits = 8;  // the GLES 2 minimum for fragment shaders
+// GLES 2's 8 units, and the ninth that the lighting's BRDF table takes where the context has one (core/
+// TextureUnits.h).
+constexpr int kTextureUnits = 9;
 constexpr GLuint kAttributeSlots = 8;  // the GLES 2 minimum (skinned and morphed draws use them all)
+
+int textureUnitsInUse() {
+  GLint combined = 8;
+  glGetIntegerv(GL_MAX_COMBINED_TEXTURE_IMAGE_UNITS, &combined);
+  return std::min(kTextureUnits, static_cast<int>(combined));
+}
 }  // namespace
 
 void restoreBaselineState() {
@@ -25,7 +35,7 @@ void restoreBaselineState() {
   glUseProgram(0);
   glBindBuffer(GL_ARRAY_BUFFER, 0);
   glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, 0);
-  for (int unit = kTextureUnits - 1; unit >= 0; --unit) {
+  for (int unit = textureUnitsInUse() - 1; unit >= 0; --unit) {
     glActiveTexture(static_cast<GLenum>(GL_TEXTURE0 + unit));
     glBindTexture(GL_TEXTURE_2D, 0);
   }
@@ -57,7 +67,7 @@ std::string baselineStateDifferences() {
   expect(value == 0, "an element buffer is bound");
   glGetIntegerv(GL_ACTIVE_TEXTURE, &value);
   expect(value == GL_TEXTURE0, "texture unit 0 not active");
-  for (int unit = 0; unit < kTextureUnits; ++unit) {
+  for (int unit = 0; unit < textureUnitsInUse(); ++unit) {
     glActiveTexture(static_cast<GLenum>(GL_TEXTURE0 + unit));
     glGetIntegerv(GL_TEXTURE_BINDING_2D, &value);
     expect(value == 0, "a texture is bound");

@@ -1,9 +1,9 @@
 #pragma once
 // The baseline GL state every pass starts from and returns to, so no state leaks from one pass into the next:
 // depth test off with writes on, face culling off with CCW front faces, blending off (func ONE, ZERO), scissor test,
-// polygon offset and stencil test off, no program, buffers, textures (units 0..7) or vertex attribute arrays
-// (slots 0..2) bound, texture unit 0 active. Framebuffer and viewport are not part of it: each pass binds its own
-// target. With checkGlErrors, the Renderer checks it after every pass.
+// polygon offset and stencil test off, no program, buffers, textures (units 0..7, and 8 where the context has a
+// ninth) or vertex attribute arrays (slots 0..7) bound, texture unit 0 active. Framebuffer and viewport are not part
+// of it: each pass binds its own target. With checkGlErrors, the Renderer checks it after every pass.
 #include <string>
 
 namespace obscura::gl {

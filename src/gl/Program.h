@@ -42,8 +42,9 @@ class Program {
   static void set(GLint location, const glm::vec2& v) { glUniform2f(location, v.x, v.y); }
   static void set(GLint location, const glm::vec3& v) { glUniform3f(location, v.x, v.y, v.z); }
   static void set(GLint location, const glm::vec4& v) { glUniform4f(location, v.x, v.y, v.z, v.w); }
-  // A uniform array of vec3 (location of its element 0).
+  // A uniform array of vec3 or vec4 (location of its element 0).
   static void set(GLint location, const glm::vec3* v, int count) { glUniform3fv(location, count, &v[0].x); }
+  static void set(GLint location, const glm::vec4* v, int count) { glUniform4fv(location, count, &v[0].x); }
   static void set(GLint location, const glm::mat3& m);
   static void set(GLint location, const glm::mat4& m);
 

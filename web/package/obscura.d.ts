@@ -41,6 +41,8 @@ export interface ParameterInfo {
   default: string;
   /** Shown up front by the demo page. */
   primary: boolean;
+  /** A change takes a noticeable time (lighting.sun-elevation makes the sky again): apply it when a drag ends. */
+  slow: boolean;
   min?: number;
   max?: number;
   /** A switch's or a choice's values; for a number, words it takes besides numbers ('auto'). */

@@ -1,0 +1,32 @@
+#pragma once
+// How many uniform vectors a program's stage takes, counted as GLSL ES 1.00 says a context must count them (Appendix
+// A, section 7, "Counting of Varyings and Uniforms"): the variables are packed into rows of four columns, the widest
+// first, and a stage that does not fit in GL_MAX_{VERTEX,FRAGMENT}_UNIFORM_VECTORS rows may fail to link. Drivers may
+// pack better but need not, so a program meant for every GLES 2 context must fit by this count (tests/
+// test_uniform_limits.cpp holds every program of the renderer to the minimums: 128 vertex and 16 fragment vectors).
+#include <string>
+#include <vector>
+
+#include "gl/GlApi.h"
+
+namespace obscura::gl {
+
+struct UniformShape {
+  GLenum type;        // GL_FLOAT_VEC3, GL_FLOAT_MAT4, ... (samplers take no vectors)
+  int arraySize = 1;  // 1 for a variable that is not an array
+};
+
+// Whether the variables fit in maxRows rows by the appendix's algorithm.
+bool uniformsFit(const std::vector<UniformShape>& uniforms, int maxRows);
+// The fewest rows they fit in.
+int packedUniformRows(const std::vector<UniformShape>& uniforms);
+
+// The active uniforms of a linked program, by stage: a uniform counts in each stage whose source declares it (the
+// sources as they were compiled: ProgramSpec::vertexSource and fragmentSource).
+struct StageUniforms {
+  std::vector<UniformShape> vertex, fragment;
+};
+StageUniforms activeUniformsByStage(GLuint program, const std::string& vertexSource,
+                                    const std::string& fragmentSource);
+
+}  // namespace obscura::gl
