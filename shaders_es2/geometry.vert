@@ -231,8 +231,13 @@ void main() {
   v_texcoord = slotUv(0);
   v_uvMetallicNormal = vec4(slotUv(1), slotUv(2));
   v_uvOcclusionEmissive = vec4(slotUv(3), slotUv(4));
-  // The tangent is a direction on the surface: the model-view's linear part (not the normal matrix) carries it.
-  v_viewTangent = vec4(mat3(u_modelView[0].xyz, u_modelView[1].xyz, u_modelView[2].xyz) * tangent, a_tangent.w);
+  // The tangent is a direction on the surface: the model-view's linear part (not the normal matrix) carries it. A
+  // mirroring transform (a negative determinant: a node scaled by -1 along an axis) reverses the cross product the
+  // fragment stage makes the bitangent from (glTF 2.0: bitangent = cross(normal, tangent.xyz) * w), so w turns with
+  // it and the normal texture's green still follows the texture's v.
+  mat3 linear = mat3(u_modelView[0].xyz, u_modelView[1].xyz, u_modelView[2].xyz);
+  float handedness = dot(linear[0], cross(linear[1], linear[2])) < 0.0 ? -1.0 : 1.0;
+  v_viewTangent = vec4(linear * tangent, a_tangent.w * handedness);
 #else
   v_texcoord = a_texcoord;
 #endif

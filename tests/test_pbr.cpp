@@ -273,6 +273,40 @@ TEST(Pbr, EachTextureSlotIsSeenInTheImage) {
   }
 }
 
+// A node mirrored by a negative scale keeps its normal texture's meaning: the texture's u runs along -x on screen, its
+// v still along +y, so a texel tilted towards +u and +v tilts the shading normal towards -x and +y (geometry.vert
+// turns the bitangent's sign with the transform's determinant; before, the mirrored quad's normal tilted towards -y).
+TEST(Pbr, TheNormalTextureFollowsAMirroredNode) {
+  const int width = kSide, height = kSide, row = height / 2;
+  const glm::dvec3 base(0.8, 0.5, 0.3);
+  const std::array<std::uint8_t, 4> flat = {128, 128, 255, 255}, tilted = {191, 156, 238, 255};
+  Material material;
+  material.baseColorFactor = glm::vec4(glm::vec3(base), 1.0f);
+  material.metallicFactor = 0.0f;
+  material.roughnessFactor = 1.0f;
+  const LightingSettings sun;
+  for (const bool mirrored : {false, true}) {
+    Scene scene = quadScene(material);
+    scene.materials[0].normalTexture = addTwoTexelTexture(scene, flat, tilted);
+    if (mirrored) scene.instances[0].world = glm::scale(glm::mat4(1.0f), glm::vec3(-1.0f, 1.0f, 1.0f));
+    const HdrFrame frame = renderHdr(scene, plainSettings(), width, height);
+    // The tilted texel covers u > 0.5: the right half, or the left one mirrored.
+    const int x = mirrored ? width / 4 : 3 * width / 4;
+    const glm::dvec3 t(channel(tilted[0]) * 2 - 1, channel(tilted[1]) * 2 - 1, channel(tilted[2]) * 2 - 1);
+    const glm::dvec3 n = glm::normalize(glm::dvec3(mirrored ? -t.x : t.x, t.y, t.z));
+    const glm::dvec3 wrongN = glm::normalize(glm::dvec3(mirrored ? -t.x : t.x, -t.y, t.z));
+    const glm::dvec3 p = viewPointOnPlane(x, row, width, height, glm::dvec3(0.0, 0.0, 1.0));
+    const pbr::SurfaceParameters s{base, 0.0, 1.0};
+    const glm::dvec3 expected = expectedColor(p, n, s, sun), wrong = expectedColor(p, wrongN, s, sun);
+    const glm::dvec3 got = frame.at(x, row);
+    std::printf("%s: gpu (%.4f %.4f %.4f) mirror (%.4f %.4f %.4f); with the bitangent reversed (%.4f %.4f %.4f)\n",
+                mirrored ? "mirrored" : "as made", got.r, got.g, got.b, expected.r, expected.g, expected.b, wrong.r,
+                wrong.g, wrong.b);
+    EXPECT_LT(worstRelative(got, expected), 0.01) << (mirrored ? "mirrored" : "as made");
+    EXPECT_GT(worstRelative(wrong, expected), 0.05) << "the bitangent's sign must show for the test to tell";
+  }
+}
+
 // KHR_texture_transform on a slot other than the base colour: an offset of half the texture (REPEAT) swaps the
 // emissive texture's halves, and the emission is then seen on the left.
 TEST(Pbr, TheTextureTransformMovesItsSlot) {
