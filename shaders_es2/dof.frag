@@ -64,23 +64,18 @@ void main() {
 #endif
 
 #if DOF_PASS == 3 || DOF_PASS == 4
-// A run of at most MAX_TILE texels (constant loop bounds, GLSL ES 1.00 Appendix A); the host clamps K to it.
-uniform sampler2D u_source;
-uniform vec2 u_sourceSize;  // texels
-uniform vec2 u_step;        // (1, 0): along rows (pass 3); (0, 1): along columns (pass 4)
-uniform float u_tile;       // K
-uniform vec2 u_targetSize;  // the texels this pass writes
+// Along rows (pass 3), then along columns (pass 4).
+#include "lib/tile_run.glsl"
 #if DOF_PASS == 3
 uniform float u_range;
 #endif
 
 void main() {
-  vec2 first = floor(v_uv * u_targetSize) * (vec2(1.0) + u_step * (u_tile - 1.0)) + 0.5;
+  vec2 first = tileRunFirst();
   float largest = 0.0;  // bytes: the near |C| / range, rounded up
   for (int i = 0; i < MAX_TILE; i++) {
-    vec2 p = first + u_step * float(i);
-    if (float(i) >= u_tile || p.x > u_sourceSize.x || p.y > u_sourceSize.y) break;
-    vec4 texel = texture2D(u_source, p / u_sourceSize);
+    vec4 texel;
+    if (!tileRunTexel(first, i, texel)) break;
 #if DOF_PASS == 3
     float b = ceil(clamp(-unpackCoc(texel, u_range) / u_range, 0.0, 1.0) * 255.0);
 #else

@@ -32,21 +32,16 @@ vec2 halfMotion(vec4 velocityTexel) {
 #endif
 
 #if MOTION_BLUR_PASS == 1 || MOTION_BLUR_PASS == 2
-// A run of at most MAX_TILE texels (constant loop bounds, GLSL ES 1.00 Appendix A); the host clamps K to it.
-uniform sampler2D u_source;
-uniform vec2 u_sourceSize;  // texels
-uniform vec2 u_step;        // (1, 0): along rows (pass 1); (0, 1): along columns (pass 2)
-uniform float u_tile;       // K
-uniform vec2 u_targetSize;  // the texels this pass writes
+// Along rows (pass 1), then along columns (pass 2).
+#include "lib/tile_run.glsl"
 
 void main() {
-  vec2 first = floor(v_uv * u_targetSize) * (vec2(1.0) + u_step * (u_tile - 1.0)) + 0.5;
+  vec2 first = tileRunFirst();
   vec2 largest = vec2(0.0);
   float largestLength = -1.0;
   for (int i = 0; i < MAX_TILE; i++) {
-    vec2 p = first + u_step * float(i);
-    if (float(i) >= u_tile || p.x > u_sourceSize.x || p.y > u_sourceSize.y) break;
-    vec4 texel = texture2D(u_source, p / u_sourceSize);
+    vec4 texel;
+    if (!tileRunTexel(first, i, texel)) break;
 #if MOTION_BLUR_PASS == 1
     vec2 v = halfMotion(texel);
 #else

@@ -164,17 +164,6 @@ DepthOfFieldEffect::DownsampleProgram::DownsampleProgram(gl::Program built)
       halfSize(program.uniform("u_halfSize")),
       range(program.uniform("u_range")) {}
 
-DepthOfFieldEffect::TileProgram::TileProgram(gl::Program built)
-    : program(std::move(built)),
-      source(program.uniform("u_source")),
-      sourceSize(program.uniform("u_sourceSize")),
-      step(program.uniform("u_step")),
-      tile(program.uniform("u_tile")),
-      targetSize(program.uniform("u_targetSize")) {}
-
-DepthOfFieldEffect::NeighborProgram::NeighborProgram(gl::Program built)
-    : program(std::move(built)), tiles(program.uniform("u_tiles")), tilesSize(program.uniform("u_tilesSize")) {}
-
 DepthOfFieldEffect::GatherProgram::GatherProgram(gl::Program built)
     : program(std::move(built)),
       half(program.uniform("u_half")),
@@ -194,13 +183,9 @@ DepthOfFieldEffect::DepthOfFieldEffect(const EffectResources& resources)
     : resources_(resources),
       coc_(resources.build(spec(kCoc))),
       downsample_(resources.build(spec(kDownsample))),
-      tileColumns_(resources.build(spec(kTileColumns))),
-      tiles_(resources.build(spec(kTiles))),
-      neighbors_(resources.build(spec(kNeighbors))),
-      composite_(resources.build(spec(kComposite))) {
-  // Only the first tile pass decodes the 16-bit CoC; the others compare bytes.
-  tileColumns_.range = tileColumns_.program.uniform("u_range");
-}
+      tileMax_(resources, spec(kTileColumns), spec(kTiles), spec(kNeighbors)),
+      columnsRange_(tileMax_.columnsProgram().uniform("u_range")),
+      composite_(resources.build(spec(kComposite))) {}
 
 const DepthOfFieldEffect::GatherProgram& DepthOfFieldEffect::gather(bool nearField, int taps) {
   auto it = gathers_.find({nearField, taps});
@@ -271,50 +256,9 @@ void DepthOfFieldEffect::plan(FramePlanner& planner) {
   };
   planner.add(std::move(down));
 
-  auto tilePass = [this, k, range](const TileProgram& p, const std::string& source, const std::string& target,
-                                   glm::vec2 step) {
-    return [&p, this, source, target, k, range, step](PassContext& context) {
-      context.bindForWriting(target);
-      p.program.use();
-      context.texture(source).bind(0);
-      gl::Program::set(p.source, 0);
-      gl::Program::set(p.sourceSize, glm::vec2(context.size(source)));
-      gl::Program::set(p.step, step);
-      gl::Program::set(p.tile, static_cast<float>(k));
-      gl::Program::set(p.targetSize, glm::vec2(context.size(target)));
-      if (p.range >= 0) gl::Program::set(p.range, range);
-      resources_.triangle.draw();
-      gl::restoreBaselineState();
-    };
-  };
-  PassDecl columns;
-  columns.name = "dof-tiles-h";
-  columns.reads = {"dof-coc"};
-  columns.writes = {{"dof-tile-columns", TargetSize::tileColumns(k), Write::Depth::None, ""}};
-  columns.run = tilePass(tileColumns_, "dof-coc", "dof-tile-columns", {1.0f, 0.0f});
-  planner.add(std::move(columns));
-
-  PassDecl tiles;
-  tiles.name = "dof-tiles";
-  tiles.reads = {"dof-tile-columns"};
-  tiles.writes = {{"dof-tiles", TargetSize::tiles(k), Write::Depth::None, ""}};
-  tiles.run = tilePass(tiles_, "dof-tile-columns", "dof-tiles", {0.0f, 1.0f});
-  planner.add(std::move(tiles));
-
-  PassDecl neighbors;
-  neighbors.name = "dof-neighbors";
-  neighbors.reads = {"dof-tiles"};
-  neighbors.writes = {{"dof-neighbors", TargetSize::tiles(k), Write::Depth::None, ""}};
-  neighbors.run = [this](PassContext& context) {
-    context.bindForWriting("dof-neighbors");
-    neighbors_.program.use();
-    context.texture("dof-tiles").bind(0);
-    gl::Program::set(neighbors_.tiles, 0);
-    gl::Program::set(neighbors_.tilesSize, glm::vec2(context.size("dof-tiles")));
-    resources_.triangle.draw();
-    gl::restoreBaselineState();
-  };
-  planner.add(std::move(neighbors));
+  const glm::vec2 frame(static_cast<float>(camera.width), static_cast<float>(camera.height));
+  tileMax_.plan(planner, "dof", "dof-coc", k, frame,
+                [this, range] { gl::Program::set(columnsRange_, range); });
 
   auto gatherPass = [this, taps, range, maxRadius](bool nearField) {
     return [this, nearField, taps, range, maxRadius](PassContext& context) {

@@ -41,6 +41,7 @@
 #include <glm/vec2.hpp>
 
 #include "core/EffectTable.h"
+#include "core/TileMaxPasses.h"
 
 namespace obscura {
 
@@ -104,16 +105,6 @@ class DepthOfFieldEffect : public Effect {
     gl::Program program;
     GLint color, coc, fullSize, halfSize, range;
   };
-  struct TileProgram {
-    explicit TileProgram(gl::Program built);
-    gl::Program program;
-    GLint source, sourceSize, step, tile, targetSize, range = -1;
-  };
-  struct NeighborProgram {
-    explicit NeighborProgram(gl::Program built);
-    gl::Program program;
-    GLint tiles, tilesSize;
-  };
   struct GatherProgram {
     explicit GatherProgram(gl::Program built);
     gl::Program program;
@@ -129,8 +120,8 @@ class DepthOfFieldEffect : public Effect {
   const EffectResources& resources_;
   CocProgram coc_;
   DownsampleProgram downsample_;
-  TileProgram tileColumns_, tiles_;
-  NeighborProgram neighbors_;
+  TileMaxPasses tileMax_;
+  GLint columnsRange_;  // the first tile pass decodes the 16-bit CoC; the others compare bytes
   CompositeProgram composite_;
   std::map<std::pair<bool, int>, GatherProgram> gathers_;  // by (near, taps)
 };

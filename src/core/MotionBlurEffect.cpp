@@ -75,21 +75,6 @@ std::vector<ProgramSpec> MotionBlurEffect::programSpecs() {
   return specs;
 }
 
-MotionBlurEffect::TileProgram::TileProgram(gl::Program built)
-    : program(std::move(built)),
-      source(program.uniform("u_source")),
-      sourceSize(program.uniform("u_sourceSize")),
-      step(program.uniform("u_step")),
-      tile(program.uniform("u_tile")),
-      targetSize(program.uniform("u_targetSize")),
-      frameSize(program.uniform("u_frameSize")) {}
-
-MotionBlurEffect::NeighborProgram::NeighborProgram(gl::Program built)
-    : program(std::move(built)),
-      tiles(program.uniform("u_tiles")),
-      tilesSize(program.uniform("u_tilesSize")),
-      frameSize(program.uniform("u_frameSize")) {}
-
 MotionBlurEffect::ReconstructProgram::ReconstructProgram(gl::Program built)
     : program(std::move(built)),
       color(program.uniform("u_color")),
@@ -107,13 +92,9 @@ MotionBlurEffect::ReconstructProgram::ReconstructProgram(gl::Program built)
 
 MotionBlurEffect::MotionBlurEffect(const EffectResources& resources)
     : resources_(resources),
-      tileColumns_(resources.build(spec(1))),
-      tiles_(resources.build(spec(2))),
-      neighbors_(resources.build(spec(3))) {
-  // Only the first tile pass turns velocities into half-vectors.
-  tileColumns_.halfExposure = tileColumns_.program.uniform("u_halfExposure");
-  tileColumns_.maxRadius = tileColumns_.program.uniform("u_maxRadius");
-}
+      tileMax_(resources, spec(1), spec(2), spec(3)),
+      columnsHalfExposure_(tileMax_.columnsProgram().uniform("u_halfExposure")),
+      columnsMaxRadius_(tileMax_.columnsProgram().uniform("u_maxRadius")) {}
 
 const MotionBlurEffect::ReconstructProgram& MotionBlurEffect::reconstruction(int samples) {
   auto it = reconstructions_.find(samples);
@@ -133,56 +114,10 @@ void MotionBlurEffect::plan(FramePlanner& planner) {
   const float maxRadius = static_cast<float>(k);
   const float tile = static_cast<float>(k);
 
-  auto tilePass = [this, frame, tile, halfExposure, maxRadius](const TileProgram& p, const std::string& source,
-                                                               const std::string& target, glm::vec2 step) {
-    return [&p, this, source, target, frame, tile, step, halfExposure, maxRadius](PassContext& context) {
-      context.bindForWriting(target);
-      p.program.use();
-      context.texture(source).bind(0);
-      gl::Program::set(p.source, 0);
-      gl::Program::set(p.sourceSize, glm::vec2(context.size(source)));
-      gl::Program::set(p.step, step);
-      gl::Program::set(p.tile, tile);
-      gl::Program::set(p.targetSize, glm::vec2(context.size(target)));
-      gl::Program::set(p.frameSize, frame);
-      if (p.halfExposure >= 0) {
-        gl::Program::set(p.halfExposure, halfExposure);
-        gl::Program::set(p.maxRadius, maxRadius);
-      }
-      resources_.triangle.draw();
-      gl::restoreBaselineState();
-    };
-  };
-
-  PassDecl columns;
-  columns.name = "motion-tiles-h";
-  columns.reads = {"velocity"};
-  columns.writes = {{"motion-tile-columns", TargetSize::tileColumns(k), Write::Depth::None, ""}};
-  columns.run = tilePass(tileColumns_, "velocity", "motion-tile-columns", {1.0f, 0.0f});
-  planner.add(std::move(columns));
-
-  PassDecl tiles;
-  tiles.name = "motion-tiles";
-  tiles.reads = {"motion-tile-columns"};
-  tiles.writes = {{"motion-tiles", TargetSize::tiles(k), Write::Depth::None, ""}};
-  tiles.run = tilePass(tiles_, "motion-tile-columns", "motion-tiles", {0.0f, 1.0f});
-  planner.add(std::move(tiles));
-
-  PassDecl neighbors;
-  neighbors.name = "motion-neighbors";
-  neighbors.reads = {"motion-tiles"};
-  neighbors.writes = {{"motion-neighbors", TargetSize::tiles(k), Write::Depth::None, ""}};
-  neighbors.run = [this, frame](PassContext& context) {
-    context.bindForWriting("motion-neighbors");
-    neighbors_.program.use();
-    context.texture("motion-tiles").bind(0);
-    gl::Program::set(neighbors_.tiles, 0);
-    gl::Program::set(neighbors_.tilesSize, glm::vec2(context.size("motion-tiles")));
-    gl::Program::set(neighbors_.frameSize, frame);
-    resources_.triangle.draw();
-    gl::restoreBaselineState();
-  };
-  planner.add(std::move(neighbors));
+  tileMax_.plan(planner, "motion", "velocity", k, frame, [this, halfExposure, maxRadius] {
+    gl::Program::set(columnsHalfExposure_, halfExposure);
+    gl::Program::set(columnsMaxRadius_, maxRadius);
+  });
 
   if (!settings.enabled) return;  // a debug view of the tiles
   PassDecl blur;

@@ -30,6 +30,7 @@
 #include <vector>
 
 #include "core/EffectTable.h"
+#include "core/TileMaxPasses.h"
 
 namespace obscura {
 
@@ -58,16 +59,6 @@ class MotionBlurEffect : public Effect {
   void plan(FramePlanner& planner) override;
 
  private:
-  struct TileProgram {
-    explicit TileProgram(gl::Program built);
-    gl::Program program;
-    GLint source, sourceSize, step, tile, targetSize, frameSize, halfExposure = -1, maxRadius = -1;
-  };
-  struct NeighborProgram {
-    explicit NeighborProgram(gl::Program built);
-    gl::Program program;
-    GLint tiles, tilesSize, frameSize;
-  };
   struct ReconstructProgram {
     explicit ReconstructProgram(gl::Program built);
     gl::Program program;
@@ -77,8 +68,8 @@ class MotionBlurEffect : public Effect {
   const ReconstructProgram& reconstruction(int samples);
 
   const EffectResources& resources_;
-  TileProgram tileColumns_, tiles_;
-  NeighborProgram neighbors_;
+  TileMaxPasses tileMax_;
+  GLint columnsHalfExposure_, columnsMaxRadius_;  // the first tile pass turns velocities into half-vectors
   std::map<int, ReconstructProgram> reconstructions_;  // by sample count
 };
 
