@@ -23,6 +23,7 @@
 #include <glm/gtc/matrix_transform.hpp>
 #include <tiny_gltf.h>
 
+#include "GltfMeshWriter.h"
 #include "scene/Primitives.h"
 #include "scene/Scene.h"
 
@@ -85,32 +86,6 @@ std::vector<unsigned char> emissiveGrid() {  // sRGB: a bright grid of lines on 
   return rgba;
 }
 
-// --- A glTF 2.0 writer for positions, normals, texture coordinates and indices ---
-template <typename T>
-int appendView(tinygltf::Model& model, const std::vector<T>& data, int target) {
-  std::vector<unsigned char>& buffer = model.buffers[0].data;
-  while (buffer.size() % 4) buffer.push_back(0);
-  tinygltf::BufferView view;
-  view.buffer = 0;
-  view.byteOffset = buffer.size();
-  view.byteLength = data.size() * sizeof(T);
-  view.target = target;
-  const auto* bytes = reinterpret_cast<const unsigned char*>(data.data());
-  buffer.insert(buffer.end(), bytes, bytes + view.byteLength);
-  model.bufferViews.push_back(view);
-  return static_cast<int>(model.bufferViews.size()) - 1;
-}
-
-int appendAccessor(tinygltf::Model& model, int view, int componentType, int type, size_t count) {
-  tinygltf::Accessor accessor;
-  accessor.bufferView = view;
-  accessor.componentType = componentType;
-  accessor.type = type;
-  accessor.count = count;
-  model.accessors.push_back(accessor);
-  return static_cast<int>(model.accessors.size()) - 1;
-}
-
 struct Writer {
   tinygltf::Model model;
   tinygltf::Scene root;
@@ -149,31 +124,7 @@ struct Writer {
   }
 
   void mesh(const Mesh& mesh, int material, const glm::mat4& world) {
-    tinygltf::Primitive primitive;
-    const int positions = appendAccessor(model, appendView(model, mesh.positions, TINYGLTF_TARGET_ARRAY_BUFFER),
-                                         TINYGLTF_COMPONENT_TYPE_FLOAT, TINYGLTF_TYPE_VEC3, mesh.positions.size());
-    Bounds bounds;
-    for (const glm::vec3& p : mesh.positions) bounds.add(p);
-    model.accessors[static_cast<size_t>(positions)].minValues = {bounds.min.x, bounds.min.y, bounds.min.z};
-    model.accessors[static_cast<size_t>(positions)].maxValues = {bounds.max.x, bounds.max.y, bounds.max.z};
-    primitive.attributes["POSITION"] = positions;
-    primitive.attributes["NORMAL"] =
-        appendAccessor(model, appendView(model, mesh.normals, TINYGLTF_TARGET_ARRAY_BUFFER),
-                       TINYGLTF_COMPONENT_TYPE_FLOAT, TINYGLTF_TYPE_VEC3, mesh.normals.size());
-    primitive.attributes["TEXCOORD_0"] =
-        appendAccessor(model, appendView(model, mesh.texcoords, TINYGLTF_TARGET_ARRAY_BUFFER),
-                       TINYGLTF_COMPONENT_TYPE_FLOAT, TINYGLTF_TYPE_VEC2, mesh.texcoords.size());
-    primitive.indices = appendAccessor(model, appendView(model, mesh.indices, TINYGLTF_TARGET_ELEMENT_ARRAY_BUFFER),
-                                       TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT, TINYGLTF_TYPE_SCALAR, mesh.indices.size());
-    primitive.material = material;
-    primitive.mode = TINYGLTF_MODE_TRIANGLES;
-    tinygltf::Mesh gltfMesh;
-    gltfMesh.primitives.push_back(primitive);
-    model.meshes.push_back(gltfMesh);
-    tinygltf::Node node;
-    node.mesh = static_cast<int>(model.meshes.size()) - 1;
-    node.matrix.assign(&world[0][0], &world[0][0] + 16);
-    addNode(node);
+    root.nodes.push_back(tools::appendMeshNode(model, mesh, material, world, true));
   }
 
   void light(tinygltf::Light light, const glm::mat4& world) {

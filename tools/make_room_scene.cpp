@@ -17,6 +17,7 @@
 #include <glm/gtc/matrix_transform.hpp>
 #include <tiny_gltf.h>
 
+#include "GltfMeshWriter.h"
 #include "scene/Primitives.h"
 #include "scene/Scene.h"
 
@@ -166,32 +167,7 @@ Scene buildRoom() {
   return b.scene;
 }
 
-// --- A minimal glTF 2.0 writer for positions, normals, indices and base colours ---
-template <typename T>
-int appendView(tinygltf::Model& model, const std::vector<T>& data, int target) {
-  std::vector<unsigned char>& buffer = model.buffers[0].data;
-  while (buffer.size() % 4) buffer.push_back(0);
-  tinygltf::BufferView view;
-  view.buffer = 0;
-  view.byteOffset = buffer.size();
-  view.byteLength = data.size() * sizeof(T);
-  view.target = target;
-  const auto* bytes = reinterpret_cast<const unsigned char*>(data.data());
-  buffer.insert(buffer.end(), bytes, bytes + view.byteLength);
-  model.bufferViews.push_back(view);
-  return static_cast<int>(model.bufferViews.size()) - 1;
-}
-
-int appendAccessor(tinygltf::Model& model, int view, int componentType, int type, size_t count) {
-  tinygltf::Accessor accessor;
-  accessor.bufferView = view;
-  accessor.componentType = componentType;
-  accessor.type = type;
-  accessor.count = count;
-  model.accessors.push_back(accessor);
-  return static_cast<int>(model.accessors.size()) - 1;
-}
-
+// --- The room as glTF 2.0: positions, normals, indices and base colours ---
 tinygltf::Model toGltf(const Scene& scene) {
   tinygltf::Model model;
   model.asset.version = "2.0";
@@ -208,30 +184,7 @@ tinygltf::Model toGltf(const Scene& scene) {
   tinygltf::Scene root;
   for (const Instance& instance : scene.instances) {
     const Mesh& mesh = scene.meshes[static_cast<size_t>(instance.mesh)];
-    tinygltf::Primitive primitive;
-    const int positions = appendAccessor(model, appendView(model, mesh.positions, TINYGLTF_TARGET_ARRAY_BUFFER),
-                                         TINYGLTF_COMPONENT_TYPE_FLOAT, TINYGLTF_TYPE_VEC3, mesh.positions.size());
-    Bounds bounds;
-    for (const glm::vec3& p : mesh.positions) bounds.add(p);
-    model.accessors[static_cast<size_t>(positions)].minValues = {bounds.min.x, bounds.min.y, bounds.min.z};
-    model.accessors[static_cast<size_t>(positions)].maxValues = {bounds.max.x, bounds.max.y, bounds.max.z};
-    primitive.attributes["POSITION"] = positions;
-    primitive.attributes["NORMAL"] =
-        appendAccessor(model, appendView(model, mesh.normals, TINYGLTF_TARGET_ARRAY_BUFFER),
-                       TINYGLTF_COMPONENT_TYPE_FLOAT, TINYGLTF_TYPE_VEC3, mesh.normals.size());
-    primitive.indices = appendAccessor(model, appendView(model, mesh.indices, TINYGLTF_TARGET_ELEMENT_ARRAY_BUFFER),
-                                       TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT, TINYGLTF_TYPE_SCALAR, mesh.indices.size());
-    primitive.material = mesh.material;
-    primitive.mode = TINYGLTF_MODE_TRIANGLES;
-    tinygltf::Mesh gltfMesh;
-    gltfMesh.primitives.push_back(primitive);
-    model.meshes.push_back(gltfMesh);
-    tinygltf::Node node;
-    node.mesh = static_cast<int>(model.meshes.size()) - 1;
-    const float* m = &instance.world[0][0];
-    node.matrix.assign(m, m + 16);
-    model.nodes.push_back(node);
-    root.nodes.push_back(static_cast<int>(model.nodes.size()) - 1);
+    root.nodes.push_back(tools::appendMeshNode(model, mesh, mesh.material, instance.world, false));
   }
   model.scenes.push_back(root);
   model.defaultScene = 0;
