@@ -116,6 +116,19 @@ Scene sceneOf(std::vector<Mesh> meshes) {
   return scene;
 }
 
+int addMaterial(Scene& scene, const glm::vec3& color) {
+  Material material;
+  material.baseColorFactor = glm::vec4(color, 1.0f);
+  scene.materials.push_back(material);
+  return static_cast<int>(scene.materials.size()) - 1;
+}
+
+void addStill(Scene& scene, Mesh mesh, const glm::vec3& color) {
+  mesh.material = addMaterial(scene, color);
+  scene.meshes.push_back(std::move(mesh));
+  scene.instances.push_back({static_cast<int>(scene.meshes.size()) - 1, glm::mat4(1.0f), -1, -1});
+}
+
 int addSlidingInstance(Scene& scene, int mesh, const glm::vec3& from, const glm::vec3& to, float seconds) {
   scene.nodes.push_back(Node{});
   const int node = static_cast<int>(scene.nodes.size()) - 1;

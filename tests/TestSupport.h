@@ -57,6 +57,11 @@ Scene sceneOf(std::vector<Mesh> meshes);
 // A rectangle in the plane through `origin` spanned by `u` and `v` (normal u x v), one quad.
 Mesh makeRectangle(const glm::vec3& origin, const glm::vec3& u, const glm::vec3& v);
 
+// Adds a material of base colour `color` (opaque, the other factors at glTF's defaults); returns its index.
+int addMaterial(Scene& scene, const glm::vec3& color);
+// Adds `mesh` in a material of that colour, and an instance of it where its vertices put it (no node: still).
+void addStill(Scene& scene, Mesh mesh, const glm::vec3& color);
+
 // Adds an instance of `mesh` (placed by its own vertices) on a new node that a LINEAR translation, in animation 0
 // (made if the scene has none), moves from `from` to `to` over `seconds`. Returns the instance's index.
 int addSlidingInstance(Scene& scene, int mesh, const glm::vec3& from, const glm::vec3& to, float seconds);

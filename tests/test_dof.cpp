@@ -91,19 +91,6 @@ void main() {
   }
 }
 
-int addMaterial(Scene& scene, const glm::vec3& color) {
-  Material material;
-  material.baseColorFactor = glm::vec4(color, 1.0f);
-  scene.materials.push_back(material);
-  return static_cast<int>(scene.materials.size()) - 1;
-}
-
-void addStill(Scene& scene, Mesh mesh, const glm::vec3& color) {
-  mesh.material = addMaterial(scene, color);
-  scene.meshes.push_back(std::move(mesh));
-  scene.instances.push_back({static_cast<int>(scene.meshes.size()) - 1, glm::mat4(1.0f), -1, -1});
-}
-
 // A checkerboard facing +z at depth `z`, from (x0, y0) to (x1, y1) in squares of `side`, in two colours.
 void addChecker(Scene& scene, float z, float x0, float y0, float x1, float y1, float side, const glm::vec3& a,
                 const glm::vec3& b) {
@@ -114,8 +101,8 @@ void addChecker(Scene& scene, float z, float x0, float y0, float x1, float y1, f
       const float x = x0 + side * static_cast<float>(i), y = y0 + side * static_cast<float>(j);
       addQuad(meshes[(i + j) % 2], {x, y, z}, {x + side, y, z}, {x + side, y + side, z}, {x, y + side, z});
     }
-  addStill(scene, std::move(meshes[0]), a);
-  addStill(scene, std::move(meshes[1]), b);
+  test::addStill(scene, std::move(meshes[0]), a);
+  test::addStill(scene, std::move(meshes[1]), b);
 }
 
 // Camera at the origin looking down -z. Far: a checkered wall at 12 m. In focus: a checkered panel at 4 m around the
@@ -124,7 +111,7 @@ Scene lensScene() {
   Scene scene;
   addChecker(scene, -12.0f, -8.0f, -5.0f, 8.0f, 5.0f, 0.5f, {0.9f, 0.85f, 0.7f}, {0.15f, 0.3f, 0.5f});
   addChecker(scene, -kFocus, -0.6f, -0.5f, 0.6f, 0.5f, 0.1f, {0.9f, 0.2f, 0.15f}, {0.95f, 0.95f, 0.95f});
-  addStill(scene, makeBox({0.05f, -1.0f, -1.55f}, {0.15f, 1.0f, -1.45f}), {0.1f, 0.45f, 0.15f});
+  test::addStill(scene, makeBox({0.05f, -1.0f, -1.55f}, {0.15f, 1.0f, -1.45f}), {0.1f, 0.45f, 0.15f});
   return scene;
 }
 

@@ -37,20 +37,6 @@ RenderSettings blurSettings(bool blur) {
   return settings;
 }
 
-int addMaterial(Scene& scene, const glm::vec3& color) {
-  Material material;
-  material.baseColorFactor = glm::vec4(color, 1.0f);
-  scene.materials.push_back(material);
-  return static_cast<int>(scene.materials.size()) - 1;
-}
-
-// A still mesh of the given colour.
-void addStill(Scene& scene, Mesh mesh, const glm::vec3& color) {
-  mesh.material = addMaterial(scene, color);
-  scene.meshes.push_back(std::move(mesh));
-  scene.instances.push_back({static_cast<int>(scene.meshes.size()) - 1, glm::mat4(1.0f), -1, -1});
-}
-
 // A mesh on a node of its own at `at`, which `sampler` drives along `path` (in animation 0).
 void addAnimated(Scene& scene, Mesh mesh, const glm::vec3& color, const glm::vec3& at, AnimationSampler sampler,
                  AnimationPath path) {
@@ -58,7 +44,7 @@ void addAnimated(Scene& scene, Mesh mesh, const glm::vec3& color, const glm::vec
   node.translation = at;
   scene.nodes.push_back(node);
   const int index = static_cast<int>(scene.nodes.size()) - 1;
-  mesh.material = addMaterial(scene, color);
+  mesh.material = test::addMaterial(scene, color);
   scene.meshes.push_back(std::move(mesh));
   scene.instances.push_back(
       {static_cast<int>(scene.meshes.size()) - 1, glm::translate(glm::mat4(1.0f), at), index, -1});
@@ -105,7 +91,7 @@ std::function<Camera(double)> turning(const Camera& start, double radiansPerSeco
 
 Scene floorScene() {
   Scene scene;
-  addStill(scene, makeBox({-20.0f, -0.1f, -20.0f}, {20.0f, 0.0f, 20.0f}, 1.0f), {0.8f, 0.8f, 0.8f});
+  test::addStill(scene, makeBox({-20.0f, -0.1f, -20.0f}, {20.0f, 0.0f, 20.0f}, 1.0f), {0.8f, 0.8f, 0.8f});
   return scene;
 }
 
@@ -277,8 +263,8 @@ TEST(MotionBlur, AStillForegroundOverAMovingBackgroundKeepsItsSilhouette) {
                 slide({x, 0.0f, -4.0f}, {x + 12.0f, 0.0f, -4.0f}), AnimationPath::Translation);
   }
   Scene foreground;
-  addStill(foreground, makeBox({-0.8f, 0.5f, -0.5f}, {0.8f, 2.0f, 0.5f}), {0.9f, 0.8f, 0.3f});
-  addStill(scene, foreground.meshes.front(), {0.9f, 0.8f, 0.3f});
+  test::addStill(foreground, makeBox({-0.8f, 0.5f, -0.5f}, {0.8f, 2.0f, 0.5f}), {0.9f, 0.8f, 0.3f});
+  test::addStill(scene, foreground.meshes.front(), {0.9f, 0.8f, 0.3f});
   const Camera camera = test::makeCamera({0.0f, 1.5f, 6.0f}, {0.0f, 1.5f, 0.0f}, kWidth, kHeight);
   Renderer renderer = test::makeRenderer();
   renderer.setScene(foreground);
@@ -315,7 +301,7 @@ TEST(MotionBlur, AStillForegroundOverAMovingBackgroundKeepsItsSilhouette) {
 // whose taps step over it, or whose tiles miss it, would lose it).
 TEST(MotionBlur, AThinFastObjectDoesNotVanish) {
   Scene background = floorScene();
-  addStill(background, makeBox({-6.0f, 0.0f, -3.2f}, {6.0f, 4.0f, -3.0f}), {0.7f, 0.7f, 0.7f});
+  test::addStill(background, makeBox({-6.0f, 0.0f, -3.2f}, {6.0f, 4.0f, -3.0f}), {0.7f, 0.7f, 0.7f});
   Scene scene = background;
   // 4 cm wide, 6 m a second across: 20 times its width per frame at 30 fps.
   addAnimated(scene, makeBox({-0.02f, 0.0f, -0.02f}, {0.02f, 3.0f, 0.02f}), {0.05f, 0.05f, 0.05f},
