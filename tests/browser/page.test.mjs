@@ -164,6 +164,30 @@ describe('demo page', () => {
     assert.ok(luminanceStats(after).mean < luminanceStats(before).mean, 'a larger radius finds more occluders');
   });
 
+  test("a slow parameter (the sun's elevation: the sky is made again) is applied when its slider is released",
+    { timeout: 120000 }, async () => {
+      const info = await page.evaluate(
+        () => window.obscura.parameters.find((p) => p.name === 'lighting.sun-elevation'));
+      assert.equal(info.slow, true);
+      assert.equal(await page.evaluate(
+        () => window.obscura.parameters.find((p) => p.name === 'lighting.sun-azimuth').slow), false);
+      const before = await page.evaluate(() => window.obscura.get('lighting.sun-elevation'));
+      const slider = page.locator('#param-lighting-sun-elevation');
+      // A drag: 'input' events only. The number box follows; the renderer keeps the old value.
+      await slider.evaluate((s) => {
+        s.value = String(Number(s.value) - 200);
+        s.dispatchEvent(new Event('input', { bubbles: true }));
+      });
+      const shown = Number(await page.locator('#param-lighting-sun-elevation + input').inputValue());
+      assert.notEqual(shown, Number(before));
+      assert.equal(await page.evaluate(() => window.obscura.get('lighting.sun-elevation')), before);
+      // The release: 'change'.
+      await slider.evaluate((s) => s.dispatchEvent(new Event('change', { bubbles: true })));
+      assert.equal(Number(await page.evaluate(() => window.obscura.get('lighting.sun-elevation'))), shown);
+      await page.evaluate((value) => window.obscura.set('lighting.sun-elevation', value), before);
+      assert.deepEqual(page.errors, []);
+    });
+
   test('keyboard shortcuts are listed and act', { timeout: 120000 }, async () => {
     const listed = await page.locator('#shortcuts td:first-child').allTextContents();
     // As a person reads them: 'space', 'left arrow' (keyBindings' labels), the others as typed.
