@@ -107,7 +107,9 @@ float cylinder(float distance, float len) { return 1.0 - smoothstep(0.95 * len, 
 
 // Per-pixel jitter of the sample positions (Jimenez 2014, interleaved gradient noise): it turns the banding of S
 // fixed taps into noise (paper sec. 4, "we jitter the sample positions").
-float interleavedGradientNoise(vec2 pixel) { return fract(52.9829189 * fract(dot(pixel, vec2(0.06711056, 0.00583715)))); }
+float interleavedGradientNoise(vec2 pixel) {
+  return fract(52.9829189 * fract(dot(pixel, vec2(0.06711056, 0.00583715))));
+}
 
 void main() {
   vec2 x = floor(v_uv * u_frameSize) + 0.5;

@@ -3,8 +3,9 @@
 //     temporal supersampling"), written into the history target (lib/hdr.glsl's encoding: the measured choice,
 //     TaaEffect.h). The history is fetched at the position the velocity of the nearest surface in the 3x3
 //     neighbourhood says it had, rejected where the previous frame's depth there lies outside the 3x3's depth range
-//     moved by the camera's motion (disocclusion), and clipped in YCoCg towards the neighbourhood's mean onto the box mean +- gamma sigma (Salvi's
-//     variance clipping). Everything is averaged in Karis' reversible tone-mapped space (lib/taa.glsl).
+//     moved by the camera's motion (disocclusion), and clipped in YCoCg towards the neighbourhood's mean onto the
+//     box mean +- gamma sigma (Salvi's variance clipping). Everything is averaged in Karis' reversible tone-mapped
+//     space (lib/taa.glsl).
 //   1 output: the resolved colour into "scene-color", with optional sharpening (TAA_SHARPEN: an unsharp mask of the
 //     four neighbours, in the tone-mapped space, so that the history itself is never sharpened again).
 //   2 depth: the G-buffer (16-bit linear depth in BA) copied into the depth history, next frame's "previous depth".

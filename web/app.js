@@ -374,7 +374,8 @@ function showStats(obscura) {
       const ms = s.passMs[pass];
       if (ms !== null) total += ms;
       const doneBy = s.passesDoneBy[pass];
-      lines.push(`  ${pass.padEnd(10)} ${ms === null ? '   -' : ms.toFixed(2)} ms${doneBy ? ` (done by ${doneBy})` : ''}`);
+      const by = doneBy ? ` (done by ${doneBy})` : '';
+      lines.push(`  ${pass.padEnd(10)} ${ms === null ? '   -' : ms.toFixed(2)} ms${by}`);
     }
     lines.push(`  ${'total'.padEnd(10)} ${total.toFixed(2)} ms`);
   } else {

@@ -340,9 +340,9 @@ export class Obscura extends EventTarget {
   //  (EXT_disjoint_timer_query in use), passMs ({gbuffer: ms, ...} of a recent frame, read a few animation frames
   //  after it, drawn or not; null per pass not run; null without timer queries or before the first result),
   //  passesRun (the passes the last frame ran, in order), passesDoneBy ({tonemap: 'lighting'}: passes whose work
-  //  another pass did in the last frame, so they did not run and have no time of their own), history ({frames: consecutive frames the history
-  //  survived, drops: how often it was dropped (resize, scene change), frameIndex}: starts afresh after a context
-  //  loss), pooledTargets (render targets the frame keeps), contextLost, contextRestores, glObjects: {textures,
+  //  another pass did in the last frame, so they did not run and have no time of their own), history ({frames:
+  //  consecutive frames the history survived, drops: how often it was dropped (resize, scene change), frameIndex}:
+  //  starts afresh after a context loss), pooledTargets (render targets the frame keeps), contextLost, contextRestores, glObjects: {textures,
   //  buffers, ...} (live GL objects), error (why frames stopped, or '')}
   stats() { return this.json('obscura_stats'); }
 

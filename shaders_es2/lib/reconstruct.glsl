@@ -8,4 +8,6 @@ uniform vec2 u_depthToRay;      // (1 - near/far, near/far)
 vec3 farPlaneRay(vec2 uv) { return vec3((uv * 2.0 - 1.0) * u_farHalfExtent, -u_farPlane); }
 
 // One multiply-add per pixel, then a vec3 scale.
-vec3 viewPositionOnRay(vec3 farRay, float linearDepth) { return farRay * (linearDepth * u_depthToRay.x + u_depthToRay.y); }
+vec3 viewPositionOnRay(vec3 farRay, float linearDepth) {
+  return farRay * (linearDepth * u_depthToRay.x + u_depthToRay.y);
+}

@@ -338,9 +338,9 @@ EMSCRIPTEN_KEEPALIVE const char* obscura_set_hierarchy_storage(const char* name)
   return returned(used);
 }
 
-// Forces where the prefiltered environment's levels live ("mipchain", read with EXT_shader_texture_lod; "atlas"; "auto":
-// the mip chain where the context has the extension) and returns the layout now in use; the page's tests compare
-// them on WebGL 1.
+// Forces where the prefiltered environment's levels live ("mipchain", read with EXT_shader_texture_lod; "atlas";
+// "auto": the mip chain where the context has the extension) and returns the layout now in use; the page's tests
+// compare them on WebGL 1.
 EMSCRIPTEN_KEEPALIVE const char* obscura_set_environment_layout(const char* name) {
   std::string used;
   if (!attempt([&] {

@@ -13,8 +13,8 @@
 // draws only where the stencil is 1. The image is the same as one full draw's (tests/test_pipeline.cpp). What it
 // saves is the part of FXAA after its early exit, which a GPU skips where a whole wavefront exits, but which CPU
 // rasterisers pay for far more often (SwiftShader runs both sides of every branch, masked): llvmpipe's FXAA pass went
-// from about 40 to 13 ms at 1280x720. On SwiftShader the page's frame was no faster (WebCanvas.cpp), so the canvas has no stencil and the
-// pass there is one draw.
+// from about 40 to 13 ms at 1280x720. On SwiftShader the page's frame was no faster (WebCanvas.cpp), so the canvas
+// has no stencil and the pass there is one draw.
 #include <map>
 #include <vector>
 

@@ -52,7 +52,8 @@ auto naming(const std::string& written, const ParameterBinding& b, Body&& body) 
     // The effects' own messages start with the local name ("radius: ..."): show the name that was used.
     const std::string local = b.info.name == b.info.effect ? b.info.effect
                                                            : b.info.name.substr(b.info.effect.size() + 1);
-    if (written != local && message.rfind(local + ":", 0) == 0) throw InputError(written + message.substr(local.size()));
+    if (written != local && message.rfind(local + ":", 0) == 0)
+      throw InputError(written + message.substr(local.size()));
     throw;
   }
 }

@@ -9,14 +9,18 @@
 namespace obscura {
 namespace {
 
-ProgramSpec resolveSpec() { return {"taa[resolve]", "fullscreen.vert", "taa.frag", {{"TAA_STAGE", "0"}, {"FAR_RAY", "1"}}}; }
+ProgramSpec resolveSpec() {
+  return {"taa[resolve]", "fullscreen.vert", "taa.frag", {{"TAA_STAGE", "0"}, {"FAR_RAY", "1"}}};
+}
 ProgramSpec outputSpec(bool sharpen) {
   return {std::string("taa[output") + (sharpen ? ",sharpen" : "") + "]",
           "fullscreen.vert",
           "taa.frag",
           {{"TAA_STAGE", "1"}, {"TAA_SHARPEN", sharpen ? "1" : "0"}, {"FAR_RAY", "0"}}};
 }
-ProgramSpec depthSpec() { return {"taa[depth]", "fullscreen.vert", "taa.frag", {{"TAA_STAGE", "2"}, {"FAR_RAY", "0"}}}; }
+ProgramSpec depthSpec() {
+  return {"taa[depth]", "fullscreen.vert", "taa.frag", {{"TAA_STAGE", "2"}, {"FAR_RAY", "0"}}};
+}
 
 }  // namespace
 
@@ -41,7 +45,8 @@ float taaFeedback(float feedback, int historyFrames) {
   if (historyFrames <= 0) return 0.0f;
   // The running mean until the 16 jitter phases are in (the n-th frame weighs 1 / (n + 1)): a still image is their
   // exact mean after 16 frames; from then on the exponential history of weight `feedback`.
-  if (historyFrames < kTaaJitterPhases) return static_cast<float>(historyFrames) / static_cast<float>(historyFrames + 1);
+  if (historyFrames < kTaaJitterPhases)
+    return static_cast<float>(historyFrames) / static_cast<float>(historyFrames + 1);
   return feedback;
 }
 
