@@ -466,7 +466,7 @@ void GpuScene::draw(const glm::mat4& view, const ProgramChoice& choose, const Dr
         uniforms = &choose(materialKind, vertexKind);
         programMaterial = materialKind;
         programVertex = vertexKind;
-        Program::set(uniforms->baseColorTexture, 0);
+        Program::set(uniforms->baseColorTexture, TextureUnits::kBaseColor);
         Program::set(uniforms->jointTexture, kJointTextureUnit);
         for (size_t slot = 0; slot < 4; ++slot) Program::set(uniforms->pbrTextures[slot], kPbrTextureUnits[slot]);
       }

@@ -375,7 +375,7 @@ void LightingEffect::render(const PassContext& context, const Form& form, const 
       glUniform4fv(v.lightColorSpot, lightsPerDraw_, &lights.colorSpot[0].x);
       glUniform4fv(v.lightSpot, lightsPerDraw_, &lights.spot[0].x);
     }
-    Program::set(v.ao, 1);
+    Program::set(v.ao, TextureUnits::kAo);
     Program::set(v.environment, kEnvironmentUnit);
     Program::set(v.environmentBrdf, kEnvironmentBrdfUnit);
     Program::set(v.farHalfExtent, camera.reconstruction.farHalfExtent);
@@ -385,7 +385,7 @@ void LightingEffect::render(const PassContext& context, const Form& form, const 
     Program::set(v.exposure, exposureScale);
     Program::set(v.lumaInAlpha, lumaInAlpha ? 1.0f : 0.0f);
   };
-  (context.has("ao") ? context.texture("ao") : white_).bind(1);
+  (context.has("ao") ? context.texture("ao") : white_).bind(TextureUnits::kAo);
   if (!form.counting) {
     glActiveTexture(GL_TEXTURE0 + kEnvironmentBrdfUnit);
     glBindTexture(GL_TEXTURE_2D, environment_->brdfTexture());
@@ -402,11 +402,11 @@ void LightingEffect::render(const PassContext& context, const Form& form, const 
     const Variant& v = variant(form, {}, {});
     v.program.use();
     setShading(v);
-    context.texture("gbuffer").bind(0);
-    Program::set(v.gbuffer, 0);
+    context.texture("gbuffer").bind(TextureUnits::kBaseColor);
+    Program::set(v.gbuffer, TextureUnits::kBaseColor);
     if (!form.counting) {
-      context.texture("base-color").bind(2);
-      Program::set(v.baseColor, 2);
+      context.texture("base-color").bind(TextureUnits::kPbr[0]);
+      Program::set(v.baseColor, TextureUnits::kPbr[0]);
     }
     if (form.counting) {
       glEnable(GL_BLEND);

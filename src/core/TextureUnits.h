@@ -9,11 +9,11 @@
 
 namespace obscura::TextureUnits {
 
-// The material's base colour texture (the G-buffer in the deferred lighting).
+// The material's base colour texture (the G-buffer in the deferred lighting, which reads the G-buffer pass's base
+// colour on kPbr[0]).
 inline constexpr int kBaseColor = 0;
 inline constexpr int kAo = 1;  // the lighting pass's AO
-// A PBR_TEXTURES material's metallic-roughness, normal, occlusion and emissive textures (the deferred lighting reads
-// the G-buffer pass's base colour on the first).
+// A PBR_TEXTURES material's metallic-roughness, normal, occlusion and emissive textures.
 inline constexpr int kPbr[4] = {2, 3, 5, 6};
 inline constexpr int kJoints = 4;  // the vertex stage's joint texture (GpuScene)
 inline constexpr int kEnvironment = 7;
