@@ -81,8 +81,9 @@ struct Lighting {
 // intensity / distance^2 at the camera).
 inline constexpr int kMaxPunctualLights = 4;
 // The fragment uniform vectors of the heaviest forward lighting program without punctual lights, as GLSL ES 1.00
-// packs them (Appendix A, section 7: gl/UniformPacking.h), and what each light adds (three vec4). tests/
-// test_uniform_limits.cpp packs every program the renderer builds and holds these figures.
+// packs them (Appendix A, section 7: gl/UniformPacking.h), and what each light adds (three vec4).
+// Shaders.EveryProgramFitsTheGles2UniformVectors (tests/test_shaders.cpp) packs every program the renderer builds
+// and holds these figures.
 inline constexpr int kForwardLightingVectorsWithoutLights = 15;
 inline constexpr int kVectorsPerPunctualLight = 3;
 

@@ -3,7 +3,7 @@
 // A, section 7, "Counting of Varyings and Uniforms"): the variables are packed into rows of four columns, the widest
 // first, and a stage that does not fit in GL_MAX_{VERTEX,FRAGMENT}_UNIFORM_VECTORS rows may fail to link. Drivers may
 // pack better but need not, so a program meant for every GLES 2 context must fit by this count (tests/
-// test_uniform_limits.cpp holds every program of the renderer to the minimums: 128 vertex and 16 fragment vectors).
+// test_shaders.cpp holds every program of the renderer to the minimums: 128 vertex and 16 fragment vectors).
 #include <string>
 #include <vector>
 
