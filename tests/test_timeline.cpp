@@ -146,6 +146,13 @@ TEST(Timeline, FrameStepsPauseAndMoveOneSixtiethOfASecond) {
   timeline.setTime(0.51);
   timeline.stepFrames(1);
   EXPECT_DOUBLE_EQ(timeline.time(), 32 * Timeline::kFrameInterval);
+  // Every step lands exactly on frame n / 60, the value a page computes as (n + 1) / 60 (46 x (1/60) is one bit
+  // below 46 / 60: the page's timeline test caught it).
+  for (int n = 0; n < 119; ++n) {
+    timeline.setTime(n / 60.0 + 0.004);
+    timeline.stepFrames(1);
+    EXPECT_EQ(timeline.time(), (n + 1) / 60.0) << n;
+  }
   timeline.setLoop(false);
   timeline.setTime(0.0);
   timeline.stepFrames(-1);

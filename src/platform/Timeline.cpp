@@ -80,8 +80,8 @@ void Timeline::stepFrames(int frames) {
   pause();
   // From the nearest frame boundary rather than the exact time, so that a time reached by playing steps onto the
   // 1/60 s grid instead of carrying its fraction along.
-  const double frame = std::round(time_ / kFrameInterval);
-  setTime((frame + frames) * kFrameInterval);
+  const double frame = std::round(time_ * kFramesPerSecond);
+  setTime((frame + frames) / kFramesPerSecond);
 }
 
 void Timeline::setSpeed(double factor) {

@@ -22,8 +22,10 @@ namespace obscura {
 
 class Timeline {
  public:
-  // One frame step (the keys, stepFrames): the frame interval at 60 frames per second.
-  static constexpr double kFrameInterval = 1.0 / 60.0;
+  // One frame step (the keys, stepFrames): the frame interval at 60 frames per second. Frame n is at exactly
+  // n / kFramesPerSecond (a division, not n times the interval, which can differ in the last bit).
+  static constexpr double kFramesPerSecond = 60.0;
+  static constexpr double kFrameInterval = 1.0 / kFramesPerSecond;
   // Playback speed: a factor on the clock, this range (a wider one gives nothing a viewer can watch).
   static constexpr double kMinSpeed = 0.01, kMaxSpeed = 100.0;
 
