@@ -45,16 +45,6 @@ TEST(GpuCocPacking, TheShaderPacksLikeTheCpuMirrorAndDecodesWhatItPacks) {
     if (std::abs(s16 - std::floor(s16) - 0.5f) < 1e-2f || std::abs(s8 - std::floor(s8) - 0.5f) < 1e-3f) continue;
     values.emplace_back(c, 0.0f, 0.0f, 0.0f);
   }
-  const char* vertex = R"(
-attribute vec2 a_position;
-attribute vec3 a_normal;
-varying float v_value;
-void main() {
-  v_value = a_normal.x;
-  gl_Position = vec4(a_position, 0.0, 1.0);
-  gl_PointSize = 1.0;
-}
-)";
   for (bool roundTrip : {false, true}) {
     // RG: the 16-bit code; B: the 8-bit half code; A: the 8-bit code of the 16-bit code's decoded value. Round trip:
     // packed, decoded and packed again, which must give the same codes.
@@ -63,8 +53,9 @@ void main() {
 #include "lib/packing.glsl"
 #include "lib/coc.glsl"
 uniform float u_range;
-varying float v_value;
+varying vec4 v_first;  // the CoC in x (test::kTwoValuePointVertex)
 void main() {
+  float v_value = v_first.x;
   vec4 texel = packCoc(v_value, u_range);
   float halfCode = packHalfCoc(v_value, u_range);
 )") + (roundTrip ? "  texel = packCoc(unpackCoc(texel, u_range), u_range);\n"
@@ -72,7 +63,7 @@ void main() {
                   : "") +
                                    "  gl_FragColor = vec4(texel.rg, halfCode, packHalfCoc(unpackCoc(texel, u_range), "
                                    "u_range));\n}\n";
-    const gl::Program program("pack cocs", ShaderLibrary::composeText(vertex, {}, {}),
+    const gl::Program program("pack cocs", ShaderLibrary::composeText(test::kTwoValuePointVertex, {}, {}),
                               ShaderLibrary::composeText(fragment, {}, {}));
     program.use();
     gl::Program::set(program.uniform("u_range"), range);

@@ -33,26 +33,16 @@ TEST(GpuVelocityPacking, TheShaderPacksLikeTheCpuMirrorAndDecodesWhatItPacks) {
     if (std::abs(scaled.y - std::floor(scaled.y) - 0.5f) < 1e-2f) continue;
     values.emplace_back(v, 0.0f, 0.0f);
   }
-  const char* vertex = R"(
-attribute vec2 a_position;
-attribute vec3 a_normal;
-varying vec2 v_value;
-void main() {
-  v_value = a_normal.xy;
-  gl_Position = vec4(a_position, 0.0, 1.0);
-  gl_PointSize = 1.0;
-}
-)";
   for (bool roundTrip : {false, true}) {
     // Packed, or packed, decoded and packed again: the decode must give back the same code.
     const std::string fragment = std::string(R"(
 #include "lib/precision.glsl"
 #include "lib/packing.glsl"
-varying vec2 v_value;
+varying vec4 v_first;  // the velocity in xy (test::kTwoValuePointVertex)
 void main() {
-  vec4 texel = packVelocity(v_value);
+  vec4 texel = packVelocity(v_first.xy);
 )") + (roundTrip ? "  texel = packVelocity(unpackVelocity(texel));\n" : "") + "  gl_FragColor = texel;\n}\n";
-    const gl::Program program("pack velocities", ShaderLibrary::composeText(vertex, {}, {}),
+    const gl::Program program("pack velocities", ShaderLibrary::composeText(test::kTwoValuePointVertex, {}, {}),
                               ShaderLibrary::composeText(fragment, {}, {}));
     const std::vector<std::uint8_t> pixels = test::drawPoints(program, values);
     int mismatches = 0;
