@@ -35,9 +35,6 @@ gl::TextureHandle uploadTexture(const Image& source, const SamplerState& sampler
 constexpr int kReservedUniformVectors = 32;
 // Joints per palette where uniforms are plenty: beyond it, uploading the palette per draw costs more than it saves.
 constexpr int kMaxPaletteJoints = 128;
-// The texture units: core/TextureUnits.h.
-constexpr int kJointTextureUnit = TextureUnits::kJoints;
-constexpr const int (&kPbrTextureUnits)[4] = TextureUnits::kPbr;
 // GL_RGBA32F: a desktop context needs the sized format to keep floats; GLES 2 / WebGL 1 with OES_texture_float take
 // GL_RGBA with type GL_FLOAT.
 constexpr GLenum kRgba32f = 0x8814;
@@ -85,10 +82,8 @@ const char* skinningPathName(SkinningPath path) {
 GpuScene::GpuScene(const Scene& scene, const gl::GlCaps& caps, const Options& options) {
   const bool uint32 = caps.elementIndexUint && options.allowUint32Indices;
   desktopGl_ = caps.desktopGl;
-  const VertexLimits simulated = options.vertexLimits.value_or(VertexLimits{1 << 20, 1 << 20, 1 << 20});
-  limits_ = {std::min(caps.maxVertexUniformVectors, simulated.uniformVectors),
-             std::min(caps.maxVertexAttribs, simulated.attributes),
-             std::min(caps.maxVertexTextureImageUnits, simulated.textureUnits)};
+  // The caps carry the limits a test simulates (RendererOptions::simulateVertexLimits, applied by the Renderer).
+  limits_ = {caps.maxVertexUniformVectors, caps.maxVertexAttribs, caps.maxVertexTextureImageUnits};
 
   // The skinning path: the one asked for where the context can take it, else the best it can.
   // The joint texture needs a ninth texture unit (core/TextureUnits.h): the lighting's fragment stage may use eight.
@@ -442,7 +437,7 @@ void GpuScene::draw(const glm::mat4& view, const ProgramChoice& choose, const Dr
     if (material.texture >= 0) glBindTexture(GL_TEXTURE_2D, textures_[static_cast<size_t>(material.texture)].id());
     if (material.pbr) {
       for (size_t slot = 0; slot < material.pbrTextures.size(); ++slot) {
-        glActiveTexture(static_cast<GLenum>(GL_TEXTURE0 + kPbrTextureUnits[slot]));
+        glActiveTexture(static_cast<GLenum>(GL_TEXTURE0 + TextureUnits::kPbr[slot]));
         const int texture = material.pbrTextures[slot];
         glBindTexture(GL_TEXTURE_2D, texture >= 0  ? textures_[static_cast<size_t>(texture)].id()
                                      : slot == 1 ? neutralNormal_.id()
@@ -467,8 +462,8 @@ void GpuScene::draw(const glm::mat4& view, const ProgramChoice& choose, const Dr
         programMaterial = materialKind;
         programVertex = vertexKind;
         Program::set(uniforms->baseColorTexture, TextureUnits::kBaseColor);
-        Program::set(uniforms->jointTexture, kJointTextureUnit);
-        for (size_t slot = 0; slot < 4; ++slot) Program::set(uniforms->pbrTextures[slot], kPbrTextureUnits[slot]);
+        Program::set(uniforms->jointTexture, TextureUnits::kJoints);
+        for (size_t slot = 0; slot < 4; ++slot) Program::set(uniforms->pbrTextures[slot], TextureUnits::kPbr[slot]);
       }
       if (newProgram || p == instance.firstPiece) {
         Program::set(uniforms->modelView, modelView);
@@ -508,7 +503,7 @@ void GpuScene::draw(const glm::mat4& view, const ProgramChoice& choose, const Dr
         if (uniforms->previousJoints >= 0) glUniform4fv(uniforms->previousJoints, vectors, previousRows.data());
       } else if (vertexKind.skinning == VertexKind::JointTexture) {
         const SkinGpu& skin = skins_[static_cast<size_t>(instance.skin)];
-        glActiveTexture(static_cast<GLenum>(GL_TEXTURE0 + kJointTextureUnit));
+        glActiveTexture(static_cast<GLenum>(GL_TEXTURE0 + TextureUnits::kJoints));
         glBindTexture(GL_TEXTURE_2D, skin.texture.id());
         glActiveTexture(GL_TEXTURE0);
         jointTextureBound = true;
@@ -550,12 +545,12 @@ void GpuScene::draw(const glm::mat4& view, const ProgramChoice& choose, const Dr
   glBindBuffer(GL_ARRAY_BUFFER, 0);
   glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, 0);
   if (jointTextureBound) {
-    glActiveTexture(static_cast<GLenum>(GL_TEXTURE0 + kJointTextureUnit));
+    glActiveTexture(static_cast<GLenum>(GL_TEXTURE0 + TextureUnits::kJoints));
     glBindTexture(GL_TEXTURE_2D, 0);
     glActiveTexture(GL_TEXTURE0);
   }
   if (pbrTexturesBound) {
-    for (int unit : kPbrTextureUnits) {
+    for (int unit : TextureUnits::kPbr) {
       glActiveTexture(static_cast<GLenum>(GL_TEXTURE0 + unit));
       glBindTexture(GL_TEXTURE_2D, 0);
     }

@@ -56,8 +56,7 @@ class GpuScene {
  public:
   struct Options {
     bool allowUint32Indices = true;  // false simulates a context without OES_element_index_uint
-    std::optional<SkinningPath> skinning;      // RendererOptions::skinning
-    std::optional<VertexLimits> vertexLimits;  // RendererOptions::simulateVertexLimits
+    std::optional<SkinningPath> skinning;  // RendererOptions::skinning
   };
 
   GpuScene() = default;

@@ -17,9 +17,15 @@ const gl::GlCaps& requireUsable(const gl::GlCaps& caps) {
   return caps;
 }
 
-// The context's caps with the fragment limits a test simulates (RendererOptions::simulateFragmentLimits) applied, so
-// every effect reads the limits it must keep from one place. The vertex limits are GpuScene's (it sizes skinning).
+// The context's caps with the limits a test simulates (RendererOptions::simulateVertexLimits and
+// simulateFragmentLimits) applied, so the scene's upload and every effect read the limits they must keep from one
+// place.
 gl::GlCaps withSimulatedLimits(gl::GlCaps caps, const RendererOptions& options) {
+  if (const auto& vertex = options.simulateVertexLimits) {
+    caps.maxVertexUniformVectors = std::min(caps.maxVertexUniformVectors, vertex->uniformVectors);
+    caps.maxVertexAttribs = std::min(caps.maxVertexAttribs, vertex->attributes);
+    caps.maxVertexTextureImageUnits = std::min(caps.maxVertexTextureImageUnits, vertex->textureUnits);
+  }
   if (const auto& fragment = options.simulateFragmentLimits) {
     caps.maxFragmentUniformVectors = std::min(caps.maxFragmentUniformVectors, fragment->uniformVectors);
     caps.maxTextureImageUnits = std::min(caps.maxTextureImageUnits, fragment->textureUnits);
@@ -141,7 +147,6 @@ void Renderer::setScene(const Scene& scene) {
   GpuScene::Options options;
   options.allowUint32Indices = options_.allowUint32Indices;
   options.skinning = options_.skinning;
-  options.vertexLimits = options_.simulateVertexLimits;
   scene_ = GpuScene(scene, caps_, options);
   // What posing needs (the hierarchy, skins, animations, and the instances and meshes they deform), not the images,
   // which the GPU holds now.
