@@ -1,5 +1,5 @@
-# The browser build (Emscripten, WebGL 1), included by CMakeLists.txt after the base, gl, scene, core and viewer
-# libraries are defined: the same libraries and shaders, plus the WebGL front-end (platform/WebCanvas) and the
+# The browser build (Emscripten, WebGL 1), included by CMakeLists.txt after the layer libraries (base .. renderer) and
+# the viewer library are defined: the same libraries and shaders, plus the WebGL front-end (platform/WebCanvas) and the
 # exported C API (apps/obscura_web.cpp) that web/obscura.js wraps. The demo page is assembled in <build>/site:
 #   obscura-core.js + obscura-core.wasm   the module (an ES module factory: createObscuraCore)
 #   index.html, app.js, obscura.js, gltf-decoders.js, style.css   copied from web/
@@ -8,7 +8,8 @@
 
 # The core reports bad input with exceptions (InputError): catching them needs exception support on every object
 # file and at link time (Emscripten's default only lets them propagate to an abort).
-foreach(library obscura_base obscura_gl obscura_scene obscura_core obscura_viewer)
+foreach(library obscura_base obscura_encoding obscura_gl obscura_scene obscura_gpu obscura_environment obscura_frame
+                obscura_effects obscura_renderer obscura_viewer)
   target_compile_options(${library} PUBLIC -fexceptions)
 endforeach()
 

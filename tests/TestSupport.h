@@ -9,13 +9,13 @@
 #include <glm/vec4.hpp>
 #include <gtest/gtest.h>
 
-#include "core/AoSettings.h"
-#include "core/EffectTable.h"
-#include "core/RenderSettings.h"
-#include "core/Renderer.h"
+#include "effects/ao/AoSettings.h"
 #include "gl/Program.h"
 #include "gl/RenderTarget.h"
 #include "platform/HeadlessContext.h"
+#include "renderer/EffectTable.h"
+#include "renderer/RenderSettings.h"
+#include "renderer/Renderer.h"
 #include "scene/Camera.h"
 #include "scene/Scene.h"
 

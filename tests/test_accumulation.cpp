@@ -1,4 +1,4 @@
-// The brute-force references of the temporal effects (core/AccumulationReference.h): the shutter's sample times,
+// The brute-force references of the temporal effects (renderer/AccumulationReference.h): the shutter's sample times,
 // the box downsample, and the accumulation itself against renders made by hand.
 #include <gtest/gtest.h>
 
@@ -6,7 +6,7 @@
 
 #include "TestSupport.h"
 #include "base/Error.h"
-#include "core/AccumulationReference.h"
+#include "renderer/AccumulationReference.h"
 #include "scene/BuiltinScene.h"
 
 namespace obscura {

@@ -7,7 +7,7 @@
 #include <glm/gtc/matrix_transform.hpp>
 
 #include "TestSupport.h"
-#include "core/FrameContext.h"
+#include "frame/FrameContext.h"
 
 using namespace obscura;
 

@@ -13,8 +13,8 @@
 #include <glm/geometric.hpp>
 
 #include "TestSupport.h"
-#include "core/FrameContext.h"
 #include "base/Text.h"
+#include "frame/FrameContext.h"
 #include "reference/AoReferenceTracer.h"
 #include "scene/GltfLoader.h"
 #include "scene/Primitives.h"

@@ -1,7 +1,8 @@
-// Bloom (core/BloomEffect.h): the CPU mirror of its weights against Jimenez 2014's taps, why the chain decodes texels
-// by hand (the hardware's filter on encoded bytes, measured), and the GPU chain on frames made here: a frame with no
-// pixel above the threshold is unchanged, a single bright pixel spreads into a symmetric glow that falls off with the
-// distance and carries `intensity` times its light above the threshold, and a smooth HDR gradient stays monotonic.
+// Bloom (effects/bloom/BloomEffect.h): the CPU mirror of its weights against Jimenez 2014's taps, why the chain decodes
+// texels by hand (the hardware's filter on encoded bytes, measured), and the GPU chain on frames made here: a frame
+// with no pixel above the threshold is unchanged, a single bright pixel spreads into a symmetric glow that falls off
+// with the distance and carries `intensity` times its light above the threshold, and a smooth HDR gradient stays
+// monotonic.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -12,9 +13,9 @@
 #include <vector>
 
 #include "TestSupport.h"
-#include "core/BloomEffect.h"
-#include "core/HdrEncoding.h"
-#include "core/PassContext.h"
+#include "effects/bloom/BloomEffect.h"
+#include "encoding/HdrEncoding.h"
+#include "frame/PassContext.h"
 #include "gl/RenderTarget.h"
 #include "scene/BuiltinScene.h"
 

@@ -4,9 +4,9 @@
 #include <random>
 
 #include "TestSupport.h"
-#include "core/BilateralBlurPass.h"
-#include "core/LinearDepthPacking.h"
-#include "core/NormalEncoding.h"
+#include "effects/ao/BilateralBlurPass.h"
+#include "encoding/LinearDepthPacking.h"
+#include "encoding/NormalEncoding.h"
 
 using namespace obscura;
 namespace ldp = obscura::LinearDepthPacking;

@@ -9,7 +9,7 @@
 #include <utility>
 
 #include "TestSupport.h"
-#include "core/VelocityPacking.h"
+#include "encoding/VelocityPacking.h"
 #include "scene/Animation.h"
 #include "scene/BuiltinScene.h"
 

@@ -6,8 +6,8 @@
 #include <set>
 
 #include "TestSupport.h"
-#include "core/EffectTable.h"
-#include "core/RenderSettings.h"
+#include "renderer/EffectTable.h"
+#include "renderer/RenderSettings.h"
 #include "scene/ImageIo.h"
 
 namespace {

@@ -1,9 +1,10 @@
-// Depth of field (core/DepthOfFieldEffect.h) against its brute-force reference (core/AccumulationReference.h: the
-// mean of 64 pinhole renders from points on the lens, each sheared to keep the focus plane): the CoC's packing on the
-// GPU against its CPU mirror, the CoC target against the thin lens, the autofocus, and on a scene with near, in-focus
-// and far objects: the whole frame towards the reference, the focus plane unchanged, a blurred foreground covering
-// the in-focus edge behind it, and no halo around an in-focus object over a blurred background. The AO and FXAA are
-// off, so the figures are the depth of field's alone. Every figure is over the RGB channels, 0 .. 255.
+// Depth of field (effects/dof/DepthOfFieldEffect.h) against its brute-force reference
+// (renderer/AccumulationReference.h: the mean of 64 pinhole renders from points on the lens, each sheared to keep the
+// focus plane): the CoC's packing on the GPU against its CPU mirror, the CoC target against the thin lens, the
+// autofocus, and on a scene with near, in-focus and far objects: the whole frame towards the reference, the focus plane
+// unchanged, a blurred foreground covering the in-focus edge behind it, and no halo around an in-focus object over a
+// blurred background. The AO and FXAA are off, so the figures are the depth of field's alone. Every figure is over the
+// RGB channels, 0 .. 255.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -15,11 +16,11 @@
 #include <tuple>
 
 #include "TestSupport.h"
-#include "core/AccumulationReference.h"
-#include "core/CocPacking.h"
-#include "core/DepthOfFieldEffect.h"
-#include "core/LinearDepthPacking.h"
-#include "core/ShaderLibrary.h"
+#include "effects/dof/DepthOfFieldEffect.h"
+#include "encoding/CocPacking.h"
+#include "encoding/LinearDepthPacking.h"
+#include "gl/ShaderLibrary.h"
+#include "renderer/AccumulationReference.h"
 #include "scene/ImageIo.h"
 #include "scene/Primitives.h"
 
@@ -51,7 +52,7 @@ TEST(GpuCocPacking, TheShaderPacksLikeTheCpuMirrorAndDecodesWhatItPacks) {
     const std::string fragment = std::string(R"(
 #include "lib/precision.glsl"
 #include "lib/packing.glsl"
-#include "lib/coc.glsl"
+#include "dof/coc.glsl"
 uniform float u_range;
 varying vec4 v_first;  // the CoC in x (test::kTwoValuePointVertex)
 void main() {

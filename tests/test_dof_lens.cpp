@@ -1,14 +1,14 @@
-// Depth of field's arithmetic on the CPU (core/DepthOfFieldEffect.h, core/CocPacking.h): the CoC's codes, the thin
-// lens against Samuelcik's formula and against the pinhole lens its reference samples, the lens points, and the
-// parameters. tests/test_dof.cpp holds the GPU to the same mirrors.
+// Depth of field's arithmetic on the CPU (effects/dof/DepthOfFieldEffect.h, encoding/CocPacking.h): the CoC's codes,
+// the thin lens against Samuelcik's formula and against the pinhole lens its reference samples, the lens points, and
+// the parameters. tests/test_dof.cpp holds the GPU to the same mirrors.
 #include <gtest/gtest.h>
 
 #include <cmath>
 
-#include "core/AccumulationReference.h"
-#include "core/CocPacking.h"
-#include "core/DepthOfFieldEffect.h"
-#include "core/RenderSettings.h"
+#include "effects/dof/DepthOfFieldEffect.h"
+#include "encoding/CocPacking.h"
+#include "renderer/AccumulationReference.h"
+#include "renderer/RenderSettings.h"
 #include "scene/Camera.h"
 
 namespace obscura {

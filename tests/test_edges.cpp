@@ -1,5 +1,5 @@
-// Edges from the G-buffer (core/EdgesEffect.h). The CPU mirror against eq. 1 written out on planes and steps; the
-// GPU's passes read back against the mirror; and the lines of a cube on a floor against the reference, the cube's
+// Edges from the G-buffer (effects/edges/EdgesEffect.h). The CPU mirror against eq. 1 written out on planes and steps;
+// the GPU's passes read back against the mirror; and the lines of a cube on a floor against the reference, the cube's
 // silhouette and crease lines projected analytically from the camera and the cube's geometry (the edges of its
 // front-facing faces: a convex body on a floor hides none of them), at two distances: precision and recall of the
 // drawn line pixels, no ink on the flat faces or the floor, the line width in pixels, and the image moved towards
@@ -16,9 +16,9 @@
 #include <glm/gtc/matrix_transform.hpp>
 
 #include "TestSupport.h"
-#include "core/EdgesEffect.h"
-#include "core/FrameContext.h"
-#include "core/ToneMapping.h"
+#include "effects/edges/EdgesEffect.h"
+#include "encoding/ToneMapping.h"
+#include "frame/FrameContext.h"
 #include "gl/PipelineState.h"
 #include "scene/Primitives.h"
 

@@ -1,7 +1,7 @@
-// Image-based ambient light (core/Environment.h, shaders_es2/lib/environment.glsl): the spherical-harmonic projection
-// against analytic coefficients, the irradiance against a numeric integration, the prefiltered specular levels against
-// the brute-force integral, Karis's (A, B) fit against the numerically integrated split sum, the shader against its
-// CPU mirror in both layouts (mip chain and atlas), and the white furnace through the whole frame.
+// Image-based ambient light (environment/Environment.h, shaders_es2/lib/environment.glsl): the spherical-harmonic
+// projection against analytic coefficients, the irradiance against a numeric integration, the prefiltered specular
+// levels against the brute-force integral, Karis's (A, B) fit against the numerically integrated split sum, the shader
+// against its CPU mirror in both layouts (mip chain and atlas), and the white furnace through the whole frame.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -13,10 +13,10 @@
 #include <glm/geometric.hpp>
 
 #include "TestSupport.h"
-#include "core/Environment.h"
-#include "core/HdrEncoding.h"
-#include "core/LightingEffect.h"
-#include "core/NormalEncoding.h"
+#include "effects/lighting/LightingEffect.h"
+#include "encoding/HdrEncoding.h"
+#include "encoding/NormalEncoding.h"
+#include "environment/Environment.h"
 #include "scene/BuiltinScene.h"
 #include "scene/ImageIo.h"
 #include "scene/Primitives.h"

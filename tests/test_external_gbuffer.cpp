@@ -11,8 +11,8 @@
 #include <gtest/gtest.h>
 
 #include "TestSupport.h"
-#include "core/LinearDepthPacking.h"
-#include "core/NormalEncoding.h"
+#include "encoding/LinearDepthPacking.h"
+#include "encoding/NormalEncoding.h"
 #include "gl/PipelineState.h"
 #include "gl/Program.h"
 #include "gl/RenderTarget.h"

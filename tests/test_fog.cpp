@@ -1,5 +1,5 @@
-// Distance fog (core/FogEffect.h): the CPU mirror against the lecture deck's equations written out again here, and
-// the GPU's fog pass read back per pixel against the mirror's fog factor at the distance reconstructed from the
+// Distance fog (effects/fog/FogEffect.h): the CPU mirror against the lecture deck's equations written out again here,
+// and the GPU's fog pass read back per pixel against the mirror's fog factor at the distance reconstructed from the
 // G-buffer's depth, in each mode, with and without height falloff, the background included.
 #include <gtest/gtest.h>
 
@@ -12,9 +12,9 @@
 #include <glm/gtc/matrix_transform.hpp>
 
 #include "TestSupport.h"
-#include "core/FogEffect.h"
-#include "core/HdrEncoding.h"
-#include "core/ViewReconstruction.h"
+#include "effects/fog/FogEffect.h"
+#include "encoding/HdrEncoding.h"
+#include "frame/ViewReconstruction.h"
 #include "scene/BuiltinScene.h"
 
 using namespace obscura;

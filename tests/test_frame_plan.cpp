@@ -7,8 +7,9 @@
 #include <gtest/gtest.h>
 
 #include "base/Error.h"
-#include "core/EffectTable.h"
-#include "core/FramePlan.h"
+#include "frame/FramePlan.h"
+#include "renderer/EffectTable.h"
+#include "renderer/RenderSettings.h"
 
 using namespace obscura;
 

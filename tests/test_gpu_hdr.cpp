@@ -9,13 +9,13 @@
 #include <random>
 
 #include "TestSupport.h"
-#include "core/FrameContext.h"
-#include "core/FullscreenTriangle.h"
-#include "core/ColorSpaces.h"
-#include "core/HdrEncoding.h"
-#include "core/ShaderLibrary.h"
-#include "core/ToneMapping.h"
+#include "encoding/ColorSpaces.h"
+#include "encoding/HdrEncoding.h"
+#include "encoding/ToneMapping.h"
+#include "frame/FrameContext.h"
+#include "frame/FullscreenTriangle.h"
 #include "gl/PipelineState.h"
+#include "gl/ShaderLibrary.h"
 
 using namespace obscura;
 

@@ -5,10 +5,10 @@
 #include <random>
 
 #include "TestSupport.h"
-#include "core/LinearDepthPacking.h"
-#include "core/NormalEncoding.h"
-#include "core/ShaderLibrary.h"
+#include "encoding/LinearDepthPacking.h"
+#include "encoding/NormalEncoding.h"
 #include "gl/PipelineState.h"
+#include "gl/ShaderLibrary.h"
 
 using namespace obscura;
 namespace ldp = obscura::LinearDepthPacking;

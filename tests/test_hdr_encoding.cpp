@@ -1,4 +1,4 @@
-// CPU tests of the HDR-in-RGBA8 mirrors (src/core/HdrEncoding.h): the round-trip error bounds measured by
+// CPU tests of the HDR-in-RGBA8 mirrors (src/encoding/HdrEncoding.h): the round-trip error bounds measured by
 // obscura-hdr-study, monotonic luminance, black and the range ends, clamping, RGB9E5 against the extension's own
 // pseudo-code, LogLuv's grey and gamut, and the literals lib/hdr.glsl shares with the CPU (bit-identical).
 #include <gtest/gtest.h>
@@ -11,9 +11,9 @@
 
 #include <glm/geometric.hpp>
 
-#include "core/ColorSpaces.h"
-#include "core/HdrEncoding.h"
-#include "core/ShaderLibrary.h"
+#include "encoding/ColorSpaces.h"
+#include "encoding/HdrEncoding.h"
+#include "gl/ShaderLibrary.h"
 
 using namespace obscura;
 

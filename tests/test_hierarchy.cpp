@@ -4,11 +4,11 @@
 #include <cstdio>
 
 #include "TestSupport.h"
-#include "core/AoUpsamplePass.h"
-#include "core/DepthHierarchyPass.h"
-#include "core/LinearDepthPacking.h"
-#include "core/NormalEncoding.h"
-#include "core/SaoKernel.h"
+#include "effects/ao/AoUpsamplePass.h"
+#include "effects/ao/DepthHierarchyPass.h"
+#include "effects/ao/SaoKernel.h"
+#include "encoding/LinearDepthPacking.h"
+#include "encoding/NormalEncoding.h"
 #include "scene/BuiltinScene.h"
 
 using namespace obscura;

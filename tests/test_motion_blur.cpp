@@ -1,8 +1,9 @@
-// Motion blur (core/MotionBlurEffect.h) against its brute-force reference (core/AccumulationReference.h: the mean of
-// 64 renders with the blur off, spread over the exposure [T - s/(2F), T + s/(2F)]): a turning object, a skinned limb
-// and a camera pan move towards the reference; a still scene is unchanged; a still foreground object over a moving
-// background keeps its silhouette; a thin fast object does not vanish. The AO and FXAA are off in these frames, so
-// the figures are the blur's alone. Every figure is the mean absolute difference of the RGB channels, 0 .. 255.
+// Motion blur (effects/motion_blur/MotionBlurEffect.h) against its brute-force reference
+// (renderer/AccumulationReference.h: the mean of 64 renders with the blur off, spread over the exposure [T - s/(2F), T
+// + s/(2F)]): a turning object, a skinned limb and a camera pan move towards the reference; a still scene is unchanged;
+// a still foreground object over a moving background keeps its silhouette; a thin fast object does not vanish. The AO
+// and FXAA are off in these frames, so the figures are the blur's alone. Every figure is the mean absolute difference
+// of the RGB channels, 0 .. 255.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -15,9 +16,9 @@
 #include <glm/gtc/quaternion.hpp>
 
 #include "TestSupport.h"
-#include "core/AccumulationReference.h"
-#include "core/MotionBlurEffect.h"
-#include "core/VelocityPacking.h"
+#include "effects/motion_blur/MotionBlurEffect.h"
+#include "encoding/VelocityPacking.h"
+#include "renderer/AccumulationReference.h"
 #include "scene/BuiltinScene.h"
 #include "scene/ImageIo.h"
 #include "scene/Primitives.h"

@@ -5,9 +5,9 @@
 #include <algorithm>
 #include <cmath>
 
-#include "core/LinearDepthPacking.h"
-#include "core/NormalEncoding.h"
-#include "core/VelocityPacking.h"
+#include "encoding/LinearDepthPacking.h"
+#include "encoding/NormalEncoding.h"
+#include "encoding/VelocityPacking.h"
 
 using namespace obscura;
 namespace ldp = obscura::LinearDepthPacking;

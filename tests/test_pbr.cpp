@@ -1,8 +1,8 @@
-// glTF 2.0 metallic-roughness shading (core/LightingEffect.h, shaders_es2/lib/pbr.glsl): the CPU mirror against
-// the BRDF's definition integrated numerically; the GPU's lighting pass read back (scene-color, decoded) against the
-// mirror at sample angles, per texture slot (a quad whose texture differs only between its halves, only that slot
-// set), under KHR_texture_transform, and for KHR_lights_punctual point and spot lights against the analytic falloff;
-// tangent generation on meshes whose tangents are known.
+// glTF 2.0 metallic-roughness shading (effects/lighting/LightingEffect.h, shaders_es2/lib/pbr.glsl): the CPU mirror
+// against the BRDF's definition integrated numerically; the GPU's lighting pass read back (scene-color, decoded)
+// against the mirror at sample angles, per texture slot (a quad whose texture differs only between its halves, only
+// that slot set), under KHR_texture_transform, and for KHR_lights_punctual point and spot lights against the analytic
+// falloff; tangent generation on meshes whose tangents are known.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -16,10 +16,10 @@
 #include <glm/gtc/matrix_transform.hpp>
 
 #include "TestSupport.h"
-#include "core/HdrEncoding.h"
-#include "core/LightingEffect.h"
-#include "core/NormalEncoding.h"
-#include "core/PbrShading.h"
+#include "effects/lighting/LightingEffect.h"
+#include "effects/lighting/PbrShading.h"
+#include "encoding/HdrEncoding.h"
+#include "encoding/NormalEncoding.h"
 #include "scene/GltfLoader.h"
 #include "scene/MeshProcessing.h"
 #include "scene/Primitives.h"

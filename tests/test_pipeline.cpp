@@ -9,16 +9,16 @@
 
 #include "TestSupport.h"
 #include "base/Error.h"
-#include "core/AoEffect.h"
-#include "core/GBufferEffect.h"
-#include "core/HdrEncoding.h"
-#include "core/LightingEffect.h"
-#include "core/NormalEncoding.h"
-#include "core/ShaderLibrary.h"
-#include "core/TonemapEffect.h"
-#include "core/ToneMapping.h"
+#include "effects/ao/AoEffect.h"
+#include "effects/gbuffer/GBufferEffect.h"
+#include "effects/lighting/LightingEffect.h"
+#include "effects/tonemap/TonemapEffect.h"
+#include "encoding/HdrEncoding.h"
+#include "encoding/NormalEncoding.h"
+#include "encoding/ToneMapping.h"
 #include "gl/GlObjects.h"
 #include "gl/PipelineState.h"
+#include "gl/ShaderLibrary.h"
 #include "platform/Viewer.h"
 #include "scene/BuiltinScene.h"
 #include "scene/Primitives.h"
@@ -212,7 +212,7 @@ TEST(Pipeline, TheFrameIsTheSameWhicheverFormTheLightingTakes) {
 }
 
 // A material without a texture is drawn by a program variant that neither samples nor decodes one
-// (core/MaterialKind.h). It is the same material as one with a white texture: the images agree exactly, in every form
+// (gpu/MaterialKind.h). It is the same material as one with a white texture: the images agree exactly, in every form
 // of the geometry passes (forward and deferred lighting, the G-buffer alone and with the base colour).
 TEST(Pipeline, AMaterialWithoutATextureLooksAsWithAWhiteOne) {
   Scene untextured = makeBuiltinScene();

@@ -1,4 +1,4 @@
-// Points and lines (core/LinesEffect.h) and compressed files through the whole frame:
+// Points and lines (effects/lines/LinesEffect.h) and compressed files through the whole frame:
 // - lines and points are drawn where they project, in their colour (unlit), hidden where a surface is nearer, not in
 //   the G-buffer (the mask) and not in the AO (the same AO with and without them);
 // - the corpus's Mesh_PrimitiveMode files draw their segments and points where they project;
@@ -11,7 +11,7 @@
 #include <glm/gtc/matrix_transform.hpp>
 
 #include "TestSupport.h"
-#include "core/FrameContext.h"
+#include "frame/FrameContext.h"
 #include "scene/GltfLoader.h"
 
 using namespace obscura;

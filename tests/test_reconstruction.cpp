@@ -1,15 +1,15 @@
 // View-space positions rebuilt from the packed G-buffer of a known plane match the true ones within the depth
-// quantisation: by the CPU mirror (core/ViewReconstruction.h) over the G-buffer the GPU wrote, and by the shaders'
+// quantisation: by the CPU mirror (frame/ViewReconstruction.h) over the G-buffer the GPU wrote, and by the shaders'
 // own lib/reconstruct.glsl, with the far-plane ray interpolated by fullscreen.vert as the passes use it.
 #include <gtest/gtest.h>
 
 #include <glm/geometric.hpp>
 
 #include "TestSupport.h"
-#include "core/FrameContext.h"
-#include "core/LinearDepthPacking.h"
-#include "core/ShaderLibrary.h"
+#include "encoding/LinearDepthPacking.h"
+#include "frame/FrameContext.h"
 #include "gl/PipelineState.h"
+#include "gl/ShaderLibrary.h"
 
 using namespace obscura;
 
@@ -49,7 +49,7 @@ void main() {
 
 void checkPlaneInTheShader(const Case& c, const gl::RenderTarget& gbuffer, const FrameCamera& frame,
                            const glm::vec3& nv, const glm::vec3& pv) {
-  const gl::Program program("reconstruction check", ShaderLibrary::compose("fullscreen.vert", {}, {}),
+  const gl::Program program("reconstruction check", ShaderLibrary::compose("lib/fullscreen.vert", {}, {}),
                             ShaderLibrary::composeText(kShaderCheck, {}, {}));
   const gl::RenderTarget target("reconstruction check", gbuffer.width(), gbuffer.height(), GL_NEAREST,
                                 gl::RenderTarget::Depth::None, false);

@@ -16,7 +16,7 @@
 
 #include "TestSupport.h"
 #include "base/Error.h"
-#include "core/LinearDepthPacking.h"
+#include "encoding/LinearDepthPacking.h"
 #include "reference/AoReferenceTracer.h"
 #include "reference/HemisphereSampling.h"
 

@@ -1,4 +1,4 @@
-// SAO behaviour on synthetic scenes, and the shader against its CPU mirror (core/SaoKernel.h).
+// SAO behaviour on synthetic scenes, and the shader against its CPU mirror (effects/ao/SaoKernel.h).
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -8,10 +8,10 @@
 
 #include "TestSupport.h"
 #include "apps/SceneInput.h"
-#include "core/FrameContext.h"
-#include "core/LinearDepthPacking.h"
-#include "core/NormalEncoding.h"
-#include "core/SaoKernel.h"
+#include "effects/ao/SaoKernel.h"
+#include "encoding/LinearDepthPacking.h"
+#include "encoding/NormalEncoding.h"
+#include "frame/FrameContext.h"
 #include "scene/BuiltinScene.h"
 #include "scene/Primitives.h"
 
@@ -105,7 +105,7 @@ TEST(Sao, PlaneAtAGrazingAngleIsUnoccluded) {
       const auto ao = test::render(renderer, camera, settings, View::AoRaw);
       const auto depth = test::render(renderer, camera, settings, View::Depth);
       if (settings.estimator == AoEstimator::Crytek || settings.estimator == AoEstimator::Hbao) {
-        // Exempt from the bound, held to a fraction of the pixels instead. Crytek's test (shaders_es2/crytek.frag)
+        // Exempt from the bound, held to a fraction of the pixels instead. Crytek's test (shaders_es2/ao/crytek.frag)
         // compares the depths of sample points with the depth buffer at the pixels they project to, with no normal,
         // and on a plane this far from face-on the depth changes across one pixel (or across a hierarchy block, for
         // far taps) by more than the bias, so some points just above the plane test as behind it: the original's

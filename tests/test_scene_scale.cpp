@@ -6,8 +6,8 @@
 
 #include "TestSupport.h"
 #include "apps/SceneInput.h"
-#include "core/RenderSettings.h"
 #include "platform/ViewerState.h"
+#include "renderer/RenderSettings.h"
 #include "scene/Animation.h"
 #include "scene/BuiltinScene.h"
 #include "scene/GltfLoader.h"

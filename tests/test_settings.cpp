@@ -8,11 +8,11 @@
 #include <cmath>
 
 #include "base/Error.h"
-#include "core/AoSettings.h"
-#include "core/FxaaEffect.h"
-#include "core/RenderSettings.h"
-#include "core/SaoKernel.h"
-#include "core/TonemapEffect.h"
+#include "effects/ao/AoSettings.h"
+#include "effects/ao/SaoKernel.h"
+#include "effects/fxaa/FxaaEffect.h"
+#include "effects/tonemap/TonemapEffect.h"
+#include "renderer/RenderSettings.h"
 
 using namespace obscura;
 

@@ -9,8 +9,8 @@
 
 #include "TestSupport.h"
 #include "base/Error.h"
-#include "core/LightingEffect.h"
-#include "core/ShaderLibrary.h"
+#include "effects/lighting/LightingEffect.h"
+#include "gl/ShaderLibrary.h"
 #include "gl/UniformPacking.h"
 
 using namespace obscura;

@@ -185,7 +185,7 @@ TEST(Skinning, ASkeletonLargerThanThePaletteRendersAsWithALargePalette) {
   }
 }
 
-// A context with GLES 2's 8 combined texture units: the lighting's fragment stage may take all eight (core/
+// A context with GLES 2's 8 combined texture units: the lighting's fragment stage may take all eight (gpu/
 // TextureUnits.h), so the joint texture has no unit of its own and the renderer takes the uniform palette, and the
 // environment's BRDF table the joints' unit. The image is the joint texture's, on a context with units to spare.
 TEST(Skinning, EightCombinedTextureUnitsTakeThePaletteAndTheSameImage) {

@@ -1,7 +1,7 @@
-// Temporal antialiasing (core/TaaEffect.h): the history encoding chosen by measurement, the CPU mirror of
-// lib/taa.glsl and its round trip through the GPU, and the effect against the brute-force references of
-// core/AccumulationReference.h: the still room after 16 frames against the 4x supersampled frame, the pendulum and a
-// camera pan against the zero-shutter supersampled frame (no ghost trail where the pendulum uncovers the room), and
+// Temporal antialiasing (effects/taa/TaaEffect.h): the history encoding chosen by measurement, the CPU mirror of
+// taa/taa.glsl and its round trip through the GPU, and the effect against the brute-force references of
+// renderer/AccumulationReference.h: the still room after 16 frames against the 4x supersampled frame, the pendulum and
+// a camera pan against the zero-shutter supersampled frame (no ghost trail where the pendulum uncovers the room), and
 // the history dropped on scene change and resize.
 #include <gtest/gtest.h>
 
@@ -11,15 +11,15 @@
 #include <functional>
 
 #include "TestSupport.h"
-#include "core/AccumulationReference.h"
-#include "core/ColorSpaces.h"
-#include "core/HdrEncoding.h"
-#include "core/ShaderLibrary.h"
-#include "core/TaaEffect.h"
-#include "core/TonemapEffect.h"
-#include "core/VelocityPacking.h"
+#include "effects/taa/TaaEffect.h"
+#include "effects/tonemap/TonemapEffect.h"
+#include "encoding/ColorSpaces.h"
+#include "encoding/HdrEncoding.h"
+#include "encoding/VelocityPacking.h"
 #include "gl/RenderTarget.h"
+#include "gl/ShaderLibrary.h"
 #include "platform/Viewer.h"
+#include "renderer/AccumulationReference.h"
 #include "scene/BuiltinScene.h"
 
 namespace obscura {
@@ -99,7 +99,7 @@ TEST(TaaHistoryEncoding, IsChosenByMeasurement) {
 }
 
 // ---------------------------------------------------------------------------------------------------------------
-// The CPU mirror of lib/taa.glsl.
+// The CPU mirror of taa/taa.glsl.
 
 TEST(TaaMirror, TransformsRoundTripAndClipHoldsTheBox) {
   for (const glm::vec3& c : {glm::vec3(0.0f), glm::vec3(1.0f, 0.5f, 0.25f), glm::vec3(40.0f, 0.0f, 3.0f),
@@ -122,7 +122,7 @@ TEST(TaaMirror, TransformsRoundTripAndClipHoldsTheBox) {
   EXPECT_EQ(taaFeedback(0.9f, 16), 0.9f);
 }
 
-// The real lib/taa.glsl and lib/hdr.glsl on the GPU against the mirror: a current colour and a history, both through
+// The real taa/taa.glsl and lib/hdr.glsl on the GPU against the mirror: a current colour and a history, both through
 // the HDR encoding, averaged in the tone-mapped YCoCg space with the history clipped to a box about their mean, and
 // encoded again. The decoded colours agree within one 9-bit mantissa step of the brightest channel.
 TEST(TaaMirror, ResolveArithmeticMatchesTheGpu) {
@@ -131,7 +131,7 @@ TEST(TaaMirror, ResolveArithmeticMatchesTheGpu) {
   const char* fragment = R"(
 #include "lib/precision.glsl"
 #include "lib/hdr.glsl"
-#include "lib/taa.glsl"
+#include "taa/taa.glsl"
 varying vec4 v_first;
 varying vec3 v_second;
 void main() {
@@ -259,9 +259,9 @@ RenderSettings withTaa(bool fxaa = false) {
   return s;
 }
 
-// The reference of core/AccumulationReference.h averages display values (sRGB after the tone curve), which is not what
-// any antialiasing of the HDR colour converges to: a half-covered edge pixel between white and black is display 0.5
-// there, and 0.5 of the light, display 0.74, to a filter of the light. So the tests hold TAA against the same 4x
+// The reference of renderer/AccumulationReference.h averages display values (sRGB after the tone curve), which is not
+// what any antialiasing of the HDR colour converges to: a half-covered edge pixel between white and black is display
+// 0.5 there, and 0.5 of the light, display 0.74, to a filter of the light. So the tests hold TAA against the same 4x
 // render box-filtered in linear light: its HDR colour ("scene-color", decoded with the CPU mirror) averaged, then
 // tone-mapped and encoded sRGB as the tone-mapping pass does. Both are printed.
 LinearImage supersampledLight(Renderer& renderer, const Camera& camera, double time) {

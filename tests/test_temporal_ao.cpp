@@ -1,5 +1,5 @@
-// Temporal AO (ao.temporal; core/AoTemporal.h, shaders_es2/ao_temporal.frag): the CPU mirror's arithmetic, the GPU
-// pass held to it, the history's lifetime, and the accumulated AO measured against the ray-traced reference on a
+// Temporal AO (ao.temporal; effects/ao/AoTemporal.h, shaders_es2/ao/ao_temporal.frag): the CPU mirror's arithmetic, the
+// GPU pass held to it, the history's lifetime, and the accumulated AO measured against the ray-traced reference on a
 // still scene (accuracy for the taps spent) and on a moving one (no trail where the object uncovered the floor).
 #include <gtest/gtest.h>
 
@@ -9,10 +9,10 @@
 #include <set>
 
 #include "TestSupport.h"
-#include "core/AccumulationReference.h"
-#include "core/AoTemporal.h"
+#include "effects/ao/AoTemporal.h"
 #include "metrics/AoMetrics.h"
 #include "reference/AoReferenceTracer.h"
+#include "renderer/AccumulationReference.h"
 #include "scene/Animation.h"
 #include "scene/BuiltinScene.h"
 #include "scene/Primitives.h"

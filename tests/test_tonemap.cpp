@@ -1,5 +1,5 @@
-// CPU tests of the tone-mapping mirror (src/core/ToneMapping.h): each curve against its published formula written out
-// again here in double precision, known values, monotonic and bounded output, the sRGB transfer function's defining
+// CPU tests of the tone-mapping mirror (src/encoding/ToneMapping.h): each curve against its published formula written
+// out again here in double precision, known values, monotonic and bounded output, the sRGB transfer function's defining
 // points, the colour-space matrices against their published roundings, and the literals lib/tonemap.glsl shares with
 // the CPU (bit-identical).
 #include <gtest/gtest.h>
@@ -10,10 +10,10 @@
 
 #include <glm/geometric.hpp>
 
-#include "core/ColorSpaces.h"
 #include "base/Error.h"
-#include "core/ShaderLibrary.h"
-#include "core/ToneMapping.h"
+#include "encoding/ColorSpaces.h"
+#include "encoding/ToneMapping.h"
+#include "gl/ShaderLibrary.h"
 
 using namespace obscura;
 

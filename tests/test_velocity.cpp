@@ -1,6 +1,7 @@
-// Motion vectors (core/VelocityEffect.h): the packing on the GPU against its CPU mirror, a still scene gives zero,
-// known camera and object motions give the analytic velocity within the packing's quantisation, and every way of
-// drawing what moves (skinning paths, CPU deformation, every instance or only the moving ones) gives the same vectors.
+// Motion vectors (effects/velocity/VelocityEffect.h): the packing on the GPU against its CPU mirror, a still scene
+// gives zero, known camera and object motions give the analytic velocity within the packing's quantisation, and every
+// way of drawing what moves (skinning paths, CPU deformation, every instance or only the moving ones) gives the same
+// vectors.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -9,8 +10,8 @@
 #include <glm/gtc/matrix_transform.hpp>
 
 #include "TestSupport.h"
-#include "core/ShaderLibrary.h"
-#include "core/VelocityPacking.h"
+#include "encoding/VelocityPacking.h"
+#include "gl/ShaderLibrary.h"
 #include "scene/Animation.h"
 #include "scene/Primitives.h"
 #include "scene/SkinnedTube.h"

@@ -1,4 +1,4 @@
-// Measures the candidate HDR-in-RGBA8 encodings (src/core/HdrEncoding.h) and prints one table: range, round-trip
+// Measures the candidate HDR-in-RGBA8 encodings (src/encoding/HdrEncoding.h) and prints one table: range, round-trip
 // error, banding after tone mapping and 8-bit sRGB display encoding, what bilinear filtering does to them, and the
 // GPU cost of encode + decode on this machine's GL (llvmpipe here). The lighting pass uses the winner; the table and
 // the reasons are recorded in HdrEncoding.h and README.md ("HDR colour in RGBA8").
@@ -40,15 +40,15 @@
 
 #include <glm/geometric.hpp>
 
-#include "core/ColorSpaces.h"
 #include "base/Error.h"
-#include "core/FrameContext.h"
-#include "core/FullscreenTriangle.h"
-#include "core/HdrEncoding.h"
-#include "core/ShaderLibrary.h"
-#include "core/ToneMapping.h"
+#include "encoding/ColorSpaces.h"
+#include "encoding/HdrEncoding.h"
+#include "encoding/ToneMapping.h"
+#include "frame/FrameContext.h"
+#include "frame/FullscreenTriangle.h"
 #include "gl/PipelineState.h"
 #include "gl/RenderTarget.h"
+#include "gl/ShaderLibrary.h"
 #include "platform/HeadlessContext.h"
 
 using namespace obscura;
@@ -271,7 +271,7 @@ int dumpShaders(const std::string& dir) {
     std::FILE* vert = std::fopen((base + ".vert").c_str(), "w");
     std::FILE* frag = std::fopen((base + ".frag").c_str(), "w");
     if (!vert || !frag) throw InputError("cannot write " + base + ".vert/.frag");
-    const std::string v = ShaderLibrary::compose("fullscreen.vert", defines, {});
+    const std::string v = ShaderLibrary::compose("lib/fullscreen.vert", defines, {});
     const std::string f = ShaderLibrary::composeText(fragment, defines, {});
     std::fwrite(v.data(), 1, v.size(), vert);
     std::fwrite(f.data(), 1, f.size(), frag);

@@ -12,7 +12,7 @@
 #include <glm/geometric.hpp>
 #include <stb_image_write.h>
 
-#include "core/Environment.h"
+#include "environment/Environment.h"
 
 using namespace obscura;
 

@@ -1,6 +1,7 @@
 // obscura-make-pbr-samples: writes assets/scenes/pbr-samples.glb, a glTF 2.0 sample of the metallic-roughness
-// material model for the lighting pass (core/LightingEffect.h, docs/pbr.md): the README's picture, the forward
-// shading golden image (tests/test_golden.cpp) and the loader test of every material input (tests/test_pbr.cpp).
+// material model for the lighting pass (effects/lighting/LightingEffect.h, docs/pbr.md): the README's picture, the
+// forward shading golden image (tests/test_golden.cpp) and the loader test of every material input
+// (tests/test_pbr.cpp).
 //
 // Why it exists: none of the glTF files Debian ships (/usr/share/assimp/models/glTF2) has metallic-roughness,
 // normal, occlusion and emissive textures together with KHR_lights_punctual, so the sample is generated here and

@@ -1,4 +1,4 @@
-// Measures the candidate two-channel normal encodings (src/core/NormalEncoding.h) over a dense set of directions,
+// Measures the candidate two-channel normal encodings (src/encoding/NormalEncoding.h) over a dense set of directions,
 // back-facing ones included, and prints max / mean / 99th-percentile angular error. The G-buffer uses the winner;
 // its figures are recorded in NormalEncoding.h and the README.
 //
@@ -8,7 +8,7 @@
 #include <cstdlib>
 #include <vector>
 
-#include "core/NormalEncoding.h"
+#include "encoding/NormalEncoding.h"
 
 using namespace obscura;
 

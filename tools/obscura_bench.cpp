@@ -5,7 +5,7 @@
 //
 // Prints tables and writes DIR/bench.csv (every measurement), DIR/ratios.csv, DIR/radius_sweep.csv,
 // DIR/radius_sweep.png (gnuplot) and DIR/estimators.csv. Every pass is bounded by glFinish on both sides and
-// reported as the median over N frames. The passes and effects are the effect table's (core/EffectTable.h): a new
+// reported as the median over N frames. The passes and effects are the effect table's (renderer/EffectTable.h): a new
 // effect shows up by itself.
 // Sections:
 //   1. per-pass and per-effect ms at 640x360, 1280x720 and 1920x1080 on the built-in scene and on
@@ -38,23 +38,23 @@
 #include <string>
 #include <vector>
 
+#include "FetchFloorPass.h"
 #include "apps/SceneInput.h"
-#include "core/AoSettings.h"
 #include "base/Error.h"
 #include "base/Text.h"
-#include "core/DepthHierarchyPass.h"
-#include "FetchFloorPass.h"
-#include "core/Renderer.h"
-#include "core/SaoKernel.h"
+#include "effects/ao/AoSettings.h"
+#include "effects/ao/DepthHierarchyPass.h"
+#include "effects/ao/SaoKernel.h"
 #include "gl/RenderTarget.h"
 #include "platform/FinishPassTimer.h"
 #include "platform/HeadlessContext.h"
+#include "renderer/Renderer.h"
+#include "scene/Animation.h"
 #include "scene/BuiltinScene.h"
 #include "scene/GltfLoader.h"
+#include "scene/Primitives.h"
 #include "scene/SceneScale.h"
 #include "scene/SkinnedTube.h"
-#include "scene/Animation.h"
-#include "scene/Primitives.h"
 
 using namespace obscura;
 

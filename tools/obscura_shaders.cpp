@@ -9,7 +9,7 @@
 #include <string>
 
 #include "FetchFloorPass.h"
-#include "core/Renderer.h"
+#include "renderer/Renderer.h"
 
 namespace {
 // The frame's programs and the benchmark's floor pass.

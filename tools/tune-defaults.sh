@@ -2,7 +2,7 @@
 # Fits each AO estimator's intensity, bias and contrast per quality preset and radius in pixels to the ray-traced
 # reference, makes them the defaults, and regenerates the accuracy report. One command, deterministic; re-run it after any change to the AO
 # pipeline (passes, presets, shaders) and commit what it rewrites:
-#   src/core/TunedDefaults.inc   the fitted table AoSettings reads
+#   src/effects/ao/TunedDefaults.inc   the fitted table AoSettings reads
 #   docs/accuracy.md             the generated tables (between the obscura-tune markers)
 #   docs/images/accuracy-*.png   reference | AO | difference
 #   tests/golden/*.png           the golden images, which show the default (tuned) AO
@@ -13,7 +13,7 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 
 tools/build.sh
-build/obscura-tune --views tools/tuning-views.json --fit src/core/TunedDefaults.inc
+build/obscura-tune --views tools/tuning-views.json --fit src/effects/ao/TunedDefaults.inc
 tools/build.sh  # the core now reads the new table
 # The report's browser column: what tools/browser-bench/estimator-costs.mjs measured last (bench-results/), if it ran.
 browser_costs=()
@@ -21,5 +21,6 @@ if [ -f bench-results/browser-estimators.csv ]; then browser_costs=(--browser-ms
 build/obscura-tune --views tools/tuning-views.json --report docs/accuracy.md --images docs/images "${browser_costs[@]}"
 OBSCURA_UPDATE_GOLDEN=1 ctest --test-dir build -R 'gpu\.osmesa\.Golden' >/dev/null
 tools/render-docs-images.sh
-echo "tune-defaults: rewrote src/core/TunedDefaults.inc, docs/accuracy.md, docs/images/*.png and tests/golden/*.png;"
+echo "tune-defaults: rewrote src/effects/ao/TunedDefaults.inc, docs/accuracy.md, docs/images/*.png and"
+echo "  tests/golden/*.png;"
 echo "tune-defaults: now run tools/test.sh (the accuracy guard's bounds are in tests/test_accuracy.cpp)"

@@ -2,10 +2,10 @@
 // Crytek), per quality preset and radius in pixels, so that its blurred AO best matches the ray-traced reference at
 // the same radius over a set of views (each at several radii, multiples of a typical object's size in that scene's
 // units); writes the fitted table
-// the core reads (src/core/TunedDefaults.inc), and the accuracy report (docs/accuracy.md and its images).
+// the core reads (src/effects/ao/TunedDefaults.inc), and the accuracy report (docs/accuracy.md and its images).
 // tools/tune-defaults.sh runs the whole procedure; see docs/accuracy.md.
 //
-//   obscura-tune --views tools/tuning-views.json --fit src/core/TunedDefaults.inc
+//   obscura-tune --views tools/tuning-views.json --fit src/effects/ao/TunedDefaults.inc
 //   obscura-tune --views tools/tuning-views.json --report docs/accuracy.md --images docs/images
 //
 // The reference images are cached under --cache (default build/tuning-cache), keyed by a hash of the scene's
@@ -34,18 +34,18 @@
 #include <nlohmann/json.hpp>
 
 #include "apps/SceneInput.h"
-#include "core/AoSettings.h"
 #include "base/Error.h"
 #include "base/Text.h"
-#include "core/FrameContext.h"
-#include "core/LinearDepthPacking.h"
-#include "core/SaoKernel.h"
-#include "core/Renderer.h"
+#include "effects/ao/AoSettings.h"
+#include "effects/ao/SaoKernel.h"
+#include "encoding/LinearDepthPacking.h"
+#include "frame/FrameContext.h"
 #include "gl/RenderTarget.h"
 #include "metrics/AoMetrics.h"
 #include "platform/FinishPassTimer.h"
 #include "platform/HeadlessContext.h"
 #include "reference/AoReferenceTracer.h"
+#include "renderer/Renderer.h"
 #include "scene/BuiltinScene.h"
 #include "scene/ImageIo.h"
 
@@ -930,7 +930,7 @@ std::string usage() {
          "(--report). tools/tune-defaults.sh runs both.\n"
          "  --views FILE   the views, radii and sizes (default tools/tuning-views.json)\n"
          "  --cache DIR    where reference images are kept between runs (default build/tuning-cache)\n"
-         "  --fit FILE     write the fitted table (src/core/TunedDefaults.inc)\n"
+         "  --fit FILE     write the fitted table (src/effects/ao/TunedDefaults.inc)\n"
          "  --report FILE  rewrite the generated part of FILE (docs/accuracy.md)\n"
          "  --images DIR   where the report's pictures go (default docs/images)\n"
          "  --browser-ms F the browser's AO milliseconds for the report's estimator table (the CSV of\n"

@@ -1,6 +1,6 @@
-// Image-based ambient light (src/core/Environment.h holds the method, the CPU side and the mirrors of every function
-// here; docs/lighting.md the measurements). Needs lib/precision.glsl and lib/hdr.glsl first. Directions are world
-// space, y up; the environment is equirectangular, u = atan(x, -z) / 2 pi + 1/2, v = acos(y) / pi.
+// Image-based ambient light (src/environment/Environment.h holds the method, the CPU side and the mirrors of every
+// function here; docs/lighting.md the measurements). Needs lib/precision.glsl and lib/hdr.glsl first. Directions are
+// world space, y up; the environment is equirectangular, u = atan(x, -z) / 2 pi + 1/2, v = acos(y) / pi.
 //
 //   vec3 environmentIrradiance(vec3 n)      E(n) / pi from the nine spherical-harmonic terms (Ramamoorthi & Hanrahan
 //                                           2001, eq. 13): the radiance a white Lambertian surface reflects.

@@ -1,9 +1,9 @@
 // glTF base colour and alpha test, shared by the G-buffer and lighting passes so both discard the same fragments.
 // BASE_COLOR_TEXTURE 1: the material has a base-colour texture; 0: the factor alone (no sample, no decoding).
 // PBR_TEXTURES 1: the metallic-roughness, normal, occlusion and emissive textures are sampled (a slot the material
-// lacks is bound to a neutral 1x1 texture: core/GpuScene.h), each at its own KHR_texture_transform'ed coordinates
+// lacks is bound to a neutral 1x1 texture: gpu/GpuScene.h), each at its own KHR_texture_transform'ed coordinates
 // from the vertex stage (geometry.vert); 0: their factors alone.
-// ALPHA_MASK is the including shader's (the variant that discards). src/core/MaterialKind.h sets them.
+// ALPHA_MASK is the including shader's (the variant that discards). src/gpu/MaterialKind.h sets them.
 #ifndef BASE_COLOR_TEXTURE
 #error "define BASE_COLOR_TEXTURE (MaterialKind::defines() on the CPU)"
 #endif

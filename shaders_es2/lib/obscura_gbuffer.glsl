@@ -11,7 +11,7 @@
 // background), depth test on (GL_LESS), no blending.
 //
 // The layout (docs/api.md, "The G-buffer layout"; the same bytes as Obscura's own G-buffer pass, shaders_es2/
-// gbuffer.frag, lib/packing.glsl; CPU mirrors core/NormalEncoding and core/LinearDepthPacking):
+// gbuffer.frag, lib/packing.glsl; CPU mirrors encoding/NormalEncoding and encoding/LinearDepthPacking):
 //   RG  the view-space normal, octahedral (Cigolle et al. 2014), each axis round(127 p + 127) in 0 .. 254;
 //   BA  16-bit linear depth code round(65535 (z - near) / (far - near)), high byte in B, low byte in A;
 //       65535 (B = A = 1.0) marks the background.

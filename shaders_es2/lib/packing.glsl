@@ -1,5 +1,5 @@
 // Arithmetic packing into RGBA8 channels (GLSL ES 1.00 has no bitwise operators).
-// CPU mirrors: src/core/LinearDepthPacking.h and src/core/NormalEncoding.h; tests hold them bit-exact.
+// CPU mirrors: src/encoding/LinearDepthPacking.h and src/encoding/NormalEncoding.h; tests hold them bit-exact.
 
 // A byte b in [0, 255] is written as (b + 0.25) / 255: a target that rounds f * 255 to nearest and one that truncates
 // it both store b. A texel t decodes to floor(t * 255 + 0.5) either way.
@@ -26,7 +26,7 @@ bool isBackgroundCode(float code) { return code > 65534.5; }
 
 // Octahedral normal encoding (Cigolle et al. 2014), p in [-1, 1]^2 stored as round(127 p + 127): the axes and the
 // poles are exact. Covers the whole sphere, so normals facing away from the viewer survive. Measured error: see
-// src/core/NormalEncoding.h.
+// src/encoding/NormalEncoding.h.
 vec2 signNotZero(vec2 v) { return vec2(v.x >= 0.0 ? 1.0 : -1.0, v.y >= 0.0 ? 1.0 : -1.0); }
 
 vec2 encodeNormal(vec3 n) {
@@ -52,7 +52,7 @@ float normalSimilarity(vec3 a, vec3 b) {
   return w8 * w2;
 }
 
-// Screen-space velocity (core/VelocityPacking.h): each component, in units of the screen's size (uv, [-1, 1]),
+// Screen-space velocity (encoding/VelocityPacking.h): each component, in units of the screen's size (uv, [-1, 1]),
 // as a signed 16-bit code round(v * 32767) + 32768 in two bytes, high first: zero is exact (code 32768), the step is
 // 1/32767 of the screen (0.06 px at 1920), and a motion across more than the whole screen clamps.
 vec4 packVelocity(vec2 velocity) {

@@ -3,8 +3,8 @@
 // Schlick's Fresnel F, over a Lambertian diffuse lobe weighted by (1 - F):
 //   f = (1 - F) c_diff / pi + F D V,   c_diff = mix(base, 0, metallic),   F0 = mix(0.04, base, metallic),
 //   alpha = roughness^2.
-// A light of illuminance E (perpendicular to it) adds f E NL. CPU mirror: core/PbrShading.h (tests/test_pbr.cpp
-// compares the two at sample angles).
+// A light of illuminance E (perpendicular to it) adds f E NL. CPU mirror: effects/lighting/PbrShading.h
+// (tests/test_pbr.cpp compares the two at sample angles).
 #ifndef PBR_GLSL
 #define PBR_GLSL
 

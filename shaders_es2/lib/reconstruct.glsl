@@ -1,5 +1,5 @@
 // View-space position from linear depth along the pixel's far-plane ray (Gravas 2013, eq. 3.1.3).
-// CPU mirror: src/core/ViewReconstruction.h.
+// CPU mirror: src/frame/ViewReconstruction.h.
 //   F(uv) = ((2 uv - 1) * farHalfExtent, -far)       P = F(uv) * (d * (1 - near/far) + near/far)
 uniform vec2 u_farHalfExtent;   // far * (tan(fovx / 2), tan(fovy / 2))
 uniform float u_farPlane;

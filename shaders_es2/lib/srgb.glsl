@@ -1,6 +1,6 @@
 // The sRGB transfer function (IEC 61966-2-1, the real piecewise curve) and FXAA's luma: what the tone mapping
 // encodes for display, and what the G-buffer pass stores the base colour in where it also writes one (several
-// render targets: the deferred lighting decodes it). CPU mirror: src/core/ToneMapping.h. Needs lib/precision.glsl.
+// render targets: the deferred lighting decodes it). CPU mirror: src/encoding/ToneMapping.h. Needs lib/precision.glsl.
 
 // The pow branch takes max(c, 0.0031308) so that it never sees 0 (pow(0, y) is only defined for y > 0, and mix would
 // carry a NaN from the unused branch).

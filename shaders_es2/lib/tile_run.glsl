@@ -1,4 +1,4 @@
-// One run of the separable TileMax (core/TileMaxPasses.h): the K source texels along u_step that this pass's texel
+// One run of the separable TileMax (frame/TileMaxPasses.h): the K source texels along u_step that this pass's texel
 // stands for, at most MAX_TILE (constant loop bounds, GLSL ES 1.00 Appendix A; the host clamps K to it). Needs
 // varying vec2 v_uv. motion_blur.frag (passes 1, 2) and dof.frag (passes 3, 4) reduce the run each their own way:
 //

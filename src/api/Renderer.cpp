@@ -1,4 +1,4 @@
-// The public Renderer (include/obscura/obscura.h): a facade over the internal one (core/Renderer.h) that keeps the
+// The public Renderer (include/obscura/obscura.h): a facade over the internal one (renderer/Renderer.h) that keeps the
 // settings, the scene, the camera conventions and the caller's-G-buffer targets, and turns every internal error into
 // obscura::api::Error.
 #include <chrono>
@@ -6,16 +6,16 @@
 
 #include "base/Error.h"
 #include "base/Text.h"
-#include "core/EmbeddedShaders.h"
-#include "core/FullscreenTriangle.h"
-#include "core/LinearDepthPacking.h"
-#include "core/NormalEncoding.h"
-#include "core/Renderer.h"
+#include "encoding/LinearDepthPacking.h"
+#include "encoding/NormalEncoding.h"
+#include "frame/FullscreenTriangle.h"
+#include "gl/EmbeddedShaders.h"
 #include "gl/GlApi.h"
 #include "gl/PipelineState.h"
 #include "gl/Program.h"
 #include "gl/RenderTarget.h"
 #include "obscura/obscura.h"
+#include "renderer/Renderer.h"
 #include "scene/BuiltinScene.h"
 #include "scene/Camera.h"
 #include "scene/GltfLoader.h"

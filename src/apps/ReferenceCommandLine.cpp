@@ -5,8 +5,8 @@
 #include <iostream>
 #include <thread>
 
-#include "core/AoSettings.h"
 #include "base/Error.h"
+#include "effects/ao/AoSettings.h"
 #include "scene/ImageIo.h"
 
 namespace obscura {

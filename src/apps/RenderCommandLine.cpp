@@ -7,9 +7,9 @@
 
 #include "base/Error.h"
 #include "base/Text.h"
-#include "core/AccumulationReference.h"
 #include "gl/RenderTarget.h"
 #include "platform/FinishPassTimer.h"
+#include "renderer/AccumulationReference.h"
 #include "scene/ImageIo.h"
 
 namespace obscura {

@@ -5,9 +5,9 @@
 #include <vector>
 
 #include "apps/SceneInput.h"
-#include "core/RenderSettings.h"
-#include "core/Renderer.h"
 #include "platform/HeadlessContext.h"
+#include "renderer/RenderSettings.h"
+#include "renderer/Renderer.h"
 
 namespace obscura {
 
@@ -24,12 +24,12 @@ struct RenderOptions {
   // one Renderer so that the history carries from frame to frame; the last is written.
   double fps = 60.0;
   int frames = 1;
-  // --accumulate N: write the brute-force reference of core/AccumulationReference.h instead (N sub-frames over the
+  // --accumulate N: write the brute-force reference of renderer/AccumulationReference.h instead (N sub-frames over the
   // --shutter interval, each --supersample times the size), for the final view only.
   int accumulate = 0;
   double shutter = 0.5;
   int supersample = 1;
-  // --aperture N: write depth of field's reference of core/AccumulationReference.h instead (N pinhole renders from
+  // --aperture N: write depth of field's reference of renderer/AccumulationReference.h instead (N pinhole renders from
   // points on the lens of the dof.* settings, each --supersample times the size), for the final view only.
   int aperture = 0;
   int benchFrames = 0;

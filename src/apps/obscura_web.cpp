@@ -26,7 +26,8 @@
 
 #include "base/Error.h"
 #include "base/Text.h"
-#include "core/Environment.h"
+#include "effects/ao/DepthHierarchyPass.h"
+#include "environment/Environment.h"
 #include "gl/GlObjects.h"
 #include "gl/RenderTarget.h"
 #include "platform/GpuPassTimer.h"
@@ -326,9 +327,9 @@ EMSCRIPTEN_KEEPALIVE const char* obscura_set_hierarchy_storage(const char* name)
         RendererOptions options = g_app->viewer().rendererOptions();  // keeps checkGlErrors
         options.hierarchyStorage.reset();                              // "auto"
         const std::string wanted = name;
-        if (wanted == "separate") options.hierarchyStorage = DepthHierarchyPass::Storage::SeparateTextures;
-        else if (wanted == "atlas") options.hierarchyStorage = DepthHierarchyPass::Storage::Atlas;
-        else if (wanted == "mipchain") options.hierarchyStorage = DepthHierarchyPass::Storage::MipChain;
+        if (wanted == "separate") options.hierarchyStorage = HierarchyStorage::SeparateTextures;
+        else if (wanted == "atlas") options.hierarchyStorage = HierarchyStorage::Atlas;
+        else if (wanted == "mipchain") options.hierarchyStorage = HierarchyStorage::MipChain;
         else if (wanted != "auto")
           throw InputError("hierarchy storage: expected auto, separate, atlas or mipchain, got '" + wanted + "'");
         used = DepthHierarchyPass::storageName(g_app->viewer().setRendererOptions(options));

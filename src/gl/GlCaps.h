@@ -6,6 +6,25 @@
 
 #include "gl/GlApi.h"
 
+namespace obscura {
+
+// Limits of the vertex stage to simulate: the renderer uses the smaller of these and the context's. gles2Minimum()
+// is what every GLES 2 / WebGL 1 context guarantees: 128 uniform vectors, 8 attributes, no vertex texture units.
+struct VertexLimits {
+  int uniformVectors = 128, attributes = 8, textureUnits = 0;
+  static VertexLimits gles2Minimum() { return {}; }
+};
+
+// Limits of the fragment stage (and the program's combined texture units) to simulate, as VertexLimits does for the
+// vertex stage. gles2Minimum(): 16 uniform vectors, 8 texture units in the fragment stage, 8 in all. They set the
+// punctual lights per draw (effects/lighting/LightingEffect.h) and the texture units (gpu/TextureUnits.h).
+struct FragmentLimits {
+  int uniformVectors = 16, textureUnits = 8, combinedTextureUnits = 8;
+  static FragmentLimits gles2Minimum() { return {}; }
+};
+
+}  // namespace obscura
+
 namespace obscura::gl {
 
 struct GlCaps {
@@ -24,11 +43,11 @@ struct GlCaps {
   GLint maxDrawBuffers = 1;
   bool desktopGl = false;               // a desktop GL context running GLSL ES (OSMesa): sized float formats
   bool textureFloat = false;            // OES_texture_float (core in desktop GL 3.0): RGBA float textures to sample
-  // The vertex stage's limits, which size skinning and morphing (core/GpuScene.h). GLES 2 guarantees 128 uniform
+  // The vertex stage's limits, which size skinning and morphing (gpu/GpuScene.h). GLES 2 guarantees 128 uniform
   // vectors, 8 attributes and no texture units.
   GLint maxVertexUniformVectors = 128, maxVertexAttribs = 8, maxVertexTextureImageUnits = 0;
   // The fragment stage's and the whole program's: they size the lighting's punctual lights per draw and decide which
-  // texture units the lighting pass may take (core/TextureUnits.h). GLES 2 guarantees 16 uniform vectors, 8 texture
+  // texture units the lighting pass may take (gpu/TextureUnits.h). GLES 2 guarantees 16 uniform vectors, 8 texture
   // units in the fragment stage and 8 in all.
   GLint maxFragmentUniformVectors = 16, maxTextureImageUnits = 8, maxCombinedTextureImageUnits = 8;
   GLint maxTextureSize = 0, maxRenderbufferSize = 0, maxViewportWidth = 0, maxViewportHeight = 0;

@@ -6,7 +6,7 @@
 
 namespace obscura::gl {
 namespace {
-// GLES 2's 8 units, and the ninth that the lighting's BRDF table takes where the context has one (core/
+// GLES 2's 8 units, and the ninth that the lighting's BRDF table takes where the context has one (gpu/
 // TextureUnits.h).
 constexpr int kTextureUnits = 9;
 constexpr GLuint kAttributeSlots = 8;  // the GLES 2 minimum (skinned and morphed draws use them all)

@@ -6,7 +6,7 @@
 #include <string>
 #include <vector>
 
-#include "core/Renderer.h"
+#include "renderer/Renderer.h"
 
 namespace obscura {
 

@@ -28,7 +28,7 @@ GlfwWindow::GlfwWindow(const std::string& title, int width, int height) {
     glfwWindowHint(GLFW_CONTEXT_VERSION_MAJOR, 2);
     glfwWindowHint(GLFW_CONTEXT_VERSION_MINOR, 0);
     // Every pass of the frame draws into textures and the last one is a full-screen triangle into the window: the
-    // window needs neither depth nor multisampling (FXAA antialiases; core/FxaaEffect.h says why not MSAA). Its
+    // window needs neither depth nor multisampling (FXAA antialiases; effects/fxaa/FxaaEffect.h says why not MSAA). Its
     // stencil lets FXAA run its full shader on edge pixels only (FxaaEffect.h).
     glfwWindowHint(GLFW_DEPTH_BITS, 0);
     glfwWindowHint(GLFW_STENCIL_BITS, 8);

@@ -9,9 +9,9 @@
 #include <string>
 #include <vector>
 
-#include "core/Renderer.h"
 #include "gl/GlCaps.h"
 #include "gl/GlLoader.h"
+#include "renderer/Renderer.h"
 
 namespace obscura {
 

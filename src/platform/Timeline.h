@@ -14,7 +14,7 @@
 #include <string>
 #include <vector>
 
-#include "core/Renderer.h"
+#include "renderer/Renderer.h"
 #include "scene/Animation.h"
 #include "scene/Scene.h"
 

@@ -5,7 +5,7 @@
 #include <cstdlib>
 
 #include "base/Error.h"
-#include "core/TaaEffect.h"
+#include "effects/taa/TaaEffect.h"
 #include "gl/GlObjects.h"
 #include "platform/CameraControls.h"
 #include "scene/BuiltinScene.h"
@@ -232,7 +232,7 @@ void Viewer::contextLost() {
   renderer_.reset();
 }
 
-DepthHierarchyPass::Storage Viewer::setRendererOptions(const RendererOptions& options) {
+HierarchyStorage Viewer::setRendererOptions(const RendererOptions& options) {
   auto renderer = std::make_unique<Renderer>(caps_, options);  // first: if it fails, nothing has changed
   renderer->setScene(scene_);
   options_ = options;

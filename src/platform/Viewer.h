@@ -11,9 +11,9 @@
 #include <string>
 #include <vector>
 
-#include "core/Renderer.h"
 #include "gl/GlCaps.h"
 #include "platform/ViewerState.h"
+#include "renderer/Renderer.h"
 #include "scene/GltfLoader.h"
 #include "scene/Scene.h"
 
@@ -84,7 +84,7 @@ class Viewer {
 
   // Rebuilds the Renderer with other options (e.g. a forced depth-hierarchy storage, to compare the storages on
   // this context); the scene, state and camera stay. Returns the storage now in use.
-  DepthHierarchyPass::Storage setRendererOptions(const RendererOptions& options);
+  HierarchyStorage setRendererOptions(const RendererOptions& options);
   const RendererOptions& rendererOptions() const { return options_; }
   const Renderer* renderer() const { return renderer_.get(); }
 

@@ -12,9 +12,9 @@
 #include <string>
 #include <vector>
 
-#include "core/RenderSettings.h"
-#include "core/Renderer.h"
 #include "platform/Timeline.h"
+#include "renderer/RenderSettings.h"
+#include "renderer/Renderer.h"
 #include "scene/Camera.h"
 
 namespace obscura {

@@ -37,8 +37,8 @@ WebCanvas::WebCanvas(std::function<void()> onLost, std::function<void()> onResto
   attributes.minorVersion = 0;
   attributes.alpha = EM_FALSE;
   // Every pass draws into textures; the last one is a full-screen triangle into the canvas, which therefore needs
-  // neither a depth buffer nor multisampling (FXAA antialiases: core/FxaaEffect.h says why not MSAA). Measured on
-  // SwiftShader, the multisampled back buffer alone cost a fifth of the old frame (docs/benchmarks.md). No stencil
+  // neither a depth buffer nor multisampling (FXAA antialiases: effects/fxaa/FxaaEffect.h says why not MSAA). Measured
+  // on SwiftShader, the multisampled back buffer alone cost a fifth of the old frame (docs/benchmarks.md). No stencil
   // either: FXAA masked by a stencil (FxaaEffect.h), which more than halves its pass on llvmpipe, made the page's
   // frame no faster on SwiftShader (AO off, 1280x720: 236 against 219 ms, medians of 24 frames, within the noise).
   attributes.depth = EM_FALSE;

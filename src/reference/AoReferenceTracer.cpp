@@ -14,7 +14,7 @@
 #include <glm/matrix.hpp>
 
 #include "base/Error.h"
-#include "core/LinearDepthPacking.h"
+#include "encoding/LinearDepthPacking.h"
 #include "reference/HemisphereSampling.h"
 
 namespace obscura {

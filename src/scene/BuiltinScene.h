@@ -11,7 +11,7 @@
 // the pendulum hangs straight down, the limb stands upright.
 //
 // The still room (BuiltinSceneOptions::still()) is the scene as it was before anything moved, exactly: the AO
-// accuracy figures, the tuned defaults (core/TunedDefaults.inc), the golden images and the benchmark figures were
+// accuracy figures, the tuned defaults (effects/ao/TunedDefaults.inc), the golden images and the benchmark figures were
 // all measured on it, so the tools and tests that hold those figures ask for it by name.
 #include "scene/Camera.h"
 #include "scene/Scene.h"

@@ -862,7 +862,7 @@ class SceneBuilder {
   }
 
   // KHR_lights_punctual: the node's point or spot light (directional lights are not loaded: the sun is the
-  // renderer's own, core/LightingEffect.h).
+  // renderer's own, effects/lighting/LightingEffect.h).
   void addLight(const tinygltf::Node& source, int nodeIndex, int index) {
     const auto it = source.extensions.find("KHR_lights_punctual");
     if (it == source.extensions.end() || !it->second.IsObject() || !it->second.Has("light")) return;

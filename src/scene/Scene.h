@@ -42,9 +42,10 @@ enum class AlphaMode { Opaque, Mask, Blend };
 enum class TextureSlot { BaseColor = 0, MetallicRoughness = 1, Normal = 2, Occlusion = 3, Emissive = 4 };
 inline constexpr int kTextureSlots = 5;
 
-// glTF 2.0 metallic-roughness (core/LightingEffect.h shades it). A Material made in code is a rough dielectric
-// (metallic 0, roughness 1): what every scene made in code (the built-in scene, the tests) was drawn as before the
-// material model; the glTF loader sets the file's values, whose defaults are glTF's (metallic 1, roughness 1).
+// glTF 2.0 metallic-roughness (effects/lighting/LightingEffect.h shades it). A Material made in code is a rough
+// dielectric (metallic 0, roughness 1): what every scene made in code (the built-in scene, the tests) was drawn as
+// before the material model; the glTF loader sets the file's values, whose defaults are glTF's (metallic 1, roughness
+// 1).
 struct Material {
   glm::vec4 baseColorFactor{1.0f};
   int baseColorTexture = -1;  // index into Scene::textures
@@ -66,12 +67,12 @@ struct Material {
   float alphaCutoff = 0.5f;
   bool doubleSided = false;
 
-  // Textures besides the base colour (the PBR_TEXTURES shader variant: core/MaterialKind.h).
+  // Textures besides the base colour (the PBR_TEXTURES shader variant: gpu/MaterialKind.h).
   bool hasPbrTextures() const {
     return metallicRoughnessTexture >= 0 || normalTexture >= 0 || occlusionTexture >= 0 || emissiveTexture >= 0;
   }
-  // Anything the deferred lighting's base-colour target cannot carry (core/LightingEffect.h): the scene is then lit
-  // by the forward form.
+  // Anything the deferred lighting's base-colour target cannot carry (effects/lighting/LightingEffect.h): the scene is
+  // then lit by the forward form.
   bool needsForwardLighting() const {
     return hasPbrTextures() || metallicFactor != 0.0f || roughnessFactor != 1.0f ||
            emissiveFactor != glm::vec3(0.0f);
@@ -138,7 +139,7 @@ struct Skin {
 };
 
 // Points and lines (glTF modes POINTS, LINES, LINE_LOOP, LINE_STRIP): not surfaces, so they have no G-buffer entry and
-// no AO; core/LinesEffect.h draws them unlit into the lit image, depth-tested against the surfaces.
+// no AO; effects/lines/LinesEffect.h draws them unlit into the lit image, depth-tested against the surfaces.
 struct LineMesh {
   bool points = false;               // GL_POINTS, else GL_LINES
   std::vector<glm::vec3> positions;  // points: one per point; lines: two per segment (strips and loops expanded)

@@ -28,7 +28,7 @@ namespace obscura {
 
 // The fraction of the bounding sphere's diameter the rule takes.
 constexpr float kDefaultAoRadiusFraction = 0.05f;
-// What the rule clamps to: the range of the ao.radius parameter (core/AoSettings.cpp; a test checks they agree).
+// What the rule clamps to: the range of the ao.radius parameter (effects/ao/AoSettings.cpp; a test checks they agree).
 constexpr float kMinAoRadius = 1e-4f, kMaxAoRadius = 1e6f;
 
 // The rule for bounds: 5 % of their diagonal (the bounding sphere's diameter), to two significant figures, within

@@ -1,6 +1,6 @@
-// Depth of field in the page (core/DepthOfFieldEffect.h): its section of controls built from the effect table, the JS
-// API's focusAt, a click on the canvas focusing there (a drag does not), the URL carrying the focus point into a new
-// page that draws the same pixels, and the passes in the stats.
+// Depth of field in the page (effects/dof/DepthOfFieldEffect.h): its section of controls built from the effect table,
+// the JS API's focusAt, a click on the canvas focusing there (a drag does not), the URL carrying the focus point into a
+// new page that draws the same pixels, and the passes in the stats.
 import assert from 'node:assert/strict';
 import { after, before, describe, test } from 'node:test';
 import { compareImages, openPage, snapshot, startBrowser, waitForDrawn } from './harness.mjs';

@@ -1,6 +1,6 @@
-// The depth hierarchy's three storages on WebGL 1 (src/core/DepthHierarchyPass.h): separate textures and the atlas
-// (core WebGL 1) and the mip chain (OES_fbo_render_mipmap + EXT_shader_texture_lod) hold the same bytes, so the raw
-// AO must agree within 1/255 whichever one the shader reads.
+// The depth hierarchy's three storages on WebGL 1 (src/effects/ao/DepthHierarchyPass.h): separate textures and the
+// atlas (core WebGL 1) and the mip chain (OES_fbo_render_mipmap + EXT_shader_texture_lod) hold the same bytes, so the
+// raw AO must agree within 1/255 whichever one the shader reads.
 import assert from 'node:assert/strict';
 import { after, before, describe, test } from 'node:test';
 import { compareImages, openPage, snapshot, startBrowser, waitForDrawn } from './harness.mjs';

@@ -41,7 +41,7 @@ describe('demo page', () => {
     assert.equal(context.isWebGl2, false);
     assert.match(context.version, /^WebGL 1\.0/);
     assert.match(context.api, /WebGL 1\.0/);
-    // Every pass draws into textures and FXAA antialiases: the canvas is not multisampled (core/FxaaEffect.h).
+    // Every pass draws into textures and FXAA antialiases: the canvas is not multisampled (effects/fxaa/FxaaEffect.h).
     assert.equal(context.antialias, false, 'the back buffer is not multisampled');
     assert.equal(context.samples, 0);
     assert.deepEqual(page.errors, []);

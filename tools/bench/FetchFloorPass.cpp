@@ -2,7 +2,7 @@
 
 #include <string>
 
-#include "core/SaoKernel.h"
+#include "effects/ao/SaoKernel.h"
 #include "gl/PipelineState.h"
 
 namespace obscura {
@@ -30,7 +30,7 @@ void main() {
 
 ProgramSpec FetchFloorPass::programSpec(int samples) {
   ProgramSpec spec{"fetch-floor[samples=" + std::to_string(samples) + "]",
-                   "fullscreen.vert",
+                   "lib/fullscreen.vert",
                    "",
                    {{"NUM_SAMPLES", std::to_string(samples)}, {"FAR_RAY", "0"}},
                    {},

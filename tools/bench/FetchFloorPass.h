@@ -5,9 +5,9 @@
 #include <map>
 #include <vector>
 
-#include "core/FullscreenTriangle.h"
-#include "core/ShaderLibrary.h"
+#include "frame/FullscreenTriangle.h"
 #include "gl/RenderTarget.h"
+#include "gl/ShaderLibrary.h"
 
 namespace obscura {
 

@@ -11,8 +11,8 @@ import { OutputPass } from 'three/addons/postprocessing/OutputPass.js';
 import { N8AOPass, N8AOPostPass } from 'n8ao';
 import * as Postprocessing from 'postprocessing';
 
-// Obscura's lighting (src/core/LightingPass.h), in three.js terms. Obscura shades base * (hemisphere(n) * AO +
-// light * max(n.l, 0)) with linear colours; three.js's Lambert term is base / pi times the irradiance, so the same
+// Obscura's lighting (src/effects/lighting/LightingEffect.h), in three.js terms. Obscura shades base * (hemisphere(n) *
+// AO + light * max(n.l, 0)) with linear colours; three.js's Lambert term is base / pi times the irradiance, so the same
 // colours at intensity pi give the same diffuse light (MeshStandardMaterial adds a faint specular on top: the
 // engine's materials are metalness 0, roughness 1).
 const LIGHTING = {

@@ -1,0 +1,209 @@
+// Depth of field: a thin lens's circle of confusion, near and far fields gathered at half size by scatter as gather
+// (Doerries 2018, sec. 3.2.6). effects/dof/DepthOfFieldEffect.h describes the passes; encoding/CocPacking.h the CoC's
+// codes.
+//
+// C: the signed CoC, the blur disc's diameter in pixels of the full frame, negative in front of the focus. A tap's
+// reach is measured in pixels of the half-size targets, where a disc of diameter C has the radius C / 4.
+//
+// DOF_PASS 1: the CoC from the G-buffer's depth.        5: the 3 x 3 tiles' largest near |C| (NeighborMax).
+//          2: half-size colour and CoC.                  6: the near field.
+//          3: tile columns' largest near |C|.            7: the far field.
+//          4: tiles' largest near |C| (with 3: K x K).   8: the composite.
+#include "lib/precision.glsl"
+#include "lib/packing.glsl"
+#include "dof/coc.glsl"
+#include "lib/srgb.glsl"
+
+varying vec2 v_uv;
+
+#if DOF_PASS == 1
+uniform sampler2D u_gbuffer;
+uniform vec2 u_lens;        // (s, F): C = s (D - P) / (D (P - F)), s = A F H / h (pixel metres), F metres
+uniform float u_focus;      // P, metres (a fixed focus)
+uniform float u_autofocus;  // 1: P is the depth at u_focusUv instead
+uniform vec2 u_focusUv;
+uniform vec2 u_depthRange;  // (near, far - near): view depth = near + linear depth (far - near)
+uniform float u_range;      // the CoC range, pixels
+
+float viewDepth(vec2 uv) {
+  return u_depthRange.x + unpackDepthCode(texture2D(u_gbuffer, uv).ba) * (1.0 / 65535.0) * u_depthRange.y;
+}
+
+void main() {
+  // The autofocus reads one texel of the G-buffer, the same for every pixel (no read-back to the CPU). The
+  // background (code 65535) is at the far plane. A lens cannot focus nearer than its focal length.
+  float focus = u_autofocus > 0.5 ? max(viewDepth(u_focusUv), 1.001 * u_lens.y) : u_focus;
+  float depth = viewDepth(v_uv);
+  // The thin lens (Samuelcik's deck: C = |A F (P - D) / (D (P - F))|), signed, in pixels.
+  float coc = u_lens.x * (depth - focus) / (depth * (focus - u_lens.y));
+  gl_FragColor = packCoc(coc, u_range);
+}
+#endif
+
+#if DOF_PASS == 2
+uniform sampler2D u_color;  // display-color (sRGB; luma in alpha, not read)
+uniform sampler2D u_coc;    // dof-coc
+uniform vec2 u_fullSize, u_halfSize;
+uniform float u_range;
+
+void main() {
+  // The 2 x 2 block under this half-size texel: the mean colour, and the smallest (nearest) CoC, so that a block
+  // holding any in-focus or near pixel does not join the far field (no in-focus colour spreads into the background's
+  // blur) and a block touching the near field joins it.
+  vec2 base = floor(v_uv * u_halfSize) * 2.0 + 0.5;
+  vec3 sum = vec3(0.0);
+  float smallest = 1e9;
+  for (int y = 0; y < 2; y++) {
+    for (int x = 0; x < 2; x++) {
+      vec2 uv = (base + vec2(float(x), float(y))) / u_fullSize;
+      sum += texture2D(u_color, uv).rgb;
+      smallest = min(smallest, unpackCoc(texture2D(u_coc, uv), u_range));
+    }
+  }
+  gl_FragColor = vec4(sum * 0.25, packHalfCoc(smallest, u_range));
+}
+#endif
+
+#if DOF_PASS == 3 || DOF_PASS == 4
+// Along rows (pass 3), then along columns (pass 4).
+#include "lib/tile_run.glsl"
+#if DOF_PASS == 3
+uniform float u_range;
+#endif
+
+void main() {
+  vec2 first = tileRunFirst();
+  float largest = 0.0;  // bytes: the near |C| / range, rounded up
+  for (int i = 0; i < MAX_TILE; i++) {
+    vec4 texel;
+    if (!tileRunTexel(first, i, texel)) break;
+#if DOF_PASS == 3
+    float b = ceil(clamp(-unpackCoc(texel, u_range) / u_range, 0.0, 1.0) * 255.0);
+#else
+    float b = floor(texel.r * 255.0 + 0.5);
+#endif
+    largest = max(largest, b);
+  }
+  gl_FragColor = vec4(bytesToChannels(vec2(largest, 0.0)), bytesToChannels(vec2(0.0)));
+}
+#endif
+
+#if DOF_PASS == 5
+uniform sampler2D u_tiles;
+uniform vec2 u_tilesSize;  // texels (of the tiles read, and of the target written: the same)
+
+void main() {
+  vec2 centre = floor(v_uv * u_tilesSize) + 0.5;
+  float largest = 0.0;
+  for (int y = -1; y <= 1; y++) {
+    for (int x = -1; x <= 1; x++) {
+      // Outside the frame the nearest edge tile counts again (the texture clamps to its edge).
+      largest = max(largest, texture2D(u_tiles, (centre + vec2(float(x), float(y))) / u_tilesSize).r);
+    }
+  }
+  gl_FragColor = vec4(bytesToChannels(vec2(floor(largest * 255.0 + 0.5), 0.0)), bytesToChannels(vec2(0.0)));
+}
+#endif
+
+#if DOF_PASS == 6 || DOF_PASS == 7
+uniform sampler2D u_half;   // dof-half: RGB colour, A the 8-bit CoC
+uniform vec2 u_halfSize;
+uniform float u_range;
+#if DOF_PASS == 6
+uniform sampler2D u_neighbors;
+#else
+uniform float u_maxRadius;  // the largest radius, full-frame pixels
+#endif
+
+// Per-pixel rotation of the taps (Jimenez 2014, interleaved gradient noise): the banding of T fixed taps becomes
+// noise, which the bilinear upsampling of the composite softens.
+float interleavedGradientNoise(vec2 pixel) {
+  return fract(52.9829189 * fract(dot(pixel, vec2(0.06711056, 0.00583715))));
+}
+
+// The golden angle, 2 pi (1 - 1 / phi): Vogel's spiral puts tap i at radius sqrt((i + 1/2) / T) of the disc, turned
+// by it from tap i - 1, an even cover of the disc for any T.
+const vec2 GOLDEN_TURN = vec2(-0.7373688, 0.6754903);  // (cos, sin) of 2.3999632
+
+// The share of the disc one tap stands for, divided by the share of a sample's own blur disc one pixel of it
+// scatters over: w = reach / r_s^2 here, times area / T (applied by the caller). `sampleRadius` in half-size pixels;
+// a blur under half a pixel scatters over its own pixel only.
+float scatterWeight(float sampleRadius, float dist) {
+  return clamp(sampleRadius - dist + 0.5, 0.0, 1.0) / max(sampleRadius * sampleRadius, 0.25);
+}
+
+void main() {
+  vec2 p = floor(v_uv * u_halfSize) + 0.5;
+#if DOF_PASS == 6
+  // The near field: as wide as the largest near CoC of the tiles around, so that a foreground pixel's blur reaches
+  // the in-focus pixels beside it.
+  float nearest = floor(texture2D(u_neighbors, v_uv).r * 255.0 + 0.5) * (1.0 / 255.0) * u_range;
+  if (nearest < 1.0) {
+    gl_FragColor = vec4(0.0);
+    return;
+  }
+  float radius = nearest * 0.25;
+#else
+  // The far field: within the pixel's own CoC; a pixel that is not far has none.
+  vec4 centre = texture2D(u_half, p / u_halfSize);
+  float own = unpackHalfCoc(centre.a, u_range);
+  if (own <= 1.0) {
+    gl_FragColor = vec4(0.0);
+    return;
+  }
+  float radius = min(own * 0.25, u_maxRadius * 0.5);
+#endif
+  float angle = 6.2831853 * interleavedGradientNoise(p);
+  vec2 direction = vec2(cos(angle), sin(angle));
+  vec3 sum = vec3(0.0);
+  float weights = 0.0;
+  for (int i = 0; i < TAPS; i++) {
+    vec2 offset = direction * (radius * sqrt((float(i) + 0.5) * (1.0 / float(TAPS))));
+    direction = vec2(direction.x * GOLDEN_TURN.x - direction.y * GOLDEN_TURN.y,
+                     direction.x * GOLDEN_TURN.y + direction.y * GOLDEN_TURN.x);
+    vec2 q = floor(p + offset) + 0.5;  // the texel the tap lands on, and its true distance
+    float dist = length(q - p);
+    vec4 s = texture2D(u_half, q / u_halfSize);
+    float c = unpackHalfCoc(s.a, u_range);
+#if DOF_PASS == 6
+    // Near samples only (C < -1 pixel, ramping in to -2), each reaching as far as its own blur.
+    float w = clamp(-c - 1.0, 0.0, 1.0) * scatterWeight(-c * 0.25, dist);
+#else
+    // Far samples only; one behind the centre reaches no further than the centre's own blur (it is hidden behind a
+    // sharper surface), one in front as far as its own.
+    float w = clamp(c - 1.0, 0.0, 1.0) * scatterWeight(min(c * 0.25, radius), dist);
+#endif
+    sum += w * s.rgb;
+    weights += w;
+  }
+#if DOF_PASS == 6
+  // Coverage: the sum of the scatter weights times the disc's area per tap (a disc under a pixel is one pixel).
+  float coverage = min(weights * max(radius * radius, 0.25) * (1.0 / float(TAPS)), 1.0);
+  vec3 color = weights > 0.0 ? sum / weights : vec3(0.0);
+  gl_FragColor = vec4(color * coverage, coverage);
+#else
+  gl_FragColor = vec4(weights > 0.0 ? sum / weights : centre.rgb, 1.0);
+#endif
+}
+#endif
+
+#if DOF_PASS == 8
+uniform sampler2D u_color;  // display-color, full size
+uniform sampler2D u_coc;    // dof-coc
+uniform sampler2D u_near;   // dof-near, half size, LINEAR: premultiplied colour, coverage
+uniform sampler2D u_far;    // dof-far, half size, LINEAR: colour where far (A 1), else zero
+uniform float u_range;
+uniform float u_alphaIsOne;  // 1: writing the output framebuffer (alpha 1); 0: luma in alpha, for FXAA
+
+void main() {
+  vec3 sharp = texture2D(u_color, v_uv).rgb;
+  float coc = unpackCoc(texture2D(u_coc, v_uv), u_range);
+  // The far field, filtered between its far texels only (premultiplied by 0 or 1): no in-focus colour enters.
+  vec4 farField = texture2D(u_far, v_uv);
+  vec3 farColor = farField.a > 0.002 ? farField.rgb / farField.a : sharp;
+  vec3 background = mix(sharp, farColor, clamp(coc - 1.0, 0.0, 1.0));
+  vec4 nearField = texture2D(u_near, v_uv);
+  vec3 color = background * (1.0 - nearField.a) + nearField.rgb;
+  gl_FragColor = vec4(color, mix(fxaaLuma(color), 1.0, u_alphaIsOne));
+}
+#endif

@@ -1,9 +1,0 @@
-#pragma once
-// Where the prefiltered environment's roughness levels live on the GPU (core/Environment.h): the mip levels of one
-// texture read with texture2DLodEXT (EXT_shader_texture_lod), or side by side in an atlas read with texture2D.
-namespace obscura {
-
-enum class EnvironmentLayout { MipChain, Atlas };
-const char* environmentLayoutName(EnvironmentLayout layout);  // "mipchain", "atlas"
-
-}  // namespace obscura

@@ -1,0 +1,68 @@
+#pragma once
+// The obscurance estimator pass (ao.estimator; GTAO by default): from the G-buffer into the bound RGBA8 target,
+// R = ambient visibility, GB = the centre's 16-bit depth code (the blur's key, so the blur reads a single texture).
+// Shaders: shaders_es2/ao/gtao.frag, sao.frag (CPU mirror and equations: effects/ao/SaoKernel.h), hbao.frag, vo.frag or
+// crytek.frag; all share ao/ao_estimator.glsl. Far taps read the depth hierarchy when one is given.
+#include <map>
+#include <optional>
+#include <tuple>
+#include <vector>
+
+#include "effects/ao/AoSettings.h"
+#include "effects/ao/DepthHierarchyPass.h"
+#include "frame/EffectEntry.h"
+#include "frame/FrameContext.h"
+
+namespace obscura {
+
+class SaoPass {
+ public:
+  using Storage = DepthHierarchyPass::Storage;
+  // The program variant for an estimator, a sample count, spiral turns, falloff (SAO) and depth source
+  // (compile-time constants): no hierarchy (every tap reads the G-buffer), or the hierarchy in the given storage.
+  static ProgramSpec programSpec(AoEstimator estimator, int samples, int spiralTurns, Falloff falloff,
+                                 std::optional<Storage> hierarchy);
+  // GTAO's split of `samples` taps: slices per pixel, sides of each (2, or 1 below 8 samples) and taps per side
+  // (sides x slices x steps, about samples).
+  struct GtaoSampling {
+    int slices, steps, sides;
+  };
+  static GtaoSampling gtaoSampling(int samples);
+  // HBAO's split of `samples` taps: directions per pixel and taps per direction (directions x steps <= samples).
+  struct HbaoSampling {
+    int directions, steps;
+  };
+  static HbaoSampling hbaoSampling(int samples);
+  // The estimators that take their taps in mirrored pairs (volumetric obscurance's line samples, Crytek's kernel
+  // points): floor(samples / 2) pairs (at least one), so 2 x pairs <= samples taps (10 at the medium preset's 11).
+  static int mirroredPairs(int samples);
+  // The factor the estimator's obscurance is multiplied by before the contrast (ao/ao_estimator.glsl): SAO's
+  // 5 sigma / s or 2 sigma / s (SaoKernel::intensityScale); sigma for the others, whose obscurance is in [0, 1].
+  static float intensityScale(const AoSettings& settings, float intensity);
+  // Every variant the presets and the documented sample counts (4, 8, 11, 16, 24, 32) use.
+  static std::vector<ProgramSpec> programSpecs();
+
+  SaoPass(const EffectResources& resources) : resources_(resources) {}
+  // Draws into the bound framebuffer, whose size is `aoSize`: the G-buffer's, or floor(size / 2) at half
+  // resolution (`aoScale` 2). `hierarchy` null: every tap reads the G-buffer.
+  // `frameOffset`: the taps' per-frame rotation and distance jitter (AoTemporal::frameOffset; zero without
+  // ao.temporal).
+  void render(const gl::Texture2D& gbuffer, const DepthHierarchyPass* hierarchy, const FrameCamera& camera,
+              const AoSettings& settings, int aoScale, glm::ivec2 aoSize, glm::vec2 frameOffset = glm::vec2(0.0f));
+
+ private:
+  struct Variant {
+    explicit Variant(gl::Program built, std::optional<Storage> hierarchy);
+    gl::Program program;
+    ReconstructionUniforms reconstruction;
+    DepthHierarchyPass::SamplingUniforms hierarchy;
+    GLint gbuffer, gbufferSize, aoSize, aoScale, projScale, radius, invRadius, estimatorKnots, maxRadiusPixels,
+        frameOffset;
+  };
+  const Variant& variant(const AoSettings& settings, std::optional<Storage> hierarchy);
+
+  const EffectResources& resources_;
+  std::map<std::tuple<AoEstimator, int, int, Falloff, int>, Variant> variants_;
+};
+
+}  // namespace obscura

@@ -1,0 +1,129 @@
+#pragma once
+// Depth of field: a thin-lens camera's blur, gathered at half size in a near and a far field: the scatter-as-gather
+// of Doerries 2018, sec. 3.2.6 (../shared/papers/doerries-2018-post-processing-survey.txt), after Sousa (CryEngine 3,
+// SIGGRAPH 2013) and Jimenez ("Next generation post processing in Call of Duty: Advanced Warfare", SIGGRAPH 2014).
+// Shader: shaders_es2/dof/dof.frag.
+//
+// The circle of confusion (Samuelcik's deck, "Depth of field"): a point at depth D seen through a lens of focal
+// length F and aperture diameter A = F / N (N the f-number), focused at distance P, images as a disc of diameter
+//   C = |A F (P - D) / (D (P - F))|
+// on the sensor; on a sensor `h` tall imaged onto H pixel rows that is C H / h pixels. Here C keeps its sign,
+// negative in front of the focus (D < P): C = s (D - P) / (D (P - F)) with s = A F H / h (ThinLens). D and P are
+// depths along the view axis (the G-buffer's linear depth), as the thin-lens equation has them.
+//
+// Passes (RGBA8; the CoC in encoding/CocPacking.h's codes, range R = 2 x the largest radius in pixels):
+//   dof-coc        gbuffer -> dof-coc               the signed CoC per pixel, 16 bits; P from dof.focus, or, for
+//                                                   `auto`, the G-buffer's depth at the focus point (no read-back)
+//   dof-downsample display-color, dof-coc -> dof-half   the 2 x 2 mean colour, the nearest (smallest) CoC, 8 bits
+//   dof-tiles-h    dof-coc -> dof-tile-columns      the near field's largest |C| of K pixels of a row (K: the
+//   dof-tiles      dof-tile-columns -> dof-tiles    ... of each K x K tile            largest radius, so that
+//   dof-neighbors  dof-tiles -> dof-neighbors       ... of the 3 x 3 tiles around     a tile's neighbours hold
+//                                                                                     every near pixel reaching it)
+//   dof-near       dof-half, dof-neighbors -> dof-near  the near field: a golden-angle disc of T taps as wide as the
+//                  neighbourhood's largest near CoC, each near sample weighted by whether its own CoC reaches the
+//                  centre (scatter as gather) and by the share of its disc one tap stands for; premultiplied by the
+//                  coverage, so an out-of-focus foreground spreads over the in-focus background behind it
+//   dof-far        dof-half -> dof-far              the far field: T taps within the pixel's own CoC, far samples
+//                  only, each reaching with the smaller of its CoC and the centre's (a blurred background does not
+//                  spill over a sharper surface in front); premultiplied by 1 where the pixel is far, else 0
+//   dof-composite  display-color, dof-coc, dof-near, dof-far -> display-color: the sharp pixel, the far field
+//                  blended in by the pixel's own 16-bit CoC (from 1 to 2 pixels), the near field over it by its
+//                  coverage. A pixel whose |C| is under a pixel and that no near field reaches is copied unchanged.
+//
+// Where it runs: after the tone mapping, on the display colour, before motion blur and FXAA (docs/architecture.md):
+// the space the aperture reference (renderer/AccumulationReference.h) averages and the motion blur blurs; after TAA, so
+// the gather reads a resolved image; after bloom, so a highlight's glow is blurred with it. A lens integrates light
+// before the tone curve, so a bright highlight's bokeh is dimmer here than a film's (docs/depth-of-field.md).
+#include <map>
+#include <optional>
+#include <vector>
+
+#include <glm/vec2.hpp>
+
+#include "frame/EffectEntry.h"
+#include "frame/TileMaxPasses.h"
+
+namespace obscura {
+
+struct DofSettings : ParameterAccess<DofSettings> {
+  bool enabled = false;
+  std::optional<float> focus;  // P, metres; unset: autofocus on the G-buffer's depth at (focusX, focusY)
+  float focusX = 0.5f, focusY = 0.5f;  // the autofocus point: fractions of the width from the left, height from the top
+  float fstop = 2.0f;          // N
+  float focalLength = 50.0f;   // F, millimetres
+  float sensorHeight = 24.0f;  // h, millimetres (a full-frame sensor's 36 x 24)
+  float maxRadius = 16.0f;     // the largest blur radius, pixels at 720 rows (scaled with the height)
+  QualityPreset preset = QualityPreset::Medium;  // dof.preset: the gather passes' taps
+
+  static const std::vector<Parameter<DofSettings>>& parameters();
+  void validate() const { validateParameters("depth of field"); }
+  void applyPreset(QualityPreset which) { preset = which; }
+  bool matchesPreset(QualityPreset which) const { return preset == which; }
+  int taps() const;  // of the preset: 12, 24, 40, 64
+  // The autofocus pixel of a width x height frame: (column, row from the top), inside the frame.
+  glm::ivec2 focusPixel(int width, int height) const;
+  // The largest blur radius in pixels for a frame `height` tall: maxRadius * height / 720, in [0.5, kMaxTile].
+  float maxRadiusPixels(int height) const;
+};
+
+// The thin lens of the settings, for a frame `height` pixels tall: the CoC of a depth, and the lens a pinhole
+// reference samples. CPU mirror of the CoC in shaders_es2/dof/dof.frag (pass 1).
+struct ThinLens {
+  float scale = 0.0f;        // s = A F H / h, pixel metres
+  float focalLength = 0.05f; // F, metres
+
+  static ThinLens of(const DofSettings& settings, int height);
+  // P as the shader takes it: at least 1.001 F (a lens cannot focus nearer than its focal length).
+  float usableFocus(float focus) const;
+  // C in pixels at depth D for the focus P: s (D - P) / (D (P - F)), negative in front of the focus.
+  float coc(float depth, float focus) const;
+  // The diameter of the lens a pinhole camera samples (metres in the scene) so that its renders, each sheared to
+  // keep the plane at P fixed, blur a point at D over projScale A' |1/D - 1/P| pixels: C's own magnitude, since
+  // C = s P / (P - F) (1/D - 1/P). `projScale`: pixels per metre at 1 m (FrameCamera::projScale).
+  float pinholeAperture(float focus, float projScale) const;
+};
+
+class DepthOfFieldEffect : public Effect {
+ public:
+  using Settings = DofSettings;
+  static constexpr bool kHasSwitch = true;
+  static constexpr int kMaxTile = 128;  // the tile passes' loop bound (MAX_TILE); the largest radius clamps to it
+  static EffectInfo info();
+  static std::vector<ProgramSpec> programSpecs();
+
+  explicit DepthOfFieldEffect(const EffectResources& resources);
+  void plan(FramePlanner& planner) override;
+
+ private:
+  struct CocProgram {
+    explicit CocProgram(gl::Program built);
+    gl::Program program;
+    GLint gbuffer, lens, focus, focusUv, autofocus, depthRange, range;
+  };
+  struct DownsampleProgram {
+    explicit DownsampleProgram(gl::Program built);
+    gl::Program program;
+    GLint color, coc, fullSize, halfSize, range;
+  };
+  struct GatherProgram {
+    explicit GatherProgram(gl::Program built);
+    gl::Program program;
+    GLint half, halfSize, range, maxRadius = -1, neighbors = -1;
+  };
+  struct CompositeProgram {
+    explicit CompositeProgram(gl::Program built);
+    gl::Program program;
+    GLint color, coc, nearField, farField, range, alphaIsOne;
+  };
+  const GatherProgram& gather(bool nearField, int taps);
+
+  const EffectResources& resources_;
+  CocProgram coc_;
+  DownsampleProgram downsample_;
+  TileMaxPasses tileMax_;
+  GLint columnsRange_;  // the first tile pass decodes the 16-bit CoC; the others compare bytes
+  CompositeProgram composite_;
+  std::map<std::pair<bool, int>, GatherProgram> gathers_;  // by (near, taps)
+};
+
+}  // namespace obscura

@@ -1,0 +1,335 @@
+#include "effects/edges/EdgesEffect.h"
+
+#include <algorithm>
+#include <cmath>
+#include <string>
+#include <utility>
+
+#include <glm/geometric.hpp>
+
+#include "encoding/LinearDepthPacking.h"
+#include "encoding/NormalEncoding.h"
+#include "encoding/ToneMapping.h"
+#include "frame/PassContext.h"
+#include "gl/PipelineState.h"
+
+namespace obscura {
+namespace {
+
+using Write = PassDecl::Write;
+
+constexpr EdgeStyle kEdgeStyles[] = {EdgeStyle::Lines, EdgeStyle::Toon};
+constexpr float kMinWidth = 1.0f, kMaxWidth = 8.0f;
+constexpr float kRadiansPerDegree = 0.017453292519943295f;
+
+ProgramSpec detectSpec(bool colorEdges) {
+  return ProgramSpec{std::string("edges[detect") + (colorEdges ? ",color" : "") + "]",
+                     "lib/fullscreen.vert",
+                     "edges/edges.frag",
+                     {{"EDGES_PASS", "1"}, {"COLOR_EDGES", colorEdges ? "1" : "0"}, {"FAR_RAY", "0"}},
+                     {}};
+}
+
+ProgramSpec distanceSpec(int radius) {
+  return ProgramSpec{"edges[distance,radius=" + std::to_string(radius) + "]",
+                     "lib/fullscreen.vert",
+                     "edges/edges.frag",
+                     {{"EDGES_PASS", "2"}, {"EDGE_RADIUS", std::to_string(radius)}, {"FAR_RAY", "0"}},
+                     {}};
+}
+
+ProgramSpec drawSpec(int radius, bool toon) {
+  return ProgramSpec{"edges[draw,radius=" + std::to_string(radius) + (toon ? ",toon" : "") + "]",
+                     "lib/fullscreen.vert",
+                     "edges/edges.frag",
+                     {{"EDGES_PASS", "3"},
+                      {"EDGE_RADIUS", std::to_string(radius)},
+                      {"TOON", toon ? "1" : "0"},
+                      {"FAR_RAY", "0"}},
+                     {}};
+}
+
+const char* kMaskEncoding = "R profile (depth), G crease (normals), B colour edge: 1 on the pixel that carries the "
+                            "line (the nearer side; the darker for colour), else 0; A 1";
+const char* kDistanceEncoding = "R the distance in pixels to the nearest edge pixel of the row within the line's "
+                                "reach R, R + 1 where none, as a byte";
+
+}  // namespace
+
+const char* edgeStyleName(EdgeStyle style) {
+  switch (style) {
+    case EdgeStyle::Lines: return "lines";
+    case EdgeStyle::Toon: return "toon";
+  }
+  return "?";
+}
+
+const std::vector<Parameter<EdgesSettings>>& EdgesSettings::parameters() {
+  using S = EdgesSettings;
+  static const std::vector<Parameter<S>> table = [] {
+    std::vector<std::pair<std::string, EdgeStyle>> styles;
+    for (EdgeStyle choice : kEdgeStyles) styles.emplace_back(edgeStyleName(choice), choice);
+    return std::vector<Parameter<S>>{
+        switchParameter<S>("edges", "lines on the G-buffer's profiles and creases on or off", &S::enabled).primary(),
+        choiceParameter<S, EdgeStyle>("style", "lines: over the shading; toon: the shading in flat bands, and lines",
+                                      &S::style, styles)
+            .primary(),
+        numberParameter<S>("width", kMinWidth, kMaxWidth, "px", "the lines' width in output pixels", &S::width)
+            .primary(),
+        colorParameter<S>("color", 0, 1, "the lines' colour", &S::color).primary(),
+        numberParameter<S>("strength", 0, 1, "", "the lines' opacity", &S::strength),
+        numberParameter<S>("depth-threshold", 0.001, 1, "",
+                           "least relative depth jump that is a profile (second difference of 1/z, times z)",
+                           &S::depthThreshold),
+        numberParameter<S>("normal-threshold", 1, 179, "degrees", "least angle between neighbouring normals that is "
+                           "a crease", &S::normalThreshold),
+        numberParameter<S>("color-threshold", 0, 1, "", "least step of display luma that is an edge; 0: none",
+                           &S::colorThreshold),
+        integerParameter<S>("bands", 2, 16, "", "", "toon: the shading's levels", &S::bands)};
+  }();
+  return table;
+}
+
+EdgeDetector EdgeDetector::of(const EdgesSettings& settings, float near, float far) {
+  EdgeDetector d;
+  d.depthThreshold = settings.depthThreshold;
+  d.normalCos = std::cos(settings.normalThreshold * kRadiansPerDegree);
+  d.colorThreshold = settings.colorThreshold;
+  d.near = near;
+  d.depthRange = far - near;
+  return d;
+}
+
+float EdgeDetector::viewDepth(const std::uint8_t* texel) const {
+  const std::uint16_t code = LinearDepthPacking::codeFromBytes(texel[2], texel[3]);
+  if (code == 65535) return 0.0f;
+  return near + static_cast<float>(code) * (depthRange / 65535.0f);
+}
+
+float EdgeDetector::relativeSecondDifference(float zc, float za, float zb) {
+  const float wa = za > 0.0f ? 1.0f / za : 0.0f, wb = zb > 0.0f ? 1.0f / zb : 0.0f;
+  return zc * (wa + wb) - 2.0f;
+}
+
+std::vector<EdgeFlags> EdgeDetector::detect(const std::vector<std::uint8_t>& gbuffer, int width, int height,
+                                            const std::vector<float>& luma) const {
+  std::vector<EdgeFlags> out(static_cast<size_t>(width) * height);
+  auto at = [&](int x, int y) {
+    x = std::clamp(x, 0, width - 1);
+    y = std::clamp(y, 0, height - 1);
+    return static_cast<size_t>(y) * width + x;
+  };
+  const bool colorEdges = colorThreshold > 0.0f && !luma.empty();
+  for (int y = 0; y < height; ++y) {
+    for (int x = 0; x < width; ++x) {
+      const size_t c = at(x, y);
+      const std::uint8_t* texel = &gbuffer[c * 4];
+      const float zc = viewDepth(texel);
+      if (zc == 0.0f) continue;  // the background carries no line
+      const size_t n[4] = {at(x - 1, y), at(x + 1, y), at(x, y - 1), at(x, y + 1)};
+      EdgeFlags& f = out[c];
+      const float dx = relativeSecondDifference(zc, viewDepth(&gbuffer[n[0] * 4]), viewDepth(&gbuffer[n[1] * 4]));
+      const float dy = relativeSecondDifference(zc, viewDepth(&gbuffer[n[2] * 4]), viewDepth(&gbuffer[n[3] * 4]));
+      f.profile = std::min(dx, dy) < -depthThreshold;
+      const glm::vec3 normal = decodeNormal(texel[0], texel[1]);
+      const std::uint16_t code = LinearDepthPacking::codeFromBytes(texel[2], texel[3]);
+      for (size_t i : n) {
+        const std::uint8_t* other = &gbuffer[i * 4];
+        const std::uint16_t otherCode = LinearDepthPacking::codeFromBytes(other[2], other[3]);
+        if (otherCode == 65535 || otherCode < code) continue;
+        if (glm::dot(normal, decodeNormal(other[0], other[1])) < normalCos) f.crease = true;
+      }
+      if (colorEdges)
+        for (size_t i : n)
+          if (luma[i] - luma[c] > colorThreshold) f.color = true;
+    }
+  }
+  return out;
+}
+
+int lineRadius(float width) {
+  return std::clamp(static_cast<int>(std::ceil(width * 0.5f - 0.5f)), 0, EdgesEffect::kMaxRadius);
+}
+
+std::vector<float> edgeDistances(const std::vector<EdgeFlags>& edges, int width, int height, int radius) {
+  std::vector<float> out(static_cast<size_t>(width) * height, static_cast<float>(radius + 1));
+  for (int y = 0; y < height; ++y)
+    for (int x = 0; x < width; ++x) {
+      float best = static_cast<float>((radius + 1) * (radius + 1));
+      for (int j = -radius; j <= radius; ++j)
+        for (int i = -radius; i <= radius; ++i) {
+          const int sx = std::clamp(x + i, 0, width - 1), sy = std::clamp(y + j, 0, height - 1);
+          if (!edges[static_cast<size_t>(sy) * width + sx].any()) continue;
+          // Clamped taps repeat the border pixel, which is nearer than the tap: the minimum is unaffected.
+          best = std::min(best, static_cast<float>((sx - x) * (sx - x) + (sy - y) * (sy - y)));
+        }
+      out[static_cast<size_t>(y) * width + x] = std::sqrt(best);
+    }
+  return out;
+}
+
+float lineCoverage(float distance, float width, float strength) {
+  return strength * std::clamp(width * 0.5f + 0.5f - distance, 0.0f, 1.0f);
+}
+
+glm::vec3 toonShade(const glm::vec3& srgb, int bands) {
+  const float y = fxaaLuma(srgb);
+  if (y < 1e-4f) return srgb;
+  const float n = static_cast<float>(bands);
+  const float level = (std::min(std::floor(y * n), n - 1.0f) + 0.5f) / n;
+  return glm::min(srgb * (level / y), glm::vec3(1.0f));
+}
+
+EffectInfo EdgesEffect::info() {
+  return {"edges",
+          "Edges",
+          true,
+          false,
+          {"edges-detect", "edges-h", "edges"},
+          {{"edges-mask", kMaskEncoding, GL_NEAREST, {{"edges-mask", ViewDecoding::Color}}},
+           {"edges-distance", kDistanceEncoding, GL_NEAREST, {}}}};
+}
+
+std::vector<ProgramSpec> EdgesEffect::programSpecs() {
+  std::vector<ProgramSpec> specs = {detectSpec(false), detectSpec(true)};
+  for (int radius = 0; radius <= kMaxRadius; ++radius) specs.push_back(distanceSpec(radius));
+  for (int radius = 0; radius <= kMaxRadius; ++radius)
+    for (bool toon : {false, true}) specs.push_back(drawSpec(radius, toon));
+  return specs;
+}
+
+EdgesEffect::DetectProgram::DetectProgram(gl::Program built, bool colorEdges)
+    : program(std::move(built)),
+      gbuffer(program.uniform("u_gbuffer")),
+      texel(program.uniform("u_texel")),
+      near(program.uniform("u_near")),
+      depthScale(program.uniform("u_depthScale")),
+      depthThreshold(program.uniform("u_depthThreshold")),
+      normalCos(program.uniform("u_normalCos")) {
+  if (!colorEdges) return;
+  color = program.uniform("u_color");
+  colorThreshold = program.uniform("u_colorThreshold");
+}
+
+// At radius 0 the passes fetch the pixel itself: the compiler drops u_texel (location -1, which GL ignores).
+EdgesEffect::DistanceProgram::DistanceProgram(gl::Program built, int radius)
+    : program(std::move(built)),
+      mask(program.uniform("u_mask")),
+      texel(radius > 0 ? program.uniform("u_texel") : -1) {}
+
+EdgesEffect::DrawProgram::DrawProgram(gl::Program built, int radius, bool toon)
+    : program(std::move(built)),
+      distance(program.uniform("u_distance")),
+      color(program.uniform("u_color")),
+      texel(radius > 0 ? program.uniform("u_texel") : -1),
+      halfWidth(program.uniform("u_halfWidth")),
+      lineColor(program.uniform("u_lineColor")),
+      strength(program.uniform("u_strength")),
+      alphaIsOne(program.uniform("u_alphaIsOne")) {
+  if (toon) bands = program.uniform("u_bands");
+}
+
+EdgesEffect::EdgesEffect(const EffectResources& resources) : resources_(resources) {}
+
+const EdgesEffect::DetectProgram& EdgesEffect::detect(bool colorEdges) {
+  auto it = detects_.find(colorEdges);
+  if (it == detects_.end())
+    it = detects_.emplace(colorEdges, DetectProgram(resources_.build(detectSpec(colorEdges)), colorEdges)).first;
+  return it->second;
+}
+
+const EdgesEffect::DistanceProgram& EdgesEffect::distance(int radius) {
+  auto it = distances_.find(radius);
+  if (it == distances_.end())
+    it = distances_.emplace(radius, DistanceProgram(resources_.build(distanceSpec(radius)), radius)).first;
+  return it->second;
+}
+
+const EdgesEffect::DrawProgram& EdgesEffect::draw(int radius, bool toon) {
+  auto it = draws_.find({radius, toon});
+  if (it == draws_.end()) {
+    DrawProgram built(resources_.build(drawSpec(radius, toon)), radius, toon);
+    it = draws_.emplace(std::make_pair(radius, toon), std::move(built)).first;
+  }
+  return it->second;
+}
+
+void EdgesEffect::plan(FramePlanner& planner) {
+  const EdgesSettings settings = planner.settings().of<EdgesSettings>();
+  if (!settings.enabled && !planner.showsTargetOf(info())) return;
+  const FrameCamera& camera = planner.frame().camera;
+  const EdgeDetector detector = EdgeDetector::of(settings, camera.near, camera.far);
+  const bool colorEdges = settings.colorThreshold > 0.0f;
+  const glm::vec2 texel(1.0f / static_cast<float>(camera.width), 1.0f / static_cast<float>(camera.height));
+
+  PassDecl detectPass;
+  detectPass.name = "edges-detect";
+  detectPass.reads = {"gbuffer"};
+  if (colorEdges) detectPass.reads.push_back("display-color");
+  detectPass.writes = {{"edges-mask", TargetSize::full(), Write::Depth::None, ""}};
+  detectPass.run = [this, detector, colorEdges, texel](PassContext& context) {
+    const DetectProgram& p = detect(colorEdges);
+    context.bindForWriting("edges-mask");
+    p.program.use();
+    context.texture("gbuffer").bind(0);
+    gl::Program::set(p.gbuffer, 0);
+    gl::Program::set(p.texel, texel);
+    gl::Program::set(p.near, detector.near);
+    gl::Program::set(p.depthScale, detector.depthRange / 65535.0f);
+    gl::Program::set(p.depthThreshold, detector.depthThreshold);
+    gl::Program::set(p.normalCos, detector.normalCos);
+    if (colorEdges) {
+      context.texture("display-color").bind(1);
+      gl::Program::set(p.color, 1);
+      gl::Program::set(p.colorThreshold, detector.colorThreshold);
+    }
+    resources_.triangle.draw();
+    gl::restoreBaselineState();
+  };
+  planner.add(std::move(detectPass));
+  if (!settings.enabled) return;  // a debug view of the mask
+
+  const int radius = lineRadius(settings.width);
+  PassDecl rows;
+  rows.name = "edges-h";
+  rows.reads = {"edges-mask"};
+  rows.writes = {{"edges-distance", TargetSize::full(), Write::Depth::None, ""}};
+  rows.run = [this, radius, texel](PassContext& context) {
+    const DistanceProgram& p = distance(radius);
+    context.bindForWriting("edges-distance");
+    p.program.use();
+    context.texture("edges-mask").bind(0);
+    gl::Program::set(p.mask, 0);
+    if (p.texel >= 0) gl::Program::set(p.texel, texel);
+    resources_.triangle.draw();
+    gl::restoreBaselineState();
+  };
+  planner.add(std::move(rows));
+
+  PassDecl lines;
+  lines.name = "edges";
+  lines.reads = {"edges-distance", "display-color"};
+  lines.writes = {{"display-color", TargetSize::full(), Write::Depth::None, ""}};
+  const bool toon = settings.style == EdgeStyle::Toon;
+  const glm::vec3 lineColor = linearToSrgb(settings.color);  // derived once: the shader mixes display colours
+  lines.run = [this, radius, toon, texel, settings, lineColor](PassContext& context) {
+    const DrawProgram& p = draw(radius, toon);
+    context.bindForWriting("display-color");
+    p.program.use();
+    context.texture("edges-distance").bind(0);
+    context.texture("display-color").bind(1);
+    gl::Program::set(p.distance, 0);
+    gl::Program::set(p.color, 1);
+    if (p.texel >= 0) gl::Program::set(p.texel, texel);
+    gl::Program::set(p.halfWidth, settings.width * 0.5f + 0.5f);
+    gl::Program::set(p.lineColor, lineColor);
+    gl::Program::set(p.strength, settings.strength);
+    gl::Program::set(p.alphaIsOne, context.writesOutput("display-color") ? 1.0f : 0.0f);
+    if (toon) gl::Program::set(p.bands, static_cast<float>(settings.bands));
+    resources_.triangle.draw();
+    gl::restoreBaselineState();
+  };
+  planner.add(std::move(lines));
+}
+
+}  // namespace obscura

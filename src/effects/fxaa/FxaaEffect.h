@@ -1,0 +1,66 @@
+#pragma once
+// FXAA 3.11, quality path (Lottes 2011; shaders_es2/fxaa/fxaa.frag): the frame's antialiasing, last in the chain. It
+// reads "display-color" (sRGB, luma in alpha; NEAREST, filtered by hand where FXAA reads between texels) and writes
+// it again, straight into the output framebuffer when it is the frame's result.
+//
+// Why FXAA and not multisampling: WebGL 1 cannot resolve a multisampled buffer into a texture, and every frame reads
+// the lit image again (the tone-mapping pass decodes its HDR encoding), so Obscura draws no geometry into the back
+// buffer, where multisampling would act. Canvas and window are made without it (measured: docs/benchmarks.md).
+//
+// Where the target it writes has a stencil buffer (the desktop window and obscura-render's output have one),
+// the pass runs in two draws, as SMAA does with its edge mask (Jimenez et al. 2012): a classifying draw writes the
+// pixels below FXAA's contrast threshold as they are and leaves stencil 1 on the edge pixels, then the full FXAA
+// draws only where the stencil is 1. The image is the same as one full draw's (tests/test_pipeline.cpp). What it
+// saves is the part of FXAA after its early exit, which a GPU skips where a whole wavefront exits, but which CPU
+// rasterisers pay for far more often (SwiftShader runs both sides of every branch, masked): llvmpipe's FXAA pass went
+// from about 40 to 13 ms at 1280x720. On SwiftShader the page's frame was no faster (WebCanvas.cpp), so the canvas
+// has no stencil and the pass there is one draw.
+#include <map>
+#include <vector>
+
+#include "frame/EffectEntry.h"
+
+namespace obscura {
+
+struct FxaaSettings : ParameterAccess<FxaaSettings> {
+  bool enabled = true;
+  QualityPreset preset = QualityPreset::Medium;
+  int quality = 12;              // Lottes' FXAA_QUALITY__PRESET: 10 .. 15, 20 .. 29 or 39 (the search's steps)
+  float subpix = 0.75f;          // Lottes' default: amount of subpixel aliasing removal
+  float edgeThreshold = 0.166f;  // Lottes' default: minimum local contrast to process, relative to the max luma
+  float edgeThresholdMin = 0.0833f;  // Lottes' default: skip darks below this absolute contrast
+
+  static const std::vector<Parameter<FxaaSettings>>& parameters();
+  void applyPreset(QualityPreset which);
+  bool matchesPreset(QualityPreset which) const;
+  void validate() const { validateParameters("FXAA"); }
+};
+
+// The search's step lengths of one of Lottes' quality presets (FXAA_QUALITY__P0 ..), in pixels.
+const std::vector<float>& fxaaSearchSteps(int quality);
+
+class FxaaEffect : public Effect {
+ public:
+  using Settings = FxaaSettings;
+  static constexpr bool kHasSwitch = true;
+  static EffectInfo info();
+  static std::vector<ProgramSpec> programSpecs();
+
+  explicit FxaaEffect(const EffectResources& resources) : resources_(resources) {}
+  void plan(FramePlanner& planner) override;
+
+ private:
+  struct Variant {
+    Variant(gl::Program built, int quality);  // quality 0: the classifying draw (FXAA_CLASSIFY)
+    gl::Program program;
+    GLint color, texel, edgeThreshold, edgeThresholdMin;
+    GLint size = -1, subpix = -1;  // the full draw's
+  };
+  const Variant& variant(int quality);
+  void draw(const Variant& v, const FxaaSettings& settings, glm::vec2 size) const;
+
+  const EffectResources& resources_;
+  std::map<int, Variant> variants_;
+};
+
+}  // namespace obscura

@@ -1,0 +1,165 @@
+#pragma once
+// The lit image (shaders_es2/lighting/lighting.frag, lib/pbr.glsl, lib/material.glsl, lib/environment.glsl): glTF 2.0
+// metallic-roughness materials shaded with Cook-Torrance (GGX distribution, height-correlated Smith visibility,
+// Schlick Fresnel) over a Lambertian diffuse, under the sun (lighting.sun-*), up to kMaxPunctualLights
+// KHR_lights_punctual point and spot lights and the image-based ambient light of environment/Environment.h (diffuse
+// irradiance from spherical harmonics and a prefiltered specular environment, the built-in sky or an equirectangular
+// image: lighting.environment), plus the material's emission. The AO darkens the ambient term only: its diffuse part
+// directly, its specular part through Lagarde's specular occlusion; the material's baked occlusion texture combines
+// with the screen-space AO by their minimum (measured: docs/pbr.md). Direct light is never darkened. Where no
+// geometry is, the environment itself is seen. CPU mirror of the shading: effects/lighting/PbrShading.h. It writes
+// linear HDR colour in the RGBA8 encoding of lib/hdr.glsl into "scene-color", which later effects read. The pass takes
+// one of these forms, chosen once the frame's plan knows which passes run (PassDecl::Alternative):
+//
+//   deferred  where the G-buffer pass wrote the base colour beside the G-buffer (several render targets): a
+//             full-screen pass reading the normal, the base colour and the AO. The scene is drawn once per frame.
+//             The base-colour target carries nothing else, so the G-buffer writes it only where every material
+//             drawn is a rough dielectric (metallic 0, roughness 1, no emission, no texture but the base colour's)
+//             and the scene has no punctual light (GpuScene::needsForwardLighting): the deferred form shades
+//             exactly those, and any other scene takes the forward form.
+//   forward   otherwise: the scene drawn again with the G-buffer pass's vertex shader text. When the G-buffer pass
+//             runs it shares its depth renderbuffer: both compute the same depths (gl_Position invariant), so
+//             GL_EQUAL, and a stencil test passing only the first fragment per pixel, shade each pixel once however
+//             much the scene overlaps itself, coplanar and edge-on faces included. Without packed depth + stencil
+//             (core GLES 2 without OES_packed_depth_stencil), GL_LESS against the depth pulled one resolvable step
+//             nearer, writing depth, does nearly as well (tests/test_pipeline.cpp measures both). Without the
+//             G-buffer (no effect reads it: the AO off) it clears and tests a depth buffer of its own, and pays for
+//             the overdraw drawing front to back leaves. Then a full-screen triangle on the far plane draws the
+//             environment where the depth is still 1 (the background; the deferred form shades it in its one pass).
+//   either, tone-mapped: when the tone-mapping pass is the only reader of the HDR colour (no effect works on it in
+//             between, no view shows it), the lighting applies the tone mapping itself (ToneMapInUse: exposure,
+//             curve, sRGB, luma in alpha) and writes "display-color": a full-screen pass and an HDR encode and
+//             decode fewer. The forward form does so only when something reads the display colour after it (FXAA):
+//             it cannot draw into the output framebuffer, which has no depth buffer.
+//
+// Its second target, "shading-count", is a diagnostic: the same pass with the same reads and depth set-up, counting
+// how many fragments each pixel shaded (additive blending of 1/255) instead of shading them; the view
+// "shading-count" shows 1 as grey 32/255. The tests read it to hold the once-per-pixel promise.
+#include <map>
+#include <memory>
+#include <string>
+#include <tuple>
+#include <vector>
+
+#include <glm/vec3.hpp>
+
+#include "effects/tonemap/TonemapEffect.h"
+#include "environment/Environment.h"
+#include "frame/EffectEntry.h"
+#include "frame/FrameContext.h"
+#include "gl/RenderTarget.h"
+#include "gpu/GpuScene.h"
+
+namespace obscura {
+
+// The sun: an overcast key light over a strong sky dome, so that ambient carries most of the light and AO reads
+// clearly. Its illuminance is colour x intensity; the default intensity pi makes a white Lambertian surface facing it
+// reflect its colour, as the lighting did before the BRDF had its 1 / pi.
+struct LightingSettings : ParameterAccess<LightingSettings> {
+  float sunElevation = 54.525961f;  // degrees above the horizon (world +y up)
+  float sunAzimuth = 52.125016f;    // degrees from +z towards +x
+  glm::vec3 sunColor{0.50f, 0.48f, 0.44f};  // linear
+  float sunIntensity = 3.14159265f;         // lux per unit of colour
+  // "sky": the built-in ProceduralSky; "uniform": radiance 1 from every direction (the white furnace); else the path
+  // of an equirectangular .hdr, or a PNG of RGBE bytes (loadEnvironmentImage).
+  std::string environment = "sky";
+  float environmentIntensity = 1.0f;  // scales the environment's radiance: ambient light and background
+
+  glm::vec3 directionToSun() const;  // world space, unit
+  static const std::vector<Parameter<LightingSettings>>& parameters();
+  void validate() const { validateParameters("lighting"); }
+};
+
+// The fixed parts of the light.
+struct Lighting {
+  glm::vec3 background{0.349f, 0.415f, 0.501f};  // the clear colour under the forward forms' drawn background
+};
+
+// KHR_lights_punctual lights per draw: the forward lighting's loop bound (MAX_PUNCTUAL_LIGHTS), at most
+// kMaxPunctualLights, as many as the context's fragment uniform vectors hold (LightingEffect::punctualLightsPerDraw).
+// A frame with more lights takes, for every draw, those that light the camera's surroundings most (the largest
+// intensity / distance^2 at the camera).
+inline constexpr int kMaxPunctualLights = 4;
+// The fragment uniform vectors of the heaviest forward lighting program without punctual lights, as GLSL ES 1.00
+// packs them (Appendix A, section 7: gl/UniformPacking.h), and what each light adds (three vec4).
+// Shaders.EveryProgramFitsTheGles2UniformVectors (tests/test_shaders.cpp) packs every program the renderer builds
+// and holds these figures.
+inline constexpr int kForwardLightingVectorsWithoutLights = 15;
+inline constexpr int kVectorsPerPunctualLight = 3;
+
+// The view-space uniforms of the punctual lights (lighting.frag), derived once per frame on the CPU.
+struct PunctualLightUniforms {
+  glm::vec4 positionRange[kMaxPunctualLights]{};  // xyz position, w 1 / range^4 (0: no range)
+  glm::vec4 colorSpot[kMaxPunctualLights]{};      // rgb colour x intensity, a the cone's scale
+  glm::vec4 spot[kMaxPunctualLights]{};           // xyz the spot's direction, w the cone's offset
+  int count = 0;
+  // The first maxCount (at most kMaxPunctualLights) by that order.
+  static PunctualLightUniforms of(const std::vector<PunctualLight>& lights, const glm::mat4& view, int maxCount);
+};
+
+class LightingEffect : public Effect {
+ public:
+  using Settings = LightingSettings;
+  static constexpr bool kHasSwitch = false;
+  static EffectInfo info();
+  // Every variant, the forward ones with lightsPerDraw punctual lights.
+  static std::vector<ProgramSpec> programSpecs(int lightsPerDraw = kMaxPunctualLights);
+  // The punctual lights per draw a context of this many fragment uniform vectors holds: 4 from 27 vectors, 0 at
+  // GLES 2's minimum of 16 (the sun and the environment still light the scene).
+  static int punctualLightsPerDraw(int maxFragmentUniformVectors);
+  // World directions to the environment's: for the sky, the turn about +y that puts its sun at lighting.sun-azimuth;
+  // else the identity.
+  static glm::mat3 environmentRotation(const LightingSettings& settings);
+
+  explicit LightingEffect(const EffectResources& resources);
+  void plan(FramePlanner& planner) override;
+
+ private:
+  // One form of the pass: deferred or forward, tone-mapped here (an operator) or not, counting or shading.
+  // background: the forward forms' full-screen draw of the environment where the scene drew nothing.
+  struct Form {
+    bool deferred = false;
+    bool counting = false;
+    int toneMap = -1;  // -1: HDR output; else the ToneMapOperator applied here
+    bool background = false;
+    bool operator<(const Form& o) const {
+      return std::tie(deferred, counting, toneMap, background) <
+             std::tie(o.deferred, o.counting, o.toneMap, o.background);
+    }
+  };
+  struct Variant {
+    Variant(gl::Program built, bool geometryStage);
+    gl::Program program;
+    GeometryUniforms geometry;  // the forward forms' (geometry.vert)
+    // The full-screen forms' far-plane ray (fullscreen.vert); only its direction is used, so no depth-to-ray scale.
+    GLint farHalfExtent, farPlane;
+    GLint projection, lightDirection, lightColor, viewToEnvironment, ao;
+    GLint environment, environmentBrdf, shIrradiance, environmentIntensity;
+    GLint gbuffer, baseColor, exposure, lumaInAlpha;
+    GLint lightPositionRange, lightColorSpot, lightSpot;
+  };
+  static MaterialKind readKind(const Form& form, MaterialKind kind);
+  static ProgramSpec spec(const Form& form, MaterialKind kind, VertexKind vertex, EnvironmentLayout layout,
+                          int lightsPerDraw);
+  const Variant& variant(const Form& form, MaterialKind kind, VertexKind vertex);
+  // Loads, projects and prefilters the environment the settings name, when it is not the one on the GPU.
+  void useEnvironment(const LightingSettings& settings);
+  void render(const PassContext& context, const Form& form, const std::string& output, float exposureScale,
+              const LightingSettings& settings);
+
+  const EffectResources& resources_;
+  // Built on first use: (form, the material kind it reads, the vertex kind).
+  std::map<std::tuple<Form, MaterialKind, VertexKind>, Variant> variants_;
+  gl::Texture2D white_;  // AO = 1 when the AO is off
+  bool stencil_;         // the G-buffer's depth has stencil bits (RenderTargetPool): shade exactly once
+  Lighting light_;
+  glm::vec4 backgroundHdr_;  // the clear colour's radiance in scene-color's encoding, as clear-colour channels
+  EnvironmentLayout layout_;              // where the prefiltered levels live (RendererOptions::environmentLayout)
+  int lightsPerDraw_;                     // punctualLightsPerDraw of the context's fragment uniform vectors
+  int environmentBrdfUnit_;               // TextureUnits::environmentBrdf
+  std::string environmentName_;           // the lighting.environment value environment_ holds
+  float skyElevation_ = 0.0f;             // the sun's elevation in the sky environment_ holds
+  std::unique_ptr<GpuEnvironment> environment_;
+};
+
+}  // namespace obscura

@@ -1,0 +1,77 @@
+#include "effects/lines/LinesEffect.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "frame/PassContext.h"
+#include "gl/PipelineState.h"
+
+namespace obscura {
+namespace {
+
+// Desktop GL (OSMesa) takes gl_PointSize only with GL_VERTEX_PROGRAM_POINT_SIZE on; GLES 2 and WebGL always do.
+constexpr GLenum kVertexProgramPointSize = 0x8642;
+
+ProgramSpec copySpec() {
+  return ProgramSpec{"lines[copy]", "lib/fullscreen.vert", "lines/lines.frag",
+                     {{"LINES_COPY", "1"}, {"FAR_RAY", "0"}}, {}};
+}
+ProgramSpec linesSpec() {
+  return ProgramSpec{"lines", "lines/lines.vert", "lines/lines.frag", {{"LINES_COPY", "0"}}, {}};
+}
+
+}  // namespace
+
+EffectInfo LinesEffect::info() { return {"lines", "Points and lines", false, false, {"lines"}, {}}; }
+
+std::vector<ProgramSpec> LinesEffect::programSpecs() { return {copySpec(), linesSpec()}; }
+
+LinesEffect::LinesEffect(const EffectResources& resources)
+    : resources_(resources), copy_(resources.build(copySpec())), lines_(resources.build(linesSpec())) {
+  copyColor_ = copy_.uniform("u_color");
+  modelViewProjection_ = lines_.uniform("u_modelViewProjection");
+  pointSize_ = lines_.uniform("u_pointSize");
+  position_ = glGetAttribLocation(lines_.id(), "a_position");
+  color_ = glGetAttribLocation(lines_.id(), "a_color");
+  GLfloat range[2] = {1.0f, 1.0f};
+  glGetFloatv(GL_ALIASED_POINT_SIZE_RANGE, range);
+  maxPointSize_ = std::max(1.0f, range[1]);
+}
+
+void LinesEffect::plan(FramePlanner& planner) {
+  if (!planner.frame().linesOrPoints) return;
+  using Write = PassDecl::Write;
+  PassDecl pass;
+  pass.name = "lines";
+  pass.reads = {"scene-color", "gbuffer"};
+  pass.writes = {{"scene-color", TargetSize::full(), Write::Depth::Shared, "gbuffer"}};
+  pass.run = [this](PassContext& context) { run(context); };
+  planner.add(std::move(pass));
+}
+
+void LinesEffect::run(const PassContext& context) const {
+  context.bindForWriting("scene-color");
+  copy_.use();
+  context.texture("scene-color").bind(0);
+  gl::Program::set(copyColor_, 0);
+  resources_.triangle.draw();
+
+  // Without the G-buffer's depth (the plan's fallback), nothing hides them: the target's own depth starts clear.
+  if (!context.sharesDepth("scene-color")) glClear(GL_DEPTH_BUFFER_BIT);
+  glEnable(GL_DEPTH_TEST);
+  glDepthFunc(GL_LEQUAL);
+  glDepthMask(GL_FALSE);
+  if (resources_.caps.desktopGl) glEnable(kVertexProgramPointSize);
+  lines_.use();
+  const FrameCamera& camera = context.camera();
+  const float pointSize = std::clamp(std::round(static_cast<float>(context.size("scene-color").y) / 360.0f), 1.0f,
+                                     maxPointSize_);
+  gl::Program::set(pointSize_, pointSize);
+  const glm::mat4 viewProjection = camera.projection * camera.view;
+  context.scene().lines().draw(viewProjection, false, modelViewProjection_, position_, color_);
+  context.scene().lines().draw(viewProjection, true, modelViewProjection_, position_, color_);
+  if (resources_.caps.desktopGl) glDisable(kVertexProgramPointSize);
+  gl::restoreBaselineState();
+}
+
+}  // namespace obscura

@@ -1,0 +1,483 @@
+#include "environment/Environment.h"
+
+#include <algorithm>
+#include <cctype>
+#include <cmath>
+
+#include <glm/geometric.hpp>
+#include <stb_image.h>
+
+#include "base/Error.h"
+
+namespace obscura {
+namespace {
+
+constexpr double kPi = 3.14159265358979323846;
+
+// Van der Corput's radical inverse in base 2 (the Hammersley point's second coordinate), by integer arithmetic.
+double radicalInverse(unsigned i) {
+  double result = 0.0, scale = 0.5;
+  for (; i != 0; i >>= 1, scale *= 0.5)
+    if (i & 1u) result += scale;
+  return result;
+}
+
+// A half vector drawn from GGX's D(h) (n.h) around +z (Karis 2013, ImportanceSampleGGX).
+glm::dvec3 sampleGgx(double u1, double u2, double alpha) {
+  const double phi = 2.0 * kPi * u1;
+  const double cosTheta = std::sqrt((1.0 - u2) / (1.0 + (alpha * alpha - 1.0) * u2));
+  const double sinTheta = std::sqrt(std::max(0.0, 1.0 - cosTheta * cosTheta));
+  return {sinTheta * std::cos(phi), sinTheta * std::sin(phi), cosTheta};
+}
+
+// An orthonormal frame around n (tangent, bitangent).
+void frameAround(const glm::dvec3& n, glm::dvec3& t, glm::dvec3& b) {
+  const glm::dvec3 up = std::abs(n.y) < 0.999 ? glm::dvec3(0, 1, 0) : glm::dvec3(1, 0, 0);
+  t = glm::normalize(glm::cross(up, n));
+  b = glm::cross(n, t);
+}
+
+// Bilinear between texel centres of a w x h equirectangular grid (wrap in u, clamp in v): the addressing of
+// environmentLevel() in lib/environment.glsl.
+glm::vec3 bilinear(const std::vector<glm::vec3>& texels, int w, int h, const glm::vec2& uv) {
+  const float px = uv.x * static_cast<float>(w) - 0.5f, py = uv.y * static_cast<float>(h) - 0.5f;
+  const float fx0 = std::floor(px), fy0 = std::floor(py);
+  const float fx = px - fx0, fy = py - fy0;
+  auto wrap = [w](int x) { return ((x % w) + w) % w; };
+  const int x0 = wrap(static_cast<int>(fx0)), x1 = wrap(static_cast<int>(fx0) + 1);
+  const int y0 = std::clamp(static_cast<int>(fy0), 0, h - 1), y1 = std::clamp(static_cast<int>(fy0) + 1, 0, h - 1);
+  auto at = [&](int x, int y) { return texels[static_cast<size_t>(y) * w + x]; };
+  const glm::vec3 top = at(x0, y0) + (at(x1, y0) - at(x0, y0)) * fx;
+  const glm::vec3 bottom = at(x0, y1) + (at(x1, y1) - at(x0, y1)) * fx;
+  return top + (bottom - top) * fy;
+}
+
+// The image as level 0's kEnvironmentWidth x kEnvironmentHeight: each texel the mean of n x n bilinear lookups over
+// its footprint, n enough to cover the source's texels (a 2048-wide image: 4 x 4).
+EnvironmentImage resampled(const EnvironmentImage& image, int width, int height) {
+  EnvironmentImage out(width, height);
+  const int n = std::max(1, (image.width + width - 1) / width);
+  for (int y = 0; y < height; ++y)
+    for (int x = 0; x < width; ++x) {
+      glm::vec3 sum(0.0f);
+      for (int j = 0; j < n; ++j)
+        for (int i = 0; i < n; ++i) {
+          const glm::vec2 uv((static_cast<float>(x) + (static_cast<float>(i) + 0.5f) / static_cast<float>(n)) /
+                                 static_cast<float>(width),
+                             (static_cast<float>(y) + (static_cast<float>(j) + 0.5f) / static_cast<float>(n)) /
+                                 static_cast<float>(height));
+          sum += bilinear(image.texels, image.width, image.height, uv);
+        }
+      out.at(x, y) = sum / static_cast<float>(n * n);
+    }
+  return out;
+}
+
+}  // namespace
+
+glm::vec2 equirectUv(const glm::vec3& d) {
+  const float horizontal = std::abs(d.x) + std::abs(d.z);
+  const float u = horizontal > 0.0f ? std::atan2(d.x, -d.z) * static_cast<float>(0.5 / kPi) + 0.5f : 0.5f;
+  const float v = std::acos(std::clamp(d.y, -1.0f, 1.0f)) * static_cast<float>(1.0 / kPi);
+  return {u, v};
+}
+
+glm::vec3 equirectDirection(const glm::vec2& uv) {
+  const double phi = (uv.x - 0.5) * 2.0 * kPi, theta = uv.y * kPi;
+  return glm::vec3(std::sin(theta) * std::sin(phi), std::cos(theta), -std::sin(theta) * std::cos(phi));
+}
+
+glm::vec3 EnvironmentImage::texelDirection(int x, int y) const {
+  return equirectDirection({(static_cast<float>(x) + 0.5f) / static_cast<float>(width),
+                            (static_cast<float>(y) + 0.5f) / static_cast<float>(height)});
+}
+
+double EnvironmentImage::texelSolidAngle(int y) const {
+  const double theta0 = y * kPi / height, theta1 = (y + 1) * kPi / height;
+  return 2.0 * kPi / width * (std::cos(theta0) - std::cos(theta1));
+}
+
+glm::vec3 EnvironmentImage::radiance(const glm::vec3& direction) const {
+  return bilinear(texels, width, height, equirectUv(direction));
+}
+
+EnvironmentImage EnvironmentImage::halved() const {
+  EnvironmentImage out(std::max(width / 2, 1), std::max(height / 2, 1));
+  for (int y = 0; y < out.height; ++y)
+    for (int x = 0; x < out.width; ++x) {
+      const int x1 = std::min(2 * x + 1, width - 1), y1 = std::min(2 * y + 1, height - 1);
+      out.at(x, y) = 0.25f * (at(2 * x, 2 * y) + at(x1, 2 * y) + at(2 * x, y1) + at(x1, y1));
+    }
+  return out;
+}
+
+glm::vec3 ProceduralSky::radiance(const glm::vec3& direction) const {
+  const glm::vec3 d = glm::normalize(direction);
+  const glm::vec3 s = glm::normalize(sunDirection);
+  // Above the horizon: horizon to zenith by the square root of the elevation's sine (a bright band at the horizon,
+  // as Rayleigh scattering's longer path there gives); a tenth of a radian of blend into the ground below it.
+  const float up = d.y;
+  const glm::vec3 sky = glm::mix(horizon, zenith, std::sqrt(std::max(up, 0.0f)));
+  glm::vec3 c = glm::mix(ground, sky, std::clamp(up / 0.1f + 1.0f, 0.0f, 1.0f));
+  const float cosGamma = glm::dot(d, s);
+  if (up > -0.1f) c += glow * std::pow(std::max(cosGamma, 0.0f), 64.0f) * std::clamp(up / 0.1f + 1.0f, 0.0f, 1.0f);
+  if (cosGamma >= sunCosRadius) c += sun;
+  return c;
+}
+
+EnvironmentImage ProceduralSky::image(int width, int height) const {
+  EnvironmentImage out(width, height);
+  constexpr int n = 4;
+  for (int y = 0; y < height; ++y)
+    for (int x = 0; x < width; ++x) {
+      glm::vec3 sum(0.0f);
+      for (int j = 0; j < n; ++j)
+        for (int i = 0; i < n; ++i)
+          sum += radiance(equirectDirection(
+              {(static_cast<float>(x) + (static_cast<float>(i) + 0.5f) / n) / static_cast<float>(width),
+               (static_cast<float>(y) + (static_cast<float>(j) + 0.5f) / n) / static_cast<float>(height)}));
+      out.at(x, y) = sum / static_cast<float>(n * n);
+    }
+  return out;
+}
+
+EnvironmentImage uniformEnvironment(const glm::vec3& radiance, int width, int height) {
+  EnvironmentImage out(width, height);
+  std::fill(out.texels.begin(), out.texels.end(), radiance);
+  return out;
+}
+
+EnvironmentImage loadEnvironmentImage(const std::string& path, int maxWidth) {
+  std::string lower = path;
+  std::transform(lower.begin(), lower.end(), lower.begin(),
+                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  const bool png = lower.size() >= 4 && lower.compare(lower.size() - 4, 4, ".png") == 0;
+  int width = 0, height = 0, channels = 0;
+  EnvironmentImage image;
+  if (png) {
+    stbi_uc* bytes = stbi_load(path.c_str(), &width, &height, &channels, 4);
+    if (!bytes) throw InputError(path + ": cannot read the environment (" + stbi_failure_reason() + ")");
+    image = EnvironmentImage(width, height);
+    const HdrEncoding rgbe{HdrEncodingKind::Rgbe, 0.0f};
+    for (size_t i = 0; i < image.texels.size(); ++i)
+      image.texels[i] = decodeHdr(HdrTexel{bytes[4 * i], bytes[4 * i + 1], bytes[4 * i + 2], bytes[4 * i + 3]}, rgbe);
+    stbi_image_free(bytes);
+  } else {
+    float* values = stbi_loadf(path.c_str(), &width, &height, &channels, 3);
+    if (!values) throw InputError(path + ": cannot read the environment (" + stbi_failure_reason() + ")");
+    image = EnvironmentImage(width, height);
+    for (size_t i = 0; i < image.texels.size(); ++i)
+      image.texels[i] = glm::max(glm::vec3(values[3 * i], values[3 * i + 1], values[3 * i + 2]), glm::vec3(0.0f));
+    stbi_image_free(values);
+  }
+  if (width < 4 || height < 2)
+    throw InputError(path + ": an environment needs an equirectangular image of at least 4 x 2 texels");
+  while (image.width > maxWidth && image.width % 2 == 0 && image.height % 2 == 0) image = image.halved();
+  return image;
+}
+
+std::array<float, 9> ShIrradiance::basis(const glm::vec3& d) {
+  // R&H eq. 3: the real spherical harmonics' constants, sqrt((2l + 1) / 4 pi (l - m)! / (l + m)!) folded.
+  const float k0 = static_cast<float>(0.5 * std::sqrt(1.0 / kPi));          // 0.282095
+  const float k1 = static_cast<float>(std::sqrt(3.0 / (4.0 * kPi)));        // 0.488603
+  const float k2 = static_cast<float>(0.5 * std::sqrt(15.0 / kPi));         // 1.092548
+  const float k20 = static_cast<float>(0.25 * std::sqrt(5.0 / kPi));        // 0.315392
+  const float k22 = static_cast<float>(0.25 * std::sqrt(15.0 / kPi));       // 0.546274
+  return {k0,           k1 * d.y,     k1 * d.z,     k1 * d.x,
+          k2 * d.x * d.y, k2 * d.y * d.z, k20 * (3.0f * d.z * d.z - 1.0f), k2 * d.x * d.z,
+          k22 * (d.x * d.x - d.y * d.y)};
+}
+
+ShIrradiance ShIrradiance::project(const EnvironmentImage& image) {
+  std::array<glm::dvec3, 9> sum{};
+  for (int y = 0; y < image.height; ++y) {
+    const double solidAngle = image.texelSolidAngle(y);
+    for (int x = 0; x < image.width; ++x) {
+      const std::array<float, 9> basisValues = basis(image.texelDirection(x, y));
+      const glm::dvec3 radiance(image.at(x, y));
+      for (int i = 0; i < 9; ++i) sum[i] += radiance * (basisValues[i] * solidAngle);
+    }
+  }
+  ShIrradiance sh;
+  for (int i = 0; i < 9; ++i) sh.coefficients[i] = glm::vec3(sum[i]);
+  return sh;
+}
+
+std::array<glm::vec3, 9> ShIrradiance::polynomial() const {
+  // R&H eq. 13 divided by pi. Their c1 .. c5 are the clamped cosine's coefficients A_0 = pi, A_1 = 2 pi / 3,
+  // A_2 = pi / 4 (eq. 9) times the basis constants: c1 = A_2 k22, 2 c1 = A_2 k2, c2 = A_1 k1 / 2, c3 = 3 A_2 k20,
+  // c4 = A_0 k0, c5 = A_2 k20.
+  const double a1 = 2.0 / 3.0, a2 = 0.25;  // A_l / pi
+  const double k0 = 0.5 * std::sqrt(1.0 / kPi), k1 = std::sqrt(3.0 / (4.0 * kPi)), k2 = 0.5 * std::sqrt(15.0 / kPi);
+  const double k20 = 0.25 * std::sqrt(5.0 / kPi), k22 = 0.25 * std::sqrt(15.0 / kPi);
+  const auto& L = coefficients;
+  auto f = [](double k) { return static_cast<float>(k); };
+  return {L[0] * f(k0) - L[6] * f(a2 * k20),  // 1: c4 L00 - c5 L20
+          L[3] * f(a1 * k1),                  // x: 2 c2 L11
+          L[1] * f(a1 * k1),                  // y: 2 c2 L1-1
+          L[2] * f(a1 * k1),                  // z: 2 c2 L10
+          L[4] * f(a2 * k2),                  // xy: 2 c1 L2-2
+          L[5] * f(a2 * k2),                  // yz: 2 c1 L2-1
+          L[7] * f(a2 * k2),                  // xz: 2 c1 L21
+          L[8] * f(a2 * k22),                 // x^2 - y^2: c1 L22
+          L[6] * f(3.0 * a2 * k20)};          // z^2: c3 L20
+}
+
+glm::vec3 ShIrradiance::reflectedRadiance(const glm::vec3& n) const {
+  const std::array<glm::vec3, 9> p = polynomial();
+  return p[0] + p[1] * n.x + p[2] * n.y + p[3] * n.z + p[4] * (n.x * n.y) + p[5] * (n.y * n.z) +
+         p[6] * (n.x * n.z) + p[7] * (n.x * n.x - n.y * n.y) + p[8] * (n.z * n.z);
+}
+
+double ggxDistribution(double nDotH, double alpha) {
+  const double a2 = alpha * alpha;
+  const double d = nDotH * nDotH * (a2 - 1.0) + 1.0;
+  return a2 / (kPi * d * d);
+}
+
+glm::vec3 PrefilteredEnvironment::prefilter(const std::vector<EnvironmentImage>& sourceLevels, const glm::vec3& r,
+                                            double roughness, int samples) {
+  const double alpha = roughness * roughness;
+  const glm::dvec3 n = glm::normalize(glm::dvec3(r));
+  glm::dvec3 t, b;
+  frameAround(n, t, b);
+  // Filtered importance sampling: a sample of density pdf stands for the solid angle 1 / (N pdf); it reads the source
+  // level whose texels are about that large (without Colbert & Krivanek's +1 bias: with enough samples per texel the
+  // blur it adds was the larger error against the brute-force integral).
+  const double texelSolidAngle = 4.0 * kPi / (static_cast<double>(sourceLevels[0].width) * sourceLevels[0].height);
+  const double maxLevel = static_cast<double>(sourceLevels.size() - 1);
+  glm::dvec3 sum(0.0);
+  double weight = 0.0;
+  for (int i = 0; i < samples; ++i) {
+    const glm::dvec3 hLocal = sampleGgx((i + 0.5) / samples, radicalInverse(static_cast<unsigned>(i)), alpha);
+    const glm::dvec3 h = t * hLocal.x + b * hLocal.y + n * hLocal.z;
+    const glm::dvec3 l = 2.0 * glm::dot(n, h) * h - n;
+    const double nDotL = glm::dot(n, l);
+    if (nDotL <= 0.0) continue;
+    // With n = v, the density of l is D(h) (n.h) / (4 v.h) = D(h) / 4.
+    const double pdf = ggxDistribution(hLocal.z, alpha) * 0.25;
+    const double sampleSolidAngle = 1.0 / (samples * pdf);
+    const double level = std::clamp(0.5 * std::log2(sampleSolidAngle / texelSolidAngle), 0.0, maxLevel);
+    const int l0 = static_cast<int>(std::floor(level));
+    const int l1 = std::min(l0 + 1, static_cast<int>(maxLevel));
+    const glm::vec3 dir(l);
+    const glm::vec3 c0 = sourceLevels[l0].radiance(dir), c1 = sourceLevels[l1].radiance(dir);
+    sum += glm::dvec3(c0 + (c1 - c0) * static_cast<float>(level - l0)) * nDotL;
+    weight += nDotL;
+  }
+  return weight > 0.0 ? glm::vec3(sum / weight) : glm::vec3(0.0f);
+}
+
+PrefilteredEnvironment PrefilteredEnvironment::of(const EnvironmentImage& image, int samples) {
+  PrefilteredEnvironment out;
+  std::vector<EnvironmentImage> source = {image.width == kEnvironmentWidth && image.height == kEnvironmentHeight
+                                              ? image
+                                              : resampled(image, kEnvironmentWidth, kEnvironmentHeight)};
+  while (source.back().width > 4) source.push_back(source.back().halved());
+  out.levels[0] = source[0];
+  for (int level = 1; level < kEnvironmentLevels; ++level) {
+    EnvironmentImage& target = out.levels[level];
+    target = EnvironmentImage(kEnvironmentWidth >> level, kEnvironmentHeight >> level);
+    const double roughness = environmentLevelRoughness(level);
+    const int levelSamples = std::max(64, samples >> (2 * (kEnvironmentLevels - 1 - level)));
+    for (int y = 0; y < target.height; ++y)
+      for (int x = 0; x < target.width; ++x)
+        target.at(x, y) = prefilter(source, target.texelDirection(x, y), roughness, levelSamples);
+  }
+  out.decodeLevels();
+  return out;
+}
+
+std::vector<HdrTexel> PrefilteredEnvironment::encodedLevel(int level) const {
+  std::vector<HdrTexel> out;
+  out.reserve(levels[level].texels.size());
+  for (const glm::vec3& c : levels[level].texels) out.push_back(encodeHdr(c));
+  return out;
+}
+
+void PrefilteredEnvironment::decodeLevels() {
+  for (int level = 0; level < kEnvironmentLevels; ++level) {
+    decoded_[level].clear();
+    for (const HdrTexel& t : encodedLevel(level)) decoded_[level].push_back(decodeHdr(t));
+  }
+}
+
+glm::vec3 PrefilteredEnvironment::sample(const glm::vec3& direction, float roughness) const {
+  const glm::vec2 uv = equirectUv(glm::normalize(direction));
+  const float lod = std::clamp(roughness, 0.0f, 1.0f) * static_cast<float>(kEnvironmentLevels - 1);
+  const float base = std::floor(lod);
+  const float f = lod - base;
+  const int k = static_cast<int>(base);
+  auto level = [&](int i) { return bilinear(decoded_[i], levels[i].width, levels[i].height, uv); };
+  const glm::vec3 c = level(k);
+  return f > 0.0f ? c + (level(k + 1) - c) * f : c;
+}
+
+glm::vec3 prefilterReference(const EnvironmentImage& image, const glm::vec3& r, double roughness) {
+  const double alpha = roughness * roughness;
+  const glm::dvec3 n = glm::normalize(glm::dvec3(r));
+  glm::dvec3 sum(0.0);
+  double weight = 0.0;
+  for (int y = 0; y < image.height; ++y) {
+    const double solidAngle = image.texelSolidAngle(y);
+    for (int x = 0; x < image.width; ++x) {
+      const glm::dvec3 l(image.texelDirection(x, y));
+      const double nDotL = glm::dot(n, l);
+      if (nDotL <= 0.0) continue;
+      const double w = ggxDistribution(glm::dot(n, glm::normalize(n + l)), alpha) * nDotL * solidAngle;
+      sum += glm::dvec3(image.at(x, y)) * w;
+      weight += w;
+    }
+  }
+  return glm::vec3(sum / weight);
+}
+
+glm::vec2 envBrdfApprox(float roughness, float nDotV) {
+  // Karis 2014: c0 = (-1, -0.0275, -0.572, 0.022), c1 = (1, 0.0425, 1.04, -0.04).
+  const float rx = -roughness + 1.0f, ry = -0.0275f * roughness + 0.0425f;
+  const float rz = -0.572f * roughness + 1.04f, rw = 0.022f * roughness - 0.04f;
+  const float a004 = std::min(rx * rx, std::exp2(-9.28f * nDotV)) * rx + ry;
+  return {-1.04f * a004 + rz, 1.04f * a004 + rw};
+}
+
+glm::vec2 envBrdfIntegrated(float roughness, float nDotV, int samples) {
+  const double alpha = static_cast<double>(roughness) * roughness;
+  const double nv = std::max(static_cast<double>(nDotV), 1e-4);
+  const glm::dvec3 v(std::sqrt(1.0 - nv * nv), 0.0, nv);
+  const double k = alpha / 2.0;  // Schlick-GGX's k for image-based light (Karis 2013)
+  auto g1 = [k](double c) { return c / (c * (1.0 - k) + k); };
+  double a = 0.0, b = 0.0;
+  for (int i = 0; i < samples; ++i) {
+    const glm::dvec3 h = sampleGgx((i + 0.5) / samples, radicalInverse(static_cast<unsigned>(i)), alpha);
+    const glm::dvec3 l = 2.0 * glm::dot(v, h) * h - v;
+    const double nl = l.z, nh = h.z, vh = std::max(glm::dot(v, h), 0.0);
+    if (nl <= 0.0) continue;
+    // BRDF (n.l) / pdf with pdf = D (n.h) / (4 v.h): G v.h / (n.h n.v); F = F0 (1 - Fc) + Fc.
+    const double visibility = g1(nv) * g1(nl) * vh / (nh * nv);
+    const double fc = std::pow(1.0 - vh, 5.0);
+    a += (1.0 - fc) * visibility;
+    b += fc * visibility;
+  }
+  return glm::vec2(static_cast<float>(a / samples), static_cast<float>(b / samples));
+}
+
+const std::vector<std::uint8_t>& environmentBrdfTable() {
+  static const std::vector<std::uint8_t> table = [] {
+    std::vector<std::uint8_t> bytes;
+    for (int j = 0; j < kEnvironmentBrdfSize; ++j)
+      for (int i = 0; i < kEnvironmentBrdfSize; ++i) {
+        const glm::vec2 ab = envBrdfIntegrated((static_cast<float>(j) + 0.5f) / kEnvironmentBrdfSize,
+                                               (static_cast<float>(i) + 0.5f) / kEnvironmentBrdfSize, 1024);
+        auto byte = [](float v) { return static_cast<std::uint8_t>(std::lround(std::clamp(v, 0.0f, 1.0f) * 255.0f)); };
+        bytes.insert(bytes.end(), {byte(ab.x), byte(ab.y), 0, 255});
+      }
+    return bytes;
+  }();
+  return table;
+}
+
+glm::vec2 environmentBrdf(float roughness, float nDotV) {
+  const std::vector<std::uint8_t>& table = environmentBrdfTable();
+  const float n = static_cast<float>(kEnvironmentBrdfSize);
+  const float px = std::clamp(nDotV, 0.0f, 1.0f) * n - 0.5f, py = std::clamp(roughness, 0.0f, 1.0f) * n - 0.5f;
+  const float fx0 = std::floor(px), fy0 = std::floor(py);
+  const float fx = px - fx0, fy = py - fy0;
+  auto clampIndex = [](float v) { return std::clamp(static_cast<int>(v), 0, kEnvironmentBrdfSize - 1); };
+  const int x0 = clampIndex(fx0), x1 = clampIndex(fx0 + 1.0f), y0 = clampIndex(fy0), y1 = clampIndex(fy0 + 1.0f);
+  auto at = [&](int x, int y) {
+    const size_t i = (static_cast<size_t>(y) * kEnvironmentBrdfSize + x) * 4;
+    return glm::vec2(table[i], table[i + 1]) / 255.0f;
+  };
+  const glm::vec2 top = at(x0, y0) + (at(x1, y0) - at(x0, y0)) * fx;
+  const glm::vec2 bottom = at(x0, y1) + (at(x1, y1) - at(x0, y1)) * fx;
+  return top + (bottom - top) * fy;
+}
+
+glm::vec3 ambientLightMirror(const ShIrradiance& sh, const PrefilteredEnvironment& specular, const glm::vec3& n,
+                             const glm::vec3& v, const glm::vec3& diffuseColor, const glm::vec3& f0,
+                             float roughness) {
+  const float nDotV = std::clamp(glm::dot(n, v), 0.0f, 1.0f);
+  const glm::vec2 ab = environmentBrdf(roughness, nDotV);
+  const glm::vec3 specularAlbedo = f0 * ab.x + ab.y;
+  const glm::vec3 r = 2.0f * glm::dot(n, v) * n - v;
+  return diffuseColor * (1.0f - specularAlbedo) * glm::max(sh.reflectedRadiance(n), glm::vec3(0.0f)) +
+         specularAlbedo * specular.sample(r, roughness);
+}
+
+const char* environmentLayoutName(EnvironmentLayout layout) {
+  return layout == EnvironmentLayout::MipChain ? "mipchain" : "atlas";
+}
+
+EnvironmentLayout GpuEnvironment::layoutFor(const gl::GlCaps& caps, std::optional<EnvironmentLayout> forced) {
+  const EnvironmentLayout best = caps.shaderTextureLod ? EnvironmentLayout::MipChain : EnvironmentLayout::Atlas;
+  if (!forced) return best;
+  return *forced == EnvironmentLayout::MipChain ? best : EnvironmentLayout::Atlas;
+}
+
+std::vector<std::pair<std::string, std::string>> GpuEnvironment::shaderDefines(EnvironmentLayout layout) {
+  return {{"ENVIRONMENT_LOD", layout == EnvironmentLayout::MipChain ? "1" : "0"},
+          {"ENVIRONMENT_LEVELS", std::to_string(kEnvironmentLevels)},
+          {"ENVIRONMENT_WIDTH", std::to_string(kEnvironmentWidth) + ".0"},
+          {"ENVIRONMENT_HEIGHT", std::to_string(kEnvironmentHeight) + ".0"}};
+}
+
+GpuEnvironment::GpuEnvironment(EnvironmentLayout layout, const PrefilteredEnvironment& specular,
+                               const ShIrradiance& sh)
+    : layout_(layout),
+      texture_(gl::TextureHandle::create()),
+      brdf_(gl::TextureHandle::create()),
+      polynomial_(sh.polynomial()) {
+  const float* floats = &polynomial_[0].x;  // glm::vec3 is three tightly packed floats
+  for (size_t i = 0; i < 27; ++i) packedPolynomial_[i / 4][static_cast<glm::length_t>(i % 4)] = floats[i];
+  glActiveTexture(GL_TEXTURE0);
+  // (A, B): plain linear bytes, so the hardware's bilinear filter is the right one.
+  glBindTexture(GL_TEXTURE_2D, brdf_.id());
+  glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA, kEnvironmentBrdfSize, kEnvironmentBrdfSize, 0, GL_RGBA, GL_UNSIGNED_BYTE,
+               environmentBrdfTable().data());
+  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
+  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_LINEAR);
+  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+
+  glBindTexture(GL_TEXTURE_2D, texture_.id());
+  glPixelStorei(GL_UNPACK_ALIGNMENT, 4);
+  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
+  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+  if (layout == EnvironmentLayout::MipChain) {
+    // Levels 0 .. 5 the roughness levels; the rest, down to 1 x 1, hold level 5's mean (never read: the shader's
+    // level stops at 5; GLES 2 samples only a complete chain).
+    glm::vec3 mean(0.0f);
+    for (const glm::vec3& c : specular.levels[kEnvironmentLevels - 1].texels) mean += c;
+    mean /= static_cast<float>(specular.levels[kEnvironmentLevels - 1].texels.size());
+    for (int level = 0;; ++level) {
+      const int w = std::max(kEnvironmentWidth >> level, 1), h = std::max(kEnvironmentHeight >> level, 1);
+      std::vector<HdrTexel> texels = level < kEnvironmentLevels
+                                         ? specular.encodedLevel(level)
+                                         : std::vector<HdrTexel>(static_cast<size_t>(w) * h, encodeHdr(mean));
+      glTexImage2D(GL_TEXTURE_2D, level, GL_RGBA, w, h, 0, GL_RGBA, GL_UNSIGNED_BYTE, texels.data());
+      if (w == 1 && h == 1) break;
+    }
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST_MIPMAP_NEAREST);
+  } else {
+    // Level 0 at the left; level k >= 1 to its right at y = H (1 - 2^(1 - k)): 256 x 128 at the top, then 128 x 64,
+    // .. (lib/environment.glsl's environmentTexel computes the same origins).
+    const int atlasWidth = kEnvironmentWidth + kEnvironmentWidth / 2, atlasHeight = kEnvironmentHeight;
+    std::vector<HdrTexel> atlas(static_cast<size_t>(atlasWidth) * atlasHeight, HdrTexel{0, 0, 0, 0});
+    int originY = 0;
+    for (int level = 0; level < kEnvironmentLevels; ++level) {
+      const int w = kEnvironmentWidth >> level, h = kEnvironmentHeight >> level;
+      const int originX = level == 0 ? 0 : kEnvironmentWidth;
+      const std::vector<HdrTexel> texels = specular.encodedLevel(level);
+      for (int y = 0; y < h; ++y)
+        std::copy_n(&texels[static_cast<size_t>(y) * w], w,
+                    &atlas[static_cast<size_t>(originY + y) * atlasWidth + originX]);
+      if (level > 0) originY += h;
+    }
+    glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA, atlasWidth, atlasHeight, 0, GL_RGBA, GL_UNSIGNED_BYTE, atlas.data());
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+  }
+  glBindTexture(GL_TEXTURE_2D, 0);
+}
+
+}  // namespace obscura

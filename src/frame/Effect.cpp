@@ -1,0 +1,31 @@
+#include "frame/Effect.h"
+
+#include <algorithm>
+
+#include <glm/common.hpp>
+
+namespace obscura {
+
+glm::ivec2 TargetSize::of(glm::ivec2 frame) const {
+  switch (kind) {
+    case Kind::Full: return frame;
+    case Kind::Half: return glm::max(frame / 2, glm::ivec2(1));
+    case Kind::Quarter: return glm::max(frame / 4, glm::ivec2(1));
+    case Kind::Tiles: return (frame + glm::ivec2(tile - 1)) / std::max(tile, 1);
+    case Kind::TileColumns: return {(frame.x + tile - 1) / std::max(tile, 1), frame.y};
+  }
+  return frame;
+}
+
+std::string TargetSize::name() const {
+  switch (kind) {
+    case Kind::Full: return "full";
+    case Kind::Half: return "half";
+    case Kind::Quarter: return "quarter";
+    case Kind::Tiles: return "tiles of " + std::to_string(tile);
+    case Kind::TileColumns: return "tile columns of " + std::to_string(tile);
+  }
+  return "?";
+}
+
+}  // namespace obscura

@@ -1,0 +1,134 @@
+#pragma once
+// One effect of the frame: a row of the effect table (renderer/EffectTable.cpp), which lists them in the order they
+// run.
+//
+// An effect has a name (its switch, and the prefix of its parameters: "ao", "ao.radius"), a settings struct, one or
+// more passes, and the named targets those passes write. Each frame the Renderer asks every effect that is on to
+// plan its passes (Effect::plan): each pass names the targets it reads and writes, and gives the code that draws it.
+// The frame plan (frame/FramePlan.h) then checks that every read has an earlier writer, drops passes whose results
+// nobody needs (a debug view of the AO runs no lighting), sends the frame's result straight into the output
+// framebuffer, and lends each pass a physical RGBA8 target from the pool (frame/RenderTargetPool.h), reusing one
+// whose contents are no longer needed.
+//
+// docs/architecture.md walks through adding an effect.
+#include <functional>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include <glm/vec2.hpp>
+
+#include "gl/GlApi.h"
+
+namespace obscura {
+
+class FramePlanner;
+class PassContext;
+
+// A target's size relative to the frame (the output size). Half and quarter are floor(size / 2^k), at least 1 pixel
+// (SaoKernel::hierarchyLevelSize); tiles are ceil(size / tile), one texel per tile x tile pixels; tile columns are
+// ceil(width / tile) by the full height, one texel per tile x 1 pixels (the first half of a separable tile pass).
+struct TargetSize {
+  enum class Kind { Full, Half, Quarter, Tiles, TileColumns };
+  Kind kind = Kind::Full;
+  int tile = 0;  // Tiles and TileColumns only
+
+  static TargetSize full() { return {Kind::Full, 0}; }
+  static TargetSize half() { return {Kind::Half, 0}; }
+  static TargetSize quarter() { return {Kind::Quarter, 0}; }
+  static TargetSize tiles(int tile) { return {Kind::Tiles, tile}; }
+  static TargetSize tileColumns(int tile) { return {Kind::TileColumns, tile}; }
+  glm::ivec2 of(glm::ivec2 frame) const;
+  std::string name() const;  // "full", "half", "quarter", "tiles of 16"
+  bool operator==(const TargetSize& o) const { return kind == o.kind && tile == o.tile; }
+};
+
+// How a debug view (shaders_es2/frame/debug_view.frag) shows a target's bytes: decoded, but otherwise as they are (no
+// tone curve, no output encoding, no antialiasing), so tools can read the values back.
+enum class ViewDecoding {
+  Grey,      // R as grey (AO)
+  Normals,   // the G-buffer's octahedral normal, n * 0.5 + 0.5 (background black)
+  Depth,     // the G-buffer's 16-bit linear depth as grey (background white)
+  Mask,      // geometry white, background black (what obscura-compare measures over)
+  HdrColor,  // the HDR encoding of lib/hdr.glsl, decoded, clamped to [0, 1]
+  Color,     // RGB as stored
+  Count,     // R holds a count / 255: grey 32/255 per count, white from 8 (the lighting's shading count)
+  Velocity,  // encoding/VelocityPacking.h decoded: RG = 0.5 + 64 v (v in uv units: white from 1/128 of the screen a
+             // frame; grey 0.5 still), B = 0.5
+};
+
+struct TargetView {
+  std::string name;  // the --view name
+  ViewDecoding decoding;
+};
+
+// A named RGBA8 target: what an effect's passes may write, documented once.
+struct TargetInfo {
+  std::string name;
+  std::string encoding;        // what the four bytes hold (docs, the page's view list)
+  GLenum filter = GL_NEAREST;  // LINEAR only for colours a reader filters (FXAA); packed data is always NEAREST
+  std::vector<TargetView> views;
+};
+
+// What an effect is, read by everything that lists effects: the page, the CLI's help, obscura-bench, the timers.
+struct EffectInfo {
+  std::string name;                 // switch and parameter prefix
+  std::string title;                // for people: "Ambient obscurance"
+  bool hasSwitch = true;            // false: always part of the frame (the G-buffer, the lighting)
+  bool jitters = false;             // on: the projection is jittered per frame (Halton 2, 3; FrameContext)
+  std::vector<std::string> passes;  // every pass it may run, in order (timer and stats keys)
+  std::vector<TargetInfo> targets;  // every target it may write
+  // On: its result depends on earlier frames or on the shutter (motion blur, TAA); references made by brute force
+  // switch these off and integrate instead (renderer/AccumulationReference.h). Last, so brace initialisers may omit it.
+  bool temporal = false;
+};
+
+// One pass of this frame: what it reads and writes, and how it draws. Reads of a target bind to its latest earlier
+// writer; a pass that reads and writes one target gets a fresh physical target for the new contents (ping-pong).
+struct PassDecl {
+  struct Write {
+    std::string target;
+    TargetSize size = TargetSize::full();
+    // Depth renderbuffer attached while the pass draws: none, its own (cleared by the pass), or that of a target it
+    // reads, shared so the pass can depth-test against what an earlier pass drew. A shared depth whose target is
+    // not read this frame falls back to its own.
+    enum class Depth { None, Own, Shared } depth = Depth::None;
+    std::string depthFrom;  // Shared: the target whose depth renderbuffer it attaches
+  };
+
+  // Another way to run the pass, taken when its conditions hold once the plan knows which passes run (the first of
+  // a pass's alternatives that applies wins; none: the pass as declared). It keeps the pass's name.
+  struct Alternative {
+    // Targets that a running earlier pass writes (not only one that is declared): the deferred lighting needs the
+    // base colour the G-buffer pass writes where it has several render targets, and runs.
+    std::vector<std::string> whenWritten;
+    // "" or the name of a pass that is the only running reader of what this pass writes, reads nothing else, and
+    // whose own writes are read by a running pass (or, with `mayWriteOutput`, are the frame's result). The
+    // alternative then does that pass's work too: it writes that pass's targets (its `writes` name them), and that
+    // pass does not run. (The lighting applies the tone curve itself when nothing else needs the HDR colour.)
+    std::string absorbing;
+    bool mayWriteOutput = false;
+    std::vector<std::string> reads;
+    std::vector<Write> writes;  // without `absorbing`: the same targets as the pass's
+    std::function<void(PassContext&)> run;
+  };
+
+  std::string name;                        // one of its effect's EffectInfo::passes
+  std::vector<std::string> reads;          // required: an earlier pass must write each
+  std::vector<std::string> optionalReads;  // used when some earlier pass writes it anyway; never keeps one alive
+  std::vector<Write> writes;
+  bool keep = false;                       // runs even when nothing reads what it writes (history)
+  std::function<void(PassContext&)> run;
+  std::vector<Alternative> alternatives;
+};
+
+// Effects draw through this during their passes.
+class Effect {
+ public:
+  virtual ~Effect() = default;
+  // Adds this frame's passes (none: the effect has nothing to do with these settings). Called in table order for
+  // every effect that is on, and for the effect whose target the frame's debug view shows.
+  virtual void plan(FramePlanner& planner) = 0;
+};
+
+}  // namespace obscura

@@ -1,0 +1,65 @@
+#pragma once
+// What every pass of one frame shares: the camera of this frame and of the previous one, the sub-pixel jitter, the
+// frame's index, and its time and the time of the pose motion vectors measure from (the scene's pose of both is in
+// GpuScene: setPose).
+//
+// "Previous" is history: it survives from one frame to the next and is dropped, together with the history targets
+// (frame/RenderTargetPool.h), when the output size changes, the scene changes or the context is lost (a new
+// Renderer). A frame that starts afresh has hasPrevious false and its previous camera equal to its own.
+#include <cstdint>
+#include <vector>
+
+#include <glm/mat4x4.hpp>
+#include <glm/vec2.hpp>
+
+#include "frame/ViewReconstruction.h"
+#include "gl/Program.h"
+#include "scene/Camera.h"
+
+namespace obscura {
+
+struct FrameCamera {
+  glm::mat4 view{1.0f};
+  glm::mat4 projection{1.0f};  // jittered when the frame is (jitter below)
+  glm::mat4 unjitteredProjection{1.0f};  // the same without the jitter (motion vectors)
+  ViewReconstruction reconstruction;
+  float near = 0.1f, far = 100.0f, fovyRadians = 1.0f;
+  int width = 1, height = 1;   // the output size; the camera's aspect follows it
+  glm::vec2 jitter{0.0f};      // sub-pixel offset of the projection, in pixels (x right, y up)
+
+  static FrameCamera from(const Camera& camera, int width, int height, glm::vec2 jitterPixels = glm::vec2(0.0f));
+  // Pixels per metre at 1 m in front of the camera, for a target `targetHeight` pixels tall.
+  float projScale(int targetHeight) const;
+};
+
+struct FrameContext {
+  FrameCamera camera;
+  FrameCamera previousCamera;  // the previous frame's; equal to `camera` when !hasPrevious
+  bool hasPrevious = false;
+  std::uint64_t index = 0;     // frames this Renderer has drawn before this one
+  int historyFrames = 0;       // consecutive earlier frames the history survived (0: this frame starts afresh)
+  double time = 0.0;           // seconds (FrameOptions::time)
+  // The time of the previous pose (FrameOptions::previousTime, else the previous frame's time, else `time`).
+  double previousTime = 0.0;
+  double deltaTime = 0.0;      // time - previousTime
+  bool linesOrPoints = false;  // the scene has points or lines to draw (effects/lines/LinesEffect.h)
+  // The scene needs the forward lighting (GpuScene::needsForwardLighting): the G-buffer writes no base colour.
+  bool forwardLighting = false;
+};
+
+// Halton low-discrepancy sequence (radical inverse of `index` in `base`), index >= 1: the jitter of temporal
+// antialiasing takes (halton(i, 2), halton(i, 3)) - 0.5.
+float halton(std::uint32_t index, std::uint32_t base);
+
+// The uniforms of shaders_es2/lib/reconstruct.glsl, resolved once per program.
+class ReconstructionUniforms {
+ public:
+  ReconstructionUniforms() = default;
+  explicit ReconstructionUniforms(const gl::Program& program);
+  void set(const ViewReconstruction& reconstruction) const;  // on the program in use
+
+ private:
+  GLint farHalfExtent_ = -1, farPlane_ = -1, depthToRay_ = -1;
+};
+
+}  // namespace obscura

@@ -1,0 +1,71 @@
+#pragma once
+// What a pass sees while it draws (PassDecl::run): the frame, the settings, the scene, and its targets by name,
+// bound to the physical targets the frame plan lent it (or the output framebuffer, for the frame's result).
+#include <string>
+
+#include "frame/FrameContext.h"
+#include "frame/FramePlan.h"
+#include "frame/FrameSettings.h"
+#include "frame/RenderTargetPool.h"
+#include "gpu/GpuScene.h"
+
+namespace obscura {
+
+// Where the frame's result goes: the caller's framebuffer (0: the window's or canvas's own).
+struct OutputTarget {
+  GLuint framebuffer = 0;
+  int width = 1, height = 1;
+  // Only this rectangle (GL window coordinates: x right, y up from the bottom) of the output is drawn; an empty
+  // one means all of it. Split screen draws its two halves as two frames.
+  struct Region {
+    int x = 0, y = 0, width = 0, height = 0;
+  } region;
+};
+
+class PassContext {
+ public:
+  PassContext(const FramePlan& plan, int pass, RenderTargetPool& pool, const FrameContext& frame,
+              const FrameSettings& settings, const GpuScene& scene, const OutputTarget& output)
+      : plan_(plan), pass_(pass), pool_(pool), frame_(frame), settings_(settings), scene_(scene), output_(output) {}
+
+  const FrameContext& frame() const { return frame_; }
+  const FrameCamera& camera() const { return frame_.camera; }
+  const FrameSettings& settings() const { return settings_; }
+  const GpuScene& scene() const { return scene_; }
+
+  // The colour texture of a target this pass reads. Throws PipelineError for one it did not declare (or an optional
+  // read no running pass wrote: ask has() first).
+  const gl::Texture2D& texture(const std::string& target) const;
+  // Whether a declared optional read is there this frame.
+  bool has(const std::string& target) const;
+  // Binds the framebuffer this pass writes `target` into and sets the viewport to cover it. For the frame's result,
+  // that is the output framebuffer, scissored to the output's region.
+  void bindForWriting(const std::string& target) const;
+  // Binds one framebuffer writing several pooled targets of the same size at once (EXT_draw_buffers:
+  // gl_FragData[i] goes to targets[i]), with the depth renderbuffer of the first that has one.
+  void bindForWriting(const std::vector<std::string>& targets) const;
+  // The size of a target this pass reads or writes, in pixels.
+  glm::ivec2 size(const std::string& target) const;
+  // Whether this pass writes `target` into the output framebuffer.
+  bool writesOutput(const std::string& target) const;
+  // Whether `target` is written with another target's depth attached (else its own, or none).
+  bool sharesDepth(const std::string& target) const;
+  // A history target of this pass (see RenderTargetPool::History).
+  RenderTargetPool::History& history(const std::string& name, const TargetSize& size, GLenum filter) const {
+    return pool_.history(name, size, filter);
+  }
+
+ private:
+  const TargetVersion& readVersion(const std::string& target) const;
+  const TargetVersion& writeVersion(const std::string& target) const;
+
+  const FramePlan& plan_;
+  int pass_;
+  RenderTargetPool& pool_;
+  const FrameContext& frame_;
+  const FrameSettings& settings_;
+  const GpuScene& scene_;
+  const OutputTarget& output_;
+};
+
+}  // namespace obscura

@@ -1,0 +1,171 @@
+#pragma once
+// A Scene uploaded to GL: vertex/index buffers per mesh piece, textures per glTF texture, the pose of this frame and
+// of the previous one (setPose), and the draw loop every geometry pass (G-buffer, lighting, velocity) shares, so they
+// draw exactly the same triangles with the same state.
+//
+// WebGL 1 rules: without OES_element_index_uint, meshes over 65535 vertices are split into 16-bit pieces
+// (scene/MeshProcessing.h); textures follow the non-power-of-two and size rules of scene/TexturePreparation.h.
+//
+// Skinning, sized to what GLES 2 guarantees (gpu/VertexKind.h, shaders_es2/lib/geometry.vert):
+//   - the joint texture (SkinningPath::Texture) where the vertex stage has a texture unit and float textures exist:
+//     one RGBA float texture per skin holding this frame's and the previous frame's joint matrices;
+//   - else a uniform palette (SkinningPath::Uniforms) of paletteSize() joints, from the vertex uniform vectors left
+//     once the other uniforms are counted, with room for the previous frame's palette (the velocity pass): 16 joints
+//     at GLES 2's minimum of 128 vectors. A mesh whose skin has more joints is split into pieces whose joints fit;
+//   - else, or where forced, on the CPU (SkinningPath::Cpu): deformed vertices uploaded every frame.
+// Morph targets go to the vertex stage as attributes as far as the context's vertex attributes allow (2 targets with
+// normals on a rigid mesh at GLES 2's 8, capped at 4), choosing per draw the targets with a non-zero weight now or in
+// the previous frame; a draw that needs more is morphed on the CPU that frame.
+#include <array>
+#include <functional>
+#include <optional>
+#include <vector>
+
+#include <glm/mat4x4.hpp>
+
+#include "gl/GlCaps.h"
+#include "gl/GlCaps.h"
+#include "gl/GlObjects.h"
+#include "gl/Program.h"
+#include "gl/RenderTarget.h"
+#include "gpu/GpuLines.h"
+#include "gpu/MaterialKind.h"
+#include "gpu/VertexKind.h"
+#include "scene/Animation.h"
+#include "scene/Scene.h"
+
+namespace obscura {
+
+// The uniforms and attributes of geometry.vert and lib/material.glsl that draw() sets per instance, resolved once
+// per program. Only u_modelView is required: a fragment stage that reads no normal or no base colour (the G-buffer
+// pass of opaque materials) lets the compiler drop the others, and a variant without deformation has none of the
+// skinning or morphing ones.
+struct GeometryUniforms {
+  GeometryUniforms() = default;
+  explicit GeometryUniforms(const gl::Program& program);
+  GLint modelView = -1, normalMatrix = -1, baseColorFactor = -1, baseColorTexture = -1, alphaCutoff = -1;
+  GLint metallicRoughness = -1, emissive = -1, uvTransforms = -1;
+  GLint pbrTextures[4] = {-1, -1, -1, -1};  // metallic-roughness, normal, occlusion, emissive samplers
+  GLint joints = -1, previousJoints = -1, jointTexture = -1, jointTextureSize = -1;
+  GLint morphWeights = -1, previousMorphWeights = -1, previousModel = -1;
+  GLint jointsAttribute = -1, weightsAttribute = -1, previousPositionAttribute = -1, tangentAttribute = -1;
+  GLint morphPositionAttribute[VertexKind::kMaxMorphTargets] = {-1, -1, -1, -1};
+  GLint morphNormalAttribute[VertexKind::kMaxMorphTargets] = {-1, -1, -1, -1};
+};
+
+class GpuScene {
+ public:
+  struct Options {
+    bool allowUint32Indices = true;  // false simulates a context without OES_element_index_uint
+    std::optional<SkinningPath> skinning;  // RendererOptions::skinning
+  };
+
+  GpuScene() = default;
+  GpuScene(const Scene& scene, const gl::GlCaps& caps, const Options& options);
+  GpuScene(const Scene& scene, const gl::GlCaps& caps) : GpuScene(scene, caps, Options{}) {}
+
+  // This frame's pose and the previous frame's (scene/Animation.h), before the frame's passes draw: places the
+  // instances, uploads joint textures and CPU-deformed vertices. Both poses must come from this scene.
+  void setPose(const ScenePose& current, const ScenePose& previous);
+
+  // Chooses the program for a draw: the material's kind (gpu/MaterialKind.h) and the vertex stage's
+  // (gpu/VertexKind.h). It makes the program current, sets its per-frame uniforms, and returns its per-draw ones.
+  using ProgramChoice = std::function<const GeometryUniforms&(MaterialKind material, VertexKind vertex)>;
+  struct DrawOptions {
+    bool onlyMoving = false;  // only instances whose pose differs from the previous frame's (velocity)
+  };
+  // Draws every instance: opaque materials first, then masked ones, each group front to back (by the distance of
+  // its bounds' centre from the eye), so early depth tests reject what a nearer surface hides. Sets u_modelView,
+  // u_normalMatrix, the material uniforms of lib/material.glsl, the deformation's uniforms and attributes (this
+  // frame's and, where the program has them, the previous frame's), face culling per material and winding per
+  // instance. Leaves the baseline pipeline state except for the program, depth and framebuffer state it was given.
+  void draw(const glm::mat4& view, const ProgramChoice& choose, const DrawOptions& options) const;
+  void draw(const glm::mat4& view, const ProgramChoice& choose) const { draw(view, choose, DrawOptions{}); }
+
+  std::size_t pieceCount() const { return pieces_.size(); }
+  // A material the deferred lighting cannot shade (Material::needsForwardLighting) is drawn, or the scene has
+  // punctual lights: the lighting takes its forward form (effects/lighting/LightingEffect.h).
+  bool needsForwardLighting() const { return needsForwardLighting_; }
+  // The scene's KHR_lights_punctual lights, placed by this frame's pose (setPose).
+  const std::vector<PunctualLight>& lights() const { return lights_; }
+  // The scene's points and lines (not surfaces: no G-buffer, no AO), posed by setPose; effects/lines/LinesEffect.h
+  // draws them.
+  const GpuLines& lines() const { return lines_; }
+  bool usesUint32Indices() const;
+  // Something moves between the previous pose and this one (an instance, a joint or a morph weight).
+  bool anyMoving() const;
+  // How skinned meshes are drawn, and the uniform palette's size in joints (0 where the path is not Uniforms).
+  SkinningPath skinningPath() const { return skinningPath_; }
+  int paletteSize() const { return paletteSize_; }
+  int morphTargetSlots(bool withNormals, bool skinned) const;
+  // Draws of the last draw() call that were deformed on the CPU (tests, benchmarks).
+  struct Counts {
+    int draws = 0, cpuDeformed = 0, gpuMorphed = 0, skinned = 0;
+  };
+  Counts lastDrawCounts() const { return counts_; }
+
+ private:
+  struct Piece {
+    gl::BufferHandle vertices, indices;
+    GLsizei indexCount = 0;
+    GLenum indexType = GL_UNSIGNED_SHORT;
+    gl::BufferHandle skinAttributes;  // joints (4 floats) then weights (4 floats) per vertex; none if rigid
+    std::vector<gl::BufferHandle> morphPositions, morphNormals;  // per target (normals: none if the target has none)
+    gl::BufferHandle tangents;  // vec4 per vertex, for PBR_TEXTURES materials; none otherwise
+    std::vector<int> palette;  // the uniform path: the skin joint of each palette entry
+    Mesh source;               // kept for CPU deformation (skinned on the CPU path, or morphed): the piece's mesh
+  };
+  struct MaterialGpu {
+    glm::vec4 baseColorFactor{1.0f};
+    int texture = -1;  // index into textures_, -1: none (the factor alone)
+    float alphaCutoff = -1.0f;
+    bool doubleSided = false;
+    bool pbr = false;  // PBR_TEXTURES: pbrTextures has one
+    std::array<int, 4> pbrTextures{-1, -1, -1, -1};  // metallic-roughness, normal, occlusion, emissive; -1: neutral
+    glm::vec4 metallicRoughness{0.0f, 1.0f, 0.0f, 1.0f};  // metallic, roughness, normal scale, occlusion strength
+    glm::vec3 emissive{0.0f};                              // factor x strength
+    std::array<glm::vec3, 2 * kTextureSlots> uvRows{};     // each slot's KHR_texture_transform, as two rows
+  };
+  struct InstanceGpu {
+    glm::mat4 world{1.0f}, previousWorld{1.0f};
+    glm::vec3 localCentre{0.0f};  // of its mesh's bounds, in the mesh's space
+    glm::vec3 restCentre{0.0f};   // the same, placed at rest
+    glm::vec3 centre{0.0f};      // of its posed bounds (approximately), for the drawing order
+    int material = 0;
+    int firstPiece = 0, pieceCount = 0;
+    int skin = -1;               // index into skins_ where drawn skinned
+    bool cpuSkinned = false;     // skinned on the CPU (SkinningPath::Cpu)
+    bool morphed = false;        // its mesh has morph targets
+    bool moving = false;
+    // This frame's deformation: the morph targets bound as attributes (GPU), or CPU-deformed vertex buffers.
+    std::vector<int> gpuTargets;
+    std::vector<float> weights, previousWeights;
+    bool cpuDeformed = false;
+    std::vector<gl::BufferHandle> deformed;  // per piece: position, normal, texcoord, previous position
+  };
+  struct SkinGpu {
+    std::vector<glm::mat4> joints, previousJoints;  // world(joint) * inverseBind(joint)
+    gl::TextureHandle texture;                      // the joint texture path
+    glm::vec3 textureSize{0.0f};                    // width, height, texels per palette
+  };
+
+  void uploadCpuDeformed(InstanceGpu& instance, const ScenePose& current, const ScenePose& previous, size_t index);
+  VertexKind vertexKind(const InstanceGpu& instance, const Piece& piece) const;
+
+  std::vector<Piece> pieces_;
+  std::vector<MaterialGpu> materials_;  // last entry: the default material
+  std::vector<InstanceGpu> instances_;
+  std::vector<SkinGpu> skins_;
+  std::vector<gl::TextureHandle> textures_;
+  gl::Texture2D neutralWhite_, neutralNormal_;
+  std::vector<PunctualLight> lights_;
+  bool needsForwardLighting_ = false;
+  GpuLines lines_;
+  SkinningPath skinningPath_ = SkinningPath::Uniforms;
+  int paletteSize_ = 0;
+  VertexLimits limits_;
+  bool desktopGl_ = false;
+  mutable Counts counts_;
+};
+
+}  // namespace obscura

@@ -1,0 +1,105 @@
+#include "renderer/EffectTable.h"
+
+#include <set>
+
+#include "effects/ao/AoEffect.h"
+#include "effects/bloom/BloomEffect.h"
+#include "effects/dof/DepthOfFieldEffect.h"
+#include "effects/edges/EdgesEffect.h"
+#include "effects/fog/FogEffect.h"
+#include "effects/fxaa/FxaaEffect.h"
+#include "effects/gbuffer/GBufferEffect.h"
+#include "effects/lighting/LightingEffect.h"
+#include "effects/lines/LinesEffect.h"
+#include "effects/motion_blur/MotionBlurEffect.h"
+#include "effects/taa/TaaEffect.h"
+#include "effects/tonemap/TonemapEffect.h"
+#include "effects/velocity/VelocityEffect.h"
+#include "frame/DebugViewPass.h"
+
+namespace obscura {
+
+// The frame, in order. Adding an effect: a class with info(), programSpecs(), Settings and plan() (docs/
+// architecture.md, "Adding an effect"), one shader, and one row here, where it runs.
+const std::vector<EffectEntry>& effectTable() {
+  static const std::vector<EffectEntry> table = [] {
+    std::vector<EffectEntry> rows = {
+        EffectEntry::of<GBufferEffect>(),   // scene -> gbuffer (normal + 16-bit depth, own depth buffer)
+        EffectEntry::of<VelocityEffect>(),  // scene, gbuffer (and its depth) -> velocity (motion vectors)
+        EffectEntry::of<AoEffect>(),        // gbuffer -> ao
+        EffectEntry::of<LightingEffect>(),  // scene, ao, the G-buffer's depth -> scene-color (HDR)
+        EffectEntry::of<LinesEffect>(),     // scene-color, the G-buffer's depth, points and lines -> scene-color
+        EffectEntry::of<FogEffect>(),       // scene-color, gbuffer -> scene-color (HDR)
+        EffectEntry::of<TaaEffect>(),       // scene-color, velocity, gbuffer, history -> scene-color (HDR)
+        EffectEntry::of<BloomEffect>(),     // scene-color -> scene-color (HDR, its own chain of 1/2 .. 1/64 targets)
+        EffectEntry::of<TonemapEffect>(),   // scene-color -> display-color (sRGB, luma in alpha)
+        EffectEntry::of<EdgesEffect>(),     // gbuffer, display-color -> display-color (lines; toon bands)
+        EffectEntry::of<DepthOfFieldEffect>(),  // display-color, gbuffer -> display-color (near and far fields)
+        EffectEntry::of<MotionBlurEffect>(),  // display-color, velocity, gbuffer -> display-color
+        EffectEntry::of<FxaaEffect>(),      // display-color -> display-color
+    };
+    // Names are how everything finds effects, passes and targets: each is used once.
+    std::set<std::string> effects, passes, targets;
+    for (const EffectEntry& row : rows) {
+      if (!effects.insert(row.info.name).second) throw PipelineError("effect '" + row.info.name + "' is listed twice");
+      for (const std::string& pass : row.info.passes)
+        if (!passes.insert(pass).second) throw PipelineError("pass name '" + pass + "' is used twice");
+      for (const TargetInfo& target : row.info.targets)
+        if (!targets.insert(target.name).second) throw PipelineError("target '" + target.name + "' is declared twice");
+    }
+    return rows;
+  }();
+  return table;
+}
+
+const EffectEntry& effectEntry(const std::string& effect) {
+  for (const EffectEntry& row : effectTable())
+    if (row.info.name == effect) return row;
+  throw InputError("unknown effect '" + effect + "'");
+}
+
+const std::vector<std::string>& framePassNames() {
+  static const std::vector<std::string> names = [] {
+    // "pose": the scene's animation, skinning and morphing work before the passes (Renderer::render: evaluating the
+    // pose, uploading joint textures and CPU-deformed vertices), timed like a pass.
+    std::vector<std::string> out = {"pose"};
+    for (const EffectEntry& row : effectTable()) out.insert(out.end(), row.info.passes.begin(), row.info.passes.end());
+    out.push_back("view");
+    out.push_back("present");
+    return out;
+  }();
+  return names;
+}
+
+const std::vector<TargetInfo>& frameTargets() {
+  static const std::vector<TargetInfo> targets = [] {
+    std::vector<TargetInfo> out;
+    for (const EffectEntry& row : effectTable())
+      out.insert(out.end(), row.info.targets.begin(), row.info.targets.end());
+    return out;
+  }();
+  return targets;
+}
+
+const std::vector<std::string>& frameViewNames() {
+  static const std::vector<std::string> names = [] {
+    std::vector<std::string> out = {"final", "split"};
+    for (const TargetInfo& target : frameTargets())
+      for (const TargetView& view : target.views) out.push_back(view.name);
+    return out;
+  }();
+  return names;
+}
+
+std::vector<ProgramSpec> frameProgramSpecs() {
+  std::vector<ProgramSpec> specs;
+  for (const EffectEntry& row : effectTable()) {
+    const std::vector<ProgramSpec> list = row.programSpecs();
+    specs.insert(specs.end(), list.begin(), list.end());
+  }
+  const std::vector<ProgramSpec> views = DebugViewPass::programSpecs();
+  specs.insert(specs.end(), views.begin(), views.end());
+  return specs;
+}
+
+}  // namespace obscura

@@ -1,0 +1,302 @@
+#include "renderer/Renderer.h"
+
+#include <algorithm>
+#include <cstdio>
+
+#include "base/Error.h"
+#include "effects/ao/AoEffect.h"
+#include "gl/PipelineState.h"
+
+namespace obscura {
+namespace {
+
+const gl::GlCaps& requireUsable(const gl::GlCaps& caps) {
+  if (!caps.fragmentHighp)
+    throw GlError("this GL context has no highp float in fragment shaders (GL_HIGH_FLOAT precision is 0); "
+                  "Obscura's 16-bit depth packing needs it");
+  return caps;
+}
+
+// The context's caps with the limits a test simulates (RendererOptions::simulateVertexLimits and
+// simulateFragmentLimits) applied, so the scene's upload and every effect read the limits they must keep from one
+// place.
+gl::GlCaps withSimulatedLimits(gl::GlCaps caps, const RendererOptions& options) {
+  if (const auto& vertex = options.simulateVertexLimits) {
+    caps.maxVertexUniformVectors = std::min(caps.maxVertexUniformVectors, vertex->uniformVectors);
+    caps.maxVertexAttribs = std::min(caps.maxVertexAttribs, vertex->attributes);
+    caps.maxVertexTextureImageUnits = std::min(caps.maxVertexTextureImageUnits, vertex->textureUnits);
+  }
+  if (const auto& fragment = options.simulateFragmentLimits) {
+    caps.maxFragmentUniformVectors = std::min(caps.maxFragmentUniformVectors, fragment->uniformVectors);
+    caps.maxTextureImageUnits = std::min(caps.maxTextureImageUnits, fragment->textureUnits);
+    caps.maxCombinedTextureImageUnits = std::min(caps.maxCombinedTextureImageUnits, fragment->combinedTextureUnits);
+  }
+  return caps;
+}
+
+// The view `name` shows, and how: {target, decoding}; empty target for "final" and "split".
+std::pair<std::string, ViewDecoding> viewTarget(const View& view) {
+  for (const TargetInfo& target : frameTargets())
+    for (const TargetView& v : target.views)
+      if (v.name == view.name) return {target.name, v.decoding};
+  return {"", ViewDecoding::Color};
+}
+
+}  // namespace
+
+View parseView(const std::string& name) {
+  const std::vector<std::string>& names = frameViewNames();
+  for (const std::string& v : names)
+    if (v == name) return View{name};
+  throw InputError("view: expected " + parse::joinChoices(names, ", ") + ", got '" + name + "'");
+}
+
+const std::vector<std::string>& splitSwitches() {
+  static const std::vector<std::string> names = [] {
+    std::vector<std::string> out;
+    for (const ParameterInfo& p : RenderSettings::parameters())
+      if (p.kind == ParameterKind::Switch && !p.effect.empty()) out.push_back(p.name);
+    return out;
+  }();
+  return names;
+}
+
+std::string parseCompare(const std::string& name) {
+  const ParameterInfo* p = RenderSettings::find(name);
+  if (p && p->kind == ParameterKind::Switch && !p->effect.empty()) return p->name;
+  throw InputError("compare: expected a switch, one of " + parse::joinChoices(splitSwitches(), ", ") + ", got '" +
+                   name + "'");
+}
+
+Renderer::Renderer(const gl::GlCaps& caps, const RendererOptions& options)
+    : caps_(withSimulatedLimits(requireUsable(caps), options)),
+      options_(options),
+      resources_{caps_, options_, triangle_},
+      views_(resources_),
+      pool_(caps_) {
+  for (const EffectEntry& row : effectTable()) {
+    effects_.push_back(row.create(resources_));
+    if (row.info.name == "ao") ao_ = static_cast<AoEffect*>(effects_.back().get());
+    for (const TargetInfo& target : row.info.targets) targets_[target.name] = target;
+  }
+  // The table must add up before any frame: plan one with every effect on, at the defaults, for the final image
+  // and for every view (PipelineError names the pass and the target that does not).
+  FrameContext probe;
+  probe.linesOrPoints = true;  // so that the points-and-lines pass is checked too
+  RenderSettings everyEffect;
+  for (size_t row = 0; row < effectTable().size(); ++row)
+    if (effectTable()[row].info.hasSwitch) everyEffect.set(effectTable()[row].info.name, "on");
+  for (bool forwardLighting : {false, true}) {  // a scene the deferred lighting can shade, and one it cannot
+    probe.forwardLighting = forwardLighting;
+    for (const std::string& name : frameViewNames())
+      if (name != "split") plan(everyEffect, probe, View{name}, {});
+  }
+}
+
+FramePlan Renderer::plan(const RenderSettings& settings, const FrameContext& frame, const View& view,
+                         const std::vector<std::string>& retain, GLuint externalGBuffer) {
+  const auto [target, decoding] = viewTarget(view);
+  FramePlanner planner(settings, frame, targets_);
+  planner.setViewTarget(target);
+  for (size_t row = 0; row < effects_.size(); ++row) {
+    planner.beginEffect(effectTable()[row].info.name);
+    if (externalGBuffer != 0 && effectTable()[row].info.name == "gbuffer") planner.add(importGBuffer(externalGBuffer));
+    else effects_[row]->plan(planner);
+  }
+  planner.beginEffect("");
+  if (!target.empty()) planner.add(views_.pass("view", target, decoding));
+  return FramePlan::resolve(std::move(planner), target.empty() ? kFinalImageTarget : kOutputTarget,
+                            [&] { return views_.pass("present", kFinalImageTarget, ViewDecoding::Color); }, retain);
+}
+
+Renderer::~Renderer() = default;
+
+PassDecl Renderer::importGBuffer(GLuint texture) {
+  PassDecl pass;
+  pass.name = "gbuffer";
+  // Its own depth, cleared to the far plane: a pass that depth-tests against the G-buffer's sees nothing drawn.
+  pass.writes = {{"gbuffer", TargetSize::full(), PassDecl::Write::Depth::Own, ""}};
+  pass.run = [this, texture](PassContext& context) {
+    // The texture the plan lent `gbuffer`: the colour attachment of the framebuffer bound for writing it.
+    context.bindForWriting("gbuffer");
+    glClearDepthf(1.0f);
+    glClear(GL_DEPTH_BUFFER_BIT);
+    GLint destination = 0;
+    glGetFramebufferAttachmentParameteriv(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_FRAMEBUFFER_ATTACHMENT_OBJECT_NAME,
+                                          &destination);
+    if (!externalGBufferSource_) externalGBufferSource_ = gl::FramebufferHandle::create();
+    glBindFramebuffer(GL_FRAMEBUFFER, externalGBufferSource_.id());
+    glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, texture, 0);
+    if (glCheckFramebufferStatus(GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE)
+      throw GlError("the caller's G-buffer texture " + std::to_string(texture) +
+                    " cannot be read as an RGBA8 framebuffer attachment");
+    // A byte-exact copy (no filtering, no blending), the same on GLES 2 and WebGL 1.
+    const glm::ivec2 size = context.size("gbuffer");
+    glBindTexture(GL_TEXTURE_2D, static_cast<GLuint>(destination));
+    glCopyTexSubImage2D(GL_TEXTURE_2D, 0, 0, 0, 0, 0, size.x, size.y);
+    glBindTexture(GL_TEXTURE_2D, 0);
+    glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, 0, 0);
+    glBindFramebuffer(GL_FRAMEBUFFER, 0);
+  };
+  return pass;
+}
+
+HierarchyStorage Renderer::hierarchyStorage() const { return ao_->hierarchyStorage(); }
+
+void Renderer::setScene(const Scene& scene) {
+  GpuScene::Options options;
+  options.allowUint32Indices = options_.allowUint32Indices;
+  options.skinning = options_.skinning;
+  scene_ = GpuScene(scene, caps_, options);
+  // What posing needs (the hierarchy, skins, animations, and the instances and meshes they deform), not the images,
+  // which the GPU holds now.
+  sceneData_ = Scene();
+  sceneData_.meshes = scene.meshes;
+  sceneData_.instances = scene.instances;
+  sceneData_.nodes = scene.nodes;
+  sceneData_.skins = scene.skins;
+  sceneData_.animations = scene.animations;
+  dropHistory();
+  checkErrors("");
+}
+
+void Renderer::dropHistory() {
+  if (hasPrevious_) ++historyDrops_;
+  hasPrevious_ = false;
+  historyFrames_ = 0;
+  lastPose_ = ScenePose();
+  pool_.dropHistory();
+}
+
+void Renderer::checkErrors(const std::string& after) const {
+  if (!options_.checkGlErrors) return;
+  const GLenum error = glGetError();
+  if (error != GL_NO_ERROR) {
+    char code[16];
+    std::snprintf(code, sizeof code, "0x%04X", error);
+    throw GlError(std::string("GL error ") + code + " " +
+                  (after.empty() ? std::string("outside the passes (pending before the frame or from the scene "
+                                               "upload)")
+                                 : "after pass " + after));
+  }
+  if (!after.empty()) {
+    const std::string leaked = gl::baselineStateDifferences();
+    if (!leaked.empty()) throw GlError("pass " + after + " left GL state behind: " + leaked);
+  }
+}
+
+bool Renderer::jitters(const RenderSettings& settings) {
+  for (size_t row = 0; row < effectTable().size(); ++row)
+    if (effectTable()[row].info.jitters && settings.enabled(row)) return true;
+  return false;
+}
+
+void Renderer::beginFrame(const Camera& camera, const RenderSettings& settings, const OutputTarget& output,
+                          const FrameOptions& options) {
+  const double time = options.time;
+  const glm::ivec2 size(output.width, output.height);
+  if (size != lastSize_) {
+    dropHistory();
+    lastSize_ = size;
+  }
+  pool_.beginFrame(size);
+  // Sub-pixel jitter (Halton 2, 3, centred) while an effect that is on asks for it: 16 phases, the frames a still
+  // image takes to converge under temporal antialiasing (TaaEffect.h).
+  glm::vec2 jitter(0.0f);
+  if (jitters(settings)) {
+    const auto index = static_cast<std::uint32_t>(frameIndex_ % 16 + 1);
+    jitter = glm::vec2(halton(index, 2), halton(index, 3)) - 0.5f;
+  }
+  FrameContext frame;
+  frame.camera = FrameCamera::from(camera, output.width, output.height, jitter + options.projectionShift);
+  frame.hasPrevious = hasPrevious_;
+  frame.previousCamera = hasPrevious_ ? previousCamera_ : frame.camera;
+  frame.index = frameIndex_;
+  frame.historyFrames = historyFrames_;
+  frame.time = time;
+  frame.previousTime = options.previousTime.value_or(hasPrevious_ ? previousTime_ : time);
+  frame.deltaTime = time - frame.previousTime;
+  frame.linesOrPoints = !scene_.lines().empty();
+  frame.forwardLighting = scene_.needsForwardLighting();
+  frame_ = std::move(frame);
+
+  // The scene's pose now and at the previous time (the last frame's pose when that is the one asked for).
+  if (options.timer) options.timer->begin("pose");
+  const PoseOptions poseOptions{options.animation, options.loop};
+  const ScenePose current = evaluatePose(sceneData_, time, poseOptions);
+  const bool reuse = hasPrevious_ && !lastPose_.instanceWorld.empty() && frame_.previousTime == previousTime_ &&
+                     poseOptions.animation == lastPoseOptions_.animation && poseOptions.loop == lastPoseOptions_.loop;
+  const ScenePose previous = reuse ? lastPose_ : evaluatePose(sceneData_, frame_.previousTime, poseOptions);
+  scene_.setPose(current, previous);
+  lastPose_ = current;
+  lastPoseOptions_ = poseOptions;
+  if (options.timer) options.timer->end("pose");
+  checkErrors("pose");
+}
+
+void Renderer::endFrame() {
+  pool_.endFrame();
+  previousCamera_ = frame_.camera;
+  previousTime_ = frame_.time;
+  hasPrevious_ = true;
+  ++historyFrames_;
+  ++frameIndex_;
+}
+
+void Renderer::run(const RenderSettings& settings, const View& view, const OutputTarget& output,
+                   const FrameOptions& options) {
+  plan_ = plan(settings, frame_, view, options.retain, options.externalGBuffer);
+
+  for (size_t i = 0; i < plan_.passes().size(); ++i) {
+    const PlannedPass& pass = plan_.passes()[i];
+    if (!pass.live) continue;
+    PassContext context(plan_, static_cast<int>(i), pool_, frame_, settings, scene_, output);
+    if (options.timer) options.timer->begin(pass.decl.name);
+    pass.decl.run(context);
+    if (options.timer) options.timer->end(pass.decl.name);
+    checkErrors(pass.decl.name);
+  }
+}
+
+void Renderer::render(const Camera& camera, const RenderSettings& settings, const View& view,
+                      const OutputTarget& output, const FrameOptions& options) {
+  checkErrors("");  // an error the application left pending is reported as such, not blamed on a pass
+  settings.validate();
+  const int limit = caps_.maxRenderSize();
+  if (output.width < 1 || output.height < 1 || output.width > limit || output.height > limit)
+    throw InputError("output size " + std::to_string(output.width) + "x" + std::to_string(output.height) +
+                     " is outside what this context can render (1 .. " + std::to_string(limit) + " per side)");
+
+  if (view == View::Split) {
+    // Two frames of one frame context into one output: the compared switch off, then on over the right half. The
+    // frame starts as the right half's (its jitter, when that half has temporal antialiasing); the left half draws
+    // without the jitter where it has none of its own, as it would alone.
+    RenderSettings off = settings, on = settings;
+    const std::string compared = parseCompare(view.compare);
+    off.set(compared, "off");
+    on.set(compared, "on");
+    beginFrame(camera, on, output, options);
+    const FrameContext right = frame_;
+    if (!jitters(off)) frame_.camera = FrameCamera::from(camera, output.width, output.height);
+    run(off, View::Final, output, options);
+    frame_ = right;
+    OutputTarget rightHalf = output;
+    rightHalf.region = {output.width / 2, 0, output.width - output.width / 2, output.height};
+    run(on, View::Final, rightHalf, options);
+  } else {
+    beginFrame(camera, settings, output, options);
+    parseView(view.name);
+    run(settings, view, output, options);
+  }
+  endFrame();
+}
+
+const gl::RenderTarget& Renderer::retained(const std::string& target) {
+  const int version = plan_.retainedVersion(target);
+  if (version < 0) throw InputError("target '" + target + "' was not retained by the last frame");
+  const TargetVersion& v = plan_.versions()[static_cast<size_t>(version)];
+  if (!v.slot) throw InputError("target '" + target + "' is not a pooled target");
+  return pool_.slot(*v.slot);
+}
+
+}  // namespace obscura

@@ -1,0 +1,178 @@
+#pragma once
+// The frame, the same on every platform: the effect table (renderer/EffectTable.h) planned and run for one camera, one
+// set of settings and one view. The platform layer owns the context and the output framebuffer; the Renderer owns
+// every GL object it creates (the effects, the pooled targets, the scene on the GPU).
+//
+// Each render():
+//   1. starts the frame context (frame/FrameContext.h): this frame's camera and the previous one, time, jitter;
+//   2. asks each effect in table order to plan its passes (Effect::plan), then adds the view's pass;
+//   3. resolves the plan (frame/FramePlan.h): order, liveness, the result into the output, pooled targets;
+//   4. runs the passes that are needed, timing each (PassTimer) and, with checkGlErrors, checking glGetError and the
+//      baseline GL state after each one.
+#include <map>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "frame/DebugViewPass.h"
+#include "frame/FrameContext.h"
+#include "frame/FramePlan.h"
+#include "frame/FullscreenTriangle.h"
+#include "frame/PassContext.h"
+#include "frame/RendererOptions.h"
+#include "frame/RenderTargetPool.h"
+#include "gl/GlCaps.h"
+#include "gpu/GpuScene.h"
+#include "renderer/EffectTable.h"
+#include "renderer/RenderSettings.h"
+#include "scene/Animation.h"
+#include "scene/Camera.h"
+#include "scene/Scene.h"
+
+namespace obscura {
+
+class AoEffect;
+
+// What a frame shows: "final" (the finished image), "split" (the final image with one switch, `compare`, off left of
+// the middle and on right of it: the AO by default, or any effect's, or a switch within one, "ao.temporal"), or the
+// name of a target's debug view ("ao", "normals", "scene-color", ...: frameViewNames()).
+struct View {
+  std::string name = "final";
+  std::string compare = "ao";  // split: the switch parameter compared (splitSwitches())
+
+  static const View Final, Split, Ao, AoRaw, Normals, Depth, Mask;
+  bool operator==(const View& other) const { return name == other.name; }
+  bool operator!=(const View& other) const { return name != other.name; }
+};
+inline const View View::Final{"final"};
+inline const View View::Split{"split"};
+inline const View View::Ao{"ao"};
+inline const View View::AoRaw{"ao-raw"};
+inline const View View::Normals{"normals"};
+inline const View View::Depth{"depth"};
+inline const View View::Mask{"mask"};
+
+// One of frameViewNames(); throws InputError listing them.
+View parseView(const std::string& name);
+// The switches the split view can compare: every switch parameter of the frame ("ao", "ao.blur", ..., "fxaa"), full
+// names, in table order.
+const std::vector<std::string>& splitSwitches();
+// The full name of a switch parameter (or its alias) the split view can compare; throws InputError listing them.
+std::string parseCompare(const std::string& name);
+
+// Receives the start and end of each pass that runs, by its name (framePassNames(); per-pass timings:
+// glFinish-bounded natively, timer queries on the web).
+class PassTimer {
+ public:
+  virtual ~PassTimer() = default;
+  virtual void begin(const std::string& pass) = 0;
+  virtual void end(const std::string& pass) = 0;
+};
+
+struct FrameOptions {
+  PassTimer* timer = nullptr;
+  // Seconds on the scene's timeline: the pose drawn (scene/Animation.h), and the frame context's time.
+  double time = 0.0;
+  // The time of the pose motion vectors measure from. Unset: the previous frame's time (this frame's own when there
+  // is none, or the scene changed), so a paused timeline has no object motion. The CLI sets time - 1 / fps.
+  std::optional<double> previousTime;
+  AnimationChoice animation;  // which animations drive the pose (default: the first; none: the rest pose)
+  bool loop = true;           // the timeline wraps at the chosen animations' duration
+  // Targets whose contents stay readable after the frame (retained()): tests and tools read them back. Their
+  // writers run and their pooled targets are not reused within the frame.
+  std::vector<std::string> retain;
+  // A G-buffer the caller drew (an RGBA8 texture of the output's size in the `gbuffer` target's layout:
+  // docs/api.md, shaders_es2/lib/obscura_gbuffer.glsl): the frame's `gbuffer` pass copies it instead of drawing the
+  // scene, and the effects read it as their own. The camera must be the one it was drawn with. 0: the scene's.
+  GLuint externalGBuffer = 0;
+  // A shift of the projection in pixels (x right, y up), added to the jitter: the sheared frustum of the aperture
+  // reference (renderer/AccumulationReference.h: accumulateAperture), whose camera sits off the lens's centre and looks
+  // through the same plane in focus. Reconstruction from depth ignores it, as it ignores the jitter.
+  glm::vec2 projectionShift{0.0f};
+};
+
+class Renderer {
+ public:
+  // Throws GlError if the context cannot run Obscura (no fragment highp) or a shader fails to build, and
+  // PipelineError if the effect table does not add up (a pass reading what no earlier pass writes).
+  explicit Renderer(const gl::GlCaps& caps, const RendererOptions& options = {});
+  // The effects hold references to the renderer's resources: a Renderer stays where it is built.
+  Renderer(const Renderer&) = delete;
+  Renderer& operator=(const Renderer&) = delete;
+  ~Renderer();
+
+  // Uploads the scene; drops the history (the previous frame showed another scene).
+  void setScene(const Scene& scene);
+  void render(const Camera& camera, const RenderSettings& settings, const View& view, const OutputTarget& output,
+              const FrameOptions& options = {});
+  void render(const Camera& camera, const RenderSettings& settings, const View& view, const OutputTarget& output,
+              PassTimer* timer) {
+    FrameOptions options;
+    options.timer = timer;
+    render(camera, settings, view, output, options);
+  }
+
+  // Whether an effect that is on in `settings` asks for the sub-pixel jitter (EffectInfo::jitters).
+  static bool jitters(const RenderSettings& settings);
+
+  // Every program the frame may build, for the shader validation tools and tests.
+  static std::vector<ProgramSpec> allProgramSpecs() { return frameProgramSpecs(); }
+
+  const gl::GlCaps& caps() const { return caps_; }
+  const GpuScene& gpuScene() const { return scene_; }
+  // The last frame's context and plan (the second half's, for split screen).
+  const FrameContext& lastFrame() const { return frame_; }
+  const FramePlan& lastPlan() const { return plan_; }
+  // A target the last frame retained (FrameOptions::retain). Throws InputError if it was not retained or written.
+  const gl::RenderTarget& retained(const std::string& target);
+  // The depth hierarchy's storage in use (the AO effect's).
+  HierarchyStorage hierarchyStorage() const;
+  // How often the history was dropped (size changes, scene changes), and the pooled targets alive now.
+  int historyDrops() const { return pool_.historyDrops() + historyDrops_; }
+  size_t pooledTargets() const { return pool_.slotCount(); }
+
+ private:
+  void beginFrame(const Camera& camera, const RenderSettings& settings, const OutputTarget& output,
+                  const FrameOptions& options);
+  void endFrame();
+  void dropHistory();
+
+  // Every effect's passes for `view` (a target view, or the final image), resolved.
+  FramePlan plan(const RenderSettings& settings, const FrameContext& frame, const View& view,
+                 const std::vector<std::string>& retain, GLuint externalGBuffer = 0);
+  // The `gbuffer` pass of a frame whose G-buffer the caller drew (FrameOptions::externalGBuffer): a copy.
+  PassDecl importGBuffer(GLuint texture);
+  // Plans and runs one frame's passes for `view` into `output`.
+  void run(const RenderSettings& settings, const View& view, const OutputTarget& output, const FrameOptions& options);
+  void checkErrors(const std::string& after) const;
+
+  gl::GlCaps caps_;
+  RendererOptions options_;
+  FullscreenTriangle triangle_;
+  EffectResources resources_;
+  std::vector<std::unique_ptr<Effect>> effects_;  // one per table row
+  AoEffect* ao_ = nullptr;
+  DebugViewPass views_;
+  std::map<std::string, TargetInfo> targets_;     // every table target, by name
+  GpuScene scene_;
+  Scene sceneData_;  // what the GPU scene was made from, without its images: posed every frame
+  RenderTargetPool pool_;
+  FramePlan plan_;
+  gl::FramebufferHandle externalGBufferSource_;  // reads the caller's G-buffer texture (importGBuffer)
+
+  // History: what the next frame's context calls "previous".
+  FrameContext frame_;
+  std::uint64_t frameIndex_ = 0;
+  bool hasPrevious_ = false;
+  int historyFrames_ = 0;
+  int historyDrops_ = 0;
+  FrameCamera previousCamera_;
+  double previousTime_ = 0.0;
+  // The last frame's pose, kept to be the next frame's previous one when it asks for that time.
+  ScenePose lastPose_;
+  PoseOptions lastPoseOptions_;
+  glm::ivec2 lastSize_{0, 0};
+};
+
+}  // namespace obscura
