@@ -84,10 +84,16 @@ TEST(Resources, AGlErrorRaisedInAPassNamesThatPass) {
   scene.lineMeshes.push_back({false, {glm::vec3(-1.0f, 1.0f, 0.0f), glm::vec3(1.0f, 1.0f, 0.0f)}, {}, -1});
   scene.lineInstances.push_back({0, glm::mat4(1.0f), -1});
   renderer.setScene(scene);
-  const Camera camera = builtinSceneCamera(32, 24);
-  const gl::RenderTarget output("output", camera.width, camera.height, GL_NEAREST,
-                                gl::RenderTarget::Depth::Renderbuffer, test::context().caps().depth24);
+  // Bloom's chain has all its levels from 128 pixels up (a level is at least 2 pixels).
+  const Camera small = builtinSceneCamera(32, 24), large = builtinSceneCamera(128, 128);
+  const gl::RenderTarget smallOutput("output", small.width, small.height, GL_NEAREST,
+                                     gl::RenderTarget::Depth::Renderbuffer, test::context().caps().depth24);
+  const gl::RenderTarget largeOutput("output", large.width, large.height, GL_NEAREST,
+                                     gl::RenderTarget::Depth::Renderbuffer, test::context().caps().depth24);
   for (const std::string& pass : framePassNames()) {
+    const bool bloom = pass.rfind("bloom", 0) == 0;
+    const Camera& camera = bloom ? large : small;
+    const gl::RenderTarget& output = bloom ? largeOutput : smallOutput;
     // Where the G-buffer pass writes the base colour too, no frame has a base-colour pass of its own.
     if (pass == "base-color" && test::context().caps().drawBuffers) continue;
     AoSettings settings;
@@ -105,9 +111,10 @@ TEST(Resources, AGlErrorRaisedInAPassNamesThatPass) {
     // The motion blur's passes, TAA's, depth of field's, fog's, bloom's and the edges' run only with their switches
     // on.
     if (pass.rfind("motion-", 0) == 0) frame.set("motion-blur", "on");
-    if (pass == "taa") frame.set("taa", "on");
+    if (pass.rfind("taa", 0) == 0) frame.set("taa", "on");
     if (pass.rfind("dof-", 0) == 0) frame.set("dof", "on");
-    if (pass == "fog" || pass == "bloom") frame.set(pass, "on");
+    if (pass == "fog") frame.set(pass, "on");
+    if (bloom) frame.set("bloom", "on");
     if (pass.rfind("edges", 0) == 0) frame.set("edges", "on");
     FrameOptions options;
     if (pass == "present") options.retain = {"display-color"};

@@ -366,7 +366,7 @@ function showStats(obscura) {
   const frame = s.frameMs > 0 ? `${s.frameMs.toFixed(1)} ms (${(1000 / s.frameMs).toFixed(0)} fps)`
                               : '- (drawn on change only: redraw continuously to measure)';
   const lines = [`${s.width} x ${s.height} px, ${s.frames} frames drawn`, `frame  ${frame}`,
-                 `CPU    ${s.frames > 0 ? s.lastCpuMs.toFixed(2) : '-'} ms in the renderer, last frame`];
+                 `host   ${s.frames > 0 ? s.lastHostMs.toFixed(2) : '-'} ms in the renderer, last frame`];
   if (s.passMs) {
     lines.push('GPU per pass, a recent frame (EXT_disjoint_timer_query):');
     let total = 0;

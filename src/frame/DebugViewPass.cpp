@@ -1,8 +1,7 @@
 #include "frame/DebugViewPass.h"
 
 #include "frame/FramePlan.h"
-#include "frame/PassContext.h"
-#include "gl/PipelineState.h"
+#include "frame/FullscreenPass.h"
 
 namespace obscura {
 namespace {
@@ -30,27 +29,8 @@ std::vector<ProgramSpec> DebugViewPass::programSpecs() {
   return specs;
 }
 
-const DebugViewPass::Variant& DebugViewPass::variant(ViewDecoding decoding) {
-  auto it = variants_.find(decoding);
-  if (it == variants_.end()) it = variants_.emplace(decoding, Variant(resources_.build(programSpec(decoding)))).first;
-  return it->second;
-}
-
 PassDecl DebugViewPass::pass(const std::string& name, const std::string& target, ViewDecoding decoding) {
-  PassDecl pass;
-  pass.name = name;
-  pass.reads = {target};
-  pass.writes = {{kOutputTarget, TargetSize::full(), PassDecl::Write::Depth::None, ""}};
-  pass.run = [this, target, decoding](PassContext& context) {
-    const Variant& v = variant(decoding);
-    context.bindForWriting(kOutputTarget);
-    v.program.use();
-    context.texture(target).bind(0);
-    gl::Program::set(v.source, 0);
-    resources_.triangle.draw();
-    gl::restoreBaselineState();
-  };
-  return pass;
+  return fullscreenPass(name, programSpec(decoding), {{"u_source", target}}, {kOutputTarget});
 }
 
 }  // namespace obscura

@@ -39,15 +39,14 @@ float halton(std::uint32_t index, std::uint32_t base) {
   return result;
 }
 
-ReconstructionUniforms::ReconstructionUniforms(const gl::Program& program)
-    : farHalfExtent_(program.uniform("u_farHalfExtent")),
-      farPlane_(program.uniform("u_farPlane")),
-      depthToRay_(program.uniform("u_depthToRay")) {}
+void setFarRay(const gl::Program& program, const ViewReconstruction& r) {
+  program.set("u_farHalfExtent", r.farHalfExtent);
+  program.set("u_farPlane", r.far);
+}
 
-void ReconstructionUniforms::set(const ViewReconstruction& r) const {
-  gl::Program::set(farHalfExtent_, r.farHalfExtent);
-  gl::Program::set(farPlane_, r.far);
-  gl::Program::set(depthToRay_, glm::vec2(r.depthScale, r.depthBias));
+void setReconstruction(const gl::Program& program, const ViewReconstruction& r) {
+  setFarRay(program, r);
+  program.set("u_depthToRay", glm::vec2(r.depthScale, r.depthBias));
 }
 
 }  // namespace obscura

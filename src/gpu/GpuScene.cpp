@@ -458,7 +458,11 @@ void GpuScene::draw(const glm::mat4& view, const ProgramChoice& choose, const Dr
       const VertexKind vertexKind = this->vertexKind(instance, piece);
       const bool newProgram = !uniforms || !(materialKind == programMaterial) || !(vertexKind == programVertex);
       if (newProgram) {
-        uniforms = &choose(materialKind, vertexKind);
+        const gl::Program& program = choose(materialKind, vertexKind);
+        auto found = geometryUniforms_.find(&program);
+        if (found == geometryUniforms_.end())
+          found = geometryUniforms_.emplace(&program, GeometryUniforms(program)).first;
+        uniforms = &found->second;
         programMaterial = materialKind;
         programVertex = vertexKind;
         Program::set(uniforms->baseColorTexture, TextureUnits::kBaseColor);

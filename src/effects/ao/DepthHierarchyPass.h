@@ -19,6 +19,7 @@
 #include <optional>
 #include <vector>
 
+#include "frame/FullscreenPass.h"
 #include "frame/FullscreenTriangle.h"
 #include "frame/RendererOptions.h"
 #include "gl/GlCaps.h"
@@ -46,16 +47,8 @@ class DepthHierarchyPass {
   Storage storage() const { return active_; }
   void resize(int width, int height);
   void render(const gl::Texture2D& gbuffer);
-  // The uniforms of sao.frag that bindForSampling() sets, resolved once per SAO program.
-  struct SamplingUniforms {
-    SamplingUniforms() = default;
-    SamplingUniforms(const gl::Program& sao, Storage storage);
-    GLint levels[5] = {-1, -1, -1, -1, -1};                 // SeparateTextures: u_level1 .. u_level5
-    GLint atlas = -1, atlasSize = -1, atlasLevelRows = -1;  // Atlas
-    GLint mips = -1, mipsSize = -1;                         // MipChain
-  };
-  // Binds the levels for sao.frag (DEPTH_HIERARCHY 1, 2 or 3) to texture units firstUnit, firstUnit + 1, ...
-  void bindForSampling(const SamplingUniforms& uniforms, int firstUnit) const;
+  // Binds the levels for sao.frag (DEPTH_HIERARCHY 1, 2 or 3) to the draw's next units, and sets their uniforms.
+  void bindForSampling(FullscreenDraw& sao) const;
   // Level m (0 .. 5; 0 only with the atlas) read back, rows top to bottom, whatever the storage (tests, tools).
   std::vector<std::uint8_t> readLevel(int m) const;
 
@@ -69,7 +62,6 @@ class DepthHierarchyPass {
   gl::GlCaps caps_;
   Storage requested_, active_;
   gl::Program program_;
-  GLint gbuffer_ = -1, gbufferSize_ = -1, level_ = -1;
   int width_ = 0, height_ = 0;
   std::vector<gl::RenderTarget> levels_;  // SeparateTextures: levels 1..5
   gl::RenderTarget atlas_;                // Atlas: levels 0..5

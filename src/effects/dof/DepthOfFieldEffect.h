@@ -34,7 +34,6 @@
 // the space the aperture reference (renderer/AccumulationReference.h) averages and the motion blur blurs; after TAA, so
 // the gather reads a resolved image; after bloom, so a highlight's glow is blurred with it. A lens integrates light
 // before the tone curve, so a bright highlight's bokeh is dimmer here than a film's (docs/depth-of-field.md).
-#include <map>
 #include <optional>
 #include <vector>
 
@@ -93,37 +92,6 @@ class DepthOfFieldEffect : public Effect {
 
   explicit DepthOfFieldEffect(const EffectResources& resources);
   void plan(FramePlanner& planner) override;
-
- private:
-  struct CocProgram {
-    explicit CocProgram(gl::Program built);
-    gl::Program program;
-    GLint gbuffer, lens, focus, focusUv, autofocus, depthRange, range;
-  };
-  struct DownsampleProgram {
-    explicit DownsampleProgram(gl::Program built);
-    gl::Program program;
-    GLint color, coc, fullSize, halfSize, range;
-  };
-  struct GatherProgram {
-    explicit GatherProgram(gl::Program built);
-    gl::Program program;
-    GLint half, halfSize, range, maxRadius = -1, neighbors = -1;
-  };
-  struct CompositeProgram {
-    explicit CompositeProgram(gl::Program built);
-    gl::Program program;
-    GLint color, coc, nearField, farField, range, alphaIsOne;
-  };
-  const GatherProgram& gather(bool nearField, int taps);
-
-  const EffectResources& resources_;
-  CocProgram coc_;
-  DownsampleProgram downsample_;
-  TileMaxPasses tileMax_;
-  GLint columnsRange_;  // the first tile pass decodes the 16-bit CoC; the others compare bytes
-  CompositeProgram composite_;
-  std::map<std::pair<bool, int>, GatherProgram> gathers_;  // by (near, taps)
 };
 
 }  // namespace obscura

@@ -3,7 +3,6 @@
 #include <map>
 
 #include "frame/PassContext.h"
-#include "gl/PipelineState.h"
 
 namespace obscura {
 namespace {
@@ -129,40 +128,34 @@ std::vector<ProgramSpec> FxaaEffect::programSpecs() {
   return specs;
 }
 
-FxaaEffect::Variant::Variant(gl::Program built, int quality)
-    : program(std::move(built)),
-      color(program.uniform("u_color")),
-      texel(program.uniform("u_texel")),
-      edgeThreshold(program.uniform("u_edgeThreshold")),
-      edgeThresholdMin(program.uniform("u_edgeThresholdMin")) {
-  if (quality == 0) return;
-  size = program.uniform("u_size");
-  subpix = program.uniform("u_subpix");
-  // The step table is the preset's constant: set once, it stays with the program.
-  const std::vector<float>& steps = fxaaSearchSteps(quality);
-  program.use();
-  glUniform1fv(program.uniform("u_searchSteps[0]"), static_cast<GLsizei>(steps.size()), steps.data());
-  glUseProgram(0);
-}
-
-const FxaaEffect::Variant& FxaaEffect::variant(int quality) {
-  auto it = variants_.find(quality);
-  if (it == variants_.end()) it = variants_.emplace(quality, Variant(resources_.build(spec(quality)), quality)).first;
-  return it->second;
-}
-
 void FxaaEffect::plan(FramePlanner& planner) {
-  const FxaaSettings settings = planner.settings().of<FxaaSettings>();
+  const FxaaSettings& settings = planner.settings().of<FxaaSettings>();
   if (!settings.enabled) return;
   PassDecl pass;
   pass.name = "fxaa";
   pass.reads = {"display-color"};
   pass.writes = {{"display-color", TargetSize::full(), PassDecl::Write::Depth::None, ""}};
-  pass.run = [this, settings](PassContext& context) {
-    const gl::Texture2D& input = context.texture("display-color");
-    const glm::vec2 size(static_cast<float>(input.width()), static_cast<float>(input.height()));
+  const ProgramSpec full = spec(settings.quality), classify = spec(0);
+  pass.programs = {classify.name, full.name};
+  pass.run = [this, full, classify](PassContext& context) {
+    const FxaaSettings& fxaa = context.settings().of<FxaaSettings>();
+    const glm::vec2 texel = context.texelSize("display-color");
+    auto draw = [&](const ProgramSpec& spec) {
+      FullscreenDraw d = context.draw(spec);
+      d.read("u_color", "display-color");
+      d.set("u_texel", texel);
+      d.set("u_edgeThreshold", fxaa.edgeThreshold);
+      d.set("u_edgeThresholdMin", fxaa.edgeThresholdMin);
+      if (&spec == &full) {
+        d.set("u_size", 1.0f / texel);
+        d.set("u_subpix", fxaa.subpix);
+        // The preset's step table: the program's constant (uploaded when it changes, once).
+        const std::vector<float>& steps = fxaaSearchSteps(fxaa.quality);
+        d.set("u_searchSteps", steps.data(), static_cast<int>(steps.size()));
+      }
+      d.draw();
+    };
     context.bindForWriting("display-color");
-    input.bind(0);
     GLint stencilBits = 0;
     glGetIntegerv(GL_STENCIL_BITS, &stencilBits);
     if (stencilBits > 0 && resources_.options.allowFxaaStencil) {
@@ -173,27 +166,18 @@ void FxaaEffect::plan(FramePlanner& planner) {
       glClear(GL_STENCIL_BUFFER_BIT);
       glStencilFunc(GL_ALWAYS, 0, 0xFF);
       glStencilOp(GL_KEEP, GL_KEEP, GL_REPLACE);
-      draw(variant(0), settings, size);
+      draw(classify);
       glStencilFunc(GL_EQUAL, 1, 0xFF);
       glStencilOp(GL_KEEP, GL_KEEP, GL_KEEP);
+      draw(full);
+      glDisable(GL_STENCIL_TEST);
+      glStencilFunc(GL_ALWAYS, 0, 0xFF);
+      glClearStencil(0);
+    } else {
+      draw(full);
     }
-    draw(variant(settings.quality), settings, size);
-    gl::restoreBaselineState();
   };
   planner.add(std::move(pass));
-}
-
-void FxaaEffect::draw(const Variant& v, const FxaaSettings& settings, glm::vec2 size) const {
-  v.program.use();
-  gl::Program::set(v.color, 0);
-  gl::Program::set(v.texel, 1.0f / size);
-  gl::Program::set(v.edgeThreshold, settings.edgeThreshold);
-  gl::Program::set(v.edgeThresholdMin, settings.edgeThresholdMin);
-  if (v.size >= 0) {
-    gl::Program::set(v.size, size);
-    gl::Program::set(v.subpix, settings.subpix);
-  }
-  resources_.triangle.draw();
 }
 
 }  // namespace obscura

@@ -50,17 +50,7 @@ class FxaaEffect : public Effect {
   void plan(FramePlanner& planner) override;
 
  private:
-  struct Variant {
-    Variant(gl::Program built, int quality);  // quality 0: the classifying draw (FXAA_CLASSIFY)
-    gl::Program program;
-    GLint color, texel, edgeThreshold, edgeThresholdMin;
-    GLint size = -1, subpix = -1;  // the full draw's
-  };
-  const Variant& variant(int quality);
-  void draw(const Variant& v, const FxaaSettings& settings, glm::vec2 size) const;
-
   const EffectResources& resources_;
-  std::map<int, Variant> variants_;
 };
 
 }  // namespace obscura

@@ -11,6 +11,7 @@
 #include "encoding/HdrEncoding.h"
 #include "encoding/LinearDepthPacking.h"
 #include "frame/PassContext.h"
+#include "frame/Stage.h"
 #include "gl/PipelineState.h"
 #include "gpu/TextureUnits.h"
 
@@ -128,15 +129,12 @@ ProgramSpec LightingEffect::spec(const Form& form, MaterialKind kind, VertexKind
   else if (form.deferred) name += "deferred";
   else name += "forward" + kind.nameSuffix() + vertex.nameSuffix();
   if (form.counting) name += ",count-shading";
-  if (form.toneMap >= 0)
-    name += std::string(",tonemap=") + toneMapOperatorName(static_cast<ToneMapOperator>(form.toneMap));
   if (!form.counting) name += std::string(",") + environmentLayoutName(layout);
   ProgramSpec s{name + "]", fullscreen ? "lib/fullscreen.vert" : "lib/geometry.vert", "lighting/lighting.frag",
                 {{"DEFERRED", fullscreen ? "1" : "0"},
                  {"BACKGROUND", form.background ? "1" : "0"},
                  {"AT_FAR_PLANE", form.background ? "1" : "0"},
                  {"COUNT_SHADING", form.counting ? "1" : "0"},
-                 {"TONEMAP_INLINE", form.toneMap >= 0 ? "1" : "0"},
                  {"MAX_PUNCTUAL_LIGHTS", std::to_string(fullscreen ? 0 : lightsPerDraw)},
                  // The deferred forms' view direction is the far-plane ray's.
                  {"FAR_RAY", fullscreen && !form.counting ? "1" : "0"}}};
@@ -145,81 +143,63 @@ ProgramSpec LightingEffect::spec(const Form& form, MaterialKind kind, VertexKind
   for (auto& define : kind.defines()) s.defines.push_back(define);
   if (!fullscreen)
     for (auto& define : vertex.defines()) s.defines.push_back(define);
-  if (form.toneMap >= 0) s.defines.push_back(toneMapShaderDefine(static_cast<ToneMapOperator>(form.toneMap)));
-  return s;
+  // The shading forms call finishPixel: they take per-pixel stages (frame/Stage.h), none at least.
+  return form.counting ? s : fusedProgram(s, {}, ColorSpace::Hdr);
 }
 
-// Every form with the atlas (any GLES 2 context), and the shading forms again with the mip chain.
+std::vector<LightingEffect::StageHeadSpec> LightingEffect::stageHeads(int lightsPerDraw) {
+  const MaterialKind heaviest{true, true, true};
+  const int forward = kForwardLightingVectorsWithoutStages + lightsPerDraw * kVectorsPerPunctualLight;
+  std::vector<StageHeadSpec> heads;
+  for (const Form& form : {Form{true, false, false}, Form{false, false, true}})
+    heads.push_back({spec(form, {}, {}, EnvironmentLayout::Atlas, 0), ColorSpace::Hdr,
+                     kDeferredLightingVectorsWithoutStages});
+  for (MaterialKind kind : {MaterialKind{}, heaviest})
+    heads.push_back({spec({false, false, false}, kind, {}, EnvironmentLayout::Atlas, lightsPerDraw), ColorSpace::Hdr,
+                     forward});
+  for (StageHeadSpec& head : heads) head.program = withoutStages(head.program);
+  return heads;
+}
+
+// A shading form's program as fusedProgram takes it: the head, without the (empty) chain spec() gives it.
+ProgramSpec LightingEffect::withoutStages(ProgramSpec head) {
+  head.fragmentText.clear();
+  head.name = head.name.substr(0, head.name.find('+'));
+  head.defines.erase(std::remove_if(head.defines.begin(), head.defines.end(),
+                                    [](const auto& d) { return d.first.rfind("STAGE_", 0) == 0; }),
+                     head.defines.end());
+  return head;
+}
+
+// Every form with the atlas (any GLES 2 context), and the shading forms again with the mip chain; no stage fused
+// (frameProgramSpecs adds the chains).
 std::vector<ProgramSpec> LightingEffect::programSpecs(int lightsPerDraw) {
   std::vector<ProgramSpec> specs;
   for (EnvironmentLayout layout : {EnvironmentLayout::Atlas, EnvironmentLayout::MipChain})
     for (bool deferred : {false, true})
       for (bool counting : {true, false}) {
         if (counting && layout == EnvironmentLayout::MipChain) continue;
-        for (int toneMap = -1; toneMap < (counting ? 0 : kToneMapOperatorCount); ++toneMap) {
-          for (MaterialKind kind : MaterialKind::all()) {
-            const Form form{deferred, counting, toneMap, false};
-            if (readKind(form, kind) == kind) specs.push_back(spec(form, kind, {}, layout, lightsPerDraw));
-          }
-          if (!deferred && !counting) specs.push_back(spec({false, false, toneMap, true}, {}, {}, layout, 0));
+        for (MaterialKind kind : MaterialKind::all()) {
+          const Form form{deferred, counting, false};
+          if (readKind(form, kind) == kind) specs.push_back(spec(form, kind, {}, layout, lightsPerDraw));
         }
+        if (!deferred && !counting) specs.push_back(spec({false, false, true}, {}, {}, layout, 0));
       }
   for (VertexKind vertex : VertexKind::validated())
-    specs.push_back(spec({false, false, -1, false}, {}, vertex, EnvironmentLayout::Atlas, lightsPerDraw));
+    specs.push_back(spec({false, false, false}, {}, vertex, EnvironmentLayout::Atlas, lightsPerDraw));
   return specs;
 }
 
-LightingEffect::Variant::Variant(gl::Program built, bool geometryStage)
-    : program(std::move(built)),
-      geometry(geometryStage ? GeometryUniforms(program) : GeometryUniforms()),
-      farHalfExtent(program.optionalUniform("u_farHalfExtent")),
-      farPlane(program.optionalUniform("u_farPlane")),
-      projection(program.optionalUniform("u_projection")),
-      lightDirection(program.optionalUniform("u_lightDirection")),
-      lightColor(program.optionalUniform("u_lightColor")),
-      viewToEnvironment(program.optionalUniform("u_viewToEnvironment")),
-      ao(program.optionalUniform("u_ao")),
-      environment(program.optionalUniform("u_environment")),
-      environmentBrdf(program.optionalUniform("u_environmentBrdf")),
-      shIrradiance(program.optionalUniform("u_shIrradiance")),
-      environmentIntensity(program.optionalUniform("u_environmentIntensity")),
-      gbuffer(program.optionalUniform("u_gbuffer")),
-      baseColor(program.optionalUniform("u_baseColor")),
-      exposure(program.optionalUniform("u_exposure")),
-      lumaInAlpha(program.optionalUniform("u_lumaInAlpha")),
-      lightPositionRange(program.optionalUniform("u_lightPositionRange[0]")),
-      lightColorSpot(program.optionalUniform("u_lightColorSpot[0]")),
-      lightSpot(program.optionalUniform("u_lightSpot[0]")) {}
-
-const LightingEffect::Variant& LightingEffect::variant(const Form& form, MaterialKind kind, VertexKind vertex) {
+const gl::Program& LightingEffect::program(const Form& form, MaterialKind kind, VertexKind vertex,
+                                           const std::vector<StageDecl>& stages, const std::string& chain) const {
   const bool fullscreen = form.deferred || form.background;
-  const auto key = std::make_tuple(form, readKind(form, kind), fullscreen ? VertexKind{} : vertex.forCurrentFrame());
-  auto it = variants_.find(key);
-  if (it == variants_.end()) {
-    it = variants_
-             .emplace(key, Variant(resources_.build(spec(form, std::get<1>(key), std::get<2>(key), layout_,
-                                                         lightsPerDraw_)),
-                                   !fullscreen))
-             .first;
-    // Resolve strictly what this form must use, so a misspelt or dropped uniform is caught where it matters.
-    const gl::Program& program = it->second.program;
-    if (!fullscreen) program.uniform("u_projection");
-    if (!form.counting)
-      for (const char* name : {"u_viewToEnvironment", "u_environment", "u_environmentIntensity"}) program.uniform(name);
-    if (fullscreen && !form.counting)
-      for (const char* name : {"u_farHalfExtent", "u_farPlane"}) program.uniform(name);
-    if (!form.counting && !form.background)
-      for (const char* name : {"u_lightDirection", "u_lightColor", "u_ao", "u_shIrradiance", "u_environmentBrdf"})
-        program.uniform(name);
-    if (form.deferred) program.uniform("u_gbuffer");
-    if (form.deferred && !form.counting) program.uniform("u_baseColor");
-    if (!fullscreen && !form.counting)
-      for (const char* name : {"u_metallicRoughness", "u_emissive"}) program.uniform(name);
-    if (!fullscreen && !form.counting && lightsPerDraw_ > 0) program.uniform("u_lightPositionRange[0]");
-    if (form.toneMap >= 0)
-      for (const char* name : {"u_exposure", "u_lumaInAlpha"}) program.uniform(name);
-  }
-  return it->second;
+  const MaterialKind read = readKind(form, kind);
+  const VertexKind stage = fullscreen ? VertexKind{} : vertex.forCurrentFrame();
+  return programs_({form, read, stage, chain}, [&] {
+    const ProgramSpec head = spec(form, read, stage, layout_, lightsPerDraw_);
+    if (form.counting || stages.empty()) return head;
+    return fusedProgram(withoutStages(head), stages, ColorSpace::Hdr);
+  });
 }
 
 // A file that cannot be read is reported once (InputError: the command line stops, the page shows it) and the
@@ -275,38 +255,36 @@ void LightingEffect::useEnvironment(const LightingSettings& settings) {
 
 LightingEffect::LightingEffect(const EffectResources& resources)
     : resources_(resources),
+      programs_(resources.programs),
       white_(1, 1, GL_NEAREST, std::vector<std::uint8_t>{255, 255, 255, 255}.data()),
       stencil_(resources.caps.packedDepthStencil),
       layout_(GpuEnvironment::layoutFor(resources.caps, resources.options.environmentLayout)),
       lightsPerDraw_(punctualLightsPerDraw(resources.caps.maxFragmentUniformVectors)),
       environmentBrdfUnit_(TextureUnits::environmentBrdf(resources.caps)) {
-  const HdrTexel t = encodeHdr(light_.background);
-  backgroundHdr_ = glm::vec4(LinearDepthPacking::channelFromByte(t[0]), LinearDepthPacking::channelFromByte(t[1]),
-                             LinearDepthPacking::channelFromByte(t[2]), LinearDepthPacking::channelFromByte(t[3]));
   // The form of the lit pass before the plan's alternatives, for every material, is built now, so a broken program
   // fails when the renderer is made.
-  for (MaterialKind kind : MaterialKind::all()) variant({false, false, -1, false}, kind, {});
+  for (MaterialKind kind : MaterialKind::all()) program({false, false, false}, kind, {}, {}, "");
   useEnvironment(LightingSettings{});
 }
 
+void LightingEffect::prepare(const FrameSettings& settings) { useEnvironment(settings.of<LightingSettings>()); }
+
 void LightingEffect::plan(FramePlanner& planner) {
   using Write = PassDecl::Write;
+  using Alternative = PassDecl::Alternative;
   std::vector<std::string> reads;
   if (planner.declares("ao")) reads.push_back("ao");
-  const ToneMapInUse tone = ToneMapInUse::of(planner.settings().of<TonemapSettings>());
-  const int op = static_cast<int>(tone.op);
-  const LightingSettings& lighting = planner.settings().of<LightingSettings>();
-  useEnvironment(lighting);
-  auto with = [&](std::vector<std::string> more) {
-    std::vector<std::string> all = reads;
-    all.insert(all.end(), more.begin(), more.end());
-    return all;
+  auto runAs = [this](Form form) {
+    return [this, form](PassContext& context) { render(context, form); };
   };
-  auto runAs = [this, scale = tone.exposureScale, lighting](Form form, std::string output) {
-    return [this, form, output, scale, lighting](PassContext& context) {
-      render(context, form, output, scale, lighting);
-    };
-  };
+  // What each shading form offers the per-pixel stages after it (fog, the tone curve): the fragment uniform vectors
+  // its heaviest program leaves, and whether it may draw into the output framebuffer (the forward form depth-tests,
+  // and the output has no depth).
+  const int vectors = resources_.caps.maxFragmentUniformVectors;
+  const StageHead forward{"scene-color", ColorSpace::Hdr,
+                          vectors - kForwardLightingVectorsWithoutStages - lightsPerDraw_ * kVectorsPerPunctualLight,
+                          false};
+  const StageHead deferred{"scene-color", ColorSpace::Hdr, vectors - kDeferredLightingVectorsWithoutStages, true};
 
   for (const char* output : {"scene-color", "shading-count"}) {
     const bool counting = std::string(output) == "shading-count";
@@ -319,71 +297,65 @@ void LightingEffect::plan(FramePlanner& planner) {
     pass.reads = reads;
     pass.optionalReads = {"gbuffer"};  // its depth, when the G-buffer pass runs anyway
     pass.writes = {{output, TargetSize::full(), Write::Depth::Shared, "gbuffer"}};
-    pass.run = runAs({false, counting, -1, false}, output);
-    using Alternative = PassDecl::Alternative;
-    if (counting) {
-      pass.alternatives.push_back(Alternative{{"base-color"}, "", false, {"gbuffer"},
-                                              {{output, TargetSize::full(), Write::Depth::None, ""}},
-                                              runAs({true, true, -1, false}, output)});
-    } else {
-      const std::vector<Write> toDisplay = {{"display-color", TargetSize::full(), Write::Depth::None, ""}};
-      const std::vector<Write> toDisplayShared = {
-          {"display-color", TargetSize::full(), Write::Depth::Shared, "gbuffer"}};
-      const std::vector<Write> toDisplayOwn = {{"display-color", TargetSize::full(), Write::Depth::Own, ""}};
-      // Best first: deferred and tone-mapped, deferred, forward and tone-mapped (with the G-buffer's depth, or its
-      // own); else the pass as declared.
-      pass.alternatives = {
-          Alternative{{"base-color"}, "tonemap", true, with({"gbuffer", "base-color"}), toDisplay,
-                      runAs({true, false, op, false}, "display-color")},
-          Alternative{{"base-color"}, "", false, with({"gbuffer", "base-color"}),
-                      {{output, TargetSize::full(), Write::Depth::None, ""}}, runAs({true, false, -1, false}, output)},
-          Alternative{{"gbuffer"}, "tonemap", false, with({"gbuffer"}), toDisplayShared,
-                      runAs({false, false, op, false}, "display-color")},
-          Alternative{{}, "tonemap", false, reads, toDisplayOwn, runAs({false, false, op, false}, "display-color")},
-      };
-    }
+    pass.run = runAs({false, counting, false});
+    if (!counting) pass.stageHead = forward;
+    // Deferred where the G-buffer pass writes the base colour beside the G-buffer.
+    std::vector<std::string> deferredReads = reads;
+    deferredReads.insert(deferredReads.end(), {"gbuffer", "base-color"});
+    Alternative alternative{{"base-color"}, counting ? std::vector<std::string>{"gbuffer"} : deferredReads,
+                            {{output, TargetSize::full(), Write::Depth::None, ""}}, runAs({true, counting, false}),
+                            std::nullopt};
+    if (!counting) alternative.stageHead = deferred;
+    pass.alternatives = {alternative};
     planner.add(std::move(pass));
   }
 }
 
-void LightingEffect::render(const PassContext& context, const Form& form, const std::string& output,
-                            float exposureScale, const LightingSettings& settings) {
-  using gl::Program;
+void LightingEffect::render(const PassContext& context, const Form& form) const {
   const FrameCamera& camera = context.camera();
+  const LightingSettings& settings = context.settings().of<LightingSettings>();
+  // Its colour, or that of the per-pixel stages fused into it (frame/Stage.h), which its programs run after the
+  // shading.
+  const std::string output = form.counting ? std::string("shading-count") : context.stageOutput();
+  const std::vector<StageDecl>& stages = context.stages();
+  const std::string chain = fusedProgramName("", stages);
   context.bindForWriting(output);
-  const bool lumaInAlpha = !context.writesOutput(output);
-  const ToneMapInUse tone{static_cast<ToneMapOperator>(std::max(form.toneMap, 0)), exposureScale};
+  const bool writesOutput = context.writesOutput(output);
 
   const glm::mat3 viewRotation(camera.view);
   const glm::vec3 lightDirection = glm::normalize(viewRotation * settings.directionToSun());
   const glm::mat3 viewToWorld = glm::transpose(viewRotation);  // the view's rotation is orthonormal
   const glm::mat3 viewToEnvironment = environmentRotation(settings) * viewToWorld;
-  const bool fullscreen = form.deferred || form.background;
   const PunctualLightUniforms lights =
-      fullscreen ? PunctualLightUniforms{}
-                 : PunctualLightUniforms::of(context.scene().lights(), camera.view, lightsPerDraw_);
+      form.deferred ? PunctualLightUniforms{}
+                    : PunctualLightUniforms::of(context.scene().lights(), camera.view, lightsPerDraw_);
   // The texture units: gpu/TextureUnits.h.
   const int kEnvironmentUnit = TextureUnits::kEnvironment;
   const int kEnvironmentBrdfUnit = environmentBrdfUnit_;
-  auto setShading = [&](const Variant& v) {
-    if (form.counting) return;
-    Program::set(v.lightDirection, lightDirection);
-    Program::set(v.lightColor, settings.sunColor * settings.sunIntensity);
-    Program::set(v.viewToEnvironment, viewToEnvironment);
-    if (v.lightPositionRange >= 0) {
-      glUniform4fv(v.lightPositionRange, lightsPerDraw_, &lights.positionRange[0].x);
-      glUniform4fv(v.lightColorSpot, lightsPerDraw_, &lights.colorSpot[0].x);
-      glUniform4fv(v.lightSpot, lightsPerDraw_, &lights.spot[0].x);
+  // The uniforms of a form's program (each form has those it uses: a strict program refuses any other).
+  auto setShading = [&](const gl::Program& p, const Form& f) {
+    if (f.counting) return;
+    const bool fullscreen = f.deferred || f.background;
+    p.set("u_viewToEnvironment", viewToEnvironment);
+    p.set("u_environment", kEnvironmentUnit);
+    p.set("u_environmentIntensity", settings.environmentIntensity);
+    // The far-plane ray (only its direction is used), and along it the position where a stage reads it.
+    if (fullscreen) setFarRay(p, camera.reconstruction);
+    if (f.deferred && !f.background && chainNeedsPosition(stages))
+      p.set("u_depthToRay", glm::vec2(camera.reconstruction.depthScale, camera.reconstruction.depthBias));
+    if (!f.background) {
+      p.set("u_lightDirection", lightDirection);
+      p.set("u_lightColor", settings.sunColor * settings.sunIntensity);
+      p.set("u_ao", TextureUnits::kAo);
+      p.set("u_environmentBrdf", kEnvironmentBrdfUnit);
+      p.set("u_shIrradiance", environment_->irradianceUniform().data(), 7);
     }
-    Program::set(v.ao, TextureUnits::kAo);
-    Program::set(v.environment, kEnvironmentUnit);
-    Program::set(v.environmentBrdf, kEnvironmentBrdfUnit);
-    Program::set(v.farHalfExtent, camera.reconstruction.farHalfExtent);
-    Program::set(v.farPlane, camera.reconstruction.far);
-    Program::set(v.shIrradiance, environment_->irradianceUniform().data(), 7);
-    Program::set(v.environmentIntensity, settings.environmentIntensity);
-    Program::set(v.exposure, exposureScale);
-    Program::set(v.lumaInAlpha, lumaInAlpha ? 1.0f : 0.0f);
+    if (!fullscreen && lightsPerDraw_ > 0) {
+      p.set("u_lightPositionRange", lights.positionRange, lightsPerDraw_);
+      p.set("u_lightColorSpot", lights.colorSpot, lightsPerDraw_);
+      p.set("u_lightSpot", lights.spot, lightsPerDraw_);
+    }
+    setStageUniforms(p, stages, context, writesOutput);
   };
   (context.has("ao") ? context.texture("ao") : white_).bind(TextureUnits::kAo);
   if (!form.counting) {
@@ -399,14 +371,14 @@ void LightingEffect::render(const PassContext& context, const Form& form, const 
       glClearColor(0.0f, 0.0f, 0.0f, 0.0f);
       glClear(GL_COLOR_BUFFER_BIT);
     }
-    const Variant& v = variant(form, {}, {});
-    v.program.use();
-    setShading(v);
+    const gl::Program& p = program(form, {}, {}, stages, chain);
+    p.use();
+    setShading(p, form);
     context.texture("gbuffer").bind(TextureUnits::kBaseColor);
-    Program::set(v.gbuffer, TextureUnits::kBaseColor);
+    p.set("u_gbuffer", TextureUnits::kBaseColor);
     if (!form.counting) {
       context.texture("base-color").bind(TextureUnits::kPbr[0]);
-      Program::set(v.baseColor, TextureUnits::kPbr[0]);
+      p.set("u_baseColor", TextureUnits::kPbr[0]);
     }
     if (form.counting) {
       glEnable(GL_BLEND);
@@ -417,13 +389,9 @@ void LightingEffect::render(const PassContext& context, const Form& form, const 
     return;
   }
 
-  if (form.counting) {
-    glClearColor(0.0f, 0.0f, 0.0f, 0.0f);
-  } else {
-    // Where no geometry is, the background's radiance, encoded as the lit pixels are.
-    const glm::vec4 clear = form.toneMap >= 0 ? tone.displayColor(light_.background, lumaInAlpha) : backgroundHdr_;
-    glClearColor(clear.r, clear.g, clear.b, clear.a);
-  }
+  // Every pixel is drawn: by the scene, or by the background where the depth is still 1 (the shading forms; the
+  // count adds to zero).
+  glClearColor(0.0f, 0.0f, 0.0f, 0.0f);
   glEnable(GL_DEPTH_TEST);
   if (context.sharesDepth(output) && stencil_) {
     // The G-buffer's depth holds each pixel's nearest surface: GL_EQUAL lets only that surface's fragments through,
@@ -454,19 +422,20 @@ void LightingEffect::render(const PassContext& context, const Form& form, const 
     glEnable(GL_BLEND);
     glBlendFunc(GL_ONE, GL_ONE);
   }
-  context.scene().draw(camera.view, [&](MaterialKind kind, VertexKind vertex) -> const GeometryUniforms& {
-    const Variant& v = variant(form, kind, vertex);
-    v.program.use();
-    Program::set(v.projection, camera.projection);
-    setShading(v);
-    return v.geometry;
+  context.scene().draw(camera.view, [&](MaterialKind kind, VertexKind vertex) -> const gl::Program& {
+    const gl::Program& p = program(form, kind, vertex, stages, chain);
+    p.use();
+    p.set("u_projection", camera.projection);
+    setShading(p, form);
+    return p;
   });
   if (!form.counting) {
     // The background: the environment where the depth is still 1 (nothing drawn), a full-screen triangle on the far
     // plane tested LEQUAL against it, writing no depth.
-    const Variant& v = variant({false, false, form.toneMap, true}, {}, {});
-    v.program.use();
-    setShading(v);
+    const Form background{false, false, true};
+    const gl::Program& p = program(background, {}, {}, stages, chain);
+    p.use();
+    setShading(p, background);
     glDisable(GL_POLYGON_OFFSET_FILL);
     glDepthFunc(GL_LEQUAL);
     glDepthMask(GL_FALSE);

@@ -35,7 +35,6 @@
 // Its second target, "shading-count", is a diagnostic: the same pass with the same reads and depth set-up, counting
 // how many fragments each pixel shaded (additive blending of 1/255) instead of shading them; the view
 // "shading-count" shows 1 as grey 32/255. The tests read it to hold the once-per-pixel promise.
-#include <map>
 #include <memory>
 #include <string>
 #include <tuple>
@@ -43,7 +42,6 @@
 
 #include <glm/vec3.hpp>
 
-#include "effects/tonemap/TonemapEffect.h"
 #include "environment/Environment.h"
 #include "frame/EffectEntry.h"
 #include "frame/FrameContext.h"
@@ -70,11 +68,6 @@ struct LightingSettings : ParameterAccess<LightingSettings> {
   void validate() const { validateParameters("lighting"); }
 };
 
-// The fixed parts of the light.
-struct Lighting {
-  glm::vec3 background{0.349f, 0.415f, 0.501f};  // the clear colour under the forward forms' drawn background
-};
-
 // KHR_lights_punctual lights per draw: the forward lighting's loop bound (MAX_PUNCTUAL_LIGHTS), at most
 // kMaxPunctualLights, as many as the context's fragment uniform vectors hold (LightingEffect::punctualLightsPerDraw).
 // A frame with more lights takes, for every draw, those that light the camera's surroundings most (the largest
@@ -86,6 +79,11 @@ inline constexpr int kMaxPunctualLights = 4;
 // and holds these figures.
 inline constexpr int kForwardLightingVectorsWithoutLights = 15;
 inline constexpr int kVectorsPerPunctualLight = 3;
+// What the forms keep for themselves, before any per-pixel stage fuses into them (frame/Stage.h: the stages get the
+// rest): the forward form's the same 15 (the tone-mapping stage's two floats take spare columns), the deferred
+// form's 14.
+inline constexpr int kForwardLightingVectorsWithoutStages = 15;
+inline constexpr int kDeferredLightingVectorsWithoutStages = 14;
 
 // The view-space uniforms of the punctual lights (lighting.frag), derived once per frame on the CPU.
 struct PunctualLightUniforms {
@@ -104,6 +102,15 @@ class LightingEffect : public Effect {
   static EffectInfo info();
   // Every variant, the forward ones with lightsPerDraw punctual lights.
   static std::vector<ProgramSpec> programSpecs(int lightsPerDraw = kMaxPunctualLights);
+  // The programs per-pixel stages fuse into (frame/Stage.h), as fusedProgram takes them, for the shader checks: the
+  // deferred form, the background, the forward form of the plainest and of the heaviest material (with the atlas,
+  // and `lightsPerDraw` punctual lights). `vectors`: the fragment uniform vectors the head keeps for itself.
+  struct StageHeadSpec {
+    ProgramSpec program;
+    ColorSpace space;
+    int vectors = 0;
+  };
+  static std::vector<StageHeadSpec> stageHeads(int lightsPerDraw = 0);
   // The punctual lights per draw a context of this many fragment uniform vectors holds: 4 from 27 vectors, 0 at
   // GLES 2's minimum of 16 (the sun and the environment still light the scene).
   static int punctualLightsPerDraw(int maxFragmentUniformVectors);
@@ -112,6 +119,7 @@ class LightingEffect : public Effect {
   static glm::mat3 environmentRotation(const LightingSettings& settings);
 
   explicit LightingEffect(const EffectResources& resources);
+  void prepare(const FrameSettings& settings) override;  // the environment lighting.environment names
   void plan(FramePlanner& planner) override;
 
  private:
@@ -120,40 +128,28 @@ class LightingEffect : public Effect {
   struct Form {
     bool deferred = false;
     bool counting = false;
-    int toneMap = -1;  // -1: HDR output; else the ToneMapOperator applied here
     bool background = false;
     bool operator<(const Form& o) const {
-      return std::tie(deferred, counting, toneMap, background) <
-             std::tie(o.deferred, o.counting, o.toneMap, o.background);
+      return std::tie(deferred, counting, background) < std::tie(o.deferred, o.counting, o.background);
     }
-  };
-  struct Variant {
-    Variant(gl::Program built, bool geometryStage);
-    gl::Program program;
-    GeometryUniforms geometry;  // the forward forms' (geometry.vert)
-    // The full-screen forms' far-plane ray (fullscreen.vert); only its direction is used, so no depth-to-ray scale.
-    GLint farHalfExtent, farPlane;
-    GLint projection, lightDirection, lightColor, viewToEnvironment, ao;
-    GLint environment, environmentBrdf, shIrradiance, environmentIntensity;
-    GLint gbuffer, baseColor, exposure, lumaInAlpha;
-    GLint lightPositionRange, lightColorSpot, lightSpot;
   };
   static MaterialKind readKind(const Form& form, MaterialKind kind);
   static ProgramSpec spec(const Form& form, MaterialKind kind, VertexKind vertex, EnvironmentLayout layout,
                           int lightsPerDraw);
-  const Variant& variant(const Form& form, MaterialKind kind, VertexKind vertex);
+  static ProgramSpec withoutStages(ProgramSpec head);
+  // The program of a form for a material and vertex kind, with the per-pixel stages fused into the pass (`chain`:
+  // their names, the key).
+  const gl::Program& program(const Form& form, MaterialKind kind, VertexKind vertex,
+                             const std::vector<StageDecl>& stages, const std::string& chain) const;
   // Loads, projects and prefilters the environment the settings name, when it is not the one on the GPU.
   void useEnvironment(const LightingSettings& settings);
-  void render(const PassContext& context, const Form& form, const std::string& output, float exposureScale,
-              const LightingSettings& settings);
+  void render(const PassContext& context, const Form& form) const;
 
   const EffectResources& resources_;
-  // Built on first use: (form, the material kind it reads, the vertex kind).
-  std::map<std::tuple<Form, MaterialKind, VertexKind>, Variant> variants_;
+  // Built on first use: (form, the material kind it reads, the vertex kind, the fused stages).
+  ProgramVariants<std::tuple<Form, MaterialKind, VertexKind, std::string>> programs_;
   gl::Texture2D white_;  // AO = 1 when the AO is off
   bool stencil_;         // the G-buffer's depth has stencil bits (RenderTargetPool): shade exactly once
-  Lighting light_;
-  glm::vec4 backgroundHdr_;  // the clear colour's radiance in scene-color's encoding, as clear-colour channels
   EnvironmentLayout layout_;              // where the prefiltered levels live (RendererOptions::environmentLayout)
   int lightsPerDraw_;                     // punctualLightsPerDraw of the context's fragment uniform vectors
   int environmentBrdfUnit_;               // TextureUnits::environmentBrdf

@@ -1,20 +1,9 @@
 #include "effects/tonemap/TonemapEffect.h"
 
 #include "frame/PassContext.h"
-#include "gl/PipelineState.h"
+#include "frame/Stage.h"
 
 namespace obscura {
-namespace {
-
-ProgramSpec spec(ToneMapOperator op) {
-  return ProgramSpec{std::string("tonemap[") + toneMapOperatorName(op) + "]",
-                     "lib/fullscreen.vert",
-                     "tonemap/tonemap.frag",
-                     {toneMapShaderDefine(op), {"FAR_RAY", "0"}},
-                     {}};
-}
-
-}  // namespace
 
 const std::vector<Parameter<TonemapSettings>>& TonemapSettings::parameters() {
   using S = TonemapSettings;
@@ -56,45 +45,35 @@ EffectInfo TonemapEffect::info() {
             {{"display-color", ViewDecoding::Color}}}}};
 }
 
-std::vector<ProgramSpec> TonemapEffect::programSpecs() {
-  std::vector<ProgramSpec> specs;
-  for (ToneMapOperator op : kToneMapOperators) specs.push_back(spec(op));
-  return specs;
+StageDecl TonemapEffect::stage(ToneMapOperator op) {
+  StageDecl stage;
+  stage.name = "tonemap";
+  stage.variant = toneMapOperatorName(op);
+  stage.file = "tonemap/tonemap.glsl";
+  stage.function = "tonemapStage";
+  stage.defines = {toneMapShaderDefine(op)};
+  stage.input = "scene-color";
+  stage.outputSpace = ColorSpace::Display;
+  // u_exposure and the output's u_lumaInAlpha: two floats, which take the spare columns of the rows of the programs
+  // it fuses into (Shaders.FusedStagesTakeNoMoreUniformVectorsThanTheyDeclare holds it).
+  stage.uniformVectors = 0;
+  stage.uniforms = [](const gl::Program& program, const PassContext& context) {
+    program.set("u_exposure", ToneMapInUse::of(context.settings().of<TonemapSettings>()).exposureScale);
+  };
+  return stage;
 }
 
-TonemapEffect::Variant::Variant(gl::Program built)
-    : program(std::move(built)),
-      color(program.uniform("u_color")),
-      exposure(program.uniform("u_exposure")),
-      lumaInAlpha(program.uniform("u_lumaInAlpha")) {}
-
-const TonemapEffect::Variant& TonemapEffect::variant(ToneMapOperator op) {
-  auto it = variants_.find(op);
-  if (it == variants_.end()) it = variants_.emplace(op, Variant(resources_.build(spec(op)))).first;
-  return it->second;
+std::vector<StageDecl> TonemapEffect::stages() {
+  std::vector<StageDecl> stages;
+  for (ToneMapOperator op : kToneMapOperators) stages.push_back(stage(op));
+  return stages;
 }
 
 void TonemapEffect::plan(FramePlanner& planner) {
-  // Off: the same pass without exposure or curve (it still decodes the HDR colour for display).
-  const ToneMapInUse use = ToneMapInUse::of(planner.settings().of<TonemapSettings>());
-  const ToneMapOperator op = use.op;
-  const float exposure = use.exposureScale;
-  PassDecl pass;
-  pass.name = "tonemap";
-  pass.reads = {"scene-color"};
-  pass.writes = {{"display-color", TargetSize::full(), PassDecl::Write::Depth::None, ""}};
-  pass.run = [this, op, exposure](PassContext& context) {
-    const Variant& v = variant(op);
-    context.bindForWriting("display-color");
-    v.program.use();
-    context.texture("scene-color").bind(0);
-    gl::Program::set(v.color, 0);
-    gl::Program::set(v.exposure, exposure);
-    gl::Program::set(v.lumaInAlpha, context.writesOutput("display-color") ? 0.0f : 1.0f);
-    resources_.triangle.draw();
-    gl::restoreBaselineState();
-  };
-  planner.add(std::move(pass));
+  // Off: the same stage without exposure or curve (it still decodes the HDR colour for display). A per-pixel stage:
+  // it runs inside the pass before it (the lighting, the fog) where nothing else reads the HDR colour.
+  planner.add(stagePass(resources_, stage(ToneMapInUse::of(planner.settings().of<TonemapSettings>()).op),
+                        "display-color"));
 }
 
 }  // namespace obscura
