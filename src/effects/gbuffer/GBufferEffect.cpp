@@ -62,8 +62,7 @@ std::vector<ProgramSpec> GBufferEffect::programSpecs() {
 }
 
 GBufferEffect::GBufferEffect(const EffectResources& resources)
-    : resources_(resources),
-      drawBuffers_(resources.caps.drawBuffers && resources.options.allowDrawBuffers),
+    : drawBuffers_(resources.caps.drawBuffers && resources.options.allowDrawBuffers),
       shadingNormals_(resources.options.gbufferShadingNormals),
       programs_(resources.programs) {
   // The variants of the pass every frame runs are built now, so a broken program fails when the renderer is made;

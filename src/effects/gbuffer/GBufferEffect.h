@@ -31,7 +31,6 @@ class GBufferEffect : public Effect {
   void render(const PassContext& context, Output output) const;
   const gl::Program& program(Output output, MaterialKind kind, VertexKind vertex) const;
 
-  const EffectResources& resources_;
   bool drawBuffers_;  // the context can write both in one pass (and RendererOptions allows it)
   bool shadingNormals_;  // RendererOptions::gbufferShadingNormals
   // (output, the material kind as that output reads it, the vertex kind)
