@@ -3,6 +3,7 @@
 #include <set>
 
 #include "effects/ao/AoEffect.h"
+#include "effects/auto_exposure/AutoExposureEffect.h"
 #include "effects/bloom/BloomEffect.h"
 #include "effects/dof/DepthOfFieldEffect.h"
 #include "effects/edges/EdgesEffect.h"
@@ -32,7 +33,8 @@ const std::vector<EffectEntry>& effectTable() {
         EffectEntry::of<FogEffect>(),       // scene-color, gbuffer -> scene-color (HDR)
         EffectEntry::of<TaaEffect>(),       // scene-color, velocity, gbuffer, history -> scene-color (HDR)
         EffectEntry::of<BloomEffect>(),     // scene-color -> scene-color (HDR, its own chain of 1/2 .. 1/64 targets)
-        EffectEntry::of<TonemapEffect>(),   // scene-color -> display-color (sRGB, luma in alpha)
+        EffectEntry::of<AutoExposureEffect>(),  // scene-color, its history -> exposure (1 x 1: the adapted EV)
+        EffectEntry::of<TonemapEffect>(),   // scene-color (exposure) -> display-color (sRGB, luma in alpha)
         EffectEntry::of<EdgesEffect>(),     // gbuffer, display-color -> display-color (lines; toon bands)
         EffectEntry::of<DepthOfFieldEffect>(),  // display-color, gbuffer -> display-color (near and far fields)
         EffectEntry::of<MotionBlurEffect>(),  // display-color, velocity, gbuffer -> display-color

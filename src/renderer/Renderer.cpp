@@ -216,6 +216,7 @@ void Renderer::beginFrame(const Camera& camera, const RenderSettings& settings, 
   frame.time = time;
   frame.previousTime = options.previousTime.value_or(hasPrevious_ ? previousTime_ : time);
   frame.deltaTime = time - frame.previousTime;
+  frame.frameInterval = options.frameInterval.value_or(frame.deltaTime > 0.0 ? frame.deltaTime : 1.0 / 60.0);
   frame.linesOrPoints = !scene_.lines().empty();
   frame.forwardLighting = scene_.needsForwardLighting();
   frame_ = std::move(frame);

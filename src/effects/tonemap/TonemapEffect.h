@@ -47,14 +47,14 @@ class TonemapEffect : public Effect {
 
  private:
   struct Variant {
-    explicit Variant(gl::Program built);
+    Variant(gl::Program built, bool autoExposure);
     gl::Program program;
-    GLint color, exposure, lumaInAlpha;
+    GLint color, exposure, lumaInAlpha, exposureTarget;
   };
-  const Variant& variant(ToneMapOperator op);
+  const Variant& variant(ToneMapOperator op, bool autoExposure);
 
   const EffectResources& resources_;
-  std::map<ToneMapOperator, Variant> variants_;
+  std::map<std::pair<ToneMapOperator, bool>, Variant> variants_;
 };
 
 }  // namespace obscura
