@@ -63,11 +63,13 @@ TEST(EffectTable, ListsTheFrameInOrderWithUniqueNames) {
   std::vector<std::string> effects;
   for (const EffectEntry& row : effectTable()) effects.push_back(row.info.name);
   EXPECT_EQ(effects, (std::vector<std::string>{"gbuffer", "velocity", "ao", "lighting", "lines", "fog", "taa", "bloom",
-                                                "auto-exposure", "tonemap", "edges", "dof", "motion-blur", "fxaa"}));
+                                                "lens-flare", "glare", "auto-exposure", "tonemap", "edges", "dof",
+                                                "motion-blur", "fxaa"}));
   EXPECT_EQ(framePassNames(),
             (std::vector<std::string>{"pose", "gbuffer", "base-color", "velocity", "hierarchy", "sao", "ao-temporal",
                                       "blur-h", "blur-v", "upsample", "lighting", "shading-count", "lines", "fog",
-                                      "taa", "bloom", "exposure-meter", "exposure-reduce", "exposure-reduce-2",
+                                      "taa", "bloom", "bloom-bright", "lens-flare", "glare", "exposure-meter",
+                                      "exposure-reduce", "exposure-reduce-2",
                                       "exposure-histogram", "exposure-bins", "exposure-adapt", "tonemap",
                                       "edges-detect", "edges-h", "edges",
                                       "dof-coc", "dof-downsample", "dof-tiles-h", "dof-tiles", "dof-neighbors",
