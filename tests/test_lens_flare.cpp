@@ -322,9 +322,11 @@ TEST(LensFlare, LensDirtModulatesTheFlare) {
   double expected = 0.0, measured = 0.0, plain = 0.0;
   for (int y = 0; y < clean.size.y; ++y)
     for (int x = 0; x < clean.size.x; ++x) {
-      // The dirt image's rows run top to bottom; the texture's first row is uv y = 0.
+      // The dirt image's rows run top to bottom, the target's bottom to top: the image stands upright on the frame.
       const int dx = (2 * x + 1) * dirt.width / (2 * clean.size.x), dy = (2 * y + 1) * dirt.height / (2 * clean.size.y);
-      const float d = srgbToLinear(dirt.rgba[(static_cast<size_t>(dy) * dirt.width + dx) * 4] / 255.0f);
+      const size_t row = static_cast<size_t>(dirt.height - 1 - dy);
+      const float d = srgbToLinear(dirt.rgba[(row * static_cast<size_t>(dirt.width) + static_cast<size_t>(dx)) * 4] /
+                                   255.0f);
       expected += luminance(clean.at(x, y)) * d;
       measured += luminance(dirty.at(x, y));
       plain += luminance(clean.at(x, y));

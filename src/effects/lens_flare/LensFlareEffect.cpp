@@ -23,12 +23,16 @@ ProgramSpec spec(bool dirt) {
                      {{"LENS_DIRT", dirt ? "1" : "0"}, {"FAR_RAY", "0"}}};
 }
 
-// A dirt image as the shader reads it: its sRGB bytes decoded to linear bytes (it multiplies light).
+// A dirt image as the shader reads it: its sRGB bytes decoded to linear bytes (it multiplies light), rows bottom to top
+// (the texture's first row is uv y = 0, the bottom of the frame).
 std::vector<std::uint8_t> linearBytes(const Image& image) {
   std::vector<std::uint8_t> out(image.rgba.size());
-  for (size_t i = 0; i < image.rgba.size(); ++i)
-    out[i] = (i % 4 == 3) ? 255
-                          : static_cast<std::uint8_t>(std::lround(srgbToLinear(image.rgba[i] / 255.0f) * 255.0f));
+  const size_t row = static_cast<size_t>(image.width) * 4;
+  for (size_t i = 0; i < image.rgba.size(); ++i) {
+    const size_t flipped = (static_cast<size_t>(image.height) - 1 - i / row) * row + i % row;
+    out[flipped] = (i % 4 == 3) ? 255
+                                : static_cast<std::uint8_t>(std::lround(srgbToLinear(image.rgba[i] / 255.0f) * 255.0f));
+  }
   return out;
 }
 
