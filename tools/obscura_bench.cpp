@@ -24,6 +24,10 @@
 //      temporal accumulation at 4 taps against the single frame, and bloom and fog on over the defaults; ms per
 //      effect, written to DIR/effects.csv, and the issue's target beside it: bloom's ms against the G-buffer pass's
 //      in the same frames; and depth of field on over the defaults, its ms against the SAO pass's
+//   8c. the camera's finish (--finish-only: this alone): auto exposure (average and percentile metering), lens flare
+//      and glare on bloom, hatching against the lines, at 640x360 and 1280x720, all taking turns frame by frame;
+//      each configuration's passes, and what the tone mapping pays for reading the exposure and adding the lens's
+//      light (DIR/finish.csv)
 //   9. temporal AO (--temporal-ao-only: this alone): the default AO in one frame against 4 taps accumulated by
 //      ao.temporal (default blur, a 5-tap and a 3-tap one), and 4 taps alone, taking turns frame by frame at 640x360
 //      and 1280x720 on the still room (DIR/temporal_ao.csv)
@@ -82,6 +86,7 @@ struct Options {
   bool estimatorsOnly = false;  // section 6 alone
   bool motionOnly = false;      // section 7 alone
   bool effectsOnly = false;     // section 8 alone
+  bool finishOnly = false;      // section 8c alone
   bool temporalAoOnly = false;  // section 9 alone
 };
 
@@ -297,9 +302,10 @@ Options parseOptions(int argc, char** argv) {
     else if (arg == "--estimators-only") options.estimatorsOnly = true;
     else if (arg == "--motion-only") options.motionOnly = true;
     else if (arg == "--effects-only") options.effectsOnly = true;
+    else if (arg == "--finish-only") options.finishOnly = true;
     else if (arg == "--temporal-ao-only") options.temporalAoOnly = true;
     else throw InputError("unknown option '" + arg + "' (usage: obscura-bench [--out DIR] [--frames N] "
-                          "[--backend osmesa|egl] [--quick] [--estimators-only] [--motion-only] [--effects-only] "
+                          "[--backend osmesa|egl] [--quick] [--estimators-only] [--motion-only] [--effects-only] [--finish-only] "
                           "[--temporal-ao-only])");
   }
   return options;
@@ -686,6 +692,81 @@ void effectsSection(const Options& options, HeadlessContext& context, const std:
   }
 }
 
+// Section 8c: the camera's finish (issue 29), every configuration in the same frames.
+void finishSection(const Options& options, HeadlessContext& context, const std::vector<std::pair<int, int>>& sizes) {
+  const Scene scene = makeBuiltinScene(BuiltinSceneOptions::still());
+  struct Configuration {
+    std::string name;
+    std::vector<std::pair<std::string, std::string>> set;
+  };
+  const std::vector<Configuration> configurations = {
+      {"defaults", {}},
+      {"auto exposure", {{"auto-exposure", "on"}}},
+      {"auto exposure, percentile", {{"auto-exposure", "on"}, {"auto-exposure.metering", "percentile"}}},
+      {"bloom", {{"bloom", "on"}}},
+      {"bloom, lens flare", {{"bloom", "on"}, {"lens-flare", "on"}}},
+      {"bloom, glare 4", {{"bloom", "on"}, {"glare", "on"}}},
+      {"bloom, glare 6", {{"bloom", "on"}, {"glare", "on"}, {"glare.streaks", "6"}}},
+      {"bloom, flare, glare 4", {{"bloom", "on"}, {"lens-flare", "on"}, {"glare", "on"}}},
+      {"lens flare, bloom off", {{"lens-flare", "on"}}},
+      {"edges", {{"edges", "on"}}},
+      {"edges, hatching", {{"edges", "on"}, {"edges.style", "hatching"}}}};
+  std::vector<RenderSettings> settings;
+  for (const Configuration& c : configurations) {
+    RenderSettings s;
+    for (const auto& [name, value] : c.set) s.set(name, value);
+    settings.push_back(s);
+  }
+  const std::vector<std::string> columns = {"lighting", "bloom", "bloom-bright", "lens-flare", "glare", "exposure",
+                                            "tonemap", "edges"};
+  auto ms = [](const FinishPassTimer& t, const std::string& column) {
+    if (column != "exposure") return t.medianMs(column);
+    double sum = 0.0;
+    for (const std::string& pass : effectEntry("auto-exposure").info.passes) sum += t.medianMs(pass);
+    return sum;
+  };
+  std::ofstream csv(options.outDir + "/finish.csv");
+  csv << "configuration,width,height,pass,median_ms\n";
+  std::printf("\n8c. The camera's finish, the still built-in scene, %s; median ms of %d frames, all configurations "
+              "taking turns (exposure: its passes together; edges: its last pass, where hatching draws)\n",
+              context.caps().renderer.c_str(), options.frames);
+  std::printf("%-27s %-9s", "configuration", "size");
+  for (const std::string& c : columns) std::printf(" %12s", c.c_str());
+  std::printf(" %9s\n", "frame");
+  std::vector<std::string> summary;
+  for (auto [w, h] : sizes) {
+    const std::vector<FinishPassTimer> timers =
+        timeTakingTurns(options, context, scene, builtinSceneCamera(w, h), settings, false);
+    for (size_t c = 0; c < configurations.size(); ++c) {
+      std::printf("%-27s %-9s", configurations[c].name.c_str(), (std::to_string(w) + "x" + std::to_string(h)).c_str());
+      double frameMs = 0.0;
+      for (const std::string& pass : framePassNames()) frameMs += timers[c].medianMs(pass);
+      for (const std::string& column : columns) {
+        std::printf(" %12.2f", ms(timers[c], column));
+        csv << '"' << configurations[c].name << "\"," << w << "," << h << "," << column << "," << ms(timers[c], column)
+            << "\n";
+      }
+      std::printf(" %9.2f\n", frameMs);
+      csv << '"' << configurations[c].name << "\"," << w << "," << h << ",frame," << frameMs << "\n";
+    }
+    // What the tone mapping pays for the exposure texel and for the lens light's upsample: its ms against the tone
+    // mapping of bloom alone (the lighting does not absorb it there either).
+    const double tonemapBloom = timers[3].medianMs("tonemap");
+    char line[400];
+    std::snprintf(line, sizeof line,
+                  "%dx%d: auto exposure %.2f ms (percentile %.2f), tone mapping %.2f ms with it against %.2f with "
+                  "bloom alone; lens flare %.2f ms, glare %.2f (4 streaks) / %.2f (6), tone mapping with the lens "
+                  "light %.2f ms; the bright pass alone (bloom off) %.2f ms; hatching: edges' last pass %.2f ms "
+                  "against %.2f for the lines",
+                  w, h, ms(timers[1], "exposure"), ms(timers[2], "exposure"), timers[1].medianMs("tonemap"),
+                  tonemapBloom, timers[4].medianMs("lens-flare"), timers[5].medianMs("glare"),
+                  timers[6].medianMs("glare"), timers[7].medianMs("tonemap"), timers[8].medianMs("bloom-bright"),
+                  timers[10].medianMs("edges"), timers[9].medianMs("edges"));
+    summary.push_back(line);
+  }
+  for (const std::string& line : summary) std::printf("  %s\n", line.c_str());
+}
+
 int main(int argc, char** argv) {
   try {
     const Options options = parseOptions(argc, argv);
@@ -719,6 +800,13 @@ int main(int argc, char** argv) {
     const std::vector<std::pair<int, int>> effectSizes =
         options.quick ? std::vector<std::pair<int, int>>{{320, 180}}
                       : std::vector<std::pair<int, int>>{{640, 360}, {1280, 720}};
+    if (options.finishOnly) {  // before Bench, which starts DIR/bench.csv afresh
+      finishSection(options, context,
+                    options.quick ? std::vector<std::pair<int, int>>{{320, 180}}
+                                  : std::vector<std::pair<int, int>>{{640, 360}, {1280, 720}});
+      std::printf("\nobscura-bench: wrote %s/finish.csv\n", options.outDir.c_str());
+      return 0;
+    }
     if (options.effectsOnly) {  // before Bench, which starts DIR/bench.csv afresh
       effectsSection(options, context, effectSizes);
       std::printf("\nobscura-bench: wrote %s/effects.csv\n", options.outDir.c_str());
@@ -860,9 +948,10 @@ int main(int argc, char** argv) {
     estimatorSection(bench, builtin, w, h, options.outDir);
     motionSection(options, context, w, h);
     effectsSection(options, context, effectSizes);
+    finishSection(options, context, effectSizes);
     temporalAoSection(options, context, builtin);
     std::printf("\nobscura-bench: wrote %s/bench.csv, ratios.csv, radius_sweep.csv, radius_sweep.png, estimators.csv, "
-                "motion.csv, effects.csv, temporal_ao.csv\n",
+                "motion.csv, effects.csv, finish.csv, temporal_ao.csv\n",
                 options.outDir.c_str());
     return 0;
   } catch (const InputError& e) {
