@@ -46,12 +46,12 @@ std::shared_ptr<const Image> readDirt(const std::string& name) {
 const std::vector<Parameter<LensFlareSettings>>& LensFlareSettings::parameters() {
   using S = LensFlareSettings;
   static const std::vector<Parameter<S>> table = [] {
-    Parameter<S> dirt = textParameter<S>("dirt", "none | builtin | a PNG file",
+    Parameter<S> dirtParameter = textParameter<S>("dirt", "none | builtin | a PNG file",
                                          "lens dirt the flare shines through: none, the built-in smudges, or an "
                                          "image (sRGB, stretched over the frame)",
                                          &S::dirt, {"none", "builtin"});
     // A file is read now, so a bad one is refused when it is set and the dirt in use stays.
-    dirt.set = [](S& s, const std::string& v) {
+    dirtParameter.set = [](S& s, const std::string& v) {
       if (v.empty()) throw InputError("dirt: expected none, builtin or a PNG file, got nothing");
       std::shared_ptr<const Image> image = readDirt(v);
       s.dirt = v;
@@ -74,7 +74,7 @@ const std::vector<Parameter<LensFlareSettings>>& LensFlareSettings::parameters()
                            &S::haloWidth),
         numberParameter<S>("distortion", 0, 0.2, "frame heights",
                            "chromatic dispersion: how far apart red and blue are sampled", &S::distortion),
-        std::move(dirt)};
+        std::move(dirtParameter)};
   }();
   return table;
 }
