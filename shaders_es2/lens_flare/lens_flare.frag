@@ -22,7 +22,8 @@ uniform sampler2D u_dirt;      // plain linear RGB, LINEAR filtered
 varying vec2 v_uv;
 
 vec3 bright(vec2 uv) {
-  vec2 texel = min(floor(uv * u_brightSize), u_brightSize - 1.0);
+  // Outside the frame (a dispersed sample beyond its edge), the edge's texel.
+  vec2 texel = clamp(floor(uv * u_brightSize), vec2(0.0), u_brightSize - 1.0);
   return decodeHdr(texture2D(u_bright, (texel + 0.5) / u_brightSize));
 }
 

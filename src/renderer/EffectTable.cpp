@@ -38,10 +38,10 @@ const std::vector<EffectEntry>& effectTable() {
                                             // bloom-bright (its level 2, also alone when read with bloom off)
         EffectEntry::of<LensFlareEffect>(),  // bloom-bright -> lens-light (1/4: ghosts, halo)
         EffectEntry::of<GlareEffect>(),     // bloom-bright, lens-light -> lens-light (1/4: the streaks added)
+        EffectEntry::of<DepthOfFieldEffect>(),  // scene-color, gbuffer -> scene-color (HDR: near and far fields)
         EffectEntry::of<AutoExposureEffect>(),  // scene-color, its history -> exposure (1 x 1: the adapted EV)
         EffectEntry::of<TonemapEffect>(),   // scene-color (exposure, lens-light) -> display-color (sRGB, luma in alpha)
         EffectEntry::of<EdgesEffect>(),     // gbuffer, display-color -> display-color (lines; toon bands)
-        EffectEntry::of<DepthOfFieldEffect>(),  // display-color, gbuffer -> display-color (near and far fields)
         EffectEntry::of<MotionBlurEffect>(),  // display-color, velocity, gbuffer -> display-color
         EffectEntry::of<FxaaEffect>(),      // display-color -> display-color
     };

@@ -39,6 +39,7 @@
 #include <vector>
 
 #include <glm/vec2.hpp>
+#include <glm/vec3.hpp>
 
 #include "frame/EffectEntry.h"
 #include "frame/TileMaxPasses.h"
@@ -83,6 +84,15 @@ struct ThinLens {
   float pinholeAperture(float focus, float projScale) const;
 };
 
+// The half-size fields' colour: linear HDR as f = sqrt(c / (1 + c)) per channel in a byte, and back (CPU mirror of
+// toField / fromField in dof.frag): invertible, about sRGB's precision in the darks and mid-tones (a byte step is
+// 1.3/255 of display colour at 0.01 and at 0.18 linear), up to 255 times display white.
+glm::vec3 dofFieldEncode(const glm::vec3& linear);
+glm::vec3 dofFieldDecode(const glm::vec3& field);
+// Small blurs gathered at full size in the composite: far CoCs up to kDofSmallCoc pixels (handing over to the
+// half-size far field over the next pixel), over the 21 pixels of a 5 x 5 block without its corners.
+constexpr float kDofSmallCoc = 3.0f;
+
 class DepthOfFieldEffect : public Effect {
  public:
   using Settings = DofSettings;
@@ -113,7 +123,7 @@ class DepthOfFieldEffect : public Effect {
   struct CompositeProgram {
     explicit CompositeProgram(gl::Program built);
     gl::Program program;
-    GLint color, coc, nearField, farField, range, alphaIsOne;
+    GLint color, coc, nearField, farField, range, fullSize, neighbors;
   };
   const GatherProgram& gather(bool nearField, int taps);
 

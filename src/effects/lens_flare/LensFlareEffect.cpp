@@ -97,7 +97,7 @@ float lensFlareFalloff(glm::vec2 sample, float power) {
 glm::vec3 lensFlareAt(glm::vec2 uv, const std::vector<glm::vec3>& bright, glm::ivec2 size, float aspect,
                       const LensFlareSettings& s) {
   auto at = [&](glm::vec2 p) {
-    const glm::ivec2 texel = glm::min(glm::ivec2(glm::floor(p * glm::vec2(size))), size - 1);
+    const glm::ivec2 texel = glm::clamp(glm::ivec2(glm::floor(p * glm::vec2(size))), glm::ivec2(0), size - 1);
     return bright[static_cast<size_t>(texel.y) * size.x + texel.x];
   };
   const glm::vec2 t = 1.0f - uv;
