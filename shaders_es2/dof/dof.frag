@@ -214,10 +214,11 @@ uniform sampler2D u_neighbors;  // dof-neighbors: the largest near |C| of the 3 
 uniform vec2 u_fullSize;    // pixels
 uniform float u_range;
 
-// A small blur (a CoC up to SMALL_COC pixels) is gathered here at full size: the half-size fields would draw a blur of
-// one or two pixels with their grid's coarseness. Every pixel of the 5 x 5 block but the corners is a tap (a disc of
-// radius SMALL_COC / 2 reaches none of them), weighted as the fields' taps are (scatterWeight: the share of the pixel
-// the sample's disc covers, over the disc's area): no noise, the disc's own shape.
+// A small blur (a CoC up to SMALL_COC = 2.5 pixels) is gathered here at full size: the half-size fields would draw a
+// blur of one or two pixels with their grid's coarseness (their 2 x 2 box and bilinear upsampling alone spread a
+// pixel by about as much as such a disc). The taps are the 3 x 3 block (a disc of radius 1.25 reaches the next ring by
+// a sliver only), each weighted as the fields' taps are (scatterWeight: the share of the pixel the sample's disc
+// covers, over the disc's area): no noise, the disc's own shape, 9 taps.
 // `coc`: the centre's signed CoC. A sample in front of the centre (nearer by half a pixel of CoC) reaches with its
 // own blur (a foreground spreads over what is behind it); one at its depth or behind reaches no further than the
 // centre's own blur (it is hidden behind a sharper surface). Samples under half a pixel of blur scatter nowhere but
@@ -226,9 +227,9 @@ vec3 smallBlur(vec2 p, vec3 sharp, float coc) {
   float centreWeight = scatterWeight(abs(coc) * 0.5, 0.0);
   vec3 sum = centreWeight * sharp;
   float weights = centreWeight;
-  for (int y = -2; y <= 2; y++) {
-    for (int x = -2; x <= 2; x++) {
-      if (x * x + y * y > 5 || (x == 0 && y == 0)) continue;  // the corners reach no further than 2.5 pixels
+  for (int y = -1; y <= 1; y++) {
+    for (int x = -1; x <= 1; x++) {
+      if (x == 0 && y == 0) continue;
       vec2 q = p + vec2(float(x), float(y));
       vec2 uv = q / u_fullSize;
       float c = unpackCoc(texture2D(u_coc, uv), u_range);
