@@ -108,8 +108,13 @@ ColorLut parseCubeLut(const std::string& text, const std::string& name) {
     if (line.empty() || line[0] == '#') continue;
     const std::vector<std::string> w = words(line);
     const std::string& key = w[0];
-    float first = 0.0f;
-    if (finiteNumber(key, first) || key[0] == '-' || key[0] == '.' || std::isdigit(static_cast<unsigned char>(key[0]))) {
+    // A keyword is upper-case letters, digits and underscores, starting with a letter; anything else starts a row.
+    const bool keyword = std::isupper(static_cast<unsigned char>(key[0])) &&
+                         std::all_of(key.begin(), key.end(), [](char ch) {
+                           return std::isupper(static_cast<unsigned char>(ch)) ||
+                                  std::isdigit(static_cast<unsigned char>(ch)) || ch == '_';
+                         });
+    if (!keyword) {
       if (lut.size == 0) fail("a row of the table before LUT_3D_SIZE");
       if (lut.values.empty()) {
         const int row = lineNumber;
