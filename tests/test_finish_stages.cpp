@@ -11,10 +11,12 @@
 #include <vector>
 
 #include "TestSupport.h"
+#include "effects/chromatic_aberration/ChromaticAberrationEffect.h"
 #include "effects/dither/Dither.h"
 #include "effects/grain/Grain.h"
 #include "effects/vignette/Vignette.h"
 #include "gl/ShaderLibrary.h"
+#include "scene/Primitives.h"
 
 using namespace obscura;
 
@@ -173,4 +175,45 @@ TEST(Dither, BreaksTheBandsOfADarkGradientWithoutMovingItsMean) {
   }
   EXPECT_NEAR(sum / 100000.0, 0.0, 0.01);
   EXPECT_NEAR(squares / 100000.0, 1.0 / 6.0, 0.01);
+}
+
+// A white bar near the right edge of a black frame: red lands further out and blue further in than green, each by
+// the intensity times the bar's distance from the centre (the channels' centroids along x), the centre's colour
+// unchanged.
+TEST(ChromaticAberration, RedAndBlueLieOutsideAndInsideGreenByTheStatedShift) {
+  Renderer renderer = test::makeRenderer();
+  // The bar glows (emission 1: display white), in a black room.
+  Scene scene;
+  test::addStill(scene, test::makeRectangle({1.55f, -2.0f, 0.0f}, {0.04f, 0.0f, 0.0f}, {0.0f, 4.0f, 0.0f}),
+                 glm::vec3(0.0f));
+  scene.materials.back().emissiveFactor = glm::vec3(1.0f);
+  renderer.setScene(scene);
+  const int width = 320, height = 180;
+  const Camera camera = test::makeCamera({0.0f, 0.0f, 3.0f}, {0.0f, 0.0f, 0.0f}, width, height, 0.1f, 100.0f, 60.0f);
+  RenderSettings settings;
+  settings.set("fxaa", "off");
+  settings.set("ao", "off");
+  settings.set("lighting.environment", "uniform");
+  settings.set("lighting.environment-intensity", "0");
+  settings.set("lighting.sun-intensity", "0");
+  settings.set("chromatic-aberration", "on");
+  settings.set("chromatic-aberration.intensity", "0.03");
+  const test::RenderedImage image = test::render(renderer, camera, settings, View::Final);
+  double centroid[3] = {}, mass[3] = {};
+  const int row = height / 2;
+  for (int x = 0; x < width; ++x)
+    for (int c = 0; c < 3; ++c) {
+      const double v = image.channel(x, row, c);
+      centroid[c] += v * (x + 0.5);
+      mass[c] += v;
+    }
+  for (int c = 0; c < 3; ++c) centroid[c] /= mass[c];
+  const double fromCentre = centroid[1] - 0.5 * width;
+  std::printf("bar at %.2f px from the centre: red %+.2f px, blue %+.2f px from green (expected %+.2f, %+.2f)\n",
+              fromCentre, centroid[0] - centroid[1], centroid[2] - centroid[1], 0.03 * fromCentre, -0.03 * fromCentre);
+  ASSERT_GT(fromCentre, 50.0);
+  // Magnified by 1 + k and 1 - k about the centre: k d out and in (to first order in k).
+  EXPECT_NEAR(centroid[0] - centroid[1], 0.03 * fromCentre, 0.5);
+  EXPECT_NEAR(centroid[2] - centroid[1], -0.03 * fromCentre, 0.5);
+  EXPECT_FLOAT_EQ(aberrationSource({0.5f, 0.5f}, 0, 0.03f).x, 0.5f);
 }

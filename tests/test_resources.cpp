@@ -112,7 +112,7 @@ TEST(Resources, AGlErrorRaisedInAPassNamesThatPass) {
     // The lens's light (bloom's bright pass alone, with bloom off); auto exposure, its histogram passes with
     // percentile metering, its reductions on frames wide enough to need one or two.
     if (pass == "bloom-bright" || pass == "lens-flare") frame.set("lens-flare", "on");
-    if (pass == "glare") frame.set("glare", "on");
+    if (pass == "glare" || pass == "chromatic-aberration") frame.set(pass, "on");
     if (pass.rfind("exposure-", 0) == 0) frame.set("auto-exposure", "on");
     if (pass == "exposure-histogram" || pass == "exposure-bins") frame.set("auto-exposure.metering", "percentile");
     const Camera wide = builtinSceneCamera(pass == "exposure-reduce-2" ? 2100 : pass == "exposure-reduce" ? 200 : 32,

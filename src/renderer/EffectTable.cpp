@@ -5,6 +5,7 @@
 #include "effects/ao/AoEffect.h"
 #include "effects/auto_exposure/AutoExposureEffect.h"
 #include "effects/bloom/BloomEffect.h"
+#include "effects/chromatic_aberration/ChromaticAberrationEffect.h"
 #include "effects/dof/DepthOfFieldEffect.h"
 #include "effects/edges/EdgesEffect.h"
 #include "effects/fog/FogEffect.h"
@@ -43,6 +44,7 @@ const std::vector<EffectEntry>& effectTable() {
         EffectEntry::of<TonemapEffect>(),   // scene-color (exposure, lens-light) -> display-color (sRGB, luma in alpha)
         EffectEntry::of<EdgesEffect>(),     // gbuffer, display-color -> display-color (lines; toon bands)
         EffectEntry::of<MotionBlurEffect>(),  // display-color, velocity, gbuffer -> display-color
+        EffectEntry::of<ChromaticAberrationEffect>(),  // display-color -> display-color (red and blue fringes)
         EffectEntry::of<FxaaEffect>(),      // display-color -> display-color
     };
     // Names are how everything finds effects, passes and targets: each is used once.
