@@ -377,7 +377,8 @@ TEST(DepthOfField, ABrightEmitterMakesABokehDiscAsBrightAsTheLenss) {
   pinholeSettings.set("dof", "off");
   const test::RenderedImage pinhole = test::render(renderer, camera, pinholeSettings, View::Final);
   // The disc: where the emitter's blur lands, C = 6.8 pixels at 960 rows (3.4 here) around the emitter's pixel.
-  const glm::vec4 clip = FrameCamera::from(camera, width, height).unjitteredProjection * glm::vec4(-1.0f, 0.3f, -11.9f, 1.0f);
+  const glm::vec4 clip =
+      FrameCamera::from(camera, width, height).unjitteredProjection * glm::vec4(-1.0f, 0.3f, -11.9f, 1.0f);
   const glm::vec2 centre((clip.x / clip.w * 0.5f + 0.5f) * width, (0.5f - clip.y / clip.w * 0.5f) * height);
   const float c = ThinLens::of(settings.of<DofSettings>(), height).coc(11.9f, kFocus);
   auto luminance = [](float r, float g, float b) {
@@ -388,7 +389,8 @@ TEST(DepthOfField, ABrightEmitterMakesABokehDiscAsBrightAsTheLenss) {
   const float radius = 0.5f * c + 2.0f;
   for (int y = 0; y < height; ++y)
     for (int x = 0; x < width; ++x) {
-      if (glm::length(glm::vec2(static_cast<float>(x) + 0.5f, static_cast<float>(y) + 0.5f) - centre) > radius) continue;
+      const glm::vec2 p(static_cast<float>(x) + 0.5f, static_cast<float>(y) + 0.5f);
+      if (glm::length(p - centre) > radius) continue;
       dofSum += luminance(dof.channel(x, y, 0) / 255.0f, dof.channel(x, y, 1) / 255.0f, dof.channel(x, y, 2) / 255.0f);
       referenceSum += luminance(reference.at(x, y, 0), reference.at(x, y, 1), reference.at(x, y, 2));
       pinholeSum += luminance(pinhole.channel(x, y, 0) / 255.0f, pinhole.channel(x, y, 1) / 255.0f,

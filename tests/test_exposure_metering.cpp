@@ -131,7 +131,8 @@ TEST(ExposureMetering, AdaptationStepsAreExponentialAndFasterTowardsLight) {
     for (int frame = 1; frame <= 60; ++frame) {
       adapted = em::adapt(adapted, target, dt, up, down);
       const float speed = target > 0.0f ? up : down;
-      EXPECT_NEAR(adapted, target * (1.0f - std::exp(-speed * dt * static_cast<float>(frame))), 1e-4f) << target << " " << frame;
+      EXPECT_NEAR(adapted, target * (1.0f - std::exp(-speed * dt * static_cast<float>(frame))), 1e-4f)
+          << target << " " << frame;
     }
   }
   EXPECT_GT(em::adapt(0.0f, 1.0f, 0.1f, 3.0f, 1.0f), -em::adapt(0.0f, -1.0f, 0.1f, 3.0f, 1.0f));

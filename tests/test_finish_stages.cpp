@@ -87,8 +87,8 @@ TEST(Grain, HasZeroMeanFollowsTheLuminanceAndChangesEveryFrame) {
     std::vector<glm::vec4> colour(static_cast<size_t>(test::kPointSide) * test::kPointSide, glm::vec4(grey));
     std::vector<glm::vec3> pixel;
     for (int i = 0; i < test::kPointSide * test::kPointSide; ++i)
-      pixel.emplace_back(static_cast<float>(i % test::kPointSide) + 0.5f, static_cast<float>(i / test::kPointSide) + 0.5f,
-                         0.0f);
+      pixel.emplace_back(static_cast<float>(i % test::kPointSide) + 0.5f,
+                         static_cast<float>(i / test::kPointSide) + 0.5f, 0.0f);
     const std::vector<std::uint8_t> out = test::drawPoints(program, colour, pixel);
     std::vector<float> values(colour.size());
     for (size_t i = 0; i < values.size(); ++i) values[i] = static_cast<float>(out[i * 4 + 1]) - 255.0f * grey;
@@ -169,7 +169,8 @@ TEST(Dither, BreaksTheBandsOfADarkGradientWithoutMovingItsMean) {
   double sum = 0.0, squares = 0.0;
   const glm::vec2 seed = ditherSeed(3);
   for (int i = 0; i < 100000; ++i) {
-    const float o = 255.0f * ditherOffset({static_cast<float>(i % 317) + 0.5f, static_cast<float>(i / 317) + 0.5f}, seed);
+    const glm::vec2 pixel(static_cast<float>(i % 317) + 0.5f, static_cast<float>(i / 317) + 0.5f);
+    const float o = 255.0f * ditherOffset(pixel, seed);
     sum += o;
     squares += double(o) * o;
   }

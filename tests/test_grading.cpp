@@ -155,7 +155,8 @@ TEST(Grading, AnIdentityLutLeavesColoursWithinAByte) {
   const gl::Program program = gradingProgram(false, true);
   const std::vector<glm::vec4> in = testColours();
   for (int size : {17, 33, 65}) {
-    const gl::Texture2D texture = setLut(program, ColorLut::identity(size), 1.0f, test::context().caps().maxTextureSize);
+    const gl::Texture2D texture =
+        setLut(program, ColorLut::identity(size), 1.0f, test::context().caps().maxTextureSize);
     const float worst = worstBytes(test::drawPoints(program, in), in, [](const glm::vec3& c) { return c; });
     std::printf("identity LUT of %d: worst %.2f / 255\n", size, worst);
     EXPECT_LE(worst, 1.0f) << size;

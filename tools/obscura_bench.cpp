@@ -305,8 +305,8 @@ Options parseOptions(int argc, char** argv) {
     else if (arg == "--finish-only") options.finishOnly = true;
     else if (arg == "--temporal-ao-only") options.temporalAoOnly = true;
     else throw InputError("unknown option '" + arg + "' (usage: obscura-bench [--out DIR] [--frames N] "
-                          "[--backend osmesa|egl] [--quick] [--estimators-only] [--motion-only] [--effects-only] [--finish-only] "
-                          "[--temporal-ao-only])");
+                          "[--backend osmesa|egl] [--quick] [--estimators-only] [--motion-only] [--effects-only] "
+                          "[--finish-only] [--temporal-ao-only])");
   }
   return options;
 }

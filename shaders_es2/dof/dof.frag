@@ -249,8 +249,8 @@ void main() {
   vec4 farField = texture2D(u_far, v_uv);
   vec3 farColor = farField.a > 0.002 ? fromField(farField.rgb / farField.a) : sharp;
   vec3 background = mix(sharp, farColor, clamp(coc - 1.0, 0.0, 1.0));
-  // Small blurs at full size: a pixel whose |C| is at most SMALL_COC (handing over to the half-size fields over the next
-  // pixel), and an in-focus pixel that a small near blur around may reach. Under half a pixel a pixel keeps its own
+  // Small blurs at full size: a pixel whose |C| is at most SMALL_COC (handing over to the half-size fields over the
+  // next pixel), and an in-focus pixel that a small near blur around may reach. Under half a pixel a pixel keeps its own
   // colour, and only a nearer neighbour's blur changes it: the focus plane stays as it is.
   float nearby = floor(texture2D(u_neighbors, v_uv).r * 255.0 + 0.5) * (1.0 / 255.0) * u_range;
   float size = abs(coc);

@@ -1,7 +1,7 @@
 // Hatching (edges.style hatching; src/effects/edges/Hatching.h: the method and the CPU mirror): tonal strokes in
 // world space, projected triplanarly onto the surface, their density following the display luma in bands, drawn
-// before the edges' lines. Needs lib/precision.glsl, lib/packing.glsl, lib/srgb.glsl and lib/reconstruct.glsl (FAR_RAY 1)
-// first.
+// before the edges' lines. Needs lib/precision.glsl, lib/packing.glsl, lib/srgb.glsl and lib/reconstruct.glsl
+// (FAR_RAY 1) first.
 #define MAX_HATCH_LAYERS 15
 
 uniform sampler2D u_gbuffer;       // normal in RG, depth code in BA

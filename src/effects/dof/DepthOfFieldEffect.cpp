@@ -148,8 +148,8 @@ EffectInfo DepthOfFieldEffect::info() {
            {"dof-tile-columns", kTileEncoding, GL_NEAREST, {}},
            {"dof-tiles", kTileEncoding, GL_NEAREST, {}},
            {"dof-neighbors", kTileEncoding, GL_NEAREST, {}},
-           {"dof-near", "the near field's HDR colour premultiplied by its coverage (A), as sqrt(c / (1 + c))", GL_LINEAR,
-            {}},
+           {"dof-near", "the near field's HDR colour premultiplied by its coverage (A), as sqrt(c / (1 + c))",
+            GL_LINEAR, {}},
            {"dof-far", "the far field's HDR colour as sqrt(c / (1 + c)); A 1 where the pixel is far, else all zero",
             GL_LINEAR, {}}}};
 }

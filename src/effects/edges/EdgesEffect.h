@@ -36,10 +36,11 @@
 //
 // Where in the frame: after the tone mapping, on display colour. The line colour is then the colour on screen, the
 // width is in output pixels, and the tone mapping (or the lighting that absorbs it) still writes display colour
-// directly. Hatching (edges.style hatching) draws tonal strokes in world space first (Hatching.h). Toon (edges.style toon) quantises the display luma Y (BT.601, FXAA's) of each pixel into `bands` equal
-// steps and rescales the colour to the band's centre, c' = min(c L / Y, 1) with L = (min(floor(Y bands), bands - 1)
-// + 1/2) / bands: the shading becomes flat bands and the hue is kept. It quantises what the lighting made (the base
-// colour times the light), which is what a frame without a separate albedo target has on every context.
+// directly. Hatching (edges.style hatching) draws tonal strokes in world space first (Hatching.h). Toon (edges.style
+// toon) quantises the display luma Y (BT.601, FXAA's) of each pixel into `bands` equal steps and rescales the colour
+// to the band's centre, c' = min(c L / Y, 1) with L = (min(floor(Y bands), bands - 1) + 1/2) / bands: the shading
+// becomes flat bands and the hue is kept. It quantises what the lighting made (the base colour times the light), which
+// is what a frame without a separate albedo target has on every context.
 //
 // CPU mirror: EdgeDetector (pass 1), edgeDistances (passes 2 and 3's distance), lineCoverage (eq. 2) and toonShade;
 // tests/test_edges.cpp holds the GPU to them and the lines to the analytic silhouette and creases of a cube.

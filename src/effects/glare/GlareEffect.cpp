@@ -65,7 +65,8 @@ std::vector<glm::vec2> glareRays(const GlareSettings& settings) {
   std::vector<glm::vec2> out;
   for (int r = 0; r < settings.streaks; ++r) {
     // A streak drawn at angle theta from a light gathers, at each pixel, the light at -theta from it.
-    const float a = glm::radians(settings.angle + 360.0f * static_cast<float>(r) / static_cast<float>(settings.streaks));
+    const float a =
+        glm::radians(settings.angle + 360.0f * static_cast<float>(r) / static_cast<float>(settings.streaks));
     out.emplace_back(-std::cos(a), -std::sin(a));
   }
   return out;
