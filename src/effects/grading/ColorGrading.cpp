@@ -37,11 +37,11 @@ std::shared_ptr<const ColorLut> readLut(const std::string& name) {
 const std::vector<Parameter<GradingSettings>>& GradingSettings::parameters() {
   using S = GradingSettings;
   static const std::vector<Parameter<S>> table = [] {
-    Parameter<S> lut = textParameter<S>("lut", "none | a .cube file",
+    Parameter<S> lutParameter = textParameter<S>("lut", "none | a .cube file",
                                         "a 3D LUT (Adobe / Resolve .cube) applied to the display colour", &S::lut,
                                         {"none"});
     // The file is read now: a malformed one is refused with its line, and the grade in use stays.
-    lut.set = [](S& s, const std::string& v) {
+    lutParameter.set = [](S& s, const std::string& v) {
       if (v.empty()) throw InputError("lut: expected none or a .cube file, got nothing");
       std::shared_ptr<const ColorLut> data = readLut(v);
       s.lut = v;
@@ -52,7 +52,7 @@ const std::vector<Parameter<GradingSettings>>& GradingSettings::parameters() {
                            ".cube LUT; on the display colour)",
                            &S::enabled)
             .primary(),
-        std::move(lut).primary(),
+        std::move(lutParameter).primary(),
         numberParameter<S>("lut-intensity", 0, 1, "", "how much of the LUT's result is mixed in", &S::lutIntensity)
             .primary(),
         numberParameter<S>("temperature", 1667, 25000, "K",
