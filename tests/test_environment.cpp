@@ -430,3 +430,30 @@ TEST(Environment, TheSkysSunFollowsTheSunParameters) {
     }
   }
 }
+
+// The environment cache (environment/EnvironmentCache.h), through the frame: a file that cannot be read fails the
+// frame that first asks for it, once; the environment in use stays (the same image), and later frames asking for the
+// same file draw without an error, until another environment is asked for. The Renderer prepares the environment
+// before planning (Effect::prepare), so a changed environment shows in the very frame that asks for it.
+TEST(Environment, AnUnreadableFileFailsOnceAndTheEnvironmentInUseStays) {
+  Renderer renderer = test::makeRenderer();
+  renderer.setScene(makeBuiltinScene());
+  const Camera camera = builtinSceneCamera(48, 32);
+  RenderSettings settings;
+  settings.set("ao", "off");
+  auto frame = [&] {
+    test::render(renderer, camera, settings, View::Final, test::retaining({"scene-color"}));
+    return renderer.retained("scene-color").readRgba();
+  };
+  settings.set("lighting.environment", "uniform");
+  const std::vector<std::uint8_t> furnace = frame();
+  settings.set("lighting.environment", test::tempPath("no-such-environment.hdr"));
+  EXPECT_THROW(frame(), InputError);
+  EXPECT_EQ(frame(), furnace) << "the furnace stays in use, and the same name is not tried again";
+  settings.set("lighting.environment", "sky");
+  const std::vector<std::uint8_t> sky = frame();
+  EXPECT_NE(sky, furnace) << "the sky in the frame that asked for it";
+  settings.set("lighting.environment", test::tempPath("no-such-environment.hdr"));
+  EXPECT_THROW(frame(), InputError) << "asked for again after another environment";
+  EXPECT_EQ(frame(), sky);
+}

@@ -10,6 +10,7 @@
 #include "base/Error.h"
 #include "encoding/HdrEncoding.h"
 #include "encoding/LinearDepthPacking.h"
+#include "frame/FrameSettings.h"
 #include "frame/PassContext.h"
 #include "gl/PipelineState.h"
 #include "gpu/TextureUnits.h"
@@ -222,55 +223,13 @@ const LightingEffect::Variant& LightingEffect::variant(const Form& form, Materia
   return it->second;
 }
 
-// A file that cannot be read is reported once (InputError: the command line stops, the page shows it) and the
-// environment in use stays, so a stale path (a page's URL naming a file dropped in an earlier visit) does not fail
-// every frame.
-void LightingEffect::useEnvironment(const LightingSettings& settings) {
-  const bool sky = settings.environment == "sky";
-  if (environment_ && environmentName_ == settings.environment && (!sky || skyElevation_ == settings.sunElevation))
-    return;
-  const std::string name = settings.environment;
-  environmentName_ = name;
-  struct Prepared {
-    PrefilteredEnvironment specular;
-    ShIrradiance sh;
-    explicit Prepared(const EnvironmentImage& image)
-        : specular(PrefilteredEnvironment::of(image)), sh(ShIrradiance::project(image)) {}
-  };
-  // The built-in environments are prepared once per process: every Renderer starts with the sky, and its
-  // prefiltering is the dearest part of making one.
-  if (sky) {
-    // The sky's sun stands where lighting.sun-* put the direct light. Its azimuth turns the sky about the vertical
-    // (environmentRotation: free); its elevation changes the sky, which is made and prefiltered again (about a second
-    // on this machine's CPU: LightingSettings marks sun-elevation slow, so the page applies it when a drag ends).
-    LightingSettings defaults;
-    static const Prepared defaultSky(
-        ProceduralSky{defaults.directionToSun()}.image(kEnvironmentWidth, kEnvironmentHeight));
-    skyElevation_ = settings.sunElevation;
-    if (settings.sunElevation == defaults.sunElevation) {
-      environment_ = std::make_unique<GpuEnvironment>(layout_, defaultSky.specular, defaultSky.sh);
-      return;
-    }
-    defaults.sunElevation = settings.sunElevation;
-    const Prepared raised(ProceduralSky{defaults.directionToSun()}.image(kEnvironmentWidth, kEnvironmentHeight));
-    environment_ = std::make_unique<GpuEnvironment>(layout_, raised.specular, raised.sh);
-    return;
-  }
-  if (name == "uniform") {
-    static const Prepared furnace(uniformEnvironment(glm::vec3(1.0f)));
-    environment_ = std::make_unique<GpuEnvironment>(layout_, furnace.specular, furnace.sh);
-    return;
-  }
-  EnvironmentImage image;
-  try {
-    image = loadEnvironmentImage(name);
-  } catch (const InputError&) {
-    if (!environment_) useEnvironment(LightingSettings{});
-    environmentName_ = name;
-    throw;
-  }
-  const Prepared prepared(image);
-  environment_ = std::make_unique<GpuEnvironment>(layout_, prepared.specular, prepared.sh);
+// The sky is made with its sun at the default azimuth and turned to the wanted one (environmentRotation): only the
+// elevation changes the sky itself.
+void LightingEffect::prepare(const FrameSettings& frameSettings) {
+  const LightingSettings& settings = frameSettings.of<LightingSettings>();
+  LightingSettings sky;
+  sky.sunElevation = settings.sunElevation;
+  environments_.use(settings.environment, sky.directionToSun());
 }
 
 LightingEffect::LightingEffect(const EffectResources& resources)
@@ -279,14 +238,15 @@ LightingEffect::LightingEffect(const EffectResources& resources)
       stencil_(resources.caps.packedDepthStencil),
       layout_(GpuEnvironment::layoutFor(resources.caps, resources.options.environmentLayout)),
       lightsPerDraw_(punctualLightsPerDraw(resources.caps.maxFragmentUniformVectors)),
-      environmentBrdfUnit_(TextureUnits::environmentBrdf(resources.caps)) {
+      environmentBrdfUnit_(TextureUnits::environmentBrdf(resources.caps)),
+      environments_(layout_) {
   const HdrTexel t = encodeHdr(light_.background);
   backgroundHdr_ = glm::vec4(LinearDepthPacking::channelFromByte(t[0]), LinearDepthPacking::channelFromByte(t[1]),
                              LinearDepthPacking::channelFromByte(t[2]), LinearDepthPacking::channelFromByte(t[3]));
   // The form of the lit pass before the plan's alternatives, for every material, is built now, so a broken program
   // fails when the renderer is made.
   for (MaterialKind kind : MaterialKind::all()) variant({false, false, -1, false}, kind, {});
-  useEnvironment(LightingSettings{});
+  environments_.use("sky", LightingSettings{}.directionToSun());
 }
 
 void LightingEffect::plan(FramePlanner& planner) {
@@ -296,7 +256,6 @@ void LightingEffect::plan(FramePlanner& planner) {
   const ToneMapInUse tone = ToneMapInUse::of(planner.settings().of<TonemapSettings>());
   const int op = static_cast<int>(tone.op);
   const LightingSettings& lighting = planner.settings().of<LightingSettings>();
-  useEnvironment(lighting);
   auto with = [&](std::vector<std::string> more) {
     std::vector<std::string> all = reads;
     all.insert(all.end(), more.begin(), more.end());
@@ -350,6 +309,7 @@ void LightingEffect::render(const PassContext& context, const Form& form, const 
                             float exposureScale, const LightingSettings& settings) {
   using gl::Program;
   const FrameCamera& camera = context.camera();
+  const GpuEnvironment& environment = environments_.current();
   context.bindForWriting(output);
   const bool lumaInAlpha = !context.writesOutput(output);
   const ToneMapInUse tone{static_cast<ToneMapOperator>(std::max(form.toneMap, 0)), exposureScale};
@@ -380,7 +340,7 @@ void LightingEffect::render(const PassContext& context, const Form& form, const 
     Program::set(v.environmentBrdf, kEnvironmentBrdfUnit);
     Program::set(v.farHalfExtent, camera.reconstruction.farHalfExtent);
     Program::set(v.farPlane, camera.reconstruction.far);
-    Program::set(v.shIrradiance, environment_->irradianceUniform().data(), 7);
+    Program::set(v.shIrradiance, environment.irradianceUniform().data(), 7);
     Program::set(v.environmentIntensity, settings.environmentIntensity);
     Program::set(v.exposure, exposureScale);
     Program::set(v.lumaInAlpha, lumaInAlpha ? 1.0f : 0.0f);
@@ -388,9 +348,9 @@ void LightingEffect::render(const PassContext& context, const Form& form, const 
   (context.has("ao") ? context.texture("ao") : white_).bind(TextureUnits::kAo);
   if (!form.counting) {
     glActiveTexture(GL_TEXTURE0 + kEnvironmentBrdfUnit);
-    glBindTexture(GL_TEXTURE_2D, environment_->brdfTexture());
+    glBindTexture(GL_TEXTURE_2D, environment.brdfTexture());
     glActiveTexture(GL_TEXTURE0 + kEnvironmentUnit);
-    glBindTexture(GL_TEXTURE_2D, environment_->texture());
+    glBindTexture(GL_TEXTURE_2D, environment.texture());
   }
 
   if (form.deferred) {

@@ -45,6 +45,7 @@
 
 #include "effects/tonemap/TonemapEffect.h"
 #include "environment/Environment.h"
+#include "environment/EnvironmentCache.h"
 #include "frame/EffectEntry.h"
 #include "frame/FrameContext.h"
 #include "gl/RenderTarget.h"
@@ -112,6 +113,8 @@ class LightingEffect : public Effect {
   static glm::mat3 environmentRotation(const LightingSettings& settings);
 
   explicit LightingEffect(const EffectResources& resources);
+  // Loads and prepares the environment lighting.environment names (and, for the sky, lighting.sun-elevation).
+  void prepare(const FrameSettings& settings) override;
   void plan(FramePlanner& planner) override;
 
  private:
@@ -142,8 +145,6 @@ class LightingEffect : public Effect {
   static ProgramSpec spec(const Form& form, MaterialKind kind, VertexKind vertex, EnvironmentLayout layout,
                           int lightsPerDraw);
   const Variant& variant(const Form& form, MaterialKind kind, VertexKind vertex);
-  // Loads, projects and prefilters the environment the settings name, when it is not the one on the GPU.
-  void useEnvironment(const LightingSettings& settings);
   void render(const PassContext& context, const Form& form, const std::string& output, float exposureScale,
               const LightingSettings& settings);
 
@@ -157,9 +158,7 @@ class LightingEffect : public Effect {
   EnvironmentLayout layout_;              // where the prefiltered levels live (RendererOptions::environmentLayout)
   int lightsPerDraw_;                     // punctualLightsPerDraw of the context's fragment uniform vectors
   int environmentBrdfUnit_;               // TextureUnits::environmentBrdf
-  std::string environmentName_;           // the lighting.environment value environment_ holds
-  float skyElevation_ = 0.0f;             // the sun's elevation in the sky environment_ holds
-  std::unique_ptr<GpuEnvironment> environment_;
+  EnvironmentCache environments_;         // the environment in use (lighting.environment), prepared before planning
 };
 
 }  // namespace obscura
