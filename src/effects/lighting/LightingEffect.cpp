@@ -20,6 +20,13 @@ namespace obscura {
 const std::vector<Parameter<LightingSettings>>& LightingSettings::parameters() {
   using S = LightingSettings;
   static const std::vector<Parameter<S>> table = {
+      choiceParameter<S, LightingQuality>(
+          "quality",
+          "shading tier: low (the ambient from spherical harmonics alone, no environment fetch), medium (the "
+          "prefiltered environment), high (with multiple scattering and horizon occlusion); the preset sets it",
+          &S::quality,
+          {{"low", LightingQuality::Low}, {"medium", LightingQuality::Medium}, {"high", LightingQuality::High}})
+          .primary(),
       numberParameter<S>("sun-elevation", -90, 90, "degrees",
                          "the sun's height above the horizon (with the sky: the sky is made again, about a second)",
                          &S::sunElevation)
@@ -43,6 +50,23 @@ const std::vector<Parameter<LightingSettings>>& LightingSettings::parameters() {
           .primary()};
   return table;
 }
+
+namespace {
+LightingQuality qualityOf(QualityPreset preset) {
+  switch (preset) {
+    case QualityPreset::Low: return LightingQuality::Low;
+    case QualityPreset::Medium: return LightingQuality::Medium;
+    default: return LightingQuality::High;
+  }
+}
+}  // namespace
+
+void LightingSettings::applyPreset(QualityPreset which) {
+  preset = which;
+  quality = qualityOf(which);
+}
+
+bool LightingSettings::matchesPreset(QualityPreset which) const { return quality == qualityOf(which); }
 
 glm::vec3 LightingSettings::directionToSun() const {
   const float elevation = glm::radians(sunElevation), azimuth = glm::radians(sunAzimuth);
@@ -119,10 +143,27 @@ MaterialKind LightingEffect::readKind(const Form& form, MaterialKind kind) {
   return form.counting ? kind.forAlphaOnly() : kind;
 }
 
+LightingEffect::Form LightingEffect::programForm(Form form) {
+  // The counting forms shade nothing; the background reads the environment's level 0 only (by hand).
+  if (form.counting || form.background) {
+    form.quality = LightingQuality::Medium;
+    form.filteredFrom = kEnvironmentLevels;
+  }
+  if (!form.deferred || form.counting) form.overDepth = false;
+  // The low tier reads no prefiltered level.
+  if (form.quality == LightingQuality::Low) form.filteredFrom = kEnvironmentLevels;
+  return form;
+}
+
 // The forms' programs. The background form is the deferred program's background alone, drawn over fullscreen.vert
 // at the far plane (AT_FAR_PLANE).
-ProgramSpec LightingEffect::spec(const Form& form, MaterialKind kind, VertexKind vertex, EnvironmentLayout layout,
+ProgramSpec LightingEffect::spec(const Form& shown, MaterialKind kind, VertexKind vertex, EnvironmentLayout layout,
                                  int lightsPerDraw) {
+  const Form form = programForm(shown);
+  // The low tier's shading reads no level (only the deferred form's background branch does): one program for both
+  // layouts.
+  if (form.quality == LightingQuality::Low && !form.counting && !form.background && form.overDepth == form.deferred)
+    layout = EnvironmentLayout::Atlas;
   const bool fullscreen = form.deferred || form.background;
   std::string name = "lighting[";
   if (form.background) name += "background";
@@ -131,17 +172,24 @@ ProgramSpec LightingEffect::spec(const Form& form, MaterialKind kind, VertexKind
   if (form.counting) name += ",count-shading";
   if (form.toneMap >= 0)
     name += std::string(",tonemap=") + toneMapOperatorName(static_cast<ToneMapOperator>(form.toneMap));
+  const bool shading = !form.counting && !form.background;
+  if (form.overDepth) name += ",over-depth";
+  if (shading && form.quality != LightingQuality::Medium)
+    name += form.quality == LightingQuality::Low ? ",low" : ",high";
+  if (shading && form.filteredFrom < kEnvironmentLevels) name += ",filtered";
   if (!form.counting) name += std::string(",") + environmentLayoutName(layout);
   ProgramSpec s{name + "]", fullscreen ? "lib/fullscreen.vert" : "lib/geometry.vert", "lighting/lighting.frag",
                 {{"DEFERRED", fullscreen ? "1" : "0"},
                  {"BACKGROUND", form.background ? "1" : "0"},
-                 {"AT_FAR_PLANE", form.background ? "1" : "0"},
+                 {"OVER_DEPTH", form.overDepth ? "1" : "0"},
+                 {"AT_FAR_PLANE", form.background || form.overDepth ? "1" : "0"},
                  {"COUNT_SHADING", form.counting ? "1" : "0"},
                  {"TONEMAP_INLINE", form.toneMap >= 0 ? "1" : "0"},
+                 {"LIGHTING_QUALITY", std::to_string(static_cast<int>(form.quality))},
                  {"MAX_PUNCTUAL_LIGHTS", std::to_string(fullscreen ? 0 : lightsPerDraw)},
                  // The deferred forms' view direction is the far-plane ray's.
                  {"FAR_RAY", fullscreen && !form.counting ? "1" : "0"}}};
-  for (auto& define : GpuEnvironment::shaderDefines(layout)) s.defines.push_back(define);
+  for (auto& define : GpuEnvironment::shaderDefines(layout, form.filteredFrom)) s.defines.push_back(define);
   if (layout == EnvironmentLayout::MipChain && !form.counting) s.extensions.push_back("GL_EXT_shader_texture_lod");
   for (auto& define : kind.defines()) s.defines.push_back(define);
   if (!fullscreen)
@@ -150,18 +198,35 @@ ProgramSpec LightingEffect::spec(const Form& form, MaterialKind kind, VertexKind
   return s;
 }
 
-// Every form with the atlas (any GLES 2 context), and the shading forms again with the mip chain.
+// Every form with the atlas (any GLES 2 context), and the shading forms again with the mip chain; the shading forms
+// in each tier, the medium and high ones with and without the filtered levels.
 std::vector<ProgramSpec> LightingEffect::programSpecs(int lightsPerDraw) {
   std::vector<ProgramSpec> specs;
+  struct Shading {
+    LightingQuality quality;
+    int filteredFrom;
+  };
+  const std::vector<Shading> shadings = {{LightingQuality::Low, kEnvironmentLevels},
+                                         {LightingQuality::Medium, kEnvironmentLevels},
+                                         {LightingQuality::Medium, kEnvironmentFilteredLevel},
+                                         {LightingQuality::High, kEnvironmentLevels},
+                                         {LightingQuality::High, kEnvironmentFilteredLevel}};
   for (EnvironmentLayout layout : {EnvironmentLayout::Atlas, EnvironmentLayout::MipChain})
     for (bool deferred : {false, true})
       for (bool counting : {true, false}) {
         if (counting && layout == EnvironmentLayout::MipChain) continue;
         for (int toneMap = -1; toneMap < (counting ? 0 : kToneMapOperatorCount); ++toneMap) {
-          for (MaterialKind kind : MaterialKind::all()) {
-            const Form form{deferred, counting, toneMap, false};
-            if (readKind(form, kind) == kind) specs.push_back(spec(form, kind, {}, layout, lightsPerDraw));
-          }
+          for (const Shading& shading : counting ? std::vector<Shading>{shadings[1]} : shadings)
+            for (bool overDepth : {false, true}) {
+              if (overDepth && (!deferred || counting)) continue;
+              // The low tier's shading reads no level: its forms differ by layout only in the deferred background.
+              if (shading.quality == LightingQuality::Low && layout == EnvironmentLayout::MipChain && overDepth == deferred)
+                continue;
+              for (MaterialKind kind : MaterialKind::all()) {
+                const Form form{deferred, counting, toneMap, false, shading.quality, shading.filteredFrom, overDepth};
+                if (readKind(form, kind) == kind) specs.push_back(spec(form, kind, {}, layout, lightsPerDraw));
+              }
+            }
           if (!deferred && !counting) specs.push_back(spec({false, false, toneMap, true}, {}, {}, layout, 0));
         }
       }
@@ -181,7 +246,8 @@ LightingEffect::Variant::Variant(gl::Program built, bool geometryStage)
       viewToEnvironment(program.optionalUniform("u_viewToEnvironment")),
       ao(program.optionalUniform("u_ao")),
       environment(program.optionalUniform("u_environment")),
-      environmentBrdf(program.optionalUniform("u_environmentBrdf")),
+      environmentFiltered(program.optionalUniform("u_environmentFiltered")),
+      environmentFilteredScale(program.optionalUniform("u_environmentFilteredScale")),
       shIrradiance(program.optionalUniform("u_shIrradiance")),
       environmentIntensity(program.optionalUniform("u_environmentIntensity")),
       gbuffer(program.optionalUniform("u_gbuffer")),
@@ -192,7 +258,8 @@ LightingEffect::Variant::Variant(gl::Program built, bool geometryStage)
       lightColorSpot(program.optionalUniform("u_lightColorSpot[0]")),
       lightSpot(program.optionalUniform("u_lightSpot[0]")) {}
 
-const LightingEffect::Variant& LightingEffect::variant(const Form& form, MaterialKind kind, VertexKind vertex) {
+const LightingEffect::Variant& LightingEffect::variant(const Form& asked, MaterialKind kind, VertexKind vertex) {
+  const Form form = programForm(asked);
   const bool fullscreen = form.deferred || form.background;
   const auto key = std::make_tuple(form, readKind(form, kind), fullscreen ? VertexKind{} : vertex.forCurrentFrame());
   auto it = variants_.find(key);
@@ -206,12 +273,20 @@ const LightingEffect::Variant& LightingEffect::variant(const Form& form, Materia
     const gl::Program& program = it->second.program;
     if (!fullscreen) program.uniform("u_projection");
     if (!form.counting)
-      for (const char* name : {"u_viewToEnvironment", "u_environment", "u_environmentIntensity"}) program.uniform(name);
+      for (const char* name : {"u_viewToEnvironment", "u_environmentIntensity"}) program.uniform(name);
+    // The deferred shading alone (roughness 1: level 5) reads no level by hand where level 5 is filtered, and the
+    // low tier none at all; every other form reads level 0 at least (its background, or a smooth material).
+    const bool readsByHand = form.background || (!form.counting && form.quality != LightingQuality::Low &&
+                                                 !(form.overDepth && form.filteredFrom < kEnvironmentLevels));
+    if (readsByHand) program.uniform("u_environment");
     if (fullscreen && !form.counting)
       for (const char* name : {"u_farHalfExtent", "u_farPlane"}) program.uniform(name);
     if (!form.counting && !form.background)
-      for (const char* name : {"u_lightDirection", "u_lightColor", "u_ao", "u_shIrradiance", "u_environmentBrdf"})
-        program.uniform(name);
+      for (const char* name : {"u_lightDirection", "u_lightColor", "u_ao", "u_shIrradiance"}) program.uniform(name);
+    if (!form.counting && !form.background && form.quality != LightingQuality::Low)
+      program.uniform("u_environmentFiltered");
+    if (!form.counting && !form.background && form.filteredFrom < kEnvironmentLevels)
+      program.uniform("u_environmentFilteredScale");
     if (form.deferred) program.uniform("u_gbuffer");
     if (form.deferred && !form.counting) program.uniform("u_baseColor");
     if (!fullscreen && !form.counting)
@@ -238,15 +313,16 @@ LightingEffect::LightingEffect(const EffectResources& resources)
       stencil_(resources.caps.packedDepthStencil),
       layout_(GpuEnvironment::layoutFor(resources.caps, resources.options.environmentLayout)),
       lightsPerDraw_(punctualLightsPerDraw(resources.caps.maxFragmentUniformVectors)),
-      environmentBrdfUnit_(TextureUnits::environmentBrdf(resources.caps)),
+      environmentFilteredUnit_(TextureUnits::environmentFiltered(resources.caps)),
       environments_(layout_) {
   const HdrTexel t = encodeHdr(light_.background);
   backgroundHdr_ = glm::vec4(LinearDepthPacking::channelFromByte(t[0]), LinearDepthPacking::channelFromByte(t[1]),
                              LinearDepthPacking::channelFromByte(t[2]), LinearDepthPacking::channelFromByte(t[3]));
   // The form of the lit pass before the plan's alternatives, for every material, is built now, so a broken program
   // fails when the renderer is made.
-  for (MaterialKind kind : MaterialKind::all()) variant({false, false, -1, false}, kind, {});
   environments_.use("sky", LightingSettings{}.directionToSun());
+  for (MaterialKind kind : MaterialKind::all())
+    variant({false, false, -1, false, LightingQuality::Medium, environments_.current().filteredFrom()}, kind, {});
 }
 
 void LightingEffect::plan(FramePlanner& planner) {
@@ -255,16 +331,13 @@ void LightingEffect::plan(FramePlanner& planner) {
   if (planner.declares("ao")) reads.push_back("ao");
   const ToneMapInUse tone = ToneMapInUse::of(planner.settings().of<TonemapSettings>());
   const int op = static_cast<int>(tone.op);
-  const LightingSettings& lighting = planner.settings().of<LightingSettings>();
   auto with = [&](std::vector<std::string> more) {
     std::vector<std::string> all = reads;
     all.insert(all.end(), more.begin(), more.end());
     return all;
   };
-  auto runAs = [this, scale = tone.exposureScale, lighting](Form form, std::string output) {
-    return [this, form, output, scale, lighting](PassContext& context) {
-      render(context, form, output, scale, lighting);
-    };
+  auto runAs = [this, scale = tone.exposureScale](Form form, std::string output) {
+    return [this, form, output, scale](PassContext& context) { render(context, form, output, scale); };
   };
 
   for (const char* output : {"scene-color", "shading-count"}) {
@@ -289,13 +362,18 @@ void LightingEffect::plan(FramePlanner& planner) {
       const std::vector<Write> toDisplayShared = {
           {"display-color", TargetSize::full(), Write::Depth::Shared, "gbuffer"}};
       const std::vector<Write> toDisplayOwn = {{"display-color", TargetSize::full(), Write::Depth::Own, ""}};
-      // Best first: deferred and tone-mapped, deferred, forward and tone-mapped (with the G-buffer's depth, or its
-      // own); else the pass as declared.
+      // Best first: deferred and tone-mapped (over the G-buffer's depth where a pass reads the display colour after
+      // it; into the output framebuffer, which has no depth, with the background in the same program), deferred,
+      // forward and tone-mapped (with the G-buffer's depth, or its own); else the pass as declared.
       pass.alternatives = {
+          Alternative{{"base-color"}, "tonemap", false, with({"gbuffer", "base-color"}), toDisplayShared,
+                      runAs({true, false, op, false, LightingQuality::Medium, kEnvironmentLevels, true},
+                            "display-color")},
           Alternative{{"base-color"}, "tonemap", true, with({"gbuffer", "base-color"}), toDisplay,
                       runAs({true, false, op, false}, "display-color")},
           Alternative{{"base-color"}, "", false, with({"gbuffer", "base-color"}),
-                      {{output, TargetSize::full(), Write::Depth::None, ""}}, runAs({true, false, -1, false}, output)},
+                      {{output, TargetSize::full(), Write::Depth::Shared, "gbuffer"}},
+                      runAs({true, false, -1, false, LightingQuality::Medium, kEnvironmentLevels, true}, output)},
           Alternative{{"gbuffer"}, "tonemap", false, with({"gbuffer"}), toDisplayShared,
                       runAs({false, false, op, false}, "display-color")},
           Alternative{{}, "tonemap", false, reads, toDisplayOwn, runAs({false, false, op, false}, "display-color")},
@@ -305,11 +383,14 @@ void LightingEffect::plan(FramePlanner& planner) {
   }
 }
 
-void LightingEffect::render(const PassContext& context, const Form& form, const std::string& output,
-                            float exposureScale, const LightingSettings& settings) {
+void LightingEffect::render(const PassContext& context, Form form, const std::string& output, float exposureScale) {
   using gl::Program;
+  const LightingSettings& settings = context.settings().of<LightingSettings>();
   const FrameCamera& camera = context.camera();
   const GpuEnvironment& environment = environments_.current();
+  // The tier and the environment's storage are read now, not when the plan was made: neither changes its shape.
+  form.quality = settings.quality;
+  form.filteredFrom = environment.filteredFrom();
   context.bindForWriting(output);
   const bool lumaInAlpha = !context.writesOutput(output);
   const ToneMapInUse tone{static_cast<ToneMapOperator>(std::max(form.toneMap, 0)), exposureScale};
@@ -324,7 +405,7 @@ void LightingEffect::render(const PassContext& context, const Form& form, const 
                  : PunctualLightUniforms::of(context.scene().lights(), camera.view, lightsPerDraw_);
   // The texture units: gpu/TextureUnits.h.
   const int kEnvironmentUnit = TextureUnits::kEnvironment;
-  const int kEnvironmentBrdfUnit = environmentBrdfUnit_;
+  const int kEnvironmentFilteredUnit = environmentFilteredUnit_;
   auto setShading = [&](const Variant& v) {
     if (form.counting) return;
     Program::set(v.lightDirection, lightDirection);
@@ -337,7 +418,8 @@ void LightingEffect::render(const PassContext& context, const Form& form, const 
     }
     Program::set(v.ao, TextureUnits::kAo);
     Program::set(v.environment, kEnvironmentUnit);
-    Program::set(v.environmentBrdf, kEnvironmentBrdfUnit);
+    Program::set(v.environmentFiltered, kEnvironmentFilteredUnit);
+    Program::set(v.environmentFilteredScale, environment.filteredScale() * settings.environmentIntensity);
     Program::set(v.farHalfExtent, camera.reconstruction.farHalfExtent);
     Program::set(v.farPlane, camera.reconstruction.far);
     Program::set(v.shIrradiance, environment.irradianceUniform().data(), 7);
@@ -347,14 +429,29 @@ void LightingEffect::render(const PassContext& context, const Form& form, const 
   };
   (context.has("ao") ? context.texture("ao") : white_).bind(TextureUnits::kAo);
   if (!form.counting) {
-    glActiveTexture(GL_TEXTURE0 + kEnvironmentBrdfUnit);
-    glBindTexture(GL_TEXTURE_2D, environment.brdfTexture());
+    glActiveTexture(GL_TEXTURE0 + kEnvironmentFilteredUnit);
+    glBindTexture(GL_TEXTURE_2D, environment.filteredTexture());
     glActiveTexture(GL_TEXTURE0 + kEnvironmentUnit);
     glBindTexture(GL_TEXTURE_2D, environment.texture());
   }
+  // The background: the environment where the depth is still 1 (nothing drawn), a full-screen triangle on the far
+  // plane tested LEQUAL against it, writing no depth.
+  auto drawBackground = [&] {
+    const Variant& v = variant({false, false, form.toneMap, true}, {}, {});
+    v.program.use();
+    setShading(v);
+    glDisable(GL_POLYGON_OFFSET_FILL);
+    glEnable(GL_DEPTH_TEST);
+    glDepthFunc(GL_LEQUAL);
+    glDepthMask(GL_FALSE);
+    resources_.triangle.draw();
+  };
 
   if (form.deferred) {
-    // Every pixel once, background included: no clear, no depth.
+    // Every pixel once, background included. Over the G-buffer's depth (form.overDepth): the shading where the
+    // depth is nearer than the far plane (a triangle on the far plane, tested GL_GREATER), then the background where
+    // it is not; else one program for both, which tells the background by the G-buffer's depth code.
+    form.overDepth = form.overDepth && !form.counting && context.sharesDepth(output);
     if (form.counting) {
       glClearColor(0.0f, 0.0f, 0.0f, 0.0f);
       glClear(GL_COLOR_BUFFER_BIT);
@@ -372,7 +469,13 @@ void LightingEffect::render(const PassContext& context, const Form& form, const 
       glEnable(GL_BLEND);
       glBlendFunc(GL_ONE, GL_ONE);
     }
+    if (form.overDepth) {
+      glEnable(GL_DEPTH_TEST);
+      glDepthFunc(GL_GREATER);
+      glDepthMask(GL_FALSE);
+    }
     resources_.triangle.draw();
+    if (form.overDepth) drawBackground();
     gl::restoreBaselineState();
     return;
   }
@@ -421,17 +524,7 @@ void LightingEffect::render(const PassContext& context, const Form& form, const 
     setShading(v);
     return v.geometry;
   });
-  if (!form.counting) {
-    // The background: the environment where the depth is still 1 (nothing drawn), a full-screen triangle on the far
-    // plane tested LEQUAL against it, writing no depth.
-    const Variant& v = variant({false, false, form.toneMap, true}, {}, {});
-    v.program.use();
-    setShading(v);
-    glDisable(GL_POLYGON_OFFSET_FILL);
-    glDepthFunc(GL_LEQUAL);
-    glDepthMask(GL_FALSE);
-    resources_.triangle.draw();
-  }
+  if (!form.counting) drawBackground();
   gl::restoreBaselineState();
 }
 

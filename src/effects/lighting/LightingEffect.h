@@ -53,10 +53,23 @@
 
 namespace obscura {
 
+// How much of the shading a pixel pays for (lighting.quality; the frame's preset sets it: low -> low, medium ->
+// medium, high and ultra -> high). docs/lighting.md measures each tier's cost and its error against high.
+//   low     the ambient from the spherical harmonics alone: diffuse E(n) / pi, and the specular as the irradiance
+//           towards the reflected direction weighted by Karis's analytic (A, B) fit; no environment or table fetch,
+//           the AO on both alike. The sun and the punctual lights keep their Cook-Torrance lobe.
+//   medium  the split sum: the prefiltered environment and the (A, B) table, Lagarde's specular occlusion.
+//   high    medium, plus the energy the single-scattering lobe loses: multiple scattering in the ambient
+//           (Fdez-Aguera 2019) and the direct lights' energy compensation (Kulla & Conty 2017, as Filament), and the
+//           reflection's horizon occlusion where a normal texture tilts it below the surface (Russell 2015).
+enum class LightingQuality { Low = 0, Medium = 1, High = 2 };
+
 // The sun: an overcast key light over a strong sky dome, so that ambient carries most of the light and AO reads
 // clearly. Its illuminance is colour x intensity; the default intensity pi makes a white Lambertian surface facing it
 // reflect its colour, as the lighting did before the BRDF had its 1 / pi.
 struct LightingSettings : ParameterAccess<LightingSettings> {
+  LightingQuality quality = LightingQuality::Medium;
+  QualityPreset preset = QualityPreset::Medium;  // the frame preset `quality` came from (applyPreset)
   float sunElevation = 54.525961f;  // degrees above the horizon (world +y up)
   float sunAzimuth = 52.125016f;    // degrees from +z towards +x
   glm::vec3 sunColor{0.50f, 0.48f, 0.44f};  // linear
@@ -68,6 +81,8 @@ struct LightingSettings : ParameterAccess<LightingSettings> {
 
   glm::vec3 directionToSun() const;  // world space, unit
   static const std::vector<Parameter<LightingSettings>>& parameters();
+  void applyPreset(QualityPreset which);
+  bool matchesPreset(QualityPreset which) const;
   void validate() const { validateParameters("lighting"); }
 };
 
@@ -120,14 +135,21 @@ class LightingEffect : public Effect {
  private:
   // One form of the pass: deferred or forward, tone-mapped here (an operator) or not, counting or shading.
   // background: the forward forms' full-screen draw of the environment where the scene drew nothing.
+  // quality and filteredFrom (the environment's GpuEnvironment::filteredFrom) matter to the shading forms only.
   struct Form {
     bool deferred = false;
     bool counting = false;
     int toneMap = -1;  // -1: HDR output; else the ToneMapOperator applied here
     bool background = false;
+    LightingQuality quality = LightingQuality::Medium;
+    int filteredFrom = kEnvironmentLevels;
+    // The deferred form over the G-buffer's depth: its shading drawn where the depth is nearer than the far plane,
+    // the background form where it is not, so that each pixel runs one of the two programs (a CPU rasteriser runs
+    // both sides of a branch).
+    bool overDepth = false;
     bool operator<(const Form& o) const {
-      return std::tie(deferred, counting, toneMap, background) <
-             std::tie(o.deferred, o.counting, o.toneMap, o.background);
+      return std::tie(deferred, counting, toneMap, background, quality, filteredFrom, overDepth) <
+             std::tie(o.deferred, o.counting, o.toneMap, o.background, o.quality, o.filteredFrom, o.overDepth);
     }
   };
   struct Variant {
@@ -137,16 +159,17 @@ class LightingEffect : public Effect {
     // The full-screen forms' far-plane ray (fullscreen.vert); only its direction is used, so no depth-to-ray scale.
     GLint farHalfExtent, farPlane;
     GLint projection, lightDirection, lightColor, viewToEnvironment, ao;
-    GLint environment, environmentBrdf, shIrradiance, environmentIntensity;
+    GLint environment, environmentFiltered, environmentFilteredScale, shIrradiance, environmentIntensity;
     GLint gbuffer, baseColor, exposure, lumaInAlpha;
     GLint lightPositionRange, lightColorSpot, lightSpot;
   };
   static MaterialKind readKind(const Form& form, MaterialKind kind);
+  // The form as its program sees it: what a counting or background form does not read is left at its default.
+  static Form programForm(Form form);
   static ProgramSpec spec(const Form& form, MaterialKind kind, VertexKind vertex, EnvironmentLayout layout,
                           int lightsPerDraw);
   const Variant& variant(const Form& form, MaterialKind kind, VertexKind vertex);
-  void render(const PassContext& context, const Form& form, const std::string& output, float exposureScale,
-              const LightingSettings& settings);
+  void render(const PassContext& context, Form form, const std::string& output, float exposureScale);
 
   const EffectResources& resources_;
   // Built on first use: (form, the material kind it reads, the vertex kind).
@@ -157,7 +180,7 @@ class LightingEffect : public Effect {
   glm::vec4 backgroundHdr_;  // the clear colour's radiance in scene-color's encoding, as clear-colour channels
   EnvironmentLayout layout_;              // where the prefiltered levels live (RendererOptions::environmentLayout)
   int lightsPerDraw_;                     // punctualLightsPerDraw of the context's fragment uniform vectors
-  int environmentBrdfUnit_;               // TextureUnits::environmentBrdf
+  int environmentFilteredUnit_;           // TextureUnits::environmentFiltered
   EnvironmentCache environments_;         // the environment in use (lighting.environment), prepared before planning
 };
 
