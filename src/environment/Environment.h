@@ -130,8 +130,6 @@ struct EnvironmentFilterError {
 };
 inline constexpr EnvironmentFilterError kEnvironmentFilterBound{0.0, 0.02, 0.05};
 constexpr int kEnvironmentFilterSamples = 4096;
-// Which storage PrefilteredEnvironment::of chooses: by the bound, or one forced (the tests compare both).
-enum class EnvironmentFiltering { Measured, ByHand, Hardware };
 // One level encoded with `kind` and `scale` and read through the bilinear filter at `samples` random points (seeded),
 // against the filter over its linear texels. eightBitFilter: the filter's output rounded to 8 bits per channel.
 EnvironmentFilterError environmentFilterError(const EnvironmentImage& level, EnvironmentEncodingKind kind, float scale,

@@ -12,8 +12,8 @@ namespace {
 struct Prepared {
   PrefilteredEnvironment specular;
   ShIrradiance sh;
-  explicit Prepared(const EnvironmentImage& image)
-      : specular(PrefilteredEnvironment::of(image)), sh(ShIrradiance::project(image)) {}
+  Prepared(const EnvironmentImage& image, EnvironmentFiltering filtering)
+      : specular(PrefilteredEnvironment::of(image, 4096, filtering)), sh(ShIrradiance::project(image)) {}
 };
 
 // The built-in environments prepared so far in this process, most recently used first. Eight of them (about 4 MB
@@ -25,11 +25,12 @@ class BuiltinEnvironments {
     return builtins;
   }
 
-  std::shared_ptr<const Prepared> get(const std::string& name, const glm::vec3& skySun) {
+  std::shared_ptr<const Prepared> get(const std::string& name, const glm::vec3& skySun,
+                                      EnvironmentFiltering filtering) {
     {
       std::lock_guard<std::mutex> lock(mutex_);
       for (auto it = entries_.begin(); it != entries_.end(); ++it)
-        if (it->name == name && (name != "sky" || it->skySun == skySun)) {
+        if (it->name == name && (name != "sky" || it->skySun == skySun) && it->filtering == filtering) {
           entries_.splice(entries_.begin(), entries_, it);
           return entries_.front().prepared;
         }
@@ -37,9 +38,10 @@ class BuiltinEnvironments {
     // Prepared outside the lock: a second thread asking for the same one prepares it twice, which is only time.
     auto prepared = std::make_shared<const Prepared>(
         name == "sky" ? ProceduralSky{skySun}.image(kEnvironmentWidth, kEnvironmentHeight)
-                      : uniformEnvironment(glm::vec3(1.0f)));
+                      : uniformEnvironment(glm::vec3(1.0f)),
+        filtering);
     std::lock_guard<std::mutex> lock(mutex_);
-    entries_.push_front({name, skySun, prepared});
+    entries_.push_front({name, skySun, filtering, prepared});
     if (entries_.size() > kCapacity) entries_.pop_back();
     return prepared;
   }
@@ -49,6 +51,7 @@ class BuiltinEnvironments {
   struct Entry {
     std::string name;
     glm::vec3 skySun;
+    EnvironmentFiltering filtering;
     std::shared_ptr<const Prepared> prepared;
   };
   std::mutex mutex_;
@@ -63,7 +66,8 @@ void EnvironmentCache::use(const std::string& name, const glm::vec3& skySunDirec
   name_ = name;
   skySun_ = skySunDirection;
   if (sky || name == "uniform") {
-    const std::shared_ptr<const Prepared> prepared = BuiltinEnvironments::instance().get(name, skySunDirection);
+    const std::shared_ptr<const Prepared> prepared =
+        BuiltinEnvironments::instance().get(name, skySunDirection, filtering_);
     current_ = std::make_unique<GpuEnvironment>(layout_, prepared->specular, prepared->sh);
     return;
   }
@@ -73,12 +77,13 @@ void EnvironmentCache::use(const std::string& name, const glm::vec3& skySunDirec
   } catch (const InputError&) {
     // name_ keeps the file's name, so the next frame asking for it again does not retry it.
     if (!current_) {
-      const std::shared_ptr<const Prepared> fallback = BuiltinEnvironments::instance().get("sky", skySunDirection);
+      const std::shared_ptr<const Prepared> fallback =
+          BuiltinEnvironments::instance().get("sky", skySunDirection, filtering_);
       current_ = std::make_unique<GpuEnvironment>(layout_, fallback->specular, fallback->sh);
     }
     throw;
   }
-  const Prepared prepared(image);
+  const Prepared prepared(image, filtering_);
   current_ = std::make_unique<GpuEnvironment>(layout_, prepared.specular, prepared.sh);
 }
 

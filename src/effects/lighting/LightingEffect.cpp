@@ -40,6 +40,14 @@ const std::vector<Parameter<LightingSettings>>& LightingSettings::parameters() {
           &S::quality,
           {{"low", LightingQuality::Low}, {"medium", LightingQuality::Medium}, {"high", LightingQuality::High}})
           .primary(),
+      choiceParameter<S, LightingDepth>(
+          "depth",
+          "where the lighting finds each pixel's visible surface when nothing else draws the G-buffer (the AO off): "
+          "the G-buffer pass, a depth pre-pass, or its own depth test shading overdrawn fragments; auto: the "
+          "cheapest measured for the tier",
+          &S::depth,
+          {{"auto", LightingDepth::Auto}, {"gbuffer", LightingDepth::GBuffer}, {"prepass", LightingDepth::Prepass},
+           {"overdraw", LightingDepth::Overdraw}}),
       numberParameter<S>("sun-elevation", -90, 90, "degrees",
                          "the sun's height above the horizon (with the sky: the sky is made again, about a second)",
                          &S::sunElevation)
@@ -81,6 +89,12 @@ void LightingSettings::applyPreset(QualityPreset which) {
 }
 
 bool LightingSettings::matchesPreset(QualityPreset which) const { return quality == qualityOf(which); }
+
+LightingDepth LightingSettings::depthInUse(bool deferredForm) const {
+  if (depth != LightingDepth::Auto) return depth;
+  if (quality == LightingQuality::Low) return LightingDepth::Overdraw;
+  return deferredForm ? LightingDepth::GBuffer : LightingDepth::Prepass;
+}
 
 glm::vec3 LightingSettings::directionToSun() const {
   const float elevation = glm::radians(sunElevation), azimuth = glm::radians(sunAzimuth);
@@ -328,7 +342,8 @@ LightingEffect::LightingEffect(const EffectResources& resources)
       layout_(GpuEnvironment::layoutFor(resources.caps, resources.options.environmentLayout)),
       lightsPerDraw_(punctualLightsPerDraw(resources.caps.maxFragmentUniformVectors)),
       environmentFilteredUnit_(TextureUnits::environmentFiltered(resources.caps)),
-      environments_(layout_) {
+      drawBuffers_(resources.caps.drawBuffers && resources.options.allowDrawBuffers),
+      environments_(layout_, resources.options.environmentFiltering) {
   const HdrTexel t = encodeHdr(light_.background);
   backgroundHdr_ = glm::vec4(LinearDepthPacking::channelFromByte(t[0]), LinearDepthPacking::channelFromByte(t[1]),
                              LinearDepthPacking::channelFromByte(t[2]), LinearDepthPacking::channelFromByte(t[3]));
@@ -347,9 +362,14 @@ void LightingEffect::plan(FramePlanner& planner) {
   const int op = static_cast<int>(tone.op);
   auto with = [&](std::vector<std::string> more) {
     std::vector<std::string> all = reads;
-    all.insert(all.end(), more.begin(), more.end());
+    for (std::string& target : more)
+      if (std::find(all.begin(), all.end(), target) == all.end()) all.push_back(std::move(target));
     return all;
   };
+  // The G-buffer's depth also when nothing else needs the G-buffer, where that is the cheaper (LightingDepth).
+  const LightingSettings& lighting = planner.settings().of<LightingSettings>();
+  const bool deferredForm = drawBuffers_ && !planner.frame().forwardLighting;
+  if (lighting.depthInUse(deferredForm) == LightingDepth::GBuffer) reads.push_back("gbuffer");
   auto runAs = [this, scale = tone.exposureScale](Form form, std::string output) {
     return [this, form, output, scale](PassContext& context) { render(context, form, output, scale); };
   };
@@ -502,7 +522,27 @@ void LightingEffect::render(const PassContext& context, Form form, const std::st
     glClearColor(clear.r, clear.g, clear.b, clear.a);
   }
   glEnable(GL_DEPTH_TEST);
-  if (context.sharesDepth(output) && stencil_) {
+  // The depth pre-pass (LightingDepth::Prepass) where the pass has a depth of its own: the scene's nearest depth
+  // first, with the counting forms' trivial fragment stage (the alpha test only) and colour writes off; then the
+  // shading over it, as over the G-buffer's.
+  const bool prepass = !context.sharesDepth(output) &&
+                       settings.depthInUse(drawBuffers_ && !context.frame().forwardLighting) == LightingDepth::Prepass;
+  if (prepass) {
+    glClearDepthf(1.0f);
+    glClear(GL_DEPTH_BUFFER_BIT);
+    glDepthFunc(GL_LESS);
+    glColorMask(GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
+    const Form depthOnly{false, true, -1, false};
+    context.scene().draw(camera.view, [&](MaterialKind kind, VertexKind vertex) -> const GeometryUniforms& {
+      const Variant& v = variant(depthOnly, kind, vertex);
+      v.program.use();
+      Program::set(v.projection, camera.projection);
+      return v.geometry;
+    });
+    glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
+  }
+  const bool overDepth = context.sharesDepth(output) || prepass;
+  if (overDepth && stencil_) {
     // The G-buffer's depth holds each pixel's nearest surface: GL_EQUAL lets only that surface's fragments through,
     // and the stencil (0, set to 1 by the first that passes) only the first of them. A coplanar or edge-on face at
     // exactly that depth is not shaded again: GL_EQUAL alone would shade it too (the shading-count test caught it at
@@ -514,7 +554,7 @@ void LightingEffect::render(const PassContext& context, Form form, const std::st
     glEnable(GL_STENCIL_TEST);
     glStencilFunc(GL_EQUAL, 0, 0xFF);
     glStencilOp(GL_KEEP, GL_KEEP, GL_INCR);
-  } else if (context.sharesDepth(output)) {
+  } else if (overDepth) {
     // Without a stencil buffer: GL_LESS against that depth pulled one resolvable step towards the camera, writing
     // depth, so a later fragment of the same depth fails. Faces seen exactly edge-on may still shade a pixel twice
     // (a hidden one within that step, drawn first); the visible surface, drawn after, still wins.

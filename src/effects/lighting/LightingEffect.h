@@ -64,12 +64,31 @@ namespace obscura {
 //           reflection's horizon occlusion where a normal texture tilts it below the surface (Russell 2015).
 enum class LightingQuality { Low = 0, Medium = 1, High = 2 };
 
+// Where the lighting finds each pixel's visible surface when no other effect draws the G-buffer (the AO off, and no
+// fog, DoF, edges, TAA or motion blur). With the G-buffer, every form shades each pixel once: the deferred form by
+// construction, the forward form by testing GL_EQUAL against the G-buffer's depth.
+//   gbuffer   the G-buffer pass runs anyway: the deferred form where it can shade the scene, else the forward form
+//             over its depth.
+//   prepass   the forward form draws the scene's depth first (colour writes off, the counting form's trivial
+//             fragment stage), then shades over it as over the G-buffer's: two geometry draws, one shading per pixel.
+//   overdraw  the forward form tests its own depth, shading every fragment that is nearer than those drawn before it
+//             (front to back: GpuScene's order).
+//   auto      the medium and high tiers shade each pixel once: gbuffer where the deferred form can shade the scene
+//             (one geometry pass and a full-screen one), else prepass (two geometry passes, the first with no colour
+//             to write, where the G-buffer's would write its normals too); the low tier's shading costs about what a
+//             depth test saves, so it takes overdraw (one geometry pass). docs/lighting.md, "AO off", measures all
+//             three on llvmpipe and SwiftShader.
+enum class LightingDepth { Auto, GBuffer, Prepass, Overdraw };
+
 // The sun: an overcast key light over a strong sky dome, so that ambient carries most of the light and AO reads
 // clearly. Its illuminance is colour x intensity; the default intensity pi makes a white Lambertian surface facing it
 // reflect its colour, as the lighting did before the BRDF had its 1 / pi.
 struct LightingSettings : ParameterAccess<LightingSettings> {
   LightingQuality quality = LightingQuality::Medium;
   QualityPreset preset = QualityPreset::Medium;  // the frame preset `quality` came from (applyPreset)
+  LightingDepth depth = LightingDepth::Auto;
+  // What `depth` resolves to with these settings, in a frame whose lighting can take the deferred form or not.
+  LightingDepth depthInUse(bool deferredForm) const;
   float sunElevation = 54.525961f;  // degrees above the horizon (world +y up)
   float sunAzimuth = 52.125016f;    // degrees from +z towards +x
   glm::vec3 sunColor{0.50f, 0.48f, 0.44f};  // linear
@@ -181,6 +200,7 @@ class LightingEffect : public Effect {
   EnvironmentLayout layout_;              // where the prefiltered levels live (RendererOptions::environmentLayout)
   int lightsPerDraw_;                     // punctualLightsPerDraw of the context's fragment uniform vectors
   int environmentFilteredUnit_;           // TextureUnits::environmentFiltered
+  bool drawBuffers_;                      // the G-buffer pass writes the base colour (GBufferEffect's same test)
   EnvironmentCache environments_;         // the environment in use (lighting.environment), prepared before planning
 };
 
