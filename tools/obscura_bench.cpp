@@ -31,6 +31,11 @@
 //   9. temporal AO (--temporal-ao-only: this alone): the default AO in one frame against 4 taps accumulated by
 //      ao.temporal (default blur, a 5-tap and a 3-tap one), and 4 taps alone, taking turns frame by frame at 640x360
 //      and 1280x720 on the still room (DIR/temporal_ao.csv)
+//  10. the lighting (--lighting-only: this alone), on 2CylinderEngine.glb and the metallic-roughness sample at
+//      640x360 and 1280x720, all configurations of a scene and size taking turns frame by frame: the AO on against
+//      the AO off with each lighting.depth, at the medium and low tiers; each tier's lighting pass, and its error
+//      against the high tier's image; the environment's rough levels filtered by hand against the hardware's filter
+//      (DIR/lighting.csv)
 #include <algorithm>
 #include <cstdio>
 #include <cstdlib>
@@ -88,6 +93,7 @@ struct Options {
   bool effectsOnly = false;     // section 8 alone
   bool finishOnly = false;      // section 8c alone
   bool temporalAoOnly = false;  // section 9 alone
+  bool lightingOnly = false;    // section 10 alone
 };
 
 struct BenchScene {
@@ -304,6 +310,7 @@ Options parseOptions(int argc, char** argv) {
     else if (arg == "--effects-only") options.effectsOnly = true;
     else if (arg == "--finish-only") options.finishOnly = true;
     else if (arg == "--temporal-ao-only") options.temporalAoOnly = true;
+    else if (arg == "--lighting-only") options.lightingOnly = true;
     else throw InputError("unknown option '" + arg + "' (usage: obscura-bench [--out DIR] [--frames N] "
                           "[--backend osmesa|egl] [--quick] [--estimators-only] [--motion-only] [--effects-only] "
                           "[--finish-only] [--temporal-ao-only])");
@@ -440,6 +447,132 @@ void temporalAoSection(const Options& options, HeadlessContext& context, const B
                   timers[c].medianMs("blur-v"), timers[c].medianMs("velocity"), effect / reference);
       csv << w << "," << h << ",\"" << configurations[c].name << "\"," << effect << "," << timers[c].medianMs("sao")
           << "," << timers[c].medianMs("ao-temporal") << "," << blur << "," << timers[c].medianMs("velocity") << "\n";
+    }
+  }
+}
+
+// Section 10: what the lighting's choices cost, and the tiers' error. One Renderer per configuration (its own
+// RendererOptions: the environment's storage), all taking turns frame by frame after a warm-up; the frame's ms is the
+// sum of its passes' medians.
+void lightingSection(const Options& options, HeadlessContext& context) {
+  struct Configuration {
+    std::string name;
+    std::string state;  // parameters as NAME=VALUE&...
+    EnvironmentFiltering filtering = EnvironmentFiltering::Measured;
+  };
+  auto settingsOf = [](const std::string& state) {
+    RenderSettings settings;
+    for (size_t begin = 0; begin < state.size();) {
+      const size_t end = std::min(state.find('&', begin), state.size());
+      const std::string pair = state.substr(begin, end - begin);
+      const size_t eq = pair.find('=');
+      settings.set(pair.substr(0, eq), pair.substr(eq + 1));
+      begin = end + 1;
+    }
+    return settings;
+  };
+  const std::vector<Configuration> configurations = {
+      {"AO on", ""},
+      {"AO off, depth gbuffer", "ao=off&lighting.depth=gbuffer"},
+      {"AO off, depth prepass", "ao=off&lighting.depth=prepass"},
+      {"AO off, depth overdraw", "ao=off&lighting.depth=overdraw"},
+      {"low: AO on", "preset=low"},
+      {"low: AO off, gbuffer", "preset=low&ao=off&lighting.depth=gbuffer"},
+      {"low: AO off, prepass", "preset=low&ao=off&lighting.depth=prepass"},
+      {"low: AO off, overdraw", "preset=low&ao=off&lighting.depth=overdraw"},
+      {"tier low", "lighting.quality=low"},
+      {"tier high", "lighting.quality=high"},
+      {"levels by hand", "", EnvironmentFiltering::ByHand},
+      {"levels filtered", "", EnvironmentFiltering::Hardware},
+  };
+  struct Subject {
+    std::string name;
+    Scene scene;
+    float scale;
+  };
+  std::vector<Subject> subjects;
+  subjects.push_back({"2CylinderEngine", loadGltfFile(kEnginePath), kEngineScale});
+  subjects.push_back({"pbr-samples", loadGltfFile(std::string(OBSCURA_SOURCE_DIR) + "/assets/scenes/pbr-samples.glb"),
+                      1.0f});
+  std::ofstream csv(options.outDir + "/lighting.csv");
+  csv << "scene,width,height,configuration,frame_ms,gbuffer_ms,lighting_ms,display_mae_vs_high,display_p99_vs_high\n";
+  std::printf("\n10. The lighting, %s; median ms of %d frames, all configurations taking turns; frame = the sum of its "
+              "passes\n", context.caps().renderer.c_str(), options.frames);
+  std::printf("%-16s %-10s %-24s %9s %9s %9s\n", "scene", "size", "configuration", "frame", "G-buffer", "lighting");
+  const std::vector<std::pair<int, int>> sizes =
+      options.quick ? std::vector<std::pair<int, int>>{{320, 180}} : std::vector<std::pair<int, int>>{{640, 360},
+                                                                                                       {1280, 720}};
+  for (Subject& subject : subjects) {
+    scaleScene(subject.scene, subject.scale);
+    for (auto [w, h] : sizes) {
+      const Camera camera = Camera::fit(subject.scene.worldBounds(), w, h);
+      const gl::RenderTarget output("bench output", w, h, GL_NEAREST, gl::RenderTarget::Depth::Renderbuffer,
+                                    context.caps().depth24, context.caps().packedDepthStencil);
+      const OutputTarget target{output.framebuffer(), w, h, {}};
+      std::vector<std::unique_ptr<Renderer>> renderers;
+      std::vector<RenderSettings> settings;
+      for (const Configuration& c : configurations) {
+        RendererOptions rendererOptions;
+        rendererOptions.environmentFiltering = c.filtering;
+        renderers.push_back(std::make_unique<Renderer>(context.caps(), rendererOptions));
+        renderers.back()->setScene(subject.scene);
+        settings.push_back(settingsOf(c.state));
+      }
+      std::vector<FinishPassTimer> timers(configurations.size());
+      FrameOptions frame;
+      for (int f = -3; f < options.frames; ++f)
+        for (size_t c = 0; c < configurations.size(); ++c) {
+          frame.timer = f < 0 ? nullptr : &timers[c];
+          renderers[c]->render(camera, settings[c], View::Final, target, frame);
+        }
+      // The tiers' images against the high tier's: the display colour (FXAA off, so the lighting writes it) over the
+      // pixels the scene covers, in 8-bit steps.
+      std::map<std::string, std::vector<std::uint8_t>> images;
+      std::vector<std::uint8_t> gbuffer;
+      for (const char* tier : {"low", "medium", "high"}) {
+        RenderSettings still = settingsOf(std::string("fxaa=off&lighting.quality=") + tier);
+        FrameOptions keep;
+        keep.retain = {"display-color", "gbuffer"};
+        renderers[0]->render(camera, still, View::Final, target, keep);
+        images[tier] = renderers[0]->retained("display-color").readRgba();
+        gbuffer = renderers[0]->retained("gbuffer").readRgba();
+      }
+      auto errorAgainstHigh = [&](const std::string& tier) {
+        std::vector<int> errors;
+        for (size_t i = 0; i < gbuffer.size(); i += 4) {
+          if (gbuffer[i + 2] == 255 && gbuffer[i + 3] == 255) continue;  // background
+          int worst = 0;
+          for (size_t k = 0; k < 3; ++k) worst = std::max(worst, std::abs(images[tier][i + k] - images["high"][i + k]));
+          errors.push_back(worst);
+        }
+        double mean = 0.0;
+        for (int e : errors) mean += e;
+        std::sort(errors.begin(), errors.end());
+        return std::make_pair(errors.empty() ? 0.0 : mean / static_cast<double>(errors.size()),
+                              errors.empty() ? 0 : errors[errors.size() * 99 / 100]);
+      };
+      for (size_t c = 0; c < configurations.size(); ++c) {
+        double frameMs = 0.0;
+        for (const std::string& pass : benchPasses()) frameMs += timers[c].medianMs(pass);
+        const std::string size = std::to_string(w) + "x" + std::to_string(h);
+        std::string error;
+        double mae = 0.0;
+        int p99 = 0;
+        const std::string tier = c == 0 ? "medium" : c == 8 ? "low" : c == 9 ? "high" : "";
+        if (!tier.empty()) {
+          std::tie(mae, p99) = errorAgainstHigh(tier);
+          char text[80];
+          std::snprintf(text, sizeof text, "  %s tier against high: mean %.2f, p99 %d (8-bit steps)", tier.c_str(),
+                        mae, p99);
+          error = text;
+        }
+        std::printf("%-16s %-10s %-24s %9.2f %9.2f %9.2f%s\n", subject.name.c_str(), size.c_str(),
+                    configurations[c].name.c_str(), frameMs, timers[c].medianMs("gbuffer"),
+                    timers[c].medianMs("lighting"), error.c_str());
+        csv << subject.name << "," << w << "," << h << ",\"" << configurations[c].name << "\"," << frameMs << ","
+            << timers[c].medianMs("gbuffer") << "," << timers[c].medianMs("lighting") << "," << mae << "," << p99
+            << "\n";
+      }
     }
   }
 }
@@ -773,6 +906,10 @@ int main(int argc, char** argv) {
     if (std::system(("mkdir -p '" + options.outDir + "'").c_str()) != 0)
       throw InputError(options.outDir + ": cannot create");
     HeadlessContext context(options.backend);
+    if (options.lightingOnly) {
+      lightingSection(options, context);
+      return 0;
+    }
     std::printf("obscura-bench: %s (%s), %d frames per figure (median), passes bounded by glFinish\n",
                 backendName(options.backend), context.caps().renderer.c_str(), options.frames);
 

@@ -23,6 +23,7 @@
 namespace obscura {
 
 class FramePlanner;
+class FrameSettings;
 class PassContext;
 
 // A target's size relative to the frame (the output size). Half and quarter are floor(size / 2^k), at least 1 pixel
@@ -132,6 +133,9 @@ class Effect {
   // Adds this frame's passes (none: the effect has nothing to do with these settings). Called in table order for
   // every effect that is on, and for the effect whose target the frame's debug view shows.
   virtual void plan(FramePlanner& planner) = 0;
+  // Loads or makes what this frame's passes will read with these settings (the lighting's environment), before the
+  // frame is planned, so that plan() only declares passes. Called every frame for every effect, on or off.
+  virtual void prepare(const FrameSettings& settings) { (void)settings; }
 };
 
 }  // namespace obscura

@@ -246,6 +246,7 @@ void Renderer::endFrame() {
 
 void Renderer::run(const RenderSettings& settings, const View& view, const OutputTarget& output,
                    const FrameOptions& options) {
+  for (const std::unique_ptr<Effect>& effect : effects_) effect->prepare(settings);
   plan_ = plan(settings, frame_, view, options.retain, options.externalGBuffer);
 
   for (size_t i = 0; i < plan_.passes().size(); ++i) {
