@@ -195,20 +195,30 @@ LineScore score(const test::RenderedImage& off, const test::RenderedImage& on, c
 TEST(Edges, TheSecondDifferenceOfReciprocalDepthIsZeroOnPlanesAndTheJumpAtProfiles) {
   // A plane seen at any slant: 1/z = a + b x along a row. Its first-order relative difference grows with the slant;
   // eq. 1 stays 0.
+  const EdgeDetector perspective;
   for (float slope : {0.0f, 0.01f, 0.05f, 0.2f}) {
     auto z = [slope](float x) { return 1.0f / (0.25f - slope * 0.001f * x); };
-    const float d = EdgeDetector::relativeSecondDifference(z(100.0f), z(99.0f), z(101.0f));
+    const float d = perspective.relativeSecondDifference(z(100.0f), z(99.0f), z(101.0f));
     EXPECT_NEAR(d, 0.0f, 1e-5f) << "slope " << slope;
   }
   // A profile: a flat near side at 4 m over a far side at 5 m. The near pixel sees the relative jump, negative;
   // the far pixel the same positive; the background is 1/z = 0.
-  EXPECT_NEAR(EdgeDetector::relativeSecondDifference(4.0f, 4.0f, 5.0f), 4.0f / 5.0f - 1.0f, 1e-6f);
-  EXPECT_GT(EdgeDetector::relativeSecondDifference(5.0f, 4.0f, 5.0f), 0.0f);
-  EXPECT_NEAR(EdgeDetector::relativeSecondDifference(4.0f, 4.0f, 0.0f), -1.0f, 1e-6f);
+  EXPECT_NEAR(perspective.relativeSecondDifference(4.0f, 4.0f, 5.0f), 4.0f / 5.0f - 1.0f, 1e-6f);
+  EXPECT_GT(perspective.relativeSecondDifference(5.0f, 4.0f, 5.0f), 0.0f);
+  EXPECT_NEAR(perspective.relativeSecondDifference(4.0f, 4.0f, 0.0f), -1.0f, 1e-6f);
   // Scale-aware: the scene and camera scaled by k give the same value.
   for (float k : {0.01f, 1.0f, 300.0f})
-    EXPECT_NEAR(EdgeDetector::relativeSecondDifference(4.0f * k, 4.1f * k, 6.0f * k),
-                EdgeDetector::relativeSecondDifference(4.0f, 4.1f, 6.0f), 1e-5f);
+    EXPECT_NEAR(perspective.relativeSecondDifference(4.0f * k, 4.1f * k, 6.0f * k),
+                perspective.relativeSecondDifference(4.0f, 4.1f, 6.0f), 1e-5f);
+  // Orthographic: depth itself is affine on a plane, so its second difference is 0 at any slant; a jump counts
+  // relative to the view's height L, as the perspective measure does at z = L to first order.
+  const EdgeDetector orthographic = EdgeDetector::of(EdgesSettings{}, 0.0f, 100.0f, 8.0f);
+  for (float slope : {0.0f, 0.05f, 3.0f})
+    EXPECT_NEAR(orthographic.relativeSecondDifference(10.0f, 10.0f - slope, 10.0f + slope), 0.0f, 1e-5f);
+  EXPECT_NEAR(orthographic.relativeSecondDifference(4.0f, 4.0f, 4.08f), -0.01f, 1e-6f);
+  EXPECT_NEAR(orthographic.relativeSecondDifference(4.0f, 4.0f, 4.08f),
+              perspective.relativeSecondDifference(8.0f, 8.0f, 8.08f), 1e-4f);
+  EXPECT_LT(orthographic.relativeSecondDifference(4.0f, 4.0f, 0.0f), -1e6f) << "a background neighbour";
 }
 
 TEST(Edges, CoverageAndToonBands) {
@@ -390,7 +400,7 @@ TEST(Edges, ASlantedPlaneIsNotAnEdge) {
         const float za = detector.viewDepth(&gbuffer[(i - kWidth) * 4]);
         const float zb = detector.viewDepth(&gbuffer[(i + kWidth) * 4]);
         firstOrder = std::max(firstOrder, std::abs(zb - za) / (2.0f * z));
-        secondOrder = std::max(secondOrder, std::abs(EdgeDetector::relativeSecondDifference(z, za, zb)));
+        secondOrder = std::max(secondOrder, std::abs(detector.relativeSecondDifference(z, za, zb)));
       }
     // No pixel marked, and the image as without the lines (to one step: the two frames' AO may round apart).
     int marked = 0, changed = 0;

@@ -70,6 +70,10 @@ struct TuningConfig {
   float reportFactor = 1.0f;         // the one the per-view tables and pictures show
   int evaluations = 40;         // Nelder-Mead budget for the first preset fitted at each knot
   int followEvaluations = 15;   // ... and for the others, which start from its result
+  // Where --report writes in the document: between <!-- obscura-tune:begin --> and <!-- obscura-tune:end -->, or, for
+  // a section named S, <!-- obscura-tune:S:begin --> and <!-- obscura-tune:S:end --> (another set of views measured
+  // with the same defaults, e.g. tools/orthographic-views.json).
+  std::string reportSection;
   std::vector<ViewSpec> views;
 };
 
@@ -93,6 +97,7 @@ TuningConfig loadConfig(const std::string& path) {
     config.reportFactor = json.value("report_factor", 1.0f);
     config.evaluations = json.value("evaluations", 40);
     config.followEvaluations = json.value("follow_evaluations", 15);
+    config.reportSection = json.value("report_section", std::string());
     for (const auto& view : json.at("views")) {
       ViewSpec spec;
       spec.name = view.at("name").get<std::string>();
@@ -246,7 +251,7 @@ std::vector<TuningCase> loadReferences(TuningView& view, const Scene& scene, con
   }
   // h = min(projScale r / -z, maxScreenRadius * height), as SaoKernel::diskRadiusPixels at G-buffer resolution.
   const AoSettings defaults;
-  const float projScale =
+  const glm::vec2 projScale =
       FrameCamera::from(view.camera, view.camera.width, view.camera.height).projScale(view.camera.height);
   const float maxPixels = defaults.maxScreenRadius * static_cast<float>(view.camera.height);
   for (TuningCase& c : cases) {
@@ -905,7 +910,9 @@ void report(std::vector<TuningCase>& cases, std::vector<TuningView>& views, cons
   }
 
   // Replace the generated part of the document, between the markers, keeping the prose around it.
-  const std::string begin = "<!-- obscura-tune:begin -->", end = "<!-- obscura-tune:end -->";
+  const std::string section = config.reportSection.empty() ? "" : config.reportSection + ":";
+  const std::string begin = "<!-- obscura-tune:" + section + "begin -->";
+  const std::string end = "<!-- obscura-tune:" + section + "end -->";
   std::ifstream in(docPath);
   if (!in) throw InputError(docPath + ": cannot open (the report goes between " + begin + " and " + end + ")");
   std::stringstream text;

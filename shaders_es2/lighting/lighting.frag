@@ -30,6 +30,7 @@
 #endif
 #include "lib/material.glsl"
 #include "lib/pbr.glsl"
+#include "lib/reconstruct.glsl"  // the eye's rays, perspective or orthographic
 
 #if DEFERRED
 uniform sampler2D u_gbuffer;    // RG normal, BA depth code
@@ -90,7 +91,7 @@ vec3 ambientLight(vec3 n, vec3 v, vec3 diffuseColor, vec3 f0, float roughness, f
 
 // The lit colour of a surface point: p its view-space position, n its shading normal (unit, facing the viewer).
 vec3 shade(vec3 base, float metallic, float roughness, vec3 p, vec3 n, float occlusion, vec3 emissive) {
-  vec3 v = -normalize(p);
+  vec3 v = -eyeRayDirection(p);
   roughness = clamp(roughness, PBR_MIN_ROUGHNESS, 1.0);
   metallic = clamp(metallic, 0.0, 1.0);
   vec3 diffuseColor = base * (1.0 - metallic);
@@ -113,8 +114,9 @@ vec3 shade(vec3 base, float metallic, float roughness, vec3 p, vec3 n, float occ
   return color;
 }
 
-// What the eye sees where no geometry is, towards the view-space direction `ray`: the environment itself.
-vec3 background(vec3 ray) { return environmentSpecular(u_viewToEnvironment * ray, 0.0); }
+// What the eye sees where no geometry is, along the eye's ray through far-plane point `farRay`: the environment
+// itself (one colour for an orthographic camera, whose rays are parallel).
+vec3 background(vec3 farRay) { return environmentSpecular(u_viewToEnvironment * eyeRay(farRay), 0.0); }
 
 #if TONEMAP_INLINE
 #include "lib/tonemap.glsl"
@@ -139,8 +141,8 @@ void main() {
     return;
   }
   vec3 base = srgbToLinear(texture2D(u_baseColor, v_uv).rgb);
-  // Only the view direction matters to the shading here (no punctual lights take this form): the far plane's ray
-  // points from the eye through the pixel, as the surface's position does.
+  // Only the view direction matters to the shading here (no punctual lights take this form): the eye's ray through
+  // the far plane's point is the surface's (shade takes it through eyeRayDirection).
   gl_FragColor = encodeOutput(shade(base, 0.0, 1.0, v_farRay, decodeNormal(g.rg), texture2D(u_ao, v_uv).r, vec3(0.0)));
 }
 #else

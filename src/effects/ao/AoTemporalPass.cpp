@@ -80,7 +80,7 @@ void AoTemporalPass::render(const gl::Texture2D& rawAo, const gl::Texture2D& vel
   const ViewReconstruction& previous = frame.previousCamera.reconstruction;
   Program::set(previousFarHalfExtent_, previous.farHalfExtent);
   Program::set(previousFarPlane_, previous.far);
-  Program::set(previousDepthToRay_, glm::vec2(previous.depthScale, previous.depthBias));
+  Program::set(previousDepthToRay_, previous.depthToRay);
   Program::set(previousViewToView_, frame.camera.view * glm::inverse(frame.previousCamera.view));
   resources_.triangle.draw();
 
