@@ -695,6 +695,7 @@ void guardBandStudy(std::vector<TuningCase>& cases, const HeadlessContext& conte
       wide.fovyDegrees = glm::degrees(2.0f * std::atan(std::tan(0.5f * view.camera.fovyRadians()) *
                                                         static_cast<float>(wide.height) /
                                                         static_cast<float>(view.camera.height)));
+      wide.ymag = view.camera.ymag * static_cast<float>(wide.height) / static_cast<float>(view.camera.height);
       AoSettings wideSettings = settings;
       wideSettings.maxScreenRadius =
           settings.maxScreenRadius * static_cast<float>(view.camera.height) / static_cast<float>(wide.height);
