@@ -104,7 +104,9 @@ TuningConfig loadConfig(const std::string& path) {
       const std::string scene = view.value("scene", std::string("builtin"));
       if (scene != "builtin") spec.input.scenePath = scene;
       spec.input.sceneScale = view.value("scene_scale", 1.0f);
-      spec.input.cameraPath = view.at("camera").get<std::string>();
+      // A camera file, or one of the scene's own cameras ("camera_node": its name or index, at time 0).
+      if (view.contains("camera_node")) spec.input.cameraNode = view.at("camera_node").get<std::string>();
+      else spec.input.cameraPath = view.at("camera").get<std::string>();
       spec.objectSize = view.at("object_size").get<float>();
       if (!(spec.objectSize > 0.0f)) fail("views: " + spec.name + ": object_size must be positive");
       spec.input.width = config.width;
