@@ -243,6 +243,34 @@ TEST(Edges, CoverageAndToonBands) {
 
 // Every pass against the mirror: the mask from the read-back G-buffer, then the drawn image from the image without
 // lines, in both styles, at widths that use radii 0 .. 4, with colour edges on.
+// Through an orthographic camera (the cube's view as wide at its target) the detect pass matches the orthographic
+// mirror: the cube's silhouette and creases are found, the floor (a plane seen at a slant) is not an edge.
+TEST(Edges, TheDetectPassMatchesTheOrthographicMirror) {
+  Renderer renderer = test::makeRenderer();
+  renderer.setScene(cubeOnAFloor());
+  const Camera camera = cubeCamera(4.0f).asOrthographic();
+  RenderSettings settings = plainFrame();
+  const EdgesSettings edges = linesOf(1.5f);
+  settings.of<EdgesSettings>() = edges;
+  test::render(renderer, camera, settings, View::Final, test::retaining({"gbuffer", "edges-mask"}));
+  const std::vector<std::uint8_t> gbuffer = renderer.retained("gbuffer").readRgba();
+  const std::vector<std::uint8_t> mask = renderer.retained("edges-mask").readRgba();
+  const FrameCamera frame = FrameCamera::from(camera, kWidth, kHeight);
+  const std::vector<EdgeFlags> expected =
+      EdgeDetector::of(edges, frame.near, frame.far, 2.0f * frame.halfExtent.y).detect(gbuffer, kWidth, kHeight);
+  int mismatches = 0, profiles = 0, creases = 0;
+  for (size_t i = 0; i < expected.size(); ++i) {
+    profiles += expected[i].profile;
+    creases += expected[i].crease;
+    mismatches += (mask[i * 4] > 127) != expected[i].profile || (mask[i * 4 + 1] > 127) != expected[i].crease;
+  }
+  std::printf("edges mask, orthographic: %d profile, %d crease pixels; %d differ from the mirror\n", profiles, creases,
+              mismatches);
+  EXPECT_LE(mismatches, 2);
+  EXPECT_GT(profiles, 100);
+  EXPECT_GT(creases, 100);
+}
+
 TEST(Edges, ThePassesMatchTheMirror) {
   Renderer renderer = test::makeRenderer();
   renderer.setScene(cubeOnAFloor());

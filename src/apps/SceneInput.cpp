@@ -99,6 +99,7 @@ SceneInput::Loaded SceneInput::load() const {
       throw InputError(std::string("--") + e.what());  // "--animation 'walk' is not in the scene; choices: ..."
     }
   }
+  loaded.bounds = loaded.scene.worldBounds();
   if (!cameraNode.empty()) {
     try {
       loaded.sceneCamera = parseSceneCamera(loaded.scene, cameraNode, "--camera-node");
@@ -114,7 +115,7 @@ SceneInput::Loaded SceneInput::load() const {
   } else if (cameraPath.empty()) {
     // Fitted at the output size: the frustum's aspect decides how much room the bounds need.
     if (fit || !scenePath.empty())
-      loaded.camera = Camera::fit(loaded.scene.worldBounds(), width > 0 ? width : 1280, height > 0 ? height : 720);
+      loaded.camera = Camera::fit(loaded.bounds, width > 0 ? width : 1280, height > 0 ? height : 720);
     else
       loaded.camera = builtinSceneCamera();
   }
@@ -131,8 +132,7 @@ Camera SceneInput::Loaded::cameraAt(double time) const {
   PoseOptions options;
   options.animation = animation;
   options.loop = true;  // as FrameOptions' default
-  return sceneCameraAt(scene, sceneCamera, evaluatePose(scene, time, options), scene.worldBounds(), camera.width,
-                       camera.height);
+  return sceneCameraAt(scene, sceneCamera, evaluatePose(scene, time, options), bounds, camera.width, camera.height);
 }
 
 Scene SceneInput::Loaded::posedAt(double time) const {

@@ -50,6 +50,7 @@ struct SceneInput {
     AnimationChoice animation;
     Camera camera;
     int sceneCamera = -1;  // --camera-node's index in Scene::cameras, for FrameOptions::sceneCamera; -1: none
+    Bounds bounds;         // the scene's at rest (a scene camera's planes hug them, as the Renderer's do)
     std::vector<std::string> warnings;
     // The scene as posed at `time` (evaluatePose, posedScene: skinned and morphed meshes baked), for a tool that
     // draws the scene itself rather than through the renderer (the ray-traced reference); a scene with nothing to

@@ -404,7 +404,8 @@ EMSCRIPTEN_KEEPALIVE const char* obscura_camera() {
   const ViewerState& state = g_app->viewer().state();
   Json cameras = Json::array();
   for (size_t i = 0; i < state.sceneCameras.size(); ++i)
-    cameras.push_back({{"name", state.sceneCameras[i].label(i)}, {"orthographic", state.sceneCameras[i].orthographic}});
+    cameras.push_back(
+        {{"name", state.sceneCameras[i].label(i)}, {"orthographic", state.sceneCameras[i].orthographic}});
   const Camera shown = g_app->viewer().cameraShown();
   const Camera& free = state.camera;
   return returned(Json{{"choice", state.cameraChoice()},

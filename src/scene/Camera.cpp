@@ -3,8 +3,8 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdlib>
-#include <limits>
 #include <fstream>
+#include <limits>
 #include <sstream>
 
 #include <glm/geometric.hpp>
@@ -121,8 +121,8 @@ Camera Camera::fromJson(const std::string& text, const std::string& source) {
       throw InputError(source + ": " + key + ": must be in 1 .. " + std::to_string(kMaxSize));
     out = static_cast<int>(value);
   };
-  static const char* known[] = {"eye",   "target", "up",   "fovy_deg", "focal_length_mm", "sensor_height_mm",
-                                "near",  "far",    "width", "height",  "type",            "ymag",
+  static const char* known[] = {"eye",  "target", "up",    "fovy_deg", "focal_length_mm", "sensor_height_mm",
+                                "near", "far",    "width", "height",   "type",            "ymag",
                                 "xmag", "aspect_ratio"};
   for (const auto& item : json.items()) {
     bool ok = false;
@@ -223,10 +223,6 @@ Camera Camera::fit(const Bounds& bounds, int width, int height, float fovyDegree
   camera.far = distance + radius * 1.05f;
   return camera;
 }
-
-}  // namespace obscura
-
-namespace obscura {
 
 Camera cameraOfScene(const SceneCamera& source, const glm::mat4& world, const Bounds& sceneBounds, int width,
                      int height) {

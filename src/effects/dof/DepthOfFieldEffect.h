@@ -89,7 +89,7 @@ struct ThinLens {
   float coc(float depth, float focus) const;
   // The diameter of the lens a pinhole camera samples (metres in the scene) so that its renders, each sheared to
   // keep the plane at P fixed, blur a point at D over projScale A' |1/D - 1/P| pixels: C's own magnitude, since
-  // C = s P / (P - F) (1/D - 1/P). `projScale`: pixels per metre at 1 m (FrameCamera::projScale).
+  // C = s P / (P - F) (1/D - 1/P). `projScale`: pixels per metre at 1 m (FrameCamera::projScale().x).
   float pinholeAperture(float focus, float projScale) const;
   // The orthographic camera's: the diameter of the disc of slopes (metres sideways per metre of depth) over which its
   // parallel rays tilt about the plane at P, so that a point at D moves over pixelsPerMetre T |D - P| pixels: the
