@@ -41,7 +41,6 @@ uniform float u_ditherOffset;  // per frame, [0, 1)
 // The previous frame's camera: its far-plane rays and depth scale (lib/reconstruct.glsl's uniforms, then), and the
 // transform of its view space into this frame's.
 uniform vec2 u_previousFarHalfExtent;
-uniform float u_previousFarPlane;
 uniform vec4 u_previousDepthToRay;
 uniform mat4 u_previousViewToView;
 uniform vec2 u_diskScale;         // r times projScale: h = u_diskScale.x / -z + u_diskScale.y (AoCentre's)
@@ -117,10 +116,11 @@ void main() {
 
   // 2. Rejection.
   vec2 historyUv = (gbufferPixelOf(historyPixel) + 0.5) / u_gbufferSize;
-  vec3 previousRay = vec3((historyUv * 2.0 - 1.0) * u_previousFarHalfExtent, -u_previousFarPlane);
+  vec2 previousRay = (historyUv * 2.0 - 1.0) * u_previousFarHalfExtent;
+  float previousDepth = historyCode * (1.0 / 65535.0);
   vec3 Q = (u_previousViewToView *
-            vec4(previousRay * (historyCode * (1.0 / 65535.0) * u_previousDepthToRay.xxz + u_previousDepthToRay.yyw),
-                 1.0)).xyz;
+            vec4(previousRay * (previousDepth * u_previousDepthToRay.x + u_previousDepthToRay.y),
+                 previousDepth * u_previousDepthToRay.z + u_previousDepthToRay.w, 1.0)).xyz;
   bool inside = all(greaterThanEqual(historyPixel, vec2(0.0))) && all(lessThan(historyPixel, u_aoSize));
   bool kept = u_historyValid > 0.5 && inside && !isBackgroundCode(historyCode) &&
               abs(dot(n, Q - C)) <= u_planeTolerance;

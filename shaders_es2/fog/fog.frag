@@ -45,8 +45,8 @@ void main() {
   bool background = isBackgroundCode(code);
   // The background's ray is the far-plane ray itself: only its direction counts.
   vec3 viewPosition = background ? v_farRay : viewPositionOnRay(v_farRay, code * (1.0 / 65535.0));
-  vec3 origin = eyeRayOrigin(viewPosition);
-  float d = fogDistance(viewPosition - origin, origin, background);
+  vec3 ray = eyeRay(viewPosition);  // from the eye, or from its plane (the origin: only height fog reads it)
+  float d = fogDistance(ray, viewPosition - ray, background);
 #if FOG_MODE == 0
   float f = clamp(u_factor.x - u_factor.y * d, 0.0, 1.0);
 #elif FOG_MODE == 1

@@ -1,8 +1,9 @@
 // View-space position from linear depth along the pixel's ray (Gravas 2013, eq. 3.1.3), perspective or orthographic.
 // CPU mirror: src/frame/ViewReconstruction.h, which derives the uniforms.
-//   F(uv) = ((2 uv - 1) * farHalfExtent, -far)       P = F(uv) * (d * depthToRay.xxz + depthToRay.yyw)
-// Perspective: depthToRay = (1 - near/far, near/far) twice, P on the eye's ray through F. Orthographic: xy (0, 1),
-// P on the parallel ray through F.
+//   F(uv) = ((2 uv - 1) * farHalfExtent, -far)
+//   P = (F.xy * (d * depthToRay.x + depthToRay.y), d * depthToRay.z + depthToRay.w)
+// Perspective: depthToRay.xy = (1 - near/far, near/far), P on the eye's ray through F. Orthographic: (0, 1), P on the
+// parallel ray through F. Both: depthToRay.zw = (near - far, -near), z = -(near + d (far - near)).
 uniform vec2 u_farHalfExtent;   // the far plane's half size: far * (tan(fovx / 2), tan(fovy / 2)), or the ortho view's
 uniform float u_farPlane;
 uniform vec4 u_depthToRay;      // (xy scale, xy bias, z scale, z bias)
@@ -10,9 +11,10 @@ uniform float u_perspective;    // 1: perspective, 0: orthographic (the eye rays
 
 vec3 farPlaneRay(vec2 uv) { return vec3((uv * 2.0 - 1.0) * u_farHalfExtent, -u_farPlane); }
 
-// One multiply-add per component, then a vec3 scale.
+// Two multiply-adds and two multiplies: as many as the perspective-only form's scalar multiply-add and vec3 scale.
 vec3 viewPositionOnRay(vec3 farRay, float linearDepth) {
-  return farRay * (linearDepth * u_depthToRay.xxz + u_depthToRay.yyw);
+  return vec3(farRay.xy * (linearDepth * u_depthToRay.x + u_depthToRay.y),
+              linearDepth * u_depthToRay.z + u_depthToRay.w);
 }
 
 // The ray the camera sees view-space point p along, from the eye's plane to p: p itself in perspective, along the

@@ -54,7 +54,7 @@ float halton(std::uint32_t index, std::uint32_t base) {
 
 ReconstructionUniforms::ReconstructionUniforms(const gl::Program& program)
     : farHalfExtent_(program.uniform("u_farHalfExtent")),
-      farPlane_(program.uniform("u_farPlane")),
+      farPlane_(program.optionalUniform("u_farPlane")),  // only where a pass reads the far plane's depth
       depthToRay_(program.uniform("u_depthToRay")),
       perspective_(program.optionalUniform("u_perspective")) {}  // only where a pass follows eye rays
 

@@ -6,12 +6,13 @@
 //   F(uv) = ((2 uv - 1) * farHalfExtent, -far),
 // farHalfExtent the far plane's half width and height: far * (tan(fovx/2), tan(fovy/2)) in perspective, the view's
 // own half extent in orthographic projection. Linear depth d = (-z - near)/(far - near) is linear in z under both, so
-//   z = -far * (d * (1 - near/far) + near/far).
-// In perspective the point lies on the eye's ray through F, at the fraction -z/far of it; in orthographic projection
-// on the parallel ray through F, with F's own x and y. Both are one multiply-add per component, then a vec3 scale:
-//   P = F(uv) * (d * depthToRay.xxz + depthToRay.yyw),
-//   depthToRay = (1 - near/far, near/far, 1 - near/far, near/far)   perspective
-//                (0,            1,        1 - near/far, near/far)   orthographic.
+//   z = -(near + d (far - near)).
+// In perspective the point lies on the eye's ray through F, at the fraction -z/far = d (1 - near/far) + near/far of
+// it; in orthographic projection on the parallel ray through F, with F's own x and y. Both are
+//   P = (F.xy * (d * depthToRay.x + depthToRay.y), d * depthToRay.z + depthToRay.w),
+//   depthToRay = (1 - near/far, near/far, near - far, -near)   perspective
+//                (0,            1,        near - far, -near)   orthographic,
+// two multiply-adds and two multiplies per pixel, as many as the perspective-only form F * (d (1 - n/f) + n/f) took.
 #include <cmath>
 
 #include <glm/geometric.hpp>
@@ -24,7 +25,7 @@ namespace obscura {
 struct ViewReconstruction {
   glm::vec2 farHalfExtent{1.0f};  // the far plane's half width and height
   float far = 1.0f;
-  glm::vec4 depthToRay{1.0f, 0.0f, 1.0f, 0.0f};  // (xy scale, xy bias, z scale, z bias), as above
+  glm::vec4 depthToRay{1.0f, 0.0f, -1.0f, 0.0f};  // (xy scale, xy bias, z scale, z bias), as above
   bool perspective = true;
 
   // `halfExtent`: Camera::halfExtent (tan of the half fields of view, or the orthographic view's half size).
@@ -34,8 +35,9 @@ struct ViewReconstruction {
     return glm::vec3((uv * 2.0f - 1.0f) * farHalfExtent, -far);
   }
   glm::vec3 viewPosition(const glm::vec2& uv, float linearDepth) const {
-    const float xy = linearDepth * depthToRay.x + depthToRay.y, z = linearDepth * depthToRay.z + depthToRay.w;
-    return farPlaneRay(uv) * glm::vec3(xy, xy, z);
+    const glm::vec3 farRay = farPlaneRay(uv);
+    return glm::vec3(glm::vec2(farRay) * (linearDepth * depthToRay.x + depthToRay.y),
+                     linearDepth * depthToRay.z + depthToRay.w);
   }
   // The unit direction of the ray the camera sees view-space point p along: from the eye in perspective, the view
   // axis (0, 0, -1) in orthographic projection.
@@ -59,8 +61,8 @@ inline ViewReconstruction ViewReconstruction::fromCamera(glm::vec2 halfExtent, f
   r.perspective = !orthographic;
   r.farHalfExtent = orthographic ? halfExtent : halfExtent * far;
   r.far = far;
-  const float scale = 1.0f - near / far, bias = near / far;
-  r.depthToRay = orthographic ? glm::vec4(0.0f, 1.0f, scale, bias) : glm::vec4(scale, bias, scale, bias);
+  r.depthToRay = orthographic ? glm::vec4(0.0f, 1.0f, near - far, -near)
+                              : glm::vec4(1.0f - near / far, near / far, near - far, -near);
   return r;
 }
 
