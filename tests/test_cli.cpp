@@ -26,6 +26,8 @@ TEST(Cli, BadInputExitsWithStatusTwoAndOneLine) {
   const std::string badJson = writeFile("bad.json", R"({"eye":[1,2,3],"target":)");
   const std::string badCamera = writeFile("near.json", R"({"eye":[0,0,5],"target":[0,0,0],"near":-1})");
   const std::string notGltf = writeFile("garbage.glb", "glTF this is not a binary glTF at all");
+  const std::string orthographicWithoutSize =
+      writeFile("ortho.json", R"({"eye":[0,0,5],"target":[0,0,0],"type":"orthographic"})");
   const std::string repairable = obscura::test::assimpModels() + "/BoxBadNormals-glTF-Binary/BoxBadNormals.glb";
   const std::pair<std::string, std::string> cases[] = {
       {"--scene /nonexistent/scene.glb", "/nonexistent/scene.glb: cannot open"},
@@ -45,6 +47,11 @@ TEST(Cli, BadInputExitsWithStatusTwoAndOneLine) {
       {"--bench many", "--bench: expected a whole number"},
       {"--backend vulkan", "--backend: expected osmesa or egl"},
       {"--fit --camera x.json", "--camera and --fit exclude each other"},
+      {"--fit --camera-node 0", "--camera-node: the file's camera excludes --camera and --fit"},
+      {"--camera-node 0", "--camera-node: the built-in scene has no cameras"},
+      {"--scene " + obscura::test::assimpModels() + "/cameras/Cameras.gltf --camera-node Top",
+       "--camera-node 'Top' is not one of the scene's cameras: 0 'camera 0', 1 'camera 1'"},
+      {"--camera " + orthographicWithoutSize, orthographicWithoutSize + ": ymag: missing"},
       {"--scene-scale 0", "--scene-scale: 0 is out of range"},
       {"--scene-scale big", "--scene-scale: expected a number"},
       {"--time -1", "--time: -1 is out of range (0 .. 1e+06 seconds)"},
@@ -115,6 +122,48 @@ TEST(Cli, FitFramesTheSceneForThePortraitSizeAsked) {
     }
   }
   EXPECT_GT(geometry, static_cast<size_t>(m.width * m.height) / 10);  // ... and still fills a good part of it
+}
+
+// A file's cameras (Debian's Cameras.gltf: a perspective and an orthographic camera, both with a square frame,
+// looking at a square): without --size the output takes the frame's shape; an output of another shape keeps the
+// whole frame, so the orthographic view of the square keeps its size in pixels along the side the frame fills.
+TEST(Cli, CameraNodeLooksThroughTheFilesCamerasAndKeepsTheirFrame) {
+  const std::string scene = "--scene " + obscura::test::assimpModels() + "/cameras/Cameras.gltf --view mask ";
+  struct Extent {
+    int width = 0, height = 0, columns = 0, rows = 0;  // the image's; the square's extent
+  };
+  auto extent = [&](const std::string& args) {
+    const std::string out = obscura::test::tempPath("camera-node.png");
+    const obscura::test::ProcessResult r = run(scene + args + " --out " + out);
+    EXPECT_EQ(r.status, 0) << args << ": " << r.err;
+    const obscura::Image m = obscura::readPng(out);
+    Extent e{m.width, m.height, 0, 0};
+    int x0 = m.width, x1 = -1, y0 = m.height, y1 = -1;
+    for (int y = 0; y < m.height; ++y)
+      for (int x = 0; x < m.width; ++x)
+        if (m.rgba[(static_cast<size_t>(y) * m.width + x) * 4] == 255) {
+          x0 = std::min(x0, x);
+          x1 = std::max(x1, x);
+          y0 = std::min(y0, y);
+          y1 = std::max(y1, y);
+        }
+    e.columns = x1 - x0 + 1;
+    e.rows = y1 - y0 + 1;
+    return e;
+  };
+  const Extent perspective = extent("--camera-node 0 --size 200x200");
+  EXPECT_GT(perspective.columns, 40);
+  const Extent byDefault = extent("--camera-node 1");
+  EXPECT_EQ(byDefault.width, 1280);
+  EXPECT_EQ(byDefault.height, 1280) << "xmag = ymag: a square frame";
+  const Extent square = extent("--camera-node 1 --size 200x200");
+  const Extent wide = extent("--camera-node 1 --size 400x200");
+  const Extent tall = extent("--camera-node 1 --size 200x400");
+  EXPECT_GT(square.columns, 40);
+  EXPECT_NEAR(wide.rows, square.rows, 1) << "wider: the frame's height fills the output's";
+  EXPECT_NEAR(wide.columns, square.columns, 1) << "and nothing is stretched";
+  EXPECT_NEAR(tall.columns, square.columns, 1) << "narrower: the frame's width fills the output's";
+  EXPECT_NEAR(tall.rows, square.rows, 1);
 }
 
 TEST(Cli, MaskViewMarksExactlyTheGeometry) {

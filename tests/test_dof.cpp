@@ -276,6 +276,59 @@ TEST(DepthOfField, TheFrameMovesTowardsTheApertureReference) {
   EXPECT_LE(dof, 0.5 * pinhole);
 }
 
+// An orthographic camera (DepthOfFieldEffect.h): the CoC is the thin lens's linearised at its focus, so it grows
+// linearly with the distance from the focal plane; the frame moves towards its own aperture reference (parallel rays
+// tilted about the focal plane), as the perspective one does, at a quarter of the pixels.
+TEST(DepthOfField, AnOrthographicCameraBlursLinearlyWithDistanceFromTheFocalPlane) {
+  constexpr int width = kWidth / 2, height = kHeight / 2;
+  Renderer renderer = test::makeRenderer();
+  renderer.setScene(lensScene());
+  Camera camera = lensCamera();
+  camera.width = width;
+  camera.height = height;
+  camera.orthographic = true;
+  camera.ymag = 1.2f;
+  const RenderSettings settings = lensSettings(true);
+  test::render(renderer, camera, settings, View::Final, test::retaining({"dof-coc", "gbuffer"}));
+  const float range = 2.0f * settings.of<DofSettings>().maxRadiusPixels(height);
+  const std::vector<float> coc = readCoc(renderer, range);
+  const std::vector<std::uint8_t> gbuffer = renderer.retained("gbuffer").readRgba();
+  const ThinLens lens = ThinLens::of(settings.of<DofSettings>(), height, true);
+  double worst = 0.0;
+  for (size_t p = 0; p < coc.size(); ++p) {
+    const float d = LinearDepthPacking::depthFromCode(
+        LinearDepthPacking::codeFromBytes(gbuffer[p * 4 + 2], gbuffer[p * 4 + 3]));
+    const float depth = camera.near + d * (camera.far - camera.near);
+    worst = std::max(worst, static_cast<double>(std::abs(coc[p] - std::clamp(lens.coc(depth, kFocus), -range, range))));
+  }
+  EXPECT_LE(worst, 0.5 * range / cp::kSteps16 + 1e-3 * range);
+  // Linear in D, with the perspective lens's slope at the focus: C = s (D - P) / (P (P - F)).
+  const ThinLens perspective = ThinLens::of(settings.of<DofSettings>(), height);
+  for (float depth : {1.5f, 3.9f, 4.1f, 12.0f}) {
+    const double s = (0.05 / 1.4) * 0.05 * height / 0.024;
+    EXPECT_NEAR(lens.coc(depth, kFocus), s * (depth - 4.0) / (4.0 * (4.0 - 0.05)), 1e-3);
+  }
+  EXPECT_NEAR((lens.coc(4.01f, kFocus) - lens.coc(3.99f, kFocus)) / 0.02f,
+              (perspective.coc(4.01f, kFocus) - perspective.coc(3.99f, kFocus)) / 0.02f, 1e-2);
+
+  ApertureOptions aperture;
+  aperture.samples = 48;
+  const LinearImage reference = accumulateAperture(renderer, camera, settings, aperture);
+  const test::RenderedImage pinhole = test::render(renderer, camera, lensSettings(false), View::Final);
+  const test::RenderedImage dof = test::render(renderer, camera, settings, View::Final);
+  const auto all = [](int, int) { return true; };
+  const double pinholeError = meanError(pinhole, reference, all).first, dofError = meanError(dof, reference, all).first;
+  // The focal plane is sharp in the reference too: the panel's pixels match the pinhole frame's.
+  const auto panel = [&](int x, int y) { return std::abs(coc[static_cast<size_t>(y) * width + x]) < 0.25f; };
+  const double focusError = meanError(pinhole, reference, panel).first;
+  std::printf("[ dof ] orthographic: MAE against the %d-point parallel aperture reference: pinhole %.3f, dof %.3f "
+              "(ratio %.2f); the focal plane, pinhole against the reference: %.3f\n",
+              aperture.samples, pinholeError, dofError, dofError / pinholeError, focusError);
+  EXPECT_GT(pinholeError, 3.0) << "the reference should blur";
+  EXPECT_LE(dofError, 0.5 * pinholeError);
+  EXPECT_LE(focusError, 3.0);
+}
+
 TEST(DepthOfField, TheFocusPlaneStaysSharp) {
   const Frames& f = lensFrames();
   // Pixels whose |CoC| is under half a pixel, away from the near field's reach (its largest radius, 12 px, and the

@@ -196,20 +196,30 @@ LineScore score(const test::RenderedImage& off, const test::RenderedImage& on, c
 TEST(Edges, TheSecondDifferenceOfReciprocalDepthIsZeroOnPlanesAndTheJumpAtProfiles) {
   // A plane seen at any slant: 1/z = a + b x along a row. Its first-order relative difference grows with the slant;
   // eq. 1 stays 0.
+  const EdgeDetector perspective;
   for (float slope : {0.0f, 0.01f, 0.05f, 0.2f}) {
     auto z = [slope](float x) { return 1.0f / (0.25f - slope * 0.001f * x); };
-    const float d = EdgeDetector::relativeSecondDifference(z(100.0f), z(99.0f), z(101.0f));
+    const float d = perspective.relativeSecondDifference(z(100.0f), z(99.0f), z(101.0f));
     EXPECT_NEAR(d, 0.0f, 1e-5f) << "slope " << slope;
   }
   // A profile: a flat near side at 4 m over a far side at 5 m. The near pixel sees the relative jump, negative;
   // the far pixel the same positive; the background is 1/z = 0.
-  EXPECT_NEAR(EdgeDetector::relativeSecondDifference(4.0f, 4.0f, 5.0f), 4.0f / 5.0f - 1.0f, 1e-6f);
-  EXPECT_GT(EdgeDetector::relativeSecondDifference(5.0f, 4.0f, 5.0f), 0.0f);
-  EXPECT_NEAR(EdgeDetector::relativeSecondDifference(4.0f, 4.0f, 0.0f), -1.0f, 1e-6f);
+  EXPECT_NEAR(perspective.relativeSecondDifference(4.0f, 4.0f, 5.0f), 4.0f / 5.0f - 1.0f, 1e-6f);
+  EXPECT_GT(perspective.relativeSecondDifference(5.0f, 4.0f, 5.0f), 0.0f);
+  EXPECT_NEAR(perspective.relativeSecondDifference(4.0f, 4.0f, 0.0f), -1.0f, 1e-6f);
   // Scale-aware: the scene and camera scaled by k give the same value.
   for (float k : {0.01f, 1.0f, 300.0f})
-    EXPECT_NEAR(EdgeDetector::relativeSecondDifference(4.0f * k, 4.1f * k, 6.0f * k),
-                EdgeDetector::relativeSecondDifference(4.0f, 4.1f, 6.0f), 1e-5f);
+    EXPECT_NEAR(perspective.relativeSecondDifference(4.0f * k, 4.1f * k, 6.0f * k),
+                perspective.relativeSecondDifference(4.0f, 4.1f, 6.0f), 1e-5f);
+  // Orthographic: depth itself is affine on a plane, so its second difference is 0 at any slant; a jump counts
+  // relative to the view's height L, as the perspective measure does at z = L to first order.
+  const EdgeDetector orthographic = EdgeDetector::of(EdgesSettings{}, 0.0f, 100.0f, 8.0f);
+  for (float slope : {0.0f, 0.05f, 3.0f})
+    EXPECT_NEAR(orthographic.relativeSecondDifference(10.0f, 10.0f - slope, 10.0f + slope), 0.0f, 1e-5f);
+  EXPECT_NEAR(orthographic.relativeSecondDifference(4.0f, 4.0f, 4.08f), -0.01f, 1e-6f);
+  EXPECT_NEAR(orthographic.relativeSecondDifference(4.0f, 4.0f, 4.08f),
+              perspective.relativeSecondDifference(8.0f, 8.0f, 8.08f), 1e-4f);
+  EXPECT_LT(orthographic.relativeSecondDifference(4.0f, 4.0f, 0.0f), -1e6f) << "a background neighbour";
 }
 
 TEST(Edges, CoverageAndToonBands) {
@@ -234,6 +244,34 @@ TEST(Edges, CoverageAndToonBands) {
 
 // Every pass against the mirror: the mask from the read-back G-buffer, then the drawn image from the image without
 // lines, in both styles, at widths that use radii 0 .. 4, with colour edges on.
+// Through an orthographic camera (the cube's view as wide at its target) the detect pass matches the orthographic
+// mirror: the cube's silhouette and creases are found, the floor (a plane seen at a slant) is not an edge.
+TEST(Edges, TheDetectPassMatchesTheOrthographicMirror) {
+  Renderer renderer = test::makeRenderer();
+  renderer.setScene(cubeOnAFloor());
+  const Camera camera = cubeCamera(4.0f).asOrthographic();
+  RenderSettings settings = plainFrame();
+  const EdgesSettings edges = linesOf(1.5f);
+  settings.of<EdgesSettings>() = edges;
+  test::render(renderer, camera, settings, View::Final, test::retaining({"gbuffer", "edges-mask"}));
+  const std::vector<std::uint8_t> gbuffer = renderer.retained("gbuffer").readRgba();
+  const std::vector<std::uint8_t> mask = renderer.retained("edges-mask").readRgba();
+  const FrameCamera frame = FrameCamera::from(camera, kWidth, kHeight);
+  const std::vector<EdgeFlags> expected =
+      EdgeDetector::of(edges, frame.near, frame.far, 2.0f * frame.halfExtent.y).detect(gbuffer, kWidth, kHeight);
+  int mismatches = 0, profiles = 0, creases = 0;
+  for (size_t i = 0; i < expected.size(); ++i) {
+    profiles += expected[i].profile;
+    creases += expected[i].crease;
+    mismatches += (mask[i * 4] > 127) != expected[i].profile || (mask[i * 4 + 1] > 127) != expected[i].crease;
+  }
+  std::printf("edges mask, orthographic: %d profile, %d crease pixels; %d differ from the mirror\n", profiles, creases,
+              mismatches);
+  EXPECT_LE(mismatches, 2);
+  EXPECT_GT(profiles, 100);
+  EXPECT_GT(creases, 100);
+}
+
 TEST(Edges, ThePassesMatchTheMirror) {
   Renderer renderer = test::makeRenderer();
   renderer.setScene(cubeOnAFloor());
@@ -391,7 +429,7 @@ TEST(Edges, ASlantedPlaneIsNotAnEdge) {
         const float za = detector.viewDepth(&gbuffer[(i - kWidth) * 4]);
         const float zb = detector.viewDepth(&gbuffer[(i + kWidth) * 4]);
         firstOrder = std::max(firstOrder, std::abs(zb - za) / (2.0f * z));
-        secondOrder = std::max(secondOrder, std::abs(EdgeDetector::relativeSecondDifference(z, za, zb)));
+        secondOrder = std::max(secondOrder, std::abs(detector.relativeSecondDifference(z, za, zb)));
       }
     // No pixel marked, and the image as without the lines (to one step: the two frames' AO may round apart).
     int marked = 0, changed = 0;

@@ -28,7 +28,9 @@ vec3 fromField(vec3 f) {
 
 #if DOF_PASS == 1
 uniform sampler2D u_gbuffer;
-uniform vec2 u_lens;        // (s, F): C = s (D - P) / (D (P - F)), s = A F H / h (pixel metres), F metres
+// (s, F, perspective): C = s (D - P) / (D (P - F)), s = A F H / h (pixel metres), F metres; perspective 0 (an
+// orthographic camera, DepthOfFieldEffect.h): C = s (D - P) / (P (P - F)), linear in the distance from the focus.
+uniform vec3 u_lens;
 uniform float u_focus;      // P, metres (a fixed focus)
 uniform float u_autofocus;  // 1: P is the depth at u_focusUv instead
 uniform vec2 u_focusUv;
@@ -45,7 +47,7 @@ void main() {
   float focus = u_autofocus > 0.5 ? max(viewDepth(u_focusUv), 1.001 * u_lens.y) : u_focus;
   float depth = viewDepth(v_uv);
   // The thin lens (Samuelcik's deck: C = |A F (P - D) / (D (P - F))|), signed, in pixels.
-  float coc = u_lens.x * (depth - focus) / (depth * (focus - u_lens.y));
+  float coc = u_lens.x * (depth - focus) / (mix(focus, depth, u_lens.z) * (focus - u_lens.y));
   gl_FragColor = packCoc(coc, u_range);
 }
 #endif

@@ -33,6 +33,7 @@
 #endif
 #include "lib/material.glsl"
 #include "lib/pbr.glsl"
+#include "lib/reconstruct.glsl"  // the eye's rays, perspective or orthographic
 
 #if DEFERRED
 uniform sampler2D u_gbuffer;    // RG normal, BA depth code
@@ -140,7 +141,7 @@ vec2 splitSumScaleBias(float roughness, float nv) {
 // The lit colour of a surface point: p its view-space position, n its shading normal and g the surface's own normal
 // (unit, facing the viewer).
 vec3 shade(vec3 base, float metallic, float roughness, vec3 p, vec3 n, vec3 g, float occlusion, vec3 emissive) {
-  vec3 v = -normalize(p);
+  vec3 v = -eyeRayDirection(p);
   roughness = clamp(roughness, PBR_MIN_ROUGHNESS, 1.0);
   metallic = clamp(metallic, 0.0, 1.0);
   vec3 diffuseColor = base * (1.0 - metallic);
@@ -172,8 +173,9 @@ vec3 shade(vec3 base, float metallic, float roughness, vec3 p, vec3 n, vec3 g, f
   return color;
 }
 
-// What the eye sees where no geometry is, towards the view-space direction `ray`: the environment itself.
-vec3 background(vec3 ray) { return environmentSpecular(u_viewToEnvironment * ray, 0.0); }
+// What the eye sees where no geometry is, along the eye's ray through far-plane point `farRay`: the environment
+// itself (one colour for an orthographic camera, whose rays are parallel).
+vec3 background(vec3 farRay) { return environmentSpecular(u_viewToEnvironment * eyeRay(farRay), 0.0); }
 
 #if TONEMAP_INLINE
 #include "lib/tonemap.glsl"
@@ -200,9 +202,9 @@ void main() {
   }
 #endif
   vec3 base = srgbToLinear(texture2D(u_baseColor, v_uv).rgb);
-  // Only the view direction matters to the shading here (no punctual lights take this form): the far plane's ray
-  // points from the eye through the pixel, as the surface's position does. The G-buffer's normal is the surface's
-  // own (no normal texture takes this form).
+  // Only the view direction matters to the shading here (no punctual lights take this form): the eye's ray through
+  // the far plane's point is the surface's (shade takes it through eyeRayDirection). The G-buffer's normal is the
+  // surface's own (no normal texture takes this form).
   vec3 n = decodeNormal(g.rg);
   gl_FragColor = encodeOutput(shade(base, 0.0, 1.0, v_farRay, n, n, texture2D(u_ao, v_uv).r, vec3(0.0)));
 }

@@ -17,7 +17,8 @@ namespace obscura {
 std::string renderUsage() {
   std::string usage =
       "usage: obscura-render [--scene FILE [--scene-scale S]] [--time T] [--animation A] [--fps F] [--frames N]\n"
-      "                      [--camera CAM.json | --fit] [--size WxH] [--view V [--compare SWITCH]] [--out FILE.png]\n"
+      "                      [--camera CAM.json | --fit | --camera-node C] [--orthographic] [--size WxH]\n"
+      "                      [--view V [--compare SWITCH]] [--out FILE.png]\n"
       "                      [--NAME VALUE | --EFFECT | --no-EFFECT ...] [--preset P] [--bench N]\n"
       "                      [--backend osmesa|egl]\n"
       "                      [--accumulate N [--shutter S] [--supersample K]] [--aperture N [--supersample K]]\n"
@@ -194,8 +195,10 @@ int runRender(const RenderOptions& options) {
       accumulation.samples = options.accumulate;
       accumulation.supersample = options.supersample;
       accumulation.animation = input.animation;
-      writePng(options.outPath, accumulateShutter(renderer, [&](double) { return camera; }, settings, accumulation)
-                                    .toImage());
+      // A scene camera moves over the shutter interval as the animation moves it.
+      writePng(options.outPath,
+               accumulateShutter(renderer, [&](double t) { return input.cameraAt(t); }, settings, accumulation)
+                   .toImage());
       return 0;
     }
 
@@ -214,6 +217,7 @@ int runRender(const RenderOptions& options) {
     const double interval = 1.0 / options.fps;
     FrameOptions frame;
     frame.animation = input.animation;
+    frame.sceneCamera = input.sceneCamera;
     for (int k = 0; k < options.frames; ++k) {
       frame.time = options.input.time + k * interval;
       frame.previousTime = frame.time - interval;

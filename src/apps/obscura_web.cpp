@@ -403,6 +403,36 @@ EMSCRIPTEN_KEEPALIVE void obscura_reset_camera() {
   g_app->changed();
 }
 
+// The camera looked through: {choice: "free" or the scene camera's state name, orthographic, cameras: [the scene's
+// cameras: {name, orthographic}], and the free camera's eye, target, up, fovy, ymag}.
+EMSCRIPTEN_KEEPALIVE const char* obscura_camera() {
+  const ViewerState& state = g_app->viewer().state();
+  Json cameras = Json::array();
+  for (size_t i = 0; i < state.sceneCameras.size(); ++i)
+    cameras.push_back(
+        {{"name", state.sceneCameras[i].label(i)}, {"orthographic", state.sceneCameras[i].orthographic}});
+  const Camera shown = g_app->viewer().cameraShown();
+  const Camera& free = state.camera;
+  return returned(Json{{"choice", state.cameraChoice()},
+                       {"orthographic", shown.orthographic},
+                       {"cameras", cameras},
+                       {"eye", {free.eye.x, free.eye.y, free.eye.z}},
+                       {"target", {free.target.x, free.target.y, free.target.z}},
+                       {"up", {free.up.x, free.up.y, free.up.z}},
+                       {"fovy", free.fovyDegrees},
+                       {"ymag", free.ymag}}
+                      .dump());
+}
+
+// "free" or one of the scene's cameras, by name or index.
+EMSCRIPTEN_KEEPALIVE int obscura_set_camera(const char* choice) {
+  return change([&] { g_app->viewer().setCamera(choice); });
+}
+
+EMSCRIPTEN_KEEPALIVE int obscura_set_orthographic(int orthographic) {
+  return change([&] { g_app->viewer().setOrthographic(orthographic != 0); });
+}
+
 // 1: the key is bound and acted; 0 with an empty obscura_error(): not bound; 0 with a message: refused.
 EMSCRIPTEN_KEEPALIVE int obscura_handle_key(const char* key) {
   bool bound = false;

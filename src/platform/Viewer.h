@@ -45,11 +45,20 @@ class Viewer {
   ViewerState& state() { return state_; }
   const ViewerState& state() const { return state_; }
 
-  // --- Camera moves (see CameraControls.h); each refits near/far to the scene.
+  // --- Camera moves (see CameraControls.h); each refits near/far to the scene. A move while the view looks through
+  // one of the scene's cameras starts from that camera's view, as the free camera.
   void orbit(float dxPixels, float dyPixels, int viewportHeight);
   void pan(float dxPixels, float dyPixels, int viewportHeight);
   void zoom(float factor);
-  void resetCamera();
+  void resetCamera();  // the scene's own view, through the free camera
+
+  // --- Cameras: the free one and the scene's own (ViewerState::sceneCameras), "free" or one by name or index.
+  void setCamera(const std::string& choice);
+  // The free camera made orthographic or perspective with the same view at its target (Camera::asOrthographic),
+  // starting from the view shown.
+  void setOrthographic(bool orthographic);
+  // The camera the view looks through now: the free one, or the scene camera where the timeline puts it.
+  Camera cameraShown() const;
 
   // --- Keys, the same on the desktop and on the web: what the keyboard types (e.g. "]", " " for space), or, for a
   // key that types nothing, its KeyboardEvent.key name ("ArrowLeft", "ArrowRight", "Home"), which obscura-view maps
@@ -102,6 +111,8 @@ class Viewer {
   // for a key that plays or steps it (`playable`), where the chosen animation has no length ("none").
   Timeline& requireTimeline(bool playable);
   void showScene(Scene scene, const std::string& name, const Camera& camera);
+  // Makes the scene camera looked through (if any) the free camera, at its view.
+  void takeOverSceneCamera();
   // Sets a numeric parameter to change(current value), clamped to the parameter's range.
   void adjustParameter(const std::string& name, const std::function<double(double)>& change);
 

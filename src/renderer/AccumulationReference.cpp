@@ -68,11 +68,13 @@ LinearImage downsampleBox(const std::vector<std::uint8_t>& rgba, int width, int 
 
 namespace {
 
-// One sub-frame of a reference: its camera (the image's size), time and projection shift (pixels of the image).
+// One sub-frame of a reference: its camera (the image's size), time and projection shift (pixels of the image), and
+// the shift's growth with depth (pixels per metre: the orthographic aperture's tilted rays).
 struct SubFrame {
   Camera camera;
   double time = 0.0;
   glm::vec2 shift{0.0f};
+  glm::vec2 shear{0.0f};
 };
 
 // The mean of the sub-frames' final images, each rendered at `k` times its size and box-downsampled. `linearLight`:
@@ -107,6 +109,7 @@ LinearImage meanOfRenders(Renderer& renderer, const std::vector<SubFrame>& subFr
     frame.time = sub.time;
     frame.previousTime = sub.time;  // nothing reads motion: the temporal effects are off
     frame.projectionShift = sub.shift * static_cast<float>(k);
+    frame.projectionShear = sub.shear * static_cast<float>(k);
     renderer.render(camera, settings, View::Final, OutputTarget{output.framebuffer(), width, height, {}}, frame);
     if (!linearLight) {
       const LinearImage image = downsampleBox(output.readRgba(), width, height, k);
@@ -177,16 +180,34 @@ LinearImage accumulateAperture(Renderer& renderer, const Camera& camera, const R
   if (options.samples < 1) throw InputError("aperture samples: expected at least 1, got " +
                                             std::to_string(options.samples));
   const DofSettings& dof = settings.of<DofSettings>();
-  const ThinLens lens = ThinLens::of(dof, camera.height);
+  const ThinLens lens = ThinLens::of(dof, camera.height, camera.orthographic);
   const float focus = lens.usableFocus(
       dof.focus ? *dof.focus : autofocusDistance(renderer, camera, settings, options.time, options.animation));
-  const float projScale = static_cast<float>(camera.height) / (2.0f * std::tan(camera.fovyRadians() * 0.5f));
+  std::vector<SubFrame> subFrames;
+  RenderSettings pinhole = withoutTemporalEffects(settings);
+  pinhole.set("dof", "off");
+  // What the tone mapping adds is not part of the mean (it tone-maps the HDR mean itself).
+  for (const char* added : {"auto-exposure", "lens-flare", "glare"})
+    if (RenderSettings::find(added)) pinhole.set(added, "off");
+  if (camera.orthographic) {
+    // Parallel rays tilted over a disc of slopes about the plane in focus: a point at depth D moves by the slope
+    // times D - P metres, pixelsPerMetre pixels each, so the plane P stays and the rest spreads over the
+    // orthographic CoC (effects/dof/DepthOfFieldEffect.h).
+    const float pixelsPerMetre = FrameCamera::from(camera, camera.width, camera.height).pixelsPerMetre(camera.height,
+                                                                                                        focus);
+    const float slopeRadius = 0.5f * lens.parallelAperture(focus, pixelsPerMetre);
+    for (int i = 0; i < options.samples; ++i) {
+      const glm::vec2 shear = lensPoint(i, options.samples) * slopeRadius * pixelsPerMetre;
+      subFrames.push_back({camera, options.time, -shear * focus, shear});
+    }
+    return meanOfRenders(renderer, subFrames, pinhole, options.supersample, options.animation, true, true);
+  }
+  const float projScale = FrameCamera::from(camera, camera.width, camera.height).projScale(camera.height).x;
   const float lensRadius = 0.5f * lens.pinholeAperture(focus, projScale);
   // The camera's own axes: a lens point (x, y) moves the eye along them, the view direction unchanged.
   const glm::vec3 forward = glm::normalize(camera.target - camera.eye);
   const glm::vec3 right = glm::normalize(glm::cross(forward, camera.up));
   const glm::vec3 up = glm::cross(right, forward);
-  std::vector<SubFrame> subFrames;
   for (int i = 0; i < options.samples; ++i) {
     const glm::vec2 a = lensPoint(i, options.samples) * lensRadius;  // metres on the lens
     SubFrame sub{camera, options.time, glm::vec2(0.0f)};
@@ -196,11 +217,6 @@ LinearImage accumulateAperture(Renderer& renderer, const Camera& camera, const R
     sub.shift = a * (projScale / focus);
     subFrames.push_back(sub);
   }
-  RenderSettings pinhole = withoutTemporalEffects(settings);
-  pinhole.set("dof", "off");
-  // What the tone mapping adds is not part of the mean (it tone-maps the HDR mean itself).
-  for (const char* added : {"auto-exposure", "lens-flare", "glare"})
-    if (RenderSettings::find(added)) pinhole.set(added, "off");
   return meanOfRenders(renderer, subFrames, pinhole, options.supersample, options.animation, true, true);
 }
 

@@ -853,6 +853,7 @@ class SceneBuilder {
     const int index = static_cast<int>(scene_.nodes.size());
     restWorld_.push_back((parent >= 0 ? restWorld_[static_cast<size_t>(parent)] : glm::mat4(1.0f)) * node.localRest());
     addLight(source, nodeIndex, index);
+    addCamera(source, nodeIndex, index, node.name);
     scene_.nodes.push_back(std::move(node));
     sourceNode_.push_back(nodeIndex);
     copies_[static_cast<size_t>(nodeIndex)].push_back(index);
@@ -898,6 +899,57 @@ class SceneBuilder {
     out.node = index;
     out.world = restWorld_[static_cast<size_t>(index)];
     scene_.lights.push_back(out);
+  }
+
+  // The node's camera (glTF 2.0 sec. 3.10), perspective or orthographic, with the values the spec requires checked.
+  void addCamera(const tinygltf::Node& source, int nodeIndex, int index, const std::string& nodeName) {
+    if (source.camera < 0) return;
+    if (static_cast<size_t>(source.camera) >= model_.cameras.size())
+      ctx_.refuse("node " + std::to_string(nodeIndex) + " refers to camera " + std::to_string(source.camera) +
+                  ", which does not exist");
+    const tinygltf::Camera& camera = model_.cameras[static_cast<size_t>(source.camera)];
+    const std::string what = "camera " + std::to_string(source.camera);
+    SceneCamera out;
+    out.name = camera.name;
+    out.nodeName = nodeName;
+    out.node = index;
+    out.world = restWorld_[static_cast<size_t>(index)];
+    auto finite = [](double v) { return std::isfinite(v); };
+    if (camera.type == "perspective") {
+      const tinygltf::PerspectiveCamera& p = camera.perspective;
+      if (!(finite(p.yfov) && p.yfov > 0.0 && p.yfov < 3.14159265358979))
+        ctx_.refuse(what + " has yfov " + std::to_string(p.yfov) + " (glTF: radians, > 0 and < pi)");
+      if (!(finite(p.znear) && p.znear > 0.0)) ctx_.refuse(what + " needs znear > 0");
+      if (!(finite(p.zfar) && (p.zfar == 0.0 || p.zfar > p.znear)))
+        ctx_.refuse(what + " needs zfar > znear (or none: infinite)");
+      if (!(finite(p.aspectRatio) && p.aspectRatio >= 0.0)) ctx_.refuse(what + " needs aspectRatio > 0");
+      // The renderer's cameras span 1 .. 170 degrees (scene/Camera.h); a wider one is drawn at 170.
+      const double widest = 170.0 * 3.14159265358979 / 180.0, narrowest = 3.14159265358979 / 180.0;
+      if (p.yfov > widest || p.yfov < narrowest)
+        ctx_.report.warnings.push_back(what + " has yfov " + std::to_string(p.yfov) +
+                                       " radians, beyond 1 .. 170 degrees: drawn at the nearest");
+      out.yfov = static_cast<float>(std::clamp(p.yfov, narrowest, widest));
+      out.aspectRatio = static_cast<float>(p.aspectRatio);
+      out.znear = static_cast<float>(p.znear);
+      out.zfar = static_cast<float>(p.zfar);
+    } else if (camera.type == "orthographic") {
+      const tinygltf::OrthographicCamera& o = camera.orthographic;
+      if (!(finite(o.xmag) && finite(o.ymag) && o.xmag != 0.0 && o.ymag != 0.0))
+        ctx_.refuse(what + " needs xmag and ymag other than 0");
+      // glTF: "SHOULD NOT be negative" (a mirrored view); drawn unmirrored.
+      if (o.xmag < 0.0 || o.ymag < 0.0)
+        ctx_.report.warnings.push_back(what + " has a negative xmag or ymag: drawn with their magnitudes");
+      if (!(finite(o.znear) && finite(o.zfar) && o.znear >= 0.0 && o.zfar > o.znear))
+        ctx_.refuse(what + " needs 0 <= znear < zfar");
+      out.orthographic = true;
+      out.xmag = static_cast<float>(std::abs(o.xmag));
+      out.ymag = static_cast<float>(std::abs(o.ymag));
+      out.znear = static_cast<float>(o.znear);
+      out.zfar = static_cast<float>(o.zfar);
+    } else {
+      ctx_.refuse(what + " has unknown type '" + camera.type + "'");
+    }
+    scene_.cameras.push_back(std::move(out));
   }
 
   // The morph target count of a glTF mesh: every primitive must have the same (glTF 2.0 sec. 3.7.2.2), and the

@@ -37,6 +37,8 @@ static_assert(std::is_constructible_v<Renderer, const Renderer::Options&>);
 [[maybe_unused]] void (Renderer::*const kClearScene)() = &Renderer::clearScene;
 [[maybe_unused]] SceneInfo (Renderer::*const kScene)() const = &Renderer::scene;
 [[maybe_unused]] Camera (Renderer::*const kSceneCamera)(int, int) const = &Renderer::sceneCamera;
+[[maybe_unused]] bool Camera::*const kCameraOrthographic = &Camera::orthographic;
+[[maybe_unused]] float Camera::*const kCameraYmag = &Camera::ymag;
 [[maybe_unused]] void (Renderer::*const kSetText)(const std::string&, const std::string&) = &Renderer::set;
 [[maybe_unused]] void (Renderer::*const kSetNumber)(const std::string&, double) = &Renderer::set;
 [[maybe_unused]] std::string (Renderer::*const kGet)(const std::string&) const = &Renderer::get;

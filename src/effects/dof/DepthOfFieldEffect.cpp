@@ -115,8 +115,9 @@ float DofSettings::maxRadiusPixels(int height) const {
                     static_cast<float>(DepthOfFieldEffect::kMaxTile));
 }
 
-ThinLens ThinLens::of(const DofSettings& settings, int height) {
+ThinLens ThinLens::of(const DofSettings& settings, int height, bool orthographic) {
   ThinLens lens;
+  lens.orthographic = orthographic;
   lens.focalLength = settings.focalLength * 1e-3f;
   const float aperture = lens.focalLength / settings.fstop;  // A = F / N
   lens.scale = aperture * lens.focalLength * static_cast<float>(height) / (settings.sensorHeight * 1e-3f);
@@ -127,12 +128,17 @@ float ThinLens::usableFocus(float focus) const { return std::max(focus, 1.001f *
 
 float ThinLens::coc(float depth, float focus) const {
   const float p = usableFocus(focus);
-  return scale * (depth - p) / (depth * (p - focalLength));
+  return scale * (depth - p) / ((orthographic ? p : depth) * (p - focalLength));
 }
 
 float ThinLens::pinholeAperture(float focus, float projScale) const {
   const float p = usableFocus(focus);
   return scale * p / ((p - focalLength) * projScale);
+}
+
+float ThinLens::parallelAperture(float focus, float pixelsPerMetre) const {
+  const float p = usableFocus(focus);
+  return scale / (p * (p - focalLength) * pixelsPerMetre);
 }
 
 EffectInfo DepthOfFieldEffect::info() {
@@ -222,7 +228,7 @@ void DepthOfFieldEffect::plan(FramePlanner& planner) {
   if (!settings.enabled) return;
   const FrameCamera& camera = planner.frame().camera;
   // The frame's constants, derived once here: the lens, the CoC range, the tile size K.
-  const ThinLens lens = ThinLens::of(settings, camera.height);
+  const ThinLens lens = ThinLens::of(settings, camera.height, camera.orthographic);
   const float maxRadius = settings.maxRadiusPixels(camera.height);
   const float range = 2.0f * maxRadius;  // the largest |C| drawn: a diameter
   const int k = std::clamp(static_cast<int>(std::ceil(maxRadius)), 1, kMaxTile);
@@ -245,7 +251,7 @@ void DepthOfFieldEffect::plan(FramePlanner& planner) {
     coc_.program.use();
     context.texture("gbuffer").bind(0);
     gl::Program::set(coc_.gbuffer, 0);
-    gl::Program::set(coc_.lens, glm::vec2(lens.scale, lens.focalLength));
+    gl::Program::set(coc_.lens, glm::vec3(lens.scale, lens.focalLength, lens.orthographic ? 0.0f : 1.0f));
     gl::Program::set(coc_.focus, focus);
     gl::Program::set(coc_.focusUv, focusUv);
     gl::Program::set(coc_.autofocus, autofocus ? 1.0f : 0.0f);

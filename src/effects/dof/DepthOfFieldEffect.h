@@ -11,6 +11,14 @@
 // negative in front of the focus (D < P): C = s (D - P) / (D (P - F)) with s = A F H / h (ThinLens). D and P are
 // depths along the view axis (the G-buffer's linear depth), as the thin-lens equation has them.
 //
+// An orthographic camera has no lens: every ray is parallel, and nothing depends on the eye's distance but its
+// depths. It gets a focal plane at P and a CoC that grows linearly with the distance from it,
+//   C = s (D - P) / (P (P - F)),
+// the thin lens's own CoC to first order around its focus (dC/dD at D = P), so the settings keep their meaning there
+// and the plane P is sharp; unlike the lens's, the blur keeps growing with D behind the focus. Its reference
+// (renderer/AccumulationReference.h: accumulateAperture) tilts parallel rays about the focal plane over a disc of
+// slopes instead of moving a pinhole over a lens (ThinLens::parallelAperture).
+//
 // Passes (RGBA8; the CoC in encoding/CocPacking.h's codes, range R = 2 x the largest radius in pixels):
 //   dof-coc        gbuffer -> dof-coc               the signed CoC per pixel, 16 bits; P from dof.focus, or, for
 //                                                   `auto`, the G-buffer's depth at the focus point (no read-back)
@@ -76,16 +84,22 @@ struct DofSettings : ParameterAccess<DofSettings> {
 struct ThinLens {
   float scale = 0.0f;        // s = A F H / h, pixel metres
   float focalLength = 0.05f; // F, metres
+  bool orthographic = false; // the orthographic camera's focal plane (above)
 
-  static ThinLens of(const DofSettings& settings, int height);
+  static ThinLens of(const DofSettings& settings, int height, bool orthographic = false);
   // P as the shader takes it: at least 1.001 F (a lens cannot focus nearer than its focal length).
   float usableFocus(float focus) const;
-  // C in pixels at depth D for the focus P: s (D - P) / (D (P - F)), negative in front of the focus.
+  // C in pixels at depth D for the focus P: s (D - P) / (D (P - F)), negative in front of the focus; orthographic:
+  // s (D - P) / (P (P - F)).
   float coc(float depth, float focus) const;
   // The diameter of the lens a pinhole camera samples (metres in the scene) so that its renders, each sheared to
   // keep the plane at P fixed, blur a point at D over projScale A' |1/D - 1/P| pixels: C's own magnitude, since
-  // C = s P / (P - F) (1/D - 1/P). `projScale`: pixels per metre at 1 m (FrameCamera::projScale).
+  // C = s P / (P - F) (1/D - 1/P). `projScale`: pixels per metre at 1 m (FrameCamera::projScale().x).
   float pinholeAperture(float focus, float projScale) const;
+  // The orthographic camera's: the diameter of the disc of slopes (metres sideways per metre of depth) over which its
+  // parallel rays tilt about the plane at P, so that a point at D moves over pixelsPerMetre T |D - P| pixels: the
+  // orthographic C's magnitude. `pixelsPerMetre`: FrameCamera::pixelsPerMetre.
+  float parallelAperture(float focus, float pixelsPerMetre) const;
 };
 
 // The half-size fields' colour: linear HDR as f = sqrt(c / (1 + c)) per channel in a byte, and back (CPU mirror of

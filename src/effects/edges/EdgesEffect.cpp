@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <string>
 #include <utility>
 
@@ -97,13 +98,14 @@ const std::vector<Parameter<EdgesSettings>>& EdgesSettings::parameters() {
   return table;
 }
 
-EdgeDetector EdgeDetector::of(const EdgesSettings& settings, float near, float far) {
+EdgeDetector EdgeDetector::of(const EdgesSettings& settings, float near, float far, float orthographicDepth) {
   EdgeDetector d;
   d.depthThreshold = settings.depthThreshold;
   d.normalCos = std::cos(settings.normalThreshold * kRadiansPerDegree);
   d.colorThreshold = settings.colorThreshold;
   d.near = near;
   d.depthRange = far - near;
+  d.orthographicDepth = orthographicDepth;
   return d;
 }
 
@@ -113,7 +115,11 @@ float EdgeDetector::viewDepth(const std::uint8_t* texel) const {
   return near + static_cast<float>(code) * (depthRange / 65535.0f);
 }
 
-float EdgeDetector::relativeSecondDifference(float zc, float za, float zb) {
+float EdgeDetector::relativeSecondDifference(float zc, float za, float zb) const {
+  if (orthographicDepth > 0.0f) {
+    if (za == 0.0f || zb == 0.0f) return -std::numeric_limits<float>::infinity();
+    return (2.0f * zc - za - zb) / orthographicDepth;
+  }
   const float wa = za > 0.0f ? 1.0f / za : 0.0f, wb = zb > 0.0f ? 1.0f / zb : 0.0f;
   return zc * (wa + wb) - 2.0f;
 }
@@ -211,6 +217,7 @@ EdgesEffect::DetectProgram::DetectProgram(gl::Program built, bool colorEdges)
       texel(program.uniform("u_texel")),
       near(program.uniform("u_near")),
       depthScale(program.uniform("u_depthScale")),
+      inverseOrthographicDepth(program.uniform("u_inverseOrthographicDepth")),
       depthThreshold(program.uniform("u_depthThreshold")),
       normalCos(program.uniform("u_normalCos")) {
   if (!colorEdges) return;
@@ -266,7 +273,8 @@ void EdgesEffect::plan(FramePlanner& planner) {
   const EdgesSettings settings = planner.settings().of<EdgesSettings>();
   if (!settings.enabled && !planner.showsTargetOf(info())) return;
   const FrameCamera& camera = planner.frame().camera;
-  const EdgeDetector detector = EdgeDetector::of(settings, camera.near, camera.far);
+  const EdgeDetector detector =
+      EdgeDetector::of(settings, camera.near, camera.far, camera.orthographic ? 2.0f * camera.halfExtent.y : 0.0f);
   const bool colorEdges = settings.colorThreshold > 0.0f;
   const glm::vec2 texel(1.0f / static_cast<float>(camera.width), 1.0f / static_cast<float>(camera.height));
 
@@ -284,6 +292,8 @@ void EdgesEffect::plan(FramePlanner& planner) {
     gl::Program::set(p.texel, texel);
     gl::Program::set(p.near, detector.near);
     gl::Program::set(p.depthScale, detector.depthRange / 65535.0f);
+    gl::Program::set(p.inverseOrthographicDepth,
+                     detector.orthographicDepth > 0.0f ? 1.0f / detector.orthographicDepth : 0.0f);
     gl::Program::set(p.depthThreshold, detector.depthThreshold);
     gl::Program::set(p.normalCos, detector.normalCos);
     if (colorEdges) {

@@ -19,6 +19,10 @@
 //      jump, the deck's profile measure, and it is negative there (the pixel stands in front of its neighbours)
 //      while it is positive on the far pixel. A pixel is a profile pixel where min(D_x, D_y) < -t_d, so the line
 //      lies on the occluding side of the silhouette.
+//      Under an orthographic camera z itself is affine in screen position on a plane, and the eye's distance means
+//      nothing (the image is the same from anywhere along the axis): D_x = (2 z_c - z_left - z_right) / L, with L
+//      the view's height (2 ymag: the depth at which a 53 degree lens sees as much). To first order in the jumps it
+//      is the perspective D at z_c = L, so t_d keeps its meaning; a background neighbour is an infinite jump.
 //    Normals (creases). A pixel is a crease pixel where a neighbour's normal is more than the crease angle away
 //      (n_c . n_n < cos angle) and the neighbour is not nearer (depth code >= the pixel's; ties mark both): the
 //      same rule, the nearer side of the boundary, so a crease too is one pixel wide.
@@ -87,8 +91,10 @@ struct EdgeDetector {
   float normalCos = 0.0f;
   float colorThreshold = 0.0f;
   float near = 0.1f, depthRange = 99.9f;  // z = near + code / 65535 depthRange
+  float orthographicDepth = 0.0f;         // L, for an orthographic camera; 0: perspective
 
-  static EdgeDetector of(const EdgesSettings& settings, float near, float far);
+  // `orthographicDepth`: L above (2 ymag), or 0 for a perspective camera.
+  static EdgeDetector of(const EdgesSettings& settings, float near, float far, float orthographicDepth = 0.0f);
   // The view depth z of a texel, 0 for the background.
   float viewDepth(const std::uint8_t* texel) const;
   // Pass 1 over a whole image (4 bytes a pixel, rows in either order: the tests are symmetric); `luma` (one value
@@ -96,8 +102,9 @@ struct EdgeDetector {
   // itself (CLAMP_TO_EDGE).
   std::vector<EdgeFlags> detect(const std::vector<std::uint8_t>& gbuffer, int width, int height,
                                 const std::vector<float>& luma = {}) const;
-  // Eq. 1 along one axis for the pixel of depth zc between neighbours of depths za and zb (0: background).
-  static float relativeSecondDifference(float zc, float za, float zb);
+  // Eq. 1 (or its orthographic form) along one axis for the pixel of depth zc between neighbours of depths za and
+  // zb (0: background).
+  float relativeSecondDifference(float zc, float za, float zb) const;
 };
 
 // R: how far (pixels) a line of `width` reaches from its edge pixel.
@@ -125,7 +132,7 @@ class EdgesEffect : public Effect {
   struct DetectProgram {
     DetectProgram(gl::Program built, bool colorEdges);
     gl::Program program;
-    GLint gbuffer, texel, near, depthScale, depthThreshold, normalCos;
+    GLint gbuffer, texel, near, depthScale, inverseOrthographicDepth, depthThreshold, normalCos;
     GLint color = -1, colorThreshold = -1;
   };
   struct DistanceProgram {

@@ -268,6 +268,7 @@ LightingEffect::Variant::Variant(gl::Program built, bool geometryStage)
       geometry(geometryStage ? GeometryUniforms(program) : GeometryUniforms()),
       farHalfExtent(program.optionalUniform("u_farHalfExtent")),
       farPlane(program.optionalUniform("u_farPlane")),
+      perspective(program.optionalUniform("u_perspective")),
       projection(program.optionalUniform("u_projection")),
       lightDirection(program.optionalUniform("u_lightDirection")),
       lightColor(program.optionalUniform("u_lightColor")),
@@ -456,6 +457,7 @@ void LightingEffect::render(const PassContext& context, Form form, const std::st
     Program::set(v.environmentFilteredScale, environment.filteredScale() * settings.environmentIntensity);
     Program::set(v.farHalfExtent, camera.reconstruction.farHalfExtent);
     Program::set(v.farPlane, camera.reconstruction.far);
+    Program::set(v.perspective, camera.reconstruction.perspective ? 1.0f : 0.0f);
     Program::set(v.shIrradiance, environment.irradianceUniform().data(), 7);
     Program::set(v.environmentIntensity, settings.environmentIntensity);
     Program::set(v.exposure, exposureScale);

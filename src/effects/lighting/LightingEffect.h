@@ -176,7 +176,7 @@ class LightingEffect : public Effect {
     gl::Program program;
     GeometryUniforms geometry;  // the forward forms' (geometry.vert)
     // The full-screen forms' far-plane ray (fullscreen.vert); only its direction is used, so no depth-to-ray scale.
-    GLint farHalfExtent, farPlane;
+    GLint farHalfExtent, farPlane, perspective;
     GLint projection, lightDirection, lightColor, viewToEnvironment, ao;
     GLint environment, environmentFiltered, environmentFilteredScale, shIrradiance, environmentIntensity;
     GLint gbuffer, baseColor, exposure, lumaInAlpha;
