@@ -12,6 +12,10 @@ set(OBSCURA_SLOW_TEST_TIMEOUT 600 CACHE STRING "Timeout in seconds of a ctest en
 set(OBSCURA_TEST_TIMEOUT_SCALE 1 CACHE STRING "Factor on every test timeout (the sanitized tree sets 4)")
 set(OBSCURA_TEST_RESULTS "${CMAKE_BINARY_DIR}/test-results"
     CACHE PATH "Where each GoogleTest entry writes its JSON report (tools/test-report.py reads them)")
+# The prefiltered sky and environments, computed once per build rather than once per process
+# (src/environment/PrefilterCache.h); every GoogleTest entry and the tools its tests run read and fill it.
+set(OBSCURA_TEST_PREFILTER_CACHE "${CMAKE_BINARY_DIR}/test-cache"
+    CACHE PATH "Where test processes keep prefiltered environments (empty: each process prefilters its own)")
 
 function(obscura_add_gtest_suites target)
   cmake_parse_arguments(PARSE_ARGV 1 arg "PER_TEST" "PREFIX;RESOURCE_LOCK" "LABELS;SLOW;ENVIRONMENT")
@@ -22,6 +26,9 @@ function(obscura_add_gtest_suites target)
   set(per_test OFF)
   if(arg_PER_TEST)
     set(per_test ON)
+  endif()
+  if(OBSCURA_TEST_PREFILTER_CACHE)
+    list(APPEND arg_ENVIRONMENT "OBSCURA_PREFILTER_CACHE=${OBSCURA_TEST_PREFILTER_CACHE}")
   endif()
   set(config "")
   foreach(variable IN ITEMS PREFIX LABELS SLOW ENVIRONMENT RESOURCE_LOCK)
