@@ -1,11 +1,11 @@
 #!/usr/bin/env bash
-# The sanitizer leg of the test suite: a separate tree (build-asan) built with AddressSanitizer, LeakSanitizer and
-# UndefinedBehaviorSanitizer runs, through ctest, every entry labelled cpu, gpu or cli (README, "Tests"): the CPU tests
-# (loader, glTF corpus, fuzzer regressions, animation, compression, environment), the GPU suites on OSMesa (every
-# effect, PBR, skinning, the environment, the viewer session), the page's C++ side built natively (web_api.*), the
-# public API (api.surface), the ray-traced reference and the command-line tools (each run of obscura-render,
-# -reference and -compare is sanitized too); then two command-line runs of its own. Any sanitizer report, and any leak outside the third-party suppressions in
-# tests/lsan.supp, fails it.
+# The sanitizer leg of the test suite: a separate tree (build-asan, tools/lib/sanitized-tree.sh) built by clang with
+# AddressSanitizer, LeakSanitizer and UndefinedBehaviorSanitizer runs, through ctest, every entry labelled cpu, gpu or
+# cli (README, "Tests"): the CPU tests (loader, glTF corpus, fuzzer regressions, animation, compression, environment),
+# the GPU suites on OSMesa (every effect, PBR, skinning, the environment, the viewer session), the page's C++ side
+# built natively (web_api.*), the public API (api.surface), the ray-traced reference and the command-line tools (each
+# run of obscura-render, -reference and -compare is sanitized too); then two command-line runs of its own. Any
+# sanitizer report, and any leak outside the third-party suppressions in tests/lsan.supp, fails it.
 #   tools/test-sanitizers.sh [build|run]      default: both
 # Left out: the EGL backend (Mesa's EGL driver leaks from a module LSan cannot name: docs/robustness.md), the browser
 # and install entries (no web build here; an installed sanitized library would need the runtimes in its consumers),
@@ -13,19 +13,16 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 source tools/lib/ccache.sh
+source tools/lib/sanitized-tree.sh
 jobs=$(nproc 2>/dev/null || echo 2)
 mode="${1:-all}"
 
 if [ "$mode" = build ] || [ "$mode" = all ]; then
-  # -O1 -g1, as the AddressSanitizer docs suggest: line tables are enough for symbolised reports, and the build takes
-  # half the time of -O2 -g (3 against 6 minutes on 2 cores, without ccache), which is most of this leg.
-  # The tests' timeouts are 4 times the usual: sanitized GPU suites run 2 to 4 times slower.
-  cmake -S . -B build-asan -DCMAKE_BUILD_TYPE=Debug "-DCMAKE_C_FLAGS_DEBUG=-O1 -g1" "-DCMAKE_CXX_FLAGS_DEBUG=-O1 -g1" \
-    -DOBSCURA_SANITIZE=ON -DOBSCURA_TEST_BACKENDS=osmesa -DOBSCURA_TEST_BROWSER=OFF -DOBSCURA_TEST_INSTALL=OFF \
-    -DOBSCURA_TEST_TIMEOUT_SCALE=4 "${ccache_cmake_args[@]}" >/dev/null
+  configure_sanitized_tree
+  # The tests' binaries and the tools they run, and the fuzzer (tools/fuzz-gltf.sh) from the same objects.
   cmake --build build-asan -j"$jobs" --target obscura_cpu_tests obscura_gpu_tests obscura_temporal_ao_tests \
     obscura_reference_tests obscura_accuracy_tests obscura_web_api_tests obscura_api_surface obscura_cli_tests \
-    obscura-shaders obscura-hdr-study
+    obscura-shaders obscura-hdr-study obscura-gltf-fuzzer
 fi
 [ "$mode" = run ] || [ "$mode" = all ] || exit 0
 

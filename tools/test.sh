@@ -54,7 +54,7 @@ stage "native build" tools/build.sh -DOBSCURA_WERROR=ON
 stage "web build" tools/build-web.sh -DOBSCURA_WERROR=ON
 stage "npm ci" npm_ci
 stage "ctest (native, web)" native_tests
-stage "sanitizer build" tools/test-sanitizers.sh build
+# One sanitized tree (clang) for the sanitizer leg's tests and the fuzzer.
+stage "sanitized build" tools/test-sanitizers.sh build
 stage "sanitizer tests" tools/test-sanitizers.sh run
-stage "fuzzer build" tools/fuzz-gltf.sh build
-stage "fuzzer run" tools/fuzz-gltf.sh 60
+stage "fuzzer" tools/fuzz-gltf.sh 60

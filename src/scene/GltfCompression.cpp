@@ -475,7 +475,14 @@ std::vector<std::uint8_t> prepareCompressedDocument(const std::vector<std::uint8
   const size_t tailBegin = std::min(bytes.size(), rest);
   std::vector<std::uint8_t> out(12 + 8 + json.size() + (bytes.size() - tailBegin));
   std::memcpy(out.data(), bytes.data(), 8);  // magic and version
-  const std::uint32_t total = static_cast<std::uint32_t>(out.size()), length = static_cast<std::uint32_t>(json.size());
+  // The header's total length moves by what the JSON chunk grew, and no more: a header that disagreed with the file
+  // still disagrees, and tinygltf refuses the mended file as it would the original (found by the fuzzer: set to the
+  // new size, it made a truncated BIN chunk look whole).
+  std::uint32_t declared = 0;
+  std::memcpy(&declared, bytes.data() + 8, 4);
+  const std::uint64_t mendedTotal = std::uint64_t(declared) + json.size() - jsonLength;
+  const std::uint32_t total = static_cast<std::uint32_t>(std::min<std::uint64_t>(mendedTotal, 0xFFFFFFFFu));
+  const std::uint32_t length = static_cast<std::uint32_t>(json.size());
   const std::uint32_t type = 0x4E4F534Au;
   std::memcpy(out.data() + 8, &total, 4);
   std::memcpy(out.data() + 12, &length, 4);

@@ -1394,6 +1394,23 @@ DocumentFacts scanDocument(std::string_view json) {
   return out;
 }
 
+// tinygltf 2.7 checks a .glb's BIN chunk against the file's length without the chunk's own 8-byte header, and then
+// copies a buffer from up to 8 bytes past the end of the file (found by the fuzzer: a heap-buffer-overflow in
+// tinygltf::ParseBuffer). The chunk is checked here first, where tinygltf would accept it.
+void checkGlbBinChunk(const Refusal& refuse, const std::vector<std::uint8_t>& glb) {
+  if (glb.size() < 20 || std::memcmp(glb.data(), "glTF", 4) != 0) return;
+  std::uint32_t length = 0, jsonLength = 0;
+  std::memcpy(&length, glb.data() + 8, 4);
+  std::memcpy(&jsonLength, glb.data() + 12, 4);
+  const std::uint64_t binChunk = 20ull + jsonLength;
+  if (length > glb.size() || binChunk + 12 > length) return;  // tinygltf refuses these, or there is no BIN chunk
+  std::uint32_t binLength = 0;
+  std::memcpy(&binLength, glb.data() + binChunk, 4);
+  if (binChunk + 8 + binLength > length)
+    refuse("the BIN chunk's " + std::to_string(binLength) + " bytes run past the end of the file (" +
+           std::to_string(length) + " bytes)");
+}
+
 Scene loadWithResolver(const std::vector<std::uint8_t>& bytes, const std::string& name, FileResolver resolver,
                        GltfLoadReport* report, const GltfLimits& limits) {
   const Refusal refuse(name);
@@ -1410,6 +1427,7 @@ Scene loadWithResolver(const std::vector<std::uint8_t>& bytes, const std::string
   if (mentionsCompression(json)) compressed = nlohmann::json::parse(json.begin(), json.end(), nullptr, false);
   const std::vector<std::uint8_t> prepared = prepareCompressedDocument(bytes, compressed);
   const std::vector<std::uint8_t>& document = prepared.empty() ? bytes : prepared;
+  checkGlbBinChunk(refuse, document);
 
   tinygltf::TinyGLTF gltf;
   resolver.maxBytes = limits.maxFileBytes;
