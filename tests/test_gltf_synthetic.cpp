@@ -354,6 +354,40 @@ TEST(GltfSynthetic, AHugeCountOverAShortBufferIsRefusedBeforeAllocating) {
   EXPECT_LT(grownMegabytes, 100) << "the peak resident size grew by " << grownMegabytes << " MB";
 }
 
+// tinygltf 2.7 checks a .glb's BIN chunk against the file without the chunk's 8-byte header, and would copy a buffer
+// from up to 8 bytes past the end of the file: a chunk that claims those bytes is refused first (the fuzzer found it
+// through a mended meshopt file, kept in tests/fuzz/regressions). The same file with the chunk's true length gets
+// past that check to the usual refusal of a file without geometry.
+TEST(GltfSynthetic, AGlbWhoseBinChunkRunsPastTheEndOfTheFileIsRefused) {
+  auto glb = [](std::uint32_t declaredBinLength) {
+    std::string text = R"({"asset":{"version":"2.0"},"buffers":[{"byteLength":)" + std::to_string(declaredBinLength) +
+                       "}]}";
+    while (text.size() % 4) text += ' ';
+    const std::uint32_t binLength = 8;  // the bytes the file holds
+    std::vector<std::uint8_t> out(20 + text.size() + 8 + binLength, 0);
+    const std::uint32_t header[5] = {0x46546C67u, 2, static_cast<std::uint32_t>(out.size()),
+                                     static_cast<std::uint32_t>(text.size()), 0x4E4F534Au};
+    std::memcpy(out.data(), header, sizeof(header));
+    std::memcpy(out.data() + 20, text.data(), text.size());
+    const std::uint32_t chunk[2] = {declaredBinLength, 0x004E4942u};
+    std::memcpy(out.data() + 20 + text.size(), chunk, sizeof(chunk));
+    return out;
+  };
+  auto refusal = [](const std::vector<std::uint8_t>& bytes) {
+    try {
+      loadGltfMemory(bytes, "chunks.glb");
+    } catch (const InputError& e) {
+      return std::string(e.what());
+    }
+    return std::string("loaded");
+  };
+  const std::string pastTheEnd = refusal(glb(16));
+  EXPECT_NE(pastTheEnd.find("chunks.glb: the BIN chunk's 16 bytes run past the end of the file"), std::string::npos)
+      << pastTheEnd;
+  const std::string whole = refusal(glb(8));
+  EXPECT_NE(whole.find("contains no triangle, line or point geometry"), std::string::npos) << whole;
+}
+
 // ---- What moves: the node hierarchy, skins, morph targets, animations (issue 13) ----
 
 namespace {

@@ -252,6 +252,10 @@ EMSCRIPTEN_KEEPALIVE int obscura_create(int checkGlErrors) {
   return attempt([checkGlErrors] {
     RendererOptions options;
     options.checkGlErrors = checkGlErrors != 0;
+    // One app per canvas: the old one lets go of the canvas's context and event handlers before a new one takes
+    // them (made first, the new app lost its context-loss handlers to the old one's destructor; found natively by
+    // tests/test_web_api.cpp).
+    g_app.reset();
     g_app = std::make_unique<WebApp>(options);
   });
 }
