@@ -152,7 +152,7 @@ TEST(Accuracy, OrthographicViewsStayWithinThePerspectiveViewsRange) {
       EXPECT_EQ(camera.orthographic, parallel);
       camera.width = 320;
       camera.height = 180;
-      const AoComparison m = measure(view.scene, camera, AoSettings{}.estimator, view.radius).fitted;
+      const AoComparison m = measure(view.name, view.scene, camera, AoSettings{}.estimator, view.radius).fitted;
       std::printf("%s, %s: MAE %.4f halo %.4f SSIM %.4f Pearson %.4f over %zu pixels\n", view.name,
                   parallel ? "orthographic" : "perspective", m.mae, m.haloMae, m.ssim, m.pearson, m.pixels);
       EXPECT_GT(m.pixels, 320u * 180u / 3) << view.name;
