@@ -9,6 +9,8 @@
 // It reads its pixel's view-space position (fused into the lighting: the surface's own; alone: from the G-buffer's
 // 16-bit linear depth), the background's as a ray through the pixel.
 
+#include "lib/reconstruct.glsl"  // eyeRay: the eye's rays, perspective or orthographic
+
 uniform vec3 u_fogColor;      // c_f, linear HDR
 uniform vec2 u_fogFactor;     // (offset, scale)
 #if FOG_HEIGHT
@@ -19,21 +21,25 @@ uniform vec3 u_fogUpInView;      // world up in view space
 
 const float FOG_ENDLESS = 1e30;  // the background, and rays into unending fog
 
-float fogDistance(vec3 viewPosition, bool background) {
-  float d = length(viewPosition);
+// The fog along `ray` (view space), which starts at `origin`: the eye, or a point of its plane (orthographic).
+float fogDistance(vec3 ray, vec3 origin, bool background) {
+  float d = length(ray);
 #if FOG_HEIGHT
-  float climb = u_fogFalloff * dot(viewPosition, u_fogUpInView) / d;
-  if (background) return climb > 0.0 ? min(u_fogHeightScale / climb, FOG_ENDLESS) : FOG_ENDLESS;
+  float climb = u_fogFalloff * dot(ray, u_fogUpInView) / d;
+  float heightScale = u_fogHeightScale * exp(clamp(-u_fogFalloff * dot(origin, u_fogUpInView), -80.0, 80.0));
+  if (background) return climb > 0.0 ? min(heightScale / climb, FOG_ENDLESS) : FOG_ENDLESS;
   float x = climb * d;
   float g = abs(x) < 1e-3 ? 1.0 - 0.5 * x : (1.0 - exp(min(-x, 80.0))) / x;
-  return min(d * u_fogHeightScale * g, FOG_ENDLESS);
+  return min(d * heightScale * g, FOG_ENDLESS);
 #else
   return background ? FOG_ENDLESS : d;
 #endif
 }
 
 vec3 fogStage(vec3 color, StagePixel pixel) {
-  float d = fogDistance(pixel.viewPosition, pixel.background);
+  // From the eye, or from its plane (orthographic; the origin: only height fog reads it).
+  vec3 ray = eyeRay(pixel.viewPosition);
+  float d = fogDistance(ray, pixel.viewPosition - ray, pixel.background);
 #if FOG_MODE == 0
   float f = clamp(u_fogFactor.x - u_fogFactor.y * d, 0.0, 1.0);
 #elif FOG_MODE == 1

@@ -34,11 +34,13 @@ class Program;
 // A target's size relative to the frame (the output size). Half and quarter are floor(size / 2^k), at least 1 pixel
 // (SaoKernel::hierarchyLevelSize), and so is a scaled size, with its own k along x and y (bloom's chain); tiles are
 // ceil(size / tile), one texel per tile x tile pixels; tile columns are ceil(width / tile) by the full height, one
-// texel per tile x 1 pixels (the first half of a separable tile pass).
+// texel per tile x 1 pixels (the first half of a separable tile pass). A fixed size does not follow the frame (auto
+// exposure's 1 x 1 result and its 128-bin histogram).
 struct TargetSize {
-  enum class Kind { Full, Half, Quarter, Tiles, TileColumns, Scaled };
+  enum class Kind { Full, Half, Quarter, Tiles, TileColumns, Scaled, Fixed };
   Kind kind = Kind::Full;
-  int tile = 0;  // Tiles and TileColumns only
+  int tile = 0;                // Tiles and TileColumns; Fixed: the width
+  int height = 0;              // Fixed only
   int shiftX = 0, shiftY = 0;  // Scaled only: floor(width / 2^shiftX) x floor(height / 2^shiftY)
 
   static TargetSize full() { return {Kind::Full, 0}; }
@@ -46,11 +48,12 @@ struct TargetSize {
   static TargetSize quarter() { return {Kind::Quarter, 0}; }
   static TargetSize tiles(int tile) { return {Kind::Tiles, tile}; }
   static TargetSize tileColumns(int tile) { return {Kind::TileColumns, tile}; }
-  static TargetSize scaled(int shiftX, int shiftY) { return {Kind::Scaled, 0, shiftX, shiftY}; }
+  static TargetSize scaled(int shiftX, int shiftY) { return {Kind::Scaled, 0, 0, shiftX, shiftY}; }
+  static TargetSize fixed(int width, int height) { return {Kind::Fixed, width, height}; }
   glm::ivec2 of(glm::ivec2 frame) const;
-  std::string name() const;  // "full", "half", "quarter", "tiles of 16", "1/4 x 1/8"
+  std::string name() const;  // "full", "half", "quarter", "tiles of 16", "1/4 x 1/8", "128x64"
   bool operator==(const TargetSize& o) const {
-    return kind == o.kind && tile == o.tile && shiftX == o.shiftX && shiftY == o.shiftY;
+    return kind == o.kind && tile == o.tile && height == o.height && shiftX == o.shiftX && shiftY == o.shiftY;
   }
 };
 
@@ -112,6 +115,10 @@ struct StageDecl {
   ColorSpace inputSpace = ColorSpace::Hdr, outputSpace = ColorSpace::Hdr;
   bool position = false;  // it reads the pixel's view-space position (fog: the distance)
   bool normal = false;    // it reads the pixel's view-space normal
+  // Other targets it reads (sampler, target): a frame constant (auto exposure's 1 x 1 result) or a coarser image
+  // read at its pixel's uv (the lens light). A stage with any runs in a head that binds them (its own stage pass), and
+  // fuses only after the passes that write them.
+  std::vector<std::pair<std::string, std::string>> textures;
   // The fragment uniform vectors its uniforms take, as GLSL ES 1.00 packs them (Appendix A, section 7): a stage
   // fuses into a pass only where they fit beside that pass's own (Shaders.EveryProgramFitsTheGles2UniformVectors
   // holds the figures).
@@ -129,6 +136,7 @@ struct StageHead {
   ColorSpace space = ColorSpace::Hdr;
   int uniformVectors = 0;       // fragment uniform vectors left for stages
   bool mayWriteOutput = true;   // false: it cannot draw into the output framebuffer (it depth-tests)
+  bool bindsTextures = false;   // it binds the textures a stage reads (StageDecl::textures): a stage pass does
 };
 
 // One pass of this frame: what it reads and writes, and how it draws. Reads of a target bind to its latest earlier
@@ -190,7 +198,7 @@ class Effect {
  public:
   virtual ~Effect() = default;
   // Makes ready what this frame's settings ask the effect to hold (the lighting's environment): loads it, or keeps
-  // what it has. Called every frame, in table order, before the plan (which is cached: plan() is not called every
+  // what it has. Called every frame for every effect, on or off, in table order, before the plan (which is cached: plan() is not called every
   // frame, and neither loads nor frees).
   virtual void prepare(const FrameSettings& settings) { (void)settings; }
   // Adds this frame's passes (none: the effect has nothing to do with these settings). Called in table order for

@@ -14,8 +14,8 @@ std::string describe(const PlannedPass& pass) {
 }
 
 auto slotKind(const SlotKey& k) {
-  return std::make_tuple(static_cast<int>(k.size.kind), k.size.tile, k.size.shiftX, k.size.shiftY, k.filter,
-                         k.ownDepth);
+  return std::make_tuple(static_cast<int>(k.size.kind), k.size.tile, k.size.height, k.size.shiftX, k.size.shiftY,
+                         k.filter, k.ownDepth);
 }
 
 }  // namespace
@@ -233,6 +233,7 @@ FramePlan FramePlan::resolve(FramePlanner&& planner, const std::string& result,
       const auto input = next.reads.find(stage.input);
       if (input == next.reads.end() || input->second != color || stage.inputSpace != space) break;
       if (stage.uniformVectors > vectors) break;
+      if (!stage.textures.empty() && !offer.bindsTextures) break;
       // What else it reads, the head must see as it is: written before the head runs.
       bool readable = true;
       for (const auto& [target, version] : next.reads) {

@@ -68,10 +68,11 @@ PassDecl stagePass(const EffectResources& resources, StageDecl stage, std::strin
   pass.name = stage.name;
   pass.reads = {stage.input};
   if (stage.position || stage.normal) pass.reads.push_back("gbuffer");
+  for (const auto& [sampler, target] : stage.textures) pass.reads.push_back(target);
   pass.writes = {output};
   pass.stageHead = StageHead{output, stage.outputSpace,
                              resources.caps.maxFragmentUniformVectors - kStagePassUniformVectors - stage.uniformVectors,
-                             true};
+                             true, true};
   pass.stage = std::move(stage);
   pass.run = [](PassContext& context) {
     // This stage and those fused after it.
@@ -89,6 +90,8 @@ PassDecl stagePass(const EffectResources& resources, StageDecl stage, std::strin
       draw.read("u_gbuffer", "gbuffer");
       setReconstruction(draw.program(), context.camera().reconstruction);
     }
+    for (const StageDecl& fused : chain)
+      for (const auto& [sampler, read] : fused.textures) draw.read(sampler, read);
     setStageUniforms(draw.program(), chain, context, context.writesOutput(target));
     draw.draw();
   };

@@ -51,8 +51,7 @@ void AoTemporalPass::render(const gl::Texture2D& rawAo, const gl::Texture2D& vel
     setReconstruction(draw.program(), frame.camera.reconstruction);
     const ViewReconstruction& previous = frame.previousCamera.reconstruction;
     draw.set("u_previousFarHalfExtent", previous.farHalfExtent);
-    draw.set("u_previousFarPlane", previous.far);
-    draw.set("u_previousDepthToRay", glm::vec2(previous.depthScale, previous.depthBias));
+    draw.set("u_previousDepthToRay", previous.depthToRay);
     draw.set("u_previousViewToView", frame.camera.view * glm::inverse(frame.previousCamera.view));
     draw.draw();
   }

@@ -80,7 +80,9 @@ namespace {
 
 const char* kLevelEncoding = "linear HDR colour, RGB9E5 as scene-color (lib/hdr.glsl)";
 
-std::string level(int k) { return "bloom-" + std::to_string(k); }
+// Level 2 is also the frame's `bloom-bright`, the light above the threshold at 1/4 of the frame that the lens flare and
+// the glare read (its passes run without the rest of the chain when they read it with bloom off).
+std::string level(int k) { return k == 2 ? "bloom-bright" : "bloom-" + std::to_string(k); }
 std::string up(int k) { return "bloom-up-" + std::to_string(k); }
 std::string tent(int k) { return "bloom-tent-" + std::to_string(k); }
 // Level k's size (floor(frame / 2^k), at least 1), and the tent's first half towards up k (up 0: the frame): level
@@ -131,8 +133,12 @@ EffectInfo BloomEffect::info() {
   info.passes.push_back(tent(0));
   info.passes.push_back("bloom");
   for (int k = 1; k <= kMaxLevels; ++k) {
-    info.targets.push_back({level(k), std::string("level ") + std::to_string(k) + " (1/" + std::to_string(1 << k) +
-                                          "): " + kLevelEncoding, GL_NEAREST, {}});
+    info.targets.push_back({level(k),
+                            k == 2 ? std::string("level 2 (1/4): the light above bloom's threshold, for the lens flare "
+                                                 "and the glare too: ") + kLevelEncoding
+                                   : std::string("level ") + std::to_string(k) + " (1/" + std::to_string(1 << k) +
+                                         "): " + kLevelEncoding,
+                            GL_NEAREST, {}});
     if (k < kMaxLevels)
       info.targets.push_back({up(k), std::string("up ") + std::to_string(k) + ", level k and the tent of up k + 1 " +
                                          "mixed by the radius: " + kLevelEncoding, GL_NEAREST, {}});
@@ -149,10 +155,11 @@ std::vector<ProgramSpec> BloomEffect::programSpecs() { return {spec(0), spec(1),
 BloomEffect::BloomEffect(const EffectResources& resources) : resources_(resources) {}
 
 void BloomEffect::plan(FramePlanner& planner) {
-  if (!planner.settings().of<BloomSettings>().enabled) return;
+  // Off, the prefilter and the first downsample still run when a later effect reads `bloom-bright` (level 2).
+  const bool enabled = planner.settings().of<BloomSettings>().enabled;
   using Write = PassDecl::Write;
   const FrameCamera& camera = planner.frame().camera;
-  const int levels = bloomLevels({camera.width, camera.height});
+  const int levels = enabled ? bloomLevels({camera.width, camera.height}) : 2;
   auto bloom = [](const PassContext& context) -> const BloomSettings& {
     return context.settings().of<BloomSettings>();
   };
@@ -174,10 +181,12 @@ void BloomEffect::plan(FramePlanner& planner) {
   add("bloom-prefilter", {"scene-color"}, level(1), levelSize(1),
       [this, bloom](PassContext& context) { prefilter(resources_, context.texture("scene-color"), bloom(context)); },
       {spec(0).name});
-  for (int k = 2; k <= levels; ++k)
+  // Level 2 even where the chain stops at level 1 (frames under 8 pixels): it is `bloom-bright`.
+  for (int k = 2; k <= std::max(levels, 2); ++k)
     add("bloom-down-" + std::to_string(k), {level(k - 1)}, level(k), levelSize(k),
         [this, finer = level(k - 1)](PassContext& context) { down(resources_, context.texture(finer)); },
         {spec(1).name});
+  if (!enabled) return;
   // Up again from the coarsest level: each up k mixes level k with the tent of the coarser up (level L itself at
   // the bottom), the tent taken in two passes (along x, then along y in the up's own draw).
   for (int k = levels - 1; k >= 0; --k) {

@@ -29,6 +29,11 @@
 // Jimenez's knee is centred on T instead, and lets a little light below the threshold bloom.) No Karis average on
 // the first level: it would take most of a lone bright pixel's energy away; TAA, before bloom, steadies fireflies.
 //
+// The bright pass for other effects: level 2 (1/4 of the frame: the thresholded light, twice downsampled) is also the
+// frame's `bloom-bright` target, which the lens flare and the glare read (effects/lens_flare, effects/glare), so they
+// need no full-resolution pass of their own. With bloom off, the `bloom-bright` pass makes it alone (prefilter and one
+// downsample), and runs only when something reads it.
+//
 // Encoding: every level is RGBA8 holding RGB9E5 (lib/hdr.glsl), fetched NEAREST, decoded texel by texel and filtered
 // in the shader. No RGBA8 encoding of HDR colour filters correctly under the hardware's bilinear filter (it averages
 // the bytes: RGBM and RGB9E5 multiply a filtered mantissa by a filtered exponent, LogLuv averages logarithms), and

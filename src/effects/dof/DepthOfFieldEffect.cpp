@@ -4,6 +4,10 @@
 #include <cmath>
 #include <string>
 
+#include <glm/common.hpp>
+#include <glm/exponential.hpp>
+
+#include "base/Text.h"
 #include "frame/PassContext.h"
 
 namespace obscura {
@@ -33,6 +37,10 @@ ProgramSpec spec(int pass, int taps = 0) {
   if (pass == kNear || pass == kFar) {
     name += ",taps=" + std::to_string(taps);
     defines.emplace_back("TAPS", std::to_string(taps));
+  }
+  if (pass == kComposite || pass == kNear) {
+    defines.emplace_back("SMALL_COC", formatShortest(kDofSmallCoc) + (kDofSmallCoc == std::floor(kDofSmallCoc) ? ".0"
+                                                                                                            : ""));
   }
   return ProgramSpec{name + "]", "lib/fullscreen.vert", "dof/dof.frag", defines, {}};
 }
@@ -90,6 +98,13 @@ int DofSettings::taps() const {
   return kPresets[1].taps;
 }
 
+glm::vec3 dofFieldEncode(const glm::vec3& linear) { return glm::sqrt(linear / (1.0f + linear)); }
+
+glm::vec3 dofFieldDecode(const glm::vec3& field) {
+  const glm::vec3 f2 = field * field;
+  return f2 / glm::max(1.0f - f2, glm::vec3(1.0f / 255.0f));
+}
+
 glm::ivec2 DofSettings::focusPixel(int width, int height) const {
   return {std::clamp(static_cast<int>(std::floor(focusX * static_cast<float>(width))), 0, width - 1),
           std::clamp(static_cast<int>(std::floor(focusY * static_cast<float>(height))), 0, height - 1)};
@@ -100,8 +115,9 @@ float DofSettings::maxRadiusPixels(int height) const {
                     static_cast<float>(DepthOfFieldEffect::kMaxTile));
 }
 
-ThinLens ThinLens::of(const DofSettings& settings, int height) {
+ThinLens ThinLens::of(const DofSettings& settings, int height, bool orthographic) {
   ThinLens lens;
+  lens.orthographic = orthographic;
   lens.focalLength = settings.focalLength * 1e-3f;
   const float aperture = lens.focalLength / settings.fstop;  // A = F / N
   lens.scale = aperture * lens.focalLength * static_cast<float>(height) / (settings.sensorHeight * 1e-3f);
@@ -112,12 +128,17 @@ float ThinLens::usableFocus(float focus) const { return std::max(focus, 1.001f *
 
 float ThinLens::coc(float depth, float focus) const {
   const float p = usableFocus(focus);
-  return scale * (depth - p) / (depth * (p - focalLength));
+  return scale * (depth - p) / ((orthographic ? p : depth) * (p - focalLength));
 }
 
 float ThinLens::pinholeAperture(float focus, float projScale) const {
   const float p = usableFocus(focus);
   return scale * p / ((p - focalLength) * projScale);
+}
+
+float ThinLens::parallelAperture(float focus, float pixelsPerMetre) const {
+  const float p = usableFocus(focus);
+  return scale / (p * (p - focalLength) * pixelsPerMetre);
 }
 
 EffectInfo DepthOfFieldEffect::info() {
@@ -128,12 +149,15 @@ EffectInfo DepthOfFieldEffect::info() {
           {"dof-coc", "dof-downsample", "dof-tiles-h", "dof-tiles", "dof-neighbors", "dof-near", "dof-far",
            "dof-composite"},
           {{"dof-coc", "RG: the signed circle of confusion, 16 bits (encoding/CocPacking.h); BA zero", GL_NEAREST, {}},
-           {"dof-half", "RGB: the 2 x 2 mean display colour; A: the smallest CoC of the four, 8 bits", GL_NEAREST, {}},
+           {"dof-half", "RGB: the 2 x 2 mean HDR colour as sqrt(c / (1 + c)); A: the smallest CoC of the four, 8 bits",
+            GL_NEAREST, {}},
            {"dof-tile-columns", kTileEncoding, GL_NEAREST, {}},
            {"dof-tiles", kTileEncoding, GL_NEAREST, {}},
            {"dof-neighbors", kTileEncoding, GL_NEAREST, {}},
-           {"dof-near", "the near field's display colour premultiplied by its coverage (A)", GL_LINEAR, {}},
-           {"dof-far", "the far field's display colour; A 1 where the pixel is far, else all zero", GL_LINEAR, {}}}};
+           {"dof-near", "the near field's HDR colour premultiplied by its coverage (A), as sqrt(c / (1 + c))",
+            GL_LINEAR, {}},
+           {"dof-far", "the far field's HDR colour as sqrt(c / (1 + c)); A 1 where the pixel is far, else all zero",
+            GL_LINEAR, {}}}};
 }
 
 std::vector<ProgramSpec> DepthOfFieldEffect::programSpecs() {
@@ -164,14 +188,14 @@ void DepthOfFieldEffect::plan(FramePlanner& planner) {
         // This frame's lens and focus.
         const DofSettings& dof = context.settings().of<DofSettings>();
         const FrameCamera& camera = context.camera();
-        const ThinLens lens = ThinLens::of(dof, camera.height);
+        const ThinLens lens = ThinLens::of(dof, camera.height, camera.orthographic);
         const bool autofocus = !dof.focus.has_value();
         // The focus pixel's centre in uv (y up), so that NEAREST reads that texel on any rasteriser.
         const glm::ivec2 focusPixel = dof.focusPixel(camera.width, camera.height);
         const glm::vec2 focusUv((static_cast<float>(focusPixel.x) + 0.5f) / static_cast<float>(camera.width),
                                 (static_cast<float>(camera.height - 1 - focusPixel.y) + 0.5f) /
                                     static_cast<float>(camera.height));
-        draw.set("u_lens", glm::vec2(lens.scale, lens.focalLength));
+        draw.set("u_lens", glm::vec3(lens.scale, lens.focalLength, lens.orthographic ? 0.0f : 1.0f));
         draw.set("u_focus", autofocus ? 0.0f : lens.usableFocus(*dof.focus));
         draw.set("u_focusUv", focusUv);
         draw.set("u_autofocus", autofocus ? 1.0f : 0.0f);
@@ -180,7 +204,7 @@ void DepthOfFieldEffect::plan(FramePlanner& planner) {
       }));
 
   planner.add(fullscreenPass("dof-downsample", spec(kDownsample),
-                             {{"u_color", "display-color"}, {"u_coc", "dof-coc"}},
+                             {{"u_color", "scene-color"}, {"u_coc", "dof-coc"}},
                              {"dof-half", TargetSize::half(), Write::Depth::None, ""},
                              [range](FullscreenDraw& draw, const PassContext& context) {
                                draw.set("u_fullSize", glm::vec2(context.size("dof-coc")));
@@ -204,13 +228,16 @@ void DepthOfFieldEffect::plan(FramePlanner& planner) {
   planner.add(fullscreenPass("dof-far", spec(kFar, taps), {{"u_half", "dof-half"}},
                              {"dof-far", TargetSize::half(), Write::Depth::None, ""}, gather(false)));
 
-  planner.add(fullscreenPass(
-      "dof-composite", spec(kComposite),
-      {{"u_color", "display-color"}, {"u_coc", "dof-coc"}, {"u_near", "dof-near"}, {"u_far", "dof-far"}},
-      {"display-color"}, [range](FullscreenDraw& draw, const PassContext& context) {
-        draw.set("u_range", range);
-        draw.set("u_alphaIsOne", context.writesOutput("display-color") ? 1.0f : 0.0f);
-      }));
+  planner.add(fullscreenPass("dof-composite", spec(kComposite),
+                             {{"u_color", "scene-color"},
+                              {"u_coc", "dof-coc"},
+                              {"u_near", "dof-near"},
+                              {"u_far", "dof-far"},
+                              {"u_neighbors", "dof-neighbors"}},
+                             {"scene-color"}, [range](FullscreenDraw& draw, const PassContext& context) {
+                               draw.set("u_range", range);
+                               draw.set("u_fullSize", glm::vec2(context.size("scene-color")));
+                             }));
 }
 
 }  // namespace obscura

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <string>
 #include <utility>
 
@@ -15,7 +16,7 @@
 namespace obscura {
 namespace {
 
-constexpr EdgeStyle kEdgeStyles[] = {EdgeStyle::Lines, EdgeStyle::Toon};
+constexpr EdgeStyle kEdgeStyles[] = {EdgeStyle::Lines, EdgeStyle::Toon, EdgeStyle::Hatching};
 constexpr float kMinWidth = 1.0f, kMaxWidth = 8.0f;
 constexpr float kRadiansPerDegree = 0.017453292519943295f;
 
@@ -35,14 +36,17 @@ ProgramSpec distanceSpec(int radius) {
                      {}};
 }
 
-ProgramSpec drawSpec(int radius, bool toon) {
-  return ProgramSpec{"edges[draw,radius=" + std::to_string(radius) + (toon ? ",toon" : "") + "]",
+ProgramSpec drawSpec(int radius, EdgeStyle style) {
+  const bool toon = style == EdgeStyle::Toon, hatching = style == EdgeStyle::Hatching;
+  return ProgramSpec{"edges[draw,radius=" + std::to_string(radius) + (toon ? ",toon" : hatching ? ",hatching" : "") +
+                         "]",
                      "lib/fullscreen.vert",
                      "edges/edges.frag",
                      {{"EDGES_PASS", "3"},
                       {"EDGE_RADIUS", std::to_string(radius)},
                       {"TOON", toon ? "1" : "0"},
-                      {"FAR_RAY", "0"}},
+                      {"HATCHING", hatching ? "1" : "0"},
+                      {"FAR_RAY", hatching ? "1" : "0"}},
                      {}};
 }
 
@@ -57,6 +61,7 @@ const char* edgeStyleName(EdgeStyle style) {
   switch (style) {
     case EdgeStyle::Lines: return "lines";
     case EdgeStyle::Toon: return "toon";
+    case EdgeStyle::Hatching: return "hatching";
   }
   return "?";
 }
@@ -68,7 +73,9 @@ const std::vector<Parameter<EdgesSettings>>& EdgesSettings::parameters() {
     for (EdgeStyle choice : kEdgeStyles) styles.emplace_back(edgeStyleName(choice), choice);
     return std::vector<Parameter<S>>{
         switchParameter<S>("edges", "lines on the G-buffer's profiles and creases on or off", &S::enabled).primary(),
-        choiceParameter<S, EdgeStyle>("style", "lines: over the shading; toon: the shading in flat bands, and lines",
+        choiceParameter<S, EdgeStyle>("style",
+                                      "lines: over the shading; toon: the shading in flat bands, and lines; hatching: "
+                                      "strokes on white paper, denser where darker, and lines",
                                       &S::style, styles)
             .primary(),
         numberParameter<S>("width", kMinWidth, kMaxWidth, "px", "the lines' width in output pixels", &S::width)
@@ -84,18 +91,20 @@ const std::vector<Parameter<EdgesSettings>>& EdgesSettings::parameters() {
         numberParameter<S>("color-threshold", 0, 1, "", "least step of display luma that is an edge; 0: none",
                            &S::colorThreshold)
             .shapesPlan(),  // above 0 the detection reads the display colour
-        integerParameter<S>("bands", 2, 16, "", "", "toon: the shading's levels", &S::bands)};
+        integerParameter<S>("bands", 2, 16, "", "", "toon and hatching: the shading's levels", &S::bands),
+        numberParameter<S>("hatch-spacing", 2, 32, "px", "hatching: the pixels between strokes", &S::hatchSpacing)};
   }();
   return table;
 }
 
-EdgeDetector EdgeDetector::of(const EdgesSettings& settings, float near, float far) {
+EdgeDetector EdgeDetector::of(const EdgesSettings& settings, float near, float far, float orthographicDepth) {
   EdgeDetector d;
   d.depthThreshold = settings.depthThreshold;
   d.normalCos = std::cos(settings.normalThreshold * kRadiansPerDegree);
   d.colorThreshold = settings.colorThreshold;
   d.near = near;
   d.depthRange = far - near;
+  d.orthographicDepth = orthographicDepth;
   return d;
 }
 
@@ -105,7 +114,11 @@ float EdgeDetector::viewDepth(const std::uint8_t* texel) const {
   return near + static_cast<float>(code) * (depthRange / 65535.0f);
 }
 
-float EdgeDetector::relativeSecondDifference(float zc, float za, float zb) {
+float EdgeDetector::relativeSecondDifference(float zc, float za, float zb) const {
+  if (orthographicDepth > 0.0f) {
+    if (za == 0.0f || zb == 0.0f) return -std::numeric_limits<float>::infinity();
+    return (2.0f * zc - za - zb) / orthographicDepth;
+  }
   const float wa = za > 0.0f ? 1.0f / za : 0.0f, wb = zb > 0.0f ? 1.0f / zb : 0.0f;
   return zc * (wa + wb) - 2.0f;
 }
@@ -193,7 +206,7 @@ std::vector<ProgramSpec> EdgesEffect::programSpecs() {
   std::vector<ProgramSpec> specs = {detectSpec(false), detectSpec(true)};
   for (int radius = 0; radius <= kMaxRadius; ++radius) specs.push_back(distanceSpec(radius));
   for (int radius = 0; radius <= kMaxRadius; ++radius)
-    for (bool toon : {false, true}) specs.push_back(drawSpec(radius, toon));
+    for (EdgeStyle style : kEdgeStyles) specs.push_back(drawSpec(radius, style));
   return specs;
 }
 
@@ -202,7 +215,8 @@ EdgesEffect::EdgesEffect(const EffectResources&) {}
 void EdgesEffect::plan(FramePlanner& planner) {
   const EdgesSettings& settings = planner.settings().of<EdgesSettings>();
   if (!settings.enabled && !planner.showsTargetOf(info())) return;
-  // What shapes the passes: colour edges (a read of the display colour), the line's reach R (the loops' bound), toon.
+  // What shapes the passes: colour edges (a read of the display colour), the line's reach R (the loops' bound), the
+  // style.
   const bool colorEdges = settings.colorThreshold > 0.0f;
   std::vector<TextureInput> detectInputs = {{"u_gbuffer", "gbuffer"}};
   if (colorEdges) detectInputs.push_back({"u_color", "display-color"});
@@ -210,10 +224,14 @@ void EdgesEffect::plan(FramePlanner& planner) {
       "edges-detect", detectSpec(colorEdges), std::move(detectInputs), {"edges-mask"},
       [colorEdges](FullscreenDraw& draw, const PassContext& context) {
         const FrameCamera& camera = context.camera();
-        const EdgeDetector detector = EdgeDetector::of(context.settings().of<EdgesSettings>(), camera.near, camera.far);
+        const EdgeDetector detector =
+            EdgeDetector::of(context.settings().of<EdgesSettings>(), camera.near, camera.far,
+                             camera.orthographic ? 2.0f * camera.halfExtent.y : 0.0f);
         draw.set("u_texel", context.texelSize("edges-mask"));
         draw.set("u_near", detector.near);
         draw.set("u_depthScale", detector.depthRange / 65535.0f);
+        draw.set("u_inverseOrthographicDepth",
+                 detector.orthographicDepth > 0.0f ? 1.0f / detector.orthographicDepth : 0.0f);
         draw.set("u_depthThreshold", detector.depthThreshold);
         draw.set("u_normalCos", detector.normalCos);
         if (colorEdges) draw.set("u_colorThreshold", detector.colorThreshold);
@@ -227,17 +245,21 @@ void EdgesEffect::plan(FramePlanner& planner) {
                                if (radius > 0) draw.set("u_texel", context.texelSize("edges-distance"));
                              }));
 
-  const bool toon = settings.style == EdgeStyle::Toon;
+  const EdgeStyle style = settings.style;
+  std::vector<TextureInput> drawInputs = {{"u_distance", "edges-distance"}, {"u_color", "display-color"}};
+  if (style == EdgeStyle::Hatching) drawInputs.push_back({"u_gbuffer", "gbuffer"});
   planner.add(fullscreenPass(
-      "edges", drawSpec(radius, toon), {{"u_distance", "edges-distance"}, {"u_color", "display-color"}},
-      {"display-color"}, [radius, toon](FullscreenDraw& draw, const PassContext& context) {
+      "edges", drawSpec(radius, style), std::move(drawInputs), {"display-color"},
+      [radius, style](FullscreenDraw& draw, const PassContext& context) {
         const EdgesSettings& edges = context.settings().of<EdgesSettings>();
         if (radius > 0) draw.set("u_texel", context.texelSize("display-color"));
         draw.set("u_halfWidth", edges.width * 0.5f + 0.5f);
         draw.set("u_lineColor", linearToSrgb(edges.color));  // the shader mixes display colours
         draw.set("u_strength", edges.strength);
         draw.set("u_alphaIsOne", context.writesOutput("display-color") ? 1.0f : 0.0f);
-        if (toon) draw.set("u_bands", static_cast<float>(edges.bands));
+        if (style == EdgeStyle::Toon) draw.set("u_bands", static_cast<float>(edges.bands));
+        if (style == EdgeStyle::Hatching)
+          setHatching(draw.program(), context.camera(), edges.hatchSpacing, edges.bands, draw.unit("u_gbuffer"));
       }));
 }
 

@@ -10,6 +10,7 @@
 #include "base/Error.h"
 #include "encoding/HdrEncoding.h"
 #include "encoding/LinearDepthPacking.h"
+#include "frame/FrameSettings.h"
 #include "frame/PassContext.h"
 #include "frame/Stage.h"
 #include "gl/PipelineState.h"
@@ -19,7 +20,35 @@ namespace obscura {
 
 const std::vector<Parameter<LightingSettings>>& LightingSettings::parameters() {
   using S = LightingSettings;
-  static const std::vector<Parameter<S>> table = {
+  static const std::vector<Parameter<S>> table = [] {
+    std::vector<std::string> presetNames;
+    for (QualityPreset p : allQualityPresets()) presetNames.push_back(presetName(p));
+    Parameter<S> presetParameter{{"preset", parse::joinChoices(presetNames, " | "),
+                                  "quality preset: the shading tier (low: low, medium: medium, high and ultra: high)",
+                                  ParameterKind::Choice, 0.0, 0.0, presetNames},
+                                 {}, {}, {}, {}};
+    presetParameter.set = [](S& s, const std::string& v) { s.applyPreset(parsePreset(v)); };
+    presetParameter.get = [](const S& s) {
+      return s.matchesPreset(s.preset) ? std::string(presetName(s.preset)) : "";
+    };
+    presetParameter.valid = [](const S&) { return true; };
+    return std::vector<Parameter<S>>{
+      std::move(presetParameter),
+      choiceParameter<S, LightingQuality>(
+          "quality",
+          "shading tier: low (the ambient from spherical harmonics alone, no environment fetch), medium (the "
+          "prefiltered environment), high (with multiple scattering and horizon occlusion); the preset sets it",
+          &S::quality,
+          {{"low", LightingQuality::Low}, {"medium", LightingQuality::Medium}, {"high", LightingQuality::High}})
+          .primary(),
+      choiceParameter<S, LightingDepth>(
+          "depth",
+          "where the lighting finds each pixel's visible surface when nothing else draws the G-buffer (the AO off): "
+          "the G-buffer pass, a depth pre-pass, or its own depth test shading overdrawn fragments; auto: the "
+          "cheapest measured for the tier",
+          &S::depth,
+          {{"auto", LightingDepth::Auto}, {"gbuffer", LightingDepth::GBuffer}, {"prepass", LightingDepth::Prepass},
+           {"overdraw", LightingDepth::Overdraw}}),
       numberParameter<S>("sun-elevation", -90, 90, "degrees",
                          "the sun's height above the horizon (with the sky: the sky is made again, about a second)",
                          &S::sunElevation)
@@ -41,7 +70,31 @@ const std::vector<Parameter<LightingSettings>>& LightingSettings::parameters() {
       numberParameter<S>("environment-intensity", 0, 1000, "", "scales the environment's radiance (ambient light and "
                          "background)", &S::environmentIntensity)
           .primary()};
+  }();
   return table;
+}
+
+namespace {
+LightingQuality qualityOf(QualityPreset preset) {
+  switch (preset) {
+    case QualityPreset::Low: return LightingQuality::Low;
+    case QualityPreset::Medium: return LightingQuality::Medium;
+    default: return LightingQuality::High;
+  }
+}
+}  // namespace
+
+void LightingSettings::applyPreset(QualityPreset which) {
+  preset = which;
+  quality = qualityOf(which);
+}
+
+bool LightingSettings::matchesPreset(QualityPreset which) const { return quality == qualityOf(which); }
+
+LightingDepth LightingSettings::depthInUse(bool deferredForm) const {
+  if (depth != LightingDepth::Auto) return depth;
+  if (quality == LightingQuality::Low) return LightingDepth::Overdraw;
+  return deferredForm ? LightingDepth::GBuffer : LightingDepth::Prepass;
 }
 
 glm::vec3 LightingSettings::directionToSun() const {
@@ -119,26 +172,51 @@ MaterialKind LightingEffect::readKind(const Form& form, MaterialKind kind) {
   return form.counting ? kind.forAlphaOnly() : kind;
 }
 
+LightingEffect::Form LightingEffect::programForm(Form form) {
+  // The counting forms shade nothing; the background reads the environment's level 0 only (by hand).
+  if (form.counting || form.background) {
+    form.quality = LightingQuality::Medium;
+    form.filteredFrom = kEnvironmentLevels;
+  }
+  if (!form.deferred || form.counting) form.overDepth = false;
+  // The low tier reads no prefiltered level.
+  if (form.quality == LightingQuality::Low) form.filteredFrom = kEnvironmentLevels;
+  return form;
+}
+
+
 // The forms' programs. The background form is the deferred program's background alone, drawn over fullscreen.vert
 // at the far plane (AT_FAR_PLANE).
-ProgramSpec LightingEffect::spec(const Form& form, MaterialKind kind, VertexKind vertex, EnvironmentLayout layout,
+ProgramSpec LightingEffect::spec(const Form& shown, MaterialKind kind, VertexKind vertex, EnvironmentLayout layout,
                                  int lightsPerDraw) {
+  const Form form = programForm(shown);
+  // The low tier's shading reads no level (only the deferred form's background branch does): one program for both
+  // layouts.
+  if (form.quality == LightingQuality::Low && !form.counting && !form.background && form.overDepth == form.deferred)
+    layout = EnvironmentLayout::Atlas;
   const bool fullscreen = form.deferred || form.background;
   std::string name = "lighting[";
   if (form.background) name += "background";
   else if (form.deferred) name += "deferred";
   else name += "forward" + kind.nameSuffix() + vertex.nameSuffix();
   if (form.counting) name += ",count-shading";
+  const bool shading = !form.counting && !form.background;
+  if (form.overDepth) name += ",over-depth";
+  if (shading && form.quality != LightingQuality::Medium)
+    name += form.quality == LightingQuality::Low ? ",low" : ",high";
+  if (shading && form.filteredFrom < kEnvironmentLevels) name += ",filtered";
   if (!form.counting) name += std::string(",") + environmentLayoutName(layout);
   ProgramSpec s{name + "]", fullscreen ? "lib/fullscreen.vert" : "lib/geometry.vert", "lighting/lighting.frag",
                 {{"DEFERRED", fullscreen ? "1" : "0"},
                  {"BACKGROUND", form.background ? "1" : "0"},
-                 {"AT_FAR_PLANE", form.background ? "1" : "0"},
+                 {"OVER_DEPTH", form.overDepth ? "1" : "0"},
+                 {"AT_FAR_PLANE", form.background || form.overDepth ? "1" : "0"},
                  {"COUNT_SHADING", form.counting ? "1" : "0"},
+                 {"LIGHTING_QUALITY", std::to_string(static_cast<int>(form.quality))},
                  {"MAX_PUNCTUAL_LIGHTS", std::to_string(fullscreen ? 0 : lightsPerDraw)},
                  // The deferred forms' view direction is the far-plane ray's.
                  {"FAR_RAY", fullscreen && !form.counting ? "1" : "0"}}};
-  for (auto& define : GpuEnvironment::shaderDefines(layout)) s.defines.push_back(define);
+  for (auto& define : GpuEnvironment::shaderDefines(layout, form.filteredFrom)) s.defines.push_back(define);
   if (layout == EnvironmentLayout::MipChain && !form.counting) s.extensions.push_back("GL_EXT_shader_texture_lod");
   for (auto& define : kind.defines()) s.defines.push_back(define);
   if (!fullscreen)
@@ -171,18 +249,36 @@ ProgramSpec LightingEffect::withoutStages(ProgramSpec head) {
   return head;
 }
 
-// Every form with the atlas (any GLES 2 context), and the shading forms again with the mip chain; no stage fused
-// (frameProgramSpecs adds the chains).
+// Every form with the atlas (any GLES 2 context), and the shading forms again with the mip chain; the shading forms
+// in each tier, the medium and high ones with and without the filtered levels; no stage fused (frameProgramSpecs adds
+// the chains).
 std::vector<ProgramSpec> LightingEffect::programSpecs(int lightsPerDraw) {
   std::vector<ProgramSpec> specs;
+  struct Shading {
+    LightingQuality quality;
+    int filteredFrom;
+  };
+  const std::vector<Shading> shadings = {{LightingQuality::Low, kEnvironmentLevels},
+                                         {LightingQuality::Medium, kEnvironmentLevels},
+                                         {LightingQuality::Medium, kEnvironmentFilteredLevel},
+                                         {LightingQuality::High, kEnvironmentLevels},
+                                         {LightingQuality::High, kEnvironmentFilteredLevel}};
   for (EnvironmentLayout layout : {EnvironmentLayout::Atlas, EnvironmentLayout::MipChain})
     for (bool deferred : {false, true})
       for (bool counting : {true, false}) {
         if (counting && layout == EnvironmentLayout::MipChain) continue;
-        for (MaterialKind kind : MaterialKind::all()) {
-          const Form form{deferred, counting, false};
-          if (readKind(form, kind) == kind) specs.push_back(spec(form, kind, {}, layout, lightsPerDraw));
-        }
+        for (const Shading& shading : counting ? std::vector<Shading>{shadings[1]} : shadings)
+          for (bool overDepth : {false, true}) {
+            if (overDepth && (!deferred || counting)) continue;
+            // The low tier's shading reads no level: its forms differ by layout only in the deferred background.
+            if (shading.quality == LightingQuality::Low && layout == EnvironmentLayout::MipChain &&
+                overDepth == deferred)
+              continue;
+            for (MaterialKind kind : MaterialKind::all()) {
+              const Form form{deferred, counting, false, shading.quality, shading.filteredFrom, overDepth};
+              if (readKind(form, kind) == kind) specs.push_back(spec(form, kind, {}, layout, lightsPerDraw));
+            }
+          }
         if (!deferred && !counting) specs.push_back(spec({false, false, true}, {}, {}, layout, 0));
       }
   for (VertexKind vertex : VertexKind::validated())
@@ -190,8 +286,9 @@ std::vector<ProgramSpec> LightingEffect::programSpecs(int lightsPerDraw) {
   return specs;
 }
 
-const gl::Program& LightingEffect::program(const Form& form, MaterialKind kind, VertexKind vertex,
+const gl::Program& LightingEffect::program(const Form& asked, MaterialKind kind, VertexKind vertex,
                                            const std::vector<StageDecl>& stages, const std::string& chain) const {
+  const Form form = programForm(asked);
   const bool fullscreen = form.deferred || form.background;
   const MaterialKind read = readKind(form, kind);
   const VertexKind stage = fullscreen ? VertexKind{} : vertex.forCurrentFrame();
@@ -202,55 +299,13 @@ const gl::Program& LightingEffect::program(const Form& form, MaterialKind kind, 
   });
 }
 
-// A file that cannot be read is reported once (InputError: the command line stops, the page shows it) and the
-// environment in use stays, so a stale path (a page's URL naming a file dropped in an earlier visit) does not fail
-// every frame.
-void LightingEffect::useEnvironment(const LightingSettings& settings) {
-  const bool sky = settings.environment == "sky";
-  if (environment_ && environmentName_ == settings.environment && (!sky || skyElevation_ == settings.sunElevation))
-    return;
-  const std::string name = settings.environment;
-  environmentName_ = name;
-  struct Prepared {
-    PrefilteredEnvironment specular;
-    ShIrradiance sh;
-    explicit Prepared(const EnvironmentImage& image)
-        : specular(PrefilteredEnvironment::of(image)), sh(ShIrradiance::project(image)) {}
-  };
-  // The built-in environments are prepared once per process: every Renderer starts with the sky, and its
-  // prefiltering is the dearest part of making one.
-  if (sky) {
-    // The sky's sun stands where lighting.sun-* put the direct light. Its azimuth turns the sky about the vertical
-    // (environmentRotation: free); its elevation changes the sky, which is made and prefiltered again (about a second
-    // on this machine's CPU: LightingSettings marks sun-elevation slow, so the page applies it when a drag ends).
-    LightingSettings defaults;
-    static const Prepared defaultSky(
-        ProceduralSky{defaults.directionToSun()}.image(kEnvironmentWidth, kEnvironmentHeight));
-    skyElevation_ = settings.sunElevation;
-    if (settings.sunElevation == defaults.sunElevation) {
-      environment_ = std::make_unique<GpuEnvironment>(layout_, defaultSky.specular, defaultSky.sh);
-      return;
-    }
-    defaults.sunElevation = settings.sunElevation;
-    const Prepared raised(ProceduralSky{defaults.directionToSun()}.image(kEnvironmentWidth, kEnvironmentHeight));
-    environment_ = std::make_unique<GpuEnvironment>(layout_, raised.specular, raised.sh);
-    return;
-  }
-  if (name == "uniform") {
-    static const Prepared furnace(uniformEnvironment(glm::vec3(1.0f)));
-    environment_ = std::make_unique<GpuEnvironment>(layout_, furnace.specular, furnace.sh);
-    return;
-  }
-  EnvironmentImage image;
-  try {
-    image = loadEnvironmentImage(name);
-  } catch (const InputError&) {
-    if (!environment_) useEnvironment(LightingSettings{});
-    environmentName_ = name;
-    throw;
-  }
-  const Prepared prepared(image);
-  environment_ = std::make_unique<GpuEnvironment>(layout_, prepared.specular, prepared.sh);
+// The sky is made with its sun at the default azimuth and turned to the wanted one (environmentRotation): only the
+// elevation changes the sky itself.
+void LightingEffect::prepare(const FrameSettings& frameSettings) {
+  const LightingSettings& settings = frameSettings.of<LightingSettings>();
+  LightingSettings sky;
+  sky.sunElevation = settings.sunElevation;
+  environments_.use(settings.environment, sky.directionToSun());
 }
 
 LightingEffect::LightingEffect(const EffectResources& resources)
@@ -260,26 +315,37 @@ LightingEffect::LightingEffect(const EffectResources& resources)
       stencil_(resources.caps.packedDepthStencil),
       layout_(GpuEnvironment::layoutFor(resources.caps, resources.options.environmentLayout)),
       lightsPerDraw_(punctualLightsPerDraw(resources.caps.maxFragmentUniformVectors)),
-      environmentBrdfUnit_(TextureUnits::environmentBrdf(resources.caps)) {
+      environmentFilteredUnit_(TextureUnits::environmentFiltered(resources.caps)),
+      drawBuffers_(resources.caps.drawBuffers && resources.options.allowDrawBuffers),
+      environments_(layout_, resources.options.environmentFiltering) {
   // The form of the lit pass before the plan's alternatives, for every material, is built now, so a broken program
   // fails when the renderer is made.
-  for (MaterialKind kind : MaterialKind::all()) program({false, false, false}, kind, {}, {}, "");
-  useEnvironment(LightingSettings{});
+  environments_.use("sky", LightingSettings{}.directionToSun());
+  for (MaterialKind kind : MaterialKind::all())
+    program({false, false, false, LightingQuality::Medium, environments_.current().filteredFrom()}, kind, {}, {}, "");
 }
-
-void LightingEffect::prepare(const FrameSettings& settings) { useEnvironment(settings.of<LightingSettings>()); }
 
 void LightingEffect::plan(FramePlanner& planner) {
   using Write = PassDecl::Write;
   using Alternative = PassDecl::Alternative;
   std::vector<std::string> reads;
   if (planner.declares("ao")) reads.push_back("ao");
+  // The G-buffer's depth also when nothing else needs the G-buffer, where that is the cheaper (LightingDepth).
+  const LightingSettings& lighting = planner.settings().of<LightingSettings>();
+  const bool deferredForm = drawBuffers_ && !planner.frame().forwardLighting;
+  if (lighting.depthInUse(deferredForm) == LightingDepth::GBuffer) reads.push_back("gbuffer");
+  auto with = [&](std::vector<std::string> more) {
+    std::vector<std::string> all = reads;
+    for (std::string& target : more)
+      if (std::find(all.begin(), all.end(), target) == all.end()) all.push_back(std::move(target));
+    return all;
+  };
   auto runAs = [this](Form form) {
     return [this, form](PassContext& context) { render(context, form); };
   };
   // What each shading form offers the per-pixel stages after it (fog, the tone curve): the fragment uniform vectors
   // its heaviest program leaves, and whether it may draw into the output framebuffer (the forward form depth-tests,
-  // and the output has no depth).
+  // and the output has no depth; the deferred form then shades without the G-buffer's depth: render()).
   const int vectors = resources_.caps.maxFragmentUniformVectors;
   const StageHead forward{"scene-color", ColorSpace::Hdr,
                           vectors - kForwardLightingVectorsWithoutStages - lightsPerDraw_ * kVectorsPerPunctualLight,
@@ -299,25 +365,34 @@ void LightingEffect::plan(FramePlanner& planner) {
     pass.writes = {{output, TargetSize::full(), Write::Depth::Shared, "gbuffer"}};
     pass.run = runAs({false, counting, false});
     if (!counting) pass.stageHead = forward;
-    // Deferred where the G-buffer pass writes the base colour beside the G-buffer.
-    std::vector<std::string> deferredReads = reads;
-    deferredReads.insert(deferredReads.end(), {"gbuffer", "base-color"});
-    Alternative alternative{{"base-color"}, counting ? std::vector<std::string>{"gbuffer"} : deferredReads,
-                            {{output, TargetSize::full(), Write::Depth::None, ""}}, runAs({true, counting, false}),
-                            std::nullopt};
-    if (!counting) alternative.stageHead = deferred;
-    pass.alternatives = {alternative};
+    // Deferred where the G-buffer pass writes the base colour beside the G-buffer: over the G-buffer's depth (the
+    // shading where something was drawn, the background where not: each pixel runs one program).
+    if (counting) {
+      pass.alternatives = {Alternative{{"base-color"}, {"gbuffer"},
+                                       {{output, TargetSize::full(), Write::Depth::None, ""}},
+                                       runAs({true, true, false}), std::nullopt}};
+    } else {
+      pass.alternatives = {Alternative{{"base-color"}, with({"gbuffer", "base-color"}),
+                                       {{output, TargetSize::full(), Write::Depth::Shared, "gbuffer"}},
+                                       runAs({true, false, false, LightingQuality::Medium, kEnvironmentLevels, true}),
+                                       deferred}};
+    }
     planner.add(std::move(pass));
   }
 }
 
-void LightingEffect::render(const PassContext& context, const Form& form) const {
+void LightingEffect::render(const PassContext& context, Form form) const {
   const FrameCamera& camera = context.camera();
   const LightingSettings& settings = context.settings().of<LightingSettings>();
+  const GpuEnvironment& environment = environments_.current();
+  // The tier and the environment's storage are read now, not when the plan was made: neither changes its shape.
+  form.quality = settings.quality;
+  form.filteredFrom = environment.filteredFrom();
   // Its colour, or that of the per-pixel stages fused into it (frame/Stage.h), which its programs run after the
   // shading.
+  static const std::vector<StageDecl> none;
   const std::string output = form.counting ? std::string("shading-count") : context.stageOutput();
-  const std::vector<StageDecl>& stages = context.stages();
+  const std::vector<StageDecl>& stages = form.counting ? none : context.stages();
   const std::string chain = fusedProgramName("", stages);
   context.bindForWriting(output);
   const bool writesOutput = context.writesOutput(output);
@@ -331,26 +406,32 @@ void LightingEffect::render(const PassContext& context, const Form& form) const 
                     : PunctualLightUniforms::of(context.scene().lights(), camera.view, lightsPerDraw_);
   // The texture units: gpu/TextureUnits.h.
   const int kEnvironmentUnit = TextureUnits::kEnvironment;
-  const int kEnvironmentBrdfUnit = environmentBrdfUnit_;
-  // The uniforms of a form's program (each form has those it uses: a strict program refuses any other).
+  const int kEnvironmentFilteredUnit = environmentFilteredUnit_;
+  // The uniforms of a form's program. Those every shading form reads are set strictly (a strict program refuses a
+  // name it lacks); those a form, tier or storage may leave out, where the program has them.
   auto setShading = [&](const gl::Program& p, const Form& f) {
     if (f.counting) return;
+    auto optional = [&p](const char* name, const auto& value) {
+      if (p.has(name)) p.set(name, value);
+    };
     const bool fullscreen = f.deferred || f.background;
     p.set("u_viewToEnvironment", viewToEnvironment);
-    p.set("u_environment", kEnvironmentUnit);
     p.set("u_environmentIntensity", settings.environmentIntensity);
+    optional("u_environment", kEnvironmentUnit);
+    optional("u_environmentFiltered", kEnvironmentFilteredUnit);
+    optional("u_environmentFilteredScale", environment.filteredScale() * settings.environmentIntensity);
     // The far-plane ray (only its direction is used), and along it the position where a stage reads it.
     if (fullscreen) setFarRay(p, camera.reconstruction);
+    else optional("u_perspective", camera.reconstruction.perspective ? 1.0f : 0.0f);
     if (f.deferred && !f.background && chainNeedsPosition(stages))
-      p.set("u_depthToRay", glm::vec2(camera.reconstruction.depthScale, camera.reconstruction.depthBias));
+      p.set("u_depthToRay", camera.reconstruction.depthToRay);
     if (!f.background) {
-      p.set("u_lightDirection", lightDirection);
-      p.set("u_lightColor", settings.sunColor * settings.sunIntensity);
-      p.set("u_ao", TextureUnits::kAo);
-      p.set("u_environmentBrdf", kEnvironmentBrdfUnit);
-      p.set("u_shIrradiance", environment_->irradianceUniform().data(), 7);
+      optional("u_lightDirection", lightDirection);
+      optional("u_lightColor", settings.sunColor * settings.sunIntensity);
+      optional("u_ao", TextureUnits::kAo);
+      if (p.has("u_shIrradiance")) p.set("u_shIrradiance", environment.irradianceUniform().data(), 7);
     }
-    if (!fullscreen && lightsPerDraw_ > 0) {
+    if (!fullscreen && lightsPerDraw_ > 0 && p.has("u_lightPositionRange")) {
       p.set("u_lightPositionRange", lights.positionRange, lightsPerDraw_);
       p.set("u_lightColorSpot", lights.colorSpot, lightsPerDraw_);
       p.set("u_lightSpot", lights.spot, lightsPerDraw_);
@@ -359,14 +440,31 @@ void LightingEffect::render(const PassContext& context, const Form& form) const 
   };
   (context.has("ao") ? context.texture("ao") : white_).bind(TextureUnits::kAo);
   if (!form.counting) {
-    glActiveTexture(GL_TEXTURE0 + kEnvironmentBrdfUnit);
-    glBindTexture(GL_TEXTURE_2D, environment_->brdfTexture());
+    glActiveTexture(GL_TEXTURE0 + kEnvironmentFilteredUnit);
+    glBindTexture(GL_TEXTURE_2D, environment.filteredTexture());
     glActiveTexture(GL_TEXTURE0 + kEnvironmentUnit);
-    glBindTexture(GL_TEXTURE_2D, environment_->texture());
+    glBindTexture(GL_TEXTURE_2D, environment.texture());
   }
+  // The background: the environment where the depth is still 1 (nothing drawn), a full-screen triangle on the far
+  // plane tested LEQUAL against it, writing no depth.
+  auto drawBackground = [&] {
+    const Form background{false, false, true};
+    const gl::Program& p = program(background, {}, {}, stages, chain);
+    p.use();
+    setShading(p, background);
+    glDisable(GL_POLYGON_OFFSET_FILL);
+    glEnable(GL_DEPTH_TEST);
+    glDepthFunc(GL_LEQUAL);
+    glDepthMask(GL_FALSE);
+    resources_.triangle.draw();
+  };
 
   if (form.deferred) {
-    // Every pixel once, background included: no clear, no depth.
+    // Every pixel once, background included. Over the G-buffer's depth (form.overDepth): the shading where the
+    // depth is nearer than the far plane (a triangle on the far plane, tested GL_GREATER), then the background where
+    // it is not; else (the output framebuffer, which has no depth) one program for both, which tells the background
+    // by the G-buffer's depth code.
+    form.overDepth = form.overDepth && !form.counting && context.sharesDepth(output) && !writesOutput;
     if (form.counting) {
       glClearColor(0.0f, 0.0f, 0.0f, 0.0f);
       glClear(GL_COLOR_BUFFER_BIT);
@@ -384,7 +482,13 @@ void LightingEffect::render(const PassContext& context, const Form& form) const 
       glEnable(GL_BLEND);
       glBlendFunc(GL_ONE, GL_ONE);
     }
+    if (form.overDepth) {
+      glEnable(GL_DEPTH_TEST);
+      glDepthFunc(GL_GREATER);
+      glDepthMask(GL_FALSE);
+    }
     resources_.triangle.draw();
+    if (form.overDepth) drawBackground();
     gl::restoreBaselineState();
     return;
   }
@@ -393,7 +497,27 @@ void LightingEffect::render(const PassContext& context, const Form& form) const 
   // count adds to zero).
   glClearColor(0.0f, 0.0f, 0.0f, 0.0f);
   glEnable(GL_DEPTH_TEST);
-  if (context.sharesDepth(output) && stencil_) {
+  // The depth pre-pass (LightingDepth::Prepass) where the pass has a depth of its own: the scene's nearest depth
+  // first, with the counting forms' trivial fragment stage (the alpha test only) and colour writes off; then the
+  // shading over it, as over the G-buffer's.
+  const bool prepass = !context.sharesDepth(output) &&
+                       settings.depthInUse(drawBuffers_ && !context.frame().forwardLighting) == LightingDepth::Prepass;
+  if (prepass) {
+    glClearDepthf(1.0f);
+    glClear(GL_DEPTH_BUFFER_BIT);
+    glDepthFunc(GL_LESS);
+    glColorMask(GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
+    const Form depthOnly{false, true, false};
+    context.scene().draw(camera.view, [&](MaterialKind kind, VertexKind vertex) -> const gl::Program& {
+      const gl::Program& p = program(depthOnly, kind, vertex, none, "");
+      p.use();
+      p.set("u_projection", camera.projection);
+      return p;
+    });
+    glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
+  }
+  const bool overDepth = context.sharesDepth(output) || prepass;
+  if (overDepth && stencil_) {
     // The G-buffer's depth holds each pixel's nearest surface: GL_EQUAL lets only that surface's fragments through,
     // and the stencil (0, set to 1 by the first that passes) only the first of them. A coplanar or edge-on face at
     // exactly that depth is not shaded again: GL_EQUAL alone would shade it too (the shading-count test caught it at
@@ -405,7 +529,7 @@ void LightingEffect::render(const PassContext& context, const Form& form) const 
     glEnable(GL_STENCIL_TEST);
     glStencilFunc(GL_EQUAL, 0, 0xFF);
     glStencilOp(GL_KEEP, GL_KEEP, GL_INCR);
-  } else if (context.sharesDepth(output)) {
+  } else if (overDepth) {
     // Without a stencil buffer: GL_LESS against that depth pulled one resolvable step towards the camera, writing
     // depth, so a later fragment of the same depth fails. Faces seen exactly edge-on may still shade a pixel twice
     // (a hidden one within that step, drawn first); the visible surface, drawn after, still wins.
@@ -429,18 +553,7 @@ void LightingEffect::render(const PassContext& context, const Form& form) const 
     setShading(p, form);
     return p;
   });
-  if (!form.counting) {
-    // The background: the environment where the depth is still 1 (nothing drawn), a full-screen triangle on the far
-    // plane tested LEQUAL against it, writing no depth.
-    const Form background{false, false, true};
-    const gl::Program& p = program(background, {}, {}, stages, chain);
-    p.use();
-    setShading(p, background);
-    glDisable(GL_POLYGON_OFFSET_FILL);
-    glDepthFunc(GL_LEQUAL);
-    glDepthMask(GL_FALSE);
-    resources_.triangle.draw();
-  }
+  if (!form.counting) drawBackground();
   gl::restoreBaselineState();
 }
 

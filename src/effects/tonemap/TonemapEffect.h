@@ -42,7 +42,7 @@ class TonemapEffect : public Effect {
   static EffectInfo info();
   static std::vector<ProgramSpec> programSpecs() { return {}; }  // its programs are the fused ones (stages())
   // Its stage for a curve, and every curve's, for the shader checks.
-  static StageDecl stage(ToneMapOperator op);
+  static StageDecl stage(ToneMapOperator op, bool autoExposure = false, bool lensLight = false);
   static std::vector<StageDecl> stages();
 
   explicit TonemapEffect(const EffectResources& resources) : resources_(resources) {}
