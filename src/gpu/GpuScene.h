@@ -24,7 +24,6 @@
 #include <glm/mat4x4.hpp>
 
 #include "gl/GlCaps.h"
-#include "gl/GlCaps.h"
 #include "gl/GlObjects.h"
 #include "gl/Program.h"
 #include "gl/RenderTarget.h"
@@ -149,8 +148,52 @@ class GpuScene {
     glm::vec3 textureSize{0.0f};                    // width, height, texels per palette
   };
 
-  void uploadCpuDeformed(InstanceGpu& instance, const ScenePose& current, const ScenePose& previous, size_t index);
-  VertexKind vertexKind(const InstanceGpu& instance, const Piece& piece) const;
+  struct MeshPieces {  // a Scene mesh's pieces
+    int first = 0, count = 0;
+    bool cpuSkinned = false;
+  };
+  // What one draw() call carries from piece to piece: the current program, and the state to restore at the end.
+  struct DrawState {
+    explicit DrawState(const ProgramChoice& program) : choose(program) {}
+    const ProgramChoice& choose;
+    const GeometryUniforms* uniforms = nullptr;
+    MaterialKind programMaterial;
+    VertexKind programVertex;
+    std::vector<GLuint> extraAttributes;  // enabled for the current piece, disabled after it
+    bool jointTextureBound = false;
+    bool pbrTexturesBound = false;
+    // Points an attribute the program has (location >= 0) at a buffer.
+    void attribute(GLint location, GLuint buffer, GLint size, GLsizei stride, size_t offset);
+  };
+  static constexpr int kDeformedFloats = 11;  // CPU-deformed vertices: position, normal, texcoord, previous position
+
+  // Upload (the constructor, in this order).
+  void chooseSkinningPath(const gl::GlCaps& caps, const Options& options);  // GpuSkinning.cpp
+  void uploadTextures(const Scene& scene, const gl::GlCaps& caps);
+  void uploadMaterials(const Scene& scene);
+  std::vector<MeshPieces> uploadMeshes(const Scene& scene, bool uint32);
+  Piece uploadPiece(Mesh mesh, const std::vector<int>& palette, bool tangents);
+  void createSkins(const Scene& scene, const gl::GlCaps& caps);  // GpuSkinning.cpp
+  void placeInstances(const Scene& scene, const std::vector<MeshPieces>& meshPieces);
+
+  // Pose.
+  std::vector<bool> poseSkins(const ScenePose& current, const ScenePose& previous);  // GpuSkinning.cpp
+  bool chooseGpuMorphTargets(InstanceGpu& instance) const;
+  void uploadCpuDeformed(InstanceGpu& instance, const ScenePose& current, const ScenePose& previous,
+                         size_t index);  // GpuSkinning.cpp
+
+  // Draw.
+  std::vector<const InstanceGpu*> drawOrder(const glm::mat4& view, const DrawOptions& options) const;
+  VertexKind vertexKind(const InstanceGpu& instance, const Piece& piece) const;  // GpuSkinning.cpp
+  void bindMaterialTextures(const MaterialGpu& material, DrawState& state) const;
+  void drawPiece(const InstanceGpu& instance, int p, const MaterialGpu& material, const glm::mat4& modelView,
+                 DrawState& state) const;
+  void setInstanceUniforms(const InstanceGpu& instance, const MaterialGpu& material, const glm::mat4& modelView,
+                           const VertexKind& vertexKind, const DrawState& state) const;
+  void bindSkin(const InstanceGpu& instance, const Piece& piece, const VertexKind& vertexKind,
+                DrawState& state) const;  // GpuSkinning.cpp
+  void bindVertices(const InstanceGpu& instance, int p, const VertexKind& vertexKind, DrawState& state) const;
+  void restoreAfterDraw(const DrawState& state) const;
 
   std::vector<Piece> pieces_;
   std::vector<MaterialGpu> materials_;  // last entry: the default material
