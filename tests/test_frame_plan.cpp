@@ -62,12 +62,12 @@ struct Fixture {
 TEST(EffectTable, ListsTheFrameInOrderWithUniqueNames) {
   std::vector<std::string> effects;
   for (const EffectEntry& row : effectTable()) effects.push_back(row.info.name);
-  EXPECT_EQ(effects, (std::vector<std::string>{"gbuffer", "velocity", "ao", "lighting", "lines", "fog", "taa", "bloom",
-                                                "tonemap", "edges", "dof", "motion-blur", "fxaa"}));
+  EXPECT_EQ(effects, (std::vector<std::string>{"gbuffer", "velocity", "ao", "lighting", "lines", "fog", "transparency",
+                                                "taa", "bloom", "tonemap", "edges", "dof", "motion-blur", "fxaa"}));
   EXPECT_EQ(framePassNames(),
             (std::vector<std::string>{"pose", "gbuffer", "base-color", "velocity", "hierarchy", "sao", "ao-temporal",
                                       "blur-h", "blur-v", "upsample", "lighting", "shading-count", "lines", "fog",
-                                      "taa", "bloom", "tonemap", "edges-detect", "edges-h", "edges",
+                                      "transmission-levels", "transparency", "taa", "bloom", "tonemap", "edges-detect", "edges-h", "edges",
                                       "dof-coc", "dof-downsample", "dof-tiles-h", "dof-tiles", "dof-neighbors",
                                       "dof-near", "dof-far", "dof-composite",
                                       "motion-tiles-h", "motion-tiles", "motion-neighbors", "motion-blur", "fxaa",

@@ -142,8 +142,8 @@ TEST(Pbr, TheMirrorIsTheBrdfOfTheSpecification) {
   const double specular = f * pbr::distributionGgx(1.0, alpha) * pbr::visibilitySmithGgx(1.0, 1.0, alpha);
   EXPECT_NEAR(head.r, (1.0 - f) / pbr::kPi + specular, 1e-12);
   EXPECT_NEAR(pbr::visibilitySmithGgx(1.0, 1.0, 0.5), 0.25, 1e-12);  // G = 1 at normal incidence: 1 / (4 NL NV)
-  EXPECT_NEAR(pbr::fresnelSchlick(glm::dvec3(0.04), 0.0).r, 1.0, 1e-12);
-  EXPECT_NEAR(pbr::fresnelSchlick(glm::dvec3(0.04), 1.0).r, 0.04, 1e-12);
+  EXPECT_NEAR(pbr::fresnelSchlick(glm::dvec3(0.04), glm::dvec3(1.0), 0.0).r, 1.0, 1e-12);
+  EXPECT_NEAR(pbr::fresnelSchlick(glm::dvec3(0.04), glm::dvec3(1.0), 1.0).r, 0.04, 1e-12);
   EXPECT_EQ(pbr::brdfCosine(n, n, glm::dvec3(0.0, 0.6, -0.8), white), glm::dvec3(0.0));  // light below the surface
   // KHR_lights_punctual's falloff and cone.
   EXPECT_NEAR(pbr::punctualFalloff(2.0, 0.0), 0.25, 1e-12);

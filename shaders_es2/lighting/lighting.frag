@@ -21,12 +21,24 @@
 //                     environment where the scene left the depth at 1.
 //   COUNT_SHADING 1   the diagnostic: each fragment adds 1/255 (additive blending), counting the fragments shaded
 //                     per pixel under the lit pass's depth test.
+//   UNLIT 1           KHR_materials_unlit: the base colour (times the vertex colour) is the colour; no light, no AO.
+//   MATERIAL_LAYERS 1 KHR_materials_ior and _specular (the dielectric's F0 and F90) and _clearcoat (a second GGX
+//                     lobe over the base, the Khronos sample viewer's layering).
+//   BLENDED 1         the transparent layer's form (effects/transparency): the surface composited over what lies
+//                     behind it (shaders_es2/transparency/composite.glsl), fogged by its own distance; TRANSMISSION 1
+//                     adds KHR_materials_transmission's thin-walled refraction.
 #include "lib/precision.glsl"
 #include "lib/packing.glsl"
 #include "lib/srgb.glsl"
 #include "lib/hdr.glsl"
 #if !DEFERRED && !COUNT_SHADING
 #define MATERIAL_SURFACE 1
+#endif
+#ifndef UNLIT
+#define UNLIT 0
+#endif
+#ifndef BLENDED
+#define BLENDED 0
 #endif
 #include "lib/material.glsl"
 #include "lib/pbr.glsl"
@@ -78,15 +90,55 @@ uniform vec4 u_lightSpot[MAX_PUNCTUAL_LIGHTS];           // xyz the spot's direc
 // by Lagarde's specular occlusion of it. n the shading normal, v towards the eye (both unit, view space), diffuseColor
 // and f0 the material's (lib/pbr.glsl), roughness perceptual. The split sum's scale and bias come from the table
 // integrated on the CPU; the diffuse keeps the energy the specular does not take (so a white furnace gives 1).
-vec3 ambientLight(vec3 n, vec3 v, vec3 diffuseColor, vec3 f0, float roughness, float occlusion) {
+vec3 ambientLight(vec3 n, vec3 v, vec3 diffuseColor, vec3 f0, vec3 f90, float roughness, float occlusion) {
   float nv = clamp(dot(n, v), 1e-4, 1.0);
   vec3 environmentNormal = u_viewToEnvironment * n;
   vec2 scaleBias = environmentBrdf(roughness, nv);
-  vec3 specularAlbedo = f0 * scaleBias.x + scaleBias.y;
+  vec3 specularAlbedo = f0 * scaleBias.x + f90 * scaleBias.y;
   vec3 diffuse = diffuseColor * (1.0 - specularAlbedo) * environmentIrradiance(environmentNormal);
   vec3 specular = specularAlbedo * environmentSpecular(u_viewToEnvironment * reflect(-v, n), roughness);
   return diffuse * occlusion + specular * specularOcclusion(nv, occlusion, roughness * roughness);
 }
+
+#if MAX_PUNCTUAL_LIGHTS > 0
+// Light i's illuminance at p (view space) and the unit direction l towards it. KHR_lights_punctual: inverse square,
+// windowed to 0 at the range (the extension's recommended clamp(1 - (d / range)^4, 0, 1)^2), times the spot's smooth
+// cone. A directional light (w -1: xyz the unit direction towards it) has neither: its colour is its illuminance.
+vec3 punctualIlluminance(int i, vec3 p, out vec3 l) {
+  bool directional = u_lightPositionRange[i].w < 0.0;
+  vec3 toLight = directional ? u_lightPositionRange[i].xyz : u_lightPositionRange[i].xyz - p;
+  float d2 = directional ? 1.0 : max(dot(toLight, toLight), 1e-8);
+  l = toLight * inversesqrt(d2);
+  float window = clamp(1.0 - d2 * d2 * u_lightPositionRange[i].w, 0.0, 1.0);
+  float cone = clamp(dot(u_lightSpot[i].xyz, -l) * u_lightColorSpot[i].a + u_lightSpot[i].w, 0.0, 1.0);
+  return u_lightColorSpot[i].rgb * (window * window * cone * cone / d2);
+}
+#endif
+
+#if MATERIAL_LAYERS
+// KHR_materials_clearcoat over the lit base colour, as the Khronos sample viewer layers it: a dielectric coat (F0
+// 0.04, ior 1.5) with a GGX lobe of its own roughness around the base's normal (the coat's normal texture is not
+// read), lit by the sun, the punctual lights and the environment (darkened as the base's specular is); the base
+// below keeps what the coat does not reflect, 1 - clearcoat F(n.v).
+vec3 coated(vec3 base, vec3 p, vec3 n, vec3 v, float occlusion) {
+  if (u_clearcoat <= 0.0) return base;
+  float roughness = clamp(u_clearcoatRoughness, PBR_MIN_ROUGHNESS, 1.0);
+  float nv = clamp(dot(n, v), 1e-4, 1.0);
+  vec2 scaleBias = environmentBrdf(roughness, nv);
+  vec3 coat = vec3(0.04 * scaleBias.x + scaleBias.y) *
+              environmentSpecular(u_viewToEnvironment * reflect(-v, n), roughness) *
+              specularOcclusion(nv, occlusion, roughness * roughness);
+  coat += brdfCosine(n, v, u_lightDirection, vec3(0.0), vec3(0.04), roughness) * u_lightColor;
+#if MAX_PUNCTUAL_LIGHTS > 0
+  for (int i = 0; i < MAX_PUNCTUAL_LIGHTS; i++) {
+    vec3 l;
+    vec3 illuminance = punctualIlluminance(i, p, l);
+    coat += brdfCosine(n, v, l, vec3(0.0), vec3(0.04), roughness) * illuminance;
+  }
+#endif
+  return base * (1.0 - u_clearcoat * fresnelSchlick(vec3(0.04), nv)) + u_clearcoat * coat;
+}
+#endif
 
 // The lit colour of a surface point: p its view-space position, n its shading normal (unit, facing the viewer).
 vec3 shade(vec3 base, float metallic, float roughness, vec3 p, vec3 n, float occlusion, vec3 emissive) {
@@ -94,21 +146,30 @@ vec3 shade(vec3 base, float metallic, float roughness, vec3 p, vec3 n, float occ
   roughness = clamp(roughness, PBR_MIN_ROUGHNESS, 1.0);
   metallic = clamp(metallic, 0.0, 1.0);
   vec3 diffuseColor = base * (1.0 - metallic);
+#if MATERIAL_LAYERS
+  // KHR_materials_specular and _ior: the dielectric's F0 and F90 (a metal's are its base colour and 1).
+  vec3 f0 = mix(u_specular.rgb, base, metallic);
+  vec3 f90 = vec3(mix(u_specular.a, 1.0, metallic));
+#else
   vec3 f0 = mix(vec3(0.04), base, metallic);
-  vec3 color = ambientLight(n, v, diffuseColor, f0, roughness, occlusion) + emissive;
-  color += brdfCosine(n, v, u_lightDirection, diffuseColor, f0, roughness) * u_lightColor;
+  vec3 f90 = vec3(1.0);
+#endif
+#if TRANSMISSION
+  // Thin-walled transmission takes this share of the diffuse lobe (transparency/composite.glsl adds what it lets
+  // through).
+  diffuseColor *= 1.0 - u_transmission;
+#endif
+  vec3 color = ambientLight(n, v, diffuseColor, f0, f90, roughness, occlusion) + emissive;
+  color += brdfCosine(n, v, u_lightDirection, diffuseColor, f0, f90, roughness) * u_lightColor;
 #if MAX_PUNCTUAL_LIGHTS > 0
   for (int i = 0; i < MAX_PUNCTUAL_LIGHTS; i++) {
-    vec3 toLight = u_lightPositionRange[i].xyz - p;
-    float d2 = max(dot(toLight, toLight), 1e-8);
-    vec3 l = toLight * inversesqrt(d2);
-    // KHR_lights_punctual: inverse square, windowed to 0 at the range (the extension's recommended
-    // clamp(1 - (d / range)^4, 0, 1)^2), times the spot's smooth cone.
-    float window = clamp(1.0 - d2 * d2 * u_lightPositionRange[i].w, 0.0, 1.0);
-    float cone = clamp(dot(u_lightSpot[i].xyz, -l) * u_lightColorSpot[i].a + u_lightSpot[i].w, 0.0, 1.0);
-    vec3 illuminance = u_lightColorSpot[i].rgb * (window * window * cone * cone / d2);
-    color += brdfCosine(n, v, l, diffuseColor, f0, roughness) * illuminance;
+    vec3 l;
+    vec3 illuminance = punctualIlluminance(i, p, l);
+    color += brdfCosine(n, v, l, diffuseColor, f0, f90, roughness) * illuminance;
   }
+#endif
+#if MATERIAL_LAYERS
+  color = coated(color, p, n, v, occlusion);
 #endif
   return color;
 }
@@ -143,6 +204,17 @@ void main() {
   // points from the eye through the pixel, as the surface's position does.
   gl_FragColor = encodeOutput(shade(base, 0.0, 1.0, v_farRay, decodeNormal(g.rg), texture2D(u_ao, v_uv).r, vec3(0.0)));
 }
+#elif UNLIT && !BLENDED
+// KHR_materials_unlit: the base colour (times the vertex colour) as it is; exposure and the tone curve still apply.
+void main() {
+  vec4 base = baseColor(v_texcoord);
+#if ALPHA_MASK
+  if (base.a < u_alphaCutoff) discard;
+#endif
+  gl_FragColor = encodeOutput(base.rgb);
+}
+#elif BLENDED
+#include "transparency/composite.glsl"
 #else
 void main() {
   vec4 base = baseColor(v_texcoord);

@@ -43,6 +43,9 @@ struct FrameContext {
   double previousTime = 0.0;
   double deltaTime = 0.0;      // time - previousTime
   bool linesOrPoints = false;  // the scene has points or lines to draw (effects/lines/LinesEffect.h)
+  // The scene has a transparent layer (Material::transparent: effects/transparency), and transmission in it.
+  bool transparent = false;
+  bool transmission = false;
   // The scene needs the forward lighting (GpuScene::needsForwardLighting): the G-buffer writes no base colour.
   bool forwardLighting = false;
 };

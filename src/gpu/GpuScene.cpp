@@ -29,13 +29,16 @@ gl::TextureHandle uploadTexture(const Image& source, const SamplerState& sampler
   return texture;
 }
 
+// Position, normal, TEXCOORD_0, TEXCOORD_1 (GpuScene::kVertexFloats): a_texcoord reads both sets as one vec4.
 std::vector<float> interleave(const Mesh& part) {
   std::vector<float> interleaved;
-  interleaved.reserve(part.positions.size() * 8);
+  interleaved.reserve(part.positions.size() * 10);
   for (size_t v = 0; v < part.positions.size(); ++v) {
     const glm::vec2 uv = part.texcoords.empty() ? glm::vec2(0.0f) : part.texcoords[v];
+    const glm::vec2 uv1 = part.texcoords1.empty() ? glm::vec2(0.0f) : part.texcoords1[v];
     interleaved.insert(interleaved.end(), {part.positions[v].x, part.positions[v].y, part.positions[v].z,
-                                           part.normals[v].x, part.normals[v].y, part.normals[v].z, uv.x, uv.y});
+                                           part.normals[v].x, part.normals[v].y, part.normals[v].z, uv.x, uv.y,
+                                           uv1.x, uv1.y});
   }
   return interleaved;
 }
@@ -66,9 +69,16 @@ GpuScene::GpuScene(const Scene& scene, const gl::GlCaps& caps, const Options& op
   placeInstances(scene, meshPieces);
   lights_ = scene.lights;
   needsForwardLighting_ = !scene.lights.empty();
+  // The transparent layer is lit by its own pass (effects/transparency), whatever form the lighting takes.
   for (const Mesh& mesh : scene.meshes)
-    if (mesh.material >= 0 && scene.materials[static_cast<size_t>(mesh.material)].needsForwardLighting())
-      needsForwardLighting_ = true;
+    if (mesh.material >= 0) {
+      const Material& material = scene.materials[static_cast<size_t>(mesh.material)];
+      if (material.needsForwardLighting() && !material.transparent()) needsForwardLighting_ = true;
+    }
+  for (const InstanceGpu& instance : instances_) {
+    hasTransparent_ = hasTransparent_ || instance.transparent;
+    hasTransmission_ = hasTransmission_ || materials_[static_cast<size_t>(instance.material)].transmission;
+  }
   // The rest pose, until the first setPose.
   const ScenePose rest = evaluatePose(scene, 0.0, PoseOptions{AnimationChoice::none(), false});
   setPose(rest, rest);
@@ -94,7 +104,6 @@ void GpuScene::uploadMaterials(const Scene& scene) {
     MaterialGpu gpu;
     gpu.baseColorFactor = m.baseColorFactor;
     gpu.texture = usable(m.baseColorTexture);
-    gpu.alphaCutoff = m.alphaMode == AlphaMode::Mask ? m.alphaCutoff : -1.0f;
     gpu.doubleSided = m.doubleSided;
     gpu.pbrTextures = {usable(m.metallicRoughnessTexture), usable(m.normalTexture), usable(m.occlusionTexture),
                        usable(m.emissiveTexture)};
@@ -108,7 +117,21 @@ void GpuScene::uploadMaterials(const Scene& scene) {
       // Rows of the 3x3 matrix (glm is column-major: t[column][row]).
       gpu.uvRows[static_cast<size_t>(2 * slot)] = glm::vec3(t[0][0], t[1][0], t[2][0]);
       gpu.uvRows[static_cast<size_t>(2 * slot + 1)] = glm::vec3(t[0][1], t[1][1], t[2][1]);
+      if (m.texCoords[static_cast<size_t>(slot)] == 1) gpu.uvSets += static_cast<float>(1 << slot);
     }
+    gpu.unlit = m.unlit;
+    gpu.layered = m.layered() && !m.unlit;
+    gpu.transparent = m.transparent();
+    gpu.transmission = m.transmissionFactor > 0.0f && !m.unlit;
+    gpu.specular = glm::vec4(m.dielectricF0(), m.specularFactor);
+    gpu.clearcoat = m.clearcoatFactor;
+    gpu.clearcoatRoughness = m.clearcoatRoughnessFactor;
+    gpu.transmissionFactor = m.transmissionFactor;
+    // The sample viewer's applyIorToRoughness; ior 0 (the extension's "infinite") blurs fully.
+    gpu.transmissionIor = m.ior == 0.0f ? 1.0f : std::clamp(2.0f * m.ior - 2.0f, 0.0f, 1.0f);
+    // u_alphaCutoff: the MASK cutoff; -1 for BLEND (alpha composites), -2 for OPAQUE (alpha ignored: transparency's
+    // composite.glsl).
+    gpu.alphaCutoff = m.alphaMode == AlphaMode::Mask ? m.alphaCutoff : m.alphaMode == AlphaMode::Blend ? -1.0f : -2.0f;
     materials_.push_back(gpu);
   }
   materials_.push_back(MaterialGpu{});  // the default material (Material{}: a white rough dielectric)
@@ -124,7 +147,9 @@ std::vector<GpuScene::MeshPieces> GpuScene::uploadMeshes(const Scene& scene, boo
     Mesh withTangents;
     if (pbr && source.tangents.size() != source.positions.size()) {
       withTangents = source;
-      generateTangents(withTangents);
+      const int normalSet = scene.materials[static_cast<size_t>(source.material)]
+                                .texCoords[static_cast<size_t>(TextureSlot::Normal)];
+      generateTangents(withTangents, normalSet);
     }
     const Mesh& mesh = withTangents.positions.empty() ? source : withTangents;
     MeshPieces placed;
@@ -173,8 +198,11 @@ GpuScene::Piece GpuScene::uploadPiece(Mesh mesh, const std::vector<int>& palette
   for (const MorphTarget& target : mesh.morphTargets) {
     piece.morphPositions.push_back(vec3Buffer(target.positions));
     piece.morphNormals.push_back(target.normals.empty() ? gl::BufferHandle() : vec3Buffer(target.normals));
+    piece.morphTangents.push_back(target.tangents.empty() || !tangents ? gl::BufferHandle()
+                                                                        : vec3Buffer(target.tangents));
   }
   if (tangents) piece.tangents = arrayBuffer(mesh.tangents.data(), mesh.tangents.size() * sizeof(glm::vec4));
+  if (!mesh.colors.empty()) piece.colors = arrayBuffer(mesh.colors.data(), mesh.colors.size() * sizeof(glm::vec4));
   piece.palette = palette;
   if (mesh.skinned() || !mesh.morphTargets.empty()) piece.source = std::move(mesh);
   return piece;
@@ -189,6 +217,8 @@ void GpuScene::placeInstances(const Scene& scene, const std::vector<MeshPieces>&
     Bounds local;
     for (const glm::vec3& p : mesh.positions) local.add(p);
     gpu.localCentre = local.empty() ? glm::vec3(0.0f) : local.center();
+    gpu.localMin = local.empty() ? glm::vec3(0.0f) : local.min;
+    gpu.localMax = local.empty() ? glm::vec3(0.0f) : local.max;
     gpu.restCentre = gpu.centre = glm::vec3(instance.world * glm::vec4(gpu.localCentre, 1.0f));
     gpu.material = mesh.material >= 0 ? mesh.material : static_cast<int>(materials_.size()) - 1;
     gpu.firstPiece = placed.first;
@@ -196,6 +226,7 @@ void GpuScene::placeInstances(const Scene& scene, const std::vector<MeshPieces>&
     gpu.skin = instance.skin >= 0 && mesh.skinned() ? instance.skin : -1;
     gpu.cpuSkinned = gpu.skin >= 0 && placed.cpuSkinned;
     gpu.morphed = !mesh.morphTargets.empty();
+    gpu.transparent = materials_[static_cast<size_t>(gpu.material)].transparent;
     instances_.push_back(std::move(gpu));
   }
 }
@@ -208,9 +239,8 @@ bool GpuScene::anyMoving() const {
   return std::any_of(instances_.begin(), instances_.end(), [](const InstanceGpu& i) { return i.moving; });
 }
 
-int GpuScene::morphTargetSlots(bool withNormals, bool skinned) const {
-  const int free = limits_.attributes - 3 - (skinned ? 2 : 0);
-  return std::clamp(free / (withNormals ? 2 : 1), 0, VertexKind::kMaxMorphTargets);
+int GpuScene::morphTargetSlots(int perTarget, int otherAttributes) const {
+  return std::clamp((limits_.attributes - otherAttributes) / std::max(perTarget, 1), 0, VertexKind::kMaxMorphTargets);
 }
 
 GeometryUniforms::GeometryUniforms(const gl::Program& program)
@@ -222,6 +252,12 @@ GeometryUniforms::GeometryUniforms(const gl::Program& program)
       metallicRoughness(program.optionalUniform("u_metallicRoughness")),
       emissive(program.optionalUniform("u_emissive")),
       uvTransforms(program.optionalUniform("u_uvTransforms[0]")),
+      uvSets(program.optionalUniform("u_uvSets")),
+      specular(program.optionalUniform("u_specular")),
+      clearcoat(program.optionalUniform("u_clearcoat")),
+      clearcoatRoughness(program.optionalUniform("u_clearcoatRoughness")),
+      transmission(program.optionalUniform("u_transmission")),
+      transmissionIor(program.optionalUniform("u_transmissionIor")),
       pbrTextures{program.optionalUniform("u_metallicRoughnessTexture"), program.optionalUniform("u_normalTexture"),
                   program.optionalUniform("u_occlusionTexture"), program.optionalUniform("u_emissiveTexture")},
       joints(program.optionalUniform("u_joints[0]")),
@@ -234,10 +270,12 @@ GeometryUniforms::GeometryUniforms(const gl::Program& program)
       jointsAttribute(glGetAttribLocation(program.id(), "a_joints")),
       weightsAttribute(glGetAttribLocation(program.id(), "a_weights")),
       previousPositionAttribute(glGetAttribLocation(program.id(), "a_previousPosition")),
-      tangentAttribute(glGetAttribLocation(program.id(), "a_tangent")) {
+      tangentAttribute(glGetAttribLocation(program.id(), "a_tangent")),
+      colorAttribute(glGetAttribLocation(program.id(), "a_color")) {
   for (int t = 0; t < VertexKind::kMaxMorphTargets; ++t) {
     morphPositionAttribute[t] = glGetAttribLocation(program.id(), ("a_morphPosition" + std::to_string(t)).c_str());
     morphNormalAttribute[t] = glGetAttribLocation(program.id(), ("a_morphNormal" + std::to_string(t)).c_str());
+    morphTangentAttribute[t] = glGetAttribLocation(program.id(), ("a_morphTangent" + std::to_string(t)).c_str());
   }
 }
 
@@ -273,18 +311,22 @@ bool GpuScene::chooseGpuMorphTargets(InstanceGpu& instance) const {
   if (!instance.morphed) return true;
   const Piece& first = pieces_[static_cast<size_t>(instance.firstPiece)];
   std::vector<int> needed;
-  bool normals = false;
+  bool normals = false, tangents = false;
   for (size_t t = 0; t < instance.weights.size(); ++t)
     if (instance.weights[t] != 0.0f || instance.previousWeights[t] != 0.0f) {
       needed.push_back(static_cast<int>(t));
       normals = normals || first.morphNormals[t].id() != 0;
+      tangents = tangents || first.morphTangents[t].id() != 0;
     }
   const auto heaviness = [&](int t) {
     return std::max(std::abs(instance.weights[static_cast<size_t>(t)]),
                     std::abs(instance.previousWeights[static_cast<size_t>(t)]));
   };
   std::stable_sort(needed.begin(), needed.end(), [&](int a, int b) { return heaviness(a) > heaviness(b); });
-  if (static_cast<int>(needed.size()) > morphTargetSlots(normals, instance.skin >= 0 && !instance.cpuSkinned))
+  // Beside the targets: position, normal, texture coordinates, and the tangent, colours and skin where drawn.
+  const int others = 3 + (first.tangents ? 1 : 0) + (first.colors ? 1 : 0) +
+                     (instance.skin >= 0 && !instance.cpuSkinned ? 2 : 0);
+  if (static_cast<int>(needed.size()) > morphTargetSlots(1 + (normals ? 1 : 0) + (tangents ? 1 : 0), others))
     return false;
   instance.gpuTargets = needed;
   return true;
@@ -299,12 +341,13 @@ void GpuScene::DrawState::attribute(GLint location, GLuint buffer, GLint size, G
   extraAttributes.push_back(slot);
 }
 
-// Opaque before masked, each front to back: the view-space z of the bounds' centre, nearest (largest) first.
+// The opaque layer: opaque before masked, each front to back: the view-space z of the bounds' centre, nearest
+// (largest) first.
 std::vector<const GpuScene::InstanceGpu*> GpuScene::drawOrder(const glm::mat4& view, const DrawOptions& options) const {
   std::vector<std::pair<float, const InstanceGpu*>> keyed;
   keyed.reserve(instances_.size());
   for (const InstanceGpu& instance : instances_) {
-    if (options.onlyMoving && !instance.moving) continue;
+    if (instance.transparent || (options.onlyMoving && !instance.moving)) continue;
     const bool masked = materials_[static_cast<size_t>(instance.material)].alphaCutoff >= 0.0f;
     keyed.emplace_back((masked ? 1e30f : 0.0f) - (view * glm::vec4(instance.centre, 1.0f)).z, &instance);
   }
@@ -322,15 +365,100 @@ void GpuScene::draw(const glm::mat4& view, const ProgramChoice& choose, const Dr
   glActiveTexture(GL_TEXTURE0);
   for (const InstanceGpu* instance : drawOrder(view, options)) {
     const MaterialGpu& material = materials_[static_cast<size_t>(instance->material)];
-    bindMaterialTextures(material, state);
     if (material.doubleSided) glDisable(GL_CULL_FACE);
     else glEnable(GL_CULL_FACE);
-    const glm::mat4 modelView = view * instance->world;
-    // A mirroring transform flips the winding; keep "front" meaning the outside.
-    glFrontFace(glm::determinant(glm::mat3(modelView)) < 0.0f ? GL_CW : GL_CCW);
-    for (int p = instance->firstPiece; p < instance->firstPiece + instance->pieceCount; ++p)
-      drawPiece(*instance, p, material, modelView, state);
+    drawInstance(*instance, view, state);
   }
+  restoreAfterDraw(state);
+}
+
+void GpuScene::drawInstance(const InstanceGpu& instance, const glm::mat4& view, DrawState& state) const {
+  const MaterialGpu& material = materials_[static_cast<size_t>(instance.material)];
+  bindMaterialTextures(material, state);
+  const glm::mat4 modelView = view * instance.world;
+  // A mirroring transform flips the winding; keep "front" meaning the outside.
+  glFrontFace(glm::determinant(glm::mat3(modelView)) < 0.0f ? GL_CW : GL_CCW);
+  for (int p = instance.firstPiece; p < instance.firstPiece + instance.pieceCount; ++p)
+    drawPiece(instance, p, material, modelView, state);
+}
+
+// The pixels an instance covers at most: its mesh's bounds projected (a skinned or morphed instance, whose pose may
+// leave its rest bounds, and one reaching behind the eye cover the frame), widened by a pixel for rasterisation.
+glm::ivec4 GpuScene::screenRect(const InstanceGpu& instance, const glm::mat4& viewProjection, glm::ivec2 size) const {
+  const glm::ivec4 frame(0, 0, size.x, size.y);
+  if (instance.skin >= 0 || instance.morphed) return frame;
+  glm::vec2 low(1e30f), high(-1e30f);
+  for (int corner = 0; corner < 8; ++corner) {
+    const glm::vec3 p((corner & 1) ? instance.localMax.x : instance.localMin.x,
+                      (corner & 2) ? instance.localMax.y : instance.localMin.y,
+                      (corner & 4) ? instance.localMax.z : instance.localMin.z);
+    const glm::vec4 clip = viewProjection * (instance.world * glm::vec4(p, 1.0f));
+    if (clip.w <= 1e-6f) return frame;
+    const glm::vec2 ndc = glm::vec2(clip) / clip.w;
+    low = glm::min(low, ndc);
+    high = glm::max(high, ndc);
+  }
+  const glm::vec2 half = glm::vec2(size) * 0.5f;
+  const glm::ivec2 from = glm::clamp(glm::ivec2(glm::floor((low + 1.0f) * half)) - 1, glm::ivec2(0), size);
+  const glm::ivec2 to = glm::clamp(glm::ivec2(glm::ceil((high + 1.0f) * half)) + 1, glm::ivec2(0), size);
+  return {from.x, from.y, std::max(0, to.x - from.x), std::max(0, to.y - from.y)};
+}
+
+std::vector<GpuScene::TransparentBatch> GpuScene::transparentBatches(const glm::mat4& view,
+                                                                     const glm::mat4& projection,
+                                                                     glm::ivec2 size) const {
+  // Back to front: the view-space z of the bounds' centre, farthest (most negative) first.
+  std::vector<std::pair<float, int>> order;
+  for (size_t i = 0; i < instances_.size(); ++i)
+    if (instances_[i].transparent)
+      order.emplace_back((view * glm::vec4(instances_[i].centre, 1.0f)).z, static_cast<int>(i));
+  std::stable_sort(order.begin(), order.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
+  const glm::mat4 viewProjection = projection * view;
+  auto overlap = [](const glm::ivec4& a, const glm::ivec4& b) {
+    return a.x < b.x + b.z && b.x < a.x + a.z && a.y < b.y + b.w && b.y < a.y + a.w;
+  };
+  std::vector<TransparentBatch> batches;
+  std::vector<glm::ivec4> batchRects;  // the rectangles of the last batch's draws
+  auto add = [&](const TransparentDraw& draw, const glm::ivec4& rect) {
+    const bool fits = !batches.empty() && std::none_of(batchRects.begin(), batchRects.end(),
+                                                       [&](const glm::ivec4& r) { return overlap(r, rect); });
+    if (!fits) {
+      batches.emplace_back();
+      batchRects.clear();
+      batches.back().rect = rect;
+    } else {
+      glm::ivec4& u = batches.back().rect;
+      const glm::ivec2 from = glm::min(glm::ivec2(u.x, u.y), glm::ivec2(rect.x, rect.y));
+      const glm::ivec2 to = glm::max(glm::ivec2(u.x + u.z, u.y + u.w), glm::ivec2(rect.x + rect.z, rect.y + rect.w));
+      u = glm::ivec4(from, to - from);
+    }
+    batchRects.push_back(rect);
+    batches.back().draws.push_back(draw);
+  };
+  for (const auto& [z, index] : order) {
+    const InstanceGpu& instance = instances_[static_cast<size_t>(index)];
+    const glm::ivec4 rect = screenRect(instance, viewProjection, size);
+    if (rect.z <= 0 || rect.w <= 0) continue;
+    // A double-sided material's back faces first: they lie behind its front faces (rect overlaps itself, so the
+    // front faces go to the next batch and see the back faces behind them).
+    if (materials_[static_cast<size_t>(instance.material)].doubleSided) add({index, GL_FRONT}, rect);
+    add({index, GL_BACK}, rect);
+  }
+  return batches;
+}
+
+void GpuScene::drawTransparent(const glm::mat4& view, const ProgramChoice& choose,
+                               const TransparentBatch& batch) const {
+  counts_ = {};
+  DrawState state(choose);
+  for (GLuint slot : {gl::kAttribPosition, gl::kAttribNormal, gl::kAttribTexcoord}) glEnableVertexAttribArray(slot);
+  glActiveTexture(GL_TEXTURE0);
+  glEnable(GL_CULL_FACE);
+  for (const TransparentDraw& draw : batch.draws) {
+    glCullFace(draw.cullFace);
+    drawInstance(instances_[static_cast<size_t>(draw.instance)], view, state);
+  }
+  glCullFace(GL_BACK);
   restoreAfterDraw(state);
 }
 
@@ -352,7 +480,7 @@ void GpuScene::drawPiece(const InstanceGpu& instance, int p, const MaterialGpu& 
                          DrawState& state) const {
   using gl::Program;
   const Piece& piece = pieces_[static_cast<size_t>(p)];
-  const MaterialKind materialKind{material.alphaCutoff >= 0.0f, material.texture >= 0, material.pbr};
+  const MaterialKind materialKind = material.kind();
   const VertexKind vertexKind = this->vertexKind(instance, piece);
   const bool newProgram =
       !state.uniforms || !(materialKind == state.programMaterial) || !(vertexKind == state.programVertex);
@@ -390,6 +518,12 @@ void GpuScene::setInstanceUniforms(const InstanceGpu& instance, const MaterialGp
   Program::set(uniforms.metallicRoughness, material.metallicRoughness);
   Program::set(uniforms.emissive, material.emissive);
   if (uniforms.uvTransforms >= 0) glUniform3fv(uniforms.uvTransforms, 2 * kTextureSlots, &material.uvRows[0].x);
+  Program::set(uniforms.uvSets, material.uvSets);
+  Program::set(uniforms.specular, material.specular);
+  Program::set(uniforms.clearcoat, material.clearcoat);
+  Program::set(uniforms.clearcoatRoughness, material.clearcoatRoughness);
+  Program::set(uniforms.transmission, material.transmissionFactor);
+  Program::set(uniforms.transmissionIor, material.transmissionIor);
   if (vertexKind.morphTargets > 0) {
     glm::vec4 now(0.0f), before(0.0f);
     for (size_t k = 0; k < instance.gpuTargets.size(); ++k) {
@@ -409,30 +543,42 @@ void GpuScene::bindVertices(const InstanceGpu& instance, int p, const VertexKind
   const Piece& piece = pieces_[static_cast<size_t>(p)];
   const GeometryUniforms& uniforms = *state.uniforms;
   const bool deformed = vertexKind.cpuDeformed;
-  const GLuint vertices =
-      deformed ? instance.deformed[static_cast<size_t>(p - instance.firstPiece)].id() : piece.vertices.id();
-  const GLsizei stride = (deformed ? kDeformedFloats : 8) * static_cast<GLsizei>(sizeof(float));
-  glBindBuffer(GL_ARRAY_BUFFER, vertices);
-  glVertexAttribPointer(gl::kAttribPosition, 3, GL_FLOAT, GL_FALSE, stride, nullptr);
-  glVertexAttribPointer(gl::kAttribNormal, 3, GL_FLOAT, GL_FALSE, stride,
-                        reinterpret_cast<const void*>(3 * sizeof(float)));
-  glVertexAttribPointer(gl::kAttribTexcoord, 2, GL_FLOAT, GL_FALSE, stride,
+  const GLsizei stride = GpuScene::kVertexFloats * static_cast<GLsizei>(sizeof(float));
+  glBindBuffer(GL_ARRAY_BUFFER, piece.vertices.id());
+  glVertexAttribPointer(gl::kAttribTexcoord, 4, GL_FLOAT, GL_FALSE, stride,
                         reinterpret_cast<const void*>(6 * sizeof(float)));
-  if (deformed) state.attribute(uniforms.previousPositionAttribute, vertices, 3, stride, 8 * sizeof(float));
-  // CPU-deformed vertices keep their rest tangents (an approximation: only the normal map's frame is off).
-  if (piece.tangents) state.attribute(uniforms.tangentAttribute, piece.tangents.id(), 4, 0, 0);
+  if (deformed) {
+    // Position, normal, previous position and tangent as the CPU deformed them this frame.
+    const GLuint stream = instance.deformed[static_cast<size_t>(p - instance.firstPiece)].id();
+    const GLsizei deformedStride = kDeformedFloats * static_cast<GLsizei>(sizeof(float));
+    glBindBuffer(GL_ARRAY_BUFFER, stream);
+    glVertexAttribPointer(gl::kAttribPosition, 3, GL_FLOAT, GL_FALSE, deformedStride, nullptr);
+    glVertexAttribPointer(gl::kAttribNormal, 3, GL_FLOAT, GL_FALSE, deformedStride,
+                          reinterpret_cast<const void*>(3 * sizeof(float)));
+    state.attribute(uniforms.previousPositionAttribute, stream, 3, deformedStride, 6 * sizeof(float));
+    if (piece.tangents) state.attribute(uniforms.tangentAttribute, stream, 4, deformedStride, 9 * sizeof(float));
+  } else {
+    glVertexAttribPointer(gl::kAttribPosition, 3, GL_FLOAT, GL_FALSE, stride, nullptr);
+    glVertexAttribPointer(gl::kAttribNormal, 3, GL_FLOAT, GL_FALSE, stride,
+                          reinterpret_cast<const void*>(3 * sizeof(float)));
+    if (piece.tangents) state.attribute(uniforms.tangentAttribute, piece.tangents.id(), 4, 0, 0);
+  }
+  if (piece.colors) state.attribute(uniforms.colorAttribute, piece.colors.id(), 4, 0, 0);
   if (vertexKind.skinning != VertexKind::None) {
     const GLsizei skinStride = 8 * sizeof(float);
     state.attribute(uniforms.jointsAttribute, piece.skinAttributes.id(), 4, skinStride, 0);
     state.attribute(uniforms.weightsAttribute, piece.skinAttributes.id(), 4, skinStride, 4 * sizeof(float));
   }
+  // A target without normal or tangent deltas beside one with: its attribute holds zero (no delta).
+  auto delta = [&](GLint location, const gl::BufferHandle& buffer) {
+    if (buffer) state.attribute(location, buffer.id(), 3, 0, 0);
+    else if (location >= 0) glVertexAttrib3f(static_cast<GLuint>(location), 0.0f, 0.0f, 0.0f);
+  };
   for (size_t k = 0; k < static_cast<size_t>(vertexKind.morphTargets); ++k) {
     const auto t = static_cast<size_t>(instance.gpuTargets[k]);
     state.attribute(uniforms.morphPositionAttribute[k], piece.morphPositions[t].id(), 3, 0, 0);
-    if (piece.morphNormals[t])
-      state.attribute(uniforms.morphNormalAttribute[k], piece.morphNormals[t].id(), 3, 0, 0);
-    else if (uniforms.morphNormalAttribute[k] >= 0)  // a target without normals beside one with: no delta
-      glVertexAttrib3f(static_cast<GLuint>(uniforms.morphNormalAttribute[k]), 0.0f, 0.0f, 0.0f);
+    delta(uniforms.morphNormalAttribute[k], piece.morphNormals[t]);
+    delta(uniforms.morphTangentAttribute[k], piece.morphTangents[t]);
   }
 }
 

@@ -118,10 +118,12 @@ void GpuScene::uploadCpuDeformed(InstanceGpu& instance, const ScenePose& current
     const PosedVertices before = posedMesh(piece.source, jointsOf(previous), previous.instanceWeights[index]);
     std::vector<float> data;
     data.reserve(now.positions.size() * kDeformedFloats);
+    // Tangents are deformed as the vertex stage would (their w turned by a mirroring joint): a normal texture on a
+    // CPU-deformed mesh keeps its frame.
     for (size_t v = 0; v < now.positions.size(); ++v) {
-      const glm::vec2 uv = piece.source.texcoords.empty() ? glm::vec2(0.0f) : piece.source.texcoords[v];
       const glm::vec3 &p3 = now.positions[v], &n = now.normals[v], &q = before.positions[v];
-      data.insert(data.end(), {p3.x, p3.y, p3.z, n.x, n.y, n.z, uv.x, uv.y, q.x, q.y, q.z});
+      const glm::vec4 t = now.tangents.empty() ? glm::vec4(1.0f, 0.0f, 0.0f, 1.0f) : now.tangents[v];
+      data.insert(data.end(), {p3.x, p3.y, p3.z, n.x, n.y, n.z, q.x, q.y, q.z, t.x, t.y, t.z, t.w});
     }
     gl::BufferHandle& buffer = instance.deformed[static_cast<size_t>(p)];
     if (!buffer) buffer = gl::BufferHandle::create();
@@ -133,6 +135,7 @@ void GpuScene::uploadCpuDeformed(InstanceGpu& instance, const ScenePose& current
 
 VertexKind GpuScene::vertexKind(const InstanceGpu& instance, const Piece& piece) const {
   VertexKind kind;
+  kind.vertexColors = static_cast<bool>(piece.colors);
   if (instance.cpuDeformed) {
     kind.cpuDeformed = true;
     return kind;
@@ -142,8 +145,10 @@ VertexKind GpuScene::vertexKind(const InstanceGpu& instance, const Piece& piece)
     if (kind.skinning == VertexKind::Palette) kind.palette = paletteSize_;
   }
   kind.morphTargets = static_cast<int>(instance.gpuTargets.size());
-  for (int t : instance.gpuTargets)
+  for (int t : instance.gpuTargets) {
     kind.morphNormals = kind.morphNormals || piece.morphNormals[static_cast<size_t>(t)].id() != 0;
+    kind.morphTangents = kind.morphTangents || piece.morphTangents[static_cast<size_t>(t)].id() != 0;
+  }
   return kind;
 }
 

@@ -3,6 +3,7 @@
 #include <cmath>
 #include <cstring>
 #include <fstream>
+#include <map>
 #include <set>
 #include <string_view>
 
@@ -17,12 +18,39 @@
 namespace obscura {
 namespace {
 
-// Extensions a file may require: KHR_texture_transform is applied (to the base colour's TEXCOORD_0, below); the others
-// change nothing the AO renderer depends on, so a file that *requires* them still renders right.
-const std::set<std::string> kHarmlessRequiredExtensions = {
-    "KHR_materials_unlit", "KHR_materials_emissive_strength", "KHR_texture_transform", "KHR_materials_ior",
-    "KHR_materials_specular", "KHR_materials_clearcoat", "KHR_materials_sheen", "KHR_materials_transmission",
-    "KHR_materials_volume", "KHR_materials_variants", "KHR_lights_punctual"};
+// What the loader does with each extension a file may use (docs/robustness.md, "Extensions", lists them):
+// implemented; or not implemented but the file is still drawn without it (a material's extra lobe, a choice of
+// variants), with a one-line warning naming it; anything else a file requires is refused in one line. The compression
+// extensions are implemented where the build has their decoders (GltfCompression.h).
+enum class Support { Implemented, DrawnWithout };
+struct ExtensionSupport {
+  Support support;
+  const char* without;  // DrawnWithout: what the drawing lacks
+};
+const std::map<std::string, ExtensionSupport>& knownExtensions() {
+  static const std::map<std::string, ExtensionSupport> table = {
+      {"KHR_materials_unlit", {Support::Implemented, ""}},
+      {"KHR_materials_emissive_strength", {Support::Implemented, ""}},
+      {"KHR_materials_ior", {Support::Implemented, ""}},
+      {"KHR_materials_specular", {Support::Implemented, ""}},
+      {"KHR_materials_clearcoat", {Support::Implemented, ""}},
+      {"KHR_materials_transmission", {Support::Implemented, ""}},
+      {"KHR_texture_transform", {Support::Implemented, ""}},
+      {"KHR_lights_punctual", {Support::Implemented, ""}},
+      {"KHR_materials_volume", {Support::DrawnWithout, "transmission is thin-walled (no thickness, no attenuation)"}},
+      {"KHR_materials_sheen", {Support::DrawnWithout, "no sheen lobe"}},
+      {"KHR_materials_iridescence", {Support::DrawnWithout, "no thin-film iridescence"}},
+      {"KHR_materials_anisotropy", {Support::DrawnWithout, "isotropic highlights"}},
+      {"KHR_materials_dispersion", {Support::DrawnWithout, "no dispersion"}},
+      {"KHR_materials_diffuse_transmission", {Support::DrawnWithout, "no diffuse transmission"}},
+      {"KHR_materials_variants", {Support::DrawnWithout, "the default materials only"}},
+      {"KHR_animation_pointer", {Support::DrawnWithout, "only node channels animate"}},
+      {"KHR_xmp_json_ld", {Support::DrawnWithout, "metadata not read"}},
+      {"KHR_materials_pbrSpecularGlossiness",
+       {Support::DrawnWithout, "the metallic-roughness fallback material is drawn"}},
+  };
+  return table;
+}
 
 struct ImageLoadContext {
   const GltfLimits* limits;
@@ -140,12 +168,33 @@ std::string firstLine(const std::string& text) {
   return line.empty() ? "unknown error" : line;
 }
 
-// A required extension is loaded (compression, quantization), harmless, or the file is refused.
+// A required extension is implemented (compression and quantization where the build decodes them), can be drawn
+// without, or the file is refused.
 void refuseUnlessSupported(const gltf::Refusal& refuse, const std::string& extension) {
-  if (kHarmlessRequiredExtensions.count(extension)) return;
+  if (knownExtensions().count(extension)) return;
   std::string why;
   if (compressionExtensionSupported(extension, &why)) return;
   refuse(why.empty() ? "requires unsupported extension " + extension : why);
+}
+
+// One warning per extension the file uses that is not implemented, naming it (once per file, whatever uses it).
+void warnUnimplementedExtensions(const tinygltf::Model& model, GltfLoadReport& report) {
+  std::set<std::string> used(model.extensionsUsed.begin(), model.extensionsUsed.end());
+  used.insert(model.extensionsRequired.begin(), model.extensionsRequired.end());
+  for (const std::string& extension : used) {
+    const auto known = knownExtensions().find(extension);
+    if (known != knownExtensions().end()) {
+      if (known->second.support == Support::DrawnWithout)
+        report.warnings.push_back("extension " + extension + " is not implemented: " + known->second.without);
+      continue;
+    }
+    std::string why;
+    if (compressionExtensionSupported(extension, &why)) continue;
+    // A compression extension without its decoder in this build, used but not required: the fallback is drawn.
+    report.warnings.push_back("extension " + extension +
+                              (why.empty() ? " is not implemented: ignored"
+                                           : " cannot be decoded by this build: its uncompressed fallback is drawn"));
+  }
 }
 
 // What is read from the JSON before tinygltf parses it: the asset's extensionsRequired (a file that needs, say,
@@ -228,6 +277,7 @@ Scene loadWithResolver(const std::vector<std::uint8_t>& bytes, const std::string
       out.warnings.push_back("animation " + std::to_string(a) + ": " + std::to_string(facts.channelsWithoutNode[a]) +
                              " channels have no target node (KHR_animation_pointer?); skipped");
   for (const std::string& ext : model.extensionsRequired) refuseUnlessSupported(refuse, ext);
+  warnUnimplementedExtensions(model, out);
   decompressGltfModel(model, name, limits, out);
 
   gltf::LoadBudget budget;

@@ -130,9 +130,9 @@ void loadSkinAttributes(const LoaderContext& ctx, const tinygltf::Primitive& pri
                                          "WEIGHTS_0 renormalised");
 }
 
-// Morph targets (glTF 2.0 sec. 3.7.2.2): per target, POSITION and NORMAL displacements, float VEC3, one per vertex
-// (sparse accessors welcome: targets are mostly zeros). TANGENT and any other attribute are ignored: nothing here
-// uses tangents. A target without POSITION displaces nothing.
+// Morph targets (glTF 2.0 sec. 3.7.2.2): per target, POSITION, NORMAL and TANGENT displacements, float VEC3 (or
+// quantized), one per vertex (sparse accessors welcome: targets are mostly zeros). Other attributes are ignored. A
+// target without POSITION displaces nothing.
 void loadMorphTargets(const LoaderContext& ctx, const tinygltf::Primitive& primitive, const std::string& what,
                       size_t vertexCount, Mesh& mesh) {
   for (size_t t = 0; t < primitive.targets.size(); ++t) {
@@ -142,24 +142,82 @@ void loadMorphTargets(const LoaderContext& ctx, const tinygltf::Primitive& primi
       ctx.refuse(target + ": more than " + std::to_string(ctx.limits.maxMorphTargetVertices) +
                  " morph target vertices in the scene");
     MorphTarget morph;
-    for (const char* name : {"POSITION", "NORMAL"}) {
-      auto it = primitive.targets[t].find(name);
+    const struct {
+      const char* name;
+      const char* use;  // for the component types KHR_mesh_quantization allows
+      std::vector<glm::vec3> MorphTarget::*deltas;
+    } attributes[] = {{"POSITION", "MORPH_POSITION", &MorphTarget::positions},
+                      {"NORMAL", "MORPH_NORMAL", &MorphTarget::normals},
+                      {"TANGENT", "MORPH_NORMAL", &MorphTarget::tangents}};
+    for (const auto& a : attributes) {
+      auto it = primitive.targets[t].find(a.name);
       if (it == primitive.targets[t].end()) continue;
-      const std::vector<double> deltas =
-          readVertexAttribute(ctx, it->second, target + " " + name, 3,
-                              std::strcmp(name, "POSITION") == 0 ? "MORPH_POSITION" : "MORPH_NORMAL");
+      const std::vector<double> deltas = readVertexAttribute(ctx, it->second, target + " " + a.name, 3, a.use);
       if (deltas.size() / 3 != vertexCount)
-        ctx.refuse(target + " has " + std::to_string(deltas.size() / 3) + " " + name + " displacements for " +
+        ctx.refuse(target + " has " + std::to_string(deltas.size() / 3) + " " + a.name + " displacements for " +
                    std::to_string(vertexCount) + " positions");
-      if (!allFinite(deltas)) ctx.refuse(target + " " + name + " has a displacement that is not finite");
-      (std::strcmp(name, "POSITION") == 0 ? morph.positions : morph.normals) = toVectors<3>(deltas);
+      if (!allFinite(deltas)) ctx.refuse(target + " " + a.name + " has a displacement that is not finite");
+      morph.*a.deltas = toVectors<3>(deltas);
     }
     if (morph.positions.empty()) morph.positions.assign(vertexCount, glm::vec3(0.0f));
     mesh.morphTargets.push_back(std::move(morph));
   }
+  // A mesh whose targets move tangents in some targets only: the others move none (zeros), so every target has
+  // either all three kinds of delta or none of a kind the vertex stage reads.
+  const bool anyTangents = std::any_of(mesh.morphTargets.begin(), mesh.morphTargets.end(),
+                                       [](const MorphTarget& m) { return !m.tangents.empty(); });
+  if (anyTangents)
+    for (MorphTarget& m : mesh.morphTargets)
+      if (m.tangents.empty()) m.tangents.assign(vertexCount, glm::vec3(0.0f));
+}
+
+// TEXCOORD_0 or TEXCOORD_1, one per vertex (empty where the primitive has none); coordinates that are not finite
+// become 0.
+std::vector<glm::vec2> readTexcoords(const LoaderContext& ctx, const tinygltf::Primitive& primitive,
+                                     const std::string& what, const char* name, size_t vertexCount) {
+  const int accessor = attributeAccessor(primitive, name);
+  if (accessor < 0) return {};
+  std::vector<glm::vec2> uvs =
+      toVectors<2>(readVertexAttribute(ctx, accessor, what + " " + name, 2, "TEXCOORD"));
+  if (uvs.size() != vertexCount)
+    ctx.refuse(what + " has " + std::to_string(uvs.size()) + " " + name + " coordinates for " +
+               std::to_string(vertexCount) + " positions");
+  for (glm::vec2& uv : uvs)
+    if (!std::isfinite(uv.x) || !std::isfinite(uv.y)) uv = glm::vec2(0.0f);
+  return uvs;
 }
 
 }  // namespace
+
+// COLOR_0 (glTF 2.0 3.7.2.1: float, or normalised unsigned byte or short; RGB or RGBA), one per vertex, clamped to
+// [0, 1]; alpha 1 for RGB; empty where the primitive has none.
+std::vector<glm::vec4> readColors(const LoaderContext& ctx, const tinygltf::Primitive& primitive,
+                                  const std::string& what, size_t vertexCount) {
+  std::vector<glm::vec4> colors;
+  const int colorAccessor = attributeAccessor(primitive, "COLOR_0");
+  if (colorAccessor < 0) return colors;
+  const tinygltf::Accessor& accessor = ctx.model.accessors.at(static_cast<size_t>(colorAccessor));
+  const int components = accessor.type == TINYGLTF_TYPE_VEC3 ? 3 : 4;
+  const std::vector<double> values = readAccessor(ctx, colorAccessor, what + " COLOR_0", components,
+                                                  {TINYGLTF_COMPONENT_TYPE_FLOAT, TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE,
+                                                   TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT});
+  if (accessor.componentType != TINYGLTF_COMPONENT_TYPE_FLOAT && !accessor.normalized)
+    ctx.refuse(what + " COLOR_0 (accessor " + std::to_string(colorAccessor) + ") has component type " +
+               componentTypeName(accessor.componentType) + " without normalized: true, which glTF does not allow");
+  if (values.size() / static_cast<size_t>(components) != vertexCount)
+    ctx.refuse(what + " has " + std::to_string(values.size() / static_cast<size_t>(components)) + " colours for " +
+               std::to_string(vertexCount) + " positions");
+  colors.reserve(vertexCount);
+  for (size_t i = 0; i < vertexCount; ++i) {
+    glm::vec4 c(1.0f);
+    for (int k = 0; k < components; ++k) {
+      const double v = values[i * static_cast<size_t>(components) + static_cast<size_t>(k)];
+      c[k] = std::isfinite(v) ? static_cast<float>(std::clamp(v, 0.0, 1.0)) : 0.0f;
+    }
+    colors.push_back(c);
+  }
+  return colors;
+}
 
 Mesh loadPrimitive(const LoaderContext& ctx, const tinygltf::Primitive& primitive, const std::string& what,
                    bool readSkin, bool* skipped) {
@@ -202,22 +260,22 @@ Mesh loadPrimitive(const LoaderContext& ctx, const tinygltf::Primitive& primitiv
       ctx.report.warnings.push_back(what + ": NORMAL has zero-length or non-finite vectors; flat normals generated");
   }
 
-  const int uvAccessor = attribute("TEXCOORD_0");
-  if (uvAccessor >= 0) {
-    // glTF 2.0 (3.7.2.1) allows integer texture coordinates only normalised (raw integers would be coordinates
-    // hundreds of textures wide); KHR_mesh_quantization allows them raw, scaled by KHR_texture_transform.
-    mesh.texcoords = toVectors<2>(readVertexAttribute(ctx, uvAccessor, what + " TEXCOORD_0", 2, "TEXCOORD"));
-    if (mesh.texcoords.size() != vertexCount)
-      ctx.refuse(what + " has " + std::to_string(mesh.texcoords.size()) + " texture coordinates for " +
-                 std::to_string(vertexCount) + " positions");
-    for (glm::vec2& uv : mesh.texcoords)
-      if (!std::isfinite(uv.x) || !std::isfinite(uv.y)) uv = glm::vec2(0.0f);
-    // Each glTF primitive becomes its own Mesh with its own copy of the coordinates, so applying the material's
-    // transform here is right even when primitives with different materials share one TEXCOORD_0 accessor.
-    const glm::mat3 transform = baseColorUvTransform(ctx, primitive.material, what);
-    if (transform != glm::mat3(1.0f))
-      for (glm::vec2& uv : mesh.texcoords) uv = glm::vec2(transform * glm::vec3(uv, 1.0f));
+  // glTF 2.0 (3.7.2.1) allows integer texture coordinates only normalised (raw integers would be coordinates
+  // hundreds of textures wide); KHR_mesh_quantization allows them raw, scaled by KHR_texture_transform.
+  mesh.texcoords = readTexcoords(ctx, primitive, what, "TEXCOORD_0", vertexCount);
+  mesh.texcoords1 = readTexcoords(ctx, primitive, what, "TEXCOORD_1", vertexCount);
+  if (attribute("TEXCOORD_2") >= 0)
+    ctx.report.warnings.push_back(what + ": TEXCOORD_2 and beyond are not read (only TEXCOORD_0 and TEXCOORD_1)");
+  // Each glTF primitive becomes its own Mesh with its own copy of the coordinates, so baking the material's base
+  // colour coordinates here is right even when primitives with different materials share one accessor.
+  const BakedBaseColorUv baked = baseColorUvToBake(ctx, primitive.material, what);
+  const std::vector<glm::vec2>& bakedFrom = baked.texCoord == 1 ? mesh.texcoords1 : mesh.texcoords;
+  if (!bakedFrom.empty() && (baked.texCoord == 1 || baked.transform != glm::mat3(1.0f))) {
+    std::vector<glm::vec2> uvs(bakedFrom.size());
+    for (size_t v = 0; v < uvs.size(); ++v) uvs[v] = glm::vec2(baked.transform * glm::vec3(bakedFrom[v], 1.0f));
+    mesh.texcoords = std::move(uvs);
   }
+  mesh.colors = readColors(ctx, primitive, what, vertexCount);
 
   const int tangentAccessor = attribute("TANGENT");
   const tinygltf::Material* material = materialOf(ctx, primitive.material);
@@ -244,6 +302,9 @@ Mesh loadPrimitive(const LoaderContext& ctx, const tinygltf::Primitive& primitiv
   // generateFlatNormals derives each target's from its displaced faces instead.
   if (!normalsUsable)
     for (MorphTarget& target : mesh.morphTargets) target.normals.clear();
+  // Tangent displacements are relative to the file's tangents; generated ones have none.
+  if (mesh.tangents.empty())
+    for (MorphTarget& target : mesh.morphTargets) target.tangents.clear();
 
   mesh.indices = triangleIndices(ctx, primitive, vertexCount, what);
   const size_t dropped = dropDegenerateTriangles(mesh);
@@ -254,7 +315,9 @@ Mesh loadPrimitive(const LoaderContext& ctx, const tinygltf::Primitive& primitiv
   mesh.material = primitive.material;
   if (!normalsUsable) generateFlatNormals(mesh);
   // glTF 2.0 (3.7.2.1): without TANGENT, tangents are computed (MikkTSpace) where a normal texture needs them.
-  if (normalMapped && mesh.tangents.empty()) generateTangents(mesh);
+  if (normalMapped && mesh.tangents.empty()) generateTangents(mesh, normalTextureTexCoord(*material));
+  // TEXCOORD_1 serves only slots that sample it; a material whose base colour was baked needs no second set.
+  if (!material || !usesTexCoord1(*material)) mesh.texcoords1.clear();
   return mesh;
 }
 
@@ -272,30 +335,7 @@ LineMesh loadLinePrimitive(const LoaderContext& ctx, const tinygltf::Primitive& 
   for (size_t i = 0; i < positions.size(); ++i)
     if (!std::isfinite(positions[i].x) || !std::isfinite(positions[i].y) || !std::isfinite(positions[i].z))
       ctx.refuse(what + " POSITION " + std::to_string(i) + " is not finite (NaN or Inf)");
-  std::vector<glm::vec4> colors;
-  const int colorAccessor = attributeAccessor(primitive, "COLOR_0");
-  if (colorAccessor >= 0) {
-    const tinygltf::Accessor& accessor = ctx.model.accessors.at(static_cast<size_t>(colorAccessor));
-    const int components = accessor.type == TINYGLTF_TYPE_VEC3 ? 3 : 4;
-    const std::vector<double> values =
-        readAccessor(ctx, colorAccessor, what + " COLOR_0", components,
-                     {TINYGLTF_COMPONENT_TYPE_FLOAT, TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE,
-                      TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT});
-    if (accessor.componentType != TINYGLTF_COMPONENT_TYPE_FLOAT && !accessor.normalized)
-      ctx.refuse(what + " COLOR_0 (accessor " + std::to_string(colorAccessor) + ") has component type " +
-                 componentTypeName(accessor.componentType) + " without normalized: true, which glTF does not allow");
-    if (values.size() / static_cast<size_t>(components) != positions.size())
-      ctx.refuse(what + " has " + std::to_string(values.size() / static_cast<size_t>(components)) +
-                 " colours for " + std::to_string(positions.size()) + " positions");
-    for (size_t i = 0; i < positions.size(); ++i) {
-      glm::vec4 c(1.0f);
-      for (int k = 0; k < components; ++k) {
-        const double v = values[i * static_cast<size_t>(components) + static_cast<size_t>(k)];
-        c[k] = std::isfinite(v) ? static_cast<float>(std::clamp(v, 0.0, 1.0)) : 0.0f;
-      }
-      colors.push_back(c);
-    }
-  }
+  const std::vector<glm::vec4> colors = readColors(ctx, primitive, what, positions.size());
   std::vector<std::uint32_t> order;
   if (primitive.indices >= 0) {
     const std::vector<double> values =

@@ -115,8 +115,8 @@ class NodeReader {
     path_.pop_back();
   }
 
-  // KHR_lights_punctual: the node's point or spot light (directional lights are not loaded: the sun is the
-  // renderer's own, effects/lighting/LightingEffect.h).
+  // KHR_lights_punctual: the node's point, spot or directional light. A directional light shines along the node's
+  // -z with its intensity in lux; the renderer's sun stays beside it (lighting.sun: file takes the first instead).
   void addLight(const tinygltf::Node& source, int nodeIndex, int index) {
     const auto it = source.extensions.find("KHR_lights_punctual");
     if (it == source.extensions.end() || !it->second.IsObject() || !it->second.Has("light")) return;
@@ -127,22 +127,18 @@ class NodeReader {
                   ", which does not exist");
     const tinygltf::Light& light = model_.lights[static_cast<size_t>(lightIndex)];
     const std::string what = "light " + std::to_string(lightIndex);
-    if (light.type == "directional") {
-      if (!warnedDirectional_)
-        ctx_.report.warnings.push_back(what + " is directional: not loaded (the renderer's sun is the directional "
-                                       "light; lighting.sun-*)");
-      warnedDirectional_ = true;
-      return;
-    }
-    if (light.type != "point" && light.type != "spot") ctx_.refuse(what + " has unknown type '" + light.type + "'");
+    if (light.type != "point" && light.type != "spot" && light.type != "directional")
+      ctx_.refuse(what + " has unknown type '" + light.type + "'");
     PunctualLight out;
-    out.type = light.type == "spot" ? LightType::Spot : LightType::Point;
+    out.type = light.type == "spot" ? LightType::Spot
+               : light.type == "directional" ? LightType::Directional
+                                             : LightType::Point;
     if (light.color.size() == 3 && allFinite(light.color))
       out.color = glm::max(glm::vec3(light.color[0], light.color[1], light.color[2]), glm::vec3(0.0f));
     if (!std::isfinite(light.intensity) || light.intensity < 0.0 || !std::isfinite(light.range) || light.range < 0.0)
       ctx_.refuse(what + " has a negative or non-finite intensity or range");
     out.intensity = static_cast<float>(light.intensity);
-    out.range = static_cast<float>(light.range);
+    out.range = out.type == LightType::Directional ? 0.0f : static_cast<float>(light.range);
     const double inner = light.spot.innerConeAngle, outer = light.spot.outerConeAngle;
     if (out.type == LightType::Spot &&
         !(std::isfinite(inner) && std::isfinite(outer) && inner >= 0.0 && inner < outer && outer <= 1.5707963268))
@@ -329,7 +325,6 @@ class NodeReader {
   std::vector<glm::mat4> restWorld_;      // per Scene node
   std::vector<int> path_;                 // glTF nodes from the root to the one visited, to detect cycles
   bool warnedSharedNode_ = false;
-  bool warnedDirectional_ = false;
   std::map<int, size_t> targetCounts_;                        // per glTF mesh
   std::map<std::tuple<int, size_t, bool>, int> primitiveMeshes_;  // (mesh, primitive, skinned) -> Scene mesh
   std::vector<int> maxJoint_;                                 // per Scene mesh: its highest joint index, -1: none

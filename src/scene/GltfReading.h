@@ -76,13 +76,23 @@ Mesh loadPrimitive(const LoaderContext& ctx, const tinygltf::Primitive& primitiv
                    bool readSkin, bool* skipped);
 // A POINTS, LINES, LINE_LOOP or LINE_STRIP primitive as a LineMesh.
 LineMesh loadLinePrimitive(const LoaderContext& ctx, const tinygltf::Primitive& primitive, const std::string& what);
+std::vector<glm::vec4> readColors(const LoaderContext& ctx, const tinygltf::Primitive& primitive,
+                                  const std::string& what, size_t vertexCount);
 
 // --- GltfMaterials.cpp ---
 void loadMaterials(const LoaderContext& ctx, Scene& scene);
 const tinygltf::Material* materialOf(const LoaderContext& ctx, int materialIndex);
-// The base colour's transform where the loader bakes it into TEXCOORD_0 (a material with no other texture); identity
-// otherwise.
-glm::mat3 baseColorUvTransform(const LoaderContext& ctx, int materialIndex, const std::string& what);
+// Where a material has no texture besides the base colour's, the loader bakes the base colour's coordinates (its set
+// through its KHR_texture_transform) into the mesh's TEXCOORD_0: the vertex stage then reads them as they are.
+struct BakedBaseColorUv {
+  glm::mat3 transform{1.0f};
+  int texCoord = 0;  // the set the base colour samples
+};
+BakedBaseColorUv baseColorUvToBake(const LoaderContext& ctx, int materialIndex, const std::string& what);
+// The set the normal texture samples (its tangents follow that set's gradients).
+int normalTextureTexCoord(const tinygltf::Material& material);
+// Some slot the loader keeps samples TEXCOORD_1.
+bool usesTexCoord1(const tinygltf::Material& material);
 
 // --- GltfNodes.cpp ---
 // The default scene's nodes (parents before children), the instances and lights they place, the skins those need.

@@ -19,6 +19,10 @@ namespace obscura {
 const std::vector<Parameter<LightingSettings>>& LightingSettings::parameters() {
   using S = LightingSettings;
   static const std::vector<Parameter<S>> table = {
+      choiceParameter<S>("sun",
+                         "settings: the sun of lighting.sun-*; file: the file's first directional light "
+                         "(KHR_lights_punctual), where it has one",
+                         &S::sun, {{"settings", SunSource::Settings}, {"file", SunSource::File}}),
       numberParameter<S>("sun-elevation", -90, 90, "degrees",
                          "the sun's height above the horizon (with the sky: the sky is made again, about a second)",
                          &S::sunElevation)
@@ -48,16 +52,37 @@ glm::vec3 LightingSettings::directionToSun() const {
   return {std::cos(elevation) * std::sin(azimuth), std::sin(elevation), std::cos(elevation) * std::cos(azimuth)};
 }
 
+Sun Sun::of(const LightingSettings& settings, const std::vector<PunctualLight>& lights) {
+  Sun sun;
+  sun.directionToSun = settings.directionToSun();
+  sun.illuminance = settings.sunColor * settings.sunIntensity;
+  if (settings.sun != SunSource::File) return sun;
+  for (size_t i = 0; i < lights.size(); ++i) {
+    if (lights[i].type != LightType::Directional) continue;
+    // KHR_lights_punctual: a directional light shines along its node's -z.
+    const glm::vec3 towards = glm::vec3(lights[i].world * glm::vec4(0.0f, 0.0f, 1.0f, 0.0f));
+    if (!(glm::dot(towards, towards) > 0.0f)) continue;
+    sun.directionToSun = glm::normalize(towards);
+    sun.illuminance = lights[i].color * lights[i].intensity;
+    sun.fileLight = static_cast<int>(i);
+    break;
+  }
+  return sun;
+}
+
 PunctualLightUniforms PunctualLightUniforms::of(const std::vector<PunctualLight>& lights, const glm::mat4& view,
-                                                int maxCount) {
+                                                int maxCount, int skip) {
   maxCount = std::clamp(maxCount, 0, kMaxPunctualLights);
   PunctualLightUniforms out;
-  // The lights that light the camera's surroundings most: intensity / distance^2 at the camera (view-space origin).
+  // The lights that light the camera's surroundings most: intensity / distance^2 at the camera (view-space origin);
+  // a directional light's intensity is the illuminance it gives everywhere.
   std::vector<std::pair<float, size_t>> order;
   for (size_t i = 0; i < lights.size(); ++i) {
+    if (static_cast<int>(i) == skip) continue;
     const glm::vec3 p(view * lights[i].world[3]);
     const glm::vec3& c = lights[i].color;
-    order.emplace_back(-lights[i].intensity * std::max(c.r, std::max(c.g, c.b)) / std::max(glm::dot(p, p), 1e-6f), i);
+    const float d2 = lights[i].type == LightType::Directional ? 1.0f : std::max(glm::dot(p, p), 1e-6f);
+    order.emplace_back(-lights[i].intensity * std::max(c.r, std::max(c.g, c.b)) / d2, i);
   }
   std::stable_sort(order.begin(), order.end());
   for (const auto& [key, index] : order) {
@@ -67,6 +92,9 @@ PunctualLightUniforms PunctualLightUniforms::of(const std::vector<PunctualLight>
     const glm::mat4 toView = view * light.world;
     const float range4 = light.range > 0.0f ? std::pow(light.range, 4.0f) : 0.0f;
     out.positionRange[k] = glm::vec4(glm::vec3(toView[3]), range4 > 0.0f ? 1.0f / range4 : 0.0f);
+    if (light.type == LightType::Directional)  // w -1 marks it: xyz the direction towards it (+z of its node)
+      out.positionRange[k] =
+          glm::vec4(glm::normalize(glm::vec3(toView * glm::vec4(0.0f, 0.0f, 1.0f, 0.0f))), -1.0f);
     // KHR_lights_punctual's cone: clamp(cos * scale + offset, 0, 1)^2, scale = 1 / max(cos inner - cos outer,
     // 0.001), offset = -cos outer * scale. A point light: scale 0, offset 1 (cone 1 everywhere).
     float scale = 0.0f, offset = 1.0f;
@@ -91,9 +119,9 @@ glm::mat3 LightingEffect::environmentRotation(const LightingSettings& settings) 
   return glm::mat3(glm::rotate(glm::mat4(1.0f), turn, glm::vec3(0.0f, 1.0f, 0.0f)));
 }
 
-int LightingEffect::punctualLightsPerDraw(int maxFragmentUniformVectors) {
-  return std::clamp((maxFragmentUniformVectors - kForwardLightingVectorsWithoutLights) / kVectorsPerPunctualLight, 0,
-                    kMaxPunctualLights);
+int LightingEffect::punctualLightsPerDraw(int maxFragmentUniformVectors, bool layered) {
+  const int base = kForwardLightingVectorsWithoutLights + (layered ? kMaterialLayerVectors : 0);
+  return std::clamp((maxFragmentUniformVectors - base) / kVectorsPerPunctualLight, 0, kMaxPunctualLights);
 }
 
 EffectInfo LightingEffect::info() {
@@ -150,7 +178,8 @@ ProgramSpec LightingEffect::spec(const Form& form, MaterialKind kind, VertexKind
 }
 
 // Every form with the atlas (any GLES 2 context), and the shading forms again with the mip chain.
-std::vector<ProgramSpec> LightingEffect::programSpecs(int lightsPerDraw) {
+std::vector<ProgramSpec> LightingEffect::programSpecs(int lightsPerDraw, int layeredLightsPerDraw) {
+  if (layeredLightsPerDraw < 0) layeredLightsPerDraw = lightsPerDraw;
   std::vector<ProgramSpec> specs;
   for (EnvironmentLayout layout : {EnvironmentLayout::Atlas, EnvironmentLayout::MipChain})
     for (bool deferred : {false, true})
@@ -159,7 +188,11 @@ std::vector<ProgramSpec> LightingEffect::programSpecs(int lightsPerDraw) {
         for (int toneMap = -1; toneMap < (counting ? 0 : kToneMapOperatorCount); ++toneMap) {
           for (MaterialKind kind : MaterialKind::all()) {
             const Form form{deferred, counting, toneMap, false};
-            if (readKind(form, kind) == kind) specs.push_back(spec(form, kind, {}, layout, lightsPerDraw));
+            // The extended kinds (unlit, layered) with the atlas, in HDR and one tone curve: enough for the shader
+            // checks to compile every #if of them, without multiplying the programs by every curve.
+            if (kind.extended() && (layout != EnvironmentLayout::Atlas || toneMap > 0)) continue;
+            if (readKind(form, kind) == kind)
+              specs.push_back(spec(form, kind, {}, layout, kind.layered ? layeredLightsPerDraw : lightsPerDraw));
           }
           if (!deferred && !counting) specs.push_back(spec({false, false, toneMap, true}, {}, {}, layout, 0));
         }
@@ -196,26 +229,31 @@ const LightingEffect::Variant& LightingEffect::variant(const Form& form, Materia
   const auto key = std::make_tuple(form, readKind(form, kind), fullscreen ? VertexKind{} : vertex.forCurrentFrame());
   auto it = variants_.find(key);
   if (it == variants_.end()) {
+    const int lights = std::get<1>(key).layered ? layeredLightsPerDraw_ : lightsPerDraw_;
     it = variants_
-             .emplace(key, Variant(resources_.build(spec(form, std::get<1>(key), std::get<2>(key), layout_,
-                                                         lightsPerDraw_)),
+             .emplace(key, Variant(resources_.build(spec(form, std::get<1>(key), std::get<2>(key), layout_, lights)),
                                    !fullscreen))
              .first;
+    it->second.lights = fullscreen ? 0 : lights;
     // Resolve strictly what this form must use, so a misspelt or dropped uniform is caught where it matters.
     const gl::Program& program = it->second.program;
+    // An unlit material reads no light (KHR_materials_unlit).
+    const bool lit = !form.counting && !std::get<1>(key).unlit;
     if (!fullscreen) program.uniform("u_projection");
-    if (!form.counting)
+    if (lit)
       for (const char* name : {"u_viewToEnvironment", "u_environment", "u_environmentIntensity"}) program.uniform(name);
     if (fullscreen && !form.counting)
       for (const char* name : {"u_farHalfExtent", "u_farPlane"}) program.uniform(name);
-    if (!form.counting && !form.background)
+    if (lit && !form.background)
       for (const char* name : {"u_lightDirection", "u_lightColor", "u_ao", "u_shIrradiance", "u_environmentBrdf"})
         program.uniform(name);
     if (form.deferred) program.uniform("u_gbuffer");
     if (form.deferred && !form.counting) program.uniform("u_baseColor");
-    if (!fullscreen && !form.counting)
+    if (!fullscreen && lit)
       for (const char* name : {"u_metallicRoughness", "u_emissive"}) program.uniform(name);
-    if (!fullscreen && !form.counting && lightsPerDraw_ > 0) program.uniform("u_lightPositionRange[0]");
+    if (!fullscreen && lit && lights > 0) program.uniform("u_lightPositionRange[0]");
+    if (!fullscreen && lit && std::get<1>(key).layered)
+      for (const char* name : {"u_specular", "u_clearcoat", "u_clearcoatRoughness"}) program.uniform(name);
     if (form.toneMap >= 0)
       for (const char* name : {"u_exposure", "u_lumaInAlpha"}) program.uniform(name);
   }
@@ -279,13 +317,15 @@ LightingEffect::LightingEffect(const EffectResources& resources)
       stencil_(resources.caps.packedDepthStencil),
       layout_(GpuEnvironment::layoutFor(resources.caps, resources.options.environmentLayout)),
       lightsPerDraw_(punctualLightsPerDraw(resources.caps.maxFragmentUniformVectors)),
+      layeredLightsPerDraw_(punctualLightsPerDraw(resources.caps.maxFragmentUniformVectors, true)),
       environmentBrdfUnit_(TextureUnits::environmentBrdf(resources.caps)) {
   const HdrTexel t = encodeHdr(light_.background);
   backgroundHdr_ = glm::vec4(LinearDepthPacking::channelFromByte(t[0]), LinearDepthPacking::channelFromByte(t[1]),
                              LinearDepthPacking::channelFromByte(t[2]), LinearDepthPacking::channelFromByte(t[3]));
   // The form of the lit pass before the plan's alternatives, for every material, is built now, so a broken program
   // fails when the renderer is made.
-  for (MaterialKind kind : MaterialKind::all()) variant({false, false, -1, false}, kind, {});
+  for (MaterialKind kind : MaterialKind::all())
+    if (!kind.extended()) variant({false, false, -1, false}, kind, {});
   useEnvironment(LightingSettings{});
 }
 
@@ -346,6 +386,24 @@ void LightingEffect::plan(FramePlanner& planner) {
   }
 }
 
+// The light this pass shades with, for the surfaces drawn after it (frame/SurfaceShading.h: the transparent layer).
+void LightingEffect::publish(const PassContext& context, const Sun& sun, const glm::vec3& lightDirection,
+                             const glm::mat3& viewToEnvironment, const LightingSettings& settings) const {
+  SurfaceLight& out = resources_.surfaces.light;
+  out.published = true;
+  out.environment = environment_.get();
+  out.environmentBrdfUnit = environmentBrdfUnit_;
+  out.viewToEnvironment = viewToEnvironment;
+  out.environmentIntensity = settings.environmentIntensity;
+  out.lightDirection = lightDirection;
+  out.lightColor = sun.illuminance;
+  const PunctualLightUniforms all =
+      PunctualLightUniforms::of(context.scene().lights(), context.camera().view, kMaxPunctualLights, sun.fileLight);
+  out.positionRange.assign(all.positionRange, all.positionRange + all.count);
+  out.colorSpot.assign(all.colorSpot, all.colorSpot + all.count);
+  out.spot.assign(all.spot, all.spot + all.count);
+}
+
 void LightingEffect::render(const PassContext& context, const Form& form, const std::string& output,
                             float exposureScale, const LightingSettings& settings) {
   using gl::Program;
@@ -355,25 +413,27 @@ void LightingEffect::render(const PassContext& context, const Form& form, const 
   const ToneMapInUse tone{static_cast<ToneMapOperator>(std::max(form.toneMap, 0)), exposureScale};
 
   const glm::mat3 viewRotation(camera.view);
-  const glm::vec3 lightDirection = glm::normalize(viewRotation * settings.directionToSun());
+  const Sun sun = Sun::of(settings, context.scene().lights());
+  const glm::vec3 lightDirection = glm::normalize(viewRotation * sun.directionToSun);
   const glm::mat3 viewToWorld = glm::transpose(viewRotation);  // the view's rotation is orthonormal
   const glm::mat3 viewToEnvironment = environmentRotation(settings) * viewToWorld;
   const bool fullscreen = form.deferred || form.background;
   const PunctualLightUniforms lights =
       fullscreen ? PunctualLightUniforms{}
-                 : PunctualLightUniforms::of(context.scene().lights(), camera.view, lightsPerDraw_);
+                 : PunctualLightUniforms::of(context.scene().lights(), camera.view, lightsPerDraw_, sun.fileLight);
+  if (!form.counting) publish(context, sun, lightDirection, viewToEnvironment, settings);
   // The texture units: gpu/TextureUnits.h.
   const int kEnvironmentUnit = TextureUnits::kEnvironment;
   const int kEnvironmentBrdfUnit = environmentBrdfUnit_;
   auto setShading = [&](const Variant& v) {
     if (form.counting) return;
     Program::set(v.lightDirection, lightDirection);
-    Program::set(v.lightColor, settings.sunColor * settings.sunIntensity);
+    Program::set(v.lightColor, sun.illuminance);
     Program::set(v.viewToEnvironment, viewToEnvironment);
     if (v.lightPositionRange >= 0) {
-      glUniform4fv(v.lightPositionRange, lightsPerDraw_, &lights.positionRange[0].x);
-      glUniform4fv(v.lightColorSpot, lightsPerDraw_, &lights.colorSpot[0].x);
-      glUniform4fv(v.lightSpot, lightsPerDraw_, &lights.spot[0].x);
+      glUniform4fv(v.lightPositionRange, v.lights, &lights.positionRange[0].x);
+      glUniform4fv(v.lightColorSpot, v.lights, &lights.colorSpot[0].x);
+      glUniform4fv(v.lightSpot, v.lights, &lights.spot[0].x);
     }
     Program::set(v.ao, TextureUnits::kAo);
     Program::set(v.environment, kEnvironmentUnit);
