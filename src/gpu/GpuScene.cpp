@@ -376,8 +376,12 @@ void GpuScene::drawInstance(const InstanceGpu& instance, const glm::mat4& view, 
   const MaterialGpu& material = materials_[static_cast<size_t>(instance.material)];
   bindMaterialTextures(material, state);
   const glm::mat4 modelView = view * instance.world;
-  // A mirroring transform flips the winding; keep "front" meaning the outside.
-  glFrontFace(glm::determinant(glm::mat3(modelView)) < 0.0f ? GL_CW : GL_CCW);
+  // A mirroring transform flips the winding; keep "front" meaning the outside. A skinned vertex's transform is its
+  // joints' (the instance's is the view alone): a skin whose joints mostly mirror flips it. (One that mirrors some
+  // joints and not others shows the other part's faces from inside: glTF leaves that winding undefined.)
+  const bool mirrored = glm::determinant(glm::mat3(modelView)) < 0.0f;
+  const bool skinMirrored = instance.skin >= 0 && skins_[static_cast<size_t>(instance.skin)].mirrored;
+  glFrontFace(mirrored != skinMirrored ? GL_CW : GL_CCW);
   for (int p = instance.firstPiece; p < instance.firstPiece + instance.pieceCount; ++p)
     drawPiece(instance, p, material, modelView, state);
 }

@@ -179,6 +179,8 @@ class GpuScene {
   };
   struct SkinGpu {
     std::vector<glm::mat4> joints, previousJoints;  // world(joint) * inverseBind(joint)
+    // Most of its joints mirror (a negative determinant): the winding of what it skins turns, as a mirroring node's.
+    bool mirrored = false;
     gl::TextureHandle texture;                      // the joint texture path
     glm::vec3 textureSize{0.0f};                    // width, height, texels per palette
   };

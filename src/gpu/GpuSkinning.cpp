@@ -85,6 +85,9 @@ std::vector<bool> GpuScene::poseSkins(const ScenePose& current, const ScenePose&
     skin.joints = current.skinJoints[s];
     skin.previousJoints = previous.skinJoints[s];
     skinMoving[s] = skin.joints != skin.previousJoints;
+    int mirroring = 0;
+    for (const glm::mat4& m : skin.joints) mirroring += glm::determinant(glm::mat3(m)) < 0.0f ? 1 : -1;
+    skin.mirrored = mirroring > 0;
     if (!skin.texture) continue;
     const auto texels = static_cast<size_t>(skin.textureSize.x * skin.textureSize.y);
     std::vector<float> data;
