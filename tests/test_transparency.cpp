@@ -12,7 +12,10 @@
 #include <glm/gtc/matrix_transform.hpp>
 
 #include "TestSupport.h"
+#include "effects/dof/DepthOfFieldEffect.h"
+#include "encoding/CocPacking.h"
 #include "encoding/HdrEncoding.h"
+#include "encoding/VelocityPacking.h"
 #include "effects/tonemap/TonemapEffect.h"
 #include "scene/Primitives.h"
 
@@ -330,4 +333,56 @@ TEST(Transparency, ItsPassesRunOnlyForATransparentLayer) {
   const std::vector<std::string> withGlass = passes(glass, true);
   EXPECT_TRUE(has(withGlass, "transmission-levels"));
   EXPECT_LT(index(withGlass, "transmission-levels"), index(withGlass, "transparency"));
+}
+
+// The G-buffer effects see the opaque layer through a pane (docs/transparency.md, their behaviour measured): a pane
+// 2 m from the camera before a wall at 5 m. Depth of field focused on the pane blurs it with the wall's circle of
+// confusion instead of none; a sideways camera step gives the pane's pixels the wall's motion (what motion blur
+// smears and TAA reprojects them by) instead of its own.
+TEST(Transparency, TheGBufferEffectsSeeTheOpaqueLayerBehindAPane) {
+  Scene scene;
+  addPane(scene, -3.0f, 6.0f, test::addMaterial(scene, glm::vec3(0.6f)));
+  addPane(scene, 0.0f, 0.6f, addUnlit(scene, {0.2f, 0.5f, 0.9f, 0.4f}, AlphaMode::Blend));
+  const int middle = kSide / 2;
+  // Depth of field, focused on the pane.
+  {
+    Renderer renderer = test::makeRenderer();
+    renderer.setScene(scene);
+    RenderSettings settings;
+    settings.set("dof", "on");
+    settings.set("dof.focus", "2");
+    settings.set("dof.fstop", "1.4");
+    const Camera camera = test::makeCamera({0, 0, 2}, {0, 0, 0}, kSide, kSide, 0.1f, 100.0f, 50.0f);
+    test::render(renderer, camera, settings, View::Final, test::retaining({"dof-coc"}));
+    const float range = 2.0f * settings.of<DofSettings>().maxRadiusPixels(kSide);
+    const std::vector<std::uint8_t> bytes = renderer.retained("dof-coc").readRgba();
+    const float atPane = CocPacking::cocFromBytes(&bytes[(static_cast<size_t>(middle) * kSide + middle) * 4], range);
+    const ThinLens lens = ThinLens::of(settings.of<DofSettings>(), kSide);
+    const float wall = lens.coc(5.0f, 2.0f), pane = lens.coc(2.0f, 2.0f);
+    std::printf("depth of field on the pane: CoC %.2f px (the wall's %.2f px; the pane's own %.2f px)\n", atPane, wall,
+                pane);
+    EXPECT_NEAR(atPane, wall, 0.05f * std::abs(wall) + 0.1f);
+    EXPECT_GT(std::abs(wall - pane), 1.0f);
+  }
+  // Motion: the camera steps 5 cm to the right between two frames.
+  {
+    Renderer renderer = test::makeRenderer();
+    renderer.setScene(scene);
+    RenderSettings settings;
+    settings.set("motion-blur", "on");
+    const Camera before = test::makeCamera({0, 0, 2}, {0, 0, 0}, kSide, kSide, 0.1f, 100.0f, 50.0f);
+    const Camera after = test::makeCamera({0.05f, 0, 2}, {0.05f, 0, 0}, kSide, kSide, 0.1f, 100.0f, 50.0f);
+    test::render(renderer, before, settings, View::Final);
+    test::render(renderer, after, settings, View::Final, test::retaining({"velocity"}));
+    const std::vector<std::uint8_t> bytes = renderer.retained("velocity").readRgba();
+    const glm::vec2 atPane = VelocityPacking::velocityFromBytes(&bytes[(static_cast<size_t>(middle) * kSide + middle) * 4]);
+    // A point straight ahead at depth d moved by -0.05 m sideways in view: its uv moves by -0.05 / (2 d tan(25°)).
+    const float halfWidth = std::tan(glm::radians(25.0f));
+    const float wall = -0.05f / (2.0f * 5.0f * halfWidth), pane = -0.05f / (2.0f * 2.0f * halfWidth);
+    std::printf("motion on the pane: %.5f of the width per frame, %.2f px (the wall's %.2f px; the pane's own %.2f "
+                "px)\n",
+                atPane.x, atPane.x * kSide, wall * kSide, pane * kSide);
+    EXPECT_NEAR(atPane.x, wall, 0.05f * std::abs(wall));
+    EXPECT_GT(std::abs(wall - pane) * kSide, 0.3f);
+  }
 }

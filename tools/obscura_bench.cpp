@@ -23,7 +23,8 @@
 //      frames per second, the defaults against every switch on (motion blur and TAA included), and the AO's
 //      temporal accumulation at 4 taps against the single frame, and bloom and fog on over the defaults; ms per
 //      effect, written to DIR/effects.csv, and the issue's target beside it: bloom's ms against the G-buffer pass's
-//      in the same frames; and depth of field on over the defaults, its ms against the SAO pass's
+//      in the same frames; and depth of field on over the defaults, its ms against the SAO pass's; 8c the
+//      transparent pass, transmission and clear coat on the glass sample (assets/scenes/glass-samples.glb)
 //   9. temporal AO (--temporal-ao-only: this alone): the default AO in one frame against 4 taps accumulated by
 //      ao.temporal (default blur, a 5-tap and a 3-tap one), and 4 taps alone, taking turns frame by frame at 640x360
 //      and 1280x720 on the still room (DIR/temporal_ao.csv)
@@ -362,9 +363,10 @@ void estimatorSection(Bench& bench, const BenchScene& scene, int w, int h, const
 // (shaders built, histories filled), each configuration with a Renderer of its own (its own history), all taking
 // turns frame by frame. `play`: the scene's time advances at 60 frames per second from 1 s (each frame's previous
 // one 1/60 s earlier); otherwise it stays at 0.
-std::vector<FinishPassTimer> timeTakingTurns(const Options& options, HeadlessContext& context, const Scene& scene,
-                                             const Camera& camera, const std::vector<RenderSettings>& configurations,
-                                             bool play) {
+// Configuration c draws scenes[c].
+std::vector<FinishPassTimer> timeTakingTurns(const Options& options, HeadlessContext& context,
+                                             const std::vector<const Scene*>& scenes, const Camera& camera,
+                                             const std::vector<RenderSettings>& configurations, bool play) {
   const int w = camera.width, h = camera.height;
   const gl::RenderTarget output("bench output", w, h, GL_NEAREST, gl::RenderTarget::Depth::Renderbuffer,
                                 context.caps().depth24, context.caps().packedDepthStencil);
@@ -372,7 +374,7 @@ std::vector<FinishPassTimer> timeTakingTurns(const Options& options, HeadlessCon
   std::vector<std::unique_ptr<Renderer>> renderers;
   for (size_t c = 0; c < configurations.size(); ++c) {
     renderers.push_back(std::make_unique<Renderer>(context.caps()));
-    renderers.back()->setScene(scene);
+    renderers.back()->setScene(*scenes[c]);
   }
   std::vector<FinishPassTimer> timers(configurations.size());
   const int warmUp = 8;
@@ -388,6 +390,13 @@ std::vector<FinishPassTimer> timeTakingTurns(const Options& options, HeadlessCon
     }
   }
   return timers;
+}
+
+std::vector<FinishPassTimer> timeTakingTurns(const Options& options, HeadlessContext& context, const Scene& scene,
+                                             const Camera& camera, const std::vector<RenderSettings>& configurations,
+                                             bool play) {
+  return timeTakingTurns(options, context, std::vector<const Scene*>(configurations.size(), &scene), camera,
+                         configurations, play);
 }
 
 void temporalAoSection(const Options& options, HeadlessContext& context, const BenchScene& scene) {
@@ -550,6 +559,56 @@ void motionSection(const Options& options, HeadlessContext& context, int w, int 
   }
 }
 
+// Section 8c (issue 31): the transparent layer and the material layers on the glass sample
+// (assets/scenes/glass-samples.glb: glass spheres with transmission, two blended panes, clear-coated spheres, an
+// unlit box). Three scenes take turns: the sample as made; the same without the material layers (clear coat, ior and
+// specular at glTF's defaults), whose lighting pass the sample's exceeds by the clear coat's cost; and the same with
+// the glass spheres blended (alpha 0.5) instead of transmissive, whose transparency pass the sample's exceeds by
+// transmission's per-fragment cost (transmission-levels is transmission's own pass).
+void transparencySection(const Options& options, HeadlessContext& context,
+                         const std::vector<std::pair<int, int>>& sizes, std::ofstream& csv) {
+  const std::string path = std::string(OBSCURA_SOURCE_DIR) + "/assets/scenes/glass-samples.glb";
+  const Scene glass = loadGltfFile(path);
+  Scene uncoated = glass, blended = glass;
+  for (Material& m : uncoated.materials) {
+    m.clearcoatFactor = 0.0f;
+    m.ior = 1.5f;
+    m.specularFactor = 1.0f;
+    m.specularColorFactor = glm::vec3(1.0f);
+  }
+  for (Material& m : blended.materials)
+    if (m.transmissionFactor > 0.0f) {
+      m.transmissionFactor = 0.0f;
+      m.alphaMode = AlphaMode::Blend;
+      m.baseColorFactor.a = 0.5f;
+    }
+  std::printf("\n8c. The transparent layer and the material layers, glass sample (%s); median ms of %d frames, the "
+              "three scenes taking turns\n",
+              path.c_str(), options.frames);
+  for (auto [w, h] : sizes) {
+    Camera camera = builtinSceneCamera(w, h);
+    camera.eye = {0.0f, 1.5f, 3.6f};
+    camera.target = {0.0f, 0.5f, 0.0f};
+    const std::vector<FinishPassTimer> t =
+        timeTakingTurns(options, context, {&glass, &uncoated, &blended}, camera,
+                        {RenderSettings(), RenderSettings(), RenderSettings()}, false);
+    const double transparency = t[0].medianMs("transparency"), levels = t[0].medianMs("transmission-levels");
+    const double transmission = levels + transparency - t[2].medianMs("transparency");
+    const double clearcoat = t[0].medianMs("lighting") - t[1].medianMs("lighting");
+    std::printf("  %dx%d: transparency pass %.2f ms (with the glass blended instead: %.2f), transmission-levels %.2f "
+                "ms, so transmission %.2f ms; lighting %.2f ms (without the layers %.2f: clear coat %.2f ms); "
+                "G-buffer %.2f ms\n",
+                w, h, transparency, t[2].medianMs("transparency"), levels, transmission, t[0].medianMs("lighting"),
+                t[1].medianMs("lighting"), clearcoat, t[0].medianMs("gbuffer"));
+    csv << "\"glass sample\"," << w << "," << h << ",transparency," << transparency << "\n";
+    csv << "\"glass sample\"," << w << "," << h << ",transmission-levels," << levels << "\n";
+    csv << "\"glass sample\"," << w << "," << h << ",transmission," << transmission << "\n";
+    csv << "\"glass sample\"," << w << "," << h << ",clearcoat," << clearcoat << "\n";
+    csv << "\"glass sample\"," << w << "," << h << ",lighting," << t[0].medianMs("lighting") << "\n";
+    csv << "\"glass sample\"," << w << "," << h << ",gbuffer," << t[0].medianMs("gbuffer") << "\n";
+  }
+}
+
 // Section 8: what each effect costs, the temporal ones included, on the moving built-in scene played at 60 frames per
 // second (each frame's previous one 1/60 s earlier, so that motion blur and TAA have motion to work on and their
 // history carries). One Renderer per configuration (each keeps its own history), all taking turns frame by frame.
@@ -674,6 +733,7 @@ void effectsSection(const Options& options, HeadlessContext& context, const std:
     csv << "\"built-in, defaults (lighting alone)\"," << w << "," << h << ",lighting," << builtin.medianMs("lighting")
         << "\n";
   }
+  transparencySection(options, context, sizes, csv);
   if (!targetLines.empty()) {
     std::printf("Bloom and fog against the G-buffer pass (configuration \"bloom, fog\"; target: bloom at 1280x720 "
                 "under the G-buffer pass):\n");

@@ -15,7 +15,7 @@
 // 0, 1) (applyIorToRoughness), passes through the share of the diffuse lobe the transmission factor takes, tinted
 // by the base colour and less what the surface's specular reflects: T (1 - metallic) (1 - (F0 A + F90 B)) base.
 uniform sampler2D u_behind;
-uniform vec4 u_behindLayout;  // W, H (the frame, pixels), W', H' (the padded frame the levels halve)
+uniform vec4 u_behindLayout;  // W, H (the frame, pixels), the texture's width and height (no levels: under 1.5 W')
 #if TRANSMISSION
 uniform float u_transmissionIor;  // clamp(2 ior - 2, 0, 1): how much of the roughness blurs what shows through
 #endif
@@ -23,7 +23,12 @@ uniform float u_transmissionIor;  // clamp(2 ior - 2, 0, 1): how much of the rou
 #include "lib/fog.glsl"
 #endif
 
-vec2 behindTextureSize() { return vec2(1.5 * u_behindLayout.z, u_behindLayout.w); }
+vec2 behindTextureSize() { return u_behindLayout.zw; }
+// W' x H': the frame rounded up to a multiple of 2^TRANSMISSION_LEVELS, which the levels halve exactly.
+vec2 paddedFrame() {
+  float step = exp2(float(TRANSMISSION_LEVELS));
+  return ceil(u_behindLayout.xy / step) * step;
+}
 
 // The copy behind this pixel (`pixel`: the frame's pixel coordinates of the fragment).
 vec3 behindAt(vec2 pixel) {
@@ -38,8 +43,8 @@ vec3 levelTexel(vec2 origin, vec2 texel) {
 // Level k (1 .. TRANSMISSION_LEVELS) filtered bilinearly by hand at the frame's pixel coordinates `pixel`.
 vec3 blurredLevel(float k, vec2 pixel) {
   float scale = exp2(-k);
-  vec2 origin = k < 1.5 ? vec2(u_behindLayout.z, 0.0)
-                        : vec2(u_behindLayout.z * (1.5 - exp2(1.0 - k)), 0.5 * u_behindLayout.w);
+  vec2 padded = paddedFrame();
+  vec2 origin = k < 1.5 ? vec2(padded.x, 0.0) : vec2(padded.x * (1.5 - exp2(1.0 - k)), 0.5 * padded.y);
   vec2 last = ceil(u_behindLayout.xy * scale) - 1.0;  // the level's last texel holding the frame
   vec2 c = pixel * scale - 0.5;
   vec2 t = floor(c);
@@ -53,12 +58,14 @@ vec3 blurredLevel(float k, vec2 pixel) {
 // What shows through a surface of this roughness at `pixel`: the copy behind it (level 0, sharp) blended towards the
 // blurred levels of the opaque frame.
 vec3 transmittedLight(vec2 pixel, float roughness) {
-  float lod = clamp(log2(u_behindLayout.x) * roughness * u_transmissionIor, 0.0, float(TRANSMISSION_LEVELS));
+  // Without room for the levels beside the copy (a frame near the largest texture), the copy alone: no blur.
+  float levels = u_behindLayout.z >= 1.5 * paddedFrame().x ? float(TRANSMISSION_LEVELS) : 0.0;
+  float lod = clamp(log2(u_behindLayout.x) * roughness * u_transmissionIor, 0.0, levels);
   float k = floor(lod);
   float f = lod - k;
   vec3 below = k < 0.5 ? behindAt(pixel) : blurredLevel(k, pixel);
   if (f <= 0.0) return below;
-  return mix(below, blurredLevel(min(k + 1.0, float(TRANSMISSION_LEVELS)), pixel), f);
+  return mix(below, blurredLevel(min(k + 1.0, levels), pixel), f);
 }
 #endif
 

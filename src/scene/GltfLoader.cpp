@@ -14,6 +14,7 @@
 #include "base/Error.h"
 #include "scene/GltfCompression.h"
 #include "scene/GltfReading.h"
+#include "scene/GltfSchema.h"
 
 namespace obscura {
 namespace {
@@ -204,6 +205,7 @@ void warnUnimplementedExtensions(const tinygltf::Model& model, GltfLoadReport& r
 struct DocumentFacts {
   std::vector<std::string> requiredExtensions;
   std::vector<int> channelsWithoutNode;  // per animation
+  std::vector<std::string> schemaMismatches;  // GltfSchema.h: what tinygltf would skip without a word
 };
 
 DocumentFacts scanDocument(const std::vector<std::uint8_t>& bytes) {
@@ -218,6 +220,7 @@ DocumentFacts scanDocument(const std::vector<std::uint8_t>& bytes) {
   const nlohmann::json document = nlohmann::json::parse(json.begin(), json.end(), nullptr, false);
   DocumentFacts out;
   if (!document.is_object()) return out;
+  out.schemaMismatches = gltf::schemaMismatches(document);
   if (document.contains("extensionsRequired") && document["extensionsRequired"].is_array())
     for (const auto& name : document["extensionsRequired"])
       if (name.is_string()) out.requiredExtensions.push_back(name.get<std::string>());
@@ -276,6 +279,12 @@ Scene loadWithResolver(const std::vector<std::uint8_t>& bytes, const std::string
     if (facts.channelsWithoutNode[a] > 0)
       out.warnings.push_back("animation " + std::to_string(a) + ": " + std::to_string(facts.channelsWithoutNode[a]) +
                              " channels have no target node (KHR_animation_pointer?); skipped");
+  if (!facts.schemaMismatches.empty())
+    out.warnings.push_back("does not follow the glTF schema: " + facts.schemaMismatches.front() +
+                           (facts.schemaMismatches.size() > 1
+                                ? " (and " + std::to_string(facts.schemaMismatches.size() - 1) + " more)"
+                                : std::string()) +
+                           "; ignored");
   for (const std::string& ext : model.extensionsRequired) refuseUnlessSupported(refuse, ext);
   warnUnimplementedExtensions(model, out);
   decompressGltfModel(model, name, limits, out);
@@ -287,8 +296,9 @@ Scene loadWithResolver(const std::vector<std::uint8_t>& bytes, const std::string
   gltf::loadMaterials(ctx, scene);
   const std::vector<std::vector<int>> copies = gltf::loadNodes(ctx, scene);
   gltf::loadAnimations(ctx, copies, scene);
+  // A valid file may have nothing to draw (an empty scene): it loads, and says so.
   if (scene.instances.empty() && scene.lineInstances.empty())
-    refuse("contains no triangle, line or point geometry in its default scene");
+    out.warnings.push_back("its default scene has no triangle, line or point geometry: nothing is drawn");
   const Bounds bounds = scene.worldBounds();
   const glm::vec3 extent = bounds.max - bounds.min;
   if (!std::isfinite(extent.x + extent.y + extent.z)) refuse("scene bounds are not finite after node transforms");

@@ -157,6 +157,23 @@ bool usesTexCoord1(const tinygltf::Material& m) {
          onSet1(m.normalTexture) || onSet1(m.occlusionTexture) || onSet1(m.emissiveTexture);
 }
 
+int texCoordSetsSampled(const LoaderContext& ctx, int materialIndex) {
+  const tinygltf::Material* m = materialOf(ctx, materialIndex);
+  if (!m) return 0;
+  int sets = 0;
+  auto sampled = [&](const auto& info) {
+    if (info.index < 0) return;
+    const int texCoord = referenceTexCoord(info.texCoord, info.extensions);
+    if (readableTexCoord(texCoord)) sets = std::max(sets, texCoord + 1);
+  };
+  sampled(m->pbrMetallicRoughness.baseColorTexture);
+  sampled(m->pbrMetallicRoughness.metallicRoughnessTexture);
+  sampled(m->normalTexture);
+  sampled(m->occlusionTexture);
+  sampled(m->emissiveTexture);
+  return sets;
+}
+
 void loadMaterials(const LoaderContext& ctx, Scene& scene) {
   const tinygltf::Model& model = ctx.model;
   for (const tinygltf::Image& source : model.images) {

@@ -266,6 +266,13 @@ Mesh loadPrimitive(const LoaderContext& ctx, const tinygltf::Primitive& primitiv
   mesh.texcoords1 = readTexcoords(ctx, primitive, what, "TEXCOORD_1", vertexCount);
   if (attribute("TEXCOORD_2") >= 0)
     ctx.report.warnings.push_back(what + ": TEXCOORD_2 and beyond are not read (only TEXCOORD_0 and TEXCOORD_1)");
+  if (mesh.texcoords.empty() && !mesh.texcoords1.empty())
+    ctx.report.warnings.push_back(what + " has TEXCOORD_1 without TEXCOORD_0 (glTF numbers sets without gaps)");
+  const int setsNeeded = texCoordSetsSampled(ctx, primitive.material);
+  const int setsPresent = mesh.texcoords1.empty() ? (mesh.texcoords.empty() ? 0 : 1) : 2;
+  if (setsNeeded > setsPresent)
+    ctx.report.warnings.push_back(what + ": its material samples TEXCOORD_" + std::to_string(setsNeeded - 1) +
+                                  ", which it lacks; sampled at (0, 0)");
   // Each glTF primitive becomes its own Mesh with its own copy of the coordinates, so baking the material's base
   // colour coordinates here is right even when primitives with different materials share one accessor.
   const BakedBaseColorUv baked = baseColorUvToBake(ctx, primitive.material, what);

@@ -93,6 +93,8 @@ BakedBaseColorUv baseColorUvToBake(const LoaderContext& ctx, int materialIndex, 
 int normalTextureTexCoord(const tinygltf::Material& material);
 // Some slot the loader keeps samples TEXCOORD_1.
 bool usesTexCoord1(const tinygltf::Material& material);
+// How many texture coordinate sets a material's textures sample: 0 (none), 1 (TEXCOORD_0), 2 (TEXCOORD_1 too).
+int texCoordSetsSampled(const LoaderContext& ctx, int materialIndex);
 
 // --- GltfNodes.cpp ---
 // The default scene's nodes (parents before children), the instances and lights they place, the skins those need.

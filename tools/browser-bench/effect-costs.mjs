@@ -2,8 +2,11 @@
 // SwiftShader offers) in the demo page's frame of the built-in scene, playing its animation so that motion blur and
 // the temporal effects have motion to work on, at each size asked. Every effect of the table is measured with its
 // switch on (the others at their defaults), and the AO's temporal accumulation beside the single-frame AO; then the
-// lighting pass on the metallic-roughness sample (assets/scenes/pbr-samples.glb) loaded into the page. Writes a
-// CSV; docs/benchmarks.md ("Every effect at two sizes") shows the figures.
+// lighting pass on the metallic-roughness sample (assets/scenes/pbr-samples.glb) loaded into the page; then the
+// transparent layer, transmission and clear coat on the glass sample (assets/scenes/glass-samples.glb), beside two
+// variants of it edited here: without the material layers (the clear coat's cost is the lighting's difference), and
+// with the glass spheres blended instead of transmissive (transmission's per-fragment cost is the transparency pass's
+// difference). Writes a CSV; docs/benchmarks.md ("Every effect at two sizes") shows the figures.
 //
 // Usage: node tools/browser-bench/effect-costs.mjs [--sizes 640x360,1280x720] [--samples N] [--settle MS] [--csv FILE]
 //                                                  [--effects NAME,...]  (only these effects' cases; default: all)
@@ -52,6 +55,24 @@ function casesOf(description) {
                  state: 'ao=on&ao.temporal=on&ao.samples=4' });
   }
   return options.effects ? cases.filter((c) => options.effects.includes(c.effect)) : cases;
+}
+
+// A .glb's JSON chunk edited by `edit` (the binary chunk kept), as a buffer for the page's file input.
+function editedGlb(file, edit) {
+  const bytes = fs.readFileSync(file);
+  const jsonLength = bytes.readUInt32LE(12);
+  const json = JSON.parse(bytes.subarray(20, 20 + jsonLength).toString('utf8'));
+  edit(json);
+  let text = Buffer.from(JSON.stringify(json), 'utf8');
+  if (text.length % 4) text = Buffer.concat([text, Buffer.alloc(4 - (text.length % 4), 0x20)]);
+  const rest = bytes.subarray(20 + jsonLength);
+  const header = Buffer.alloc(20);
+  header.write('glTF', 0);
+  header.writeUInt32LE(2, 4);
+  header.writeUInt32LE(20 + text.length + rest.length, 8);
+  header.writeUInt32LE(text.length, 12);
+  header.writeUInt32LE(0x4e4f534a, 16);  // JSON
+  return Buffer.concat([header, text, rest]);
 }
 
 const rows = [];
@@ -132,6 +153,32 @@ try {
     await page.waitForFunction(
       () => document.querySelector('#scene-name').textContent.startsWith('pbr-samples.glb'), null, { timeout: 60000 });
     report('lighting, PBR sample', await measure('', lighting.passes));
+    // Issue 31: the transparent layer, transmission and clear coat on the glass sample and its two variants.
+    const glassFile = path.join(root, 'assets', 'scenes', 'glass-samples.glb');
+    const load = async (name, buffer) => {
+      await page.locator('#file-input').setInputFiles({ name, mimeType: 'model/gltf-binary', buffer });
+      await page.waitForFunction((n) => document.querySelector('#scene-name').textContent.startsWith(n), name,
+                                 { timeout: 60000 });
+    };
+    const transparencyPasses = ['transparency'], levelsPasses = ['transmission-levels'];
+    await load('glass-samples.glb', fs.readFileSync(glassFile));
+    report('transparency, glass sample', await measure('', transparencyPasses));
+    report('transmission-levels, glass', await measure('', levelsPasses));
+    report('lighting, glass sample', await measure('', lighting.passes));
+    await load('glass-uncoated.glb', editedGlb(glassFile, (json) => {
+      for (const m of json.materials) for (const e of ['KHR_materials_clearcoat', 'KHR_materials_ior',
+                                                        'KHR_materials_specular']) delete m.extensions?.[e];
+    }));
+    report('lighting, glass uncoated', await measure('', lighting.passes));
+    await load('glass-blended.glb', editedGlb(glassFile, (json) => {
+      for (const m of json.materials)
+        if (m.extensions?.KHR_materials_transmission) {
+          delete m.extensions.KHR_materials_transmission;
+          m.alphaMode = 'BLEND';
+          m.pbrMetallicRoughness.baseColorFactor = [1, 1, 1, 0.5];
+        }
+    }));
+    report('transparency, glass blended', await measure('', transparencyPasses));
     if (errors.length) throw new Error(`page errors: ${errors.join('; ')}`);
     await page.context().close();
   }

@@ -176,10 +176,12 @@ void TransparencyEffect::fitBehind(glm::ivec2 size) {
   frameSize_ = size;
   constexpr int kStep = 1 << kTransmissionLevels;
   padded_ = (size + (kStep - 1)) / kStep * kStep;
-  // The levels sit beside the copy when the texture can be that wide; else there are none (the copy alone: a
-  // transmissive surface then shows what is behind it unblurred).
-  const int width = std::min(padded_.x + padded_.x / 2, resources_.caps.maxTextureSize);
-  behind_ = gl::Texture2D(width, std::max(padded_.y, size.y), GL_NEAREST);
+  // The levels sit beside the copy where the texture can be that large; else there are none (the copy alone: a
+  // transmissive surface then shows what is behind it unblurred; composite.glsl tells by the texture's width).
+  const int limit = resources_.caps.maxTextureSize;
+  const bool room = padded_.x + padded_.x / 2 <= limit && padded_.y <= limit;
+  behind_ = room ? gl::Texture2D(padded_.x + padded_.x / 2, padded_.y, GL_NEAREST)
+                 : gl::Texture2D(size.x, size.y, GL_NEAREST);
   levels_.clear();
 }
 
@@ -188,7 +190,7 @@ void TransparencyEffect::fitBehind(glm::ivec2 size) {
 void TransparencyEffect::renderLevels(const PassContext& context) {
   const glm::ivec2 size = context.size("scene-color");
   fitBehind(size);
-  if (behind_.width() < padded_.x + padded_.x / 2) return;
+  if (behind_.width() < padded_.x + padded_.x / 2 || behind_.height() < padded_.y) return;
   if (levels_.empty())
     for (int k = 1; k <= kTransmissionLevels; ++k)
       levels_.emplace_back("transmission level " + std::to_string(k), padded_.x >> k, padded_.y >> k, GL_NEAREST,
@@ -266,7 +268,7 @@ void TransparencyEffect::renderLayer(const PassContext& context) {
   std::copy_n(light.positionRange.begin(), lights, positionRange.begin());
   std::copy_n(light.colorSpot.begin(), lights, colorSpot.begin());
   std::copy_n(light.spot.begin(), lights, spot.begin());
-  const glm::vec4 layout(size, padded_);
+  const glm::vec4 layout(size, behind_.width(), behind_.height());
   auto choose = [&](MaterialKind kind, VertexKind vertex) -> const GeometryUniforms& {
     const Variant& v = variant(kind, vertex, fogKey);
     v.program.use();
