@@ -1,7 +1,7 @@
 // obscura-bench: the performance figures of the AO pipeline, measured in one run (docs/benchmarks.md).
 //
 //   obscura-bench [--out DIR] [--frames N] [--backend osmesa|egl] [--quick] [--estimators-only] [--motion-only]
-//                 [--effects-only] [--temporal-ao-only]
+//                 [--effects-only] [--transparency-only] [--temporal-ao-only]
 //
 // Prints tables and writes DIR/bench.csv (every measurement), DIR/ratios.csv, DIR/radius_sweep.csv,
 // DIR/radius_sweep.png (gnuplot) and DIR/estimators.csv. Every pass is bounded by glFinish on both sides and
@@ -19,7 +19,7 @@
 //   7. scenes that move (--motion-only: this alone): a skinned crowd drawn by every skinning path, the same pose
 //      baked into still meshes, and the velocity pass drawing only what moves or everything, all taking turns (the
 //      AO off); ms of the pose and of each geometry pass (G-buffer, lighting, velocity), written to DIR/motion.csv
-//   8. every effect at 640x360 and 1280x720 (--effects-only: this alone): the moving built-in scene playing at 60
+//   8. every effect at 640x360 and 1280x720 (--effects-only: this alone; --transparency-only: 8c alone): the moving built-in scene playing at 60
 //      frames per second, the defaults against every switch on (motion blur and TAA included), and the AO's
 //      temporal accumulation at 4 taps against the single frame, and bloom and fog on over the defaults; ms per
 //      effect, written to DIR/effects.csv, and the target beside it: bloom's ms against the G-buffer pass's
@@ -83,6 +83,7 @@ struct Options {
   bool estimatorsOnly = false;  // section 6 alone
   bool motionOnly = false;      // section 7 alone
   bool effectsOnly = false;     // section 8 alone
+  bool transparencyOnly = false;  // section 8c alone
   bool temporalAoOnly = false;  // section 9 alone
 };
 
@@ -298,10 +299,11 @@ Options parseOptions(int argc, char** argv) {
     else if (arg == "--estimators-only") options.estimatorsOnly = true;
     else if (arg == "--motion-only") options.motionOnly = true;
     else if (arg == "--effects-only") options.effectsOnly = true;
+    else if (arg == "--transparency-only") options.transparencyOnly = true;
     else if (arg == "--temporal-ao-only") options.temporalAoOnly = true;
     else throw InputError("unknown option '" + arg + "' (usage: obscura-bench [--out DIR] [--frames N] "
                           "[--backend osmesa|egl] [--quick] [--estimators-only] [--motion-only] [--effects-only] "
-                          "[--temporal-ao-only])");
+                          "[--transparency-only] [--temporal-ao-only])");
   }
   return options;
 }
@@ -782,6 +784,13 @@ int main(int argc, char** argv) {
     if (options.effectsOnly) {  // before Bench, which starts DIR/bench.csv afresh
       effectsSection(options, context, effectSizes);
       std::printf("\nobscura-bench: wrote %s/effects.csv\n", options.outDir.c_str());
+      return 0;
+    }
+    if (options.transparencyOnly) {
+      std::ofstream csv(options.outDir + "/transparency.csv");
+      csv << "configuration,width,height,effect,median_ms\n";
+      transparencySection(options, context, effectSizes, csv);
+      std::printf("\nobscura-bench: wrote %s/transparency.csv\n", options.outDir.c_str());
       return 0;
     }
     Bench bench(options, context);

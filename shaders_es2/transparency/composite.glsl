@@ -71,8 +71,14 @@ vec3 transmittedLight(vec2 pixel, float roughness) {
 
 void main() {
   vec4 base = baseColor(v_texcoord);
+#if ALPHA_MASK
+  // A transmissive material cut out by MASK: cut where glTF says, opaque elsewhere.
+  if (base.a < u_alphaCutoff) discard;
+  float alpha = 1.0;
+#else
   // u_alphaCutoff is -1 for BLEND (alpha composites), -2 for OPAQUE (a transmissive surface: alpha ignored).
   float alpha = u_alphaCutoff < -1.5 ? 1.0 : base.a;
+#endif
   vec2 pixel = (v_clipPosition.xy / v_clipPosition.w * 0.5 + 0.5) * u_behindLayout.xy;
 #if UNLIT
   vec3 color = base.rgb;
