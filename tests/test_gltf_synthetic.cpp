@@ -1073,3 +1073,27 @@ TEST(GltfSynthetic, ReadsMorphTangentsAndDirectionalLights) {
   EXPECT_FLOAT_EQ(scene.lights[0].intensity, 3.5f);
   EXPECT_FALSE(hasWarning(report, "directional")) << warnings(report);
 }
+
+// TEXCOORD_1 through KHR_mesh_quantization (the compressed path's accessors are read as these are): normalised
+// unsigned shorts, and raw bytes the extension allows unnormalised.
+TEST(GltfSynthetic, ReadsAQuantizedSecondTextureCoordinateSet) {
+  GltfBuilder gltf;
+  json attributes = quadAttributes(gltf);
+  attributes["TEXCOORD_0"] = gltf.integers(std::vector<std::uint16_t>{0, 0, 65535, 0, 65535, 65535, 0, 65535},
+                                           kUnsignedShort, "VEC2", 2, true);
+  attributes["TEXCOORD_1"] = gltf.integers(std::vector<std::uint8_t>{0, 0, 2, 0, 2, 2, 0, 2, 0, 0, 0, 0},
+                                           kUnsignedByte, "VEC2", 2, false);
+  gltf.doc()["textures"] = json::array({json::object()});
+  gltf.doc()["materials"] = json::array({{{"occlusionTexture", {{"index", 0}, {"texCoord", 1}}}}});
+  gltf.doc()["extensionsUsed"] = {"KHR_mesh_quantization"};
+  gltf.doc()["extensionsRequired"] = {"KHR_mesh_quantization"};
+  // The byte accessor holds 6 pairs for 4 vertices: cut it to four.
+  gltf.meshNode(attributes, quadIndices(gltf), 0);
+  gltf.doc()["accessors"][static_cast<size_t>(attributes["TEXCOORD_1"].get<int>())]["count"] = 4;
+  const Scene scene = gltf.load();
+  ASSERT_EQ(scene.meshes.size(), 1u);
+  const Mesh& mesh = scene.meshes[0];
+  ASSERT_EQ(mesh.texcoords1.size(), 4u);
+  EXPECT_EQ(mesh.texcoords1[2], glm::vec2(2.0f, 2.0f));
+  EXPECT_EQ(mesh.texcoords[2], glm::vec2(1.0f, 1.0f));
+}

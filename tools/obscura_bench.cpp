@@ -19,12 +19,13 @@
 //   7. scenes that move (--motion-only: this alone): a skinned crowd drawn by every skinning path, the same pose
 //      baked into still meshes, and the velocity pass drawing only what moves or everything, all taking turns (the
 //      AO off); ms of the pose and of each geometry pass (G-buffer, lighting, velocity), written to DIR/motion.csv
-//   8. every effect at 640x360 and 1280x720 (--effects-only: this alone; --transparency-only: 8c alone): the moving built-in scene playing at 60
-//      frames per second, the defaults against every switch on (motion blur and TAA included), and the AO's
-//      temporal accumulation at 4 taps against the single frame, and bloom and fog on over the defaults; ms per
-//      effect, written to DIR/effects.csv, and the issue's target beside it: bloom's ms against the G-buffer pass's
-//      in the same frames; and depth of field on over the defaults, its ms against the SAO pass's; 8c the
-//      transparent pass, transmission and clear coat on the glass sample (assets/scenes/glass-samples.glb)
+//   8. every effect at 640x360 and 1280x720 (--effects-only: this alone; --transparency-only: 8c alone): the moving
+//      built-in scene playing at 60 frames per second, the defaults against every switch on (motion blur and TAA
+//      included), and the AO's temporal accumulation at 4 taps against the single frame, and bloom and fog on over
+//      the defaults; ms per effect, written to DIR/effects.csv, and the issue's target beside it: bloom's ms against
+//      the G-buffer pass's in the same frames; and depth of field on over the defaults, its ms against the SAO
+//      pass's; 8c the transparent pass, transmission and clear coat on the glass sample and its variants
+//      (assets/scenes/glass-samples.glb)
 //   9. temporal AO (--temporal-ao-only: this alone): the default AO in one frame against 4 taps accumulated by
 //      ao.temporal (default blur, a 5-tap and a 3-tap one), and 4 taps alone, taking turns frame by frame at 640x360
 //      and 1280x720 on the still room (DIR/temporal_ao.csv)
@@ -34,6 +35,7 @@
 #include <tuple>
 #include <cmath>
 #include <fstream>
+#include <functional>
 #include <map>
 #include <memory>
 #include <string>
@@ -561,53 +563,77 @@ void motionSection(const Options& options, HeadlessContext& context, int w, int 
   }
 }
 
-// Section 8c (issue 31): the transparent layer and the material layers on the glass sample
+// Section 8c (issue 31): the transparent layer and the material layers, on the glass sample
 // (assets/scenes/glass-samples.glb: glass spheres with transmission, two blended panes, clear-coated spheres, an
-// unlit box). Three scenes take turns: the sample as made; the same without the material layers (clear coat, ior and
-// specular at glTF's defaults), whose lighting pass the sample's exceeds by the clear coat's cost; and the same with
-// the glass spheres blended (alpha 0.5) instead of transmissive, whose transparency pass the sample's exceeds by
-// transmission's per-fragment cost (transmission-levels is transmission's own pass).
+// unlit box) as made, and on variants whose materials put each over most of the frame, so that its cost per pixel
+// shows: every opaque material blended (alpha 0.5), or transmissive (roughness 0.3); and every opaque material
+// clear-coated against none with the material layers (the lighting's difference is the clear coat's). The browser
+// benchmark (tools/browser-bench/effect-costs.mjs) edits the file the same way. The five scenes take turns.
 void transparencySection(const Options& options, HeadlessContext& context,
                          const std::vector<std::pair<int, int>>& sizes, std::ofstream& csv) {
   const std::string path = std::string(OBSCURA_SOURCE_DIR) + "/assets/scenes/glass-samples.glb";
   const Scene glass = loadGltfFile(path);
-  Scene uncoated = glass, blended = glass;
-  for (Material& m : uncoated.materials) {
+  const glm::vec3 eye(0.0f, 1.5f, 3.6f), target(0.0f, 0.5f, 0.0f);
+  auto variant = [&](const std::function<void(Material&)>& edit) {
+    Scene scene = glass;
+    for (Material& m : scene.materials)
+      if (!m.transparent() && !m.unlit) edit(m);
+    return scene;
+  };
+  const Scene blendedFrame = variant([](Material& m) {
+    m.alphaMode = AlphaMode::Blend;
+    m.baseColorFactor.a = 0.5f;
+  });
+  const Scene transmissiveFrame = variant([](Material& m) {
+    m.transmissionFactor = 1.0f;
+    m.roughnessFactor = 0.3f;
+  });
+  const Scene uncoated = variant([](Material& m) {
     m.clearcoatFactor = 0.0f;
     m.ior = 1.5f;
     m.specularFactor = 1.0f;
     m.specularColorFactor = glm::vec3(1.0f);
-  }
-  for (Material& m : blended.materials)
-    if (m.transmissionFactor > 0.0f) {
-      m.transmissionFactor = 0.0f;
-      m.alphaMode = AlphaMode::Blend;
-      m.baseColorFactor.a = 0.5f;
-    }
-  std::printf("\n8c. The transparent layer and the material layers, glass sample (%s); median ms of %d frames, the "
-              "three scenes taking turns\n",
+  });
+  const Scene coated = variant([](Material& m) {
+    m.clearcoatFactor = 1.0f;
+    m.clearcoatRoughnessFactor = 0.1f;
+    m.ior = 1.5f;
+    m.specularFactor = 1.0f;
+    m.specularColorFactor = glm::vec3(1.0f);
+  });
+  std::printf("\n8c. The transparent layer and the material layers, glass sample (%s) and its variants over most of "
+              "the frame; median ms of %d frames, the five scenes taking turns\n",
               path.c_str(), options.frames);
   for (auto [w, h] : sizes) {
     Camera camera = builtinSceneCamera(w, h);
     camera.eye = {0.0f, 1.5f, 3.6f};
     camera.target = {0.0f, 0.5f, 0.0f};
     const std::vector<FinishPassTimer> t =
-        timeTakingTurns(options, context, {&glass, &uncoated, &blended}, camera,
-                        {RenderSettings(), RenderSettings(), RenderSettings()}, false);
-    const double transparency = t[0].medianMs("transparency"), levels = t[0].medianMs("transmission-levels");
-    const double transmission = levels + transparency - t[2].medianMs("transparency");
-    const double clearcoat = t[0].medianMs("lighting") - t[1].medianMs("lighting");
-    std::printf("  %dx%d: transparency pass %.2f ms (with the glass blended instead: %.2f), transmission-levels %.2f "
-                "ms, so transmission %.2f ms; lighting %.2f ms (without the layers %.2f: clear coat %.2f ms); "
-                "G-buffer %.2f ms\n",
-                w, h, transparency, t[2].medianMs("transparency"), levels, transmission, t[0].medianMs("lighting"),
-                t[1].medianMs("lighting"), clearcoat, t[0].medianMs("gbuffer"));
-    csv << "\"glass sample\"," << w << "," << h << ",transparency," << transparency << "\n";
-    csv << "\"glass sample\"," << w << "," << h << ",transmission-levels," << levels << "\n";
-    csv << "\"glass sample\"," << w << "," << h << ",transmission," << transmission << "\n";
-    csv << "\"glass sample\"," << w << "," << h << ",clearcoat," << clearcoat << "\n";
-    csv << "\"glass sample\"," << w << "," << h << ",lighting," << t[0].medianMs("lighting") << "\n";
-    csv << "\"glass sample\"," << w << "," << h << ",gbuffer," << t[0].medianMs("gbuffer") << "\n";
+        timeTakingTurns(options, context, {&glass, &blendedFrame, &transmissiveFrame, &uncoated, &coated}, camera,
+                        std::vector<RenderSettings>(5), false);
+    const double clearcoat = t[4].medianMs("lighting") - t[3].medianMs("lighting");
+    std::printf("  %dx%d, the sample: transparency %.2f ms, transmission-levels %.2f ms, lighting %.2f ms, G-buffer "
+                "%.2f ms\n",
+                w, h, t[0].medianMs("transparency"), t[0].medianMs("transmission-levels"), t[0].medianMs("lighting"),
+                t[0].medianMs("gbuffer"));
+    std::printf("  %dx%d, every opaque material blended: transparency %.2f ms; transmissive: transparency %.2f ms + "
+                "transmission-levels %.2f ms; clear-coated: lighting %.2f ms against %.2f ms without: clear coat "
+                "%.2f ms\n",
+                w, h, t[1].medianMs("transparency"), t[2].medianMs("transparency"),
+                t[2].medianMs("transmission-levels"), t[4].medianMs("lighting"), t[3].medianMs("lighting"),
+                clearcoat);
+    const auto row = [&](const char* configuration, const char* what, double ms) {
+      csv << '"' << configuration << "\"," << w << "," << h << "," << what << "," << ms << "\n";
+    };
+    row("glass sample", "transparency", t[0].medianMs("transparency"));
+    row("glass sample", "transmission-levels", t[0].medianMs("transmission-levels"));
+    row("glass sample", "lighting", t[0].medianMs("lighting"));
+    row("every material blended", "transparency", t[1].medianMs("transparency"));
+    row("every material transmissive", "transparency", t[2].medianMs("transparency"));
+    row("every material transmissive", "transmission-levels", t[2].medianMs("transmission-levels"));
+    row("clear coat everywhere", "lighting", t[4].medianMs("lighting"));
+    row("no material layers", "lighting", t[3].medianMs("lighting"));
+    row("clear coat everywhere", "clearcoat", clearcoat);
   }
 }
 
