@@ -52,6 +52,10 @@ TEST(Cli, BadInputExitsWithStatusTwoAndOneLine) {
       {"--fps 0", "--fps: 0 is out of range"},
       {"--frames 0", "--frames: 0 is out of range"},
       {"--frames 2.5", "--frames: expected a whole number"},
+      {"--frames 4 --at 2 fog.density", "--at: expected NAME=VALUE, got 'fog.density'"},
+      {"--frames 4 --at 2 fog.density=-1", "--at: fog.density: -1 is out of range"},
+      {"--frames 4 --at 2 fog.thickness=1", "--at: unknown parameter 'fog.thickness'"},
+      {"--frames 4 --at 4 fog=on", "--at 4: the sequence has only 4 frame(s) (--frames N)"},
       {"--view split --compare ao.radius", "--compare: expected a switch, one of ao, "},
       {"--compare fxaa", "--compare: only --view split compares"},
       {"--accumulate 0", "--accumulate: 0 is out of range"},
@@ -275,6 +279,25 @@ TEST(Cli, FramesEndOnTheLastFramesTime) {
   const obscura::test::ProcessResult help = run("--help");
   for (const char* option : {"--time T", "--animation A", "--fps F", "--frames N"})
     EXPECT_NE(help.out.find(option), std::string::npos) << option;
+}
+
+// --at K NAME=VALUE changes a parameter from frame K on: a sequence whose last frames have fog on ends as a frame with
+// fog on; and with auto exposure, a sun 16x brighter from frame 2 of 4 has not adapted by the last frame (60 fps), so
+// the frame is brighter than one rendered with that sun alone (no history: adapted at once).
+TEST(Cli, AtChangesAParameterWithinTheSequence) {
+  const std::string small = "--size 160x90 --animation none ";
+  const auto fogged = renderPixels(small + "--frames 3 --at 1 fog=on", "at-fog");
+  const auto fog = renderPixels(small + "--fog", "fog-alone");
+  const auto clear = renderPixels(small, "clear");
+  EXPECT_LT(meanDifference(fogged, fog), 0.5);
+  EXPECT_GT(meanDifference(fogged, clear), 2.0);
+  const std::string exposure = small + "--auto-exposure ";
+  const auto stepping = renderPixels(exposure + "--frames 4 --at 2 lighting.sun-intensity=50", "at-exposure");
+  const auto adapted = renderPixels(exposure + "--lighting.sun-intensity 50", "adapted");
+  double brighter = 0.0;
+  for (size_t i = 0; i < stepping.size(); i += 4) brighter += static_cast<double>(stepping[i + 1]) - adapted[i + 1];
+  EXPECT_GT(brighter / static_cast<double>(stepping.size() / 4), 5.0) << "not yet adapted: brighter";
+  EXPECT_NE(run("--help").out.find("--at K NAME=V"), std::string::npos);
 }
 
 // --accumulate N writes the shutter reference: over a still scene, the frame itself; over simple_skin's motion, the

@@ -148,9 +148,11 @@ TEST(Shaders, EveryProgramFitsTheGles2UniformVectors) {
   EXPECT_EQ(LightingEffect::punctualLightsPerDraw(28, true), 4);
 
   // The transparent layer's programs at each budget a context's fragment vectors give (TransparencyEffect::budget):
-  // the heaviest fits those vectors, and takes exactly kTransparentVectors, the fog's, the layers' and 3 per light.
-  for (int vectors = gles2Vectors;
-       vectors <= kTransparentVectors + kTransparentFogVectors + kTransparentLayerVectors + 12; ++vectors) {
+  // the heaviest fits those vectors, and takes exactly kTransparentVectors, the fog's, the layers', the filtered
+  // levels' and 3 per light.
+  const int wholeLayer =
+      kTransparentVectors + kTransparentFogVectors + kTransparentLayerVectors + kTransparentFilteredVectors + 12;
+  for (int vectors = gles2Vectors; vectors <= wholeLayer; ++vectors) {
     const TransparentBudget budget = TransparencyEffect::budget(vectors);
     int most = 0;
     std::string heaviest;
@@ -160,7 +162,8 @@ TEST(Shaders, EveryProgramFitsTheGles2UniformVectors) {
     }
     EXPECT_LE(most, vectors) << heaviest;
     EXPECT_EQ(most, kTransparentVectors + (budget.fog ? kTransparentFogVectors : 0) +
-                        (budget.layers ? kTransparentLayerVectors : 0) + 3 * budget.lights)
+                        (budget.layers ? kTransparentLayerVectors : 0) +
+                        (budget.filtered && !budget.fog ? kTransparentFilteredVectors : 0) + 3 * budget.lights)
         << vectors << " vectors: " << heaviest;
   }
 }

@@ -7,7 +7,8 @@
 //                  colour   (COLOR_EDGES) a neighbour's display luma above this pixel's by more than t_c
 //   EDGES_PASS 2 rows: the distance to the nearest edge pixel of the row within EDGE_RADIUS -> "edges-distance"
 //   EDGES_PASS 3 draw: d = min_j sqrt(g(y + j)^2 + j^2), coverage strength clamp(width / 2 + 1/2 - d, 0, 1) (eq. 2),
-//                  the line colour mixed over the display colour (TOON: quantised into bands first)
+//                  the line colour mixed over the display colour (TOON: quantised into bands first; HATCHING:
+//                  strokes in bands of its luma first, edges/hatching.glsl)
 #include "lib/precision.glsl"
 #include "lib/packing.glsl"
 #include "lib/srgb.glsl"
@@ -82,6 +83,11 @@ void main() {
 }
 
 #else
+#if HATCHING
+#include "lib/reconstruct.glsl"
+#include "edges/hatching.glsl"
+varying vec3 v_farRay;
+#endif
 uniform sampler2D u_distance;  // edges-distance
 uniform sampler2D u_color;     // display-color
 uniform float u_halfWidth;     // width / 2 + 1/2
@@ -108,6 +114,9 @@ void main() {
   vec3 color = texture2D(u_color, v_uv).rgb;
 #if TOON
   color = toonShade(color);
+#endif
+#if HATCHING
+  color = hatch(color, v_uv, v_farRay, u_lineColor);
 #endif
   color = mix(color, u_lineColor, coverage);
   gl_FragColor = vec4(color, mix(fxaaLuma(color), 1.0, u_alphaIsOne));

@@ -36,8 +36,10 @@ vec3 fresnelSchlick(vec3 f0, vec3 f90, float vh) {
 }
 vec3 fresnelSchlick(vec3 f0, float vh) { return fresnelSchlick(f0, vec3(1.0), vh); }
 
-// The BRDF times NL for unit n (shading normal), v (to the eye), l (to the light): what illuminance E multiplies.
-vec3 brdfCosine(vec3 n, vec3 v, vec3 l, vec3 diffuseColor, vec3 f0, vec3 f90, float roughness) {
+// The BRDF times NL for unit n (shading normal), v (to the eye), l (to the light): what illuminance E multiplies;
+// the specular lobe scaled by `energy` (the lighting's high tier: multiple scattering's energy compensation).
+vec3 brdfCosineCompensated(vec3 n, vec3 v, vec3 l, vec3 diffuseColor, vec3 f0, vec3 f90, float roughness,
+                           vec3 energy) {
   float nl = dot(n, l);
   if (nl <= 0.0) return vec3(0.0);
   float nv = max(dot(n, v), 1e-4);
@@ -48,7 +50,11 @@ vec3 brdfCosine(vec3 n, vec3 v, vec3 l, vec3 diffuseColor, vec3 f0, vec3 f90, fl
   vec3 f = fresnelSchlick(f0, f90, vh);
   vec3 specular = f * (distributionGgx(nh, alpha) * visibilitySmithGgx(nl, nv, alpha));
   vec3 diffuse = (vec3(1.0) - f) * diffuseColor / PBR_PI;
-  return (diffuse + specular) * nl;
+  return (diffuse + specular * energy) * nl;
+}
+
+vec3 brdfCosine(vec3 n, vec3 v, vec3 l, vec3 diffuseColor, vec3 f0, vec3 f90, float roughness) {
+  return brdfCosineCompensated(n, v, l, diffuseColor, f0, f90, roughness, vec3(1.0));
 }
 vec3 brdfCosine(vec3 n, vec3 v, vec3 l, vec3 diffuseColor, vec3 f0, float roughness) {
   return brdfCosine(n, v, l, diffuseColor, f0, vec3(1.0), roughness);

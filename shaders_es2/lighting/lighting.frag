@@ -27,6 +27,9 @@
 //   BLENDED 1         the transparent layer's form (effects/transparency): the surface composited over what lies
 //                     behind it (shaders_es2/transparency/composite.glsl), fogged by its own distance; TRANSMISSION 1
 //                     adds KHR_materials_transmission's thin-walled refraction.
+//   OVER_DEPTH 1      (with DEFERRED 1, at the far plane) the deferred shading alone, drawn over the G-buffer's depth
+//                     where something was drawn; the background form draws the rest.
+//   LIGHTING_QUALITY  the tier (LightingEffect.h, LightingQuality): 0 low, 1 medium, 2 high.
 #include "lib/precision.glsl"
 #include "lib/packing.glsl"
 #include "lib/srgb.glsl"
@@ -39,6 +42,9 @@
 #endif
 #ifndef BLENDED
 #define BLENDED 0
+#endif
+#ifndef OVER_DEPTH
+#define OVER_DEPTH 0
 #endif
 #include "lib/material.glsl"
 #include "lib/pbr.glsl"
@@ -86,53 +92,107 @@ uniform vec4 u_lightSpot[MAX_PUNCTUAL_LIGHTS];           // xyz the spot's direc
 #endif
 
 // The ambient light: the environment's radiance (lib/environment.glsl), diffuse and specular, darkened by `occlusion`
-// (the screen-space AO and the material's baked occlusion, their minimum): the diffuse term by it, the specular term
-// by Lagarde's specular occlusion of it. n the shading normal, v towards the eye (both unit, view space), diffuseColor
-// and f0 the material's (lib/pbr.glsl), roughness perceptual. The split sum's scale and bias come from the table
-// integrated on the CPU; the diffuse keeps the energy the specular does not take (so a white furnace gives 1).
-vec3 ambientLight(vec3 n, vec3 v, vec3 diffuseColor, vec3 f0, vec3 f90, float roughness, float occlusion) {
-  float nv = clamp(dot(n, v), 1e-4, 1.0);
-  vec3 environmentNormal = u_viewToEnvironment * n;
-  vec2 scaleBias = environmentBrdf(roughness, nv);
+// (the screen-space AO and the material's baked occlusion, their minimum). n the shading normal, g the surface's own
+// (interpolated) normal, v towards the eye (all unit, view space), diffuseColor, f0 and f90 the material's
+// (lib/pbr.glsl), roughness perceptual; scaleBias the split sum's (A, B) at (roughness, n.v). The diffuse keeps the
+// energy the specular does not take (so a white furnace gives 1).
+#if LIGHTING_QUALITY == 0
+// Low: no fetch. The specular environment is the irradiance towards the reflected direction (the spherical
+// harmonics' cosine lobe stands for every roughness: right for the roughest, too blurred for a mirror), weighted by
+// Karis's analytic (A, B); the occlusion darkens both terms alike.
+vec3 ambientLight(vec3 n, vec3 g, vec3 v, vec3 diffuseColor, vec3 f0, vec3 f90, float roughness, float occlusion,
+                  vec2 scaleBias) {
   vec3 specularAlbedo = f0 * scaleBias.x + f90 * scaleBias.y;
-  vec3 diffuse = diffuseColor * (1.0 - specularAlbedo) * environmentIrradiance(environmentNormal);
-  vec3 specular = specularAlbedo * environmentSpecular(u_viewToEnvironment * reflect(-v, n), roughness);
-  return diffuse * occlusion + specular * specularOcclusion(nv, occlusion, roughness * roughness);
+  vec3 diffuse = diffuseColor * (1.0 - specularAlbedo) * environmentIrradiance(u_viewToEnvironment * n);
+  vec3 specular = specularAlbedo * environmentIrradiance(u_viewToEnvironment * reflect(-v, n));
+  return (diffuse + specular) * occlusion;
+}
+#else
+// Medium: the split sum (Karis 2013) with the prefiltered environment, the specular darkened by Lagarde's specular
+// occlusion of the occlusion. High adds the light that scatters more than once between microfacets (Fdez-Aguera,
+// "A Multiple-Scattering Microfacet Model for Real-Time Image-based Lighting", JCGT 8(1), 2019, eq. 13-16: the
+// single-scattering energy Ess = A + B, a multiple-scattering lobe of Fms Ems carried by the irradiance, and the
+// diffuse taking what both leave), and the horizon occlusion of a reflection a normal texture tilts below the surface
+// (Russell, "Horizon Occlusion for Normal Mapped Reflections", 2015, as Filament: (1 + r.g)^2 clamped).
+vec3 ambientLight(vec3 n, vec3 g, vec3 v, vec3 diffuseColor, vec3 f0, vec3 f90, float roughness, float occlusion,
+                  vec2 scaleBias) {
+  float nv = clamp(dot(n, v), 1e-4, 1.0);
+  vec3 r = reflect(-v, n);
+  vec3 irradiance = environmentIrradiance(u_viewToEnvironment * n);
+  vec3 specularAlbedo = f0 * scaleBias.x + f90 * scaleBias.y;
+  vec3 specular = specularAlbedo * environmentSpecular(u_viewToEnvironment * r, roughness);
+  float specularVisibility = specularOcclusion(nv, occlusion, roughness * roughness);
+#if LIGHTING_QUALITY == 2
+  float ess = scaleBias.x + scaleBias.y;
+  float ems = 1.0 - ess;
+  vec3 fAverage = f0 + (1.0 - f0) * (1.0 / 21.0);
+  vec3 multiple = specularAlbedo * fAverage / (1.0 - ems * fAverage) * ems;
+  vec3 diffuse = diffuseColor * (1.0 - specularAlbedo - multiple) * irradiance;
+  specular += multiple * irradiance;
+  float horizon = clamp(1.0 + dot(r, g), 0.0, 1.0);
+  specularVisibility *= horizon * horizon;
+#else
+  vec3 diffuse = diffuseColor * (1.0 - specularAlbedo) * irradiance;
+#endif
+  return diffuse * occlusion + specular * specularVisibility;
+}
+#endif
+
+// The split sum's (A, B): the table (medium, high) or Karis's analytic fit (low: "Physically Based Shading on
+// Mobile", 2014; off by up to 0.18 in A at low roughness and grazing angles, docs/lighting.md).
+vec2 splitSumScaleBias(float roughness, float nv) {
+#if LIGHTING_QUALITY == 0
+  vec4 c0 = vec4(-1.0, -0.0275, -0.572, 0.022);
+  vec4 c1 = vec4(1.0, 0.0425, 1.04, -0.04);
+  vec4 r = roughness * c0 + c1;
+  float a004 = min(r.x * r.x, exp2(-9.28 * nv)) * r.x + r.y;
+  return vec2(-1.04, 1.04) * a004 + r.zw;
+#else
+  return environmentBrdf(roughness, nv);
+#endif
 }
 
 #if MAX_PUNCTUAL_LIGHTS > 0
-// Light i's illuminance at p (view space) and the unit direction l towards it. KHR_lights_punctual: inverse square,
-// windowed to 0 at the range (the extension's recommended clamp(1 - (d / range)^4, 0, 1)^2), times the spot's smooth
-// cone. A directional light (w -1: xyz the unit direction towards it) has neither: its colour is its illuminance.
-vec3 punctualIlluminance(int i, vec3 p, out vec3 l) {
-  bool directional = u_lightPositionRange[i].w < 0.0;
-  vec3 toLight = directional ? u_lightPositionRange[i].xyz : u_lightPositionRange[i].xyz - p;
+// A light's illuminance at p (view space) and the unit direction l towards it, from its three uniforms (the loops
+// index the arrays: GLSL ES 1.00's Appendix A mandates only loop indices, not a function's parameter, as a fragment
+// stage's uniform index). KHR_lights_punctual: inverse square, windowed to 0 at the range (the extension's
+// recommended clamp(1 - (d / range)^4, 0, 1)^2), times the spot's smooth cone. A directional light (w -1: xyz the unit
+// direction towards it) has neither: its colour is its illuminance.
+vec3 punctualIlluminance(vec4 positionRange, vec4 colorSpot, vec4 spot, vec3 p, out vec3 l) {
+  bool directional = positionRange.w < 0.0;
+  vec3 toLight = directional ? positionRange.xyz : positionRange.xyz - p;
   float d2 = directional ? 1.0 : max(dot(toLight, toLight), 1e-8);
   l = toLight * inversesqrt(d2);
-  float window = clamp(1.0 - d2 * d2 * u_lightPositionRange[i].w, 0.0, 1.0);
-  float cone = clamp(dot(u_lightSpot[i].xyz, -l) * u_lightColorSpot[i].a + u_lightSpot[i].w, 0.0, 1.0);
-  return u_lightColorSpot[i].rgb * (window * window * cone * cone / d2);
+  float window = clamp(1.0 - d2 * d2 * positionRange.w, 0.0, 1.0);
+  float cone = clamp(dot(spot.xyz, -l) * colorSpot.a + spot.w, 0.0, 1.0);
+  return colorSpot.rgb * (window * window * cone * cone / d2);
 }
 #endif
 
 #if MATERIAL_LAYERS
 // KHR_materials_clearcoat over the lit base colour, as the Khronos sample viewer layers it: a dielectric coat (F0
 // 0.04, ior 1.5) with a GGX lobe of its own roughness around the base's normal (the coat's normal texture is not
-// read), lit by the sun, the punctual lights and the environment (darkened as the base's specular is); the base
-// below keeps what the coat does not reflect, 1 - clearcoat F(n.v).
+// read), lit by the sun, the punctual lights and the environment (darkened as the base's specular is; in the low
+// tier, as its ambientLight, the irradiance towards the reflection and no fetch); the base below keeps what the coat
+// does not reflect, 1 - clearcoat F(n.v).
 vec3 coated(vec3 base, vec3 p, vec3 n, vec3 v, float occlusion) {
   if (u_clearcoat <= 0.0) return base;
   float roughness = clamp(u_clearcoatRoughness, PBR_MIN_ROUGHNESS, 1.0);
   float nv = clamp(dot(n, v), 1e-4, 1.0);
-  vec2 scaleBias = environmentBrdf(roughness, nv);
+  vec2 scaleBias = splitSumScaleBias(roughness, nv);
+#if LIGHTING_QUALITY == 0
+  vec3 coat = vec3(0.04 * scaleBias.x + scaleBias.y) *
+              environmentIrradiance(u_viewToEnvironment * reflect(-v, n)) * occlusion;
+#else
   vec3 coat = vec3(0.04 * scaleBias.x + scaleBias.y) *
               environmentSpecular(u_viewToEnvironment * reflect(-v, n), roughness) *
               specularOcclusion(nv, occlusion, roughness * roughness);
+#endif
   coat += brdfCosine(n, v, u_lightDirection, vec3(0.0), vec3(0.04), roughness) * u_lightColor;
 #if MAX_PUNCTUAL_LIGHTS > 0
   for (int i = 0; i < MAX_PUNCTUAL_LIGHTS; i++) {
     vec3 l;
-    vec3 illuminance = punctualIlluminance(i, p, l);
+    vec3 illuminance = punctualIlluminance(u_lightPositionRange[i], u_lightColorSpot[i], u_lightSpot[i], p, l);
     coat += brdfCosine(n, v, l, vec3(0.0), vec3(0.04), roughness) * illuminance;
   }
 #endif
@@ -140,8 +200,9 @@ vec3 coated(vec3 base, vec3 p, vec3 n, vec3 v, float occlusion) {
 }
 #endif
 
-// The lit colour of a surface point: p its view-space position, n its shading normal (unit, facing the viewer).
-vec3 shade(vec3 base, float metallic, float roughness, vec3 p, vec3 n, float occlusion, vec3 emissive) {
+// The lit colour of a surface point: p its view-space position, n its shading normal and g the surface's own normal
+// (unit, facing the viewer).
+vec3 shade(vec3 base, float metallic, float roughness, vec3 p, vec3 n, vec3 g, float occlusion, vec3 emissive) {
   vec3 v = -normalize(p);
   roughness = clamp(roughness, PBR_MIN_ROUGHNESS, 1.0);
   metallic = clamp(metallic, 0.0, 1.0);
@@ -159,13 +220,21 @@ vec3 shade(vec3 base, float metallic, float roughness, vec3 p, vec3 n, float occ
   // through).
   diffuseColor *= 1.0 - u_transmission;
 #endif
-  vec3 color = ambientLight(n, v, diffuseColor, f0, f90, roughness, occlusion) + emissive;
-  color += brdfCosine(n, v, u_lightDirection, diffuseColor, f0, f90, roughness) * u_lightColor;
+  vec2 scaleBias = splitSumScaleBias(roughness, clamp(dot(n, v), 1e-4, 1.0));
+  vec3 color = ambientLight(n, g, v, diffuseColor, f0, f90, roughness, occlusion, scaleBias) + emissive;
+#if LIGHTING_QUALITY == 2
+  // Kulla & Conty, "Revisiting Physically Based Shading at Imageworks", SIGGRAPH 2017, in Filament's form: the
+  // specular lobe scaled by 1 + F0 (1 / Ess - 1), the energy single scattering loses at this roughness and angle.
+  vec3 energy = 1.0 + f0 * (1.0 / max(scaleBias.x + scaleBias.y, 1e-3) - 1.0);
+#else
+  vec3 energy = vec3(1.0);
+#endif
+  color += brdfCosineCompensated(n, v, u_lightDirection, diffuseColor, f0, f90, roughness, energy) * u_lightColor;
 #if MAX_PUNCTUAL_LIGHTS > 0
   for (int i = 0; i < MAX_PUNCTUAL_LIGHTS; i++) {
     vec3 l;
-    vec3 illuminance = punctualIlluminance(i, p, l);
-    color += brdfCosine(n, v, l, diffuseColor, f0, f90, roughness) * illuminance;
+    vec3 illuminance = punctualIlluminance(u_lightPositionRange[i], u_lightColorSpot[i], u_lightSpot[i], p, l);
+    color += brdfCosineCompensated(n, v, l, diffuseColor, f0, f90, roughness, energy) * illuminance;
   }
 #endif
 #if MATERIAL_LAYERS
@@ -195,14 +264,18 @@ uniform sampler2D u_baseColor;   // sRGB-encoded base colour
 
 void main() {
   vec4 g = texture2D(u_gbuffer, v_uv);
+#if !OVER_DEPTH
   if (isBackgroundCode(unpackDepthCode(g.ba))) {
     gl_FragColor = encodeOutput(background(v_farRay));
     return;
   }
+#endif
   vec3 base = srgbToLinear(texture2D(u_baseColor, v_uv).rgb);
   // Only the view direction matters to the shading here (no punctual lights take this form): the far plane's ray
-  // points from the eye through the pixel, as the surface's position does.
-  gl_FragColor = encodeOutput(shade(base, 0.0, 1.0, v_farRay, decodeNormal(g.rg), texture2D(u_ao, v_uv).r, vec3(0.0)));
+  // points from the eye through the pixel, as the surface's position does. The G-buffer's normal is the surface's
+  // own (no normal texture takes this form).
+  vec3 n = decodeNormal(g.rg);
+  gl_FragColor = encodeOutput(shade(base, 0.0, 1.0, v_farRay, n, n, texture2D(u_ao, v_uv).r, vec3(0.0)));
 }
 #elif UNLIT && !BLENDED
 // KHR_materials_unlit: the base colour (times the vertex colour) as it is; exposure and the tone curve still apply.
@@ -222,16 +295,16 @@ void main() {
   if (base.a < u_alphaCutoff) discard;
 #endif
   Surface surface = surfaceAt(v_texcoord);
-  vec3 n = normalize(v_viewNormal);
-  if (!gl_FrontFacing) n = -n;
-  n = perturbedNormal(n, gl_FrontFacing);
+  vec3 g = normalize(v_viewNormal);
+  if (!gl_FrontFacing) g = -g;
+  vec3 n = perturbedNormal(g, gl_FrontFacing);
   // This fragment's pixel centre in [0, 1]^2, from the interpolated clip position rather than gl_FragCoord, which is
   // only mediump in GLSL ES 1.00 and would address the wrong AO texel beyond 2048 pixels.
   vec2 screenUv = v_clipPosition.xy / v_clipPosition.w * 0.5 + 0.5;
   // The baked occlusion and the screen-space AO: their minimum, not their product (measured against the ray-traced
   // reference: docs/pbr.md, tests/test_baked_occlusion.cpp); both see much of the same occlusion.
   float occlusion = min(texture2D(u_ao, screenUv).r, surface.occlusion);
-  gl_FragColor = encodeOutput(shade(base.rgb, surface.metallic, surface.roughness, v_viewPosition, n, occlusion,
+  gl_FragColor = encodeOutput(shade(base.rgb, surface.metallic, surface.roughness, v_viewPosition, n, g, occlusion,
                                     surface.emissive));
 }
 #endif

@@ -84,17 +84,17 @@ void main() {
   vec3 color = base.rgb;
 #else
   Surface surface = surfaceAt(v_texcoord);
-  vec3 n = normalize(v_viewNormal);
-  if (!gl_FrontFacing) n = -n;
-  n = perturbedNormal(n, gl_FrontFacing);
-  vec3 color = shade(base.rgb, surface.metallic, surface.roughness, v_viewPosition, n, surface.occlusion,
+  vec3 g = normalize(v_viewNormal);
+  if (!gl_FrontFacing) g = -g;
+  vec3 n = perturbedNormal(g, gl_FrontFacing);
+  vec3 color = shade(base.rgb, surface.metallic, surface.roughness, v_viewPosition, n, g, surface.occlusion,
                      surface.emissive);
 #if TRANSMISSION
   {
     float roughness = clamp(surface.roughness, PBR_MIN_ROUGHNESS, 1.0);
     float metallic = clamp(surface.metallic, 0.0, 1.0);
     vec3 v = -normalize(v_viewPosition);
-    vec2 scaleBias = environmentBrdf(roughness, clamp(dot(n, v), 1e-4, 1.0));
+    vec2 scaleBias = splitSumScaleBias(roughness, clamp(dot(n, v), 1e-4, 1.0));
 #if MATERIAL_LAYERS
     vec3 f0 = mix(u_specular.rgb, base.rgb, metallic);
     vec3 f90 = vec3(mix(u_specular.a, 1.0, metallic));

@@ -146,12 +146,16 @@ class WebApp {
     const AoSettings& ao = viewer_.state().settings.ao();
     if (const Renderer* renderer = viewer_.renderer())
       if (ao.enabled && ao.temporal && renderer->lastFrame().historyFrames + 1 < ao.temporalFrames) frameWanted_ = true;
-    if (!frameWanted_ && !continuous_ && settleFrames_ <= 0) {
+    // Auto exposure adapts over real time: after a change, frames are drawn for as long as it takes.
+    if (!frameWanted_ && !continuous_ && settleFrames_ <= 0 && time_ >= adaptUntil_) {
       lastFrameTime_ = 0.0;  // the next drawn frame does not follow this one
       return;
     }
     // A change is drawn over framesPerChange() frames (temporal antialiasing converges over its jitter's phases).
-    if (frameWanted_) settleFrames_ = viewer_.framesPerChange();
+    if (frameWanted_) {
+      settleFrames_ = viewer_.framesPerChange();
+      adaptUntil_ = time_ + viewer_.adaptationSeconds();
+    }
     frameWanted_ = false;
     if (timer) timer->beginFrame();
     const double start = emscripten_get_now();
@@ -195,6 +199,7 @@ class WebApp {
   std::unique_ptr<GpuPassTimer> timer_;
   bool frameWanted_ = true;  // something changed since the last drawn frame
   int settleFrames_ = 0;     // frames still to draw after the last change
+  double adaptUntil_ = 0.0;  // the clock (seconds) until which frames are drawn after a change (auto exposure)
   bool continuous_ = false;
   int width_ = 0, height_ = 0;
   double lastFrameTime_ = 0.0, frameMs_ = 0.0, cpuMs_ = 0.0;

@@ -42,6 +42,7 @@ struct FrameContext {
   // The time of the previous pose (FrameOptions::previousTime, else the previous frame's time, else `time`).
   double previousTime = 0.0;
   double deltaTime = 0.0;      // time - previousTime
+  double frameInterval = 1.0 / 60.0;  // real seconds since the previous frame (FrameOptions::frameInterval)
   bool linesOrPoints = false;  // the scene has points or lines to draw (effects/lines/LinesEffect.h)
   // The scene has a transparent layer (Material::transparent: effects/transparency), and transmission in it.
   bool transparent = false;

@@ -21,7 +21,9 @@ class GpuEnvironment;
 struct SurfaceLight {
   bool published = false;                       // the lighting pass ran this frame
   const GpuEnvironment* environment = nullptr;  // its prefiltered environment and SH irradiance (environment/)
-  int environmentBrdfUnit = 0;                  // the unit its BRDF table is bound to (gpu/TextureUnits.h)
+  int environmentFilteredUnit = 0;  // the unit its filtered texture (rough levels, BRDF table) is bound to
+                                    // (gpu/TextureUnits.h)
+  int quality = 1;                  // the shading tier: lighting.frag's LIGHTING_QUALITY (0 low, 1 medium, 2 high)
   glm::mat3 viewToEnvironment{1.0f};
   float environmentIntensity = 1.0f;
   glm::vec3 lightDirection{0.0f, 1.0f, 0.0f};  // the sun, view space, towards it

@@ -5,6 +5,7 @@
 #include <cstdlib>
 
 #include "base/Error.h"
+#include "effects/auto_exposure/AutoExposureEffect.h"
 #include "effects/taa/TaaEffect.h"
 #include "gl/GlObjects.h"
 #include "platform/CameraControls.h"
@@ -224,7 +225,16 @@ void Viewer::render(GLuint framebuffer, int width, int height, PassTimer* timer,
   FrameOptions options;
   options.timer = timer;
   state_.timeline.applyTo(options);  // time, animation, loop
+  if (lastClock_ >= 0.0 && clockSeconds > lastClock_)
+    options.frameInterval = std::min(clockSeconds - lastClock_, kLongestFrameInterval);
+  lastClock_ = clockSeconds;
   renderer_->render(state_.camera, state_.settings, state_.view, target, options);
+}
+
+double Viewer::adaptationSeconds() const {
+  const AutoExposureSettings& exposure = state_.settings.of<AutoExposureSettings>();
+  if (!exposure.enabled) return 0.0;
+  return std::log(100.0) / std::min(exposure.speedUp, exposure.speedDown);
 }
 
 void Viewer::contextLost() {

@@ -7,6 +7,8 @@
 
 #include "base/Error.h"
 #include "effects/dof/DepthOfFieldEffect.h"
+#include "effects/tonemap/TonemapEffect.h"
+#include "encoding/HdrEncoding.h"
 #include "encoding/LinearDepthPacking.h"
 #include "gl/RenderTarget.h"
 #include "renderer/EffectTable.h"
@@ -73,9 +75,10 @@ struct SubFrame {
   glm::vec2 shift{0.0f};
 };
 
-// The mean of the sub-frames' final images, each rendered at `k` times its size and box-downsampled.
+// The mean of the sub-frames' final images, each rendered at `k` times its size and box-downsampled. `linearLight`:
+// the mean of their HDR colour (scene-color, decoded), tone-mapped afterwards with the settings' tone mapping.
 LinearImage meanOfRenders(Renderer& renderer, const std::vector<SubFrame>& subFrames, const RenderSettings& settings,
-                          int k, const AnimationChoice& animation, bool loop) {
+                          int k, const AnimationChoice& animation, bool loop, bool linearLight = false) {
   if (k < 1) throw InputError("supersample: expected at least 1");
   const Camera& first = subFrames.front().camera;
   const int width = first.width * k, height = first.height * k;
@@ -94,6 +97,7 @@ LinearImage meanOfRenders(Renderer& renderer, const std::vector<SubFrame>& subFr
   FrameOptions frame;
   frame.animation = animation;
   frame.loop = loop;
+  if (linearLight) frame.retain = {"scene-color"};
   for (const SubFrame& sub : subFrames) {
     Camera camera = sub.camera;
     if (camera.width != first.width || camera.height != first.height)
@@ -104,10 +108,30 @@ LinearImage meanOfRenders(Renderer& renderer, const std::vector<SubFrame>& subFr
     frame.previousTime = sub.time;  // nothing reads motion: the temporal effects are off
     frame.projectionShift = sub.shift * static_cast<float>(k);
     renderer.render(camera, settings, View::Final, OutputTarget{output.framebuffer(), width, height, {}}, frame);
-    const LinearImage image = downsampleBox(output.readRgba(), width, height, k);
-    for (size_t i = 0; i < sum.rgba.size(); ++i) sum.rgba[i] += image.rgba[i];
+    if (!linearLight) {
+      const LinearImage image = downsampleBox(output.readRgba(), width, height, k);
+      for (size_t i = 0; i < sum.rgba.size(); ++i) sum.rgba[i] += image.rgba[i];
+      continue;
+    }
+    const std::vector<std::uint8_t> hdr = renderer.retained("scene-color").readRgba();  // rows top to bottom
+    for (int y = 0; y < height; ++y)
+      for (int x = 0; x < width; ++x) {
+        const std::uint8_t* t = &hdr[(static_cast<size_t>(y) * width + x) * 4];
+        const glm::vec3 c = decodeHdr(HdrTexel{t[0], t[1], t[2], t[3]}) / static_cast<float>(k * k);
+        float* s = &sum.rgba[(static_cast<size_t>(y / k) * sum.width + x / k) * 4];
+        s[0] += c.r;
+        s[1] += c.g;
+        s[2] += c.b;
+      }
   }
   for (float& v : sum.rgba) v /= static_cast<float>(subFrames.size());
+  if (linearLight) {
+    const ToneMapInUse tone = ToneMapInUse::of(settings.of<TonemapSettings>());
+    for (size_t i = 0; i < sum.rgba.size(); i += 4) {
+      const glm::vec4 display = tone.displayColor(glm::vec3(sum.rgba[i], sum.rgba[i + 1], sum.rgba[i + 2]), false);
+      for (int c = 0; c < 4; ++c) sum.rgba[i + static_cast<size_t>(c)] = display[c];
+    }
+  }
   return sum;
 }
 
@@ -174,7 +198,10 @@ LinearImage accumulateAperture(Renderer& renderer, const Camera& camera, const R
   }
   RenderSettings pinhole = withoutTemporalEffects(settings);
   pinhole.set("dof", "off");
-  return meanOfRenders(renderer, subFrames, pinhole, options.supersample, options.animation, true);
+  // What the tone mapping adds is not part of the mean (it tone-maps the HDR mean itself).
+  for (const char* added : {"auto-exposure", "lens-flare", "glare"})
+    if (RenderSettings::find(added)) pinhole.set(added, "off");
+  return meanOfRenders(renderer, subFrames, pinhole, options.supersample, options.animation, true, true);
 }
 
 }  // namespace obscura

@@ -234,6 +234,7 @@ void Renderer::beginFrame(const Camera& camera, const RenderSettings& settings, 
   frame.time = time;
   frame.previousTime = options.previousTime.value_or(hasPrevious_ ? previousTime_ : time);
   frame.deltaTime = time - frame.previousTime;
+  frame.frameInterval = options.frameInterval.value_or(frame.deltaTime > 0.0 ? frame.deltaTime : 1.0 / 60.0);
   frame.linesOrPoints = !scene_.lines().empty();
   frame.transparent = scene_.hasTransparent();
   frame.transmission = scene_.hasTransmission();
@@ -265,6 +266,7 @@ void Renderer::endFrame() {
 
 void Renderer::run(const RenderSettings& settings, const View& view, const OutputTarget& output,
                    const FrameOptions& options) {
+  for (const std::unique_ptr<Effect>& effect : effects_) effect->prepare(settings);
   // What surfaces drawn after the lighting need (frame/SurfaceShading.h): the fog these settings apply; the light
   // comes from the lighting pass as it runs.
   surfaces_.light.published = false;

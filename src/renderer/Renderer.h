@@ -77,6 +77,9 @@ struct FrameOptions {
   // The time of the pose motion vectors measure from. Unset: the previous frame's time (this frame's own when there
   // is none, or the scene changed), so a paused timeline has no object motion. The CLI sets time - 1 / fps.
   std::optional<double> previousTime;
+  // Seconds of real time since the previous frame, for what adapts over time whether or not the timeline moves (auto
+  // exposure). Unset: time - previousTime where that is positive, else 1/60 (a paused timeline, a still frame).
+  std::optional<double> frameInterval;
   AnimationChoice animation;  // which animations drive the pose (default: the first; none: the rest pose)
   bool loop = true;           // the timeline wraps at the chosen animations' duration
   // Targets whose contents stay readable after the frame (retained()): tests and tools read them back. Their

@@ -385,7 +385,10 @@ describe('demo page', () => {
     await waitForDrawn(page);
     const off = await snapshot(page);
     const difference = compareImages(on, off);
-    assert.ok(difference.mean > 1, `the layer shows: ${JSON.stringify(difference)}`);
+    // The glass, the panes and the clear-coated spheres cover about 5 % of the fitted frame (its mean difference is
+    // about 0.4 of 255): the layer shows as that share of pixels changed, some by much.
+    const changed = Math.max(difference.r.differing, difference.g.differing, difference.b.differing);
+    assert.ok(changed > 0.02 && difference.max > 40, `the layer shows: ${JSON.stringify(difference)}`);
     await page.evaluate(() => window.obscura.set('transparency', 'on'));
     await page.locator('#builtin-scene').click();
     assert.match(await page.locator('#scene-name').textContent(), /^built-in scene/);

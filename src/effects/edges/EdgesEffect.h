@@ -36,10 +36,11 @@
 //
 // Where in the frame: after the tone mapping, on display colour. The line colour is then the colour on screen, the
 // width is in output pixels, and the tone mapping (or the lighting that absorbs it) still writes display colour
-// directly. Toon (edges.style toon) quantises the display luma Y (BT.601, FXAA's) of each pixel into `bands` equal
-// steps and rescales the colour to the band's centre, c' = min(c L / Y, 1) with L = (min(floor(Y bands), bands - 1)
-// + 1/2) / bands: the shading becomes flat bands and the hue is kept. It quantises what the lighting made (the base
-// colour times the light), which is what a frame without a separate albedo target has on every context.
+// directly. Hatching (edges.style hatching) draws tonal strokes in world space first (Hatching.h). Toon (edges.style
+// toon) quantises the display luma Y (BT.601, FXAA's) of each pixel into `bands` equal steps and rescales the colour
+// to the band's centre, c' = min(c L / Y, 1) with L = (min(floor(Y bands), bands - 1) + 1/2) / bands: the shading
+// becomes flat bands and the hue is kept. It quantises what the lighting made (the base colour times the light), which
+// is what a frame without a separate albedo target has on every context.
 //
 // CPU mirror: EdgeDetector (pass 1), edgeDistances (passes 2 and 3's distance), lineCoverage (eq. 2) and toonShade;
 // tests/test_edges.cpp holds the GPU to them and the lines to the analytic silhouette and creases of a cube.
@@ -49,12 +50,13 @@
 
 #include <glm/vec3.hpp>
 
+#include "effects/edges/Hatching.h"
 #include "frame/EffectEntry.h"
 
 namespace obscura {
 
-enum class EdgeStyle { Lines = 0, Toon = 1 };
-const char* edgeStyleName(EdgeStyle style);  // "lines", "toon"
+enum class EdgeStyle { Lines = 0, Toon = 1, Hatching = 2 };
+const char* edgeStyleName(EdgeStyle style);  // "lines", "toon", "hatching"
 
 struct EdgesSettings : ParameterAccess<EdgesSettings> {
   bool enabled = false;
@@ -65,7 +67,8 @@ struct EdgesSettings : ParameterAccess<EdgesSettings> {
   float depthThreshold = 0.05f;       // t_d: the least relative depth jump that is a profile (eq. 1)
   float normalThreshold = 35.0f;      // degrees between neighbouring normals that make a crease
   float colorThreshold = 0.0f;        // t_c, display luma; 0: no colour edges
-  int bands = 4;                      // toon: shading levels
+  int bands = 4;                      // toon, hatching: shading levels
+  float hatchSpacing = 6.0f;          // hatching: pixels between strokes (effects/edges/Hatching.h)
 
   static const std::vector<Parameter<EdgesSettings>>& parameters();
   void validate() const { validateParameters("edges"); }
@@ -131,19 +134,20 @@ class EdgesEffect : public Effect {
     GLint mask, texel;
   };
   struct DrawProgram {
-    DrawProgram(gl::Program built, int radius, bool toon);
+    DrawProgram(gl::Program built, int radius, EdgeStyle style);
     gl::Program program;
     GLint distance, color, texel, halfWidth, lineColor, strength, alphaIsOne;
     GLint bands = -1;
+    HatchingUniforms hatching;
   };
   const DetectProgram& detect(bool colorEdges);
   const DistanceProgram& distance(int radius);
-  const DrawProgram& draw(int radius, bool toon);
+  const DrawProgram& draw(int radius, EdgeStyle style);
 
   const EffectResources& resources_;
   std::map<bool, DetectProgram> detects_;
   std::map<int, DistanceProgram> distances_;
-  std::map<std::pair<int, bool>, DrawProgram> draws_;
+  std::map<std::pair<int, EdgeStyle>, DrawProgram> draws_;
 };
 
 }  // namespace obscura

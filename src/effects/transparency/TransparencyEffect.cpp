@@ -39,19 +39,30 @@ TransparentBudget TransparencyEffect::budget(int fragmentVectors) {
   if (b.fog) left -= kTransparentFogVectors;
   b.layers = left >= kTransparentLayerVectors;
   if (b.layers) left -= kTransparentLayerVectors;
+  // The fog's last row has a free component, which then holds the filtered levels' scale.
+  b.filtered = b.fog || left >= kTransparentFilteredVectors;
+  if (b.filtered && !b.fog) left -= kTransparentFilteredVectors;
   b.lights = std::clamp(left / 3, 0, 4);
   return b;
 }
 
-ProgramSpec TransparencyEffect::spec(MaterialKind kind, VertexKind vertex, FogKey fog, EnvironmentLayout layout,
-                                     int lights) {
+ProgramSpec TransparencyEffect::spec(MaterialKind kind, VertexKind vertex, FogKey fog, ShadingKey shading,
+                                     EnvironmentLayout layout, int lights) {
+  // An unlit surface reads neither tier nor environment: one program for all.
+  if (kind.unlit) shading = {};
+  // The low tier reads no prefiltered level (LightingEffect::programForm).
+  if (shading.quality == 0) shading.filteredFrom = kEnvironmentLevels;
   std::string name = "transparency[" + kind.nameSuffix().substr(1) + vertex.nameSuffix();
   if (fog.on) name += std::string(",fog") + std::to_string(fog.mode) + (fog.height ? "h" : "");
+  if (shading.quality != 1) name += shading.quality == 0 ? ",low" : ",high";
+  if (shading.filteredFrom < kEnvironmentLevels) name += ",filtered";
   name += std::string(",") + environmentLayoutName(layout) + ",lights" + std::to_string(lights) + "]";
   ProgramSpec s{name, "lib/geometry.vert", "lighting/lighting.frag",
                 {{"DEFERRED", "0"},
                  {"BACKGROUND", "0"},
+                 {"OVER_DEPTH", "0"},
                  {"AT_FAR_PLANE", "0"},
+                 {"LIGHTING_QUALITY", std::to_string(shading.quality)},
                  {"COUNT_SHADING", "0"},
                  {"TONEMAP_INLINE", "0"},
                  {"FAR_RAY", "0"},
@@ -61,7 +72,7 @@ ProgramSpec TransparencyEffect::spec(MaterialKind kind, VertexKind vertex, FogKe
                  {"FOG_MODE", std::to_string(fog.mode)},
                  {"FOG_HEIGHT", fog.height ? "1" : "0"},
                  {"TRANSMISSION_LEVELS", std::to_string(kTransmissionLevels)}}};
-  for (auto& define : GpuEnvironment::shaderDefines(layout)) s.defines.push_back(define);
+  for (auto& define : GpuEnvironment::shaderDefines(layout, shading.filteredFrom)) s.defines.push_back(define);
   if (layout == EnvironmentLayout::MipChain) s.extensions.push_back("GL_EXT_shader_texture_lod");
   for (auto& define : kind.defines()) s.defines.push_back(define);
   for (auto& define : vertex.defines()) s.defines.push_back(define);
@@ -80,17 +91,26 @@ ProgramSpec levelsSpec() {
 std::vector<ProgramSpec> TransparencyEffect::programSpecs(int fragmentVectors) {
   const TransparentBudget b = budget(fragmentVectors);
   std::vector<ProgramSpec> specs = {levelsSpec()};
+  const ShadingKey medium{};
   for (MaterialKind kind : MaterialKind::transparentKinds())
-    if (b.layers || !kind.layered) specs.push_back(spec(kind, {}, {}, EnvironmentLayout::Atlas, b.lights));
-  if (b.fog) {
-    const MaterialKind heaviest{false, true, true, false, b.layers, true};
+    if (b.layers || !kind.layered) specs.push_back(spec(kind, {}, {}, medium, EnvironmentLayout::Atlas, b.lights));
+  const MaterialKind heaviest{false, true, true, false, b.layers, true};
+  // The heaviest shading the budget allows: the filtered levels where it has room for them.
+  const int filteredFrom = b.filtered ? kEnvironmentFilteredLevel : kEnvironmentLevels;
+  if (b.fog)
     for (int mode = 0; mode < 3; ++mode)
       for (bool height : {false, true})
-        specs.push_back(spec(heaviest, {}, {true, mode, height}, EnvironmentLayout::Atlas, b.lights));
-  }
+        specs.push_back(
+            spec(heaviest, {}, {true, mode, height}, {1, filteredFrom}, EnvironmentLayout::Atlas, b.lights));
+  // The other tiers, and the filtered levels, for the heaviest material in either layout.
+  for (EnvironmentLayout layout : {EnvironmentLayout::Atlas, EnvironmentLayout::MipChain})
+    for (ShadingKey shading : {ShadingKey{0, kEnvironmentLevels}, ShadingKey{1, filteredFrom},
+                               ShadingKey{2, kEnvironmentLevels}, ShadingKey{2, filteredFrom}})
+      specs.push_back(spec(heaviest, {}, {}, shading, layout, b.lights));
   for (VertexKind vertex : VertexKind::validated())
-    specs.push_back(spec({false, true, true}, vertex.forCurrentFrame(), {}, EnvironmentLayout::Atlas, b.lights));
-  specs.push_back(spec({false, true, true, false, b.layers, true}, {}, {}, EnvironmentLayout::MipChain, b.lights));
+    specs.push_back(
+        spec({false, true, true}, vertex.forCurrentFrame(), {}, medium, EnvironmentLayout::Atlas, b.lights));
+  specs.push_back(spec(heaviest, {}, {}, medium, EnvironmentLayout::MipChain, b.lights));
   return specs;
 }
 
@@ -102,7 +122,8 @@ TransparencyEffect::Variant::Variant(gl::Program built)
       lightColor(program.optionalUniform("u_lightColor")),
       viewToEnvironment(program.optionalUniform("u_viewToEnvironment")),
       environment(program.optionalUniform("u_environment")),
-      environmentBrdf(program.optionalUniform("u_environmentBrdf")),
+      environmentFiltered(program.optionalUniform("u_environmentFiltered")),
+      environmentFilteredScale(program.optionalUniform("u_environmentFilteredScale")),
       shIrradiance(program.optionalUniform("u_shIrradiance")),
       environmentIntensity(program.optionalUniform("u_environmentIntensity")),
       lightPositionRange(program.optionalUniform("u_lightPositionRange[0]")),
@@ -116,20 +137,29 @@ TransparencyEffect::Variant::Variant(gl::Program built)
       heightScale(program.optionalUniform("u_heightScale")),
       upInView(program.optionalUniform("u_upInView")) {}
 
-const TransparencyEffect::Variant& TransparencyEffect::variant(MaterialKind kind, VertexKind vertex, FogKey fog) {
+const TransparencyEffect::Variant& TransparencyEffect::variant(MaterialKind kind, VertexKind vertex, FogKey fog,
+                                                               ShadingKey shading) {
   kind.layered = kind.layered && budget_.layers;  // a context too small for the layers draws the core material
-  const auto key = std::make_tuple(kind, vertex.forCurrentFrame(), fog);
+  if (kind.unlit) shading = {};
+  if (shading.quality == 0) shading.filteredFrom = kEnvironmentLevels;
+  const auto key = std::make_tuple(kind, vertex.forCurrentFrame(), fog, shading);
   auto it = variants_.find(key);
   if (it == variants_.end()) {
     it = variants_
-             .emplace(key, Variant(resources_.build(spec(kind, std::get<1>(key), fog, layout_, budget_.lights))))
+             .emplace(key, Variant(resources_.build(
+                               spec(kind, std::get<1>(key), fog, shading, layout_, budget_.lights))))
              .first;
     // Resolve strictly what a lit surface must use, so a misspelt or dropped uniform is caught where it matters.
     const gl::Program& program = it->second.program;
     if (!kind.unlit)
-      for (const char* name : {"u_lightDirection", "u_lightColor", "u_viewToEnvironment", "u_environment",
-                               "u_environmentBrdf", "u_shIrradiance", "u_environmentIntensity"})
+      for (const char* name : {"u_lightDirection", "u_lightColor", "u_viewToEnvironment", "u_shIrradiance",
+                               "u_environmentIntensity"})
         program.uniform(name);
+    // The medium and high tiers read the environment's levels (a smooth surface level 0, by hand) and the (A, B)
+    // table in the filtered texture; the low tier neither.
+    if (!kind.unlit && shading.quality != 0)
+      for (const char* name : {"u_environment", "u_environmentFiltered"}) program.uniform(name);
+    if (!kind.unlit && shading.filteredFrom < kEnvironmentLevels) program.uniform("u_environmentFilteredScale");
     if (fog.on)
       for (const char* name : {"u_fogColor", "u_factor"}) program.uniform(name);
     if (kind.transmission)
@@ -255,13 +285,16 @@ void TransparencyEffect::renderLayer(const PassContext& context) {
   glDepthFunc(GL_LEQUAL);
   glDepthMask(GL_FALSE);
   if (!context.sharesDepth("scene-color")) glClear(GL_DEPTH_BUFFER_BIT);
-  glActiveTexture(GL_TEXTURE0 + light.environmentBrdfUnit);
-  glBindTexture(GL_TEXTURE_2D, light.environment->brdfTexture());
+  glActiveTexture(GL_TEXTURE0 + light.environmentFilteredUnit);
+  glBindTexture(GL_TEXTURE_2D, light.environment->filteredTexture());
   glActiveTexture(GL_TEXTURE0 + TextureUnits::kEnvironment);
   glBindTexture(GL_TEXTURE_2D, light.environment->texture());
   behind_.bind(TextureUnits::kAo);  // the AO's unit: the transparent layer reads no AO
 
   const FogKey fogKey{fog.enabled && budget_.fog, fog.mode, fog.height};
+  const ShadingKey shadingKey{light.quality,
+                              budget_.filtered ? light.environment->filteredFrom() : kEnvironmentLevels};
+  const float filteredScale = light.environment->filteredScale() * light.environmentIntensity;
   const int lights = std::min(budget_.lights, static_cast<int>(light.positionRange.size()));
   std::vector<glm::vec4> positionRange(static_cast<size_t>(budget_.lights)), colorSpot(positionRange.size()),
       spot(positionRange.size());
@@ -270,14 +303,15 @@ void TransparencyEffect::renderLayer(const PassContext& context) {
   std::copy_n(light.spot.begin(), lights, spot.begin());
   const glm::vec4 layout(size, behind_.width(), behind_.height());
   auto choose = [&](MaterialKind kind, VertexKind vertex) -> const GeometryUniforms& {
-    const Variant& v = variant(kind, vertex, fogKey);
+    const Variant& v = variant(kind, vertex, fogKey, shadingKey);
     v.program.use();
     Program::set(v.projection, camera.projection);
     Program::set(v.lightDirection, light.lightDirection);
     Program::set(v.lightColor, light.lightColor);
     Program::set(v.viewToEnvironment, light.viewToEnvironment);
     Program::set(v.environment, TextureUnits::kEnvironment);
-    Program::set(v.environmentBrdf, light.environmentBrdfUnit);
+    Program::set(v.environmentFiltered, light.environmentFilteredUnit);
+    Program::set(v.environmentFilteredScale, filteredScale);
     Program::set(v.shIrradiance, light.environment->irradianceUniform().data(), 7);
     Program::set(v.environmentIntensity, light.environmentIntensity);
     if (v.lightPositionRange >= 0) {

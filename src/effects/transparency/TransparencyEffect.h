@@ -30,6 +30,7 @@
 #include <tuple>
 #include <vector>
 
+#include "environment/Environment.h"
 #include "frame/EffectEntry.h"
 #include "frame/FrameContext.h"
 #include "gl/RenderTarget.h"
@@ -49,18 +50,22 @@ inline constexpr int kTransmissionLevels = 6;
 // What the transparent layer's programs take from a context's fragment uniform vectors, as GLSL ES 1.00 packs them
 // (GLES 2 guarantees 16): the heaviest program (every PBR texture, transmission) without the material layers, fog
 // and punctual lights needs kTransparentVectors, 16; the layers (KHR_materials_specular, _ior, _clearcoat) add
-// kTransparentLayerVectors, the fog (its colour, factors and height terms) kTransparentFogVectors, each light 3.
-// TransparencyEffect::budget spends a context's vectors in that order of need: the fog first (a surface unfogged in
-// a foggy frame stands out most), then the layers, then the lights. Shaders.EveryProgramFitsTheGles2UniformVectors
-// holds these figures.
+// kTransparentLayerVectors, the fog (its colour, factors and height terms) kTransparentFogVectors, the environment's
+// rough levels through the hardware's filter (their RGBM scale: lib/environment.glsl) kTransparentFilteredVectors
+// (none with the fog, whose last row has room for it), each light 3. TransparencyEffect::budget spends a context's vectors in that order of need: the fog first (a surface
+// unfogged in a foggy frame stands out most), then the layers, then the filtered levels (without them the same
+// levels are read by hand: the same light, dearer), then the lights.
+// Shaders.EveryProgramFitsTheGles2UniformVectors holds these figures.
 inline constexpr int kTransparentVectors = 16;
 inline constexpr int kTransparentLayerVectors = 1;
 inline constexpr int kTransparentFogVectors = 3;
+inline constexpr int kTransparentFilteredVectors = 1;
 
 // What a context can give the transparent layer (TransparencyEffect::budget).
 struct TransparentBudget {
   bool fog = false;     // each surface fogged by its own distance (else it shows only the fog behind it)
   bool layers = false;  // the material layers (else a layered material is drawn as the core one)
+  bool filtered = false;  // the environment's filtered levels (else every level read by hand)
   int lights = 0;       // punctual lights per draw
 };
 
@@ -85,16 +90,26 @@ class TransparencyEffect : public Effect {
     auto key() const { return std::tie(on, mode, height); }
     bool operator<(const FogKey& o) const { return key() < o.key(); }
   };
+  // A program's shading, as the lighting pass shades this frame (SurfaceLight): its tier (LIGHTING_QUALITY) and the
+  // environment's first level read through the hardware's filter (ENVIRONMENT_FILTERED_FROM).
+  struct ShadingKey {
+    int quality = 1;
+    int filteredFrom = kEnvironmentLevels;
+    auto key() const { return std::tie(quality, filteredFrom); }
+    bool operator<(const ShadingKey& o) const { return key() < o.key(); }
+  };
   struct Variant {
     explicit Variant(gl::Program built);
     gl::Program program;
     GeometryUniforms geometry;
-    GLint projection, lightDirection, lightColor, viewToEnvironment, environment, environmentBrdf, shIrradiance;
+    GLint projection, lightDirection, lightColor, viewToEnvironment, environment, environmentFiltered;
+    GLint environmentFilteredScale, shIrradiance;
     GLint environmentIntensity, lightPositionRange, lightColorSpot, lightSpot, behind, behindLayout;
     GLint fogColor, fogFactor, falloff, heightScale, upInView;
   };
-  static ProgramSpec spec(MaterialKind kind, VertexKind vertex, FogKey fog, EnvironmentLayout layout, int lights);
-  const Variant& variant(MaterialKind kind, VertexKind vertex, FogKey fog);
+  static ProgramSpec spec(MaterialKind kind, VertexKind vertex, FogKey fog, ShadingKey shading,
+                          EnvironmentLayout layout, int lights);
+  const Variant& variant(MaterialKind kind, VertexKind vertex, FogKey fog, ShadingKey shading);
   // The `behind` texture for frames of this size: the copy's [0, W) x [0, H), then the levels beside it.
   void fitBehind(glm::ivec2 size);
   void renderLevels(const PassContext& context);
@@ -103,7 +118,7 @@ class TransparencyEffect : public Effect {
   const EffectResources& resources_;
   TransparentBudget budget_;
   EnvironmentLayout layout_;
-  std::map<std::tuple<MaterialKind, VertexKind, FogKey>, Variant> variants_;
+  std::map<std::tuple<MaterialKind, VertexKind, FogKey, ShadingKey>, Variant> variants_;
   gl::Program levelsProgram_;
   GLint levelsSource_, levelsSourceRect_, levelsSourceSize_, levelsTargetOrigin_;
   gl::Texture2D behind_;
