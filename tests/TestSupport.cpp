@@ -50,7 +50,8 @@ const EffectResources& effectResources() {
     return checked;
   }();
   static const FullscreenTriangle* triangle = new FullscreenTriangle();  // lives as long as the context
-  static const EffectResources resources{context().caps(), options, *triangle};
+  static SurfaceShading* surfaces = new SurfaceShading();
+  static const EffectResources resources{context().caps(), options, *triangle, *surfaces};
   return resources;
 }
 

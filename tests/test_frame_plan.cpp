@@ -62,13 +62,14 @@ struct Fixture {
 TEST(EffectTable, ListsTheFrameInOrderWithUniqueNames) {
   std::vector<std::string> effects;
   for (const EffectEntry& row : effectTable()) effects.push_back(row.info.name);
-  EXPECT_EQ(effects, (std::vector<std::string>{"gbuffer", "velocity", "ao", "lighting", "lines", "fog", "taa", "bloom",
-                                                "lens-flare", "glare", "dof", "auto-exposure", "tonemap", "edges",
-                                                "motion-blur", "chromatic-aberration", "fxaa"}));
+  EXPECT_EQ(effects, (std::vector<std::string>{"gbuffer", "velocity", "ao", "lighting", "lines", "fog", "transparency",
+                                                "taa", "bloom", "lens-flare", "glare", "dof", "auto-exposure",
+                                                "tonemap", "edges", "motion-blur", "chromatic-aberration", "fxaa"}));
   EXPECT_EQ(framePassNames(),
             (std::vector<std::string>{"pose", "gbuffer", "base-color", "velocity", "hierarchy", "sao", "ao-temporal",
                                       "blur-h", "blur-v", "upsample", "lighting", "shading-count", "lines", "fog",
-                                      "taa", "bloom", "bloom-bright", "lens-flare", "glare",
+                                      "transmission-levels", "transparency", "taa", "bloom", "bloom-bright",
+                                      "lens-flare", "glare",
                                       "dof-coc", "dof-downsample", "dof-tiles-h", "dof-tiles", "dof-neighbors",
                                       "dof-near", "dof-far", "dof-composite", "exposure-meter",
                                       "exposure-reduce", "exposure-reduce-2",

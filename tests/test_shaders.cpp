@@ -10,6 +10,7 @@
 #include "TestSupport.h"
 #include "base/Error.h"
 #include "effects/lighting/LightingEffect.h"
+#include "effects/transparency/TransparencyEffect.h"
 #include "gl/ShaderLibrary.h"
 #include "gl/UniformPacking.h"
 
@@ -103,9 +104,14 @@ TEST(Shaders, EveryProgramFitsTheGles2UniformVectors) {
   const int minimumLights = LightingEffect::punctualLightsPerDraw(FragmentLimits::gles2Minimum().uniformVectors);
   EXPECT_EQ(minimumLights, 0);
   std::vector<ProgramSpec> specs;
+  // The lighting and the transparent layer size their programs to the context (lights per draw, the transparent
+  // layer's fog): at GLES 2's minimum, these.
   for (ProgramSpec& spec : Renderer::allProgramSpecs())
-    if (spec.name.rfind("lighting[", 0) != 0) specs.push_back(std::move(spec));
+    if (spec.name.rfind("lighting[", 0) != 0 && spec.name.rfind("transparency[", 0) != 0)
+      specs.push_back(std::move(spec));
   for (ProgramSpec& spec : LightingEffect::programSpecs(minimumLights)) specs.push_back(std::move(spec));
+  const int gles2Vectors = FragmentLimits::gles2Minimum().uniformVectors;
+  for (ProgramSpec& spec : TransparencyEffect::programSpecs(gles2Vectors)) specs.push_back(std::move(spec));
   int worstVertex = 0, worstFragment = 0;
   std::string worstVertexName, worstFragmentName;
   for (const ProgramSpec& spec : specs) {
@@ -123,11 +129,41 @@ TEST(Shaders, EveryProgramFitsTheGles2UniformVectors) {
 
   // The forward lighting's heaviest form (every PBR texture, alpha mask, tone mapping inline) with 0 .. 4 lights:
   // exactly the figures punctualLightsPerDraw counts with.
+  // The layered materials' heaviest (every texture, the layers, the tone curve inline) takes kMaterialLayerVectors
+  // more.
   for (int lights = 0; lights <= kMaxPunctualLights; ++lights) {
-    int most = 0;
-    for (const ProgramSpec& spec : LightingEffect::programSpecs(lights))
+    int most = 0, mostLayered = 0;
+    for (const ProgramSpec& spec : LightingEffect::programSpecs(lights)) {
       if (spec.name.find("forward,mask,texture,pbr,tonemap=aces,atlas") != std::string::npos)
         most = std::max(most, rowsOf(spec).second);
+      if (spec.name.find("forward,mask,texture,pbr,layers,tonemap=") != std::string::npos)
+        mostLayered = std::max(mostLayered, rowsOf(spec).second);
+    }
     EXPECT_EQ(most, kForwardLightingVectorsWithoutLights + lights * kVectorsPerPunctualLight) << lights << " lights";
+    EXPECT_EQ(mostLayered, kForwardLightingVectorsWithoutLights + kMaterialLayerVectors +
+                               lights * kVectorsPerPunctualLight)
+        << lights << " lights";
+  }
+  EXPECT_EQ(LightingEffect::punctualLightsPerDraw(27, true), 3);
+  EXPECT_EQ(LightingEffect::punctualLightsPerDraw(28, true), 4);
+
+  // The transparent layer's programs at each budget a context's fragment vectors give (TransparencyEffect::budget):
+  // the heaviest fits those vectors, and takes exactly kTransparentVectors, the fog's, the layers', the filtered
+  // levels' and 3 per light.
+  const int wholeLayer =
+      kTransparentVectors + kTransparentFogVectors + kTransparentLayerVectors + kTransparentFilteredVectors + 12;
+  for (int vectors = gles2Vectors; vectors <= wholeLayer; ++vectors) {
+    const TransparentBudget budget = TransparencyEffect::budget(vectors);
+    int most = 0;
+    std::string heaviest;
+    for (const ProgramSpec& spec : TransparencyEffect::programSpecs(vectors)) {
+      const int rows = buildable(spec) ? rowsOf(spec).second : 0;
+      if (rows > most) std::tie(most, heaviest) = std::make_pair(rows, spec.name);
+    }
+    EXPECT_LE(most, vectors) << heaviest;
+    EXPECT_EQ(most, kTransparentVectors + (budget.fog ? kTransparentFogVectors : 0) +
+                        (budget.layers ? kTransparentLayerVectors : 0) +
+                        (budget.filtered && !budget.fog ? kTransparentFilteredVectors : 0) + 3 * budget.lights)
+        << vectors << " vectors: " << heaviest;
   }
 }

@@ -13,6 +13,7 @@
 #include "frame/FullscreenTriangle.h"
 #include "frame/Parameters.h"
 #include "frame/RendererOptions.h"
+#include "frame/SurfaceShading.h"
 #include "gl/GlCaps.h"
 #include "gl/ShaderLibrary.h"
 
@@ -23,6 +24,8 @@ struct EffectResources {
   const gl::GlCaps& caps;
   const RendererOptions& options;
   const FullscreenTriangle& triangle;
+  // This frame's light and fog for surfaces drawn after the lighting pass (frame/SurfaceShading.h).
+  SurfaceShading& surfaces;
   // Builds a program: strict (gl/Program.h) when options.checkGlErrors is on.
   gl::Program build(const ProgramSpec& spec) const { return spec.build(options.checkGlErrors); }
 };

@@ -165,6 +165,7 @@ class Renderer {
   gl::GlCaps caps_;
   RendererOptions options_;
   FullscreenTriangle triangle_;
+  SurfaceShading surfaces_;
   EffectResources resources_;
   std::vector<std::unique_ptr<Effect>> effects_;  // one per table row
   AoEffect* ao_ = nullptr;

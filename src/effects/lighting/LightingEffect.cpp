@@ -48,6 +48,10 @@ const std::vector<Parameter<LightingSettings>>& LightingSettings::parameters() {
           &S::depth,
           {{"auto", LightingDepth::Auto}, {"gbuffer", LightingDepth::GBuffer}, {"prepass", LightingDepth::Prepass},
            {"overdraw", LightingDepth::Overdraw}}),
+      choiceParameter<S>("sun",
+                         "settings: the sun of lighting.sun-*; file: the file's first directional light "
+                         "(KHR_lights_punctual), where it has one",
+                         &S::sun, {{"settings", SunSource::Settings}, {"file", SunSource::File}}),
       numberParameter<S>("sun-elevation", -90, 90, "degrees",
                          "the sun's height above the horizon (with the sky: the sky is made again, about a second)",
                          &S::sunElevation)
@@ -101,16 +105,37 @@ glm::vec3 LightingSettings::directionToSun() const {
   return {std::cos(elevation) * std::sin(azimuth), std::sin(elevation), std::cos(elevation) * std::cos(azimuth)};
 }
 
+Sun Sun::of(const LightingSettings& settings, const std::vector<PunctualLight>& lights) {
+  Sun sun;
+  sun.directionToSun = settings.directionToSun();
+  sun.illuminance = settings.sunColor * settings.sunIntensity;
+  if (settings.sun != SunSource::File) return sun;
+  for (size_t i = 0; i < lights.size(); ++i) {
+    if (lights[i].type != LightType::Directional) continue;
+    // KHR_lights_punctual: a directional light shines along its node's -z.
+    const glm::vec3 towards = glm::vec3(lights[i].world * glm::vec4(0.0f, 0.0f, 1.0f, 0.0f));
+    if (!(glm::dot(towards, towards) > 0.0f)) continue;
+    sun.directionToSun = glm::normalize(towards);
+    sun.illuminance = lights[i].color * lights[i].intensity;
+    sun.fileLight = static_cast<int>(i);
+    break;
+  }
+  return sun;
+}
+
 PunctualLightUniforms PunctualLightUniforms::of(const std::vector<PunctualLight>& lights, const glm::mat4& view,
-                                                int maxCount) {
+                                                int maxCount, int skip) {
   maxCount = std::clamp(maxCount, 0, kMaxPunctualLights);
   PunctualLightUniforms out;
-  // The lights that light the camera's surroundings most: intensity / distance^2 at the camera (view-space origin).
+  // The lights that light the camera's surroundings most: intensity / distance^2 at the camera (view-space origin);
+  // a directional light's intensity is the illuminance it gives everywhere.
   std::vector<std::pair<float, size_t>> order;
   for (size_t i = 0; i < lights.size(); ++i) {
+    if (static_cast<int>(i) == skip) continue;
     const glm::vec3 p(view * lights[i].world[3]);
     const glm::vec3& c = lights[i].color;
-    order.emplace_back(-lights[i].intensity * std::max(c.r, std::max(c.g, c.b)) / std::max(glm::dot(p, p), 1e-6f), i);
+    const float d2 = lights[i].type == LightType::Directional ? 1.0f : std::max(glm::dot(p, p), 1e-6f);
+    order.emplace_back(-lights[i].intensity * std::max(c.r, std::max(c.g, c.b)) / d2, i);
   }
   std::stable_sort(order.begin(), order.end());
   for (const auto& [key, index] : order) {
@@ -120,6 +145,9 @@ PunctualLightUniforms PunctualLightUniforms::of(const std::vector<PunctualLight>
     const glm::mat4 toView = view * light.world;
     const float range4 = light.range > 0.0f ? std::pow(light.range, 4.0f) : 0.0f;
     out.positionRange[k] = glm::vec4(glm::vec3(toView[3]), range4 > 0.0f ? 1.0f / range4 : 0.0f);
+    if (light.type == LightType::Directional)  // w -1 marks it: xyz the direction towards it (+z of its node)
+      out.positionRange[k] =
+          glm::vec4(glm::normalize(glm::vec3(toView * glm::vec4(0.0f, 0.0f, 1.0f, 0.0f))), -1.0f);
     // KHR_lights_punctual's cone: clamp(cos * scale + offset, 0, 1)^2, scale = 1 / max(cos inner - cos outer,
     // 0.001), offset = -cos outer * scale. A point light: scale 0, offset 1 (cone 1 everywhere).
     float scale = 0.0f, offset = 1.0f;
@@ -144,9 +172,9 @@ glm::mat3 LightingEffect::environmentRotation(const LightingSettings& settings) 
   return glm::mat3(glm::rotate(glm::mat4(1.0f), turn, glm::vec3(0.0f, 1.0f, 0.0f)));
 }
 
-int LightingEffect::punctualLightsPerDraw(int maxFragmentUniformVectors) {
-  return std::clamp((maxFragmentUniformVectors - kForwardLightingVectorsWithoutLights) / kVectorsPerPunctualLight, 0,
-                    kMaxPunctualLights);
+int LightingEffect::punctualLightsPerDraw(int maxFragmentUniformVectors, bool layered) {
+  const int base = kForwardLightingVectorsWithoutLights + (layered ? kMaterialLayerVectors : 0);
+  return std::clamp((maxFragmentUniformVectors - base) / kVectorsPerPunctualLight, 0, kMaxPunctualLights);
 }
 
 EffectInfo LightingEffect::info() {
@@ -228,7 +256,8 @@ ProgramSpec LightingEffect::spec(const Form& shown, MaterialKind kind, VertexKin
 
 // Every form with the atlas (any GLES 2 context), and the shading forms again with the mip chain; the shading forms
 // in each tier, the medium and high ones with and without the filtered levels.
-std::vector<ProgramSpec> LightingEffect::programSpecs(int lightsPerDraw) {
+std::vector<ProgramSpec> LightingEffect::programSpecs(int lightsPerDraw, int layeredLightsPerDraw) {
+  if (layeredLightsPerDraw < 0) layeredLightsPerDraw = lightsPerDraw;
   std::vector<ProgramSpec> specs;
   struct Shading {
     LightingQuality quality;
@@ -248,11 +277,20 @@ std::vector<ProgramSpec> LightingEffect::programSpecs(int lightsPerDraw) {
             for (bool overDepth : {false, true}) {
               if (overDepth && (!deferred || counting)) continue;
               // The low tier's shading reads no level: its forms differ by layout only in the deferred background.
-              if (shading.quality == LightingQuality::Low && layout == EnvironmentLayout::MipChain && overDepth == deferred)
+              if (shading.quality == LightingQuality::Low && layout == EnvironmentLayout::MipChain &&
+                  overDepth == deferred)
                 continue;
               for (MaterialKind kind : MaterialKind::all()) {
+                // The extended kinds (unlit, layered) take the forward forms only (Material::needsForwardLighting),
+                // with the atlas, in HDR in every tier and with one tone curve in the medium one: enough for the
+                // shader checks to compile every #if of them, without multiplying the programs by every curve.
+                if (kind.extended() && (deferred || layout != EnvironmentLayout::Atlas || toneMap > 0 ||
+                                        (toneMap == 0 && (shading.quality != LightingQuality::Medium ||
+                                                          shading.filteredFrom != kEnvironmentLevels))))
+                  continue;
                 const Form form{deferred, counting, toneMap, false, shading.quality, shading.filteredFrom, overDepth};
-                if (readKind(form, kind) == kind) specs.push_back(spec(form, kind, {}, layout, lightsPerDraw));
+                if (readKind(form, kind) == kind)
+                  specs.push_back(spec(form, kind, {}, layout, kind.layered ? layeredLightsPerDraw : lightsPerDraw));
               }
             }
           if (!deferred && !counting) specs.push_back(spec({false, false, toneMap, true}, {}, {}, layout, 0));
@@ -293,34 +331,38 @@ const LightingEffect::Variant& LightingEffect::variant(const Form& asked, Materi
   const auto key = std::make_tuple(form, readKind(form, kind), fullscreen ? VertexKind{} : vertex.forCurrentFrame());
   auto it = variants_.find(key);
   if (it == variants_.end()) {
+    const int lights = std::get<1>(key).layered ? layeredLightsPerDraw_ : lightsPerDraw_;
     it = variants_
-             .emplace(key, Variant(resources_.build(spec(form, std::get<1>(key), std::get<2>(key), layout_,
-                                                         lightsPerDraw_)),
+             .emplace(key, Variant(resources_.build(spec(form, std::get<1>(key), std::get<2>(key), layout_, lights)),
                                    !fullscreen))
              .first;
+    it->second.lights = fullscreen ? 0 : lights;
     // Resolve strictly what this form must use, so a misspelt or dropped uniform is caught where it matters.
     const gl::Program& program = it->second.program;
+    // An unlit material reads no light (KHR_materials_unlit).
+    const bool lit = !form.counting && !std::get<1>(key).unlit;
     if (!fullscreen) program.uniform("u_projection");
-    if (!form.counting)
+    if (lit)
       for (const char* name : {"u_viewToEnvironment", "u_environmentIntensity"}) program.uniform(name);
     // The deferred shading alone (roughness 1: level 5) reads no level by hand where level 5 is filtered, and the
     // low tier none at all; every other form reads level 0 at least (its background, or a smooth material).
-    const bool readsByHand = form.background || (!form.counting && form.quality != LightingQuality::Low &&
+    const bool readsByHand = form.background || (lit && form.quality != LightingQuality::Low &&
                                                  !(form.overDepth && form.filteredFrom < kEnvironmentLevels));
     if (readsByHand) program.uniform("u_environment");
     if (fullscreen && !form.counting)
       for (const char* name : {"u_farHalfExtent", "u_farPlane"}) program.uniform(name);
-    if (!form.counting && !form.background)
+    if (lit && !form.background)
       for (const char* name : {"u_lightDirection", "u_lightColor", "u_ao", "u_shIrradiance"}) program.uniform(name);
-    if (!form.counting && !form.background && form.quality != LightingQuality::Low)
-      program.uniform("u_environmentFiltered");
-    if (!form.counting && !form.background && form.filteredFrom < kEnvironmentLevels)
+    if (lit && !form.background && form.quality != LightingQuality::Low) program.uniform("u_environmentFiltered");
+    if (lit && !form.background && form.filteredFrom < kEnvironmentLevels)
       program.uniform("u_environmentFilteredScale");
     if (form.deferred) program.uniform("u_gbuffer");
     if (form.deferred && !form.counting) program.uniform("u_baseColor");
-    if (!fullscreen && !form.counting)
+    if (!fullscreen && lit)
       for (const char* name : {"u_metallicRoughness", "u_emissive"}) program.uniform(name);
-    if (!fullscreen && !form.counting && lightsPerDraw_ > 0) program.uniform("u_lightPositionRange[0]");
+    if (!fullscreen && lit && lights > 0) program.uniform("u_lightPositionRange[0]");
+    if (!fullscreen && lit && std::get<1>(key).layered)
+      for (const char* name : {"u_specular", "u_clearcoat", "u_clearcoatRoughness"}) program.uniform(name);
     if (form.toneMap >= 0)
       for (const char* name : {"u_exposure", "u_lumaInAlpha"}) program.uniform(name);
   }
@@ -342,6 +384,7 @@ LightingEffect::LightingEffect(const EffectResources& resources)
       stencil_(resources.caps.packedDepthStencil),
       layout_(GpuEnvironment::layoutFor(resources.caps, resources.options.environmentLayout)),
       lightsPerDraw_(punctualLightsPerDraw(resources.caps.maxFragmentUniformVectors)),
+      layeredLightsPerDraw_(punctualLightsPerDraw(resources.caps.maxFragmentUniformVectors, true)),
       environmentFilteredUnit_(TextureUnits::environmentFiltered(resources.caps)),
       drawBuffers_(resources.caps.drawBuffers && resources.options.allowDrawBuffers),
       environments_(layout_, resources.options.environmentFiltering) {
@@ -352,7 +395,8 @@ LightingEffect::LightingEffect(const EffectResources& resources)
   // fails when the renderer is made.
   environments_.use("sky", LightingSettings{}.directionToSun());
   for (MaterialKind kind : MaterialKind::all())
-    variant({false, false, -1, false, LightingQuality::Medium, environments_.current().filteredFrom()}, kind, {});
+    if (!kind.extended())
+      variant({false, false, -1, false, LightingQuality::Medium, environments_.current().filteredFrom()}, kind, {});
 }
 
 void LightingEffect::plan(FramePlanner& planner) {
@@ -418,6 +462,25 @@ void LightingEffect::plan(FramePlanner& planner) {
   }
 }
 
+// The light this pass shades with, for the surfaces drawn after it (frame/SurfaceShading.h: the transparent layer).
+void LightingEffect::publish(const PassContext& context, const Sun& sun, const glm::vec3& lightDirection,
+                             const glm::mat3& viewToEnvironment, const LightingSettings& settings) const {
+  SurfaceLight& out = resources_.surfaces.light;
+  out.published = true;
+  out.environment = &environments_.current();
+  out.environmentFilteredUnit = environmentFilteredUnit_;
+  out.quality = static_cast<int>(settings.quality);
+  out.viewToEnvironment = viewToEnvironment;
+  out.environmentIntensity = settings.environmentIntensity;
+  out.lightDirection = lightDirection;
+  out.lightColor = sun.illuminance;
+  const PunctualLightUniforms all =
+      PunctualLightUniforms::of(context.scene().lights(), context.camera().view, kMaxPunctualLights, sun.fileLight);
+  out.positionRange.assign(all.positionRange, all.positionRange + all.count);
+  out.colorSpot.assign(all.colorSpot, all.colorSpot + all.count);
+  out.spot.assign(all.spot, all.spot + all.count);
+}
+
 void LightingEffect::render(const PassContext& context, Form form, const std::string& output, float exposureScale) {
   using gl::Program;
   const LightingSettings& settings = context.settings().of<LightingSettings>();
@@ -431,25 +494,27 @@ void LightingEffect::render(const PassContext& context, Form form, const std::st
   const ToneMapInUse tone{static_cast<ToneMapOperator>(std::max(form.toneMap, 0)), exposureScale};
 
   const glm::mat3 viewRotation(camera.view);
-  const glm::vec3 lightDirection = glm::normalize(viewRotation * settings.directionToSun());
+  const Sun sun = Sun::of(settings, context.scene().lights());
+  const glm::vec3 lightDirection = glm::normalize(viewRotation * sun.directionToSun);
   const glm::mat3 viewToWorld = glm::transpose(viewRotation);  // the view's rotation is orthonormal
   const glm::mat3 viewToEnvironment = environmentRotation(settings) * viewToWorld;
   const bool fullscreen = form.deferred || form.background;
   const PunctualLightUniforms lights =
       fullscreen ? PunctualLightUniforms{}
-                 : PunctualLightUniforms::of(context.scene().lights(), camera.view, lightsPerDraw_);
+                 : PunctualLightUniforms::of(context.scene().lights(), camera.view, lightsPerDraw_, sun.fileLight);
+  if (!form.counting) publish(context, sun, lightDirection, viewToEnvironment, settings);
   // The texture units: gpu/TextureUnits.h.
   const int kEnvironmentUnit = TextureUnits::kEnvironment;
   const int kEnvironmentFilteredUnit = environmentFilteredUnit_;
   auto setShading = [&](const Variant& v) {
     if (form.counting) return;
     Program::set(v.lightDirection, lightDirection);
-    Program::set(v.lightColor, settings.sunColor * settings.sunIntensity);
+    Program::set(v.lightColor, sun.illuminance);
     Program::set(v.viewToEnvironment, viewToEnvironment);
     if (v.lightPositionRange >= 0) {
-      glUniform4fv(v.lightPositionRange, lightsPerDraw_, &lights.positionRange[0].x);
-      glUniform4fv(v.lightColorSpot, lightsPerDraw_, &lights.colorSpot[0].x);
-      glUniform4fv(v.lightSpot, lightsPerDraw_, &lights.spot[0].x);
+      glUniform4fv(v.lightPositionRange, v.lights, &lights.positionRange[0].x);
+      glUniform4fv(v.lightColorSpot, v.lights, &lights.colorSpot[0].x);
+      glUniform4fv(v.lightSpot, v.lights, &lights.spot[0].x);
     }
     Program::set(v.ao, TextureUnits::kAo);
     Program::set(v.environment, kEnvironmentUnit);

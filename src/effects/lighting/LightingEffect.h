@@ -83,7 +83,12 @@ enum class LightingDepth { Auto, GBuffer, Prepass, Overdraw };
 // The sun: an overcast key light over a strong sky dome, so that ambient carries most of the light and AO reads
 // clearly. Its illuminance is colour x intensity; the default intensity pi makes a white Lambertian surface facing it
 // reflect its colour, as the lighting did before the BRDF had its 1 / pi.
+// Where the sun comes from: lighting.sun-* (the renderer's own), or the file's first KHR_lights_punctual directional
+// light (its direction and colour x intensity; the renderer's sun where the file has none).
+enum class SunSource { Settings, File };
+
 struct LightingSettings : ParameterAccess<LightingSettings> {
+  SunSource sun = SunSource::Settings;
   LightingQuality quality = LightingQuality::Medium;
   QualityPreset preset = QualityPreset::Medium;  // the frame preset `quality` came from (applyPreset)
   LightingDepth depth = LightingDepth::Auto;
@@ -98,7 +103,7 @@ struct LightingSettings : ParameterAccess<LightingSettings> {
   std::string environment = "sky";
   float environmentIntensity = 1.0f;  // scales the environment's radiance: ambient light and background
 
-  glm::vec3 directionToSun() const;  // world space, unit
+  glm::vec3 directionToSun() const;  // world space, unit (lighting.sun-*)
   static const std::vector<Parameter<LightingSettings>>& parameters();
   void applyPreset(QualityPreset which);
   bool matchesPreset(QualityPreset which) const;
@@ -120,16 +125,31 @@ inline constexpr int kMaxPunctualLights = 4;
 // Shaders.EveryProgramFitsTheGles2UniformVectors (tests/test_shaders.cpp) packs every program the renderer builds
 // and holds these figures.
 inline constexpr int kForwardLightingVectorsWithoutLights = 15;
+// What the material layers (KHR_materials_specular, _ior, _clearcoat: MaterialKind::layered) add to it: their
+// programs take (maxFragmentUniformVectors - 16) / 3 lights.
+inline constexpr int kMaterialLayerVectors = 1;
 inline constexpr int kVectorsPerPunctualLight = 3;
+
+// The sun of a frame: its world direction (towards it, unit) and illuminance, from the settings or, with lighting.sun
+// file, from the scene's first directional light (`fileLight` its index in the lights, which then light the scene
+// as the sun only; -1: none taken).
+struct Sun {
+  glm::vec3 directionToSun{0.0f, 1.0f, 0.0f};
+  glm::vec3 illuminance{0.0f};
+  int fileLight = -1;
+  static Sun of(const LightingSettings& settings, const std::vector<PunctualLight>& lights);
+};
 
 // The view-space uniforms of the punctual lights (lighting.frag), derived once per frame on the CPU.
 struct PunctualLightUniforms {
-  glm::vec4 positionRange[kMaxPunctualLights]{};  // xyz position, w 1 / range^4 (0: no range)
+  glm::vec4 positionRange[kMaxPunctualLights]{};  // xyz position, w 1 / range^4 (0: no range; -1: directional,
+                                                  // xyz the unit direction towards it)
   glm::vec4 colorSpot[kMaxPunctualLights]{};      // rgb colour x intensity, a the cone's scale
   glm::vec4 spot[kMaxPunctualLights]{};           // xyz the spot's direction, w the cone's offset
   int count = 0;
-  // The first maxCount (at most kMaxPunctualLights) by that order.
-  static PunctualLightUniforms of(const std::vector<PunctualLight>& lights, const glm::mat4& view, int maxCount);
+  // The first maxCount (at most kMaxPunctualLights) by that order; `skip`: a light the sun already is (Sun).
+  static PunctualLightUniforms of(const std::vector<PunctualLight>& lights, const glm::mat4& view, int maxCount,
+                                  int skip = -1);
 };
 
 class LightingEffect : public Effect {
@@ -137,11 +157,13 @@ class LightingEffect : public Effect {
   using Settings = LightingSettings;
   static constexpr bool kHasSwitch = false;
   static EffectInfo info();
-  // Every variant, the forward ones with lightsPerDraw punctual lights.
-  static std::vector<ProgramSpec> programSpecs(int lightsPerDraw = kMaxPunctualLights);
+  // Every variant, the forward ones with lightsPerDraw punctual lights (the layered ones with layeredLightsPerDraw;
+  // -1: as many).
+  static std::vector<ProgramSpec> programSpecs(int lightsPerDraw = kMaxPunctualLights, int layeredLightsPerDraw = -1);
   // The punctual lights per draw a context of this many fragment uniform vectors holds: 4 from 27 vectors, 0 at
-  // GLES 2's minimum of 16 (the sun and the environment still light the scene).
-  static int punctualLightsPerDraw(int maxFragmentUniformVectors);
+  // GLES 2's minimum of 16 (the sun and the environment still light the scene); for the layered materials' programs
+  // 4 from 28.
+  static int punctualLightsPerDraw(int maxFragmentUniformVectors, bool layered = false);
   // World directions to the environment's: for the sky, the turn about +y that puts its sun at lighting.sun-azimuth;
   // else the identity.
   static glm::mat3 environmentRotation(const LightingSettings& settings);
@@ -181,6 +203,7 @@ class LightingEffect : public Effect {
     GLint environment, environmentFiltered, environmentFilteredScale, shIrradiance, environmentIntensity;
     GLint gbuffer, baseColor, exposure, lumaInAlpha;
     GLint lightPositionRange, lightColorSpot, lightSpot;
+    int lights = 0;  // MAX_PUNCTUAL_LIGHTS
   };
   static MaterialKind readKind(const Form& form, MaterialKind kind);
   // The form as its program sees it: what a counting or background form does not read is left at its default.
@@ -189,6 +212,8 @@ class LightingEffect : public Effect {
                           int lightsPerDraw);
   const Variant& variant(const Form& form, MaterialKind kind, VertexKind vertex);
   void render(const PassContext& context, Form form, const std::string& output, float exposureScale);
+  void publish(const PassContext& context, const Sun& sun, const glm::vec3& lightDirection,
+               const glm::mat3& viewToEnvironment, const LightingSettings& settings) const;
 
   const EffectResources& resources_;
   // Built on first use: (form, the material kind it reads, the vertex kind).
@@ -199,6 +224,7 @@ class LightingEffect : public Effect {
   glm::vec4 backgroundHdr_;  // the clear colour's radiance in scene-color's encoding, as clear-colour channels
   EnvironmentLayout layout_;              // where the prefiltered levels live (RendererOptions::environmentLayout)
   int lightsPerDraw_;                     // punctualLightsPerDraw of the context's fragment uniform vectors
+  int layeredLightsPerDraw_;              // the same for the layered materials' programs
   int environmentFilteredUnit_;           // TextureUnits::environmentFiltered
   bool drawBuffers_;                      // the G-buffer pass writes the base colour (GBufferEffect's same test)
   EnvironmentCache environments_;         // the environment in use (lighting.environment), prepared before planning
