@@ -51,7 +51,8 @@ const EffectResources& effectResources() {
   }();
   static const FullscreenTriangle* triangle = new FullscreenTriangle();  // lives as long as the context
   static ProgramCache* programs = new ProgramCache(true);
-  static const EffectResources resources{context().caps(), options, *triangle, *programs};
+  static SurfaceShading* surfaces = new SurfaceShading();
+  static const EffectResources resources{context().caps(), options, *triangle, *programs, *surfaces};
   return resources;
 }
 

@@ -67,8 +67,8 @@ TEST(EffectTable, ListsTheFrameInOrderWithUniqueNames) {
   std::vector<std::string> effects;
   for (const EffectEntry& row : effectTable()) effects.push_back(row.info.name);
   auto at = [&](const char* name) { return std::find(effects.begin(), effects.end(), name) - effects.begin(); };
-  const std::vector<const char*> order = {"gbuffer", "velocity", "ao",    "lighting",    "lines", "fog", "taa",
-                                          "bloom",   "dof",      "tonemap", "motion-blur", "fxaa"};
+  const std::vector<const char*> order = {"gbuffer", "velocity", "ao",  "lighting", "lines",       "fog", "transparency",
+                                          "taa",     "bloom",    "dof", "tonemap",  "motion-blur", "fxaa"};
   for (size_t i = 0; i < order.size(); ++i) {
     ASSERT_LT(at(order[i]), static_cast<long>(effects.size())) << order[i] << " is not in the table";
     if (i > 0) {

@@ -142,8 +142,8 @@ TEST(Pbr, TheMirrorIsTheBrdfOfTheSpecification) {
   const double specular = f * pbr::distributionGgx(1.0, alpha) * pbr::visibilitySmithGgx(1.0, 1.0, alpha);
   EXPECT_NEAR(head.r, (1.0 - f) / pbr::kPi + specular, 1e-12);
   EXPECT_NEAR(pbr::visibilitySmithGgx(1.0, 1.0, 0.5), 0.25, 1e-12);  // G = 1 at normal incidence: 1 / (4 NL NV)
-  EXPECT_NEAR(pbr::fresnelSchlick(glm::dvec3(0.04), 0.0).r, 1.0, 1e-12);
-  EXPECT_NEAR(pbr::fresnelSchlick(glm::dvec3(0.04), 1.0).r, 0.04, 1e-12);
+  EXPECT_NEAR(pbr::fresnelSchlick(glm::dvec3(0.04), glm::dvec3(1.0), 0.0).r, 1.0, 1e-12);
+  EXPECT_NEAR(pbr::fresnelSchlick(glm::dvec3(0.04), glm::dvec3(1.0), 1.0).r, 0.04, 1e-12);
   EXPECT_EQ(pbr::brdfCosine(n, n, glm::dvec3(0.0, 0.6, -0.8), white), glm::dvec3(0.0));  // light below the surface
   // KHR_lights_punctual's falloff and cone.
   EXPECT_NEAR(pbr::punctualFalloff(2.0, 0.0), 0.25, 1e-12);
@@ -629,4 +629,249 @@ TEST(Pbr, TheAoDarkensTheAmbientTermOnly) {
   EXPECT_LT(worstDirect, 0.01) << "direct light is never darkened by the AO";
   // The G-buffer's normal is 8 bits per octahedral axis (about 0.5 degrees): the mirror's ambient is within 2 %.
   EXPECT_LT(worstAmbient, 0.02);
+}
+
+namespace {
+
+// The quad of quadScene with a normal texture of one tilted texel everywhere (tilted towards +u and +v), the
+// dielectric `base`, rough.
+Scene normalMappedQuad(const glm::dvec3& base) {
+  Material material;
+  material.baseColorFactor = glm::vec4(glm::vec3(base), 1.0f);
+  material.metallicFactor = 0.0f;
+  material.roughnessFactor = 1.0f;
+  Scene scene = quadScene(material);
+  scene.materials[0].normalTexture = addTwoTexelTexture(scene, {191, 156, 238, 255}, {191, 156, 238, 255});
+  generateTangents(scene.meshes[0]);
+  return scene;
+}
+const glm::dvec3 kTilted(191 / 255.0 * 2 - 1, 156 / 255.0 * 2 - 1, 238 / 255.0 * 2 - 1);
+
+// The quad's mesh skinned to one joint (node 0, at rest the identity) of skin 0, placed by instance 0.
+void skinToOneJoint(Scene& scene, const Node& joint) {
+  Mesh& mesh = scene.meshes[0];
+  mesh.joints.assign(mesh.positions.size(), glm::u16vec4(0));
+  mesh.weights.assign(mesh.positions.size(), glm::vec4(1, 0, 0, 0));
+  scene.nodes = {joint};
+  Skin skin;
+  skin.joints = {0};
+  skin.inverseBind = {glm::mat4(1.0f)};
+  scene.skins = {skin};
+  scene.instances[0].skin = 0;
+  scene.instances[0].node = -1;
+}
+
+HdrFrame renderWith(const Scene& scene, const RendererOptions& options, const RenderSettings& settings) {
+  Renderer renderer = test::makeRenderer(options);
+  renderer.setScene(scene);
+  const Camera camera = test::makeCamera({0, 0, 5}, {0, 0, 0}, kSide, kSide, 0.1f, 100.0f, kFovy);
+  test::render(renderer, camera, settings, View::Final, test::retaining({"scene-color"}));
+  return {kSide, kSide, renderer.retained("scene-color").readRgba()};
+}
+
+}  // namespace
+
+// KHR_materials_ior, _specular and _clearcoat against the mirror (PbrShading: f0, f90 and coated) at sample angles,
+// each case also far enough from the core material that the test can tell.
+TEST(Pbr, TheMaterialLayersMatchTheMirror) {
+  struct Case {
+    const char* name;
+    double tilt;
+    float elevation, azimuth;  // the sun (at elevation 40, azimuth 0 the tilt of -20 puts its highlight mid-frame)
+    glm::dvec3 base;
+    double metallic, roughness, ior, specular;
+    glm::dvec3 specularColor;
+    double clearcoat, clearcoatRoughness;
+  };
+  const std::vector<Case> cases = {
+      {"ior 2.4", 30, 40, 10, {0.2, 0.2, 0.25}, 0.0, 0.3, 2.4, 1.0, {1, 1, 1}, 0.0, 0.0},
+      {"specular 0.3 tinted", -20, 40, 10, {0.6, 0.6, 0.6}, 0.0, 0.25, 1.5, 0.3, {1.0, 0.4, 0.2}, 0.0, 0.0},
+      {"clear coat on red", -20, 40, 0, {0.8, 0.1, 0.1}, 0.0, 0.9, 1.5, 1.0, {1, 1, 1}, 1.0, 0.15},
+      {"half coat on metal", -20, 40, 0, {0.9, 0.7, 0.3}, 1.0, 0.8, 1.5, 1.0, {1, 1, 1}, 0.5, 0.3},
+  };
+  for (const Case& c : cases) {
+    Material material;
+    material.baseColorFactor = glm::vec4(glm::vec3(c.base), 1.0f);
+    material.metallicFactor = static_cast<float>(c.metallic);
+    material.roughnessFactor = static_cast<float>(c.roughness);
+    material.ior = static_cast<float>(c.ior);
+    material.specularFactor = static_cast<float>(c.specular);
+    material.specularColorFactor = glm::vec3(c.specularColor);
+    material.clearcoatFactor = static_cast<float>(c.clearcoat);
+    material.clearcoatRoughnessFactor = static_cast<float>(c.clearcoatRoughness);
+    Scene scene = quadScene(material);
+    const glm::mat4 tilt = glm::rotate(glm::mat4(1.0f), glm::radians(static_cast<float>(c.tilt)), {1, 0, 0});
+    scene.instances[0].world = tilt;
+    RenderSettings settings = plainSettings();
+    settings.of<LightingSettings>().sunElevation = c.elevation;
+    settings.of<LightingSettings>().sunAzimuth = c.azimuth;
+    const HdrFrame frame = renderHdr(scene, settings);
+    const glm::dvec3 n = glm::normalize(glm::dvec3(glm::dmat3(glm::dmat4(tilt)) * glm::dvec3(0, 0, 1)));
+    const int middle = kSide / 2;
+    const glm::dvec3 p = viewPointOnPlane(middle, middle, kSide, kSide, n);
+    pbr::SurfaceParameters s{c.base, c.metallic, c.roughness};
+    const pbr::SurfaceParameters core = s;
+    s.ior = c.ior;
+    s.specular = c.specular;
+    s.specularColor = c.specularColor;
+    s.clearcoat = c.clearcoat;
+    s.clearcoatRoughness = c.clearcoatRoughness;
+    const LightingSettings& sun = settings.of<LightingSettings>();
+    const glm::dvec3 illuminance = glm::dvec3(sun.sunColor) * static_cast<double>(sun.sunIntensity);
+    const glm::dvec3 expected =
+        pbr::coated(expectedColor(p, n, s, sun), glm::dvec3(kAmbientRadiance), n, -glm::normalize(p),
+                    glm::normalize(glm::dvec3(sun.directionToSun())), illuminance, s, 1.0);
+    const glm::dvec3 plain = expectedColor(p, n, core, sun);
+    const glm::dvec3 got = frame.at(middle, middle);
+    std::printf("%s: gpu (%.4f %.4f %.4f) mirror (%.4f %.4f %.4f) core material (%.4f %.4f %.4f)\n", c.name, got.r,
+                got.g, got.b, expected.r, expected.g, expected.b, plain.r, plain.g, plain.b);
+    EXPECT_LT(worstRelative(got, expected), 0.01) << c.name;
+    EXPECT_GT(worstRelative(plain, expected), 0.05) << c.name << ": the layer must show for the test to tell";
+  }
+}
+
+// TEXCOORD_1: an emissive texture sampled on the second set, whose coordinates split the quad in halves while the
+// first set's sit on one texel, shows both halves; so it does through the CPU-deformed path (skinned on the CPU).
+TEST(Pbr, ASlotOnTheSecondTextureCoordinateSetIsSeen) {
+  for (bool cpu : {false, true}) {
+    Material material;
+    material.emissiveFactor = glm::vec3(1.0f);
+    material.emissiveStrength = 3.0f;
+    Scene scene = quadScene(material);
+    scene.materials[0].emissiveTexture = addTwoTexelTexture(scene, {0, 0, 0, 255}, {255, 255, 255, 255});
+    scene.materials[0].texCoords[static_cast<size_t>(TextureSlot::Emissive)] = 1;
+    Mesh& mesh = scene.meshes[0];
+    mesh.texcoords1 = mesh.texcoords;
+    mesh.texcoords.assign(mesh.positions.size(), glm::vec2(0.25f, 0.5f));
+    RendererOptions options;
+    if (cpu) {
+      skinToOneJoint(scene, Node{});
+      options.skinning = SkinningPath::Cpu;
+    }
+    const HdrFrame frame = renderWith(scene, options, plainSettings());
+    const double left = frame.at(kSide / 4, kSide / 2).g, right = frame.at(3 * kSide / 4, kSide / 2).g;
+    std::printf("%s: emission left %.3f right %.3f\n", cpu ? "CPU-deformed" : "as drawn", left, right);
+    EXPECT_GT(right, left + 2.5) << (cpu ? "CPU-deformed" : "as drawn");
+  }
+}
+
+// Morph targets' TANGENT deltas: a target turning the quad's tangent from +x to +y, at weight 1, turns the normal
+// texture's tilt with it (the mirror: the tilt's u along +y, its v along -x), on the GPU (the target in attributes)
+// and on the CPU (a context with too few attributes for it).
+TEST(Pbr, MorphTargetsMoveTheTangents) {
+  const glm::dvec3 base(0.8, 0.5, 0.3);
+  for (bool cpu : {false, true}) {
+    Scene scene = normalMappedQuad(base);
+    MorphTarget turn;
+    turn.positions.assign(scene.meshes[0].positions.size(), glm::vec3(0.0f));
+    turn.tangents.assign(scene.meshes[0].positions.size(), glm::vec3(-1.0f, 1.0f, 0.0f));
+    scene.meshes[0].morphTargets = {turn};
+    Node node;
+    node.weights = {1.0f};
+    scene.nodes = {node};
+    scene.instances[0].node = 0;
+    RendererOptions options;
+    if (cpu) options.simulateVertexLimits = VertexLimits{128, 5, 0};  // pos, normal, uv, tangent and one more
+    const HdrFrame frame = renderWith(scene, options, plainSettings());
+    const int x = kSide / 2 + 5, row = kSide / 2;
+    const glm::dvec3 p = viewPointOnPlane(x, row, kSide, kSide, glm::dvec3(0, 0, 1));
+    const pbr::SurfaceParameters s{base, 0.0, 1.0};
+    const glm::dvec3 turned = glm::normalize(glm::dvec3(-kTilted.y, kTilted.x, kTilted.z));
+    const glm::dvec3 unturned = glm::normalize(kTilted);
+    const glm::dvec3 expected = expectedColor(p, turned, s, LightingSettings{});
+    const glm::dvec3 wrong = expectedColor(p, unturned, s, LightingSettings{});
+    const glm::dvec3 got = frame.at(x, row);
+    std::printf("%s: gpu (%.4f %.4f %.4f) mirror (%.4f %.4f %.4f); with the rest tangent (%.4f %.4f %.4f)\n",
+                cpu ? "CPU-morphed" : "GPU-morphed", got.r, got.g, got.b, expected.r, expected.g, expected.b,
+                wrong.r, wrong.g, wrong.b);
+    EXPECT_LT(worstRelative(got, expected), 0.01) << (cpu ? "CPU" : "GPU");
+    EXPECT_GT(worstRelative(wrong, expected), 0.05);
+  }
+}
+
+// Skinned normal-mapped quads: a joint turning the quad a quarter about its normal turns the normal texture's tilt
+// with it on every skinning path, the CPU's included (whose tangents once stayed at rest); a joint mirroring it
+// (scale -1 along x) mirrors the tilt as a mirrored node does (w turned with the blended matrix's determinant).
+TEST(Pbr, SkinnedTangentsFollowTheJointsOnEveryPathAndMirror) {
+  const glm::dvec3 base(0.8, 0.5, 0.3);
+  const pbr::SurfaceParameters s{base, 0.0, 1.0};
+  struct Pose {
+    const char* name;
+    Node joint;
+    glm::dvec3 normal;  // the shading normal the tilted texel gives, in view space
+  };
+  Node turned, mirrored;
+  turned.rotation = glm::angleAxis(glm::radians(90.0f), glm::vec3(0, 0, 1));
+  mirrored.scale = glm::vec3(-1.0f, 1.0f, 1.0f);
+  const std::vector<Pose> poses = {
+      {"turned", turned, glm::normalize(glm::dvec3(-kTilted.y, kTilted.x, kTilted.z))},
+      {"mirrored", mirrored, glm::normalize(glm::dvec3(-kTilted.x, kTilted.y, kTilted.z))}};
+  for (const Pose& pose : poses)
+    for (SkinningPath path : {SkinningPath::Texture, SkinningPath::Uniforms, SkinningPath::Cpu}) {
+      Scene scene = normalMappedQuad(base);
+      skinToOneJoint(scene, pose.joint);
+      scene.meshes[0].material = 0;
+      RendererOptions options;
+      options.skinning = path;
+      const HdrFrame frame = renderWith(scene, options, plainSettings());
+      const int x = kSide / 2 + 5, row = kSide / 2;
+      const glm::dvec3 p = viewPointOnPlane(x, row, kSide, kSide, glm::dvec3(0, 0, 1));
+      const glm::dvec3 expected = expectedColor(p, pose.normal, s, LightingSettings{});
+      const glm::dvec3 got = frame.at(x, row);
+      std::printf("%s, %s skinning: gpu (%.4f %.4f %.4f) mirror (%.4f %.4f %.4f)\n", pose.name,
+                  skinningPathName(path), got.r, got.g, got.b, expected.r, expected.g, expected.b);
+      EXPECT_LT(worstRelative(got, expected), 0.01) << pose.name << " " << skinningPathName(path);
+    }
+}
+
+// KHR_lights_punctual directional lights beside the sun: a quad lit by a file's directional light (the sun off)
+// against BRDF x illuminance; with lighting.sun file, the light is the sun (lit once, whatever lighting.sun-* say).
+TEST(Pbr, DirectionalLightsFromTheFileAndTheSunThatFollowsThem) {
+  const glm::dvec3 base(0.7, 0.6, 0.5);
+  Material material;
+  material.baseColorFactor = glm::vec4(glm::vec3(base), 1.0f);
+  material.roughnessFactor = 0.5f;
+  Scene scene = quadScene(material, 8.0f);
+  PunctualLight light;
+  light.type = LightType::Directional;
+  light.color = {1.0f, 0.9f, 0.7f};
+  light.intensity = 2.0f;
+  // Shining along its -z: turned so it comes from the upper right, towards the quad.
+  light.world = glm::rotate(glm::rotate(glm::mat4(1.0f), 0.6f, glm::vec3(0, 1, 0)), -0.4f, glm::vec3(1, 0, 0));
+  scene.lights = {light};
+  RenderSettings settings = plainSettings();
+  settings.of<LightingSettings>().sunIntensity = 0.0f;
+  const HdrFrame lit = renderHdr(scene, settings);
+  Scene dark = scene;
+  dark.lights[0].intensity = 0.0f;
+  const HdrFrame unlit = renderHdr(dark, settings);
+  const glm::dvec3 l = glm::normalize(glm::dvec3(glm::dmat3(glm::dmat4(light.world)) * glm::dvec3(0, 0, 1)));
+  const pbr::SurfaceParameters s{base, 0.0, 0.5};
+  double worst = 0.0, peak = 0.0;
+  for (int row = 4; row < kSide; row += 8)
+    for (int x = 4; x < kSide; x += 8) {
+      const glm::dvec3 p = viewPointOnPlane(x, row, kSide, kSide, glm::dvec3(0, 0, 1));
+      const glm::dvec3 expected = pbr::brdfCosine(glm::dvec3(0, 0, 1), -glm::normalize(p), l, s) *
+                                  glm::dvec3(light.color) * static_cast<double>(light.intensity);
+      peak = std::max(peak, expected.r);
+      const glm::dvec3 got = lit.at(x, row) - unlit.at(x, row);
+      worst = std::max(worst, std::max({std::abs(got.r - expected.r), std::abs(got.g - expected.g),
+                                        std::abs(got.b - expected.b)}));
+    }
+  std::printf("directional light: peak %.3f, worst error %.5f\n", peak, worst / peak);
+  EXPECT_GT(peak, 0.2);
+  EXPECT_LT(worst / peak, 0.01);
+
+  // lighting.sun file: the same image whatever the renderer's own sun says, and the light counted once.
+  RenderSettings followed = plainSettings();
+  followed.set("lighting.sun", "file");
+  followed.of<LightingSettings>().sunIntensity = 50.0f;
+  followed.of<LightingSettings>().sunElevation = 10.0f;
+  const HdrFrame asSun = renderHdr(scene, followed);
+  double sunDifference = 0.0;
+  for (int row = 0; row < kSide; row += 4)
+    for (int x = 0; x < kSide; x += 4)
+      sunDifference = std::max(sunDifference, worstRelative(asSun.at(x, row), lit.at(x, row)));
+  std::printf("lighting.sun file against the light beside a dark sun: worst %.5f\n", sunDifference);
+  EXPECT_LT(sunDifference, 0.01);
 }

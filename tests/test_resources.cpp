@@ -83,6 +83,16 @@ TEST(Resources, AGlErrorRaisedInAPassNamesThatPass) {
   Scene scene = makeBuiltinScene();
   scene.lineMeshes.push_back({false, {glm::vec3(-1.0f, 1.0f, 0.0f), glm::vec3(1.0f, 1.0f, 0.0f)}, {}, -1});
   scene.lineInstances.push_back({0, glm::mat4(1.0f), -1});
+  // And a transmissive pane, so that the transparent layer's passes (transmission-levels, transparency) run too.
+  Material glass;
+  glass.transmissionFactor = 1.0f;
+  scene.materials.push_back(glass);
+  Mesh pane = test::makeRectangle({-1.0f, 0.0f, 0.5f}, {2.0f, 0.0f, 0.0f}, {0.0f, 1.0f, 0.0f});
+  pane.material = static_cast<int>(scene.materials.size()) - 1;
+  scene.meshes.push_back(pane);
+  Instance paneInstance;
+  paneInstance.mesh = static_cast<int>(scene.meshes.size()) - 1;
+  scene.instances.push_back(paneInstance);
   renderer.setScene(scene);
   // Bloom's chain has all its levels from 128 pixels up (a level is at least 2 pixels).
   const Camera small = builtinSceneCamera(32, 24), large = builtinSceneCamera(128, 128);

@@ -13,6 +13,8 @@
 #include "effects/lighting/LightingEffect.h"
 #include "effects/tonemap/TonemapEffect.h"
 #include "frame/Stage.h"
+#include "effects/transparency/TransparencyEffect.h"
+
 #include "gl/ShaderLibrary.h"
 #include "gl/UniformPacking.h"
 
@@ -106,9 +108,14 @@ TEST(Shaders, EveryProgramFitsTheGles2UniformVectors) {
   const int minimumLights = LightingEffect::punctualLightsPerDraw(FragmentLimits::gles2Minimum().uniformVectors);
   EXPECT_EQ(minimumLights, 0);
   std::vector<ProgramSpec> specs;
+  // The lighting and the transparent layer size their programs to the context (lights per draw, the transparent
+  // layer's fog): at GLES 2's minimum, these.
   for (ProgramSpec& spec : Renderer::allProgramSpecs())
-    if (spec.name.rfind("lighting[", 0) != 0) specs.push_back(std::move(spec));
+    if (spec.name.rfind("lighting[", 0) != 0 && spec.name.rfind("transparency[", 0) != 0)
+      specs.push_back(std::move(spec));
   for (ProgramSpec& spec : LightingEffect::programSpecs(minimumLights)) specs.push_back(std::move(spec));
+  const int gles2Vectors = FragmentLimits::gles2Minimum().uniformVectors;
+  for (ProgramSpec& spec : TransparencyEffect::programSpecs(gles2Vectors)) specs.push_back(std::move(spec));
   int worstVertex = 0, worstFragment = 0;
   std::string worstVertexName, worstFragmentName;
   for (const ProgramSpec& spec : specs) {
@@ -124,15 +131,47 @@ TEST(Shaders, EveryProgramFitsTheGles2UniformVectors) {
               specs.size(), worstVertex, worstVertexName.c_str(), worstFragment, worstFragmentName.c_str(),
               caps.maxVertexUniformVectors, caps.maxFragmentUniformVectors);
 
-  // The forward lighting's heaviest form (every PBR texture, alpha mask) with the tone-mapping stage fused, with
-  // 0 .. 4 lights: exactly the figures punctualLightsPerDraw counts with.
+  // The forward lighting's heaviest forms (every PBR texture, alpha mask; and the same with the material layers) with
+  // the tone-mapping stage fused, with 0 .. 4 lights: exactly the figures punctualLightsPerDraw counts with (the
+  // layered ones kMaterialLayerVectors and a row more).
   for (int lights = 0; lights <= kMaxPunctualLights; ++lights) {
-    const LightingEffect::StageHeadSpec heaviest = LightingEffect::stageHeads(lights).back();
-    ASSERT_NE(heaviest.program.name.find("forward,mask,texture,pbr,atlas"), std::string::npos) << heaviest.program.name;
-    const int rows =
-        rowsOf(fusedProgram(heaviest.program, {TonemapEffect::stage(ToneMapOperator::AcesFitted)}, ColorSpace::Hdr))
-            .second;
-    EXPECT_EQ(rows, kForwardLightingVectorsWithoutLights + lights * kVectorsPerPunctualLight) << lights << " lights";
+    const std::vector<LightingEffect::StageHeadSpec> heads = LightingEffect::stageHeads(lights);
+    const ProgramSpec& heaviest = heads[heads.size() - 2].program;
+    const ProgramSpec& layered = heads.back().program;
+    ASSERT_NE(heaviest.name.find("forward,mask,texture,pbr,atlas"), std::string::npos) << heaviest.name;
+    ASSERT_NE(layered.name.find("forward,mask,texture,pbr,layers"), std::string::npos) << layered.name;
+    auto fusedRows = [&](const ProgramSpec& head) {
+      return rowsOf(fusedProgram(head, {TonemapEffect::stage(ToneMapOperator::AcesFitted)}, ColorSpace::Hdr)).second;
+    };
+    EXPECT_EQ(fusedRows(heaviest), kForwardLightingVectorsWithoutLights + lights * kVectorsPerPunctualLight)
+        << lights << " lights";
+    // The layered program's rows leave no spare column for the tone curve's two floats: one row more.
+    EXPECT_EQ(fusedRows(layered),
+              kForwardLightingVectorsWithoutLights + kMaterialLayerVectors + 1 + lights * kVectorsPerPunctualLight)
+        << lights << " lights";
+  }
+  EXPECT_EQ(LightingEffect::punctualLightsPerDraw(27, true), 3);
+  EXPECT_EQ(LightingEffect::punctualLightsPerDraw(28, true), 4);
+
+  // The transparent layer's programs at each budget a context's fragment vectors give (TransparencyEffect::budget):
+  // the heaviest fits those vectors, and takes exactly kTransparentVectors, the fog's, the layers', the filtered
+  // levels' and 3 per light.
+  const int wholeLayer =
+      kTransparentVectors + kTransparentFogVectors + kTransparentLayerVectors + kTransparentFilteredVectors + 12;
+  for (int vectors = gles2Vectors; vectors <= wholeLayer; ++vectors) {
+    const TransparentBudget budget = TransparencyEffect::budget(vectors);
+    int most = 0;
+    std::string heaviest;
+    for (const ProgramSpec& spec : TransparencyEffect::programSpecs(vectors)) {
+      const int rows = buildable(spec) ? rowsOf(spec).second : 0;
+      if (rows > most) std::tie(most, heaviest) = std::make_pair(rows, spec.name);
+    }
+    EXPECT_LE(most, vectors) << heaviest;
+    EXPECT_EQ(most, kTransparentVectors + (budget.fog ? kTransparentFogVectors : 0) +
+                        (budget.layers ? kTransparentLayerVectors : 0) +
+                        (budget.filtered && !budget.fog ? kTransparentFilteredVectors : 0) + 3 * budget.lights)
+        << vectors << " vectors: " << heaviest;
+
   }
 }
 

@@ -1,7 +1,8 @@
 // obscura-bench: the performance figures of the AO pipeline, measured in one run (docs/benchmarks.md).
 //
 //   obscura-bench [--out DIR] [--frames N] [--backend osmesa|egl] [--quick] [--estimators-only] [--motion-only]
-//                 [--effects-only] [--finish-only] [--temporal-ao-only] [--lighting-only] [--host-only]
+//                 [--effects-only] [--finish-only] [--transparency-only] [--temporal-ao-only] [--lighting-only]
+//                 [--host-only]
 //
 // Prints tables and writes DIR/bench.csv (every measurement), DIR/ratios.csv, DIR/radius_sweep.csv,
 // DIR/radius_sweep.png (gnuplot) and DIR/estimators.csv. Every pass is bounded by glFinish on both sides and
@@ -28,6 +29,8 @@
 //      and glare on bloom, hatching against the lines, at 640x360 and 1280x720, all taking turns frame by frame;
 //      each configuration's passes, and what the tone mapping pays for reading the exposure and adding the lens's
 //      light (DIR/finish.csv)
+//   8d. the transparent pass, transmission and clear coat on the glass sample and its variants
+//      (assets/scenes/glass-samples.glb), with section 8 (--transparency-only: this alone; DIR/transparency.csv)
 //   9. temporal AO (--temporal-ao-only: this alone): the default AO in one frame against 4 taps accumulated by
 //      ao.temporal (default blur, a 5-tap and a 3-tap one), and 4 taps alone, taking turns frame by frame at 640x360
 //      and 1280x720 on the still room (DIR/temporal_ao.csv)
@@ -48,6 +51,7 @@
 #include <tuple>
 #include <cmath>
 #include <fstream>
+#include <functional>
 #include <map>
 #include <memory>
 #include <string>
@@ -98,6 +102,7 @@ struct Options {
   bool motionOnly = false;      // section 7 alone
   bool effectsOnly = false;     // section 8 alone
   bool finishOnly = false;      // section 8c alone
+  bool transparencyOnly = false;  // section 8d alone
   bool temporalAoOnly = false;  // section 9 alone
   bool lightingOnly = false;    // section 10 alone
 
@@ -317,12 +322,14 @@ Options parseOptions(int argc, char** argv) {
     else if (arg == "--motion-only") options.motionOnly = true;
     else if (arg == "--effects-only") options.effectsOnly = true;
     else if (arg == "--finish-only") options.finishOnly = true;
+    else if (arg == "--transparency-only") options.transparencyOnly = true;
     else if (arg == "--temporal-ao-only") options.temporalAoOnly = true;
     else if (arg == "--lighting-only") options.lightingOnly = true;
     else if (arg == "--host-only") options.hostOnly = true;
     else throw InputError("unknown option '" + arg + "' (usage: obscura-bench [--out DIR] [--frames N] "
                           "[--backend osmesa|egl] [--quick] [--estimators-only] [--motion-only] [--effects-only] "
-                          "[--finish-only] [--temporal-ao-only] [--lighting-only] [--host-only])");
+                          "[--finish-only] [--transparency-only] [--temporal-ao-only] [--lighting-only] "
+                          "[--host-only])");
   }
   return options;
 }
@@ -384,9 +391,10 @@ void estimatorSection(Bench& bench, const BenchScene& scene, int w, int h, const
 // (shaders built, histories filled), each configuration with a Renderer of its own (its own history), all taking
 // turns frame by frame. `play`: the scene's time advances at 60 frames per second from 1 s (each frame's previous
 // one 1/60 s earlier); otherwise it stays at 0.
-std::vector<FinishPassTimer> timeTakingTurns(const Options& options, HeadlessContext& context, const Scene& scene,
-                                             const Camera& camera, const std::vector<RenderSettings>& configurations,
-                                             bool play) {
+// Configuration c draws scenes[c].
+std::vector<FinishPassTimer> timeTakingTurns(const Options& options, HeadlessContext& context,
+                                             const std::vector<const Scene*>& scenes, const Camera& camera,
+                                             const std::vector<RenderSettings>& configurations, bool play) {
   const int w = camera.width, h = camera.height;
   const gl::RenderTarget output("bench output", w, h, GL_NEAREST, gl::RenderTarget::Depth::Renderbuffer,
                                 context.caps().depth24, context.caps().packedDepthStencil);
@@ -394,7 +402,7 @@ std::vector<FinishPassTimer> timeTakingTurns(const Options& options, HeadlessCon
   std::vector<std::unique_ptr<Renderer>> renderers;
   for (size_t c = 0; c < configurations.size(); ++c) {
     renderers.push_back(std::make_unique<Renderer>(context.caps()));
-    renderers.back()->setScene(scene);
+    renderers.back()->setScene(*scenes[c]);
   }
   std::vector<FinishPassTimer> timers(configurations.size());
   const int warmUp = 8;
@@ -410,6 +418,13 @@ std::vector<FinishPassTimer> timeTakingTurns(const Options& options, HeadlessCon
     }
   }
   return timers;
+}
+
+std::vector<FinishPassTimer> timeTakingTurns(const Options& options, HeadlessContext& context, const Scene& scene,
+                                             const Camera& camera, const std::vector<RenderSettings>& configurations,
+                                             bool play) {
+  return timeTakingTurns(options, context, std::vector<const Scene*>(configurations.size(), &scene), camera,
+                         configurations, play);
 }
 
 void temporalAoSection(const Options& options, HeadlessContext& context, const BenchScene& scene) {
@@ -698,6 +713,80 @@ void motionSection(const Options& options, HeadlessContext& context, int w, int 
   }
 }
 
+// Section 8d (issue 31): the transparent layer and the material layers, on the glass sample
+// (assets/scenes/glass-samples.glb: glass spheres with transmission, two blended panes, clear-coated spheres, an
+// unlit box) as made, and on variants whose materials put each over most of the frame, so that its cost per pixel
+// shows: every opaque material blended (alpha 0.5), or transmissive (roughness 0.3); and every opaque material
+// clear-coated against none with the material layers (the lighting's difference is the clear coat's). The browser
+// benchmark (tools/browser-bench/effect-costs.mjs) edits the file the same way. The five scenes take turns.
+void transparencySection(const Options& options, HeadlessContext& context,
+                         const std::vector<std::pair<int, int>>& sizes, std::ofstream& csv) {
+  const std::string path = std::string(OBSCURA_SOURCE_DIR) + "/assets/scenes/glass-samples.glb";
+  const Scene glass = loadGltfFile(path);
+  const glm::vec3 eye(0.0f, 1.5f, 3.6f), target(0.0f, 0.5f, 0.0f);
+  auto variant = [&](const std::function<void(Material&)>& edit) {
+    Scene scene = glass;
+    for (Material& m : scene.materials)
+      if (!m.transparent() && !m.unlit) edit(m);
+    return scene;
+  };
+  const Scene blendedFrame = variant([](Material& m) {
+    m.alphaMode = AlphaMode::Blend;
+    m.baseColorFactor.a = 0.5f;
+  });
+  const Scene transmissiveFrame = variant([](Material& m) {
+    m.transmissionFactor = 1.0f;
+    m.roughnessFactor = 0.3f;
+  });
+  const Scene uncoated = variant([](Material& m) {
+    m.clearcoatFactor = 0.0f;
+    m.ior = 1.5f;
+    m.specularFactor = 1.0f;
+    m.specularColorFactor = glm::vec3(1.0f);
+  });
+  const Scene coated = variant([](Material& m) {
+    m.clearcoatFactor = 1.0f;
+    m.clearcoatRoughnessFactor = 0.1f;
+    m.ior = 1.5f;
+    m.specularFactor = 1.0f;
+    m.specularColorFactor = glm::vec3(1.0f);
+  });
+  std::printf("\n8d. The transparent layer and the material layers, glass sample (%s) and its variants over most of "
+              "the frame; median ms of %d frames, the five scenes taking turns\n",
+              path.c_str(), options.frames);
+  for (auto [w, h] : sizes) {
+    Camera camera = builtinSceneCamera(w, h);
+    camera.eye = {0.0f, 1.5f, 3.6f};
+    camera.target = {0.0f, 0.5f, 0.0f};
+    const std::vector<FinishPassTimer> t =
+        timeTakingTurns(options, context, {&glass, &blendedFrame, &transmissiveFrame, &uncoated, &coated}, camera,
+                        std::vector<RenderSettings>(5), false);
+    const double clearcoat = t[4].medianMs("lighting") - t[3].medianMs("lighting");
+    std::printf("  %dx%d, the sample: transparency %.2f ms, transmission-levels %.2f ms, lighting %.2f ms, G-buffer "
+                "%.2f ms\n",
+                w, h, t[0].medianMs("transparency"), t[0].medianMs("transmission-levels"), t[0].medianMs("lighting"),
+                t[0].medianMs("gbuffer"));
+    std::printf("  %dx%d, every opaque material blended: transparency %.2f ms; transmissive: transparency %.2f ms + "
+                "transmission-levels %.2f ms; clear-coated: lighting %.2f ms against %.2f ms without: clear coat "
+                "%.2f ms\n",
+                w, h, t[1].medianMs("transparency"), t[2].medianMs("transparency"),
+                t[2].medianMs("transmission-levels"), t[4].medianMs("lighting"), t[3].medianMs("lighting"),
+                clearcoat);
+    const auto row = [&](const char* configuration, const char* what, double ms) {
+      csv << '"' << configuration << "\"," << w << "," << h << "," << what << "," << ms << "\n";
+    };
+    row("glass sample", "transparency", t[0].medianMs("transparency"));
+    row("glass sample", "transmission-levels", t[0].medianMs("transmission-levels"));
+    row("glass sample", "lighting", t[0].medianMs("lighting"));
+    row("every material blended", "transparency", t[1].medianMs("transparency"));
+    row("every material transmissive", "transparency", t[2].medianMs("transparency"));
+    row("every material transmissive", "transmission-levels", t[2].medianMs("transmission-levels"));
+    row("clear coat everywhere", "lighting", t[4].medianMs("lighting"));
+    row("no material layers", "lighting", t[3].medianMs("lighting"));
+    row("clear coat everywhere", "clearcoat", clearcoat);
+  }
+}
+
 // Section 8: what each effect costs, the temporal ones included, on the moving built-in scene played at 60 frames per
 // second (each frame's previous one 1/60 s earlier, so that motion blur and TAA have motion to work on and their
 // history carries). One Renderer per configuration (each keeps its own history), all taking turns frame by frame.
@@ -824,6 +913,7 @@ void effectsSection(const Options& options, HeadlessContext& context, const std:
     csv << "\"built-in, defaults (lighting alone)\"," << w << "," << h << ",lighting," << builtin.medianMs("lighting")
         << "\n";
   }
+  transparencySection(options, context, sizes, csv);
   if (!targetLines.empty()) {
     std::printf("Bloom and fog against the G-buffer pass (configuration \"bloom, fog\"; target: bloom at 1280x720 "
                 "under the G-buffer pass):\n");
@@ -864,11 +954,17 @@ void hostSection(const Options& options, HeadlessContext& context) {
   struct Configuration {
     std::string name;
     RenderSettings settings;
+    bool cachePlans = true;
   };
   RenderSettings everything;
   for (const EffectEntry& row : effectTable())
     if (row.info.hasSwitch) everything.set(row.info.name, "on");
-  const std::vector<Configuration> configurations = {{"defaults", RenderSettings()}, {"every effect on", everything}};
+  // Each also with its plan made every frame (RendererOptions::cachePlans off), in the same frames: what the cache
+  // saves.
+  const std::vector<Configuration> configurations = {{"defaults", RenderSettings()},
+                                                     {"defaults, plan each frame", RenderSettings(), false},
+                                                     {"every effect on", everything},
+                                                     {"every effect, plan each", everything, false}};
   const std::vector<std::pair<int, int>> sizes = {{1280, 720}, {160, 90}};
   const int frames = 4 * options.frames;
   std::ofstream csv(options.outDir + "/host.csv");
@@ -876,7 +972,7 @@ void hostSection(const Options& options, HeadlessContext& context) {
   std::printf("\n11. Host time per frame, the moving built-in scene playing at 60 fps, %s: the renderer's CPU time in "
               "render() on the calling thread (and its wall time), median of %d frames, each drawn after glFinish\n",
               context.caps().renderer.c_str(), frames);
-  std::printf("%-22s %-10s %12s %12s\n", "configuration", "size", "host cpu ms", "host wall ms");
+  std::printf("%-27s %-10s %12s %12s\n", "configuration", "size", "host cpu ms", "host wall ms");
   for (auto [w, h] : sizes) {
     const gl::RenderTarget output("bench output", w, h, GL_NEAREST, gl::RenderTarget::Depth::Renderbuffer,
                                   context.caps().depth24, context.caps().packedDepthStencil);
@@ -884,7 +980,9 @@ void hostSection(const Options& options, HeadlessContext& context) {
     const Camera camera = builtinSceneCamera(w, h);
     std::vector<std::unique_ptr<Renderer>> renderers;
     for (size_t c = 0; c < configurations.size(); ++c) {
-      renderers.push_back(std::make_unique<Renderer>(context.caps()));
+      RendererOptions rendererOptions;
+      rendererOptions.cachePlans = configurations[c].cachePlans;
+      renderers.push_back(std::make_unique<Renderer>(context.caps(), rendererOptions));
       renderers.back()->setScene(scene);
     }
     std::vector<std::vector<double>> cpu(configurations.size()), wall(configurations.size());
@@ -907,7 +1005,7 @@ void hostSection(const Options& options, HeadlessContext& context) {
     glFinish();
     for (size_t c = 0; c < configurations.size(); ++c) {
       const double cpuMs = median(cpu[c]), wallMsMedian = median(wall[c]);
-      std::printf("%-22s %-10s %12.3f %12.3f\n", configurations[c].name.c_str(),
+      std::printf("%-27s %-10s %12.3f %12.3f\n", configurations[c].name.c_str(),
                   (std::to_string(w) + "x" + std::to_string(h)).c_str(), cpuMs, wallMsMedian);
       csv << '"' << configurations[c].name << "\"," << w << "," << h << "," << cpuMs << "," << wallMsMedian << "\n";
     }
@@ -1047,6 +1145,13 @@ int main(int argc, char** argv) {
     if (options.effectsOnly) {  // before Bench, which starts DIR/bench.csv afresh
       effectsSection(options, context, effectSizes);
       std::printf("\nobscura-bench: wrote %s/effects.csv\n", options.outDir.c_str());
+      return 0;
+    }
+    if (options.transparencyOnly) {
+      std::ofstream csv(options.outDir + "/transparency.csv");
+      csv << "configuration,width,height,effect,median_ms\n";
+      transparencySection(options, context, effectSizes, csv);
+      std::printf("\nobscura-bench: wrote %s/transparency.csv\n", options.outDir.c_str());
       return 0;
     }
     Bench bench(options, context);

@@ -76,9 +76,12 @@ build/obscura-render --size 480x270 --lighting.environment assets/environments/s
 pbr="--scene assets/scenes/pbr-samples.glb --camera tools/docs-pbr-camera.json"
 build/obscura-render $pbr --out "$out/pbr_samples.png"
 build/obscura-render $pbr --bloom --out "$out/pbr_samples_bloom.png"
+# The transparent layer and the material layers (docs/transparency.md): the glass sample.
+build/obscura-render --scene assets/scenes/glass-samples.glb --camera tools/docs-glass-camera.json \
+  --out "$out/glass_samples.png"
 echo "render-docs-images: wrote $out/builtin_*.png, motion_*.png, ao_*.png, aa_*.png, bloom.png, fog_height.png," \
   "edges.png, edges_toon.png, edges_hatching.png, auto_exposure_*.png, flare_*.png, dof*.png, lighting_*.png," \
-  "pbr_*.png"
+  "pbr_*.png, glass_samples.png"
 
 (cd tests/browser && npm ci --no-audit --no-fund --loglevel=error)
 OBSCURA_UPDATE_SCREENSHOTS=1 node --test --test-name-pattern="page screenshots" tests/browser/page.test.mjs >/dev/null

@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # Runs every test on a fresh Debian machine: installs what is missing, builds the native and the web versions,
-# installs the browser tests', the npm package tests' and the browser benchmark's npm packages (tests/browser,
-# tests/npm-package and tools/browser-bench, from their package-lock.json files), then runs the whole suite: CPU and
+# installs the browser tests', the npm package tests', the browser benchmark's and the glTF-Validator's npm packages
+# (tests/browser, tests/npm-package, tools/browser-bench and tools/gltf-validator, from their package-lock.json
+# files), then runs the whole suite: the glTF corpus against the Khronos glTF-Validator, CPU and
 # GPU unit tests, the command line, the desktop viewer under Xvfb, the installed C++ package and its examples, the web
 # page and the npm package in headless Chromium and the browser benchmark's smoke run; then the sanitizer leg
 # (tools/test-sanitizers.sh) and the fuzzer (tools/fuzz-gltf.sh). Ends with a table of each stage's seconds, the 10
@@ -38,7 +39,7 @@ stage() {
 }
 
 npm_ci() {
-  for folder in tests/browser tools/browser-bench tests/npm-package; do
+  for folder in tests/browser tools/browser-bench tests/npm-package tools/gltf-validator; do
     (cd "$folder" && npm ci --no-audit --no-fund --loglevel=error)
   done
 }

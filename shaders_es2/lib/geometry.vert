@@ -4,7 +4,8 @@
 //
 // Deformation (gpu/GpuScene.h chooses the variant per draw, sized to what the context guarantees):
 //   MORPH_TARGETS n (0..4): n morph targets' POSITION deltas in attributes, MORPH_NORMALS 1 their NORMAL deltas too,
-//     scaled by u_morphWeights (glTF 2.0 "Morph Targets": morphing comes before skinning).
+//     MORPH_TANGENTS 1 their TANGENT deltas too, scaled by u_morphWeights (glTF 2.0 "Morph Targets": morphing comes
+//     before skinning).
 //   SKINNING 1: linear blend skinning from a uniform palette of SKIN_PALETTE joints (3 rows of each joint's affine
 //     matrix world(joint) * inverseBind(joint)); a mesh with more joints is drawn in pieces that each fit.
 //   SKINNING 2: the same matrices read from a float texture (vertex texture fetch), any number of joints.
@@ -12,7 +13,9 @@
 //   PREVIOUS 1 (the velocity pass): also the vertex where the previous frame had it, through the previous frame's
 //     pose (u_previousModel, previous palette or weights) and camera (u_previousViewProjection), both unjittered.
 //   CPU_DEFORMED 1: the CPU has skinned and morphed the vertex (the fallback); a_previousPosition is its previous
-//     position in the same space.
+//     position in the same space, a_tangent its deformed tangent.
+// VERTEX_COLORS 1: the mesh's COLOR_0 (a_color), passed on to lib/material.glsl, which multiplies the base colour.
+// a_texcoord holds TEXCOORD_0 in xy and TEXCOORD_1 in zw; each PBR_TEXTURES slot samples the set the material names.
 #ifndef SKINNING
 #define SKINNING 0
 #endif
@@ -31,10 +34,20 @@
 #ifndef PBR_TEXTURES
 #define PBR_TEXTURES 0
 #endif
+#ifndef MORPH_TANGENTS
+#define MORPH_TANGENTS 0
+#endif
+#ifndef VERTEX_COLORS
+#define VERTEX_COLORS 0
+#endif
 
 attribute vec3 a_position;
 attribute vec3 a_normal;
-attribute vec2 a_texcoord;
+attribute vec4 a_texcoord;
+#if VERTEX_COLORS
+attribute vec4 a_color;
+varying vec4 v_color;
+#endif
 
 uniform mat4 u_modelView;
 uniform mat4 u_projection;
@@ -49,14 +62,17 @@ varying vec4 v_clipPosition;  // read by the lighting pass to address the AO tex
 // PBR_TEXTURES 1 (gpu/MaterialKind.h): the tangent frame for the normal texture, and each texture slot's
 // coordinates through its KHR_texture_transform (affine in uv, so transforming per vertex is exact):
 // u_uvTransforms[2 k], [2 k + 1] are the rows of slot k's 3x3 matrix (base colour, metallic-roughness, normal,
-// occlusion, emissive: scene/Scene.h TextureSlot).
+// occlusion, emissive: scene/Scene.h TextureSlot). u_uvSets holds each slot's set as a bit, sum of set_k 2^k (no
+// bitwise operators in GLSL ES 1.00: floor and mod read it), one float where five would take five rows.
 attribute vec4 a_tangent;
 uniform vec3 u_uvTransforms[10];
+uniform float u_uvSets;
 varying vec4 v_viewTangent;
 varying vec4 v_uvMetallicNormal;
 varying vec4 v_uvOcclusionEmissive;
-vec2 slotUv(int slot) {
-  vec3 uv = vec3(a_texcoord, 1.0);
+vec2 slotUv(int slot, float bit) {
+  float second = mod(floor(u_uvSets / bit), 2.0);
+  vec3 uv = vec3(mix(a_texcoord.xy, a_texcoord.zw, second), 1.0);
   return vec2(dot(u_uvTransforms[2 * slot], uv), dot(u_uvTransforms[2 * slot + 1], uv));
 }
 #endif
@@ -81,11 +97,17 @@ attribute vec3 a_morphPosition0;
 #if MORPH_NORMALS
 attribute vec3 a_morphNormal0;
 #endif
+#if MORPH_TANGENTS
+attribute vec3 a_morphTangent0;
+#endif
 #endif
 #if MORPH_TARGETS > 1
 attribute vec3 a_morphPosition1;
 #if MORPH_NORMALS
 attribute vec3 a_morphNormal1;
+#endif
+#if MORPH_TANGENTS
+attribute vec3 a_morphTangent1;
 #endif
 #endif
 #if MORPH_TARGETS > 2
@@ -93,11 +115,17 @@ attribute vec3 a_morphPosition2;
 #if MORPH_NORMALS
 attribute vec3 a_morphNormal2;
 #endif
+#if MORPH_TANGENTS
+attribute vec3 a_morphTangent2;
+#endif
 #endif
 #if MORPH_TARGETS > 3
 attribute vec3 a_morphPosition3;
 #if MORPH_NORMALS
 attribute vec3 a_morphNormal3;
+#endif
+#if MORPH_TANGENTS
+attribute vec3 a_morphTangent3;
 #endif
 #endif
 
@@ -131,6 +159,24 @@ vec3 morphNormal(vec4 w) {
 #endif
   return n;
 }
+#if PBR_TEXTURES
+vec3 morphTangent(vec4 w) {
+  vec3 t = a_tangent.xyz;
+#if MORPH_TANGENTS
+  t += w.x * a_morphTangent0;
+#if MORPH_TARGETS > 1
+  t += w.y * a_morphTangent1;
+#endif
+#if MORPH_TARGETS > 2
+  t += w.z * a_morphTangent2;
+#endif
+#if MORPH_TARGETS > 3
+  t += w.w * a_morphTangent3;
+#endif
+#endif
+  return t;
+}
+#endif
 #endif
 
 #if SKINNING
@@ -213,8 +259,13 @@ void main() {
   vec3 position = a_position;
   vec3 normal = a_normal;
 #endif
+#if PBR_TEXTURES && MORPH_TARGETS > 0
+  vec3 tangent = morphTangent(u_morphWeights);
+#elif PBR_TEXTURES
+  vec3 tangent = a_tangent.xyz;
+#endif
 #if PBR_TEXTURES
-  vec3 tangent = a_tangent.xyz;  // morph targets' TANGENT displacements are not applied
+  float handedness = a_tangent.w;
 #endif
 #if SKINNING
   SkinRows skin = blendJoints(false);
@@ -222,24 +273,30 @@ void main() {
   normal = skinVector(skin, normal);
 #if PBR_TEXTURES
   tangent = skinVector(skin, tangent);
+  // A mirroring joint (the blended matrix's determinant negative) reverses the bitangent's cross product, as a
+  // mirrored node does (below): w turns with it (the CPU mirror: scene/Animation.h posedMesh).
+  if (dot(skin.r0.xyz, cross(skin.r1.xyz, skin.r2.xyz)) < 0.0) handedness = -handedness;
 #endif
 #endif
   vec4 viewPosition = u_modelView * vec4(position, 1.0);
   v_viewPosition = viewPosition.xyz;
   v_viewNormal = u_normalMatrix * normal;
+#if VERTEX_COLORS
+  v_color = a_color;
+#endif
 #if PBR_TEXTURES
-  v_texcoord = slotUv(0);
-  v_uvMetallicNormal = vec4(slotUv(1), slotUv(2));
-  v_uvOcclusionEmissive = vec4(slotUv(3), slotUv(4));
+  v_texcoord = slotUv(0, 1.0);
+  v_uvMetallicNormal = vec4(slotUv(1, 2.0), slotUv(2, 4.0));
+  v_uvOcclusionEmissive = vec4(slotUv(3, 8.0), slotUv(4, 16.0));
   // The tangent is a direction on the surface: the model-view's linear part (not the normal matrix) carries it. A
   // mirroring transform (a negative determinant: a node scaled by -1 along an axis) reverses the cross product the
   // fragment stage makes the bitangent from (glTF 2.0: bitangent = cross(normal, tangent.xyz) * w), so w turns with
   // it and the normal texture's green still follows the texture's v.
   mat3 linear = mat3(u_modelView[0].xyz, u_modelView[1].xyz, u_modelView[2].xyz);
-  float handedness = dot(linear[0], cross(linear[1], linear[2])) < 0.0 ? -1.0 : 1.0;
-  v_viewTangent = vec4(linear * tangent, a_tangent.w * handedness);
+  if (dot(linear[0], cross(linear[1], linear[2])) < 0.0) handedness = -handedness;
+  v_viewTangent = vec4(linear * tangent, handedness);
 #else
-  v_texcoord = a_texcoord;
+  v_texcoord = a_texcoord.xy;
 #endif
   gl_Position = u_projection * viewPosition;
   v_clipPosition = gl_Position;

@@ -3,12 +3,28 @@
 // PBR_TEXTURES 1: the metallic-roughness, normal, occlusion and emissive textures are sampled (a slot the material
 // lacks is bound to a neutral 1x1 texture: gpu/GpuScene.h), each at its own KHR_texture_transform'ed coordinates
 // from the vertex stage (geometry.vert); 0: their factors alone.
+// VERTEX_COLORS 1 (gpu/VertexKind.h): COLOR_0 from the vertex stage multiplies the base colour, alpha too (glTF 2.0
+// 3.9.2), so the alpha test and blending see it.
+// MATERIAL_LAYERS 1: KHR_materials_ior, _specular (the dielectric's Fresnel terms) and _clearcoat (Surface's layer
+// fields; the lighting shades them). TRANSMISSION 1: KHR_materials_transmission's factor (effects/transparency).
 // ALPHA_MASK is the including shader's (the variant that discards). src/gpu/MaterialKind.h sets them.
 #ifndef BASE_COLOR_TEXTURE
 #error "define BASE_COLOR_TEXTURE (MaterialKind::defines() on the CPU)"
 #endif
 #ifndef PBR_TEXTURES
 #define PBR_TEXTURES 0
+#endif
+#ifndef VERTEX_COLORS
+#define VERTEX_COLORS 0
+#endif
+#ifndef MATERIAL_LAYERS
+#define MATERIAL_LAYERS 0
+#endif
+#ifndef TRANSMISSION
+#define TRANSMISSION 0
+#endif
+#if VERTEX_COLORS
+varying vec4 v_color;  // COLOR_0, linear
 #endif
 
 uniform vec4 u_baseColorFactor;
@@ -18,12 +34,17 @@ uniform float u_alphaCutoff;           // alphaMode MASK cutoff; negative for OP
 uniform sampler2D u_baseColorTexture;
 
 // Linear base colour: glTF textures are sRGB-encoded, decoded here with the usual 2.2 power (no EXT_sRGB needed).
-vec4 baseColor(vec2 uv) {
+vec4 baseColorOfMaterial(vec2 uv) {
   vec4 texel = texture2D(u_baseColorTexture, uv);
   return u_baseColorFactor * vec4(pow(texel.rgb, vec3(2.2)), texel.a);
 }
 #else
-vec4 baseColor(vec2 uv) { return u_baseColorFactor; }
+vec4 baseColorOfMaterial(vec2 uv) { return u_baseColorFactor; }
+#endif
+#if VERTEX_COLORS
+vec4 baseColor(vec2 uv) { return baseColorOfMaterial(uv) * v_color; }
+#else
+vec4 baseColor(vec2 uv) { return baseColorOfMaterial(uv); }
 #endif
 
 // True when alphaMode MASK removes this fragment (glTF: alpha < cutoff is fully transparent).
@@ -41,6 +62,17 @@ struct Surface {
   float occlusion;   // the baked occlusion, strength applied: 1 + strength (texel - 1)
   vec3 emissive;     // linear radiance
 };
+
+#if MATERIAL_LAYERS
+// The dielectric's Fresnel at normal and grazing incidence (KHR_materials_ior and _specular):
+// rgb min(((ior - 1) / (ior + 1))^2 specularColor, 1) specular, a specular (Material in scene/Scene.h).
+uniform vec4 u_specular;
+uniform float u_clearcoat;           // KHR_materials_clearcoat's factor (0: no coat)
+uniform float u_clearcoatRoughness;  // its perceptual roughness
+#endif
+#if TRANSMISSION
+uniform float u_transmission;        // KHR_materials_transmission's factor
+#endif
 
 #if PBR_TEXTURES
 uniform sampler2D u_metallicRoughnessTexture;  // B metallic, G roughness (linear)

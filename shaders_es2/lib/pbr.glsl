@@ -2,7 +2,7 @@
 // lobe with the GGX / Trowbridge-Reitz distribution D, the height-correlated Smith visibility V (G / (4 NL NV)) and
 // Schlick's Fresnel F, over a Lambertian diffuse lobe weighted by (1 - F):
 //   f = (1 - F) c_diff / pi + F D V,   c_diff = mix(base, 0, metallic),   F0 = mix(0.04, base, metallic),
-//   alpha = roughness^2.
+//   alpha = roughness^2; F90 = 1, or with KHR_materials_specular mix(specular, 1, metallic).
 // A light of illuminance E (perpendicular to it) adds f E NL. CPU mirror: effects/lighting/PbrShading.h
 // (tests/test_pbr.cpp compares the two at sample angles).
 #ifndef PBR_GLSL
@@ -27,15 +27,19 @@ float visibilitySmithGgx(float nl, float nv, float alpha) {
   return sum > 0.0 ? 0.5 / sum : 0.0;
 }
 
-vec3 fresnelSchlick(vec3 f0, float vh) {
+// Schlick's Fresnel from F0 at normal incidence to F90 at grazing incidence (1 for the core material; a dielectric
+// with KHR_materials_specular: its specular factor).
+vec3 fresnelSchlick(vec3 f0, vec3 f90, float vh) {
   float x = 1.0 - vh;
   float x2 = x * x;
-  return f0 + (vec3(1.0) - f0) * (x2 * x2 * x);
+  return f0 + (f90 - f0) * (x2 * x2 * x);
 }
+vec3 fresnelSchlick(vec3 f0, float vh) { return fresnelSchlick(f0, vec3(1.0), vh); }
 
 // The BRDF times NL for unit n (shading normal), v (to the eye), l (to the light): what illuminance E multiplies;
 // the specular lobe scaled by `energy` (the lighting's high tier: multiple scattering's energy compensation).
-vec3 brdfCosineCompensated(vec3 n, vec3 v, vec3 l, vec3 diffuseColor, vec3 f0, float roughness, vec3 energy) {
+vec3 brdfCosineCompensated(vec3 n, vec3 v, vec3 l, vec3 diffuseColor, vec3 f0, vec3 f90, float roughness,
+                           vec3 energy) {
   float nl = dot(n, l);
   if (nl <= 0.0) return vec3(0.0);
   float nv = max(dot(n, v), 1e-4);
@@ -43,14 +47,17 @@ vec3 brdfCosineCompensated(vec3 n, vec3 v, vec3 l, vec3 diffuseColor, vec3 f0, f
   float nh = max(dot(n, h), 0.0);
   float vh = max(dot(v, h), 0.0);
   float alpha = roughness * roughness;
-  vec3 f = fresnelSchlick(f0, vh);
+  vec3 f = fresnelSchlick(f0, f90, vh);
   vec3 specular = f * (distributionGgx(nh, alpha) * visibilitySmithGgx(nl, nv, alpha));
   vec3 diffuse = (vec3(1.0) - f) * diffuseColor / PBR_PI;
   return (diffuse + specular * energy) * nl;
 }
 
+vec3 brdfCosine(vec3 n, vec3 v, vec3 l, vec3 diffuseColor, vec3 f0, vec3 f90, float roughness) {
+  return brdfCosineCompensated(n, v, l, diffuseColor, f0, f90, roughness, vec3(1.0));
+}
 vec3 brdfCosine(vec3 n, vec3 v, vec3 l, vec3 diffuseColor, vec3 f0, float roughness) {
-  return brdfCosineCompensated(n, v, l, diffuseColor, f0, roughness, vec3(1.0));
+  return brdfCosine(n, v, l, diffuseColor, f0, vec3(1.0), roughness);
 }
 
 // Specular occlusion from the ambient occlusion (Lagarde and de Rousiers 2014, "Moving Frostbite to PBR", sec. 4.10.2,

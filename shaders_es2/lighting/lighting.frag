@@ -19,17 +19,32 @@
 //                     tone curve, ...), then the encoding of the last colour (HDR, or display colour with its luma).
 //   BACKGROUND 1      (with DEFERRED 1, over fullscreen.vert at the far plane) the forward forms' background: the
 //                     environment where the scene left the depth at 1.
+//   COUNT_SHADING 1   the diagnostic: each fragment adds 1/255 (additive blending), counting the fragments shaded
+//                     per pixel under the lit pass's depth test.
+//   UNLIT 1           KHR_materials_unlit: the base colour (times the vertex colour) is the colour; no light, no AO.
+//   MATERIAL_LAYERS 1 KHR_materials_ior and _specular (the dielectric's F0 and F90) and _clearcoat (a second GGX
+//                     lobe over the base, the Khronos sample viewer's layering).
+//   BLENDED 1         the transparent layer's form (effects/transparency): the surface composited over what lies
+//                     behind it (shaders_es2/transparency/composite.glsl), fogged by its own distance; TRANSMISSION 1
+//                     adds KHR_materials_transmission's thin-walled refraction.
 //   OVER_DEPTH 1      (with DEFERRED 1, at the far plane) the deferred shading alone, drawn over the G-buffer's depth
 //                     where something was drawn; the background form draws the rest.
 //   LIGHTING_QUALITY  the tier (LightingEffect.h, LightingQuality): 0 low, 1 medium, 2 high.
-//   COUNT_SHADING 1   the diagnostic: each fragment adds 1/255 (additive blending), counting the fragments shaded
-//                     per pixel under the lit pass's depth test.
 #include "lib/precision.glsl"
 #include "lib/packing.glsl"
 #include "lib/srgb.glsl"
 #include "lib/hdr.glsl"
 #if !DEFERRED && !COUNT_SHADING
 #define MATERIAL_SURFACE 1
+#endif
+#ifndef UNLIT
+#define UNLIT 0
+#endif
+#ifndef BLENDED
+#define BLENDED 0
+#endif
+#ifndef OVER_DEPTH
+#define OVER_DEPTH 0
 #endif
 #include "lib/material.glsl"
 #include "lib/pbr.glsl"
@@ -79,16 +94,16 @@ uniform vec4 u_lightSpot[MAX_PUNCTUAL_LIGHTS];           // xyz the spot's direc
 
 // The ambient light: the environment's radiance (lib/environment.glsl), diffuse and specular, darkened by `occlusion`
 // (the screen-space AO and the material's baked occlusion, their minimum). n the shading normal, g the surface's own
-// (interpolated) normal, v towards the eye (all unit, view space), diffuseColor and f0 the material's (lib/pbr.glsl),
-// roughness perceptual; scaleBias the split sum's (A, B) at (roughness, n.v). The diffuse keeps the energy the
-// specular does not take (so a white furnace gives 1).
+// (interpolated) normal, v towards the eye (all unit, view space), diffuseColor, f0 and f90 the material's
+// (lib/pbr.glsl), roughness perceptual; scaleBias the split sum's (A, B) at (roughness, n.v). The diffuse keeps the
+// energy the specular does not take (so a white furnace gives 1).
 #if LIGHTING_QUALITY == 0
 // Low: no fetch. The specular environment is the irradiance towards the reflected direction (the spherical
 // harmonics' cosine lobe stands for every roughness: right for the roughest, too blurred for a mirror), weighted by
 // Karis's analytic (A, B); the occlusion darkens both terms alike.
-vec3 ambientLight(vec3 n, vec3 g, vec3 v, vec3 diffuseColor, vec3 f0, float roughness, float occlusion,
+vec3 ambientLight(vec3 n, vec3 g, vec3 v, vec3 diffuseColor, vec3 f0, vec3 f90, float roughness, float occlusion,
                   vec2 scaleBias) {
-  vec3 specularAlbedo = f0 * scaleBias.x + scaleBias.y;
+  vec3 specularAlbedo = f0 * scaleBias.x + f90 * scaleBias.y;
   vec3 diffuse = diffuseColor * (1.0 - specularAlbedo) * environmentIrradiance(u_viewToEnvironment * n);
   vec3 specular = specularAlbedo * environmentIrradiance(u_viewToEnvironment * reflect(-v, n));
   return (diffuse + specular) * occlusion;
@@ -100,12 +115,12 @@ vec3 ambientLight(vec3 n, vec3 g, vec3 v, vec3 diffuseColor, vec3 f0, float roug
 // single-scattering energy Ess = A + B, a multiple-scattering lobe of Fms Ems carried by the irradiance, and the
 // diffuse taking what both leave), and the horizon occlusion of a reflection a normal texture tilts below the surface
 // (Russell, "Horizon Occlusion for Normal Mapped Reflections", 2015, as Filament: (1 + r.g)^2 clamped).
-vec3 ambientLight(vec3 n, vec3 g, vec3 v, vec3 diffuseColor, vec3 f0, float roughness, float occlusion,
+vec3 ambientLight(vec3 n, vec3 g, vec3 v, vec3 diffuseColor, vec3 f0, vec3 f90, float roughness, float occlusion,
                   vec2 scaleBias) {
   float nv = clamp(dot(n, v), 1e-4, 1.0);
   vec3 r = reflect(-v, n);
   vec3 irradiance = environmentIrradiance(u_viewToEnvironment * n);
-  vec3 specularAlbedo = f0 * scaleBias.x + scaleBias.y;
+  vec3 specularAlbedo = f0 * scaleBias.x + f90 * scaleBias.y;
   vec3 specular = specularAlbedo * environmentSpecular(u_viewToEnvironment * r, roughness);
   float specularVisibility = specularOcclusion(nv, occlusion, roughness * roughness);
 #if LIGHTING_QUALITY == 2
@@ -138,6 +153,54 @@ vec2 splitSumScaleBias(float roughness, float nv) {
 #endif
 }
 
+#if MAX_PUNCTUAL_LIGHTS > 0
+// A light's illuminance at p (view space) and the unit direction l towards it, from its three uniforms (the loops
+// index the arrays: GLSL ES 1.00's Appendix A mandates only loop indices, not a function's parameter, as a fragment
+// stage's uniform index). KHR_lights_punctual: inverse square, windowed to 0 at the range (the extension's
+// recommended clamp(1 - (d / range)^4, 0, 1)^2), times the spot's smooth cone. A directional light (w -1: xyz the unit
+// direction towards it) has neither: its colour is its illuminance.
+vec3 punctualIlluminance(vec4 positionRange, vec4 colorSpot, vec4 spot, vec3 p, out vec3 l) {
+  bool directional = positionRange.w < 0.0;
+  vec3 toLight = directional ? positionRange.xyz : positionRange.xyz - p;
+  float d2 = directional ? 1.0 : max(dot(toLight, toLight), 1e-8);
+  l = toLight * inversesqrt(d2);
+  float window = clamp(1.0 - d2 * d2 * positionRange.w, 0.0, 1.0);
+  float cone = clamp(dot(spot.xyz, -l) * colorSpot.a + spot.w, 0.0, 1.0);
+  return colorSpot.rgb * (window * window * cone * cone / d2);
+}
+#endif
+
+#if MATERIAL_LAYERS
+// KHR_materials_clearcoat over the lit base colour, as the Khronos sample viewer layers it: a dielectric coat (F0
+// 0.04, ior 1.5) with a GGX lobe of its own roughness around the base's normal (the coat's normal texture is not
+// read), lit by the sun, the punctual lights and the environment (darkened as the base's specular is; in the low
+// tier, as its ambientLight, the irradiance towards the reflection and no fetch); the base below keeps what the coat
+// does not reflect, 1 - clearcoat F(n.v).
+vec3 coated(vec3 base, vec3 p, vec3 n, vec3 v, float occlusion) {
+  if (u_clearcoat <= 0.0) return base;
+  float roughness = clamp(u_clearcoatRoughness, PBR_MIN_ROUGHNESS, 1.0);
+  float nv = clamp(dot(n, v), 1e-4, 1.0);
+  vec2 scaleBias = splitSumScaleBias(roughness, nv);
+#if LIGHTING_QUALITY == 0
+  vec3 coat = vec3(0.04 * scaleBias.x + scaleBias.y) *
+              environmentIrradiance(u_viewToEnvironment * reflect(-v, n)) * occlusion;
+#else
+  vec3 coat = vec3(0.04 * scaleBias.x + scaleBias.y) *
+              environmentSpecular(u_viewToEnvironment * reflect(-v, n), roughness) *
+              specularOcclusion(nv, occlusion, roughness * roughness);
+#endif
+  coat += brdfCosine(n, v, u_lightDirection, vec3(0.0), vec3(0.04), roughness) * u_lightColor;
+#if MAX_PUNCTUAL_LIGHTS > 0
+  for (int i = 0; i < MAX_PUNCTUAL_LIGHTS; i++) {
+    vec3 l;
+    vec3 illuminance = punctualIlluminance(u_lightPositionRange[i], u_lightColorSpot[i], u_lightSpot[i], p, l);
+    coat += brdfCosine(n, v, l, vec3(0.0), vec3(0.04), roughness) * illuminance;
+  }
+#endif
+  return base * (1.0 - u_clearcoat * fresnelSchlick(vec3(0.04), nv)) + u_clearcoat * coat;
+}
+#endif
+
 // The lit colour of a surface point: p its view-space position, n its shading normal and g the surface's own normal
 // (unit, facing the viewer).
 vec3 shade(vec3 base, float metallic, float roughness, vec3 p, vec3 n, vec3 g, float occlusion, vec3 emissive) {
@@ -145,30 +208,38 @@ vec3 shade(vec3 base, float metallic, float roughness, vec3 p, vec3 n, vec3 g, f
   roughness = clamp(roughness, PBR_MIN_ROUGHNESS, 1.0);
   metallic = clamp(metallic, 0.0, 1.0);
   vec3 diffuseColor = base * (1.0 - metallic);
+#if MATERIAL_LAYERS
+  // KHR_materials_specular and _ior: the dielectric's F0 and F90 (a metal's are its base colour and 1).
+  vec3 f0 = mix(u_specular.rgb, base, metallic);
+  vec3 f90 = vec3(mix(u_specular.a, 1.0, metallic));
+#else
   vec3 f0 = mix(vec3(0.04), base, metallic);
+  vec3 f90 = vec3(1.0);
+#endif
+#if TRANSMISSION
+  // Thin-walled transmission takes this share of the diffuse lobe (transparency/composite.glsl adds what it lets
+  // through).
+  diffuseColor *= 1.0 - u_transmission;
+#endif
   vec2 scaleBias = splitSumScaleBias(roughness, clamp(dot(n, v), 1e-4, 1.0));
-  vec3 color = ambientLight(n, g, v, diffuseColor, f0, roughness, occlusion, scaleBias) + emissive;
+  vec3 color = ambientLight(n, g, v, diffuseColor, f0, f90, roughness, occlusion, scaleBias) + emissive;
 #if LIGHTING_QUALITY == 2
   // Kulla & Conty, "Revisiting Physically Based Shading at Imageworks", SIGGRAPH 2017, in Filament's form: the
   // specular lobe scaled by 1 + F0 (1 / Ess - 1), the energy single scattering loses at this roughness and angle.
   vec3 energy = 1.0 + f0 * (1.0 / max(scaleBias.x + scaleBias.y, 1e-3) - 1.0);
-#define DIRECT_LIGHT(l, illuminance) brdfCosineCompensated(n, v, l, diffuseColor, f0, roughness, energy) * (illuminance)
 #else
-#define DIRECT_LIGHT(l, illuminance) brdfCosine(n, v, l, diffuseColor, f0, roughness) * (illuminance)
+  vec3 energy = vec3(1.0);
 #endif
-  color += DIRECT_LIGHT(u_lightDirection, u_lightColor);
+  color += brdfCosineCompensated(n, v, u_lightDirection, diffuseColor, f0, f90, roughness, energy) * u_lightColor;
 #if MAX_PUNCTUAL_LIGHTS > 0
   for (int i = 0; i < MAX_PUNCTUAL_LIGHTS; i++) {
-    vec3 toLight = u_lightPositionRange[i].xyz - p;
-    float d2 = max(dot(toLight, toLight), 1e-8);
-    vec3 l = toLight * inversesqrt(d2);
-    // KHR_lights_punctual: inverse square, windowed to 0 at the range (the extension's recommended
-    // clamp(1 - (d / range)^4, 0, 1)^2), times the spot's smooth cone.
-    float window = clamp(1.0 - d2 * d2 * u_lightPositionRange[i].w, 0.0, 1.0);
-    float cone = clamp(dot(u_lightSpot[i].xyz, -l) * u_lightColorSpot[i].a + u_lightSpot[i].w, 0.0, 1.0);
-    vec3 illuminance = u_lightColorSpot[i].rgb * (window * window * cone * cone / d2);
-    color += DIRECT_LIGHT(l, illuminance);
+    vec3 l;
+    vec3 illuminance = punctualIlluminance(u_lightPositionRange[i], u_lightColorSpot[i], u_lightSpot[i], p, l);
+    color += brdfCosineCompensated(n, v, l, diffuseColor, f0, f90, roughness, energy) * illuminance;
   }
+#endif
+#if MATERIAL_LAYERS
+  color = coated(color, p, n, v, occlusion);
 #endif
   return color;
 }
@@ -211,6 +282,20 @@ void main() {
                                    texture2D(u_ao, v_uv).r, vec3(0.0)),
                              pixel);
 }
+#elif UNLIT && !BLENDED
+// KHR_materials_unlit: the base colour (times the vertex colour) as it is; exposure and the tone curve still apply.
+void main() {
+  vec4 base = baseColor(v_texcoord);
+#if ALPHA_MASK
+  if (base.a < u_alphaCutoff) discard;
+#endif
+  StagePixel pixel = stagePixel(v_clipPosition.xy / v_clipPosition.w * 0.5 + 0.5);
+  pixel.viewPosition = v_viewPosition;
+  pixel.viewNormal = normalize(v_viewNormal);
+  gl_FragColor = finishPixel(base.rgb, pixel);
+}
+#elif BLENDED
+#include "transparency/composite.glsl"
 #else
 void main() {
   vec4 base = baseColor(v_texcoord);

@@ -151,15 +151,16 @@ class WebApp {
     const AoSettings& ao = viewer_.state().settings.ao();
     if (const Renderer* renderer = viewer_.renderer())
       if (ao.enabled && ao.temporal && renderer->lastFrame().historyFrames + 1 < ao.temporalFrames) frameWanted_ = true;
-    // Auto exposure adapts over real time: after a change, frames are drawn for as long as it takes.
-    if (!frameWanted_ && !continuous_ && settleFrames_ <= 0 && time_ >= adaptUntil_) {
+    // Auto exposure adapts over the frames' intervals (each at most Viewer::kLongestFrameInterval): after a change,
+    // frames are drawn until their intervals add up to the adaptation's time, however long a slow device takes.
+    if (!frameWanted_ && !continuous_ && settleFrames_ <= 0 && adaptationLeft_ <= 0.0) {
       lastFrameTime_ = 0.0;  // the next drawn frame does not follow this one
       return;
     }
     // A change is drawn over framesPerChange() frames (temporal antialiasing converges over its jitter's phases).
     if (frameWanted_) {
       settleFrames_ = viewer_.framesPerChange();
-      adaptUntil_ = time_ + viewer_.adaptationSeconds();
+      adaptationLeft_ = viewer_.adaptationSeconds();
     }
     frameWanted_ = false;
     if (timer) timer->beginFrame();
@@ -171,6 +172,7 @@ class WebApp {
       return;
     }
     if (settleFrames_ > 0) --settleFrames_;
+    if (const Renderer* renderer = viewer_.renderer()) adaptationLeft_ -= renderer->lastFrame().frameInterval;
     lastCpuMs_ = emscripten_get_now() - start;
     cpuMs_ = frames_ == 0 ? lastCpuMs_ : cpuMs_ + kSmoothing * (lastCpuMs_ - cpuMs_);
     hostMs_ = frames_ == 0 ? lastHostMs_ : hostMs_ + kSmoothing * (lastHostMs_ - hostMs_);
@@ -205,7 +207,7 @@ class WebApp {
   std::unique_ptr<GpuPassTimer> timer_;
   bool frameWanted_ = true;  // something changed since the last drawn frame
   int settleFrames_ = 0;     // frames still to draw after the last change
-  double adaptUntil_ = 0.0;  // the clock (seconds) until which frames are drawn after a change (auto exposure)
+  double adaptationLeft_ = 0.0;  // the frame time (seconds) auto exposure still adapts over after the last change
   bool continuous_ = false;
   int width_ = 0, height_ = 0;
   double lastFrameTime_ = 0.0, frameMs_ = 0.0, cpuMs_ = 0.0;

@@ -14,6 +14,7 @@
 #include "frame/Parameters.h"
 #include "frame/ProgramCache.h"
 #include "frame/RendererOptions.h"
+#include "frame/SurfaceShading.h"
 #include "gl/GlCaps.h"
 #include "gl/ShaderLibrary.h"
 
@@ -26,6 +27,8 @@ struct EffectResources {
   const FullscreenTriangle& triangle;
   ProgramCache& programs;  // every program of the frame, built on first use (strict with options.checkGlErrors)
   const gl::Program& program(const ProgramSpec& spec) const { return programs.get(spec); }
+  // This frame's light and fog for surfaces drawn after the lighting pass (frame/SurfaceShading.h).
+  SurfaceShading& surfaces;
   // Builds a program of the effect's own (strict with options.checkGlErrors on).
   gl::Program build(const ProgramSpec& spec) const { return spec.build(options.checkGlErrors); }
 };

@@ -55,6 +55,9 @@ struct FrameContext {
   double deltaTime = 0.0;      // time - previousTime
   double frameInterval = 1.0 / 60.0;  // real seconds since the previous frame (FrameOptions::frameInterval)
   bool linesOrPoints = false;  // the scene has points or lines to draw (effects/lines/LinesEffect.h)
+  // The scene has a transparent layer (Material::transparent: effects/transparency), and transmission in it.
+  bool transparent = false;
+  bool transmission = false;
   // The scene needs the forward lighting (GpuScene::needsForwardLighting): the G-buffer writes no base colour.
   bool forwardLighting = false;
 };

@@ -45,6 +45,11 @@ class Program {
 
   // Whether the program has an active uniform of this name (an array by its plain name or its element 0's).
   bool has(std::string_view name) const { return find(name) != nullptr; }
+  // The elements of an active uniform array (1 for a plain uniform), or 0 where the program has none by that name.
+  int arraySize(std::string_view name) const {
+    const Uniform* u = find(name);
+    return u ? u->size : 0;
+  }
   // Sets a uniform by name on the program in use (use() first). Strict: GlError for a name it lacks or a value of
   // another type; lenient: ignored. Samplers take their unit as an int.
   void set(std::string_view name, int value) const;

@@ -25,7 +25,6 @@
 #include <glm/mat4x4.hpp>
 
 #include "gl/GlCaps.h"
-#include "gl/GlCaps.h"
 #include "gl/GlObjects.h"
 #include "gl/Program.h"
 #include "gl/RenderTarget.h"
@@ -45,13 +44,17 @@ struct GeometryUniforms {
   GeometryUniforms() = default;
   explicit GeometryUniforms(const gl::Program& program);
   GLint modelView = -1, normalMatrix = -1, baseColorFactor = -1, baseColorTexture = -1, alphaCutoff = -1;
-  GLint metallicRoughness = -1, emissive = -1, uvTransforms = -1;
+  GLint metallicRoughness = -1, emissive = -1, uvTransforms = -1, uvSets = -1;
+  GLint specular = -1, clearcoat = -1, clearcoatRoughness = -1;  // MATERIAL_LAYERS
+  GLint transmission = -1, transmissionIor = -1;                   // TRANSMISSION
   GLint pbrTextures[4] = {-1, -1, -1, -1};  // metallic-roughness, normal, occlusion, emissive samplers
   GLint joints = -1, previousJoints = -1, jointTexture = -1, jointTextureSize = -1;
   GLint morphWeights = -1, previousMorphWeights = -1, previousModel = -1;
   GLint jointsAttribute = -1, weightsAttribute = -1, previousPositionAttribute = -1, tangentAttribute = -1;
+  GLint colorAttribute = -1;
   GLint morphPositionAttribute[VertexKind::kMaxMorphTargets] = {-1, -1, -1, -1};
   GLint morphNormalAttribute[VertexKind::kMaxMorphTargets] = {-1, -1, -1, -1};
+  GLint morphTangentAttribute[VertexKind::kMaxMorphTargets] = {-1, -1, -1, -1};
 };
 
 class GpuScene {
@@ -76,13 +79,33 @@ class GpuScene {
   struct DrawOptions {
     bool onlyMoving = false;  // only instances whose pose differs from the previous frame's (velocity)
   };
-  // Draws every instance: opaque materials first, then masked ones, each group front to back (by the distance of
+  // Draws every instance of the opaque layer (every material but the transparent ones, Material::transparent, which
+  // drawTransparent draws): opaque materials first, then masked ones, each group front to back (by the distance of
   // its bounds' centre from the eye), so early depth tests reject what a nearer surface hides. Sets u_modelView,
   // u_normalMatrix, the material uniforms of lib/material.glsl, the deformation's uniforms and attributes (this
   // frame's and, where the program has them, the previous frame's), face culling per material and winding per
   // instance. Leaves the baseline pipeline state except for the program, depth and framebuffer state it was given.
   void draw(const glm::mat4& view, const ProgramChoice& choose, const DrawOptions& options) const;
   void draw(const glm::mat4& view, const ProgramChoice& choose) const { draw(view, choose, DrawOptions{}); }
+
+  // The transparent layer (effects/transparency): each instance's draws back to front by the view-space depth of its
+  // bounds' centre (a double-sided material's back faces, then its front faces), grouped into batches in that order
+  // whose draws cover pairwise disjoint pixel rectangles, so that all the draws of a batch can read one copy of
+  // what lies behind them. `rect`: x, y, width, height in pixels of the frame, covering the batch's draws.
+  struct TransparentDraw {
+    int instance = 0;
+    GLenum cullFace = GL_BACK;  // the faces not drawn (GL_FRONT: the back faces of a double-sided material)
+  };
+  struct TransparentBatch {
+    glm::ivec4 rect{0};
+    std::vector<TransparentDraw> draws;
+  };
+  std::vector<TransparentBatch> transparentBatches(const glm::mat4& view, const glm::mat4& projection,
+                                                   glm::ivec2 size) const;
+  void drawTransparent(const glm::mat4& view, const ProgramChoice& choose, const TransparentBatch& batch) const;
+  // The scene has transparent instances; some has transmission (effects/transparency reads the blurred levels).
+  bool hasTransparent() const { return hasTransparent_; }
+  bool hasTransmission() const { return hasTransmission_; }
 
   std::size_t pieceCount() const { return pieces_.size(); }
   // A material the deferred lighting cannot shade (Material::needsForwardLighting) is drawn, or the scene has
@@ -99,7 +122,8 @@ class GpuScene {
   // How skinned meshes are drawn, and the uniform palette's size in joints (0 where the path is not Uniforms).
   SkinningPath skinningPath() const { return skinningPath_; }
   int paletteSize() const { return paletteSize_; }
-  int morphTargetSlots(bool withNormals, bool skinned) const;
+  // Morph targets a draw can take as attributes: those left once `otherAttributes` are bound, `perTarget` each.
+  int morphTargetSlots(int perTarget, int otherAttributes) const;
   // Draws of the last draw() call that were deformed on the CPU (tests, benchmarks).
   struct Counts {
     int draws = 0, cpuDeformed = 0, gpuMorphed = 0, skinned = 0;
@@ -112,25 +136,34 @@ class GpuScene {
     GLsizei indexCount = 0;
     GLenum indexType = GL_UNSIGNED_SHORT;
     gl::BufferHandle skinAttributes;  // joints (4 floats) then weights (4 floats) per vertex; none if rigid
-    std::vector<gl::BufferHandle> morphPositions, morphNormals;  // per target (normals: none if the target has none)
+    // Per target (normals, tangents: none where the target has none).
+    std::vector<gl::BufferHandle> morphPositions, morphNormals, morphTangents;
     gl::BufferHandle tangents;  // vec4 per vertex, for PBR_TEXTURES materials; none otherwise
+    gl::BufferHandle colors;    // COLOR_0, vec4 per vertex; none where the mesh has none
     std::vector<int> palette;  // the uniform path: the skin joint of each palette entry
     Mesh source;               // kept for CPU deformation (skinned on the CPU path, or morphed): the piece's mesh
   };
   struct MaterialGpu {
     glm::vec4 baseColorFactor{1.0f};
     int texture = -1;  // index into textures_, -1: none (the factor alone)
-    float alphaCutoff = -1.0f;
+    float alphaCutoff = -2.0f;  // the MASK cutoff; -1 BLEND, -2 OPAQUE
     bool doubleSided = false;
     bool pbr = false;  // PBR_TEXTURES: pbrTextures has one
     std::array<int, 4> pbrTextures{-1, -1, -1, -1};  // metallic-roughness, normal, occlusion, emissive; -1: neutral
     glm::vec4 metallicRoughness{0.0f, 1.0f, 0.0f, 1.0f};  // metallic, roughness, normal scale, occlusion strength
     glm::vec3 emissive{0.0f};                              // factor x strength
     std::array<glm::vec3, 2 * kTextureSlots> uvRows{};     // each slot's KHR_texture_transform, as two rows
+    float uvSets = 0.0f;  // sum over slots k of texCoord_k 2^k (geometry.vert's u_uvSets)
+    bool unlit = false, layered = false, transmission = false, transparent = false;
+    glm::vec4 specular{0.04f, 0.04f, 0.04f, 1.0f};  // the dielectric's F0 (rgb) and F90 (a)
+    float clearcoat = 0.0f, clearcoatRoughness = 0.0f, transmissionFactor = 0.0f;
+    float transmissionIor = 1.0f;  // clamp(2 ior - 2, 0, 1): how much of the roughness blurs what shows through
+    MaterialKind kind() const { return {alphaCutoff >= 0.0f, texture >= 0, pbr, unlit, layered, transmission}; }
   };
   struct InstanceGpu {
     glm::mat4 world{1.0f}, previousWorld{1.0f};
     glm::vec3 localCentre{0.0f};  // of its mesh's bounds, in the mesh's space
+    glm::vec3 localMin{0.0f}, localMax{0.0f};  // its mesh's bounds (transparent batches' rectangles)
     glm::vec3 restCentre{0.0f};   // the same, placed at rest
     glm::vec3 centre{0.0f};      // of its posed bounds (approximately), for the drawing order
     int material = 0;
@@ -139,6 +172,7 @@ class GpuScene {
     bool cpuSkinned = false;     // skinned on the CPU (SkinningPath::Cpu)
     bool morphed = false;        // its mesh has morph targets
     bool moving = false;
+    bool transparent = false;    // its material is (drawTransparent)
     // This frame's deformation: the morph targets bound as attributes (GPU), or CPU-deformed vertex buffers.
     std::vector<int> gpuTargets;
     std::vector<float> weights, previousWeights;
@@ -147,12 +181,63 @@ class GpuScene {
   };
   struct SkinGpu {
     std::vector<glm::mat4> joints, previousJoints;  // world(joint) * inverseBind(joint)
+    // Most of its joints mirror (a negative determinant): the winding of what it skins turns, as a mirroring node's.
+    bool mirrored = false;
     gl::TextureHandle texture;                      // the joint texture path
     glm::vec3 textureSize{0.0f};                    // width, height, texels per palette
   };
 
-  void uploadCpuDeformed(InstanceGpu& instance, const ScenePose& current, const ScenePose& previous, size_t index);
-  VertexKind vertexKind(const InstanceGpu& instance, const Piece& piece) const;
+  struct MeshPieces {  // a Scene mesh's pieces
+    int first = 0, count = 0;
+    bool cpuSkinned = false;
+  };
+  // What one draw() call carries from piece to piece: the current program, and the state to restore at the end.
+  struct DrawState {
+    explicit DrawState(const ProgramChoice& program) : choose(program) {}
+    const ProgramChoice& choose;
+    const GeometryUniforms* uniforms = nullptr;
+    MaterialKind programMaterial;
+    VertexKind programVertex;
+    std::vector<GLuint> extraAttributes;  // enabled for the current piece, disabled after it
+    bool jointTextureBound = false;
+    bool pbrTexturesBound = false;
+    // Points an attribute the program has (location >= 0) at a buffer.
+    void attribute(GLint location, GLuint buffer, GLint size, GLsizei stride, size_t offset);
+  };
+  // CPU-deformed vertices: position, normal, previous position, tangent (the texture coordinates and colours stay in
+  // the piece's own buffers).
+  static constexpr int kDeformedFloats = 13;
+  static constexpr int kVertexFloats = 10;  // the piece's vertices: position, normal, TEXCOORD_0, TEXCOORD_1
+
+  // Upload (the constructor, in this order).
+  void chooseSkinningPath(const gl::GlCaps& caps, const Options& options);  // GpuSkinning.cpp
+  void uploadTextures(const Scene& scene, const gl::GlCaps& caps);
+  void uploadMaterials(const Scene& scene);
+  std::vector<MeshPieces> uploadMeshes(const Scene& scene, bool uint32);
+  Piece uploadPiece(Mesh mesh, const std::vector<int>& palette, bool tangents);
+  void createSkins(const Scene& scene, const gl::GlCaps& caps);  // GpuSkinning.cpp
+  void placeInstances(const Scene& scene, const std::vector<MeshPieces>& meshPieces);
+
+  // Pose.
+  std::vector<bool> poseSkins(const ScenePose& current, const ScenePose& previous);  // GpuSkinning.cpp
+  bool chooseGpuMorphTargets(InstanceGpu& instance) const;
+  void uploadCpuDeformed(InstanceGpu& instance, const ScenePose& current, const ScenePose& previous,
+                         size_t index);  // GpuSkinning.cpp
+
+  // Draw.
+  std::vector<const InstanceGpu*> drawOrder(const glm::mat4& view, const DrawOptions& options) const;
+  void drawInstance(const InstanceGpu& instance, const glm::mat4& view, DrawState& state) const;
+  glm::ivec4 screenRect(const InstanceGpu& instance, const glm::mat4& viewProjection, glm::ivec2 size) const;
+  VertexKind vertexKind(const InstanceGpu& instance, const Piece& piece) const;  // GpuSkinning.cpp
+  void bindMaterialTextures(const MaterialGpu& material, DrawState& state) const;
+  void drawPiece(const InstanceGpu& instance, int p, const MaterialGpu& material, const glm::mat4& modelView,
+                 DrawState& state) const;
+  void setInstanceUniforms(const InstanceGpu& instance, const MaterialGpu& material, const glm::mat4& modelView,
+                           const VertexKind& vertexKind, const DrawState& state) const;
+  void bindSkin(const InstanceGpu& instance, const Piece& piece, const VertexKind& vertexKind,
+                DrawState& state) const;  // GpuSkinning.cpp
+  void bindVertices(const InstanceGpu& instance, int p, const VertexKind& vertexKind, DrawState& state) const;
+  void restoreAfterDraw(const DrawState& state) const;
 
   std::vector<Piece> pieces_;
   std::vector<MaterialGpu> materials_;  // last entry: the default material
@@ -162,6 +247,7 @@ class GpuScene {
   gl::Texture2D neutralWhite_, neutralNormal_;
   std::vector<PunctualLight> lights_;
   bool needsForwardLighting_ = false;
+  bool hasTransparent_ = false, hasTransmission_ = false;
   GpuLines lines_;
   SkinningPath skinningPath_ = SkinningPath::Uniforms;
   int paletteSize_ = 0;

@@ -84,9 +84,9 @@ class Viewer {
   // Frames a front end drawing on change only draws after each change, the first included: 1, or while an effect that
   // jitters the projection is on (temporal antialiasing), the jitter's 16 phases, over which a still image converges.
   int framesPerChange() const;
-  // Seconds a front end drawing on change only keeps drawing after each change, because frames keep changing by
-  // themselves for that long: with auto exposure on, until it has come within 1 % of the new value at its slower
-  // speed (ln 100 / speed); else 0.
+  // Frame time (the intervals render steps by) a front end drawing on change only keeps drawing for after each
+  // change, because frames keep changing by themselves for that long: with auto exposure on, until it has come
+  // within 1 % of the new value at its slower speed (ln 100 / speed); else 0.
   double adaptationSeconds() const;
   static constexpr double kLongestFrameInterval = 0.1;
 

@@ -193,6 +193,8 @@ AoReferenceTracer::AoReferenceTracer(const Scene& scene, int buildThreads) : imp
     const Mesh& mesh = scene.meshes[static_cast<size_t>(instance.mesh)];
     if (mesh.indices.empty()) continue;
     const Material* material = mesh.material >= 0 ? &scene.materials[static_cast<size_t>(mesh.material)] : nullptr;
+    // The transparent layer is not in the G-buffer, so not in the AO (effects/transparency): nor in its reference.
+    if (material && material->transparent()) continue;
     const bool doubleSided = material && material->doubleSided;
     // A mirroring transform reverses the winding; swapping two indices keeps "front" the side GpuScene draws.
     const bool mirrored = glm::determinant(glm::mat3(instance.world)) < 0.0f;

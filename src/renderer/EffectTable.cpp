@@ -18,6 +18,7 @@
 #include "effects/motion_blur/MotionBlurEffect.h"
 #include "effects/taa/TaaEffect.h"
 #include "effects/tonemap/TonemapEffect.h"
+#include "effects/transparency/TransparencyEffect.h"
 #include "effects/velocity/VelocityEffect.h"
 #include "frame/DebugViewPass.h"
 #include "frame/Stage.h"
@@ -35,6 +36,8 @@ const std::vector<EffectEntry>& effectTable() {
         EffectEntry::of<LightingEffect>(),  // scene, ao, the G-buffer's depth -> scene-color (HDR)
         EffectEntry::of<LinesEffect>(),     // scene-color, the G-buffer's depth, points and lines -> scene-color
         EffectEntry::of<FogEffect>(),       // scene-color, gbuffer -> scene-color (HDR)
+        // scene-color, the G-buffer's depth, the transparent layer -> scene-color (HDR; blended, transmission)
+        EffectEntry::of<TransparencyEffect>(),
         EffectEntry::of<TaaEffect>(),       // scene-color, velocity, gbuffer, history -> scene-color (HDR)
         EffectEntry::of<BloomEffect>(),     // scene-color -> scene-color (HDR, its own chain of 1/2 .. 1/64 targets),
                                             // bloom-bright (its level 2, also alone when read with bloom off)

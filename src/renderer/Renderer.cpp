@@ -5,6 +5,7 @@
 
 #include "base/Error.h"
 #include "effects/ao/AoEffect.h"
+#include "effects/fog/FogEffect.h"
 #include "gl/PipelineState.h"
 
 namespace obscura {
@@ -42,6 +43,22 @@ std::pair<std::string, ViewDecoding> viewTarget(const View& view) {
   return {"", ViewDecoding::Color};
 }
 
+// The fog the fog pass applies with these settings, for the transparent layer (lib/fog.glsl's uniforms).
+SurfaceFog surfaceFog(const FogSettings& settings, const glm::mat4& view) {
+  SurfaceFog fog;
+  fog.enabled = settings.enabled;
+  if (!fog.enabled) return fog;
+  const FogFactor factor = FogFactor::of(settings, view);
+  fog.mode = static_cast<int>(factor.mode);
+  fog.height = factor.falloff > 0.0f;
+  fog.color = settings.color;
+  fog.factor = glm::vec2(factor.offset, factor.scale);
+  fog.falloff = factor.falloff;
+  fog.heightScale = factor.heightScale;
+  fog.upInView = factor.upInView;
+  return fog;
+}
+
 }  // namespace
 
 View parseView(const std::string& name) {
@@ -72,7 +89,7 @@ Renderer::Renderer(const gl::GlCaps& caps, const RendererOptions& options)
     : caps_(withSimulatedLimits(requireUsable(caps), options)),
       options_(options),
       programs_(options.checkGlErrors),
-      resources_{caps_, options_, triangle_, programs_},
+      resources_{caps_, options_, triangle_, programs_, surfaces_},
       pool_(caps_) {
   for (size_t row = 0; row < effectTable().size(); ++row) {
     const EffectEntry& entry = effectTable()[row];
@@ -86,6 +103,7 @@ Renderer::Renderer(const gl::GlCaps& caps, const RendererOptions& options)
   // and for every view (PipelineError names the pass and the target that does not).
   FrameContext probe;
   probe.linesOrPoints = true;  // so that the points-and-lines pass is checked too
+  probe.transparent = probe.transmission = true;  // and the transparent layer's
   RenderSettings everyEffect;
   for (size_t row = 0; row < effectTable().size(); ++row)
     if (effectTable()[row].info.hasSwitch) everyEffect.set(effectTable()[row].info.name, "on");
@@ -244,6 +262,8 @@ void Renderer::beginFrame(const Camera& camera, const RenderSettings& settings, 
   frame.deltaTime = time - frame.previousTime;
   frame.frameInterval = options.frameInterval.value_or(frame.deltaTime > 0.0 ? frame.deltaTime : 1.0 / 60.0);
   frame.linesOrPoints = !scene_.lines().empty();
+  frame.transparent = scene_.hasTransparent();
+  frame.transmission = scene_.hasTransmission();
   frame.forwardLighting = scene_.needsForwardLighting();
   frame_ = std::move(frame);
 
@@ -325,6 +345,10 @@ const FramePlan& Renderer::cachedPlan(const RenderSettings& settings, const View
 void Renderer::run(const RenderSettings& settings, const View& view, const OutputTarget& output,
                    const FrameOptions& options) {
   for (const std::unique_ptr<Effect>& effect : effects_) effect->prepare(settings);
+  // What surfaces drawn after the lighting need (frame/SurfaceShading.h): the fog these settings apply; the light
+  // comes from the lighting pass as it runs.
+  surfaces_.light.published = false;
+  surfaces_.fog = surfaceFog(settings.of<FogSettings>(), frame_.camera.view);
   plan_ = &cachedPlan(settings, view, options);
 
   for (size_t i = 0; i < plan_->passes().size(); ++i) {

@@ -187,6 +187,7 @@ class Renderer {
   RendererOptions options_;
   FullscreenTriangle triangle_;
   ProgramCache programs_;  // every program of the frame, the effects' and the fused stages'
+  SurfaceShading surfaces_;
   EffectResources resources_;
   std::vector<std::unique_ptr<Effect>> effects_;  // one per table row
   AoEffect* ao_ = nullptr;

@@ -5,6 +5,7 @@
 #include <map>
 
 #include <glm/geometric.hpp>
+#include <glm/matrix.hpp>
 #include <glm/gtc/matrix_transform.hpp>
 
 #include "base/Error.h"
@@ -217,7 +218,7 @@ ScenePose evaluatePose(const Scene& scene, double time, const PoseOptions& optio
 }
 
 PosedVertices posedMesh(const Mesh& mesh, const std::vector<glm::mat4>& joints, const std::vector<float>& weights) {
-  PosedVertices out{mesh.positions, mesh.normals};
+  PosedVertices out{mesh.positions, mesh.normals, mesh.tangents};
   // Morph first (glTF 2.0 "Morph Targets": the displaced attributes are then skinned).
   for (size_t t = 0; t < mesh.morphTargets.size() && t < weights.size(); ++t) {
     const float w = weights[t];
@@ -226,6 +227,8 @@ PosedVertices posedMesh(const Mesh& mesh, const std::vector<glm::mat4>& joints, 
     for (size_t v = 0; v < out.positions.size(); ++v) out.positions[v] += w * target.positions[v];
     if (!target.normals.empty())
       for (size_t v = 0; v < out.normals.size(); ++v) out.normals[v] += w * target.normals[v];
+    if (!target.tangents.empty() && !out.tangents.empty())
+      for (size_t v = 0; v < out.tangents.size(); ++v) out.tangents[v] += glm::vec4(w * target.tangents[v], 0.0f);
   }
   if (mesh.skinned() && !joints.empty()) {
     for (size_t v = 0; v < out.positions.size(); ++v) {
@@ -235,12 +238,22 @@ PosedVertices posedMesh(const Mesh& mesh, const std::vector<glm::mat4>& joints, 
       out.positions[v] = glm::vec3(m * glm::vec4(out.positions[v], 1.0f));
       // The blended matrix's linear part, not its inverse transpose: exact for rotations and uniform scale, and
       // what the vertex stage does (geometry.vert), so that the CPU mirror and the GPU agree.
-      out.normals[v] = glm::mat3(m) * out.normals[v];
+      const glm::mat3 linear(m);
+      out.normals[v] = linear * out.normals[v];
+      if (!out.tangents.empty()) {
+        // A mirroring joint (negative determinant) reverses the bitangent's cross product: w turns with it.
+        const float handedness = glm::determinant(linear) < 0.0f ? -1.0f : 1.0f;
+        out.tangents[v] = glm::vec4(linear * glm::vec3(out.tangents[v]), out.tangents[v].w * handedness);
+      }
     }
   }
   for (glm::vec3& n : out.normals) {
     const float length = glm::length(n);
     n = length > 0.0f ? n / length : glm::vec3(0.0f, 0.0f, 1.0f);
+  }
+  for (glm::vec4& t : out.tangents) {
+    const float length = glm::length(glm::vec3(t));
+    if (length > 0.0f) t = glm::vec4(glm::vec3(t) / length, t.w);
   }
   return out;
 }
@@ -268,6 +281,7 @@ Scene posedScene(const Scene& scene, const ScenePose& pose) {
           posedMesh(mesh, skinned ? pose.skinJoints[static_cast<size_t>(instance.skin)] : kNoJoints, weights);
       baked.positions = posed.positions;
       baked.normals = posed.normals;
+      baked.tangents = posed.tangents;
       baked.joints.clear();
       baked.weights.clear();
       baked.morphTargets.clear();

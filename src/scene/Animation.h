@@ -62,6 +62,7 @@ ScenePose evaluatePose(const Scene& scene, double time, const PoseOptions& optio
 // local space otherwise. `joints` is the skin's ScenePose::skinJoints entry (ignored for an unskinned mesh).
 struct PosedVertices {
   std::vector<glm::vec3> positions, normals;
+  std::vector<glm::vec4> tangents;  // empty where the mesh has none; w turned by a mirroring joint
 };
 PosedVertices posedMesh(const Mesh& mesh, const std::vector<glm::mat4>& joints, const std::vector<float>& weights);
 

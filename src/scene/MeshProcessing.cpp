@@ -48,6 +48,8 @@ void generateFlatNormals(Mesh& mesh) {
       flat.positions.push_back(mesh.positions[source]);
       flat.normals.push_back(n);
       if (hasUv) flat.texcoords.push_back(mesh.texcoords[source]);
+      if (!mesh.texcoords1.empty()) flat.texcoords1.push_back(mesh.texcoords1[source]);
+      if (!mesh.colors.empty()) flat.colors.push_back(mesh.colors[source]);
       if (!mesh.tangents.empty()) flat.tangents.push_back(mesh.tangents[source]);
       if (skinned) {
         flat.joints.push_back(mesh.joints[source]);
@@ -82,16 +84,17 @@ glm::vec3 anyPerpendicular(const glm::vec3& n) {
   return glm::normalize(glm::cross(axis, n));
 }
 
-void generateTangents(Mesh& mesh) {
+void generateTangents(Mesh& mesh, int texCoord) {
   const size_t count = mesh.positions.size();
   std::vector<glm::vec3> tangent(count, glm::vec3(0.0f)), bitangent(count, glm::vec3(0.0f));
-  if (mesh.texcoords.size() == count) {
+  const std::vector<glm::vec2>& uvs = texCoord == 1 ? mesh.texcoords1 : mesh.texcoords;
+  if (uvs.size() == count) {
     for (size_t t = 0; t + 2 < mesh.indices.size(); t += 3) {
       const std::uint32_t corner[3] = {mesh.indices[t], mesh.indices[t + 1], mesh.indices[t + 2]};
       const glm::vec3 e1 = mesh.positions[corner[1]] - mesh.positions[corner[0]];
       const glm::vec3 e2 = mesh.positions[corner[2]] - mesh.positions[corner[0]];
-      const glm::vec2 d1 = mesh.texcoords[corner[1]] - mesh.texcoords[corner[0]];
-      const glm::vec2 d2 = mesh.texcoords[corner[2]] - mesh.texcoords[corner[0]];
+      const glm::vec2 d1 = uvs[corner[1]] - uvs[corner[0]];
+      const glm::vec2 d2 = uvs[corner[2]] - uvs[corner[0]];
       // The face's dP/du and dP/dv. MikkTSpace divides by the signed uv area too, so a mirrored face's gradients
       // keep their geometric sense; a face without uv area contributes nothing (mikktspace.c: "degenerate").
       const float det = d1.x * d2.y - d2.x * d1.y;
@@ -141,13 +144,16 @@ Mesh extractTriangles(const Mesh& mesh, const std::vector<std::uint32_t>& triang
         piece.positions.push_back(mesh.positions[source]);
         piece.normals.push_back(mesh.normals[source]);
         if (!mesh.texcoords.empty()) piece.texcoords.push_back(mesh.texcoords[source]);
+        if (!mesh.texcoords1.empty()) piece.texcoords1.push_back(mesh.texcoords1[source]);
+        if (!mesh.colors.empty()) piece.colors.push_back(mesh.colors[source]);
         if (!mesh.tangents.empty()) piece.tangents.push_back(mesh.tangents[source]);
         if (!mesh.joints.empty()) piece.joints.push_back(mesh.joints[source]);
         if (!mesh.weights.empty()) piece.weights.push_back(mesh.weights[source]);
         for (size_t m = 0; m < mesh.morphTargets.size(); ++m) {
-          piece.morphTargets[m].positions.push_back(mesh.morphTargets[m].positions[source]);
-          if (!mesh.morphTargets[m].normals.empty())
-            piece.morphTargets[m].normals.push_back(mesh.morphTargets[m].normals[source]);
+          const MorphTarget& target = mesh.morphTargets[m];
+          piece.morphTargets[m].positions.push_back(target.positions[source]);
+          if (!target.normals.empty()) piece.morphTargets[m].normals.push_back(target.normals[source]);
+          if (!target.tangents.empty()) piece.morphTargets[m].tangents.push_back(target.tangents[source]);
         }
       }
       piece.indices.push_back(it->second);

@@ -8,9 +8,10 @@
 namespace obscura {
 
 // glTF 2.0 (sec. 3.7.2.1): "When normals are not specified, client implementations MUST calculate flat normals".
-// Unwelds the mesh so each triangle has its own three vertices carrying the face normal. Joints, weights and morph
-// target displacements follow their vertices; each morph target gets normal displacements, the change of each face's
-// normal when the target is fully applied (empty for a target that turns no face).
+// Unwelds the mesh so each triangle has its own three vertices carrying the face normal. Texture coordinates, colours,
+// joints, weights and morph target displacements follow their vertices; each morph target gets normal
+// displacements, the change of each face's normal when the target is fully applied (empty for a target that turns no
+// face), and no tangent displacements (the tangents are generated for the flat normals).
 void generateFlatNormals(Mesh& mesh);
 
 // Smooth normals by area-weighted averaging over shared vertices (used by the built-in scene's generators).
@@ -23,7 +24,8 @@ void generateSmoothNormals(Mesh& mesh);
 // then orthogonalised against the normal (Gram-Schmidt); w is the bitangent's sign. Unlike mikktspace.c it does not
 // split a vertex whose corners' tangent frames disagree (a uv seam shared by one vertex): glTF files already split
 // their vertices at uv seams. A vertex without usable uv gradients gets any unit vector perpendicular to its normal.
-void generateTangents(Mesh& mesh);
+// `texCoord`: the set whose gradients the tangents follow (the normal texture's: 0 TEXCOORD_0, 1 TEXCOORD_1).
+void generateTangents(Mesh& mesh, int texCoord = 0);
 glm::vec3 anyPerpendicular(const glm::vec3& unitNormal);
 
 // The triangles listed (by triangle number) as a mesh of their own: the vertices they use, renumbered in order of

@@ -13,6 +13,11 @@ void Bounds::add(const glm::vec3& p) {
   max = glm::max(max, p);
 }
 
+glm::vec3 Material::dielectricF0() const {
+  const float r = (ior - 1.0f) / (ior + 1.0f);  // ior 0 (the extension's "infinite"): 1
+  return glm::min(glm::vec3(r * r) * specularColorFactor, glm::vec3(1.0f)) * specularFactor;
+}
+
 float Bounds::radius() const { return empty() ? 0.0f : 0.5f * glm::length(max - min); }
 
 Bounds Scene::worldBounds() const {

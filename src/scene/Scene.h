@@ -59,32 +59,61 @@ struct Material {
   glm::vec3 emissiveFactor{0.0f};
   int emissiveTexture = -1;           // sRGB
   float emissiveStrength = 1.0f;      // KHR_materials_emissive_strength
-  // KHR_texture_transform per slot (TextureSlot order), uv' = T uv, applied in the vertex stage. The loader bakes a
+    // KHR_texture_transform per slot (TextureSlot order), uv' = T uv, applied in the vertex stage. The loader bakes a
   // material's base-colour transform into the mesh's TEXCOORD_0 instead where the material has no other texture.
   std::array<glm::mat3, kTextureSlots> uvTransforms{glm::mat3(1.0f), glm::mat3(1.0f), glm::mat3(1.0f),
                                                      glm::mat3(1.0f), glm::mat3(1.0f)};
+  // The texture coordinate set each slot samples (TextureSlot order): 0 TEXCOORD_0, 1 TEXCOORD_1 (Mesh::texcoords1).
+  std::array<int, kTextureSlots> texCoords{0, 0, 0, 0, 0};
   AlphaMode alphaMode = AlphaMode::Opaque;
   float alphaCutoff = 0.5f;
   bool doubleSided = false;
+
+  // KHR_materials_unlit: the base colour (times the vertex colour) is the colour seen; no light, no AO.
+  bool unlit = false;
+  // KHR_materials_ior, KHR_materials_specular: the dielectric's Fresnel at normal incidence is
+  // min(((ior - 1) / (ior + 1))^2 specularColor, 1) specular, at grazing incidence specular (effects/lighting/
+  // PbrShading.h: SurfaceParameters). glTF's defaults give 0.04 and 1, the core material's.
+  float ior = 1.5f;
+  float specularFactor = 1.0f;
+  glm::vec3 specularColorFactor{1.0f};
+  // KHR_materials_clearcoat: a second, dielectric (ior 1.5) GGX layer on top, of this strength and roughness, over
+  // the base's normal (clearcoatNormalTexture is not read).
+  float clearcoatFactor = 0.0f;
+  float clearcoatRoughnessFactor = 0.0f;
+  // KHR_materials_transmission (thin-walled: KHR_materials_volume is not applied): the fraction of the light not
+  // reflected that passes through the surface, tinted by the base colour (effects/transparency).
+  float transmissionFactor = 0.0f;
 
   // Textures besides the base colour (the PBR_TEXTURES shader variant: gpu/MaterialKind.h).
   bool hasPbrTextures() const {
     return metallicRoughnessTexture >= 0 || normalTexture >= 0 || occlusionTexture >= 0 || emissiveTexture >= 0;
   }
+  // The dielectric Fresnel terms differ from the core material's, or a clear coat lies on top (the MATERIAL_LAYERS
+  // shader variant).
+  bool layered() const {
+    return clearcoatFactor > 0.0f || ior != 1.5f || specularFactor != 1.0f || specularColorFactor != glm::vec3(1.0f);
+  }
+  // The dielectric's Fresnel at normal incidence: min(((ior - 1) / (ior + 1))^2 specularColor, 1) specular.
+  glm::vec3 dielectricF0() const;
+  // Drawn after the opaque frame, composited over it (effects/transparency): alphaMode BLEND, or transmission.
+  bool transparent() const { return alphaMode == AlphaMode::Blend || transmissionFactor > 0.0f; }
+
   // Anything the deferred lighting's base-colour target cannot carry (effects/lighting/LightingEffect.h): the scene is
   // then lit by the forward form.
   bool needsForwardLighting() const {
     return hasPbrTextures() || metallicFactor != 0.0f || roughnessFactor != 1.0f ||
-           emissiveFactor != glm::vec3(0.0f);
+           emissiveFactor != glm::vec3(0.0f) || unlit || layered();
   }
 };
 
-// KHR_lights_punctual: a point or spot light placed by a node (position: its origin; direction: its -z).
-enum class LightType { Point, Spot };
+// KHR_lights_punctual: a point, spot or directional light placed by a node (position: its origin; direction: its -z).
+// A directional light's intensity is illuminance (lux), the others' luminous intensity (candela).
+enum class LightType { Point, Spot, Directional };
 struct PunctualLight {
   LightType type = LightType::Point;
   glm::vec3 color{1.0f};     // linear
-  float intensity = 1.0f;    // candela
+  float intensity = 1.0f;    // candela (lux: directional)
   float range = 0.0f;        // metres; 0: unlimited
   float innerConeAngle = 0.0f, outerConeAngle = 0.7853982f;  // radians (spot)
   int node = -1;             // index into Scene::nodes; -1: fixed at `world`
@@ -115,12 +144,15 @@ struct SceneCamera {
 struct MorphTarget {
   std::vector<glm::vec3> positions;  // one per vertex
   std::vector<glm::vec3> normals;    // empty (the target moves no normal), or one per vertex
+  std::vector<glm::vec3> tangents;   // empty, or one per vertex: the tangent's xyz (Mesh::tangents; w stays)
 };
 
 struct Mesh {
   std::vector<glm::vec3> positions;
   std::vector<glm::vec3> normals;    // one per position, unit length
   std::vector<glm::vec2> texcoords;  // empty, or one per position
+  std::vector<glm::vec2> texcoords1;  // TEXCOORD_1: empty, or one per position (Material::texCoords chooses)
+  std::vector<glm::vec4> colors;      // COLOR_0 (linear RGBA): empty, or one per position; multiplies the base colour
   // Empty, or one per position: xyz the unit tangent (along +u), w the bitangent's sign (+-1): B = w (N x T). From the
   // file's TANGENT, else generated (scene/MeshProcessing.h: generateTangents) where a normal texture needs them.
   std::vector<glm::vec4> tangents;

@@ -355,6 +355,46 @@ describe('demo page', () => {
     assert.match(await page.locator('#scene-name').textContent(), /^built-in scene/);
   });
 
+  test('the glass sample: glass, blended panes and clear coat drawn; transparency off leaves the layer out',
+       { timeout: 180000 }, async () => {
+    const description = await page.evaluate(() => ({
+      effects: window.obscura.effects.map((e) => ({ name: e.name, switch: e.switch, passes: e.passes })),
+      parameters: window.obscura.parameters.map((p) => p.name) }));
+    const transparency = description.effects.find((e) => e.name === 'transparency');
+    assert.ok(transparency && transparency.switch, 'the table has the transparency switch');
+    assert.deepEqual(transparency.passes, ['transmission-levels', 'transparency']);
+    assert.ok(description.parameters.includes('lighting.sun'), 'and lighting.sun');
+    assert.equal(await page.locator('#effect-transparency > summary #param-transparency').count(), 1,
+                 'the panel has the Transparency section, its switch in the heading');
+    assert.equal(await page.locator('#effect-lighting #param-lighting-sun').count(), 1);
+    await page.locator('#file-input').setInputFiles(path.join(sourceDir, 'assets', 'scenes', 'glass-samples.glb'));
+    await page.waitForFunction(
+      () => document.querySelector('#scene-name').textContent.startsWith('glass-samples.glb'), null,
+      { timeout: 60000 });
+    assert.equal(await page.locator('#error').isVisible(), false);
+    const scene = await page.evaluate(() => window.obscura.scene());
+    assert.deepEqual(scene.warnings, [], 'every extension of the sample is implemented');
+    await page.locator('#view-final').check();
+    await waitForDrawn(page);
+    const on = await snapshot(page);
+    if (await page.evaluate(() => window.obscura.context.timerQuery)) {
+      await page.waitForFunction(() => window.obscura.stats().passMs?.transparency > 0, null, { timeout: 30000 });
+      const { passMs } = await page.evaluate(() => window.obscura.stats());
+      assert.ok(passMs['transmission-levels'] > 0, `transmission-levels: ${passMs['transmission-levels']} ms`);
+    }
+    await page.evaluate(() => window.obscura.set('transparency', 'off'));
+    await waitForDrawn(page);
+    const off = await snapshot(page);
+    const difference = compareImages(on, off);
+    // The glass, the panes and the clear-coated spheres cover about 5 % of the fitted frame (its mean difference is
+    // about 0.4 of 255): the layer shows as that share of pixels changed, some by much.
+    const changed = Math.max(difference.r.differing, difference.g.differing, difference.b.differing);
+    assert.ok(changed > 0.02 && difference.max > 40, `the layer shows: ${JSON.stringify(difference)}`);
+    await page.evaluate(() => window.obscura.set('transparency', 'on'));
+    await page.locator('#builtin-scene').click();
+    assert.match(await page.locator('#scene-name').textContent(), /^built-in scene/);
+  });
+
   test('a URL with camera and parameters reproduces the same image', { timeout: 120000 }, async () => {
     await page.locator('#view-split').check();
     await page.locator('#compare').selectOption('ao.blur');  // the split view compares the AO's blur

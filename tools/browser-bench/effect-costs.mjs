@@ -2,10 +2,13 @@
 // SwiftShader offers) in the demo page's frame of the built-in scene, playing its animation so that motion blur and
 // the temporal effects have motion to work on, at each size asked. Every effect of the table is measured with its
 // switch on (the others at their defaults), and the AO's temporal accumulation beside the single-frame AO; then the
-// lighting pass on the metallic-roughness sample (assets/scenes/pbr-samples.glb) loaded into the page. The camera's
-// finish adds percentile metering, six streaks, hatching, and the tone mapping with the exposure and the lens light it
-// reads against the tone mapping with bloom alone (what those stages add to the pass they join). Writes a
-// CSV; docs/benchmarks.md ("Every effect at two sizes") shows the figures.
+// lighting pass on the metallic-roughness sample (assets/scenes/pbr-samples.glb) loaded into the page; then the
+// transparent layer, transmission and clear coat on the glass sample (assets/scenes/glass-samples.glb), and on variants
+// of it edited here that put each over most of the frame (every opaque material blended, transmissive, clear-coated
+// or without the material layers: the clear coat's cost is the lighting's difference). The camera's finish adds
+// percentile metering, six streaks, hatching, and the tone mapping with the exposure and the lens light it reads
+// against the tone mapping with bloom alone (what those stages add to the pass they join). Writes a CSV;
+// docs/benchmarks.md ("Every effect at two sizes") and docs/transparency.md show the figures.
 //
 // Usage: node tools/browser-bench/effect-costs.mjs [--sizes 640x360,1280x720] [--samples N] [--settle MS] [--csv FILE]
 //                                                  [--effects NAME,...]  (only these effects' cases; default: all)
@@ -77,6 +80,24 @@ function casesOf(description) {
                    state: 'bloom=on&lens-flare=on' });
   }
   return options.effects ? cases.filter((c) => options.effects.includes(c.effect)) : cases;
+}
+
+// A .glb's JSON chunk edited by `edit` (the binary chunk kept), as a buffer for the page's file input.
+function editedGlb(file, edit) {
+  const bytes = fs.readFileSync(file);
+  const jsonLength = bytes.readUInt32LE(12);
+  const json = JSON.parse(bytes.subarray(20, 20 + jsonLength).toString('utf8'));
+  edit(json);
+  let text = Buffer.from(JSON.stringify(json), 'utf8');
+  if (text.length % 4) text = Buffer.concat([text, Buffer.alloc(4 - (text.length % 4), 0x20)]);
+  const rest = bytes.subarray(20 + jsonLength);
+  const header = Buffer.alloc(20);
+  header.write('glTF', 0);
+  header.writeUInt32LE(2, 4);
+  header.writeUInt32LE(20 + text.length + rest.length, 8);
+  header.writeUInt32LE(text.length, 12);
+  header.writeUInt32LE(0x4e4f534a, 16);  // JSON
+  return Buffer.concat([header, text, rest]);
 }
 
 const rows = [];
@@ -157,6 +178,47 @@ try {
     await page.waitForFunction(
       () => document.querySelector('#scene-name').textContent.startsWith('pbr-samples.glb'), null, { timeout: 60000 });
     report('lighting, PBR sample', await measure('', lighting.passes));
+    // Issue 31: the transparent layer, transmission and clear coat on the glass sample, and on variants whose
+    // materials put each over most of the frame (obscura-bench section 8d makes the same ones): every opaque material
+    // blended, transmissive, clear-coated, or without the material layers.
+    const glassFile = path.join(root, 'assets', 'scenes', 'glass-samples.glb');
+    const load = async (name, buffer) => {
+      await page.locator('#file-input').setInputFiles({ name, mimeType: 'model/gltf-binary', buffer });
+      await page.waitForFunction((n) => document.querySelector('#scene-name').textContent.startsWith(n), name,
+                                 { timeout: 60000 });
+    };
+    const layers = ['KHR_materials_clearcoat', 'KHR_materials_ior', 'KHR_materials_specular'];
+    const opaque = (m) => m.alphaMode !== 'BLEND' && !m.extensions?.KHR_materials_transmission &&
+                          !m.extensions?.KHR_materials_unlit;
+    const variant = (edit) => editedGlb(glassFile, (json) => {
+      for (const m of json.materials) if (opaque(m)) edit(m);
+    });
+    const withExtension = (m, name, value) => { m.extensions = { ...(m.extensions ?? {}), [name]: value }; };
+    const transparencyPasses = ['transparency'], levelsPasses = ['transmission-levels'];
+    await load('glass-samples.glb', fs.readFileSync(glassFile));
+    report('glass: transparency', await measure('', transparencyPasses));
+    report('glass: transmission-levels', await measure('', levelsPasses));
+    report('glass: lighting', await measure('', lighting.passes));
+    await load('glass-all-blended.glb', variant((m) => {
+      m.alphaMode = 'BLEND';
+      m.pbrMetallicRoughness = { ...(m.pbrMetallicRoughness ?? {}) };
+      const f = m.pbrMetallicRoughness.baseColorFactor ?? [1, 1, 1, 1];
+      m.pbrMetallicRoughness.baseColorFactor = [f[0], f[1], f[2], 0.5];
+    }));
+    report('all blended: transparency', await measure('', transparencyPasses));
+    await load('glass-all-transmissive.glb', variant((m) => {
+      withExtension(m, 'KHR_materials_transmission', { transmissionFactor: 1 });
+      m.pbrMetallicRoughness = { ...(m.pbrMetallicRoughness ?? {}), roughnessFactor: 0.3 };
+    }));
+    report('all transmissive: transparency', await measure('', transparencyPasses));
+    report('all transmissive: levels', await measure('', levelsPasses));
+    await load('glass-no-layers.glb', variant((m) => { for (const e of layers) delete m.extensions?.[e]; }));
+    report('no layers: lighting', await measure('', lighting.passes));
+    await load('glass-all-coated.glb', variant((m) => {
+      for (const e of layers) delete m.extensions?.[e];
+      withExtension(m, 'KHR_materials_clearcoat', { clearcoatFactor: 1, clearcoatRoughnessFactor: 0.1 });
+    }));
+    report('all clear-coated: lighting', await measure('', lighting.passes));
     if (errors.length) throw new Error(`page errors: ${errors.join('; ')}`);
     await page.context().close();
   }

@@ -49,6 +49,10 @@ const std::vector<Parameter<LightingSettings>>& LightingSettings::parameters() {
           &S::depth,
           {{"auto", LightingDepth::Auto}, {"gbuffer", LightingDepth::GBuffer}, {"prepass", LightingDepth::Prepass},
            {"overdraw", LightingDepth::Overdraw}}),
+      choiceParameter<S>("sun",
+                         "settings: the sun of lighting.sun-*; file: the file's first directional light "
+                         "(KHR_lights_punctual), where it has one",
+                         &S::sun, {{"settings", SunSource::Settings}, {"file", SunSource::File}}),
       numberParameter<S>("sun-elevation", -90, 90, "degrees",
                          "the sun's height above the horizon (with the sky: the sky is made again, about a second)",
                          &S::sunElevation)
@@ -102,16 +106,37 @@ glm::vec3 LightingSettings::directionToSun() const {
   return {std::cos(elevation) * std::sin(azimuth), std::sin(elevation), std::cos(elevation) * std::cos(azimuth)};
 }
 
+Sun Sun::of(const LightingSettings& settings, const std::vector<PunctualLight>& lights) {
+  Sun sun;
+  sun.directionToSun = settings.directionToSun();
+  sun.illuminance = settings.sunColor * settings.sunIntensity;
+  if (settings.sun != SunSource::File) return sun;
+  for (size_t i = 0; i < lights.size(); ++i) {
+    if (lights[i].type != LightType::Directional) continue;
+    // KHR_lights_punctual: a directional light shines along its node's -z.
+    const glm::vec3 towards = glm::vec3(lights[i].world * glm::vec4(0.0f, 0.0f, 1.0f, 0.0f));
+    if (!(glm::dot(towards, towards) > 0.0f)) continue;
+    sun.directionToSun = glm::normalize(towards);
+    sun.illuminance = lights[i].color * lights[i].intensity;
+    sun.fileLight = static_cast<int>(i);
+    break;
+  }
+  return sun;
+}
+
 PunctualLightUniforms PunctualLightUniforms::of(const std::vector<PunctualLight>& lights, const glm::mat4& view,
-                                                int maxCount) {
+                                                int maxCount, int skip) {
   maxCount = std::clamp(maxCount, 0, kMaxPunctualLights);
   PunctualLightUniforms out;
-  // The lights that light the camera's surroundings most: intensity / distance^2 at the camera (view-space origin).
+  // The lights that light the camera's surroundings most: intensity / distance^2 at the camera (view-space origin);
+  // a directional light's intensity is the illuminance it gives everywhere.
   std::vector<std::pair<float, size_t>> order;
   for (size_t i = 0; i < lights.size(); ++i) {
+    if (static_cast<int>(i) == skip) continue;
     const glm::vec3 p(view * lights[i].world[3]);
     const glm::vec3& c = lights[i].color;
-    order.emplace_back(-lights[i].intensity * std::max(c.r, std::max(c.g, c.b)) / std::max(glm::dot(p, p), 1e-6f), i);
+    const float d2 = lights[i].type == LightType::Directional ? 1.0f : std::max(glm::dot(p, p), 1e-6f);
+    order.emplace_back(-lights[i].intensity * std::max(c.r, std::max(c.g, c.b)) / d2, i);
   }
   std::stable_sort(order.begin(), order.end());
   for (const auto& [key, index] : order) {
@@ -121,6 +146,9 @@ PunctualLightUniforms PunctualLightUniforms::of(const std::vector<PunctualLight>
     const glm::mat4 toView = view * light.world;
     const float range4 = light.range > 0.0f ? std::pow(light.range, 4.0f) : 0.0f;
     out.positionRange[k] = glm::vec4(glm::vec3(toView[3]), range4 > 0.0f ? 1.0f / range4 : 0.0f);
+    if (light.type == LightType::Directional)  // w -1 marks it: xyz the direction towards it (+z of its node)
+      out.positionRange[k] =
+          glm::vec4(glm::normalize(glm::vec3(toView * glm::vec4(0.0f, 0.0f, 1.0f, 0.0f))), -1.0f);
     // KHR_lights_punctual's cone: clamp(cos * scale + offset, 0, 1)^2, scale = 1 / max(cos inner - cos outer,
     // 0.001), offset = -cos outer * scale. A point light: scale 0, offset 1 (cone 1 everywhere).
     float scale = 0.0f, offset = 1.0f;
@@ -145,9 +173,9 @@ glm::mat3 LightingEffect::environmentRotation(const LightingSettings& settings) 
   return glm::mat3(glm::rotate(glm::mat4(1.0f), turn, glm::vec3(0.0f, 1.0f, 0.0f)));
 }
 
-int LightingEffect::punctualLightsPerDraw(int maxFragmentUniformVectors) {
-  return std::clamp((maxFragmentUniformVectors - kForwardLightingVectorsWithoutLights) / kVectorsPerPunctualLight, 0,
-                    kMaxPunctualLights);
+int LightingEffect::punctualLightsPerDraw(int maxFragmentUniformVectors, bool layered) {
+  const int base = kForwardLightingVectorsWithoutLights + (layered ? kMaterialLayerVectors : 0);
+  return std::clamp((maxFragmentUniformVectors - base) / kVectorsPerPunctualLight, 0, kMaxPunctualLights);
 }
 
 EffectInfo LightingEffect::info() {
@@ -235,6 +263,10 @@ std::vector<LightingEffect::StageHeadSpec> LightingEffect::stageHeads(int lights
   for (MaterialKind kind : {MaterialKind{}, heaviest})
     heads.push_back({spec({false, false, false}, kind, {}, EnvironmentLayout::Atlas, lightsPerDraw), ColorSpace::Hdr,
                      forward});
+  // The layered materials' heaviest, with as many lights.
+  const MaterialKind layered{true, true, true, false, true, false};
+  heads.push_back({spec({false, false, false}, layered, {}, EnvironmentLayout::Atlas, lightsPerDraw), ColorSpace::Hdr,
+                   forward + kMaterialLayerVectors + 1});
   for (StageHeadSpec& head : heads) head.program = withoutStages(head.program);
   return heads;
 }
@@ -252,7 +284,8 @@ ProgramSpec LightingEffect::withoutStages(ProgramSpec head) {
 // Every form with the atlas (any GLES 2 context), and the shading forms again with the mip chain; the shading forms
 // in each tier, the medium and high ones with and without the filtered levels; no stage fused (frameProgramSpecs adds
 // the chains).
-std::vector<ProgramSpec> LightingEffect::programSpecs(int lightsPerDraw) {
+std::vector<ProgramSpec> LightingEffect::programSpecs(int lightsPerDraw, int layeredLightsPerDraw) {
+  if (layeredLightsPerDraw < 0) layeredLightsPerDraw = lightsPerDraw;
   std::vector<ProgramSpec> specs;
   struct Shading {
     LightingQuality quality;
@@ -275,8 +308,12 @@ std::vector<ProgramSpec> LightingEffect::programSpecs(int lightsPerDraw) {
                 overDepth == deferred)
               continue;
             for (MaterialKind kind : MaterialKind::all()) {
+              // The extended kinds (unlit, layered) take the forward forms only (Material::needsForwardLighting),
+              // with the atlas, in every tier: enough for the shader checks to compile every #if of them.
+              if (kind.extended() && (deferred || layout != EnvironmentLayout::Atlas)) continue;
               const Form form{deferred, counting, false, shading.quality, shading.filteredFrom, overDepth};
-              if (readKind(form, kind) == kind) specs.push_back(spec(form, kind, {}, layout, lightsPerDraw));
+              if (readKind(form, kind) == kind)
+                specs.push_back(spec(form, kind, {}, layout, kind.layered ? layeredLightsPerDraw : lightsPerDraw));
             }
           }
         if (!deferred && !counting) specs.push_back(spec({false, false, true}, {}, {}, layout, 0));
@@ -293,7 +330,7 @@ const gl::Program& LightingEffect::program(const Form& asked, MaterialKind kind,
   const MaterialKind read = readKind(form, kind);
   const VertexKind stage = fullscreen ? VertexKind{} : vertex.forCurrentFrame();
   return programs_({form, read, stage, chain}, [&] {
-    const ProgramSpec head = spec(form, read, stage, layout_, lightsPerDraw_);
+    const ProgramSpec head = spec(form, read, stage, layout_, read.layered ? layeredLightsPerDraw_ : lightsPerDraw_);
     if (form.counting || stages.empty()) return head;
     return fusedProgram(withoutStages(head), stages, ColorSpace::Hdr);
   });
@@ -315,6 +352,7 @@ LightingEffect::LightingEffect(const EffectResources& resources)
       stencil_(resources.caps.packedDepthStencil),
       layout_(GpuEnvironment::layoutFor(resources.caps, resources.options.environmentLayout)),
       lightsPerDraw_(punctualLightsPerDraw(resources.caps.maxFragmentUniformVectors)),
+      layeredLightsPerDraw_(punctualLightsPerDraw(resources.caps.maxFragmentUniformVectors, true)),
       environmentFilteredUnit_(TextureUnits::environmentFiltered(resources.caps)),
       drawBuffers_(resources.caps.drawBuffers && resources.options.allowDrawBuffers),
       environments_(layout_, resources.options.environmentFiltering) {
@@ -322,7 +360,9 @@ LightingEffect::LightingEffect(const EffectResources& resources)
   // fails when the renderer is made.
   environments_.use("sky", LightingSettings{}.directionToSun());
   for (MaterialKind kind : MaterialKind::all())
-    program({false, false, false, LightingQuality::Medium, environments_.current().filteredFrom()}, kind, {}, {}, "");
+    if (!kind.extended())
+      program({false, false, false, LightingQuality::Medium, environments_.current().filteredFrom()}, kind, {}, {},
+              "");
 }
 
 void LightingEffect::plan(FramePlanner& planner) {
@@ -347,9 +387,12 @@ void LightingEffect::plan(FramePlanner& planner) {
   // its heaviest program leaves, and whether it may draw into the output framebuffer (the forward form depth-tests,
   // and the output has no depth; the deferred form then shades without the G-buffer's depth: render()).
   const int vectors = resources_.caps.maxFragmentUniformVectors;
-  const StageHead forward{"scene-color", ColorSpace::Hdr,
-                          vectors - kForwardLightingVectorsWithoutStages - lightsPerDraw_ * kVectorsPerPunctualLight,
-                          false};
+  // The forward form's heaviest program: the most lights, or a layered material's layer and its lights (whose rows
+  // leave no spare column for a stage's floats: one row more, measured by Shaders.EveryProgramFitsTheGles2...).
+  const int forwardOwn = std::max(kForwardLightingVectorsWithoutStages + lightsPerDraw_ * kVectorsPerPunctualLight,
+                                  kForwardLightingVectorsWithoutStages + kMaterialLayerVectors + 1 +
+                                      layeredLightsPerDraw_ * kVectorsPerPunctualLight);
+  const StageHead forward{"scene-color", ColorSpace::Hdr, vectors - forwardOwn, false};
   const StageHead deferred{"scene-color", ColorSpace::Hdr, vectors - kDeferredLightingVectorsWithoutStages, true};
 
   for (const char* output : {"scene-color", "shading-count"}) {
@@ -381,6 +424,25 @@ void LightingEffect::plan(FramePlanner& planner) {
   }
 }
 
+// The light this pass shades with, for the surfaces drawn after it (frame/SurfaceShading.h: the transparent layer).
+void LightingEffect::publish(const PassContext& context, const Sun& sun, const glm::vec3& lightDirection,
+                             const glm::mat3& viewToEnvironment, const LightingSettings& settings) const {
+  SurfaceLight& out = resources_.surfaces.light;
+  out.published = true;
+  out.environment = &environments_.current();
+  out.environmentFilteredUnit = environmentFilteredUnit_;
+  out.quality = static_cast<int>(settings.quality);
+  out.viewToEnvironment = viewToEnvironment;
+  out.environmentIntensity = settings.environmentIntensity;
+  out.lightDirection = lightDirection;
+  out.lightColor = sun.illuminance;
+  const PunctualLightUniforms all =
+      PunctualLightUniforms::of(context.scene().lights(), context.camera().view, kMaxPunctualLights, sun.fileLight);
+  out.positionRange.assign(all.positionRange, all.positionRange + all.count);
+  out.colorSpot.assign(all.colorSpot, all.colorSpot + all.count);
+  out.spot.assign(all.spot, all.spot + all.count);
+}
+
 void LightingEffect::render(const PassContext& context, Form form) const {
   const FrameCamera& camera = context.camera();
   const LightingSettings& settings = context.settings().of<LightingSettings>();
@@ -398,25 +460,27 @@ void LightingEffect::render(const PassContext& context, Form form) const {
   const bool writesOutput = context.writesOutput(output);
 
   const glm::mat3 viewRotation(camera.view);
-  const glm::vec3 lightDirection = glm::normalize(viewRotation * settings.directionToSun());
+  const Sun sun = Sun::of(settings, context.scene().lights());
+  const glm::vec3 lightDirection = glm::normalize(viewRotation * sun.directionToSun);
   const glm::mat3 viewToWorld = glm::transpose(viewRotation);  // the view's rotation is orthonormal
   const glm::mat3 viewToEnvironment = environmentRotation(settings) * viewToWorld;
   const PunctualLightUniforms lights =
       form.deferred ? PunctualLightUniforms{}
-                    : PunctualLightUniforms::of(context.scene().lights(), camera.view, lightsPerDraw_);
+                    : PunctualLightUniforms::of(context.scene().lights(), camera.view, lightsPerDraw_, sun.fileLight);
+  if (!form.counting) publish(context, sun, lightDirection, viewToEnvironment, settings);
   // The texture units: gpu/TextureUnits.h.
   const int kEnvironmentUnit = TextureUnits::kEnvironment;
   const int kEnvironmentFilteredUnit = environmentFilteredUnit_;
-  // The uniforms of a form's program. Those every shading form reads are set strictly (a strict program refuses a
-  // name it lacks); those a form, tier or storage may leave out, where the program has them.
+  // The uniforms of a form's program, where it has them: a form, tier, storage or material kind (unlit) may leave
+  // any out (the draws' own, and the full-screen forms' ray, are set strictly).
   auto setShading = [&](const gl::Program& p, const Form& f) {
     if (f.counting) return;
     auto optional = [&p](const char* name, const auto& value) {
       if (p.has(name)) p.set(name, value);
     };
     const bool fullscreen = f.deferred || f.background;
-    p.set("u_viewToEnvironment", viewToEnvironment);
-    p.set("u_environmentIntensity", settings.environmentIntensity);
+    optional("u_viewToEnvironment", viewToEnvironment);  // an unlit material reads no light (KHR_materials_unlit)
+    optional("u_environmentIntensity", settings.environmentIntensity);
     optional("u_environment", kEnvironmentUnit);
     optional("u_environmentFiltered", kEnvironmentFilteredUnit);
     optional("u_environmentFilteredScale", environment.filteredScale() * settings.environmentIntensity);
@@ -427,14 +491,15 @@ void LightingEffect::render(const PassContext& context, Form form) const {
       p.set("u_depthToRay", camera.reconstruction.depthToRay);
     if (!f.background) {
       optional("u_lightDirection", lightDirection);
-      optional("u_lightColor", settings.sunColor * settings.sunIntensity);
+      optional("u_lightColor", sun.illuminance);
       optional("u_ao", TextureUnits::kAo);
       if (p.has("u_shIrradiance")) p.set("u_shIrradiance", environment.irradianceUniform().data(), 7);
     }
-    if (!fullscreen && lightsPerDraw_ > 0 && p.has("u_lightPositionRange")) {
-      p.set("u_lightPositionRange", lights.positionRange, lightsPerDraw_);
-      p.set("u_lightColorSpot", lights.colorSpot, lightsPerDraw_);
-      p.set("u_lightSpot", lights.spot, lightsPerDraw_);
+    // As many lights as the program takes (MAX_PUNCTUAL_LIGHTS: fewer for the layered materials).
+    if (const int count = fullscreen ? 0 : p.arraySize("u_lightPositionRange"); count > 0) {
+      p.set("u_lightPositionRange", lights.positionRange, count);
+      p.set("u_lightColorSpot", lights.colorSpot, count);
+      p.set("u_lightSpot", lights.spot, count);
     }
     setStageUniforms(p, stages, context, writesOutput);
   };

@@ -81,7 +81,12 @@ enum class LightingDepth { Auto, GBuffer, Prepass, Overdraw };
 // The sun: an overcast key light over a strong sky dome, so that ambient carries most of the light and AO reads
 // clearly. Its illuminance is colour x intensity; the default intensity pi makes a white Lambertian surface facing it
 // reflect its colour, as the lighting did before the BRDF had its 1 / pi.
+// Where the sun comes from: lighting.sun-* (the renderer's own), or the file's first KHR_lights_punctual directional
+// light (its direction and colour x intensity; the renderer's sun where the file has none).
+enum class SunSource { Settings, File };
+
 struct LightingSettings : ParameterAccess<LightingSettings> {
+  SunSource sun = SunSource::Settings;
   LightingQuality quality = LightingQuality::Medium;
   QualityPreset preset = QualityPreset::Medium;  // the frame preset `quality` came from (applyPreset)
   LightingDepth depth = LightingDepth::Auto;
@@ -96,7 +101,7 @@ struct LightingSettings : ParameterAccess<LightingSettings> {
   std::string environment = "sky";
   float environmentIntensity = 1.0f;  // scales the environment's radiance: ambient light and background
 
-  glm::vec3 directionToSun() const;  // world space, unit
+  glm::vec3 directionToSun() const;  // world space, unit (lighting.sun-*)
   static const std::vector<Parameter<LightingSettings>>& parameters();
   void applyPreset(QualityPreset which);
   bool matchesPreset(QualityPreset which) const;
@@ -113,6 +118,9 @@ inline constexpr int kMaxPunctualLights = 4;
 // Shaders.EveryProgramFitsTheGles2UniformVectors (tests/test_shaders.cpp) packs every program the renderer builds
 // and holds these figures.
 inline constexpr int kForwardLightingVectorsWithoutLights = 15;
+// What the material layers (KHR_materials_specular, _ior, _clearcoat: MaterialKind::layered) add to it: their
+// programs take (maxFragmentUniformVectors - 16) / 3 lights.
+inline constexpr int kMaterialLayerVectors = 1;
 inline constexpr int kVectorsPerPunctualLight = 3;
 // What the forms keep for themselves, before any per-pixel stage fuses into them (frame/Stage.h: the stages get the
 // rest): the forward form's the same 15 (the tone-mapping stage's two floats take spare columns), the deferred
@@ -120,14 +128,26 @@ inline constexpr int kVectorsPerPunctualLight = 3;
 inline constexpr int kForwardLightingVectorsWithoutStages = 15;
 inline constexpr int kDeferredLightingVectorsWithoutStages = 14;
 
+// The sun of a frame: its world direction (towards it, unit) and illuminance, from the settings or, with lighting.sun
+// file, from the scene's first directional light (`fileLight` its index in the lights, which then light the scene
+// as the sun only; -1: none taken).
+struct Sun {
+  glm::vec3 directionToSun{0.0f, 1.0f, 0.0f};
+  glm::vec3 illuminance{0.0f};
+  int fileLight = -1;
+  static Sun of(const LightingSettings& settings, const std::vector<PunctualLight>& lights);
+};
+
 // The view-space uniforms of the punctual lights (lighting.frag), derived once per frame on the CPU.
 struct PunctualLightUniforms {
-  glm::vec4 positionRange[kMaxPunctualLights]{};  // xyz position, w 1 / range^4 (0: no range)
+  glm::vec4 positionRange[kMaxPunctualLights]{};  // xyz position, w 1 / range^4 (0: no range; -1: directional,
+                                                  // xyz the unit direction towards it)
   glm::vec4 colorSpot[kMaxPunctualLights]{};      // rgb colour x intensity, a the cone's scale
   glm::vec4 spot[kMaxPunctualLights]{};           // xyz the spot's direction, w the cone's offset
   int count = 0;
-  // The first maxCount (at most kMaxPunctualLights) by that order.
-  static PunctualLightUniforms of(const std::vector<PunctualLight>& lights, const glm::mat4& view, int maxCount);
+  // The first maxCount (at most kMaxPunctualLights) by that order; `skip`: a light the sun already is (Sun).
+  static PunctualLightUniforms of(const std::vector<PunctualLight>& lights, const glm::mat4& view, int maxCount,
+                                  int skip = -1);
 };
 
 class LightingEffect : public Effect {
@@ -135,11 +155,13 @@ class LightingEffect : public Effect {
   using Settings = LightingSettings;
   static constexpr bool kHasSwitch = false;
   static EffectInfo info();
-  // Every variant, the forward ones with lightsPerDraw punctual lights.
-  static std::vector<ProgramSpec> programSpecs(int lightsPerDraw = kMaxPunctualLights);
+  // Every variant, the forward ones with lightsPerDraw punctual lights (the layered ones with layeredLightsPerDraw;
+  // -1: as many).
+  static std::vector<ProgramSpec> programSpecs(int lightsPerDraw = kMaxPunctualLights, int layeredLightsPerDraw = -1);
   // The programs per-pixel stages fuse into (frame/Stage.h), as fusedProgram takes them, for the shader checks: the
-  // deferred form, the background, the forward form of the plainest and of the heaviest material (with the atlas,
-  // and `lightsPerDraw` punctual lights). `vectors`: the fragment uniform vectors the head keeps for itself.
+  // deferred form, the background, the forward form of the plainest and of the heaviest material, and of the heaviest
+  // layered one (with the atlas, and `lightsPerDraw` punctual lights). `vectors`: the fragment uniform vectors the
+  // head keeps for itself.
   struct StageHeadSpec {
     ProgramSpec program;
     ColorSpace space;
@@ -147,8 +169,9 @@ class LightingEffect : public Effect {
   };
   static std::vector<StageHeadSpec> stageHeads(int lightsPerDraw = 0);
   // The punctual lights per draw a context of this many fragment uniform vectors holds: 4 from 27 vectors, 0 at
-  // GLES 2's minimum of 16 (the sun and the environment still light the scene).
-  static int punctualLightsPerDraw(int maxFragmentUniformVectors);
+  // GLES 2's minimum of 16 (the sun and the environment still light the scene); for the layered materials' programs
+  // 4 from 28.
+  static int punctualLightsPerDraw(int maxFragmentUniformVectors, bool layered = false);
   // World directions to the environment's: for the sky, the turn about +y that puts its sun at lighting.sun-azimuth;
   // else the identity.
   static glm::mat3 environmentRotation(const LightingSettings& settings);
@@ -188,6 +211,8 @@ class LightingEffect : public Effect {
   const gl::Program& program(const Form& form, MaterialKind kind, VertexKind vertex,
                              const std::vector<StageDecl>& stages, const std::string& chain) const;
   void render(const PassContext& context, Form form) const;
+  void publish(const PassContext& context, const Sun& sun, const glm::vec3& lightDirection,
+               const glm::mat3& viewToEnvironment, const LightingSettings& settings) const;
 
   const EffectResources& resources_;
   // Built on first use: (form, the material kind it reads, the vertex kind, the fused stages).
@@ -196,6 +221,7 @@ class LightingEffect : public Effect {
   bool stencil_;         // the G-buffer's depth has stencil bits (RenderTargetPool): shade exactly once
   EnvironmentLayout layout_;              // where the prefiltered levels live (RendererOptions::environmentLayout)
   int lightsPerDraw_;                     // punctualLightsPerDraw of the context's fragment uniform vectors
+  int layeredLightsPerDraw_;              // the same for the layered materials' programs
   int environmentFilteredUnit_;           // TextureUnits::environmentFiltered
   bool drawBuffers_;                      // the G-buffer pass writes the base colour (GBufferEffect's same test)
   EnvironmentCache environments_;         // the environment in use (lighting.environment), prepared before planning

@@ -12,7 +12,13 @@ namespace obscura::pbr {
 glm::dvec3 SurfaceParameters::diffuseColor() const { return base * (1.0 - std::clamp(metallic, 0.0, 1.0)); }
 glm::dvec3 SurfaceParameters::f0() const {
   const double m = std::clamp(metallic, 0.0, 1.0);
-  return glm::dvec3(0.04) * (1.0 - m) + base * m;
+  const double r = (ior - 1.0) / (ior + 1.0);
+  const glm::dvec3 dielectric = glm::min(glm::dvec3(r * r) * specularColor, glm::dvec3(1.0)) * specular;
+  return dielectric * (1.0 - m) + base * m;
+}
+glm::dvec3 SurfaceParameters::f90() const {
+  const double m = std::clamp(metallic, 0.0, 1.0);
+  return glm::dvec3(specular * (1.0 - m) + m);
 }
 double SurfaceParameters::clampedRoughness() const { return std::clamp(roughness, kMinRoughness, 1.0); }
 
@@ -29,8 +35,8 @@ double visibilitySmithGgx(double nl, double nv, double alpha) {
   return v + l > 0.0 ? 0.5 / (v + l) : 0.0;
 }
 
-glm::dvec3 fresnelSchlick(const glm::dvec3& f0, double vh) {
-  return f0 + (glm::dvec3(1.0) - f0) * std::pow(1.0 - vh, 5.0);
+glm::dvec3 fresnelSchlick(const glm::dvec3& f0, const glm::dvec3& f90, double vh) {
+  return f0 + (f90 - f0) * std::pow(1.0 - vh, 5.0);
 }
 
 glm::dvec3 brdfCosine(const glm::dvec3& n, const glm::dvec3& v, const glm::dvec3& l, const SurfaceParameters& s) {
@@ -41,7 +47,7 @@ glm::dvec3 brdfCosine(const glm::dvec3& n, const glm::dvec3& v, const glm::dvec3
   const double nh = std::max(glm::dot(n, h), 0.0), vh = std::max(glm::dot(v, h), 0.0);
   const double roughness = s.clampedRoughness();
   const double alpha = roughness * roughness;
-  const glm::dvec3 f = fresnelSchlick(s.f0(), vh);
+  const glm::dvec3 f = fresnelSchlick(s.f0(), s.f90(), vh);
   const glm::dvec3 specular = f * (distributionGgx(nh, alpha) * visibilitySmithGgx(nl, nv, alpha));
   const glm::dvec3 diffuse = (glm::dvec3(1.0) - f) * s.diffuseColor() / kPi;
   return (diffuse + specular) * nl;
@@ -70,10 +76,28 @@ glm::dvec3 ambientLight(const glm::dvec3& radiance, const glm::dvec3& n, const g
   const double nv = std::clamp(glm::dot(n, v), 1e-4, 1.0);
   const double roughness = s.clampedRoughness(), alpha = roughness * roughness;
   const glm::vec2 scaleBias = environmentBrdf(static_cast<float>(roughness), static_cast<float>(nv));
-  const glm::dvec3 specularAlbedo = s.f0() * double(scaleBias.x) + double(scaleBias.y);
+  const glm::dvec3 specularAlbedo = s.f0() * double(scaleBias.x) + s.f90() * double(scaleBias.y);
   const glm::dvec3 diffuse = s.diffuseColor() * (1.0 - specularAlbedo) * radiance;
   const glm::dvec3 specular = specularAlbedo * radiance;
   return diffuse * occlusion + specular * specularOcclusion(nv, occlusion, alpha);
+}
+
+glm::dvec3 coated(const glm::dvec3& beneath, const glm::dvec3& radiance, const glm::dvec3& n, const glm::dvec3& v,
+                  const glm::dvec3& l, const glm::dvec3& illuminance, const SurfaceParameters& s, double occlusion) {
+  if (s.clearcoat <= 0.0) return beneath;
+  // The coat: a dielectric of ior 1.5 (F0 0.04), no diffuse, its own roughness (Khronos sample viewer).
+  SurfaceParameters coat;
+  coat.base = glm::dvec3(0.0);
+  coat.metallic = 0.0;
+  coat.roughness = s.clearcoatRoughness;
+  const double nv = std::clamp(glm::dot(n, v), 1e-4, 1.0);
+  const double roughness = coat.clampedRoughness();
+  const glm::vec2 scaleBias = environmentBrdf(static_cast<float>(roughness), static_cast<float>(nv));
+  const glm::dvec3 layer = glm::dvec3(0.04 * double(scaleBias.x) + double(scaleBias.y)) * radiance *
+                               specularOcclusion(nv, occlusion, roughness * roughness) +
+                           brdfCosine(n, v, l, coat) * illuminance;
+  const glm::dvec3 fresnel = fresnelSchlick(glm::dvec3(0.04), glm::dvec3(1.0), nv);
+  return beneath * (1.0 - s.clearcoat * fresnel) + s.clearcoat * layer;
 }
 
 }  // namespace obscura::pbr
