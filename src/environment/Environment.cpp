@@ -8,6 +8,7 @@
 #include <stb_image.h>
 
 #include "base/Error.h"
+#include "base/TimeSpent.h"
 
 namespace obscura {
 namespace {
@@ -126,6 +127,7 @@ glm::vec3 ProceduralSky::radiance(const glm::vec3& direction) const {
 }
 
 EnvironmentImage ProceduralSky::image(int width, int height) const {
+  const TimedScope timed("sky");
   EnvironmentImage out(width, height);
   constexpr int n = 4;
   for (int y = 0; y < height; ++y)
@@ -189,6 +191,7 @@ std::array<float, 9> ShIrradiance::basis(const glm::vec3& d) {
 }
 
 ShIrradiance ShIrradiance::project(const EnvironmentImage& image) {
+  const TimedScope timed("irradiance");
   std::array<glm::dvec3, 9> sum{};
   for (int y = 0; y < image.height; ++y) {
     const double solidAngle = image.texelSolidAngle(y);
@@ -269,6 +272,7 @@ glm::vec3 PrefilteredEnvironment::prefilter(const std::vector<EnvironmentImage>&
 }
 
 PrefilteredEnvironment PrefilteredEnvironment::of(const EnvironmentImage& image, int samples) {
+  const TimedScope timed("prefilter");
   PrefilteredEnvironment out;
   std::vector<EnvironmentImage> source = {image.width == kEnvironmentWidth && image.height == kEnvironmentHeight
                                               ? image
@@ -363,6 +367,7 @@ glm::vec2 envBrdfIntegrated(float roughness, float nDotV, int samples) {
 
 const std::vector<std::uint8_t>& environmentBrdfTable() {
   static const std::vector<std::uint8_t> table = [] {
+    const TimedScope timed("brdf table");
     std::vector<std::uint8_t> bytes;
     for (int j = 0; j < kEnvironmentBrdfSize; ++j)
       for (int i = 0; i < kEnvironmentBrdfSize; ++i) {
@@ -427,6 +432,7 @@ GpuEnvironment::GpuEnvironment(EnvironmentLayout layout, const PrefilteredEnviro
       texture_(gl::TextureHandle::create()),
       brdf_(gl::TextureHandle::create()),
       polynomial_(sh.polynomial()) {
+  const TimedScope timed("environment upload");
   const float* floats = &polynomial_[0].x;  // glm::vec3 is three tightly packed floats
   for (size_t i = 0; i < 27; ++i) packedPolynomial_[i / 4][static_cast<glm::length_t>(i % 4)] = floats[i];
   glActiveTexture(GL_TEXTURE0);

@@ -6,7 +6,7 @@
 
 namespace obscura {
 
-FrameCamera FrameCamera::from(const Camera& camera, int width, int height, glm::vec2 jitterPixels) {
+FrameCamera FrameCamera::from(const Camera& camera, int width, int height, glm::vec2 jitterPixels, float aspect) {
   FrameCamera frame;
   frame.width = width;
   frame.height = height;
@@ -14,7 +14,7 @@ FrameCamera FrameCamera::from(const Camera& camera, int width, int height, glm::
   frame.far = camera.far;
   frame.fovyRadians = camera.fovyRadians();
   frame.jitter = jitterPixels;
-  const float aspect = static_cast<float>(width) / static_cast<float>(height);
+  if (aspect <= 0.0f) aspect = static_cast<float>(width) / static_cast<float>(height);
   frame.view = camera.view();
   frame.projection = glm::perspective(frame.fovyRadians, aspect, camera.near, camera.far);
   frame.unjitteredProjection = frame.projection;

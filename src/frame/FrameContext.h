@@ -24,10 +24,13 @@ struct FrameCamera {
   glm::mat4 unjitteredProjection{1.0f};  // the same without the jitter (motion vectors)
   ViewReconstruction reconstruction;
   float near = 0.1f, far = 100.0f, fovyRadians = 1.0f;
-  int width = 1, height = 1;   // the output size; the camera's aspect follows it
+  int width = 1, height = 1;   // the size the frame renders at (the output's, or less: frame/Resolution.h)
   glm::vec2 jitter{0.0f};      // sub-pixel offset of the projection, in pixels (x right, y up)
 
-  static FrameCamera from(const Camera& camera, int width, int height, glm::vec2 jitterPixels = glm::vec2(0.0f));
+  // `aspect` 0: width / height. A frame rendered below the output's size (frame/Resolution.h) takes the output's, so
+  // that rounding its sides does not stretch the image.
+  static FrameCamera from(const Camera& camera, int width, int height, glm::vec2 jitterPixels = glm::vec2(0.0f),
+                          float aspect = 0.0f);
   // Pixels per metre at 1 m in front of the camera, for a target `targetHeight` pixels tall.
   float projScale(int targetHeight) const;
 };
@@ -45,6 +48,10 @@ struct FrameContext {
   bool linesOrPoints = false;  // the scene has points or lines to draw (effects/lines/LinesEffect.h)
   // The scene needs the forward lighting (GpuScene::needsForwardLighting): the G-buffer writes no base colour.
   bool forwardLighting = false;
+  // The output's size. The frame renders at camera.width x camera.height, which is less where the render scale is
+  // below 1 (frame/Resolution.h): then one pass at the end upscales the result into the output.
+  int outputWidth = 1, outputHeight = 1;
+  bool upscaled() const { return outputWidth != camera.width || outputHeight != camera.height; }
 };
 
 // Halton low-discrepancy sequence (radical inverse of `index` in `base`), index >= 1: the jitter of temporal

@@ -6,6 +6,7 @@
 #include <glm/gtc/matrix_inverse.hpp>
 
 #include "base/Error.h"
+#include "base/TimeSpent.h"
 #include "gpu/TextureUnits.h"
 #include "scene/MeshProcessing.h"
 #include "scene/TexturePreparation.h"
@@ -80,6 +81,7 @@ const char* skinningPathName(SkinningPath path) {
 }
 
 GpuScene::GpuScene(const Scene& scene, const gl::GlCaps& caps, const Options& options) {
+  const TimedScope timed("scene upload");
   const bool uint32 = caps.elementIndexUint && options.allowUint32Indices;
   desktopGl_ = caps.desktopGl;
   // The caps carry the limits a test simulates (RendererOptions::simulateVertexLimits, applied by the Renderer).

@@ -5,7 +5,9 @@
 #include <cstdlib>
 
 #include "base/Error.h"
+#include "base/TimeSpent.h"
 #include "effects/taa/TaaEffect.h"
+#include "frame/Resolution.h"
 #include "gl/GlObjects.h"
 #include "platform/CameraControls.h"
 #include "scene/BuiltinScene.h"
@@ -154,7 +156,14 @@ void Viewer::showScene(Scene scene, const std::string& name, const Camera& camer
   state_.timeline.sceneLoaded(scene_);           // its first animation, from time 0
 }
 
-void Viewer::loadBuiltinScene() { showScene(makeBuiltinScene(), "built-in scene", builtinSceneCamera()); }
+void Viewer::loadBuiltinScene() {
+  Scene scene;
+  {
+    const TimedScope timed("built-in scene");
+    scene = makeBuiltinScene();
+  }
+  showScene(std::move(scene), "built-in scene", builtinSceneCamera());
+}
 
 GltfLoadReport Viewer::loadGltf(const std::vector<std::uint8_t>& bytes, const std::string& name,
                                 const std::map<std::string, std::vector<std::uint8_t>>& sideFiles) {
@@ -224,6 +233,13 @@ void Viewer::render(GLuint framebuffer, int width, int height, PassTimer* timer,
   FrameOptions options;
   options.timer = timer;
   state_.timeline.applyTo(options);  // time, animation, loop
+  const ResolutionSettings& resolution = state_.settings.of<ResolutionSettings>();
+  renderScale_ = resolution.scale;
+  if (resolution.dynamic) {
+    dynamic_.configure(resolution.targetMs, std::min(resolution.minScale, resolution.scale), resolution.scale);
+    renderScale_ = dynamic_.scale();
+    options.renderScale = renderScale_;
+  }
   renderer_->render(state_.camera, state_.settings, state_.view, target, options);
 }
 

@@ -12,6 +12,7 @@
 #include "effects/lighting/LightingEffect.h"
 #include "effects/lines/LinesEffect.h"
 #include "effects/motion_blur/MotionBlurEffect.h"
+#include "effects/resolution/ResolutionEffect.h"
 #include "effects/taa/TaaEffect.h"
 #include "effects/tonemap/TonemapEffect.h"
 #include "effects/velocity/VelocityEffect.h"
@@ -37,6 +38,8 @@ const std::vector<EffectEntry>& effectTable() {
         EffectEntry::of<DepthOfFieldEffect>(),  // display-color, gbuffer -> display-color (near and far fields)
         EffectEntry::of<MotionBlurEffect>(),  // display-color, velocity, gbuffer -> display-color
         EffectEntry::of<FxaaEffect>(),      // display-color -> display-color
+        // display-color at the render scale -> the output at its size (only below scale 1; FXAA's pass where it runs)
+        EffectEntry::of<ResolutionEffect>(),
     };
     // Names are how everything finds effects, passes and targets: each is used once.
     std::set<std::string> effects, passes, targets;
