@@ -10,6 +10,7 @@
 #include "base/Error.h"
 #include "encoding/HdrEncoding.h"
 #include "encoding/LinearDepthPacking.h"
+#include "environment/BuiltinSky.h"
 #include "frame/PassContext.h"
 #include "gl/PipelineState.h"
 #include "gpu/TextureUnits.h"
@@ -43,10 +44,7 @@ const std::vector<Parameter<LightingSettings>>& LightingSettings::parameters() {
   return table;
 }
 
-glm::vec3 LightingSettings::directionToSun() const {
-  const float elevation = glm::radians(sunElevation), azimuth = glm::radians(sunAzimuth);
-  return {std::cos(elevation) * std::sin(azimuth), std::sin(elevation), std::cos(elevation) * std::cos(azimuth)};
-}
+glm::vec3 LightingSettings::directionToSun() const { return sunDirection(sunElevation, sunAzimuth); }
 
 PunctualLightUniforms PunctualLightUniforms::of(const std::vector<PunctualLight>& lights, const glm::mat4& view,
                                                 int maxCount) {
@@ -236,6 +234,7 @@ void LightingEffect::useEnvironment(const LightingSettings& settings) {
     ShIrradiance sh;
     explicit Prepared(const EnvironmentImage& image)
         : specular(PrefilteredEnvironment::of(image)), sh(ShIrradiance::project(image)) {}
+    explicit Prepared(const PreparedEnvironment& made) : specular(made.specular), sh(made.irradiance) {}
   };
   // The built-in environments are prepared once per process: every Renderer starts with the sky, and its
   // prefiltering is the dearest part of making one.
@@ -244,8 +243,7 @@ void LightingEffect::useEnvironment(const LightingSettings& settings) {
     // (environmentRotation: free); its elevation changes the sky, which is made and prefiltered again (about a second
     // on this machine's CPU: LightingSettings marks sun-elevation slow, so the page applies it when a drag ends).
     LightingSettings defaults;
-    static const Prepared defaultSky(
-        ProceduralSky{defaults.directionToSun()}.image(kEnvironmentWidth, kEnvironmentHeight));
+    static const Prepared defaultSky(builtinSky());  // prefiltered when the library was built
     skyElevation_ = settings.sunElevation;
     if (settings.sunElevation == defaults.sunElevation) {
       environment_ = std::make_unique<GpuEnvironment>(layout_, defaultSky.specular, defaultSky.sh);
