@@ -281,9 +281,7 @@ LightingEffect::LightingEffect(const EffectResources& resources)
   const HdrTexel t = encodeHdr(light_.background);
   backgroundHdr_ = glm::vec4(LinearDepthPacking::channelFromByte(t[0]), LinearDepthPacking::channelFromByte(t[1]),
                              LinearDepthPacking::channelFromByte(t[2]), LinearDepthPacking::channelFromByte(t[3]));
-  // The form of the lit pass before the plan's alternatives, for every material, is built now, so a broken program
-  // fails when the renderer is made.
-  for (MaterialKind kind : MaterialKind::all()) variant({false, false, -1, false}, kind, {});
+  // The variants are built on first use, as the G-buffer's are (GBufferEffect.cpp).
   useEnvironment(LightingSettings{});
 }
 
