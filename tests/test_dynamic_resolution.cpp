@@ -78,8 +78,8 @@ float bestScale(const DynamicResolution& controller, const Cost& cost, double ta
 }  // namespace
 
 // Targets every 1.3 ms from 15 to 60 ms (so that some fall just beside a step's cost, where noise could toggle it),
-// with and without a measurement lag, starting from the largest scale and from the smallest (the cost having just
-// fallen: the controller climbs).
+// with and without a measurement lag, starting from the smallest scale (where a controller starts: it climbs) and from
+// the largest (after a light scene: it comes down).
 TEST(DynamicResolution, SettlesWithinFortyFramesAndThenStaysWithinOneStep) {
   int worstSettle = 0, worstSpread = 0;
   for (double target = 15.0; target <= 60.0; target += 1.3) {
@@ -87,12 +87,13 @@ TEST(DynamicResolution, SettlesWithinFortyFramesAndThenStaysWithinOneStep) {
       for (bool fromBelow : {false, true}) {
         DynamicResolution controller;
         controller.configure(target, 0.5f, 1.0f);
+        EXPECT_EQ(controller.scale(), 0.5f) << "it starts at the smallest scale";
         Cost cost;
-        if (fromBelow) {
-          Cost heavy;
-          heavy.perPixel = 1000.0;
-          simulate(controller, heavy, 50, lag);
-          EXPECT_EQ(controller.scale(), 0.5f);
+        if (!fromBelow) {
+          Cost light;
+          light.perPixel = 5.0;
+          simulate(controller, light, 100, lag);
+          EXPECT_EQ(controller.scale(), 1.0f);
         }
         const Trace run = simulate(controller, cost, 2000, lag);
         const auto [from, spread] = settling(run);
@@ -121,10 +122,11 @@ TEST(DynamicResolution, FollowsACostThatChangesAndHoldsTheLimits) {
   DynamicResolution controller;
   controller.configure(33.3, 0.5f, 1.0f);
   Cost cost;
-  cost.perPixel = 20.0;  // cheap: the largest scale
+  cost.perPixel = 20.0;  // cheap: from the smallest scale up to the largest, at once
   Trace run = simulate(controller, cost, 200);
   EXPECT_EQ(controller.scale(), 1.0f);
-  EXPECT_EQ(settling(run).second, 0);
+  EXPECT_LE(controller.changes(), 2u);
+  EXPECT_LE(settling(run).first, kSettleWithin);
   cost.perPixel = 120.0;  // a heavier scene: down, and settled again within the bound
   run = simulate(controller, cost, 500);
   EXPECT_LE(settling(run).first, kSettleWithin);
@@ -144,17 +146,35 @@ TEST(DynamicResolution, IgnoresFramesMeasuredAtAnotherScaleAndReconfigures) {
   DynamicResolution controller;
   controller.configure(33.3, 0.25f, 1.0f);
   EXPECT_EQ(controller.lastStep(), 16);
-  for (int i = 0; i < 50; ++i) controller.measured(500.0, 0.7f);  // not the current scale
+  EXPECT_EQ(controller.scale(), 0.25f);
+  EXPECT_TRUE(controller.refining()) << "nothing measured yet";
+  for (int i = 0; i < 50; ++i) controller.measured(1.0, 0.7f);  // not the current scale
+  EXPECT_EQ(controller.scale(), 0.25f);
+  EXPECT_EQ(controller.changes(), 0u);
+  // Room: up to the largest scale predicted within kUpHeadroom of the target, after kUpFrames frames.
+  for (int i = 0; i < DynamicResolution::kSettleFrames + DynamicResolution::kUpFrames; ++i) {
+    EXPECT_TRUE(controller.refining()) << i;
+    controller.measured(1.0, 0.25f);
+  }
   EXPECT_EQ(controller.scale(), 1.0f);
+  EXPECT_FALSE(controller.refining()) << "at the largest scale";
   for (int i = 0; i < 5; ++i) controller.measured(40.0, 1.0f);
   EXPECT_EQ(controller.scale(), 1.0f) << "20 % over the target: not before kMeanFrames frames are in the mean";
   controller.measured(40.0, 1.0f);
   EXPECT_LT(controller.scale(), 1.0f);
-  const float before = controller.scale();
+  // The same scene at the new scale: once its frames show no room for the step above, no more frames are asked for.
+  for (int i = 0; i < DynamicResolution::kSettleFrames + DynamicResolution::kUpFrames; ++i) {
+    const float scale = controller.scale();
+    controller.measured(40.0 * scale * scale, scale);
+  }
+  EXPECT_FALSE(controller.refining());
+  const float held = controller.scale();
+  controller.forget();  // a new output size or scene: measure afresh at the same scale
+  EXPECT_EQ(controller.scale(), held);
+  EXPECT_TRUE(controller.refining());
   controller.configure(33.3, 0.25f, 0.5f);  // a lower largest scale: the nearest step of the new ladder
   EXPECT_LE(controller.scale(), 0.5f);
   EXPECT_EQ(controller.lastStep(), 8);
   controller.reset();
-  EXPECT_EQ(controller.scale(), 0.5f);
-  EXPECT_GT(before, 0.25f);
+  EXPECT_EQ(controller.scale(), 0.25f);
 }

@@ -47,6 +47,7 @@ ProgramSpec upscaleSpec(UpscaleFilter filter, bool sharpen) {
 
 // The upscale pass's program run on `source` into a width x height target.
 Bytes upscale(const Bytes& source, int width, int height, UpscaleFilter filter, float sharpness = 0.0f) {
+  test::context();  // current before the first GL object
   const gl::Program program = upscaleSpec(filter, sharpness > 0.0f).build(true);
   const gl::Texture2D input(source.width, source.height, GL_NEAREST, source.rgba.data());
   const gl::RenderTarget output("upscale test", width, height, GL_NEAREST, gl::RenderTarget::Depth::None, false);
@@ -285,14 +286,20 @@ TEST(Upscale, DynamicResolutionDrawsTheViewersFramesAtTheScaleItChose) {
   viewer.state().setDefault("resolution.dynamic", "on");
   EXPECT_EQ(viewer.state().toQuery().find("resolution.dynamic"), std::string::npos) << "the viewer's own default";
   const gl::RenderTarget output("viewer output", 320, 180, GL_NEAREST, gl::RenderTarget::Depth::None, false);
+  // The first frame is the cheapest: the smallest scale (resolution.min-scale).
+  viewer.render(output.framebuffer(), 320, 180);
+  EXPECT_EQ(viewer.renderScale(), 0.5f);
+  EXPECT_EQ(viewer.renderer()->lastFrame().camera.width, 160);
+  EXPECT_EQ(viewer.renderer()->lastFrame().outputWidth, 320);
+  // Frames far under the target (33.3 ms): up to the largest scale.
+  while (viewer.dynamicResolution().refining()) viewer.frameMeasured(2.0, viewer.renderScale());
   viewer.render(output.framebuffer(), 320, 180);
   EXPECT_EQ(viewer.renderScale(), 1.0f);
-  // Frames far over the target (33.3 ms): the controller goes down, the next frame is drawn smaller.
+  // Frames far over it: down, and the next frame is drawn smaller.
   for (int frame = 0; frame < 4; ++frame) viewer.frameMeasured(200.0, viewer.renderScale());
   viewer.render(output.framebuffer(), 320, 180);
   EXPECT_LT(viewer.renderScale(), 1.0f);
   EXPECT_EQ(viewer.renderer()->lastFrame().camera.width, renderSize({320, 180}, viewer.renderScale()).x);
-  EXPECT_EQ(viewer.renderer()->lastFrame().outputWidth, 320);
   viewer.state().settings.set("resolution.dynamic", "off");
   viewer.render(output.framebuffer(), 320, 180);
   EXPECT_EQ(viewer.renderScale(), 1.0f);

@@ -44,6 +44,8 @@ namespace {
 
 // Exponential moving average weight of the newest frame in the displayed timings.
 constexpr double kSmoothing = 0.1;
+// The most frames drawn after a change for dynamic resolution to find its scale (DynamicResolution::refining).
+constexpr int kRefineFrames = 120;
 
 // Where the time between obscura_create and the first frame went, in ms by name (base/TimeSpent.h).
 Json timesSpent(const std::map<std::string, TimeSpent::Total>& totals) {
@@ -78,6 +80,7 @@ class WebApp {
   void changed() {
     renderError_.clear();
     frameWanted_ = true;
+    refineFrames_ = kRefineFrames;
   }
   void setContinuous(bool continuous) {
     continuous_ = continuous;
@@ -130,6 +133,9 @@ class WebApp {
                    {"dynamic", resolution.dynamic},
                    {"measuredBy", timer_ && timer_->available() ? "gpu" : "cpu"},
                    {"meanMs", dynamic.meanMs()},
+                   {"framesMeasured", dynamic.framesMeasured()},
+                   {"refining", dynamic.refining()},
+                   {"step", dynamic.step()},
                    {"targetMs", resolution.targetMs},
                    {"changes", dynamic.changes()}};
     if (const Renderer* renderer = viewer_.renderer()) {
@@ -193,13 +199,25 @@ class WebApp {
       }
     }
     int width = 0, height = 0;
-    if (fit(&width, &height)) frameWanted_ = true;
+    if (fit(&width, &height)) {
+      frameWanted_ = true;
+      refineFrames_ = kRefineFrames;  // a new size: dynamic resolution measures afresh
+    }
     if (viewer_.playing()) frameWanted_ = true;  // a playing timeline changes every frame by itself
     // The temporal AO accumulates over frames: a still view keeps drawing until its history holds
     // ao.temporal-frames frames (the last drawn frame's history held historyFrames + 1).
     const AoSettings& ao = viewer_.state().settings.ao();
     if (const Renderer* renderer = viewer_.renderer())
       if (ao.enabled && ao.temporal && renderer->lastFrame().historyFrames + 1 < ao.temporalFrames) frameWanted_ = true;
+    // Dynamic resolution starts at its smallest scale and climbs while frames show room (DynamicResolution::refining):
+    // a still view draws on until it is there, within a budget of frames per change (timer results may never come).
+    if (viewer_.state().settings.of<ResolutionSettings>().dynamic) {
+      if (viewer_.dynamicResolution().scale() != lastScale_) frameWanted_ = true;  // it chose another scale
+      if (viewer_.dynamicResolution().refining() && refineFrames_ > 0) {
+        frameWanted_ = true;
+        --refineFrames_;
+      }
+    }
     if (!frameWanted_ && !continuous_ && settleFrames_ <= 0) {
       lastFrameTime_ = 0.0;  // the next drawn frame does not follow this one
       return;
@@ -271,6 +289,7 @@ class WebApp {
   int restores_ = 0;
   std::string renderError_;
   float lastScale_ = 1.0f;              // the render scale of the last frame drawn
+  int refineFrames_ = kRefineFrames;    // frames dynamic resolution may still draw on since the last change
   std::uint64_t timerResults_ = 0;      // the GPU timer's results fed to dynamic resolution
   double createMs_ = 0.0, createdAt_ = 0.0, firstFrameMs_ = 0.0, firstFrameCpuMs_ = 0.0;
   Json createParts_ = Json::object(), firstFrameParts_ = Json::object();

@@ -18,23 +18,48 @@ int DynamicResolution::ladderEnd() const {
 void DynamicResolution::configure(double targetMs, float minScale, float maxScale) {
   maxScale = std::clamp(maxScale, 0.01f, 1.0f);
   minScale = std::clamp(minScale, 0.01f, maxScale);
-  if (targetMs == targetMs_ && minScale == minScale_ && maxScale == maxScale_) return;
+  if (configured_ && targetMs == targetMs_ && minScale == minScale_ && maxScale == maxScale_) return;
   const float current = scale();
   targetMs_ = targetMs;
   minScale_ = minScale;
   maxScale_ = maxScale;
   lastStep_ = ladderEnd();
+  if (!configured_) {
+    configured_ = true;
+    step_ = lastStep_;
+    frames_ = 0;
+    mean_ = 0.0;
+    return;
+  }
   int nearest = 0;
   for (int k = 1; k <= lastStep_; ++k)
     if (std::abs(scaleOf(k) - current) < std::abs(scaleOf(nearest) - current)) nearest = k;
   if (nearest != step_ || scaleOf(nearest) != current) moveTo(nearest);
 }
 
-void DynamicResolution::reset() {
-  if (step_ != 0) moveTo(0);
+void DynamicResolution::forget() {
   frames_ = 0;
   mean_ = 0.0;
   tooDear_ = -1;
+}
+
+void DynamicResolution::reset() {
+  if (step_ != lastStep_) moveTo(lastStep_);
+  frames_ = 0;
+  mean_ = 0.0;
+  tooDear_ = -1;
+}
+
+double DynamicResolution::predicted(int step) const {
+  const double r = scaleOf(step) / scaleOf(step_);
+  return mean_ * r * r;
+}
+
+bool DynamicResolution::refining() const {
+  if (step_ == 0 || step_ - 1 <= tooDear_) return false;
+  const int counted = frames_ - kSettleFrames;
+  if (counted <= 0) return true;
+  return counted < kUpFrames && predicted(step_ - 1) <= kUpHeadroom * targetMs_;
 }
 
 void DynamicResolution::moveTo(int step) {
@@ -51,11 +76,6 @@ void DynamicResolution::measured(double frameMs, float scale) {
   if (frames_ <= kSettleFrames) return;
   const int counted = frames_ - kSettleFrames;
   mean_ = counted == 1 ? frameMs : mean_ + kSmoothing * (frameMs - mean_);
-  const double s = this->scale();
-  auto predicted = [&](int step) {
-    const double r = scaleOf(step) / s;
-    return mean_ * r * r;
-  };
   if (step_ < lastStep_ && mean_ > targetMs_ && (counted >= kMeanFrames || frameMs > kOverload * targetMs_)) {
     int next = step_ + 1;
     while (next < lastStep_ && predicted(next) > kDownHeadroom * targetMs_) ++next;

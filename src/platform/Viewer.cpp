@@ -147,6 +147,7 @@ Viewer::~Viewer() = default;
 
 void Viewer::showScene(Scene scene, const std::string& name, const Camera& camera) {
   if (renderer_) renderer_->setScene(scene);  // first: if the upload fails, nothing has changed
+  dynamic_.forget();                          // another scene costs otherwise
   scene_ = std::move(scene);
   sceneName_ = name;
   sceneBounds_ = scene_.worldBounds();
@@ -235,6 +236,9 @@ void Viewer::render(GLuint framebuffer, int width, int height, PassTimer* timer,
   state_.timeline.applyTo(options);  // time, animation, loop
   const ResolutionSettings& resolution = state_.settings.of<ResolutionSettings>();
   renderScale_ = resolution.scale;
+  if (width != lastWidth_ || height != lastHeight_) dynamic_.forget();
+  lastWidth_ = width;
+  lastHeight_ = height;
   if (resolution.dynamic) {
     dynamic_.configure(resolution.targetMs, std::min(resolution.minScale, resolution.scale), resolution.scale);
     renderScale_ = dynamic_.scale();

@@ -117,6 +117,7 @@ class Viewer {
   ViewerState state_;
   DynamicResolution dynamic_;
   float renderScale_ = 1.0f;
+  int lastWidth_ = 0, lastHeight_ = 0;  // the last frame's output size (a new one: dynamic_ measures afresh)
 };
 
 }  // namespace obscura
