@@ -31,6 +31,10 @@
 #ifndef UPSCALE_SHARPEN
 #define UPSCALE_SHARPEN 0
 #endif
+// The quad's colour range below which the edge upscale is the bilinear one (step 0): two levels of 255.
+#ifndef UPSCALE_FLAT
+#define UPSCALE_FLAT (2.0 / 255.0)
+#endif
 
 #if UPSCALE_SHARPEN
 uniform float u_sharpness;  // 0 .. 1
@@ -77,15 +81,24 @@ vec3 upscaleEdge(vec2 uv, vec2 size, vec2 texel) {
   vec2 p = uv * size - 0.5;
   vec2 f = fract(p);
   vec2 base = floor(p) + 0.5;
+  vec4 tf = upscaleTap(base, 0.0, 0.0, texel);
+  vec4 g = upscaleTap(base, 1.0, 0.0, texel);
+  vec4 j = upscaleTap(base, 0.0, 1.0, texel);
+  vec4 k = upscaleTap(base, 1.0, 1.0, texel);
+  vec3 low = min(min(tf.rgb, g.rgb), min(j.rgb, k.rgb));
+  vec3 high = max(max(tf.rgb, g.rgb), max(j.rgb, k.rgb));
+  // 0. Flat: the result is clamped to the quad's range (step 4), so where that range is within UPSCALE_FLAT, the
+  // filter's result and the bilinear one differ by less: bilinear, without the eight other texels and the kernel.
+  // Most of a frame is this smooth; a GPU or llvmpipe skips the rest there (CPU rasterisers that run both sides of
+  // a branch do not save).
+  vec3 range = high - low;
+  if (max(range.r, max(range.g, range.b)) < UPSCALE_FLAT)
+    return mix(mix(tf.rgb, g.rgb, f.x), mix(j.rgb, k.rgb, f.x), f.y);
   vec4 b = upscaleTap(base, 0.0, -1.0, texel);
   vec4 c = upscaleTap(base, 1.0, -1.0, texel);
   vec4 e = upscaleTap(base, -1.0, 0.0, texel);
-  vec4 tf = upscaleTap(base, 0.0, 0.0, texel);
-  vec4 g = upscaleTap(base, 1.0, 0.0, texel);
   vec4 h = upscaleTap(base, 2.0, 0.0, texel);
   vec4 i = upscaleTap(base, -1.0, 1.0, texel);
-  vec4 j = upscaleTap(base, 0.0, 1.0, texel);
-  vec4 k = upscaleTap(base, 1.0, 1.0, texel);
   vec4 l = upscaleTap(base, 2.0, 1.0, texel);
   vec4 n = upscaleTap(base, 0.0, 2.0, texel);
   vec4 o = upscaleTap(base, 1.0, 2.0, texel);
@@ -125,8 +138,6 @@ vec3 upscaleEdge(vec2 uv, vec2 size, vec2 texel) {
   easuTap(sum, weight, vec2(1.0, 2.0) - f, direction, stretch, window, clip, o.rgb);
 
   // 4. Deringing.
-  vec3 low = min(min(tf.rgb, g.rgb), min(j.rgb, k.rgb));
-  vec3 high = max(max(tf.rgb, g.rgb), max(j.rgb, k.rgb));
   vec3 color = clamp(sum / weight, low, high);
 
 #if UPSCALE_SHARPEN
