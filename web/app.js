@@ -15,7 +15,8 @@ const POINTER_HELP = [['left drag', 'orbit'], ['right drag, shift + drag', 'pan'
 const SLIDER_STEPS = 1000;
 // Narrow or touch screens (phones, tablets) start with the panel closed, so that the image is what a visitor sees
 // first; style.css makes the panel a sheet along the bottom there.
-const COMPACT_SCREEN = '(max-width: 640px), (pointer: coarse)';
+// 600 CSS pixels: phones in portrait are at most about 430 wide; a 640 x 360 desktop window keeps its panel.
+const COMPACT_SCREEN = '(max-width: 600px), (pointer: coarse)';
 
 const $ = (selector) => document.querySelector(selector);
 const controls = [];  // {name, update()} per parameter control
@@ -56,7 +57,8 @@ function sliderScale(parameter, low = parameter.min, high = parameter.max) {
     min: 0,
     max: SLIDER_STEPS,
     toSlider: (v) => Math.round(SLIDER_STEPS * (v - low) / span),
-    fromSlider: (t) => Number((low + span * t / SLIDER_STEPS).toPrecision(4)),
+    // Where the number box rounds to the parameter's step, the slider gives that value: what is shown is applied.
+    fromSlider: (t) => Number(roundToStep(parameter, Number((low + span * t / SLIDER_STEPS).toPrecision(4)))),
   };
 }
 
@@ -80,12 +82,13 @@ function sceneSpan(parameter, previous, centre, value) {
 }
 
 // A number as its field shows it: rounded to the parameter's step (parameter.step, from the core: a power of ten near
-// a thousandth of the range, 1 for integers), or to three significant figures where the step is 0 (ranges over
-// decades, which the slider covers logarithmically): the sun's elevation reads 54.5, not 54.52596.
+// a thousandth of the range, 1 for integers), so the sun's elevation reads 54.5, not 54.52596. Values under 100 steps
+// (fog's density 0.02 on a range of 0 .. 100, the AO's fitted bias 0.0663) and parameters whose step is 0 (ranges
+// over decades, which the slider covers logarithmically) show three significant figures instead.
 function roundToStep(parameter, value) {
   const v = Number(value);
   if (value === '' || !Number.isFinite(v)) return String(value);
-  if (!(parameter.step > 0)) return String(Number(v.toPrecision(3)));
+  if (!(parameter.step > 0) || Math.abs(v) < 100 * parameter.step) return String(Number(v.toPrecision(3)));
   const decimals = Math.max(0, -Math.floor(Math.log10(parameter.step) + 1e-9));
   return String(Number((Math.round(v / parameter.step) * parameter.step).toFixed(decimals)));
 }
@@ -588,6 +591,7 @@ async function main() {
   document.body.dataset.ready = 'true';
   await obscura.firstFrame;
   shownAt = performance.now();
+  document.body.dataset.shownScale = String(obscura.stats().render.scale);
   document.body.dataset.shown = String(shownAt);
 }
 
