@@ -65,7 +65,7 @@ try {
         return o.stats();
       };
       let s = await next(o.stats().frames + 1);  // the change drawn, and one more
-      const gpu = [], interval = [];
+      const gpu = [], interval = [], passes = [];
       let seenTimes = JSON.stringify(s.passMs);
       let last = { frames: s.frames, time: performance.now() };
       while (interval.length < frames) {
@@ -76,19 +76,21 @@ try {
         const times = JSON.stringify(s.passMs);
         if (s.passMs && times !== seenTimes) {
           gpu.push(Object.values(s.passMs).filter((v) => v !== null).reduce((a, b) => a + b, 0));
+          passes.push(s.passMs);
           seenTimes = times;
         }
       }
       o.setContinuous(false);
       const shot = o.snapshot();
-      return { gpu, interval, pixels: Array.from(shot.pixels), scale: o.stats().render.scale };
+      return { gpu, interval, passes, pixels: Array.from(shot.pixels), scale: o.stats().render.scale };
     }, { state, frames: options.frames });
-    const results = configurations.map(() => ({ gpu: [], interval: [], pixels: null }));
+    const results = configurations.map(() => ({ gpu: [], interval: [], passes: [], pixels: null }));
     for (let round = 0; round < options.rounds; ++round) {
       for (let c = 0; c < configurations.length; ++c) {
         const r = await measure(configurations[c].state);
         results[c].gpu.push(...r.gpu);
         results[c].interval.push(...r.interval);
+        results[c].passes.push(...r.passes);
         results[c].pixels = r.pixels;
       }
     }
@@ -110,6 +112,10 @@ try {
       console.log(`  ${configurations[c].name.padEnd(20)} GPU ${gpu.toFixed(1).padStart(8)} ms (${(gpu / fullGpu)
         .toFixed(3)} x full)   frame ${interval.toFixed(0).padStart(6)} ms (${(interval / fullInterval).toFixed(3)}` +
                   ` x full)   MAE ${error.toFixed(3)}${versus}`);
+      // Where the time goes: each pass's median GPU ms (the passes that ran).
+      const names = [...new Set(r.passes.flatMap((p) => Object.keys(p).filter((k) => p[k] !== null)))];
+      console.log(`    passes: ${names.map((n) => `${n} ${median(r.passes.map((p) => p[n] ?? 0)).toFixed(0)}`)
+        .join(', ')}`);
     }
     targets.push(`${width}x${height}: scale 0.5 + edge ${rows.at(-2).gpuRatio.toFixed(3)} x the full frame's GPU ` +
                  `time, ${rows.at(-2).intervalRatio.toFixed(3)} x its frame interval (target <= 0.35); its MAE ` +
