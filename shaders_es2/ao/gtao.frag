@@ -100,7 +100,7 @@ void main() {
   }
   float log2DiskRadius = log2(max(c.diskRadius, 1e-3));
   vec3 estimator = estimatorAt(log2DiskRadius);
-  vec3 V = normalize(-c.position);
+  vec3 V = -eyeRayDirection(c.position);
   // The slices' rotation: a 4x4 ordered (Bayer) pattern, so every 4x4 block holds 16 evenly spaced angles and the
   // bilateral blur (9 taps a direction at the medium preset) averages them all on a flat surface; the interleaved
   // gradient noise SAO uses left diagonal streaks where two slices per pixel sampled a wall's foot. The steps'

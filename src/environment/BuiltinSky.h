@@ -17,12 +17,14 @@ struct PreparedEnvironment {
   ShIrradiance irradiance;
 };
 
-// The sky of the default sun (kBuiltinSunElevation, kBuiltinSunAzimuth), made once per process: its image (level 0,
-// ProceduralSky::image: milliseconds) now, its levels 1 .. 5 and its irradiance from the build. The same, to the bit,
-// as prepareEnvironment(ProceduralSky{...}.image(...)) made by the compiler that built the baking tool.
-const PreparedEnvironment& builtinSky();
+// The sky of the default sun (kBuiltinSunElevation, kBuiltinSunAzimuth), encoded for `filtering`: its image (level 0,
+// ProceduralSky::image: milliseconds) made now, its levels 1 .. 5 and its irradiance from the build (environment/
+// EnvironmentCache.cpp keeps it once per process and filtering). Its RGB9E5 levels and irradiance are the same, to the
+// bit, as prepareEnvironment(ProceduralSky{...}.image(...)) made by the compiler that built the baking tool; the
+// filtered (RGBM) levels are encoded from the RGB9E5 ones, within a level of 255 of those made from the exact levels.
+PreparedEnvironment builtinSky(EnvironmentFiltering filtering);
 // What builtinSky() holds, made from scratch: the image's prefiltered levels and irradiance (the baking tool's work).
-PreparedEnvironment prepareEnvironment(const EnvironmentImage& image);
+PreparedEnvironment prepareEnvironment(const EnvironmentImage& image, EnvironmentFiltering filtering);
 // The sun the baked sky was made for (unit).
 glm::vec3 builtinSkySun();
 
