@@ -64,7 +64,8 @@ TEST(EffectTable, ListsTheFrameInOrderWithUniqueNames) {
   for (const EffectEntry& row : effectTable()) effects.push_back(row.info.name);
   EXPECT_EQ(effects, (std::vector<std::string>{"gbuffer", "velocity", "ao", "lighting", "lines", "fog", "transparency",
                                                 "taa", "bloom", "lens-flare", "glare", "dof", "auto-exposure",
-                                                "tonemap", "edges", "motion-blur", "chromatic-aberration", "fxaa"}));
+                                                "tonemap", "edges", "motion-blur", "chromatic-aberration", "fxaa",
+                                                "resolution"}));
   EXPECT_EQ(framePassNames(),
             (std::vector<std::string>{"pose", "gbuffer", "base-color", "velocity", "hierarchy", "sao", "ao-temporal",
                                       "blur-h", "blur-v", "upsample", "lighting", "shading-count", "lines", "fog",
@@ -76,7 +77,7 @@ TEST(EffectTable, ListsTheFrameInOrderWithUniqueNames) {
                                       "exposure-histogram", "exposure-bins", "exposure-adapt", "tonemap",
                                       "edges-detect", "edges-h", "edges",
                                       "motion-tiles-h", "motion-tiles", "motion-neighbors", "motion-blur",
-                                      "chromatic-aberration", "fxaa",
+                                      "chromatic-aberration", "fxaa", "upscale",
                                       "view", "present"}));
   // Every target an effect declares is RGBA8 data with a documented encoding; packed data is never filtered (plain
   // colours may be: the display colour, depth of field's premultiplied half-size fields).

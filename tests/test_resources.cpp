@@ -119,6 +119,11 @@ TEST(Resources, AGlErrorRaisedInAPassNamesThatPass) {
     if (pass.rfind("dof-", 0) == 0) frame.set("dof", "on");
     if (pass == "fog" || pass == "bloom") frame.set(pass, "on");
     if (pass.rfind("edges", 0) == 0) frame.set("edges", "on");
+    // The upscale runs below render scale 1, as its own pass where FXAA is off.
+    if (pass == "upscale") {
+      frame.set("resolution.scale", "0.5");
+      frame.set("fxaa", "off");
+    }
     // The lens's light (bloom's bright pass alone, with bloom off); auto exposure, its histogram passes with
     // percentile metering, its reductions on frames wide enough to need one or two.
     if (pass == "bloom-bright" || pass == "lens-flare") frame.set("lens-flare", "on");

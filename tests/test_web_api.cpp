@@ -22,7 +22,7 @@ using Json = nlohmann::json;
 namespace page = obscura::test::page;
 
 extern "C" {
-int obscura_create(int checkGlErrors);
+int obscura_create(int checkGlErrors, int dynamicResolution);
 const char* obscura_error();
 const char* obscura_describe();
 int obscura_set(const char* name, const char* value);
@@ -74,7 +74,7 @@ Json stats() { return Json::parse(obscura_stats()); }
 // The module with GL error checks after every pass (as the browser tests create it), at the default display size.
 void createModule() {
   page::setDisplaySize(160, 90);
-  ASSERT_EQ(obscura_create(1), 1) << obscura_error();
+  ASSERT_EQ(obscura_create(1, 0), 1) << obscura_error();
   page::loggedErrors();
 }
 

@@ -6,6 +6,7 @@
 #include <glm/gtc/matrix_inverse.hpp>
 
 #include "base/Error.h"
+#include "base/TimeSpent.h"
 #include "gpu/TextureUnits.h"
 #include "scene/MeshProcessing.h"
 #include "scene/TexturePreparation.h"
@@ -57,6 +58,7 @@ gl::BufferHandle vec3Buffer(const std::vector<glm::vec3>& values) {
 }  // namespace
 
 GpuScene::GpuScene(const Scene& scene, const gl::GlCaps& caps, const Options& options) {
+  const TimedScope timed("scene upload");
   desktopGl_ = caps.desktopGl;
   // The caps carry the limits a test simulates (RendererOptions::simulateVertexLimits, applied by the Renderer).
   limits_ = {caps.maxVertexUniformVectors, caps.maxVertexAttribs, caps.maxVertexTextureImageUnits};

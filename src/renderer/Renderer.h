@@ -93,6 +93,9 @@ struct FrameOptions {
   // reference (renderer/AccumulationReference.h: accumulateAperture), whose camera sits off the lens's centre and looks
   // through the same plane in focus. Reconstruction from depth ignores it, as it ignores the jitter.
   glm::vec2 projectionShift{0.0f};
+  // The render scale of this frame (frame/Resolution.h), in place of resolution.scale: what dynamic resolution chose
+  // (platform/DynamicResolution.h). Unset: resolution.scale.
+  std::optional<float> renderScale;
   // A shift that grows with depth, in pixels per metre of view depth (x right, y up), added to projectionShift: the
   // orthographic aperture reference's tilted parallel rays (accumulateAperture). Orthographic cameras only.
   glm::vec2 projectionShear{0.0f};
@@ -148,7 +151,8 @@ class Renderer {
   size_t pooledTargets() const { return pool_.slotCount(); }
 
  private:
-  void beginFrame(const Camera& camera, const RenderSettings& settings, const OutputTarget& output,
+  // `size`: the size the frame renders at (the output's, or less: frame/Resolution.h).
+  void beginFrame(const Camera& camera, const RenderSettings& settings, glm::ivec2 size, const OutputTarget& output,
                   const FrameOptions& options);
   void endFrame();
   void dropHistory();
@@ -191,7 +195,8 @@ class Renderer {
   // The last frame's pose, kept to be the next frame's previous one when it asks for that time.
   ScenePose lastPose_;
   PoseOptions lastPoseOptions_;
-  glm::ivec2 lastSize_{0, 0};
+  glm::ivec2 lastSize_{0, 0};        // the last frame's render size
+  glm::ivec2 lastOutputSize_{0, 0};  // and its output's
 };
 
 }  // namespace obscura

@@ -2,6 +2,7 @@
 
 #include <map>
 
+#include "frame/FramePlan.h"
 #include "frame/PassContext.h"
 #include "gl/PipelineState.h"
 
@@ -48,19 +49,17 @@ constexpr FxaaPreset kPresets[] = {
     {QualityPreset::Ultra, 39, 0.063f, 0.0312f},
 };
 
-// quality 0: the classifying draw, which has no search.
-ProgramSpec spec(int quality) {
-  if (quality == 0)
-    return ProgramSpec{"fxaa[classify]", "lib/fullscreen.vert", "fxaa/fxaa.frag",
-                       {{"FXAA_CLASSIFY", "1"}, {"FAR_RAY", "0"}},
-                       {}};
-  return ProgramSpec{"fxaa[quality=" + std::to_string(quality) + "]",
-                     "lib/fullscreen.vert",
-                     "fxaa/fxaa.frag",
-                     {{"FXAA_CLASSIFY", "0"},
-                      {"FXAA_SEARCH_STEPS", std::to_string(fxaaSearchSteps(quality).size())},
-                      {"FAR_RAY", "0"}},
-                     {}};
+// quality 0: the classifying draw, which has no search. `upscale`: the upscale the pass does too (null: none).
+ProgramSpec spec(int quality, const ResolutionSettings* upscale = nullptr) {
+  std::vector<std::pair<std::string, std::string>> defines = {{"FXAA_CLASSIFY", quality == 0 ? "1" : "0"},
+                                                              {"FAR_RAY", "0"}};
+  if (quality != 0) defines.emplace_back("FXAA_SEARCH_STEPS", std::to_string(fxaaSearchSteps(quality).size()));
+  std::string name = quality == 0 ? "fxaa[classify" : "fxaa[quality=" + std::to_string(quality);
+  if (upscale) {
+    for (const auto& define : upscaleShaderDefines(*upscale)) defines.push_back(define);
+    name += ",upscale=" + upscaleVariantName(*upscale);
+  }
+  return ProgramSpec{name + "]", "lib/fullscreen.vert", "fxaa/fxaa.frag", defines, {}};
 }
 
 }  // namespace
@@ -126,6 +125,10 @@ EffectInfo FxaaEffect::info() { return {"fxaa", "FXAA", true, false, {"fxaa"}, {
 std::vector<ProgramSpec> FxaaEffect::programSpecs() {
   std::vector<ProgramSpec> specs = {spec(0)};
   for (const auto& [lottes, steps] : searchStepTable()) specs.push_back(spec(lottes));
+  for (const ResolutionSettings& upscale : upscaleVariants()) {
+    specs.push_back(spec(0, &upscale));
+    for (const auto& [lottes, steps] : searchStepTable()) specs.push_back(spec(lottes, &upscale));
+  }
   return specs;
 }
 
@@ -134,7 +137,8 @@ FxaaEffect::Variant::Variant(gl::Program built, int quality)
       color(program.uniform("u_color")),
       texel(program.uniform("u_texel")),
       edgeThreshold(program.uniform("u_edgeThreshold")),
-      edgeThresholdMin(program.uniform("u_edgeThresholdMin")) {
+      edgeThresholdMin(program.uniform("u_edgeThresholdMin")),
+      sharpness(program.optionalUniform("u_sharpness")) {
   if (quality == 0) return;
   size = program.uniform("u_size");
   subpix = program.uniform("u_subpix");
@@ -145,9 +149,11 @@ FxaaEffect::Variant::Variant(gl::Program built, int quality)
   glUseProgram(0);
 }
 
-const FxaaEffect::Variant& FxaaEffect::variant(int quality) {
-  auto it = variants_.find(quality);
-  if (it == variants_.end()) it = variants_.emplace(quality, Variant(resources_.build(spec(quality)), quality)).first;
+const FxaaEffect::Variant& FxaaEffect::variant(int quality, const ResolutionSettings* upscale) {
+  const auto key = std::make_pair(quality, upscale ? upscaleVariantName(*upscale) : std::string());
+  auto it = variants_.find(key);
+  if (it == variants_.end())
+    it = variants_.emplace(key, Variant(resources_.build(spec(quality, upscale)), quality)).first;
   return it->second;
 }
 
@@ -158,32 +164,48 @@ void FxaaEffect::plan(FramePlanner& planner) {
   pass.name = "fxaa";
   pass.reads = {"display-color"};
   pass.writes = {{"display-color", TargetSize::full(), PassDecl::Write::Depth::None, ""}};
-  pass.run = [this, settings](PassContext& context) {
-    const gl::Texture2D& input = context.texture("display-color");
-    const glm::vec2 size(static_cast<float>(input.width()), static_cast<float>(input.height()));
-    context.bindForWriting("display-color");
-    input.bind(0);
-    GLint stencilBits = 0;
-    glGetIntegerv(GL_STENCIL_BITS, &stencilBits);
-    if (stencilBits > 0 && resources_.options.allowFxaaStencil) {
-      // Stencil 1 everywhere (within the output's region: the clear is scissored like the draws); the classifying
-      // draw sets 0 where it writes, and discards the edge pixels, which keep 1.
-      glEnable(GL_STENCIL_TEST);
-      glClearStencil(1);
-      glClear(GL_STENCIL_BUFFER_BIT);
-      glStencilFunc(GL_ALWAYS, 0, 0xFF);
-      glStencilOp(GL_KEEP, GL_KEEP, GL_REPLACE);
-      draw(variant(0), settings, size);
-      glStencilFunc(GL_EQUAL, 1, 0xFF);
-      glStencilOp(GL_KEEP, GL_KEEP, GL_KEEP);
-    }
-    draw(variant(settings.quality), settings, size);
-    gl::restoreBaselineState();
-  };
+  pass.run = [this, settings](PassContext& context) { run(context, "display-color", settings, nullptr); };
+  if (planner.frame().upscaled()) {
+    // The frame renders below the output's size: FXAA and the upscale in one pass over the output, where nothing
+    // else reads FXAA's result (a retained display colour keeps the two passes).
+    const ResolutionSettings upscale = planner.settings().of<ResolutionSettings>();
+    PassDecl::Alternative both;
+    both.absorbing = "upscale";
+    both.mayWriteOutput = true;
+    both.reads = {"display-color"};
+    both.writes = {{kOutputTarget, TargetSize::full(), PassDecl::Write::Depth::None, ""}};
+    both.run = [this, settings, upscale](PassContext& context) { run(context, kOutputTarget, settings, &upscale); };
+    pass.alternatives.push_back(std::move(both));
+  }
   planner.add(std::move(pass));
 }
 
-void FxaaEffect::draw(const Variant& v, const FxaaSettings& settings, glm::vec2 size) const {
+void FxaaEffect::run(PassContext& context, const std::string& output, const FxaaSettings& settings,
+                     const ResolutionSettings* upscale) {
+  const gl::Texture2D& input = context.texture("display-color");
+  const glm::vec2 size(static_cast<float>(input.width()), static_cast<float>(input.height()));
+  context.bindForWriting(output);
+  input.bind(0);
+  GLint stencilBits = 0;
+  glGetIntegerv(GL_STENCIL_BITS, &stencilBits);
+  if (stencilBits > 0 && resources_.options.allowFxaaStencil) {
+    // Stencil 1 everywhere (within the output's region: the clear is scissored like the draws); the classifying
+    // draw sets 0 where it writes, and discards the edge pixels, which keep 1.
+    glEnable(GL_STENCIL_TEST);
+    glClearStencil(1);
+    glClear(GL_STENCIL_BUFFER_BIT);
+    glStencilFunc(GL_ALWAYS, 0, 0xFF);
+    glStencilOp(GL_KEEP, GL_KEEP, GL_REPLACE);
+    draw(variant(0, upscale), settings, size, upscale);
+    glStencilFunc(GL_EQUAL, 1, 0xFF);
+    glStencilOp(GL_KEEP, GL_KEEP, GL_KEEP);
+  }
+  draw(variant(settings.quality, upscale), settings, size, upscale);
+  gl::restoreBaselineState();
+}
+
+void FxaaEffect::draw(const Variant& v, const FxaaSettings& settings, glm::vec2 size,
+                      const ResolutionSettings* upscale) const {
   v.program.use();
   gl::Program::set(v.color, 0);
   gl::Program::set(v.texel, 1.0f / size);
@@ -193,6 +215,7 @@ void FxaaEffect::draw(const Variant& v, const FxaaSettings& settings, glm::vec2 
     gl::Program::set(v.size, size);
     gl::Program::set(v.subpix, settings.subpix);
   }
+  if (v.sharpness >= 0 && upscale) gl::Program::set(v.sharpness, upscale->sharpness);
   resources_.triangle.draw();
 }
 

@@ -16,9 +16,11 @@
 // from about 40 to 13 ms at 1280x720. On SwiftShader the page's frame was no faster (WebCanvas.cpp), so the canvas
 // has no stencil and the pass there is one draw.
 #include <map>
+#include <string>
 #include <vector>
 
 #include "frame/EffectEntry.h"
+#include "frame/Resolution.h"
 
 namespace obscura {
 
@@ -39,6 +41,11 @@ struct FxaaSettings : ParameterAccess<FxaaSettings> {
 // The search's step lengths of one of Lottes' quality presets (FXAA_QUALITY__P0 ..), in pixels.
 const std::vector<float>& fxaaSearchSteps(int quality);
 
+// Below render scale 1 (frame/Resolution.h) FXAA's pass also upscales the frame into the output, in place of the
+// resolution effect's `upscale` pass (PassDecl::Alternative::absorbing): each output pixel runs FXAA on the source
+// texel under it and reads the upscale (lib/upscale.glsl) at its own point moved by FXAA's resample offset, so
+// where FXAA leaves a texel alone the pixel is exactly the upscale's, and where it antialiases an edge the upscale
+// reads from across the edge as FXAA's resample would (shaders_es2/fxaa/fxaa.frag, UPSCALE).
 class FxaaEffect : public Effect {
  public:
   using Settings = FxaaSettings;
@@ -55,12 +62,17 @@ class FxaaEffect : public Effect {
     gl::Program program;
     GLint color, texel, edgeThreshold, edgeThresholdMin;
     GLint size = -1, subpix = -1;  // the full draw's
+    GLint sharpness = -1;          // the upscaling variants' with sharpening
   };
-  const Variant& variant(int quality);
-  void draw(const Variant& v, const FxaaSettings& settings, glm::vec2 size) const;
+  // `upscale`: null for FXAA alone, else the upscale it does too.
+  const Variant& variant(int quality, const ResolutionSettings* upscale);
+  void draw(const Variant& v, const FxaaSettings& settings, glm::vec2 size, const ResolutionSettings* upscale) const;
+  // The pass's draws: the classifying one first where the target written has a stencil buffer.
+  void run(PassContext& context, const std::string& output, const FxaaSettings& settings,
+           const ResolutionSettings* upscale);
 
   const EffectResources& resources_;
-  std::map<int, Variant> variants_;
+  std::map<std::pair<int, std::string>, Variant> variants_;  // by quality and upscaleVariantName ("" alone)
 };
 
 }  // namespace obscura

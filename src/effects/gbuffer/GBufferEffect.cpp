@@ -84,9 +84,9 @@ GBufferEffect::GBufferEffect(const EffectResources& resources)
     : resources_(resources),
       drawBuffers_(resources.caps.drawBuffers && resources.options.allowDrawBuffers),
       shadingNormals_(resources.options.gbufferShadingNormals) {
-  // The variants of the pass every frame runs are built now, so a broken program fails when the renderer is made;
-  // the others (the base colour alone, for its view) on first use.
-  for (MaterialKind kind : MaterialKind::all()) variant(drawBuffers_ ? Output::Both : Output::GBuffer, kind, {});
+  // Every variant is built on first use: the material kinds a scene has. Building all eight here cost the page's
+  // start-up a program each (docs/resolution.md, "Start-up"); the shader tests build every variant
+  // (Shaders.EveryVariantCompilesAndLinks), so a broken one still fails there.
 }
 
 void GBufferEffect::plan(FramePlanner& planner) {

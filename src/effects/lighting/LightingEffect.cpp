@@ -100,10 +100,7 @@ LightingDepth LightingSettings::depthInUse(bool deferredForm) const {
   return deferredForm ? LightingDepth::GBuffer : LightingDepth::Prepass;
 }
 
-glm::vec3 LightingSettings::directionToSun() const {
-  const float elevation = glm::radians(sunElevation), azimuth = glm::radians(sunAzimuth);
-  return {std::cos(elevation) * std::sin(azimuth), std::sin(elevation), std::cos(elevation) * std::cos(azimuth)};
-}
+glm::vec3 LightingSettings::directionToSun() const { return sunDirection(sunElevation, sunAzimuth); }
 
 Sun Sun::of(const LightingSettings& settings, const std::vector<PunctualLight>& lights) {
   Sun sun;
@@ -391,12 +388,9 @@ LightingEffect::LightingEffect(const EffectResources& resources)
   const HdrTexel t = encodeHdr(light_.background);
   backgroundHdr_ = glm::vec4(LinearDepthPacking::channelFromByte(t[0]), LinearDepthPacking::channelFromByte(t[1]),
                              LinearDepthPacking::channelFromByte(t[2]), LinearDepthPacking::channelFromByte(t[3]));
-  // The form of the lit pass before the plan's alternatives, for every material, is built now, so a broken program
-  // fails when the renderer is made.
+  // The variants are built on first use, as the G-buffer's are (GBufferEffect.cpp): building every material's here
+  // cost the page's start-up a program each (docs/resolution.md, "Start-up").
   environments_.use("sky", LightingSettings{}.directionToSun());
-  for (MaterialKind kind : MaterialKind::all())
-    if (!kind.extended())
-      variant({false, false, -1, false, LightingQuality::Medium, environments_.current().filteredFrom()}, kind, {});
 }
 
 void LightingEffect::plan(FramePlanner& planner) {

@@ -94,8 +94,8 @@ struct LightingSettings : ParameterAccess<LightingSettings> {
   LightingDepth depth = LightingDepth::Auto;
   // What `depth` resolves to with these settings, in a frame whose lighting can take the deferred form or not.
   LightingDepth depthInUse(bool deferredForm) const;
-  float sunElevation = 54.525961f;  // degrees above the horizon (world +y up)
-  float sunAzimuth = 52.125016f;    // degrees from +z towards +x
+  float sunElevation = kBuiltinSunElevation;  // degrees above the horizon (world +y up)
+  float sunAzimuth = kBuiltinSunAzimuth;      // degrees from +z towards +x
   glm::vec3 sunColor{0.50f, 0.48f, 0.44f};  // linear
   float sunIntensity = 3.14159265f;         // lux per unit of colour
   // "sky": the built-in ProceduralSky; "uniform": radiance 1 from every direction (the white furnace); else the path

@@ -67,7 +67,7 @@ VelocityEffect::VelocityEffect(const EffectResources& resources) : resources_(re
   camera_.gbuffer = camera_.program.uniform("u_gbuffer");
   camera_.unjitteredProjection = camera_.program.uniform("u_unjitteredProjection");
   camera_.viewToPreviousClip = camera_.program.uniform("u_viewToPreviousClip");
-  for (MaterialKind kind : MaterialKind::all()) variant(kind, {});
+  // The geometry variants are built on first use, as the G-buffer's are (GBufferEffect.cpp).
 }
 
 void VelocityEffect::plan(FramePlanner& planner) {
