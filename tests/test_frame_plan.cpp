@@ -65,9 +65,9 @@ TEST(EffectTable, ListsTheFrameInOrderWithUniqueNames) {
   EXPECT_EQ(effects, (std::vector<std::string>{"gbuffer", "velocity", "ao", "lighting", "lines", "fog", "taa", "bloom",
                                                 "tonemap", "edges", "dof", "motion-blur", "fxaa"}));
   EXPECT_EQ(framePassNames(),
-            (std::vector<std::string>{"pose", "gbuffer", "base-color", "velocity", "hierarchy", "sao", "ao-temporal",
-                                      "blur-h", "blur-v", "upsample", "lighting", "shading-count", "lines", "fog",
-                                      "taa", "bloom", "tonemap", "edges-detect", "edges-h", "edges",
+            (std::vector<std::string>{"pose", "gbuffer", "base-color", "velocity", "peel", "hierarchy", "sao",
+                                      "ao-temporal", "blur-h", "blur-v", "upsample", "lighting", "shading-count",
+                                      "lines", "fog", "taa", "bloom", "tonemap", "edges-detect", "edges-h", "edges",
                                       "dof-coc", "dof-downsample", "dof-tiles-h", "dof-tiles", "dof-neighbors",
                                       "dof-near", "dof-far", "dof-composite",
                                       "motion-tiles-h", "motion-tiles", "motion-neighbors", "motion-blur", "fxaa",

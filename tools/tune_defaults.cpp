@@ -264,8 +264,18 @@ std::vector<TuningCase> loadReferences(TuningView& view, const Scene& scene, con
   return cases;
 }
 
+// --set NAME=VALUE: parameters of the frame every render of this run takes (RenderSettings::set, after the
+// estimator's, the preset's and the fitted parameters): to measure an option against the reference (ao.layers 2,
+// gbuffer.normals reconstructed) with --evaluate, or to fit and report with it.
+std::vector<std::pair<std::string, std::string>>& frameOverrides() {
+  static std::vector<std::pair<std::string, std::string>> overrides;
+  return overrides;
+}
+
 Image renderAo(TuningView& view, const AoSettings& settings, PassTimer* timer = nullptr) {
-  view.renderer->render(view.camera, settings, obscura::View::Ao,
+  RenderSettings frame(settings);
+  for (const auto& [name, value] : frameOverrides()) frame.set(name, value);
+  view.renderer->render(view.camera, frame, obscura::View::Ao,
                         OutputTarget{view.output->framebuffer(), view.camera.width, view.camera.height, {}}, timer);
   Image image;
   image.width = view.camera.width;
@@ -721,7 +731,7 @@ void guardBandStudy(std::vector<TuningCase>& cases, const HeadlessContext& conte
 // --evaluate: the figures for each selected estimator and preset (default: the default preset), with the
 // table's parameters, on stdout, and for the defaults each target beside the figure reached. Quick (no SSIM): for
 // trying a change to an estimator before fitting everything.
-void evaluate(std::vector<TuningCase>& cases, const Selection& selection) {
+void evaluate(std::vector<TuningCase>& cases, const Selection& selection, bool perCase) {
   for (AoEstimator estimator : allAoEstimators()) {
     if (!selection.has(estimator)) continue;
     for (const PresetInfo& preset : qualityPresets()) {
@@ -734,6 +744,10 @@ void evaluate(std::vector<TuningCase>& cases, const Selection& selection) {
         const AoComparison m = measure(c, settings, false);
         score.add(m, c.whiteMae);
         byFactor[c.factor].add(m, c.whiteMae);
+        if (perCase)
+          std::printf("  %-16s r %-4sx MAE %.4f halo %.4f interior %.4f bias %+.4f Pearson %.3f skill %.2f\n",
+                      c.view->spec.name.c_str(), radiusText(c.factor).c_str(), m.mae, m.haloMae, m.interiorMae,
+                      m.bias, m.pearson, 1.0 - m.mae / std::max(c.whiteMae, 1e-9));
       }
       const Score s = score.mean();
       std::printf("%-5s %-6s MAE %.4f Pearson %.3f halo/interior %.2f lowest skill %.2f |", estimatorName(estimator),
@@ -950,7 +964,7 @@ int main(int argc, char** argv) {
                 imageDir = "docs/images", browserCostsPath;
     int threads = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
     HeadlessBackend backend = HeadlessBackend::OSMesa;
-    bool evaluateOnly = false;
+    bool evaluateOnly = false, perCase = false;
     float guardBand = 0.0f;
     Selection selection;
     const std::vector<std::string> args(argv + 1, argv + argc);
@@ -972,6 +986,15 @@ int main(int argc, char** argv) {
       else if (arg == "--threads") threads = parseCount(arg, value(), 256);
       else if (arg == "--backend") backend = parseBackend(value());
       else if (arg == "--evaluate") evaluateOnly = true;
+      else if (arg == "--cases") perCase = true;
+      else if (arg == "--set") {
+        const std::string& assignment = value();
+        const size_t equals = assignment.find('=');
+        if (equals == std::string::npos) throw InputError("--set: expected NAME=VALUE, got '" + assignment + "'");
+        const std::string name = assignment.substr(0, equals), setting = assignment.substr(equals + 1);
+        RenderSettings().set(name, setting);  // fails now, naming the parameter, rather than at the first render
+        frameOverrides().emplace_back(name, setting);
+      }
       else if (arg == "--guard-band") {
         guardBand = parseNumber(arg, value(), 1.01, 2.0);
         evaluateOnly = true;
@@ -1018,7 +1041,7 @@ int main(int argc, char** argv) {
                                                        context.caps().depth24);
     }
     if (guardBand > 0.0f) guardBandStudy(cases, context, guardBand);
-    else if (evaluateOnly) evaluate(cases, selection);
+    else if (evaluateOnly) evaluate(cases, selection, perCase);
     else if (!tablePath.empty()) fit(cases, config, selection, tablePath);
     else report(cases, views, config, docPath, imageDir, context, browserCosts);
     std::printf("obscura-tune: done in %.0f s\n",

@@ -446,7 +446,7 @@ void GpuScene::draw(const glm::mat4& view, const ProgramChoice& choose, const Dr
       glActiveTexture(GL_TEXTURE0);
       pbrTexturesBound = true;
     }
-    if (material.doubleSided) glDisable(GL_CULL_FACE);
+    if (material.doubleSided || options.bothFaces) glDisable(GL_CULL_FACE);
     else glEnable(GL_CULL_FACE);
     const glm::mat4 modelView = view * instance.world;
     const glm::mat3 linear(modelView);

@@ -80,6 +80,16 @@ const std::vector<Parameter<AoSettings>>& AoSettings::parameters() {
     for (Parameter<S>& p : t)
       if (p.info.name != "ao" && p.info.name != "preset") p.info.alias = p.info.name;
     // Newer than prefixes: "ao." names only.
+    t.push_back(integerParameter<S>("layers", 1, 2, "", "",
+                                    "depth layers GTAO reads (2: a second geometry pass peels the surface behind)",
+                                    &S::layers)
+                    .primary());
+    t.push_back(numberParameter<S>("layer-separation", 0, 10, "fraction of radius",
+                                   "the second layer's least distance behind the first", &S::layerSeparation));
+    t.push_back(numberParameter<S>("thickness", 0.01, 1000, "fraction of radius",
+                                   "one layer: the thickness GTAO assumes behind an occluder's front", &S::thickness));
+    t.push_back(numberParameter<S>("surface-gap", 0, 1000, "fraction of radius",
+                                   "depth gap between taps that GTAO still takes for one occluder", &S::surfaceGap));
     t.push_back(switchParameter<S>("temporal", "accumulate the AO over frames through the motion vectors",
                                    &S::temporal)
                     .primary());
