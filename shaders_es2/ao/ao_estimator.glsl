@@ -10,6 +10,8 @@
 //   MAX_MIP_LEVEL, LOG_MAX_OFFSET   the hierarchy's depth and the SAO paper's level choice (see tapPoint)
 //   ESTIMATOR_KNOTS, FIRST_KNOT_PIXELS  the knots of the fitted parameters (AoSettings.h)
 //   AO_LAYERS          1: the G-buffer's depth; 2: also the second depth layer (ao.layers 2), through tapLayers
+//   NORMALS_FROM_DEPTH 1: the centre's normal reconstructed from its neighbours' depths (gbuffer.normals
+//                      reconstructed: lib/normal_from_depth.glsl), the stored one where that falls back
 //
 // Output: R = ambient visibility A, GB = the centre's 16-bit depth code (the blur's key), A = 1.
 #include "lib/precision.glsl"
@@ -17,6 +19,7 @@
 #include "lib/reconstruct.glsl"
 #include "ao/ao_resolution.glsl"
 #include "ao/hierarchy_pick.glsl"
+#include "lib/normal_from_depth.glsl"
 
 uniform sampler2D u_gbuffer;
 uniform vec2 u_aoSize;          // this pass's target size: the G-buffer's, or half of it (floor)
@@ -164,7 +167,11 @@ bool aoCentre(out AoCentre c) {
   float code = unpackDepthCode(centre.ba);
   if (isBackgroundCode(code)) return false;
   c.position = viewPositionOnRay(farPlaneRay(uv), code * (1.0 / 65535.0));
+#if NORMALS_FROM_DEPTH
+  c.normal = normalFromDepth(u_gbuffer, u_gbufferSize, c.pixel, code, decodeNormal(centre.rg));
+#else
   c.normal = decodeNormal(centre.rg);
+#endif
   c.diskRadius = min(u_projScale * u_radius / -c.position.z, u_maxRadiusPixels);
   return true;
 }

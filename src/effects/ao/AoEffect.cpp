@@ -1,6 +1,7 @@
 #include "effects/ao/AoEffect.h"
 
 #include "effects/ao/AoTemporal.h"
+#include "frame/GBufferSettings.h"
 #include "frame/PassContext.h"
 
 namespace obscura {
@@ -37,7 +38,8 @@ EffectInfo AoEffect::info() {
 
 std::vector<ProgramSpec> AoEffect::programSpecs() {
   std::vector<ProgramSpec> specs = DepthHierarchyPass::programSpecs();
-  for (const auto& list : {DepthPeelPass::programSpecs(), SaoPass::programSpecs(), AoTemporalPass::programSpecs(), BilateralBlurPass::programSpecs(),
+  for (const auto& list : {DepthPeelPass::programSpecs(), SaoPass::programSpecs(), AoTemporalPass::programSpecs(),
+                           BilateralBlurPass::programSpecs(),
                            AoUpsamplePass::programSpecs()})
     specs.insert(specs.end(), list.begin(), list.end());
   return specs;
@@ -61,7 +63,7 @@ void AoEffect::plan(FramePlanner& planner) {
   const int aoScale = half ? 2 : 1;
 
   // ao.layers 2: the second depth layer, for an estimator that reads it (or its view).
-  const bool twoLayers = (settings.layers == 2 && SaoPass::readsSecondLayer(settings.estimator)) ||
+  const bool twoLayers = settings.layersRead() == 2 ||
                          planner.viewTarget() == "second-layer";
   if (twoLayers) {
     PassDecl peel;
@@ -97,12 +99,14 @@ void AoEffect::plan(FramePlanner& planner) {
   sao.writes = {{"ao-raw", aoSize, PassDecl::Write::Depth::None, ""}};
   // With ao.temporal, each frame's taps turn to new directions and distances (AoTemporal::frameOffset).
   const bool temporal = settings.temporal || planner.viewTarget() == "ao-temporal";
-  sao.run = [this, settings, aoScale, temporal, twoLayers](PassContext& context) {
+  const bool normalsFromDepth =
+      planner.settings().of<GBufferSettings>().normals == GBufferNormals::Reconstructed;
+  sao.run = [this, settings, aoScale, temporal, twoLayers, normalsFromDepth](PassContext& context) {
     context.bindForWriting("ao-raw");
     // (With the atlas, the estimator reads both layers from the hierarchy's texels and not this target.)
     const gl::Texture2D* secondLayer = twoLayers ? &context.texture("second-layer") : nullptr;
     sao_.render(context.texture("gbuffer"), settings.depthHierarchy ? &hierarchy_ : nullptr, secondLayer,
-                context.camera(), settings, aoScale, context.size("ao-raw"),
+                context.camera(), settings, normalsFromDepth, aoScale, context.size("ao-raw"),
                 temporal ? AoTemporal::frameOffset(context.frame().index) : glm::vec2(0.0f));
   };
   planner.add(std::move(sao));

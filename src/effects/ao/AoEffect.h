@@ -1,12 +1,13 @@
 #pragma once
-// Ambient obscurance: Scalable Ambient Obscurance (McGuire, Mara, Luebke, HPG 2012) from the G-buffer, with SAO's
-// depth hierarchy and a separable bilateral blur, at full or half resolution. Settings: effects/ao/AoSettings.h.
+// Ambient obscurance from the G-buffer (the estimators of ao.estimator, GTAO by default; SAO's depth hierarchy; an
+// optional second depth layer) and a separable bilateral blur, at full or half resolution. Settings:
+// effects/ao/AoSettings.h.
 //
 // Passes (each skipped when its settings turn it off):
 //   peel       scene, G-buffer -> second-layer (ao.layers 2: the nearest surface behind the visible one;
 //              effects/ao/DepthPeelPass.h)
-//   hierarchy  G-buffer (+ second-layer) -> depth-hierarchy (its own storage: an atlas 1.5 times the frame's width, or a mip chain;
-//              effects/ao/DepthHierarchyPass.h)
+//   hierarchy  G-buffer (+ second-layer) -> depth-hierarchy (its own storage: an atlas 1.5 times the frame's width,
+//              or a mip chain; effects/ao/DepthHierarchyPass.h)
 //   sao        G-buffer (+ hierarchy, + second-layer) -> ao-raw (full or half size)
 //   ao-temporal  ao-raw, velocity, G-buffer, history -> ao-temporal (ao.temporal: effects/ao/AoTemporalPass.h)
 //   blur-h     ao-raw (or ao-temporal) -> ao-blur-h   blur-v   ao-blur-h -> ao   (without the blur, ao is its input)

@@ -175,6 +175,7 @@ namespace {
 struct TunedEntry {
   AoEstimator estimator;
   QualityPreset preset;
+  int layers;  // ao.layers (the estimator's table for two layers, where it reads them)
   float radiusPixels;
   EstimatorParameters parameters;
 };
@@ -202,11 +203,20 @@ EstimatorParameters EstimatorKnots::interpolate(float radiusPixels) const {
   return e;
 }
 
-EstimatorKnots tunedEstimatorKnots(AoEstimator estimator, QualityPreset preset) {
+bool estimatorReadsSecondLayer(AoEstimator estimator) { return estimator == AoEstimator::Gtao; }
+
+bool hasTunedEstimatorKnots(AoEstimator estimator, QualityPreset preset, int layers) {
+  for (const TunedEntry& entry : kTunedTable)
+    if (entry.estimator == estimator && entry.preset == preset && entry.layers == layers) return true;
+  return false;
+}
+
+EstimatorKnots tunedEstimatorKnots(AoEstimator estimator, QualityPreset preset, int layers) {
+  if (!hasTunedEstimatorKnots(estimator, preset, layers)) layers = 1;
   EstimatorKnots knots;
   for (EstimatorParameters& e : knots.at) e = kPaperEstimatorParameters;
   for (const TunedEntry& entry : kTunedTable) {
-    if (entry.estimator != estimator || entry.preset != preset) continue;
+    if (entry.estimator != estimator || entry.preset != preset || entry.layers != layers) continue;
     for (int j = 0; j < kEstimatorKnots; ++j)
       if (std::abs(entry.radiusPixels - estimatorKnotPixels(j)) < 1e-3f) knots.at[j] = entry.parameters;
   }
@@ -214,7 +224,7 @@ EstimatorKnots tunedEstimatorKnots(AoEstimator estimator, QualityPreset preset) 
 }
 
 EstimatorKnots AoSettings::estimatorKnots() const {
-  EstimatorKnots knots = tunedEstimatorKnots(estimator, preset);
+  EstimatorKnots knots = tunedEstimatorKnots(estimator, preset, layersRead());
   for (EstimatorParameters& e : knots.at) {
     if (intensity) e.intensity = *intensity;
     if (bias) e.bias = *bias;

@@ -60,9 +60,16 @@ struct EstimatorKnots {
   EstimatorParameters interpolate(float radiusPixels) const;
 };
 
+// Whether the estimator reads a second depth layer (ao.layers 2): GTAO, where an occluder covers only the directions
+// between its two layers. The others read the first alone, and ao.layers 2 draws no second layer for them.
+bool estimatorReadsSecondLayer(AoEstimator estimator);
+
 // The knots fitted to the ray-traced reference (src/effects/ao/TunedDefaults.inc, written by tools/tune-defaults.sh)
-// for `preset`; the SAO paper's values at every knot for a preset the table does not cover.
-EstimatorKnots tunedEstimatorKnots(AoEstimator estimator, QualityPreset preset);
+// for `preset` and `layers` depth layers (those for one layer where the table has none for two); the SAO paper's
+// values at every knot for a preset the table does not cover.
+EstimatorKnots tunedEstimatorKnots(AoEstimator estimator, QualityPreset preset, int layers = 1);
+// Whether the table has rows of its own for this estimator, preset and layer count.
+bool hasTunedEstimatorKnots(AoEstimator estimator, QualityPreset preset, int layers);
 
 struct AoSettings : ParameterAccess<AoSettings> {
   bool enabled = true;
@@ -147,6 +154,8 @@ struct AoSettings : ParameterAccess<AoSettings> {
   EstimatorParameters estimatorAt(float radiusPixels = kShownKnotPixels) const;
   // The blur's depth sigma in scene units (blurDepthSigma times the radius).
   float blurDepthSigmaDistance() const { return blurDepthSigma * radius; }
+  // The depth layers the estimator reads: `layers`, or 1 for an estimator that reads one alone.
+  int layersRead() const { return estimatorReadsSecondLayer(estimator) ? layers : 1; }
   // Throws InputError if a field is out of range (for settings built in code).
   void validate() const;
 };

@@ -40,7 +40,8 @@ ProgramSpec DepthHierarchyPass::programSpec(int layers) {
   return ProgramSpec{layers == 2 ? "depth-hierarchy[layers=2]" : "depth-hierarchy",
                      "lib/fullscreen.vert",
                      "ao/depth_hierarchy.frag",
-                     {{"MAX_MIP_LEVEL", std::to_string(SaoKernel::kMaxMipLevel)}, {"AO_LAYERS", std::to_string(layers)}},
+                     {{"MAX_MIP_LEVEL", std::to_string(SaoKernel::kMaxMipLevel)},
+                      {"AO_LAYERS", std::to_string(layers)}},
                      {}};
 }
 

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 
+#include "encoding/LinearDepthPacking.h"
 #include "gl/PipelineState.h"
 #include "gpu/TextureUnits.h"
 
@@ -37,6 +38,19 @@ DepthPeelPass::Variant::Variant(gl::Program built)
       gbuffer(program.uniform("u_gbuffer")),
       minSeparation(program.uniform("u_minSeparation")) {}
 
+float DepthPeelPass::separation(const AoSettings& settings, const FrameCamera& camera) {
+  return std::max(settings.layerSeparation * settings.radius / (camera.far - camera.near), 2.0f / 65535.0f);
+}
+
+std::uint16_t DepthPeelPass::secondLayerCode(std::uint16_t firstCode, const std::vector<float>& crossings,
+                                             float separation) {
+  const float first = LinearDepthPacking::depthFromCode(firstCode);
+  float nearest = 2.0f;
+  for (float d : crossings)
+    if (!(d < first + separation) && d <= 1.0f) nearest = std::min(nearest, d);  // depth_peel.frag's discard
+  return nearest > 1.0f ? LinearDepthPacking::kBackgroundCode : LinearDepthPacking::codeFromDepth(nearest);
+}
+
 const DepthPeelPass::Variant& DepthPeelPass::variant(MaterialKind material, VertexKind vertex) {
   const auto key = std::make_tuple(material.forAlphaOnly(), vertex);
   auto it = variants_.find(key);
@@ -52,10 +66,7 @@ void DepthPeelPass::render(const PassContext& context, const gl::Texture2D& gbuf
   glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
   glEnable(GL_DEPTH_TEST);
   glDepthFunc(GL_LESS);
-  // The separation in linear depth: a fraction of r, and at least two depth codes, so the visible surface drawn
-  // again (within half a code of its stored depth) never passes.
-  const float separation = std::max(settings.layerSeparation * settings.radius / (camera.far - camera.near),
-                                    2.0f / 65535.0f);
+  const float minSeparation = separation(settings, camera);
   // The G-buffer on a unit the scene's textures leave alone (the base colour, for the alpha test, is on 0).
   constexpr int kGBufferUnit = TextureUnits::kPeeledGBuffer;
   gbuffer.bind(kGBufferUnit);
@@ -70,7 +81,7 @@ void DepthPeelPass::render(const PassContext& context, const gl::Texture2D& gbuf
         gl::Program::set(v.near, camera.near);
         gl::Program::set(v.depthRange, camera.far - camera.near);
         gl::Program::set(v.gbuffer, kGBufferUnit);
-        gl::Program::set(v.minSeparation, separation);
+        gl::Program::set(v.minSeparation, minSeparation);
         return v.geometry;
       },
       options);

@@ -12,6 +12,7 @@
 // where nothing lies behind; RG unused (255). The depth hierarchy folds it into its texels' RG, so the estimator reads
 // both layers in one fetch per tap (effects/ao/DepthHierarchyPass.h); without a hierarchy (or for taps that read the
 // G-buffer, with the separate-texture or mip-chain storages) the estimator reads this target beside the G-buffer.
+#include <cstdint>
 #include <map>
 #include <tuple>
 #include <vector>
@@ -26,6 +27,14 @@ namespace obscura {
 class DepthPeelPass {
  public:
   static std::vector<ProgramSpec> programSpecs();
+  // The minimum separation in linear depth (units of far - near): settings.layerSeparation r, and at least two depth
+  // codes, so the visible surface drawn again (within half a code of its stored depth) never passes.
+  static float separation(const AoSettings& settings, const FrameCamera& camera);
+  // The CPU mirror of the peel at one pixel: the second layer's depth code, given the first layer's stored code and
+  // the linear depths of every surface the pixel's ray crosses, front or back face (`crossings`): the nearest not less
+  // than `separation` behind the first; the background code where there is none.
+  static std::uint16_t secondLayerCode(std::uint16_t firstCode, const std::vector<float>& crossings,
+                                       float separation);
   explicit DepthPeelPass(const EffectResources& resources) : resources_(resources) {}
   // Draws the second layer into the bound framebuffer (with its own depth buffer), reading the first from `gbuffer`.
   void render(const PassContext& context, const gl::Texture2D& gbuffer, const AoSettings& settings);
