@@ -26,6 +26,8 @@ TEST(Cli, BadInputExitsWithStatusTwoAndOneLine) {
   const std::string badJson = writeFile("bad.json", R"({"eye":[1,2,3],"target":)");
   const std::string badCamera = writeFile("near.json", R"({"eye":[0,0,5],"target":[0,0,0],"near":-1})");
   const std::string notGltf = writeFile("garbage.glb", "glTF this is not a binary glTF at all");
+  const std::string orthographicWithoutSize =
+      writeFile("ortho.json", R"({"eye":[0,0,5],"target":[0,0,0],"type":"orthographic"})");
   const std::string repairable = obscura::test::assimpModels() + "/BoxBadNormals-glTF-Binary/BoxBadNormals.glb";
   const std::pair<std::string, std::string> cases[] = {
       {"--scene /nonexistent/scene.glb", "/nonexistent/scene.glb: cannot open"},
@@ -45,6 +47,11 @@ TEST(Cli, BadInputExitsWithStatusTwoAndOneLine) {
       {"--bench many", "--bench: expected a whole number"},
       {"--backend vulkan", "--backend: expected osmesa or egl"},
       {"--fit --camera x.json", "--camera and --fit exclude each other"},
+      {"--fit --camera-node 0", "--camera-node: the file's camera excludes --camera and --fit"},
+      {"--camera-node 0", "--camera-node: the built-in scene has no cameras"},
+      {"--scene " + obscura::test::assimpModels() + "/cameras/Cameras.gltf --camera-node Top",
+       "--camera-node 'Top' is not one of the scene's cameras: 0 'camera 0', 1 'camera 1'"},
+      {"--camera " + orthographicWithoutSize, orthographicWithoutSize + ": ymag: missing"},
       {"--scene-scale 0", "--scene-scale: 0 is out of range"},
       {"--scene-scale big", "--scene-scale: expected a number"},
       {"--time -1", "--time: -1 is out of range (0 .. 1e+06 seconds)"},
@@ -52,6 +59,10 @@ TEST(Cli, BadInputExitsWithStatusTwoAndOneLine) {
       {"--fps 0", "--fps: 0 is out of range"},
       {"--frames 0", "--frames: 0 is out of range"},
       {"--frames 2.5", "--frames: expected a whole number"},
+      {"--frames 4 --at 2 fog.density", "--at: expected NAME=VALUE, got 'fog.density'"},
+      {"--frames 4 --at 2 fog.density=-1", "--at: fog.density: -1 is out of range"},
+      {"--frames 4 --at 2 fog.thickness=1", "--at: unknown parameter 'fog.thickness'"},
+      {"--frames 4 --at 4 fog=on", "--at 4: the sequence has only 4 frame(s) (--frames N)"},
       {"--view split --compare ao.radius", "--compare: expected a switch, one of ao, "},
       {"--compare fxaa", "--compare: only --view split compares"},
       {"--accumulate 0", "--accumulate: 0 is out of range"},
@@ -111,6 +122,48 @@ TEST(Cli, FitFramesTheSceneForThePortraitSizeAsked) {
     }
   }
   EXPECT_GT(geometry, static_cast<size_t>(m.width * m.height) / 10);  // ... and still fills a good part of it
+}
+
+// A file's cameras (Debian's Cameras.gltf: a perspective and an orthographic camera, both with a square frame,
+// looking at a square): without --size the output takes the frame's shape; an output of another shape keeps the
+// whole frame, so the orthographic view of the square keeps its size in pixels along the side the frame fills.
+TEST(Cli, CameraNodeLooksThroughTheFilesCamerasAndKeepsTheirFrame) {
+  const std::string scene = "--scene " + obscura::test::assimpModels() + "/cameras/Cameras.gltf --view mask ";
+  struct Extent {
+    int width = 0, height = 0, columns = 0, rows = 0;  // the image's; the square's extent
+  };
+  auto extent = [&](const std::string& args) {
+    const std::string out = obscura::test::tempPath("camera-node.png");
+    const obscura::test::ProcessResult r = run(scene + args + " --out " + out);
+    EXPECT_EQ(r.status, 0) << args << ": " << r.err;
+    const obscura::Image m = obscura::readPng(out);
+    Extent e{m.width, m.height, 0, 0};
+    int x0 = m.width, x1 = -1, y0 = m.height, y1 = -1;
+    for (int y = 0; y < m.height; ++y)
+      for (int x = 0; x < m.width; ++x)
+        if (m.rgba[(static_cast<size_t>(y) * m.width + x) * 4] == 255) {
+          x0 = std::min(x0, x);
+          x1 = std::max(x1, x);
+          y0 = std::min(y0, y);
+          y1 = std::max(y1, y);
+        }
+    e.columns = x1 - x0 + 1;
+    e.rows = y1 - y0 + 1;
+    return e;
+  };
+  const Extent perspective = extent("--camera-node 0 --size 200x200");
+  EXPECT_GT(perspective.columns, 40);
+  const Extent byDefault = extent("--camera-node 1");
+  EXPECT_EQ(byDefault.width, 1280);
+  EXPECT_EQ(byDefault.height, 1280) << "xmag = ymag: a square frame";
+  const Extent square = extent("--camera-node 1 --size 200x200");
+  const Extent wide = extent("--camera-node 1 --size 400x200");
+  const Extent tall = extent("--camera-node 1 --size 200x400");
+  EXPECT_GT(square.columns, 40);
+  EXPECT_NEAR(wide.rows, square.rows, 1) << "wider: the frame's height fills the output's";
+  EXPECT_NEAR(wide.columns, square.columns, 1) << "and nothing is stretched";
+  EXPECT_NEAR(tall.columns, square.columns, 1) << "narrower: the frame's width fills the output's";
+  EXPECT_NEAR(tall.rows, square.rows, 1);
 }
 
 TEST(Cli, MaskViewMarksExactlyTheGeometry) {
@@ -275,6 +328,25 @@ TEST(Cli, FramesEndOnTheLastFramesTime) {
   const obscura::test::ProcessResult help = run("--help");
   for (const char* option : {"--time T", "--animation A", "--fps F", "--frames N"})
     EXPECT_NE(help.out.find(option), std::string::npos) << option;
+}
+
+// --at K NAME=VALUE changes a parameter from frame K on: a sequence whose last frames have fog on ends as a frame with
+// fog on; and with auto exposure, a sun 16x brighter from frame 2 of 4 has not adapted by the last frame (60 fps), so
+// the frame is brighter than one rendered with that sun alone (no history: adapted at once).
+TEST(Cli, AtChangesAParameterWithinTheSequence) {
+  const std::string small = "--size 160x90 --animation none ";
+  const auto fogged = renderPixels(small + "--frames 3 --at 1 fog=on", "at-fog");
+  const auto fog = renderPixels(small + "--fog", "fog-alone");
+  const auto clear = renderPixels(small, "clear");
+  EXPECT_LT(meanDifference(fogged, fog), 0.5);
+  EXPECT_GT(meanDifference(fogged, clear), 2.0);
+  const std::string exposure = small + "--auto-exposure ";
+  const auto stepping = renderPixels(exposure + "--frames 4 --at 2 lighting.sun-intensity=50", "at-exposure");
+  const auto adapted = renderPixels(exposure + "--lighting.sun-intensity 50", "adapted");
+  double brighter = 0.0;
+  for (size_t i = 0; i < stepping.size(); i += 4) brighter += static_cast<double>(stepping[i + 1]) - adapted[i + 1];
+  EXPECT_GT(brighter / static_cast<double>(stepping.size() / 4), 5.0) << "not yet adapted: brighter";
+  EXPECT_NE(run("--help").out.find("--at K NAME=V"), std::string::npos);
 }
 
 // --accumulate N writes the shutter reference: over a still scene, the frame itself; over simple_skin's motion, the

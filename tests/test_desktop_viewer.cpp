@@ -13,6 +13,7 @@
 #include <sstream>
 
 #include "TestSupport.h"
+#include "scene/BuiltinScene.h"
 #include "scene/ImageIo.h"
 
 using namespace obscura;
@@ -109,6 +110,29 @@ TEST(DesktopViewer, ATimeInTheStateMatchesTheHeadlessRenderersTime) {
   };
   EXPECT_LE(meanDifference(window, headless), 0.1) << "mean absolute difference (of 255)";
   EXPECT_GT(meanDifference(window, start), 10.0 * meanDifference(window, headless)) << "not the frame at 0 s";
+}
+
+// The cameras in --state: a file's own orthographic camera (Debian's Cameras.gltf, camera=1) is obscura-render's
+// --camera-node 1, and the built-in view made orthographic (projection=orthographic) is its --orthographic.
+TEST(DesktopViewer, CamerasInTheStateMatchTheHeadlessRenderersCameras) {
+  const std::string cameras = test::assimpModels() + "/cameras/Cameras.gltf";
+  auto meanDifference = [](const Image& a, const Image& b) {
+    double sum = 0.0;
+    for (size_t i = 0; i < a.rgba.size(); ++i) sum += std::abs(a.rgba[i] - b.rgba[i]);
+    return sum / static_cast<double>(a.rgba.size());
+  };
+  const Image node = viewerScreenshot("view-camera-node.png", "view=normals&camera=1", cameras);
+  const Image nodeHeadless =
+      headlessRender("render-camera-node.png", "--scene " + cameras + " --camera-node 1 --view normals");
+  ASSERT_EQ(node.rgba.size(), nodeHeadless.rgba.size());
+  EXPECT_LE(meanDifference(node, nodeHeadless), 0.1) << "mean absolute difference (of 255)";
+  // The built-in camera made orthographic, as the viewer's x key makes it (the same view at the target).
+  const Camera ortho = builtinSceneCamera(320, 180).asOrthographic();
+  char state[160];
+  std::snprintf(state, sizeof state, "view=normals&projection=orthographic&ymag=%.9g", static_cast<double>(ortho.ymag));
+  const Image window = viewerScreenshot("view-orthographic.png", state);
+  const Image headless = headlessRender("render-orthographic.png", "--orthographic --view normals");
+  EXPECT_LE(meanDifference(window, headless), 0.5) << "mean absolute difference (of 255)";
 }
 
 TEST(DesktopViewer, FinalFrameIsNotBlankAndShowsAo) {

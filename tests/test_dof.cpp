@@ -21,6 +21,8 @@
 #include "encoding/LinearDepthPacking.h"
 #include "gl/ShaderLibrary.h"
 #include "renderer/AccumulationReference.h"
+#include "encoding/ToneMapping.h"
+#include "scene/BuiltinScene.h"
 #include "scene/ImageIo.h"
 #include "scene/Primitives.h"
 
@@ -274,6 +276,59 @@ TEST(DepthOfField, TheFrameMovesTowardsTheApertureReference) {
   EXPECT_LE(dof, 0.5 * pinhole);
 }
 
+// An orthographic camera (DepthOfFieldEffect.h): the CoC is the thin lens's linearised at its focus, so it grows
+// linearly with the distance from the focal plane; the frame moves towards its own aperture reference (parallel rays
+// tilted about the focal plane), as the perspective one does, at a quarter of the pixels.
+TEST(DepthOfField, AnOrthographicCameraBlursLinearlyWithDistanceFromTheFocalPlane) {
+  constexpr int width = kWidth / 2, height = kHeight / 2;
+  Renderer renderer = test::makeRenderer();
+  renderer.setScene(lensScene());
+  Camera camera = lensCamera();
+  camera.width = width;
+  camera.height = height;
+  camera.orthographic = true;
+  camera.ymag = 1.2f;
+  const RenderSettings settings = lensSettings(true);
+  test::render(renderer, camera, settings, View::Final, test::retaining({"dof-coc", "gbuffer"}));
+  const float range = 2.0f * settings.of<DofSettings>().maxRadiusPixels(height);
+  const std::vector<float> coc = readCoc(renderer, range);
+  const std::vector<std::uint8_t> gbuffer = renderer.retained("gbuffer").readRgba();
+  const ThinLens lens = ThinLens::of(settings.of<DofSettings>(), height, true);
+  double worst = 0.0;
+  for (size_t p = 0; p < coc.size(); ++p) {
+    const float d = LinearDepthPacking::depthFromCode(
+        LinearDepthPacking::codeFromBytes(gbuffer[p * 4 + 2], gbuffer[p * 4 + 3]));
+    const float depth = camera.near + d * (camera.far - camera.near);
+    worst = std::max(worst, static_cast<double>(std::abs(coc[p] - std::clamp(lens.coc(depth, kFocus), -range, range))));
+  }
+  EXPECT_LE(worst, 0.5 * range / cp::kSteps16 + 1e-3 * range);
+  // Linear in D, with the perspective lens's slope at the focus: C = s (D - P) / (P (P - F)).
+  const ThinLens perspective = ThinLens::of(settings.of<DofSettings>(), height);
+  for (float depth : {1.5f, 3.9f, 4.1f, 12.0f}) {
+    const double s = (0.05 / 1.4) * 0.05 * height / 0.024;
+    EXPECT_NEAR(lens.coc(depth, kFocus), s * (depth - 4.0) / (4.0 * (4.0 - 0.05)), 1e-3);
+  }
+  EXPECT_NEAR((lens.coc(4.01f, kFocus) - lens.coc(3.99f, kFocus)) / 0.02f,
+              (perspective.coc(4.01f, kFocus) - perspective.coc(3.99f, kFocus)) / 0.02f, 1e-2);
+
+  ApertureOptions aperture;
+  aperture.samples = 48;
+  const LinearImage reference = accumulateAperture(renderer, camera, settings, aperture);
+  const test::RenderedImage pinhole = test::render(renderer, camera, lensSettings(false), View::Final);
+  const test::RenderedImage dof = test::render(renderer, camera, settings, View::Final);
+  const auto all = [](int, int) { return true; };
+  const double pinholeError = meanError(pinhole, reference, all).first, dofError = meanError(dof, reference, all).first;
+  // The focal plane is sharp in the reference too: the panel's pixels match the pinhole frame's.
+  const auto panel = [&](int x, int y) { return std::abs(coc[static_cast<size_t>(y) * width + x]) < 0.25f; };
+  const double focusError = meanError(pinhole, reference, panel).first;
+  std::printf("[ dof ] orthographic: MAE against the %d-point parallel aperture reference: pinhole %.3f, dof %.3f "
+              "(ratio %.2f); the focal plane, pinhole against the reference: %.3f\n",
+              aperture.samples, pinholeError, dofError, dofError / pinholeError, focusError);
+  EXPECT_GT(pinholeError, 3.0) << "the reference should blur";
+  EXPECT_LE(dofError, 0.5 * pinholeError);
+  EXPECT_LE(focusError, 3.0);
+}
+
 TEST(DepthOfField, TheFocusPlaneStaysSharp) {
   const Frames& f = lensFrames();
   // Pixels whose |CoC| is under half a pixel, away from the near field's reach (its largest radius, 12 px, and the
@@ -337,6 +392,121 @@ TEST(DepthOfField, NoHaloAroundAnInFocusObjectOverABlurredBackground) {
   EXPECT_GT(n, static_cast<size_t>(2000));
   EXPECT_LE(std::abs(bias), 2.0);
   EXPECT_LE(dof, pinhole);
+}
+
+// The lens gathers light before the tone curve: a small emitter far above display white (emission 40) behind the focus
+// plane, in a dark room, makes a bokeh disc as bright as the aperture reference's (which averages linear light): the
+// mean display luminance over the disc within 10 % of the reference's.
+TEST(DepthOfField, ABrightEmitterMakesABokehDiscAsBrightAsTheLenss) {
+  Scene scene;
+  // A dim wall at 12 m and the emitter, a 6 cm square just in front of it, left of the centre.
+  addChecker(scene, -12.0f, -8.0f, -5.0f, 8.0f, 5.0f, 0.5f, {0.05f, 0.05f, 0.05f}, {0.08f, 0.08f, 0.08f});
+  Mesh emitter;
+  addQuad(emitter, {-1.03f, 0.27f, -11.9f}, {-0.97f, 0.27f, -11.9f}, {-0.97f, 0.33f, -11.9f}, {-1.03f, 0.33f, -11.9f});
+  const int material = test::addMaterial(scene, glm::vec3(0.0f));
+  scene.materials[static_cast<size_t>(material)].emissiveFactor = glm::vec3(1.0f, 0.9f, 0.8f);
+  scene.materials[static_cast<size_t>(material)].emissiveStrength = 40.0f;
+  emitter.material = material;
+  scene.meshes.push_back(std::move(emitter));
+  Instance instance;
+  instance.mesh = static_cast<int>(scene.meshes.size()) - 1;
+  scene.instances.push_back(instance);
+  Renderer renderer = test::makeRenderer();
+  renderer.setScene(scene);
+  const int width = 480, height = 270;
+  const Camera camera = test::makeCamera({0.0f, 0.0f, 0.0f}, {0.0f, 0.0f, -1.0f}, width, height, 0.5f, 20.0f, 27.0f);
+  // At f/1.4 the disc is 3.4 pixels wide (gathered at full size), at f/0.5 9.5 (the half-size far field).
+  for (const char* fstop : {"1.4", "0.5"}) {
+  RenderSettings settings = lensSettings(true);
+  settings.set("dof.fstop", fstop);
+  settings.set("lighting.environment", "uniform");
+  settings.set("lighting.environment-intensity", "0.3");
+  settings.set("lighting.sun-intensity", "0");
+  ApertureOptions aperture;
+  aperture.samples = 64;
+  const LinearImage reference = accumulateAperture(renderer, camera, settings, aperture);
+  const test::RenderedImage dof = test::render(renderer, camera, settings, View::Final);
+  RenderSettings pinholeSettings = settings;
+  pinholeSettings.set("dof", "off");
+  const test::RenderedImage pinhole = test::render(renderer, camera, pinholeSettings, View::Final);
+  // The disc: where the emitter's blur lands, C = 6.8 pixels at 960 rows (3.4 here) around the emitter's pixel.
+  const glm::vec4 clip =
+      FrameCamera::from(camera, width, height).unjitteredProjection * glm::vec4(-1.0f, 0.3f, -11.9f, 1.0f);
+  const glm::vec2 centre((clip.x / clip.w * 0.5f + 0.5f) * width, (0.5f - clip.y / clip.w * 0.5f) * height);
+  const float c = ThinLens::of(settings.of<DofSettings>(), height).coc(11.9f, kFocus);
+  auto luminance = [](float r, float g, float b) {
+    return 0.2126 * srgbToLinear(r) + 0.7152 * srgbToLinear(g) + 0.0722 * srgbToLinear(b);
+  };
+  double dofSum = 0.0, referenceSum = 0.0, pinholeSum = 0.0;
+  int n = 0;
+  const float radius = 0.5f * c + 2.0f;
+  for (int y = 0; y < height; ++y)
+    for (int x = 0; x < width; ++x) {
+      const glm::vec2 p(static_cast<float>(x) + 0.5f, static_cast<float>(y) + 0.5f);
+      if (glm::length(p - centre) > radius) continue;
+      dofSum += luminance(dof.channel(x, y, 0) / 255.0f, dof.channel(x, y, 1) / 255.0f, dof.channel(x, y, 2) / 255.0f);
+      referenceSum += luminance(reference.at(x, y, 0), reference.at(x, y, 1), reference.at(x, y, 2));
+      pinholeSum += luminance(pinhole.channel(x, y, 0) / 255.0f, pinhole.channel(x, y, 1) / 255.0f,
+                              pinhole.channel(x, y, 2) / 255.0f);
+      ++n;
+    }
+  std::printf("[ dof ] bokeh of an emitter at 40x display white, C = %.2f px, %d pixels: mean display luminance %.4f, "
+              "reference %.4f (%.1f %%), the pinhole frame %.4f\n",
+              c, n, dofSum / n, referenceSum / n, 100.0 * dofSum / referenceSum, pinholeSum / n);
+  EXPECT_GT(n, 20);
+  EXPECT_NEAR(dofSum / referenceSum, 1.0, 0.10) << "f/" << fstop;
+  }
+}
+
+// Small blurs (the built-in room at f/0.7 focused at 6 m: 1 .. 7 pixels at 480x270), gathered at full size where the
+// CoC is under kDofSmallCoc pixels: over the pixels that blur, at most half the pinhole frame's error against the
+// aperture reference.
+TEST(DepthOfField, SmallBlursMoveHalfWayToTheReference) {
+  Renderer renderer = test::makeRenderer();
+  renderer.setScene(makeBuiltinScene(BuiltinSceneOptions::still()));
+  const Camera camera = builtinSceneCamera(480, 270);
+  RenderSettings settings;
+  settings.set("ao", "off");
+  settings.set("fxaa", "off");
+  settings.set("dof.focus", "6");
+  settings.set("dof.fstop", "0.7");
+  ApertureOptions aperture;
+  aperture.samples = 64;
+  const LinearImage reference = accumulateAperture(renderer, camera, settings, aperture);
+  const test::RenderedImage pinhole = test::render(renderer, camera, settings, View::Final);
+  settings.set("dof", "on");
+  const test::RenderedImage dof = test::render(renderer, camera, settings, View::Final, test::retaining({"dof-coc"}));
+  const std::vector<float> coc = readCoc(renderer, 2.0f * settings.of<DofSettings>().maxRadiusPixels(270));
+  const auto blurred = [&](int x, int y) {
+    for (int c = 0; c < 3; ++c) {
+      const double r = 255.0 * reference.at(x, y, c);
+      if (std::abs(r - dof.channel(x, y, c)) > 2.0 || std::abs(r - pinhole.channel(x, y, c)) > 2.0) return true;
+    }
+    return false;
+  };
+  const auto all = [](int, int) { return true; };
+  const auto [pinholeAll, n] = meanError(pinhole, reference, all);
+  const auto [dofAll, n2] = meanError(dof, reference, all);
+  const auto [pinholeBlurred, m] = meanError(pinhole, reference, blurred);
+  const auto [dofBlurred, m2] = meanError(dof, reference, blurred);
+  std::printf("[ dof ] the room's small blurs: whole frame pinhole %.3f, dof %.3f (ratio %.2f); over the %zu pixels "
+              "that blur: pinhole %.3f, dof %.3f (ratio %.2f)\n",
+              pinholeAll, dofAll, dofAll / pinholeAll, m, pinholeBlurred, dofBlurred, dofBlurred / pinholeBlurred);
+  for (const auto& [label, lo, hi] : {std::tuple<const char*, float, float>{"near < -4", -1e9f, -4.0f},
+                                       {"near -4 .. -0.5", -4.0f, -0.5f},
+                                       {"in focus", -0.5f, 0.5f},
+                                       {"far 0.5 .. 4", 0.5f, 4.0f},
+                                       {"far > 4", 4.0f, 1e9f}}) {
+    const auto band = [&, lo = lo, hi = hi](int x, int y) {
+      const float c = coc[static_cast<size_t>(y) * 480 + static_cast<size_t>(x)];
+      return blurred(x, y) && c >= lo && c < hi;
+    };
+    const auto [p, k] = meanError(pinhole, reference, band);
+    const auto [d, k2] = meanError(dof, reference, band);
+    std::printf("[ dof ]   %s: %zu pixels, pinhole %.3f, dof %.3f\n", label, k, p, d);
+  }
+  EXPECT_GT(m, static_cast<size_t>(480 * 270 / 10));
+  EXPECT_LE(dofBlurred, 0.5 * pinholeBlurred);
 }
 
 }  // namespace

@@ -7,6 +7,7 @@
 
 #include "effects/dof/DepthOfFieldEffect.h"
 #include "encoding/CocPacking.h"
+#include "encoding/ToneMapping.h"
 #include "renderer/AccumulationReference.h"
 #include "renderer/RenderSettings.h"
 #include "scene/Camera.h"
@@ -137,6 +138,25 @@ TEST(PhysicalCamera, TheFieldOfViewFollowsFromTheSensorAndTheFocalLength) {
                InputError);
   EXPECT_THROW(Camera::fromJson(R"({"eye":[0,0,5],"target":[0,0,0],"sensor_height_mm":24})", "test"), InputError);
   EXPECT_THROW(Camera::fromJson(R"({"eye":[0,0,5],"target":[0,0,0],"focal_length_mm":0})", "test"), InputError);
+}
+
+// The half-size fields' colour (dofFieldEncode): a byte of sqrt(c / (1 + c)) round-trips, and its step, measured in
+// display colour (sRGB bytes, before any tone curve), stays near sRGB's own: under 1.5 bytes up to mid grey, under 2 at
+// half of display white; it reaches 255 times display white.
+TEST(DofField, HoldsHdrColourInAByteWithDisplayPrecision) {
+  for (float c : {0.0f, 0.001f, 0.01f, 0.18f, 1.0f, 4.0f, 40.0f}) {
+    const glm::vec3 back = dofFieldDecode(dofFieldEncode(glm::vec3(c)));
+    EXPECT_NEAR(back.r, c, 1e-5f * std::max(c, 1.0f)) << c;
+  }
+  // One byte up from the encoding of c, in sRGB bytes of the display colour (linear, no tone curve).
+  for (float c : {0.01f, 0.05f, 0.18f, 0.5f}) {
+    const float f = std::round(dofFieldEncode(glm::vec3(c)).r * 255.0f) / 255.0f;
+    const float next = dofFieldDecode(glm::vec3(f + 1.0f / 255.0f)).r, here = dofFieldDecode(glm::vec3(f)).r;
+    const float step = (linearToSrgb(next) - linearToSrgb(here)) * 255.0f;
+    EXPECT_LT(step, c < 0.2f ? 1.5f : 2.0f) << c;
+  }
+  EXPECT_NEAR(dofFieldDecode(glm::vec3(254.0f / 255.0f)).r, 127.0f, 1.0f);
+  EXPECT_NEAR(dofFieldDecode(glm::vec3(1.0f)).r, 255.0f, 1e-3f);
 }
 
 }  // namespace

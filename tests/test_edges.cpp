@@ -17,6 +17,7 @@
 
 #include "TestSupport.h"
 #include "effects/edges/EdgesEffect.h"
+#include "encoding/NormalEncoding.h"
 #include "encoding/ToneMapping.h"
 #include "frame/FrameContext.h"
 #include "gl/PipelineState.h"
@@ -195,20 +196,30 @@ LineScore score(const test::RenderedImage& off, const test::RenderedImage& on, c
 TEST(Edges, TheSecondDifferenceOfReciprocalDepthIsZeroOnPlanesAndTheJumpAtProfiles) {
   // A plane seen at any slant: 1/z = a + b x along a row. Its first-order relative difference grows with the slant;
   // eq. 1 stays 0.
+  const EdgeDetector perspective;
   for (float slope : {0.0f, 0.01f, 0.05f, 0.2f}) {
     auto z = [slope](float x) { return 1.0f / (0.25f - slope * 0.001f * x); };
-    const float d = EdgeDetector::relativeSecondDifference(z(100.0f), z(99.0f), z(101.0f));
+    const float d = perspective.relativeSecondDifference(z(100.0f), z(99.0f), z(101.0f));
     EXPECT_NEAR(d, 0.0f, 1e-5f) << "slope " << slope;
   }
   // A profile: a flat near side at 4 m over a far side at 5 m. The near pixel sees the relative jump, negative;
   // the far pixel the same positive; the background is 1/z = 0.
-  EXPECT_NEAR(EdgeDetector::relativeSecondDifference(4.0f, 4.0f, 5.0f), 4.0f / 5.0f - 1.0f, 1e-6f);
-  EXPECT_GT(EdgeDetector::relativeSecondDifference(5.0f, 4.0f, 5.0f), 0.0f);
-  EXPECT_NEAR(EdgeDetector::relativeSecondDifference(4.0f, 4.0f, 0.0f), -1.0f, 1e-6f);
+  EXPECT_NEAR(perspective.relativeSecondDifference(4.0f, 4.0f, 5.0f), 4.0f / 5.0f - 1.0f, 1e-6f);
+  EXPECT_GT(perspective.relativeSecondDifference(5.0f, 4.0f, 5.0f), 0.0f);
+  EXPECT_NEAR(perspective.relativeSecondDifference(4.0f, 4.0f, 0.0f), -1.0f, 1e-6f);
   // Scale-aware: the scene and camera scaled by k give the same value.
   for (float k : {0.01f, 1.0f, 300.0f})
-    EXPECT_NEAR(EdgeDetector::relativeSecondDifference(4.0f * k, 4.1f * k, 6.0f * k),
-                EdgeDetector::relativeSecondDifference(4.0f, 4.1f, 6.0f), 1e-5f);
+    EXPECT_NEAR(perspective.relativeSecondDifference(4.0f * k, 4.1f * k, 6.0f * k),
+                perspective.relativeSecondDifference(4.0f, 4.1f, 6.0f), 1e-5f);
+  // Orthographic: depth itself is affine on a plane, so its second difference is 0 at any slant; a jump counts
+  // relative to the view's height L, as the perspective measure does at z = L to first order.
+  const EdgeDetector orthographic = EdgeDetector::of(EdgesSettings{}, 0.0f, 100.0f, 8.0f);
+  for (float slope : {0.0f, 0.05f, 3.0f})
+    EXPECT_NEAR(orthographic.relativeSecondDifference(10.0f, 10.0f - slope, 10.0f + slope), 0.0f, 1e-5f);
+  EXPECT_NEAR(orthographic.relativeSecondDifference(4.0f, 4.0f, 4.08f), -0.01f, 1e-6f);
+  EXPECT_NEAR(orthographic.relativeSecondDifference(4.0f, 4.0f, 4.08f),
+              perspective.relativeSecondDifference(8.0f, 8.0f, 8.08f), 1e-4f);
+  EXPECT_LT(orthographic.relativeSecondDifference(4.0f, 4.0f, 0.0f), -1e6f) << "a background neighbour";
 }
 
 TEST(Edges, CoverageAndToonBands) {
@@ -233,6 +244,34 @@ TEST(Edges, CoverageAndToonBands) {
 
 // Every pass against the mirror: the mask from the read-back G-buffer, then the drawn image from the image without
 // lines, in both styles, at widths that use radii 0 .. 4, with colour edges on.
+// Through an orthographic camera (the cube's view as wide at its target) the detect pass matches the orthographic
+// mirror: the cube's silhouette and creases are found, the floor (a plane seen at a slant) is not an edge.
+TEST(Edges, TheDetectPassMatchesTheOrthographicMirror) {
+  Renderer renderer = test::makeRenderer();
+  renderer.setScene(cubeOnAFloor());
+  const Camera camera = cubeCamera(4.0f).asOrthographic();
+  RenderSettings settings = plainFrame();
+  const EdgesSettings edges = linesOf(1.5f);
+  settings.of<EdgesSettings>() = edges;
+  test::render(renderer, camera, settings, View::Final, test::retaining({"gbuffer", "edges-mask"}));
+  const std::vector<std::uint8_t> gbuffer = renderer.retained("gbuffer").readRgba();
+  const std::vector<std::uint8_t> mask = renderer.retained("edges-mask").readRgba();
+  const FrameCamera frame = FrameCamera::from(camera, kWidth, kHeight);
+  const std::vector<EdgeFlags> expected =
+      EdgeDetector::of(edges, frame.near, frame.far, 2.0f * frame.halfExtent.y).detect(gbuffer, kWidth, kHeight);
+  int mismatches = 0, profiles = 0, creases = 0;
+  for (size_t i = 0; i < expected.size(); ++i) {
+    profiles += expected[i].profile;
+    creases += expected[i].crease;
+    mismatches += (mask[i * 4] > 127) != expected[i].profile || (mask[i * 4 + 1] > 127) != expected[i].crease;
+  }
+  std::printf("edges mask, orthographic: %d profile, %d crease pixels; %d differ from the mirror\n", profiles, creases,
+              mismatches);
+  EXPECT_LE(mismatches, 2);
+  EXPECT_GT(profiles, 100);
+  EXPECT_GT(creases, 100);
+}
+
 TEST(Edges, ThePassesMatchTheMirror) {
   Renderer renderer = test::makeRenderer();
   renderer.setScene(cubeOnAFloor());
@@ -390,7 +429,7 @@ TEST(Edges, ASlantedPlaneIsNotAnEdge) {
         const float za = detector.viewDepth(&gbuffer[(i - kWidth) * 4]);
         const float zb = detector.viewDepth(&gbuffer[(i + kWidth) * 4]);
         firstOrder = std::max(firstOrder, std::abs(zb - za) / (2.0f * z));
-        secondOrder = std::max(secondOrder, std::abs(EdgeDetector::relativeSecondDifference(z, za, zb)));
+        secondOrder = std::max(secondOrder, std::abs(detector.relativeSecondDifference(z, za, zb)));
       }
     // No pixel marked, and the image as without the lines (to one step: the two frames' AO may round apart).
     int marked = 0, changed = 0;
@@ -437,4 +476,139 @@ TEST(Edges, KeepTheToneMappingAbsorbedAndLeaveTheBaselineState) {
     EXPECT_NO_THROW(test::render(renderer, camera, settings, view)) << view.name;
     EXPECT_EQ(gl::baselineStateDifferences(), "") << view.name;
   }
+}
+
+// Hatching's tone (Hatching.h, the CPU mirror): on a lit plane, the share of the paper the strokes cover grows band by
+// band as the luma falls, from none in the lightest band; and the period follows the pixel's size, so strokes keep
+// their spacing in pixels at any distance.
+TEST(Edges, HatchingDensityFollowsTheLumaInBands) {
+  const int bands = 4;
+  const float spacing = 6.0f, pixel = 0.01f;  // a pixel 1 cm wide: strokes about 6 cm apart
+  double previous = -1.0;
+  for (int band = bands - 1; band >= 0; --band) {
+    const float luma = (static_cast<float>(band) + 0.5f) / static_cast<float>(bands);
+    double covered = 0.0;
+    int samples = 0;
+    for (int y = 0; y < 200; ++y)
+      for (int x = 0; x < 200; ++x) {
+        // A wall facing +z, sampled a pixel apart.
+        const glm::vec3 p(static_cast<float>(x) * pixel, static_cast<float>(y) * pixel, 0.0f);
+        const glm::vec3 c = hatchedColor(glm::vec3(luma), p, glm::vec3(0.0f, 0.0f, 1.0f), pixel, spacing, bands,
+                                         glm::vec3(0.0f));
+        covered += 1.0 - c.r;
+        ++samples;
+      }
+    const double share = covered / samples;
+    std::printf("band %d (luma %.3f): strokes cover %.1f %% of the paper\n", band, luma, 100.0 * share);
+    if (band == bands - 1) {
+      EXPECT_EQ(share, 0.0) << "the lightest band is bare paper";
+    } else {
+      EXPECT_GT(share, previous + 0.05) << "band " << band;
+    }
+    previous = share;
+  }
+  // One layer of strokes one pixel wide, about `spacing` pixels apart: about 1 / spacing of the paper, whatever the
+  // pixel's size (the octave cross-fade keeps the spacing between spacing / 2 and spacing... in pixels).
+  for (float size : {0.001f, 0.0037f, 0.02f, 0.3f}) {
+    double covered = 0.0;
+    for (int i = 0; i < 4000; ++i) {
+      const glm::vec3 p(static_cast<float>(i % 200) * size, static_cast<float>(i / 200) * size, 0.0f);
+      covered += hatchLayerCoverage(p, glm::vec3(0.0f, 0.0f, 1.0f), 0, size, spacing);
+    }
+    const double share = covered / 4000.0;
+    std::printf("a pixel of %.4f: one layer covers %.3f (1 / spacing = %.3f)\n", size, share, 1.0 / spacing);
+    EXPECT_GT(share, 0.6 / spacing);
+    EXPECT_LT(share, 2.4 / spacing);
+  }
+}
+
+// The GPU's hatching against the mirror on the cube and its floor (lines off: strength 0), from the G-buffer and the
+// display colour of the same frame without edges.
+TEST(Edges, HatchingMatchesTheMirror) {
+  Renderer renderer = test::makeRenderer();
+  renderer.setScene(cubeOnAFloor());
+  const Camera camera = cubeCamera(4.0f);
+  RenderSettings plain = plainFrame();
+  plain.set("lighting.sun-intensity", "0.5");  // the cube's faces and the floor in the darker bands
+  const test::RenderedImage off = test::render(renderer, camera, plain, View::Final, test::retaining({"gbuffer"}));
+  const std::vector<std::uint8_t> gbuffer = renderer.retained("gbuffer").readRgba();
+  RenderSettings settings = plain;
+  EdgesSettings edges = linesOf(1.5f);
+  edges.style = EdgeStyle::Hatching;
+  edges.strength = 0.0f;
+  edges.color = glm::vec3(0.0f, 0.0f, 0.5f);
+  settings.of<EdgesSettings>() = edges;
+  const test::RenderedImage on = test::render(renderer, camera, settings, View::Final);
+  const FrameCamera frame = FrameCamera::from(camera, kWidth, kHeight);
+  const glm::mat4 cameraToWorld = glm::inverse(frame.view);
+  const glm::vec2 pixelWorld = pixelWorldSize(frame.unjitteredProjection, kHeight);
+  const EdgeDetector depth = EdgeDetector::of(edges, frame.near, frame.far);
+  int close = 0, geometry = 0, stroked = 0;
+  for (int row = 0; row < kHeight; ++row)
+    for (int x = 0; x < kWidth; ++x) {
+      const size_t i = static_cast<size_t>(row) * kWidth + static_cast<size_t>(x);
+      const float z = depth.viewDepth(&gbuffer[i * 4]);
+      if (z <= 0.0f) continue;  // background
+      ++geometry;
+      const glm::vec2 uv((static_cast<float>(x) + 0.5f) / kWidth, 1.0f - (static_cast<float>(row) + 0.5f) / kHeight);
+      const float code = static_cast<float>(gbuffer[i * 4 + 2] * 256 + gbuffer[i * 4 + 3]);
+      const glm::vec3 view = frame.reconstruction.viewPosition(uv, code / 65535.0f);
+      const glm::vec3 world = glm::vec3(cameraToWorld * glm::vec4(view, 1.0f));
+      const glm::vec3 normal = glm::mat3(cameraToWorld) * decodeNormal(gbuffer[i * 4], gbuffer[i * 4 + 1]);
+      const glm::vec3 display = glm::vec3(off.rgba[i * 4], off.rgba[i * 4 + 1], off.rgba[i * 4 + 2]) / 255.0f;
+      const glm::vec3 expected = hatchedColor(display, world, normal, pixelWorld.x * view.z + pixelWorld.y,
+                                              edges.hatchSpacing, edges.bands, linearToSrgb(edges.color));
+      const glm::vec3 got = glm::vec3(on.rgba[i * 4], on.rgba[i * 4 + 1], on.rgba[i * 4 + 2]) / 255.0f;
+      if (glm::all(glm::lessThanEqual(glm::abs(got - expected), glm::vec3(3.0f / 255.0f)))) ++close;
+      if (got.r < 0.9f) ++stroked;  // some stroke covers it
+    }
+  std::printf("hatching: %d of %d geometry pixels within 3/255 of the mirror, %d stroked\n", close, geometry, stroked);
+  EXPECT_GT(stroked, geometry / 20);
+  EXPECT_GE(close, geometry * 97 / 100);
+}
+
+// The strokes stay on the surface: the camera moves sideways in front of a wall, the wall moves 12 pixels across the
+// image, and so does the hatching on it (strokes fixed to the image would not move).
+TEST(Edges, HatchingStrokesStayOnTheSurfaceAsTheCameraMoves) {
+  Renderer renderer = test::makeRenderer();
+  Scene wall = test::sceneOf({test::makeRectangle(glm::vec3(-20.0f, -20.0f, 0.0f), glm::vec3(40.0f, 0.0f, 0.0f),
+                                                  glm::vec3(0.0f, 40.0f, 0.0f))});
+  renderer.setScene(wall);
+  RenderSettings settings = plainFrame();
+  settings.set("ao", "off");
+  settings.set("lighting.sun-intensity", "0");  // the wall in a middle band: several layers of strokes
+  EdgesSettings edges = linesOf(1.0f);
+  edges.style = EdgeStyle::Hatching;
+  edges.strength = 0.0f;
+  edges.color = glm::vec3(0.0f);
+  edges.bands = 8;
+  settings.of<EdgesSettings>() = edges;
+  const float distance = 5.0f;
+  const Camera first = test::makeCamera({0.0f, 0.0f, distance}, {0.0f, 0.0f, 0.0f}, kWidth, kHeight, 0.1f, 100.0f,
+                                        kFovy);
+  // 12 pixels of the image at the wall's distance.
+  const float shift = 12.0f * 2.0f * distance * std::tan(glm::radians(kFovy) * 0.5f) / kHeight;
+  const Camera second = test::makeCamera({shift, 0.0f, distance}, {shift, 0.0f, 0.0f}, kWidth, kHeight, 0.1f, 100.0f,
+                                         kFovy);
+  const test::RenderedImage a = test::render(renderer, first, settings, View::Final);
+  const test::RenderedImage b = test::render(renderer, second, settings, View::Final);
+  auto difference = [&](int dx) {
+    double sum = 0.0;
+    int count = 0;
+    for (int y = 20; y < kHeight - 20; ++y)
+      for (int x = 20; x < kWidth - 20; ++x) {
+        sum += std::abs(a.rgba[(static_cast<size_t>(y) * kWidth + x) * 4] -
+                        b.rgba[(static_cast<size_t>(y) * kWidth + x - dx) * 4]);
+        ++count;
+      }
+    return sum / count;
+  };
+  int strokes = 0;
+  for (size_t i = 0; i < a.rgba.size(); i += 4) strokes += a.rgba[i] < 128;
+  std::printf("the wall: %d stroke pixels; mean difference %.2f / 255 where the wall moved, %.2f where the image "
+              "stayed\n",
+              strokes, difference(12), difference(0));
+  EXPECT_GT(strokes, kWidth * kHeight / 10);
+  EXPECT_LT(difference(12), 2.0);
+  EXPECT_GT(difference(0), 20.0);
 }

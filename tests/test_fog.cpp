@@ -81,54 +81,59 @@ TEST(Fog, HeightFalloffIsTheOpticalDepthOfExponentialHeightFog) {
 }
 
 // Each mode's pass against the mirror: the frame rendered without fog gives each pixel's lit colour and depth, the
-// frame with fog the pass's result; expected = f c_s + (1 - f) c_f with f from FogFactor at the pixel's centre.
+// frame with fog the pass's result; expected = f c_s + (1 - f) c_f with f from FogFactor at the pixel's centre. Through
+// the built-in camera and its orthographic twin, whose parallel rays start on the eye's plane.
 TEST(Fog, EachModeMatchesItsAnalyticFogFactorPerPixel) {
-  Renderer renderer = test::makeRenderer();
-  renderer.setScene(makeBuiltinScene());
-  const int width = 160, height = 90;
-  const Camera camera = builtinSceneCamera(width, height);
-  const FrameCamera frameCamera = FrameCamera::from(camera, width, height);
-  RenderSettings plain;
-  plain.set("fxaa", "off");
-  test::render(renderer, camera, plain, View::Final, test::retaining({"scene-color", "gbuffer"}));
-  const std::vector<std::uint8_t> lit = renderer.retained("scene-color").readRgba();
-  const std::vector<std::uint8_t> gbuffer = renderer.retained("gbuffer").readRgba();
+  for (bool orthographic : {false, true}) {
+    Renderer renderer = test::makeRenderer();
+    renderer.setScene(makeBuiltinScene());
+    const int width = 160, height = 90;
+    const Camera camera = orthographic ? builtinSceneCamera(width, height).asOrthographic()
+                                       : builtinSceneCamera(width, height);
+    const FrameCamera frameCamera = FrameCamera::from(camera, width, height);
+    RenderSettings plain;
+    plain.set("fxaa", "off");
+    test::render(renderer, camera, plain, View::Final, test::retaining({"scene-color", "gbuffer"}));
+    const std::vector<std::uint8_t> lit = renderer.retained("scene-color").readRgba();
+    const std::vector<std::uint8_t> gbuffer = renderer.retained("gbuffer").readRgba();
 
-  for (FogMode mode : {FogMode::Linear, FogMode::Exponential, FogMode::SquaredExponential}) {
-    for (float falloff : {0.0f, 0.35f}) {
-      const std::string what = std::string(fogModeName(mode)) + (falloff > 0.0f ? " with height falloff" : "");
-      RenderSettings settings = plain;
-      settings.of<FogSettings>() = fogOf(mode, falloff);
-      test::render(renderer, camera, settings, View::Final, test::retaining({"scene-color"}));
-      const std::vector<std::uint8_t> fogged = renderer.retained("scene-color").readRgba();
-      const FogFactor fog = FogFactor::of(settings.of<FogSettings>(), frameCamera.view);
-      float worst = 0.0f;
-      int partial = 0, background = 0;
-      for (int row = 0; row < height; ++row) {
-        for (int x = 0; x < width; ++x) {
-          const size_t i = (static_cast<size_t>(row) * width + x) * 4;
-          const glm::vec2 uv((static_cast<float>(x) + 0.5f) / static_cast<float>(width),
-                             1.0f - (static_cast<float>(row) + 0.5f) / static_cast<float>(height));  // top to bottom
-          const int code = gbuffer[i + 2] * 256 + gbuffer[i + 3];
-          const bool isBackground = code == 65535;
-          const ViewReconstruction& r = frameCamera.reconstruction;
-          const float depth = static_cast<float>(code) / 65535.0f;
-          const glm::vec3 p = isBackground ? r.farPlaneRay(uv) : r.viewPosition(uv, depth);
-          const float f = fog.at(p, isBackground);
-          partial += f > 0.05f && f < 0.95f;
-          background += isBackground;
-          const glm::vec3 surface = decodeHdr(HdrTexel{lit[i], lit[i + 1], lit[i + 2], lit[i + 3]});
-          const glm::vec3 expected = f * surface + (1.0f - f) * settings.of<FogSettings>().color;
-          const glm::vec3 got = decodeHdr(HdrTexel{fogged[i], fogged[i + 1], fogged[i + 2], fogged[i + 3]});
-          // Relative to the brightest channel: RGB9E5 keeps 9 bits of it (half a step: 1/1024).
-          const float largest = std::max(expected.r, std::max(expected.g, expected.b));
-          for (int c = 0; c < 3; ++c) worst = std::max(worst, std::abs(got[c] - expected[c]) / largest);
+    for (FogMode mode : {FogMode::Linear, FogMode::Exponential, FogMode::SquaredExponential}) {
+      for (float falloff : {0.0f, 0.35f}) {
+        const std::string what = std::string(fogModeName(mode)) + (falloff > 0.0f ? " with height falloff" : "");
+        RenderSettings settings = plain;
+        settings.of<FogSettings>() = fogOf(mode, falloff);
+        test::render(renderer, camera, settings, View::Final, test::retaining({"scene-color"}));
+        const std::vector<std::uint8_t> fogged = renderer.retained("scene-color").readRgba();
+        const FogFactor fog = FogFactor::of(settings.of<FogSettings>(), frameCamera.view);
+        float worst = 0.0f;
+        int partial = 0, background = 0;
+        for (int row = 0; row < height; ++row) {
+          for (int x = 0; x < width; ++x) {
+            const size_t i = (static_cast<size_t>(row) * width + x) * 4;
+            const glm::vec2 uv((static_cast<float>(x) + 0.5f) / static_cast<float>(width),
+                               1.0f - (static_cast<float>(row) + 0.5f) / static_cast<float>(height));  // top to bottom
+            const int code = gbuffer[i + 2] * 256 + gbuffer[i + 3];
+            const bool isBackground = code == 65535;
+            const ViewReconstruction& r = frameCamera.reconstruction;
+            const float depth = static_cast<float>(code) / 65535.0f;
+            const glm::vec3 p = isBackground ? r.farPlaneRay(uv) : r.viewPosition(uv, depth);
+            const float f = fog.at(p, isBackground, r.eyeRayOrigin(p));
+            partial += f > 0.05f && f < 0.95f;
+            background += isBackground;
+            const glm::vec3 surface = decodeHdr(HdrTexel{lit[i], lit[i + 1], lit[i + 2], lit[i + 3]});
+            const glm::vec3 expected = f * surface + (1.0f - f) * settings.of<FogSettings>().color;
+            const glm::vec3 got = decodeHdr(HdrTexel{fogged[i], fogged[i + 1], fogged[i + 2], fogged[i + 3]});
+            // Relative to the brightest channel: RGB9E5 keeps 9 bits of it (half a step: 1/1024).
+            const float largest = std::max(expected.r, std::max(expected.g, expected.b));
+            for (int c = 0; c < 3; ++c) worst = std::max(worst, std::abs(got[c] - expected[c]) / largest);
+          }
         }
+        std::printf("fog %s%s: worst error %.5f of the brightest channel; %d of %d pixels partly fogged, %d "
+                    "background\n",
+                    what.c_str(), orthographic ? " (orthographic)" : "", worst, partial, width * height, background);
+        EXPECT_LT(worst, 2.5f / 512.0f) << what;
+        EXPECT_GT(partial, width * height / 4) << what << ": the fog must vary over the frame for the test to tell";
       }
-      std::printf("fog %s: worst error %.5f of the brightest channel; %d of %d pixels partly fogged, %d background\n",
-                  what.c_str(), worst, partial, width * height, background);
-      EXPECT_LT(worst, 2.5f / 512.0f) << what;
-      EXPECT_GT(partial, width * height / 4) << what << ": the fog must vary over the frame for the test to tell";
     }
   }
 }

@@ -63,14 +63,20 @@ TEST(EffectTable, ListsTheFrameInOrderWithUniqueNames) {
   std::vector<std::string> effects;
   for (const EffectEntry& row : effectTable()) effects.push_back(row.info.name);
   EXPECT_EQ(effects, (std::vector<std::string>{"gbuffer", "velocity", "ao", "lighting", "lines", "fog", "taa", "bloom",
-                                                "tonemap", "edges", "dof", "motion-blur", "fxaa"}));
+                                                "lens-flare", "glare", "dof", "auto-exposure", "tonemap", "edges",
+                                                "motion-blur", "chromatic-aberration", "fxaa"}));
   EXPECT_EQ(framePassNames(),
             (std::vector<std::string>{"pose", "gbuffer", "base-color", "velocity", "peel", "hierarchy", "sao",
-                                      "ao-temporal", "blur-h", "blur-v", "upsample", "lighting", "shading-count",
-                                      "lines", "fog", "taa", "bloom", "tonemap", "edges-detect", "edges-h", "edges",
+                                      "ao-temporal",
+                                      "blur-h", "blur-v", "upsample", "lighting", "shading-count", "lines", "fog",
+                                      "taa", "bloom", "bloom-bright", "lens-flare", "glare",
                                       "dof-coc", "dof-downsample", "dof-tiles-h", "dof-tiles", "dof-neighbors",
-                                      "dof-near", "dof-far", "dof-composite",
-                                      "motion-tiles-h", "motion-tiles", "motion-neighbors", "motion-blur", "fxaa",
+                                      "dof-near", "dof-far", "dof-composite", "exposure-meter",
+                                      "exposure-reduce", "exposure-reduce-2",
+                                      "exposure-histogram", "exposure-bins", "exposure-adapt", "tonemap",
+                                      "edges-detect", "edges-h", "edges",
+                                      "motion-tiles-h", "motion-tiles", "motion-neighbors", "motion-blur",
+                                      "chromatic-aberration", "fxaa",
                                       "view", "present"}));
   // Every target an effect declares is RGBA8 data with a documented encoding; packed data is never filtered (plain
   // colours may be: the display colour, depth of field's premultiplied half-size fields).

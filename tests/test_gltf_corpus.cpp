@@ -5,6 +5,8 @@
 
 #include <cmath>
 #include <filesystem>
+#include <fstream>
+#include <iterator>
 #include <map>
 
 #include "TestSupport.h"
@@ -293,29 +295,57 @@ TEST(TexturePreparation, FollowsWebGl1NonPowerOfTwoRules) {
   EXPECT_EQ(p.sampler.wrapS, 0x2901);
 }
 
-// The fuzzer's own seeds (tests/fuzz/seeds, for skins, morph targets and animations) are valid files: each loads,
-// with what moves read and consistent, so that the fuzzer starts from inputs that reach those code paths.
-TEST(GltfCorpus, FuzzerSeedsLoadWithTheirMotion) {
-  int count = 0;
+// The fuzzer's own seeds (tests/fuzz/seeds: README.md lists the input forms each holds) load as the fuzzer loads them
+// (from memory, the input's second half offered as "buffer.bin"): each is drawable, with what it is there for read,
+// so that the fuzzer starts from inputs that reach those code paths; the refused-* ones are refused in one line.
+TEST(GltfCorpus, FuzzerSeedsLoadAsTheFuzzerLoadsThem) {
+  std::map<std::string, Scene> loaded;
+  int refused = 0;
   for (const auto& entry : std::filesystem::directory_iterator(test::sourceDir() + "/tests/fuzz/seeds")) {
     const std::string ext = entry.path().extension().string();
     if (ext != ".gltf" && ext != ".glb") continue;
-    const std::string file = entry.path().string();
-    GltfLoadReport report;
-    const Scene scene = loadGltfFile(file, &report);
-    expectDrawable(scene, file);
-    ++count;
-    // The compressed seeds (make-compressed-seeds.mjs) are still; the others move.
-    if (entry.path().filename() == "meshopt-quantized.glb") {
-      EXPECT_EQ(scene.triangleCount(), 128u) << file;
-      EXPECT_EQ(scene.lineInstances.size(), 1u) << file;
+    const std::string name = entry.path().filename().string();
+    std::ifstream in(entry.path(), std::ios::binary);
+    const std::vector<std::uint8_t> bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    const std::map<std::string, std::vector<std::uint8_t>> sideFiles = {
+        {"buffer.bin", std::vector<std::uint8_t>(bytes.begin() + static_cast<std::ptrdiff_t>(bytes.size() / 2),
+                                                 bytes.end())}};
+    if (name.rfind("refused-", 0) == 0) {
+      try {
+        loadGltfMemory(bytes, name, sideFiles);
+        ADD_FAILURE() << name << " loaded";
+      } catch (const InputError& e) {
+        const std::string message = e.what();
+        EXPECT_EQ(message.rfind(name + ": ", 0), 0u) << message;
+        EXPECT_EQ(message.find('\n'), std::string::npos) << message;
+      }
+      ++refused;
       continue;
     }
-    if (entry.path().filename() == "draco-engine.glb") continue;
-    EXPECT_FALSE(scene.animations.empty()) << file;
-    EXPECT_TRUE(scene.animated()) << file;
+    const Scene scene = loadGltfMemory(bytes, name, sideFiles);
+    expectDrawable(scene, name);
+    loaded[name] = scene;
   }
-  EXPECT_EQ(count, 5);
+  EXPECT_EQ(loaded.size(), 9u);
+  EXPECT_EQ(refused, 2);
+  // What moves.
+  for (const char* name : {"skin-animated.gltf", "morph-sparse.glb", "hierarchy-animated.glb", "skin-40-joints.glb"}) {
+    EXPECT_FALSE(loaded[name].animations.empty()) << name;
+    EXPECT_TRUE(loaded[name].animated()) << name;
+  }
+  ASSERT_EQ(loaded["skin-40-joints.glb"].skins.size(), 1u);
+  EXPECT_EQ(loaded["skin-40-joints.glb"].skins[0].joints.size(), 40u);  // beyond GLES 2's 16-joint uniform palette
+  // The compressed seeds (make-compressed-seeds.mjs) are still.
+  EXPECT_EQ(loaded["meshopt-quantized.glb"].triangleCount(), 128u);
+  EXPECT_EQ(loaded["meshopt-quantized.glb"].lineInstances.size(), 1u);
+  EXPECT_GT(loaded["draco-engine.glb"].triangleCount(), 1000u);
+  // Materials and textures: every slot, decoded images, cut-out and blended materials.
+  const Scene& materials = loaded["materials-textured.glb"];
+  EXPECT_EQ(materials.materials.size(), 5u);
+  EXPECT_GE(materials.textures.size(), 2u);
+  // Lights (the point and the spot; the directional one is the renderer's sun's) and the external buffer's quad.
+  EXPECT_EQ(loaded["lights-cameras.gltf"].lights.size(), 2u);
+  EXPECT_EQ(loaded["external-buffer.glb"].triangleCount(), 4u);
 }
 
 // Inputs the fuzzer (tests/fuzz, tools/fuzz-gltf.sh) once broke the loader with; each must now be refused cleanly.

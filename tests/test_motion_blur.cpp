@@ -220,6 +220,63 @@ TEST(MotionBlur, ACameraPanMovesTowardsTheReference) {
                          "camera pan");
 }
 
+// The file's camera on an animated node (issue 31): perspective, and orthographic with the view it has at the target,
+// sliding sideways across the room at 3 m/s. Each frame looks through the scene camera (FrameOptions::sceneCamera),
+// so the velocity pass sees the camera move from where the pose put it at the previous time; the reference averages
+// 64 renders through the camera wherever the animation put it at each instant of the shutter.
+TEST(MotionBlur, AnAnimatedSceneCameraMovesTowardsTheReference) {
+  const Camera view = builtinSceneCamera(kWidth, kHeight);
+  for (bool orthographic : {false, true}) {
+    Scene scene = makeBuiltinScene(BuiltinSceneOptions::still());
+    Node node;
+    node.rotation = glm::quat_cast(glm::mat3(glm::inverse(view.view())));
+    scene.nodes.push_back(node);
+    const glm::vec3 side = glm::normalize(glm::cross(view.target - view.eye, view.up));
+    AnimationSampler slide;
+    slide.times = {0.0f, 2.0f};
+    const glm::vec3 from = view.eye - side * 3.0f, to = view.eye + side * 3.0f;
+    slide.values = {from.x, from.y, from.z, to.x, to.y, to.z};
+    slide.components = 3;
+    scene.animations.push_back(Animation{"dolly", {slide}, {{0, 0, AnimationPath::Translation}}});
+    SceneCamera camera;
+    camera.orthographic = orthographic;
+    camera.yfov = view.fovyRadians();
+    camera.ymag = view.asOrthographic().ymag;
+    camera.xmag = camera.ymag * view.aspect();
+    camera.znear = view.near;
+    camera.zfar = view.far;
+    camera.node = 0;
+    scene.cameras.push_back(camera);
+    Renderer renderer = test::makeRenderer();
+    renderer.setScene(scene);
+
+    const double time = 1.0;
+    const auto cameraAt = [&](double t) {
+      FrameOptions options;
+      options.time = t;
+      options.sceneCamera = 0;
+      return renderer.frameCamera(view, kWidth, kHeight, options);
+    };
+    Frames frames;
+    AccumulationOptions accumulation;
+    accumulation.time = time;
+    accumulation.fps = kFps;
+    accumulation.samples = 64;
+    frames.reference = accumulateShutter(renderer, cameraAt, blurSettings(false), accumulation);
+    for (bool on : {true, false}) {
+      FrameOptions previous;
+      previous.time = time - 1.0 / kFps;
+      previous.sceneCamera = 0;
+      test::render(renderer, view, blurSettings(on), View::Final, previous);
+      FrameOptions frame = previous;
+      frame.time = time;
+      frame.previousTime = previous.time;
+      (on ? frames.blurred : frames.sharp) = test::render(renderer, view, blurSettings(on), View::Final, frame);
+    }
+    expectTowardsReference(frames, orthographic ? "orthographic scene camera" : "perspective scene camera");
+  }
+}
+
 // Where nothing moves, nothing changes: every tile's neighbourhood moves less than half a pixel, and the early exit
 // copies the pixel.
 TEST(MotionBlur, AStillSceneIsUnchanged) {

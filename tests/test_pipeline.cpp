@@ -104,12 +104,63 @@ TEST(Pipeline, TheLightingPassShadesEachPixelOnce) {
     counts = shadingCounts(renderer, builtinSceneCamera(160 * scale, 90 * scale), settings);
     EXPECT_EQ(counts.size(), 2u) << scale << ": a pixel was shaded " << counts.rbegin()->first << " times";
   }
-  // Without the G-buffer (the AO off, nothing else reads it), the lighting tests its own depth and pays for overdraw:
-  // the same count would fail.
+  // The AO off, nothing else reads the G-buffer: the lighting still shades each pixel once over the G-buffer's depth
+  // (lighting.depth auto at the medium tier, or gbuffer) or over a depth pre-pass of its own (prepass); with its own
+  // depth test alone (overdraw, auto at the low tier) it pays for overdraw, and the same count would fail.
   renderer.setScene(overlappingLayers());
   settings.set("ao", "off");
-  counts = shadingCounts(renderer, layersCamera, settings);
-  EXPECT_GT(counts.rbegin()->first, 5) << "back to front, the layers overdraw";
+  for (const char* depth : {"auto", "gbuffer", "prepass"}) {
+    settings.set("lighting.depth", depth);
+    counts = shadingCounts(renderer, layersCamera, settings);
+    EXPECT_GT(counts[1], 160 * 120 / 4) << depth;
+    EXPECT_EQ(counts.size(), 2u) << depth << ": a pixel was shaded " << counts.rbegin()->first << " times";
+  }
+  for (const char* quality : {"low", "medium"}) {
+    settings.set("lighting.quality", quality);
+    settings.set("lighting.depth", std::string(quality) == "low" ? "auto" : "overdraw");
+    counts = shadingCounts(renderer, layersCamera, settings);
+    EXPECT_GT(counts.rbegin()->first, 5) << quality << ": back to front, the layers overdraw";
+  }
+}
+
+// lighting.depth changes where the lighting finds the visible surface with the AO off, not the image: the frames of
+// the built-in scene under each are one (up to the depth pre-pass's and the G-buffer's identical depths: bit for bit
+// on the forward form, the deferred form's 8-bit normal and base colour beside it).
+TEST(Pipeline, TheDepthTheLightingTakesWithTheAoOffDoesNotChangeTheImage) {
+  for (bool drawBuffers : {false, true}) {
+    RendererOptions options;
+    options.checkGlErrors = true;
+    options.allowDrawBuffers = drawBuffers;
+    Renderer renderer(test::context().caps(), options);
+    renderer.setScene(makeBuiltinScene(BuiltinSceneOptions::still()));
+    const Camera camera = builtinSceneCamera(160, 90);
+    RenderSettings settings;
+    settings.set("ao", "off");
+    settings.set("fxaa", "off");
+    std::map<std::string, std::vector<std::uint8_t>> frames;
+    bool deferred = false;  // the lighting took the deferred form over the G-buffer
+    for (const char* depth : {"gbuffer", "prepass", "overdraw", "auto"}) {
+      settings.set("lighting.depth", depth);
+      test::render(renderer, camera, settings, View::Final, test::retaining({"display-color"}));
+      frames[depth] = renderer.retained("display-color").readRgba();
+      bool gbufferRan = false;
+      for (const PlannedPass& pass : renderer.lastPlan().passes()) {
+        gbufferRan = gbufferRan || (pass.live && pass.decl.name == "gbuffer");
+        if (pass.live && pass.decl.name == "lighting" && std::string(depth) == "gbuffer")
+          deferred = pass.reads.count("base-color") > 0;
+      }
+      // auto at the medium tier: the G-buffer where the deferred form shades the scene, else the depth pre-pass.
+      EXPECT_EQ(gbufferRan, std::string(depth) == "gbuffer" || (std::string(depth) == "auto" && deferred)) << depth;
+    }
+    EXPECT_EQ(deferred, drawBuffers && test::context().caps().drawBuffers);
+    const int tolerance = drawBuffers ? 3 : 0;
+    for (const char* depth : {"prepass", "overdraw"}) {
+      int worst = 0;
+      for (size_t i = 0; i < frames[depth].size(); ++i)
+        worst = std::max(worst, std::abs(int(frames[depth][i]) - int(frames["gbuffer"][i])));
+      EXPECT_LE(worst, tolerance) << depth << " against gbuffer, " << (drawBuffers ? "deferred" : "forward");
+    }
+  }
 }
 
 TEST(Pipeline, WithoutAStencilBufferTheLightingPassShadesAlmostEveryPixelOnce) {

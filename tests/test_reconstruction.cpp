@@ -1,6 +1,7 @@
 // View-space positions rebuilt from the packed G-buffer of a known plane match the true ones within the depth
 // quantisation: by the CPU mirror (frame/ViewReconstruction.h) over the G-buffer the GPU wrote, and by the shaders'
-// own lib/reconstruct.glsl, with the far-plane ray interpolated by fullscreen.vert as the passes use it.
+// own lib/reconstruct.glsl, with the far-plane ray interpolated by fullscreen.vert as the passes use it; through
+// perspective and orthographic cameras.
 #include <gtest/gtest.h>
 
 #include <glm/geometric.hpp>
@@ -19,6 +20,7 @@ struct Case {
   const char* name;
   glm::vec3 eye, target;
   float near, far;
+  float ymag = 0.0f;  // > 0: an orthographic camera of this half height
 };
 
 // The same check in the shader: for each G-buffer pixel, R = 1 where geometry was drawn, G = (error / bound) / 2 of
@@ -41,8 +43,10 @@ void main() {
     return;
   }
   vec3 rebuilt = viewPositionOnRay(v_farRay, unpackLinearDepth(g.ba));
-  vec3 truth = v_farRay * (u_planeOffset / dot(v_farRay, u_planeNormal));
-  float bound = u_halfDepthStep * length(v_farRay) / u_farPlane + 1e-5 * length(truth);
+  // The pixel's ray (from the eye, or from the eye's plane along the axis) meets the plane.
+  vec3 origin = eyeRayOrigin(v_farRay), ray = eyeRay(v_farRay);
+  vec3 truth = origin + ray * ((u_planeOffset - dot(origin, u_planeNormal)) / dot(ray, u_planeNormal));
+  float bound = u_halfDepthStep * length(ray) / u_farPlane + 1e-5 * length(truth);
   gl_FragColor = vec4(1.0, clamp(length(rebuilt - truth) / bound, 0.0, 2.0) * 0.5, 0.0, 1.0);
 }
 )";
@@ -84,7 +88,9 @@ void checkPlane(const Case& c) {
   const glm::vec3 v = glm::normalize(glm::cross(n, u)) * 200.0f;  // u x v points along n
   Renderer renderer = test::makeRenderer();
   renderer.setScene(test::sceneOf({test::makeRectangle(-0.5f * (u + v), u, v)}));
-  const Camera camera = test::makeCamera(c.eye, c.target, 160, 120, c.near, c.far);
+  Camera camera = test::makeCamera(c.eye, c.target, 160, 120, c.near, c.far);
+  camera.orthographic = c.ymag > 0.0f;
+  camera.ymag = c.ymag;
   AoSettings settings;
   settings.enabled = false;
   test::render(renderer, camera, settings, View::Final, test::retaining({"gbuffer"}));
@@ -105,8 +111,9 @@ void checkPlane(const Case& c) {
       const glm::vec2 uv((static_cast<float>(x) + 0.5f) / static_cast<float>(camera.width),
                          1.0f - (static_cast<float>(y) + 0.5f) / static_cast<float>(camera.height));
       const glm::vec3 rebuilt = frame.reconstruction.viewPosition(uv, LinearDepthPacking::depthFromCode(code));
-      const glm::vec3 ray = frame.reconstruction.farPlaneRay(uv);
-      const glm::vec3 truth = ray * (glm::dot(pv, nv) / glm::dot(ray, nv));
+      const glm::vec3 farPoint = frame.reconstruction.farPlaneRay(uv);
+      const glm::vec3 origin = frame.reconstruction.eyeRayOrigin(farPoint), ray = farPoint - origin;
+      const glm::vec3 truth = origin + ray * (glm::dot(pv - origin, nv) / glm::dot(ray, nv));
       // Half a depth code in metres along z, scaled to the ray's length, plus float slack.
       const double zStep = 0.5 * (c.far - c.near) / 65535.0;
       const double bound = zStep * glm::length(ray) / c.far + 1e-5 * glm::length(truth);
@@ -128,4 +135,10 @@ TEST(Reconstruction, TiltedPlaneMatchesWithinDepthQuantisation) {
 
 TEST(Reconstruction, GrazingPlaneWithWideDepthRangeMatches) {
   checkPlane({"grazing", glm::vec3(0.0f, 1.2f, 8.0f), glm::vec3(0.0f, 0.6f, -20.0f), 0.05f, 400.0f});
+}
+
+TEST(Reconstruction, OrthographicPlanesMatchWithinDepthQuantisation) {
+  checkPlane({"orthographic oblique", glm::vec3(3.0f, 4.0f, 6.0f), glm::vec3(0.0f, 0.0f, -1.0f), 0.0f, 60.0f, 6.0f});
+  checkPlane({"orthographic grazing", glm::vec3(0.0f, 1.2f, 8.0f), glm::vec3(0.0f, 0.6f, -20.0f), 0.5f, 400.0f,
+              3.0f});
 }

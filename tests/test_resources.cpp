@@ -109,14 +109,28 @@ TEST(Resources, AGlErrorRaisedInAPassNamesThatPass) {
     if (pass.rfind("dof-", 0) == 0) frame.set("dof", "on");
     if (pass == "fog" || pass == "bloom") frame.set(pass, "on");
     if (pass.rfind("edges", 0) == 0) frame.set("edges", "on");
+    // The lens's light (bloom's bright pass alone, with bloom off); auto exposure, its histogram passes with
+    // percentile metering, its reductions on frames wide enough to need one or two.
+    if (pass == "bloom-bright" || pass == "lens-flare") frame.set("lens-flare", "on");
+    if (pass == "glare" || pass == "chromatic-aberration") frame.set(pass, "on");
+    if (pass.rfind("exposure-", 0) == 0) frame.set("auto-exposure", "on");
+    if (pass == "exposure-histogram" || pass == "exposure-bins") frame.set("auto-exposure.metering", "percentile");
+    const Camera wide = builtinSceneCamera(pass == "exposure-reduce-2" ? 2100 : pass == "exposure-reduce" ? 200 : 32,
+                                           24);
+    const gl::RenderTarget wideOutput("output", wide.width, wide.height, GL_NEAREST,
+                                      gl::RenderTarget::Depth::Renderbuffer, test::context().caps().depth24);
     FrameOptions options;
     if (pass == "present") options.retain = {"display-color"};
     if (pass == "tonemap") options.retain = {"scene-color"};
     ErrorAtTheEndOf timer(pass);
     options.timer = &timer;
     try {
-      renderer.render(camera, frame, view, OutputTarget{output.framebuffer(), camera.width, camera.height, {}},
-                      options);
+      if (wide.width != camera.width)
+        renderer.render(wide, frame, view, OutputTarget{wideOutput.framebuffer(), wide.width, wide.height, {}},
+                        options);
+      else
+        renderer.render(camera, frame, view, OutputTarget{output.framebuffer(), camera.width, camera.height, {}},
+                        options);
       ADD_FAILURE() << "the GL error raised in " << pass << " went unnoticed";
     } catch (const GlError& e) {
       EXPECT_NE(std::string(e.what()).find("after pass " + pass), std::string::npos) << e.what();

@@ -78,8 +78,7 @@ struct Projection {
   glm::mat4 viewProjection;
   glm::mat4 inverse;
   static Projection of(const Camera& camera) {
-    const float aspect = static_cast<float>(camera.width) / static_cast<float>(camera.height);
-    const glm::mat4 vp = glm::perspective(camera.fovyRadians(), aspect, camera.near, camera.far) * camera.view();
+    const glm::mat4 vp = camera.projection() * camera.view();
     return {vp, glm::inverse(vp)};
   }
 };
@@ -122,6 +121,22 @@ TEST(Velocity, AStillSceneAndAStillCameraGiveExactlyZero) {
     for (const glm::vec2& v : renderVelocity(renderer, camera, still)) ASSERT_EQ(v, glm::vec2(0.0f));
 }
 
+// The worst difference between the velocity of a frame seen through `now` and the analytic motion of the wall's points
+// (z = 0) between `before` and `now`, in uv units.
+float worstCameraMotionError(const std::vector<glm::vec2>& velocity, const Camera& before, const Camera& now) {
+  const int width = now.width, height = now.height;
+  const Projection p = Projection::of(now), q = Projection::of(before);
+  float worst = 0.0f;
+  for (int y = 0; y < height; ++y)
+    for (int x = 0; x < width; ++x) {
+      const auto point = pointOnPlane(p, x, y, width, height, 0.0f);
+      if (!point) return 1e30f;
+      const glm::vec2 expected = uvOf(p, *point) - uvOf(q, *point);
+      worst = std::max(worst, glm::length(velocity[static_cast<size_t>(y * width + x)] - expected));
+    }
+  return worst;
+}
+
 TEST(Velocity, ACameraPanGivesTheAnalyticMotion) {
   Renderer renderer = test::makeRenderer();
   Scene scene = wallAndSlidingBox();
@@ -143,6 +158,81 @@ TEST(Velocity, ACameraPanGivesTheAnalyticMotion) {
     }
   // The packing's step (1/32767 of the screen) and the 16-bit depth the motion is reconstructed from.
   EXPECT_LT(worst, 3.0f / vp::kStepsPerUnit) << "worst error, in uv units";
+}
+
+// An orthographic camera that pans, turns and zooms (ymag): every point of the wall moves as the two projections say.
+TEST(Velocity, AnOrthographicCameraPanGivesTheAnalyticMotion) {
+  Renderer renderer = test::makeRenderer();
+  Scene scene = wallAndSlidingBox();
+  scene.instances.pop_back();  // the wall alone
+  renderer.setScene(scene);
+  Camera before = test::makeCamera({0.0f, 0.0f, 5.0f}, {0.0f, 0.0f, 0.0f}, 120, 80, 0.0f, 20.0f);
+  before.orthographic = true;
+  before.ymag = 2.0f;
+  Camera now = before;
+  now.eye = {0.25f, -0.1f, 5.2f};
+  now.target = {0.3f, 0.05f, 0.0f};
+  now.ymag = 2.1f;
+  renderVelocity(renderer, before, {});
+  const float worst = worstCameraMotionError(renderVelocity(renderer, now, {}), before, now);
+  EXPECT_LT(worst, 3.0f / vp::kStepsPerUnit) << "worst error, in uv units";
+}
+
+// A camera of the scene on an animated node: one frame at T with the previous pose at T - 0.1 (the CLI's single
+// frame: no previous frame, a previous time) sees the camera's motion between the two, for a perspective and an
+// orthographic camera; with the previous time equal to T it sees none.
+TEST(Velocity, AnAnimatedSceneCameraGivesTheAnalyticMotion) {
+  for (bool orthographic : {false, true}) {
+    Scene scene = wallAndSlidingBox();
+    scene.instances.pop_back();  // the wall alone
+    // The camera's node slides from (-1, 0.2, 6) to (1, 0.2, 6) over 10 s, looking down -z.
+    scene.nodes.push_back(Node{});
+    const int node = static_cast<int>(scene.nodes.size()) - 1;
+    AnimationSampler sampler;
+    sampler.times = {0.0f, 10.0f};
+    sampler.values = {-1.0f, 0.2f, 6.0f, 1.0f, 0.2f, 6.0f};
+    sampler.components = 3;
+    scene.animations.front().channels.push_back(
+        {static_cast<int>(scene.animations.front().samplers.size()), node, AnimationPath::Translation});
+    scene.animations.front().samplers.push_back(sampler);
+    SceneCamera sceneCamera;
+    sceneCamera.orthographic = orthographic;
+    sceneCamera.yfov = 0.8f;
+    sceneCamera.ymag = 2.5f;
+    sceneCamera.xmag = 2.5f * 1.5f;
+    sceneCamera.znear = 0.5f;
+    sceneCamera.zfar = 30.0f;
+    sceneCamera.node = node;
+    scene.cameras.push_back(sceneCamera);
+    Renderer renderer = test::makeRenderer();
+    renderer.setScene(scene);
+
+    FrameOptions options;
+    options.sceneCamera = 0;
+    options.time = 5.0;
+    options.previousTime = 4.9;  // 0.02 m to the left
+    // The cameras the node puts there, made by hand: at x = 0 and -0.02, looking down -z.
+    auto cameraAt = [&](float x) {
+      Camera c = test::makeCamera({x, 0.2f, 6.0f}, {x, 0.2f, 0.0f}, 120, 80, 0.5f, 30.0f,
+                                  glm::degrees(sceneCamera.yfov));
+      c.orthographic = orthographic;
+      c.ymag = sceneCamera.ymag;
+      c.frameAspect = sceneCamera.frameAspect();
+      return c;
+    };
+    const Camera placeholder = test::makeCamera({0, 0, 1}, {0, 0, 0}, 120, 80);  // only its size counts
+    const std::vector<glm::vec2> velocity = renderVelocity(renderer, placeholder, options);
+    const float worst = worstCameraMotionError(velocity, cameraAt(-0.02f), cameraAt(0.0f));
+    EXPECT_LT(worst, 3.0f / vp::kStepsPerUnit) << (orthographic ? "orthographic" : "perspective");
+    // The motion is there to see: 0.02 m of a view about 5 m wide is 1/250 of the screen.
+    EXPECT_GT(std::abs(velocity[80 * 60 + 40].x), 0.002f);
+    const FrameCamera frame = renderer.lastFrame().camera;
+    EXPECT_NEAR(glm::inverse(frame.view)[3].x, 0.0f, 1e-5f) << "the camera is where the node is at 5 s";
+
+    options.previousTime = 5.0;
+    renderer.setScene(scene);  // no history
+    for (const glm::vec2& v : renderVelocity(renderer, placeholder, options)) ASSERT_EQ(v, glm::vec2(0.0f));
+  }
 }
 
 TEST(Velocity, AMovingObjectGivesTheAnalyticMotionAndItsBackgroundNone) {

@@ -5,6 +5,7 @@
 #include <set>
 #include <iterator>
 
+#include <glm/geometric.hpp>
 #include <gtest/gtest.h>
 
 #include "TestSupport.h"
@@ -209,6 +210,54 @@ TEST(Viewer, KeysActThroughTheParameterTable) {
     EXPECT_FALSE(binding.label.empty());
     EXPECT_FALSE(binding.description.empty());
   }
+}
+
+// The cameras through the Viewer, on Debian's Cameras.gltf (a perspective and an orthographic camera): `v` cycles the
+// free camera and the file's, each drawn as the Renderer draws it; a move takes the view over as the free camera;
+// `x` switches the free camera's projection from the view shown; loading a scene starts on the free camera.
+TEST(Viewer, CyclesTheFilesCamerasAndTakesTheViewOverOnAMove) {
+  Viewer viewer(test::context().caps());
+  ViewerState& state = viewer.state();
+  EXPECT_THROW(viewer.handleKey("v"), InputError) << "the built-in scene has no cameras of its own";
+  viewer.loadGltfFile(test::assimpModels() + "/cameras/Cameras.gltf");
+  ASSERT_EQ(state.sceneCameras.size(), 2u);
+  const test::RenderedImage free = renderViewer(viewer);
+  viewer.handleKey("v");
+  EXPECT_EQ(state.cameraChoice(), "0");
+  const test::RenderedImage first = renderViewer(viewer);
+  EXPECT_FALSE(viewer.cameraShown().orthographic);
+  viewer.handleKey("v");
+  EXPECT_EQ(state.cameraChoice(), "1");
+  EXPECT_TRUE(viewer.cameraShown().orthographic);
+  const test::RenderedImage second = renderViewer(viewer);
+  EXPECT_NE(first.rgba, free.rgba);
+  EXPECT_NE(second.rgba, first.rgba);
+  // The state text brings the same view back in another viewer.
+  Viewer other(test::context().caps());
+  other.loadGltfFile(test::assimpModels() + "/cameras/Cameras.gltf");
+  other.state().applyQuery(state.toQuery());
+  EXPECT_EQ(renderViewer(other).rgba, second.rgba);
+  viewer.handleKey("v");
+  EXPECT_EQ(state.cameraChoice(), "free");
+  EXPECT_EQ(renderViewer(viewer).rgba, free.rgba);
+
+  // A move from the orthographic file camera: the free camera takes its view, then moves.
+  viewer.setCamera("1");
+  const Camera shown = viewer.cameraShown();
+  viewer.zoom(1.0f);
+  EXPECT_EQ(state.cameraChoice(), "free");
+  EXPECT_TRUE(state.camera.orthographic);
+  EXPECT_NEAR(glm::length(state.camera.eye - shown.eye), 0.0f, 1e-5f);
+  EXPECT_NEAR(state.camera.ymag, shown.ymag, 1e-6f);
+  viewer.handleKey("x");
+  EXPECT_FALSE(state.camera.orthographic);
+  viewer.handleKey("x");
+  EXPECT_TRUE(state.camera.orthographic);
+  EXPECT_NEAR(state.camera.ymag, shown.ymag, 1e-4f) << "perspective and back keep the view at the target";
+  viewer.setCamera("0");
+  viewer.loadGltfFile(test::assimpModels() + "/cameras/Cameras.gltf");
+  EXPECT_EQ(state.cameraChoice(), "free");
+  EXPECT_THROW(viewer.setCamera("2"), InputError);
 }
 
 // The timeline through the Viewer, on Debian's simple_skin (a skinned strip, one 5.5 s animation): paused, the clock

@@ -124,6 +124,64 @@ TEST(ViewerState, RefusesBadTextAndKeepsTheState) {
   }
 }
 
+// The cameras in the state text: an orthographic free camera (projection=orthographic&ymag=), a scene camera looked
+// through (camera=, by its name where that finds it again, else its index), each coming back exactly; a text that
+// describes the free camera without them is a perspective free camera; a camera the scene lacks is refused.
+TEST(ViewerState, CamerasRoundTripThroughQueryText) {
+  ViewerState state;
+  state.camera = builtinSceneCamera().asOrthographic();
+  state.camera.ymag = 3.25f;
+  SceneCamera front, unnamed;
+  front.nodeName = "Front";
+  state.sceneCameras = {front, unnamed};
+  EXPECT_EQ(state.cameraChoice(), "free");
+  const std::string orthographic = state.toQuery();
+  EXPECT_NE(orthographic.find("&projection=orthographic&ymag=3.25"), std::string::npos) << orthographic;
+  EXPECT_EQ(orthographic.find("camera="), std::string::npos) << "the free camera is the default";
+  for (const char* choice : {"Front", "1"}) {
+    ViewerState through = state;
+    through.setCameraChoice(choice);
+    const std::string text = through.toQuery();
+    EXPECT_NE(text.find(std::string("&camera=") + choice), std::string::npos) << text;
+    ViewerState copy;
+    copy.sceneCameras = state.sceneCameras;
+    EXPECT_TRUE(copy.applyQuery(text));
+    EXPECT_EQ(copy.toQuery(), text);
+    EXPECT_EQ(copy.sceneCamera, through.sceneCamera);
+    EXPECT_TRUE(copy.camera.orthographic);
+    EXPECT_EQ(copy.camera.ymag, 3.25f);
+  }
+  // Back to a perspective free camera by text that names neither: as toQuery writes it.
+  ViewerState perspective = state;
+  perspective.setCameraChoice("Front");
+  perspective.applyQuery(ViewerState{}.toQuery());
+  EXPECT_FALSE(perspective.camera.orthographic);
+  EXPECT_EQ(perspective.sceneCamera, -1);
+  // camera= alone chooses the camera and leaves the free one as it was.
+  ViewerState chosen = state;
+  chosen.applyQuery("camera=Front");
+  EXPECT_EQ(chosen.sceneCamera, 0);
+  EXPECT_TRUE(chosen.camera.orthographic);
+
+  const std::pair<const char*, const char*> refused[] = {
+      {"camera=Top", "state: camera 'Top' is not one of the scene's cameras: 0 'Front', 1 'camera 1'"},
+      {"projection=fisheye", "state: projection: expected perspective or orthographic, got 'fisheye'"},
+      {"projection=orthographic&ymag=0", "state: ymag: must be in 0 .. 1e9"},
+  };
+  for (const auto& [text, expect] : refused) {
+    ViewerState copy = state;
+    try {
+      copy.applyQuery(text);
+      ADD_FAILURE() << text << " was accepted";
+    } catch (const InputError& e) {
+      EXPECT_NE(std::string(e.what()).find(expect), std::string::npos) << text << ": " << e.what();
+    }
+    EXPECT_EQ(copy.toQuery(), state.toQuery()) << text;
+  }
+  ViewerState none;
+  EXPECT_THROW(none.applyQuery("camera=0"), InputError) << "a scene without cameras of its own";
+}
+
 TEST(CameraControls, OrbitTurnsAboutTheTargetLikeGrabbingTheScene) {
   const Camera start = builtinSceneCamera(320, 180);
   const float distance = glm::length(start.eye - start.target);
@@ -168,6 +226,16 @@ TEST(CameraControls, PanKeepsTheTargetUnderTheCursorAndZoomScalesTheDistance) {
   zoomCamera(camera, 1e-9f, 10.0f);
   EXPECT_NEAR(glm::length(camera.eye - camera.target), 10.0f * 1e-3f, 1e-6f) << "clamped near the target";
   EXPECT_NO_THROW(camera.validate("zoomed camera"));
+
+  // Orthographic: a pan moves the view by its height, and a zoom scales the view's size with the eye's distance.
+  camera = start.asOrthographic();
+  panCamera(camera, 0.0f, 180.0f, 180);
+  EXPECT_NEAR(glm::length(camera.target - start.target), 2.0f * start.asOrthographic().ymag, 1e-3f * viewHeight);
+  camera = start.asOrthographic();
+  zoomCamera(camera, 0.5f, 10.0f);
+  EXPECT_NEAR(camera.ymag, 0.5f * start.asOrthographic().ymag, 1e-5f);
+  EXPECT_NEAR(camera.asPerspective().halfHeightAt(glm::length(camera.eye - camera.target), 1.0f), camera.ymag, 1e-4f)
+      << "back to perspective, the same view at the target";
 }
 
 TEST(CameraControls, FitDepthRangeHugsTheSceneWithBoundedRatio) {

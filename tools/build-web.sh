@@ -3,6 +3,7 @@
 # Usage: tools/build-web.sh [extra cmake arguments]
 set -euo pipefail
 cd "$(dirname "$0")/.."
+source tools/lib/ccache.sh
 # Debian's emscripten runs its JavaScript optimiser on node and needs Debian's node modules (acorn) on the path.
 export NODE_PATH="${NODE_PATH:+$NODE_PATH:}/usr/share/nodejs"
 jobs=$(nproc 2>/dev/null || echo 2)
@@ -11,5 +12,5 @@ if [ ! -d web/node_modules/draco3d ] || [ ! -d web/node_modules/meshoptimizer ] 
    [ web/package-lock.json -nt web/node_modules/.package-lock.json ]; then
   (cd web && npm ci --no-audit --no-fund)
 fi
-emcmake cmake -S . -B build-web -DCMAKE_BUILD_TYPE=Release "$@" >/dev/null
+emcmake cmake -S . -B build-web -DCMAKE_BUILD_TYPE=Release "${ccache_cmake_args[@]}" "$@" >/dev/null
 cmake --build build-web -j"$jobs"

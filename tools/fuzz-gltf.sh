@@ -1,17 +1,33 @@
 #!/usr/bin/env bash
-# Fuzzes scene loading with libFuzzer (clang), seeded with Debian's assimp-testmodels glTF files and
-# tests/fuzz/seeds (skins, morph targets and animations in every form the loader reads; make-seeds.py wrote them).
-#   tools/fuzz-gltf.sh [SECONDS]      default 60; the test suite runs the default, docs/robustness.md a longer run
-# The corpus grows in build-fuzz/corpus (kept between runs); crashes land in build-fuzz/ as crash-* files.
+# Fuzzes scene loading with libFuzzer (clang, with ASan and UBSan), seeded with Debian's assimp-testmodels glTF files,
+# tests/fuzz/seeds (every input form the loader reads: tests/fuzz/seeds/README.md) and tests/fuzz/regressions.
+#   tools/fuzz-gltf.sh [SECONDS] [WORKERS]   default 60 seconds, one worker per core; prints the workers' summed stats
+#   tools/fuzz-gltf.sh --runs N [WORKERS]    N executions in all (N / WORKERS each), however long that takes
+#   tools/fuzz-gltf.sh build                 only builds the target
+# The target is built in build-asan, the sanitized tree tools/test-sanitizers.sh tests (tools/lib/sanitized-tree.sh).
+# The test suite runs the default; docs/robustness.md records a run of a million executions. The corpus grows in
+# build-asan/fuzz/corpus (kept between runs); crashes land in build-asan/fuzz/ as crash-* files; each worker's log is
+# build-asan/fuzz/fuzz-N.log.
 set -euo pipefail
 cd "$(dirname "$0")/.."
-seconds="${1:-60}"
+source tools/lib/ccache.sh
+source tools/lib/sanitized-tree.sh
 jobs=$(nproc 2>/dev/null || echo 2)
-CC=clang CXX=clang++ cmake -S . -B build-fuzz -DCMAKE_BUILD_TYPE=RelWithDebInfo -DOBSCURA_FUZZ=ON \
-  -DOBSCURA_BUILD_TESTS=OFF >/dev/null
-cmake --build build-fuzz --target obscura-gltf-fuzzer -j"$jobs"
+configure_sanitized_tree
+cmake --build build-asan --target obscura-gltf-fuzzer -j"$jobs"
+[ "${1:-}" = build ] && exit 0
+if [ "${1:-}" = --runs ]; then
+  runs="$2"
+  workers="${3:-$jobs}"
+  limits=(-runs=$((runs / workers)))
+else
+  seconds="${1:-60}"
+  workers="${2:-$jobs}"
+  limits=(-max_total_time="$seconds")
+fi
 
-corpus=build-fuzz/corpus
+work=build-asan/fuzz
+corpus=$work/corpus
 mkdir -p "$corpus"
 # Seeds named after their path under glTF2/ (several folders hold a BoxTextured.gltf), so every file seeds.
 models=/usr/share/assimp/models/glTF2
@@ -20,6 +36,27 @@ find "$models" -type f \( -name '*.gltf' -o -name '*.glb' \) -printf '%P\n' | wh
 done
 cp -n tests/fuzz/regressions/* "$corpus/"
 for seed in tests/fuzz/seeds/*.gltf tests/fuzz/seeds/*.glb; do cp -n "$seed" "$corpus/seed-$(basename "$seed")"; done
-cd build-fuzz
-./tests/fuzz/obscura-gltf-fuzzer -max_total_time="$seconds" -timeout=10 -rss_limit_mb=4096 -print_final_stats=1 \
-  corpus 2>&1 | tail -n 12
+
+# One libFuzzer process per worker on the shared corpus (-jobs, -workers), each for the whole time: the stage gets
+# every core. -max_len stays libFuzzer's default (1 MiB, set from the corpus): the largest seed, the 1.8 MB
+# uncompressed 2CylinderEngine, is fuzzed in its first MiB (its Draco twin and the .gltf whole).
+fuzzer=$PWD/build-asan/tests/fuzz/obscura-gltf-fuzzer
+cd "$work"
+rm -f fuzz-*.log
+status=0
+start=$(date +%s)
+"$fuzzer" "${limits[@]}" -timeout=10 -rss_limit_mb=4096 -print_final_stats=1 -jobs="$workers" -workers="$workers" \
+  corpus >/dev/null 2>&1 || status=$?
+seconds=$(( $(date +%s) - start ))
+for log in fuzz-*.log; do
+  echo "$log: $(grep -E '^#[0-9]+[[:space:]]+(DONE|pulse|NEW|REDUCE)' "$log" | tail -n 1)"
+done
+awk -F: -v workers="$workers" -v seconds="$seconds" '
+  /^stat::number_of_executed_units/ { runs += $NF } /^stat::peak_rss_mb/ { if ($NF > rss) rss = $NF }
+  END { printf "fuzz-gltf: %d workers, %d executions in %d s (%d per minute), peak RSS %d MB\n",
+        workers, runs, seconds, runs * 60 / (seconds > 0 ? seconds : 1), rss }' fuzz-*.log
+if grep -l -E 'ERROR: (AddressSanitizer|LeakSanitizer|libFuzzer)|runtime error:|SUMMARY: ' fuzz-*.log; then
+  echo "fuzz-gltf: a worker found a bug (its log above, the input in $work/crash-*)"
+  exit 1
+fi
+exit "$status"

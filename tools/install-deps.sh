@@ -4,8 +4,8 @@
 set -euo pipefail
 
 packages=(
-  # build
-  cmake g++ make pkg-config git python3
+  # build (ccache: tools/lib/ccache.sh)
+  cmake g++ make pkg-config git python3 ccache
   # headless GL (OSMesa and Mesa EGL surfaceless), window GL (GLFW), GLES 2 headers
   libosmesa6-dev libegl-dev libegl-mesa0 libgles-dev libglfw3-dev
   # header-only libraries

@@ -1,7 +1,7 @@
 // obscura-bench: the performance figures of the AO pipeline, measured in one run (docs/benchmarks.md).
 //
 //   obscura-bench [--out DIR] [--frames N] [--backend osmesa|egl] [--quick] [--estimators-only] [--motion-only]
-//                 [--effects-only] [--temporal-ao-only] [--ao-layers-only]
+//                 [--effects-only] [--finish-only] [--temporal-ao-only] [--lighting-only] [--ao-layers-only]
 //
 // Prints tables and writes DIR/bench.csv (every measurement), DIR/ratios.csv, DIR/radius_sweep.csv,
 // DIR/radius_sweep.png (gnuplot) and DIR/estimators.csv. Every pass is bounded by glFinish on both sides and
@@ -24,10 +24,19 @@
 //      temporal accumulation at 4 taps against the single frame, and bloom and fog on over the defaults; ms per
 //      effect, written to DIR/effects.csv, and the issue's target beside it: bloom's ms against the G-buffer pass's
 //      in the same frames; and depth of field on over the defaults, its ms against the SAO pass's
+//   8c. the camera's finish (--finish-only: this alone): auto exposure (average and percentile metering), lens flare
+//      and glare on bloom, hatching against the lines, at 640x360 and 1280x720, all taking turns frame by frame;
+//      each configuration's passes, and what the tone mapping pays for reading the exposure and adding the lens's
+//      light (DIR/finish.csv)
 //   9. temporal AO (--temporal-ao-only: this alone): the default AO in one frame against 4 taps accumulated by
 //      ao.temporal (default blur, a 5-tap and a 3-tap one), and 4 taps alone, taking turns frame by frame at 640x360
 //      and 1280x720 on the still room (DIR/temporal_ao.csv)
-//  10. the AO's depth layers and normals (--ao-layers-only: this alone): the default AO against ao.layers 2 and
+//  10. the lighting (--lighting-only: this alone), on 2CylinderEngine.glb and the metallic-roughness sample at
+//      640x360 and 1280x720, all configurations of a scene and size taking turns frame by frame: the AO on against
+//      the AO off with each lighting.depth, at the medium and low tiers; each tier's lighting pass, and its error
+//      against the high tier's image; the environment's rough levels filtered by hand against the hardware's filter
+//      (DIR/lighting.csv)
+//  11. the AO's depth layers and normals (--ao-layers-only: this alone): the default AO against ao.layers 2 and
 //      gbuffer.normals reconstructed, with the depth hierarchy's atlas (the second layer folded into its texels) and
 //      without a hierarchy (the estimator reads the second layer's target beside the G-buffer), taking turns frame by
 //      frame at 640x360 and 1280x720 on the still room and the engine (DIR/ao_layers.csv)
@@ -86,8 +95,10 @@ struct Options {
   bool estimatorsOnly = false;  // section 6 alone
   bool motionOnly = false;      // section 7 alone
   bool effectsOnly = false;     // section 8 alone
+  bool finishOnly = false;      // section 8c alone
   bool temporalAoOnly = false;  // section 9 alone
-  bool aoLayersOnly = false;    // section 10 alone
+  bool lightingOnly = false;    // section 10 alone
+  bool aoLayersOnly = false;    // section 11 alone
 };
 
 struct BenchScene {
@@ -302,11 +313,13 @@ Options parseOptions(int argc, char** argv) {
     else if (arg == "--estimators-only") options.estimatorsOnly = true;
     else if (arg == "--motion-only") options.motionOnly = true;
     else if (arg == "--effects-only") options.effectsOnly = true;
+    else if (arg == "--finish-only") options.finishOnly = true;
     else if (arg == "--temporal-ao-only") options.temporalAoOnly = true;
+    else if (arg == "--lighting-only") options.lightingOnly = true;
     else if (arg == "--ao-layers-only") options.aoLayersOnly = true;
     else throw InputError("unknown option '" + arg + "' (usage: obscura-bench [--out DIR] [--frames N] "
                           "[--backend osmesa|egl] [--quick] [--estimators-only] [--motion-only] [--effects-only] "
-                          "[--temporal-ao-only] [--ao-layers-only])");
+                          "[--finish-only] [--temporal-ao-only] [--lighting-only] [--ao-layers-only])");
   }
   return options;
 }
@@ -358,7 +371,7 @@ void estimatorSection(Bench& bench, const BenchScene& scene, int w, int h, const
   }
 }
 
-// Section 10: what the AO's second depth layer and its normals from depth cost (docs/accuracy.md has what they buy).
+// Section 11: what the AO's second depth layer and its normals from depth cost (docs/accuracy.md has what they buy).
 // GTAO at the medium preset, every configuration taking turns frame by frame: one layer and two, stored normals and
 // reconstructed ones, with the depth hierarchy's atlas (both layers in one texel per tap) and without a hierarchy
 // (every tap reads the G-buffer, and with two layers the second layer's target too: the per-tap cost of a second
@@ -390,7 +403,7 @@ void aoLayersSection(Bench& bench, const std::vector<BenchScene>& scenes,
   std::ofstream csv(outDir + "/ao_layers.csv");
   csv << "scene,width,height,configuration,gbuffer_ms,peel_ms,hierarchy_ms,estimator_ms,blur_ms,ao_effect_ms,"
          "ao_effect_over_default\n";
-  std::printf("\n10. The AO's depth layers and normals from depth (GTAO, medium), all configurations taking turns "
+  std::printf("\n11. The AO's depth layers and normals from depth (GTAO, medium), all configurations taking turns "
               "frame by frame: ms of the G-buffer pass, the peel, the hierarchy, the estimator, the blur, the AO "
               "effect (peel to blur), and the AO effect over the default's\n");
   for (const BenchScene& scene : scenes) {
@@ -495,6 +508,132 @@ void temporalAoSection(const Options& options, HeadlessContext& context, const B
                   timers[c].medianMs("blur-v"), timers[c].medianMs("velocity"), effect / reference);
       csv << w << "," << h << ",\"" << configurations[c].name << "\"," << effect << "," << timers[c].medianMs("sao")
           << "," << timers[c].medianMs("ao-temporal") << "," << blur << "," << timers[c].medianMs("velocity") << "\n";
+    }
+  }
+}
+
+// Section 10: what the lighting's choices cost, and the tiers' error. One Renderer per configuration (its own
+// RendererOptions: the environment's storage), all taking turns frame by frame after a warm-up; the frame's ms is the
+// sum of its passes' medians.
+void lightingSection(const Options& options, HeadlessContext& context) {
+  struct Configuration {
+    std::string name;
+    std::string state;  // parameters as NAME=VALUE&...
+    EnvironmentFiltering filtering = EnvironmentFiltering::Measured;
+  };
+  auto settingsOf = [](const std::string& state) {
+    RenderSettings settings;
+    for (size_t begin = 0; begin < state.size();) {
+      const size_t end = std::min(state.find('&', begin), state.size());
+      const std::string pair = state.substr(begin, end - begin);
+      const size_t eq = pair.find('=');
+      settings.set(pair.substr(0, eq), pair.substr(eq + 1));
+      begin = end + 1;
+    }
+    return settings;
+  };
+  const std::vector<Configuration> configurations = {
+      {"AO on", ""},
+      {"AO off, depth gbuffer", "ao=off&lighting.depth=gbuffer"},
+      {"AO off, depth prepass", "ao=off&lighting.depth=prepass"},
+      {"AO off, depth overdraw", "ao=off&lighting.depth=overdraw"},
+      {"low: AO on", "preset=low"},
+      {"low: AO off, gbuffer", "preset=low&ao=off&lighting.depth=gbuffer"},
+      {"low: AO off, prepass", "preset=low&ao=off&lighting.depth=prepass"},
+      {"low: AO off, overdraw", "preset=low&ao=off&lighting.depth=overdraw"},
+      {"tier low", "lighting.quality=low"},
+      {"tier high", "lighting.quality=high"},
+      {"levels by hand", "", EnvironmentFiltering::ByHand},
+      {"levels filtered", "", EnvironmentFiltering::Hardware},
+  };
+  struct Subject {
+    std::string name;
+    Scene scene;
+    float scale;
+  };
+  std::vector<Subject> subjects;
+  subjects.push_back({"2CylinderEngine", loadGltfFile(kEnginePath), kEngineScale});
+  subjects.push_back({"pbr-samples", loadGltfFile(std::string(OBSCURA_SOURCE_DIR) + "/assets/scenes/pbr-samples.glb"),
+                      1.0f});
+  std::ofstream csv(options.outDir + "/lighting.csv");
+  csv << "scene,width,height,configuration,frame_ms,gbuffer_ms,lighting_ms,display_mae_vs_high,display_p99_vs_high\n";
+  std::printf("\n10. The lighting, %s; median ms of %d frames, all configurations taking turns; frame = the sum of its "
+              "passes\n", context.caps().renderer.c_str(), options.frames);
+  std::printf("%-16s %-10s %-24s %9s %9s %9s\n", "scene", "size", "configuration", "frame", "G-buffer", "lighting");
+  const std::vector<std::pair<int, int>> sizes =
+      options.quick ? std::vector<std::pair<int, int>>{{320, 180}} : std::vector<std::pair<int, int>>{{640, 360},
+                                                                                                       {1280, 720}};
+  for (Subject& subject : subjects) {
+    scaleScene(subject.scene, subject.scale);
+    for (auto [w, h] : sizes) {
+      const Camera camera = Camera::fit(subject.scene.worldBounds(), w, h);
+      const gl::RenderTarget output("bench output", w, h, GL_NEAREST, gl::RenderTarget::Depth::Renderbuffer,
+                                    context.caps().depth24, context.caps().packedDepthStencil);
+      const OutputTarget target{output.framebuffer(), w, h, {}};
+      std::vector<std::unique_ptr<Renderer>> renderers;
+      std::vector<RenderSettings> settings;
+      for (const Configuration& c : configurations) {
+        RendererOptions rendererOptions;
+        rendererOptions.environmentFiltering = c.filtering;
+        renderers.push_back(std::make_unique<Renderer>(context.caps(), rendererOptions));
+        renderers.back()->setScene(subject.scene);
+        settings.push_back(settingsOf(c.state));
+      }
+      std::vector<FinishPassTimer> timers(configurations.size());
+      FrameOptions frame;
+      for (int f = -3; f < options.frames; ++f)
+        for (size_t c = 0; c < configurations.size(); ++c) {
+          frame.timer = f < 0 ? nullptr : &timers[c];
+          renderers[c]->render(camera, settings[c], View::Final, target, frame);
+        }
+      // The tiers' images against the high tier's: the display colour (FXAA off, so the lighting writes it) over the
+      // pixels the scene covers, in 8-bit steps.
+      std::map<std::string, std::vector<std::uint8_t>> images;
+      std::vector<std::uint8_t> gbuffer;
+      for (const char* tier : {"low", "medium", "high"}) {
+        RenderSettings still = settingsOf(std::string("fxaa=off&lighting.quality=") + tier);
+        FrameOptions keep;
+        keep.retain = {"display-color", "gbuffer"};
+        renderers[0]->render(camera, still, View::Final, target, keep);
+        images[tier] = renderers[0]->retained("display-color").readRgba();
+        gbuffer = renderers[0]->retained("gbuffer").readRgba();
+      }
+      auto errorAgainstHigh = [&](const std::string& tier) {
+        std::vector<int> errors;
+        for (size_t i = 0; i < gbuffer.size(); i += 4) {
+          if (gbuffer[i + 2] == 255 && gbuffer[i + 3] == 255) continue;  // background
+          int worst = 0;
+          for (size_t k = 0; k < 3; ++k) worst = std::max(worst, std::abs(images[tier][i + k] - images["high"][i + k]));
+          errors.push_back(worst);
+        }
+        double mean = 0.0;
+        for (int e : errors) mean += e;
+        std::sort(errors.begin(), errors.end());
+        return std::make_pair(errors.empty() ? 0.0 : mean / static_cast<double>(errors.size()),
+                              errors.empty() ? 0 : errors[errors.size() * 99 / 100]);
+      };
+      for (size_t c = 0; c < configurations.size(); ++c) {
+        double frameMs = 0.0;
+        for (const std::string& pass : benchPasses()) frameMs += timers[c].medianMs(pass);
+        const std::string size = std::to_string(w) + "x" + std::to_string(h);
+        std::string error;
+        double mae = 0.0;
+        int p99 = 0;
+        const std::string tier = c == 0 ? "medium" : c == 8 ? "low" : c == 9 ? "high" : "";
+        if (!tier.empty()) {
+          std::tie(mae, p99) = errorAgainstHigh(tier);
+          char text[80];
+          std::snprintf(text, sizeof text, "  %s tier against high: mean %.2f, p99 %d (8-bit steps)", tier.c_str(),
+                        mae, p99);
+          error = text;
+        }
+        std::printf("%-16s %-10s %-24s %9.2f %9.2f %9.2f%s\n", subject.name.c_str(), size.c_str(),
+                    configurations[c].name.c_str(), frameMs, timers[c].medianMs("gbuffer"),
+                    timers[c].medianMs("lighting"), error.c_str());
+        csv << subject.name << "," << w << "," << h << ",\"" << configurations[c].name << "\"," << frameMs << ","
+            << timers[c].medianMs("gbuffer") << "," << timers[c].medianMs("lighting") << "," << mae << "," << p99
+            << "\n";
+      }
     }
   }
 }
@@ -747,12 +886,91 @@ void effectsSection(const Options& options, HeadlessContext& context, const std:
   }
 }
 
+// Section 8c: the camera's finish (issue 29), every configuration in the same frames.
+void finishSection(const Options& options, HeadlessContext& context, const std::vector<std::pair<int, int>>& sizes) {
+  const Scene scene = makeBuiltinScene(BuiltinSceneOptions::still());
+  struct Configuration {
+    std::string name;
+    std::vector<std::pair<std::string, std::string>> set;
+  };
+  const std::vector<Configuration> configurations = {
+      {"defaults", {}},
+      {"auto exposure", {{"auto-exposure", "on"}}},
+      {"auto exposure, percentile", {{"auto-exposure", "on"}, {"auto-exposure.metering", "percentile"}}},
+      {"bloom", {{"bloom", "on"}}},
+      {"bloom, lens flare", {{"bloom", "on"}, {"lens-flare", "on"}}},
+      {"bloom, glare 4", {{"bloom", "on"}, {"glare", "on"}}},
+      {"bloom, glare 6", {{"bloom", "on"}, {"glare", "on"}, {"glare.streaks", "6"}}},
+      {"bloom, flare, glare 4", {{"bloom", "on"}, {"lens-flare", "on"}, {"glare", "on"}}},
+      {"lens flare, bloom off", {{"lens-flare", "on"}}},
+      {"edges", {{"edges", "on"}}},
+      {"edges, hatching", {{"edges", "on"}, {"edges.style", "hatching"}}}};
+  std::vector<RenderSettings> settings;
+  for (const Configuration& c : configurations) {
+    RenderSettings s;
+    for (const auto& [name, value] : c.set) s.set(name, value);
+    settings.push_back(s);
+  }
+  const std::vector<std::string> columns = {"lighting", "bloom", "bloom-bright", "lens-flare", "glare", "exposure",
+                                            "tonemap", "edges"};
+  auto ms = [](const FinishPassTimer& t, const std::string& column) {
+    if (column != "exposure") return t.medianMs(column);
+    double sum = 0.0;
+    for (const std::string& pass : effectEntry("auto-exposure").info.passes) sum += t.medianMs(pass);
+    return sum;
+  };
+  std::ofstream csv(options.outDir + "/finish.csv");
+  csv << "configuration,width,height,pass,median_ms\n";
+  std::printf("\n8c. The camera's finish, the still built-in scene, %s; median ms of %d frames, all configurations "
+              "taking turns (exposure: its passes together; edges: its last pass, where hatching draws)\n",
+              context.caps().renderer.c_str(), options.frames);
+  std::printf("%-27s %-9s", "configuration", "size");
+  for (const std::string& c : columns) std::printf(" %12s", c.c_str());
+  std::printf(" %9s\n", "frame");
+  std::vector<std::string> summary;
+  for (auto [w, h] : sizes) {
+    const std::vector<FinishPassTimer> timers =
+        timeTakingTurns(options, context, scene, builtinSceneCamera(w, h), settings, false);
+    for (size_t c = 0; c < configurations.size(); ++c) {
+      std::printf("%-27s %-9s", configurations[c].name.c_str(), (std::to_string(w) + "x" + std::to_string(h)).c_str());
+      double frameMs = 0.0;
+      for (const std::string& pass : framePassNames()) frameMs += timers[c].medianMs(pass);
+      for (const std::string& column : columns) {
+        std::printf(" %12.2f", ms(timers[c], column));
+        csv << '"' << configurations[c].name << "\"," << w << "," << h << "," << column << "," << ms(timers[c], column)
+            << "\n";
+      }
+      std::printf(" %9.2f\n", frameMs);
+      csv << '"' << configurations[c].name << "\"," << w << "," << h << ",frame," << frameMs << "\n";
+    }
+    // What the tone mapping pays for the exposure texel and for the lens light's upsample: its ms against the tone
+    // mapping of bloom alone (the lighting does not absorb it there either).
+    const double tonemapBloom = timers[3].medianMs("tonemap");
+    char line[400];
+    std::snprintf(line, sizeof line,
+                  "%dx%d: auto exposure %.2f ms (percentile %.2f), tone mapping %.2f ms with it against %.2f with "
+                  "bloom alone; lens flare %.2f ms, glare %.2f (4 streaks) / %.2f (6), tone mapping with the lens "
+                  "light %.2f ms; the bright pass alone (bloom off) %.2f ms; hatching: edges' last pass %.2f ms "
+                  "against %.2f for the lines",
+                  w, h, ms(timers[1], "exposure"), ms(timers[2], "exposure"), timers[1].medianMs("tonemap"),
+                  tonemapBloom, timers[4].medianMs("lens-flare"), timers[5].medianMs("glare"),
+                  timers[6].medianMs("glare"), timers[7].medianMs("tonemap"), timers[8].medianMs("bloom-bright"),
+                  timers[10].medianMs("edges"), timers[9].medianMs("edges"));
+    summary.push_back(line);
+  }
+  for (const std::string& line : summary) std::printf("  %s\n", line.c_str());
+}
+
 int main(int argc, char** argv) {
   try {
     const Options options = parseOptions(argc, argv);
     if (std::system(("mkdir -p '" + options.outDir + "'").c_str()) != 0)
       throw InputError(options.outDir + ": cannot create");
     HeadlessContext context(options.backend);
+    if (options.lightingOnly) {
+      lightingSection(options, context);
+      return 0;
+    }
     std::printf("obscura-bench: %s (%s), %d frames per figure (median), passes bounded by glFinish\n",
                 backendName(options.backend), context.caps().renderer.c_str(), options.frames);
 
@@ -780,6 +998,13 @@ int main(int argc, char** argv) {
     const std::vector<std::pair<int, int>> effectSizes =
         options.quick ? std::vector<std::pair<int, int>>{{320, 180}}
                       : std::vector<std::pair<int, int>>{{640, 360}, {1280, 720}};
+    if (options.finishOnly) {  // before Bench, which starts DIR/bench.csv afresh
+      finishSection(options, context,
+                    options.quick ? std::vector<std::pair<int, int>>{{320, 180}}
+                                  : std::vector<std::pair<int, int>>{{640, 360}, {1280, 720}});
+      std::printf("\nobscura-bench: wrote %s/finish.csv\n", options.outDir.c_str());
+      return 0;
+    }
     if (options.effectsOnly) {  // before Bench, which starts DIR/bench.csv afresh
       effectsSection(options, context, effectSizes);
       std::printf("\nobscura-bench: wrote %s/effects.csv\n", options.outDir.c_str());
@@ -926,9 +1151,10 @@ int main(int argc, char** argv) {
     estimatorSection(bench, builtin, w, h, options.outDir);
     motionSection(options, context, w, h);
     effectsSection(options, context, effectSizes);
+    finishSection(options, context, effectSizes);
     temporalAoSection(options, context, builtin);
     std::printf("\nobscura-bench: wrote %s/bench.csv, ratios.csv, radius_sweep.csv, radius_sweep.png, estimators.csv, "
-                "motion.csv, effects.csv, temporal_ao.csv\n",
+                "motion.csv, effects.csv, finish.csv, temporal_ao.csv\n",
                 options.outDir.c_str());
     return 0;
   } catch (const InputError& e) {

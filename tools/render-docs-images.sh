@@ -43,6 +43,24 @@ build/obscura-render --size 480x270 --fog --fog.density 0.6 --fog.height-falloff
 # Edges (docs/edges.md): lines two pixels wide, and the toon style.
 build/obscura-render --size 480x270 --edges --edges.width 2 --out "$out/edges.png"
 build/obscura-render --size 480x270 --edges --edges.style toon --edges.width 2 --out "$out/edges_toon.png"
+# Hatching (docs/camera-finish.md): world-space strokes in bands of the luma, under the lines, beside toon.
+build/obscura-render --size 480x270 --edges --edges.style hatching --edges.width 2 --out "$out/edges_hatching.png"
+# Auto exposure (docs/camera-finish.md) stepping through a light change: the sun 16x brighter from frame 10 of a
+# 60 fps sequence; adapted to the old sun | the first frame after the step | 0.25 s after | 1 s after | adapted to the
+# new sun | the new sun without auto exposure.
+ae="--size 320x180 --animation none --auto-exposure"
+build/obscura-render $ae --out "$out/auto_exposure_before.png"
+for frames in 11 25 70; do
+  build/obscura-render $ae --frames $frames --at 10 lighting.sun-intensity=50 --out "$out/auto_exposure_$frames.png"
+done
+build/obscura-render $ae --lighting.sun-intensity 50 --out "$out/auto_exposure_after.png"
+build/obscura-render --size 320x180 --animation none --lighting.sun-intensity 50 --out "$out/auto_exposure_off.png"
+# Lens flare and glare (docs/camera-finish.md): the sky's sun low in front of the camera, bloom alone | with the flare
+# and a six-pointed star.
+flare="--camera tools/docs-flare-camera.json --lighting.sun-elevation 16 --lighting.sun-azimuth 212 --bloom"
+build/obscura-render $flare --out "$out/flare_bloom.png"
+build/obscura-render $flare --lens-flare --lens-flare.intensity 0.15 --glare --glare.streaks 6 --glare.angle 15 \
+  --glare.intensity 0.1 --out "$out/flare_glare.png"
 # Depth of field (docs/depth-of-field.md): an 85 mm lens at f/1.2 focused on the red sphere (autofocus on the point
 # 0.48, 0.58 of the frame); pinhole | depth of field | the mean of 64 pinhole renders over the lens (the reference).
 dof="--size 640x360 --dof.focal-length 85 --dof.fstop 1.2 --dof.focus-x 0.48 --dof.focus-y 0.58"
@@ -59,7 +77,8 @@ pbr="--scene assets/scenes/pbr-samples.glb --camera tools/docs-pbr-camera.json"
 build/obscura-render $pbr --out "$out/pbr_samples.png"
 build/obscura-render $pbr --bloom --out "$out/pbr_samples_bloom.png"
 echo "render-docs-images: wrote $out/builtin_*.png, motion_*.png, ao_*.png, aa_*.png, bloom.png, fog_height.png," \
-  "edges.png, edges_toon.png, dof*.png, lighting_*.png, pbr_*.png"
+  "edges.png, edges_toon.png, edges_hatching.png, auto_exposure_*.png, flare_*.png, dof*.png, lighting_*.png," \
+  "pbr_*.png"
 
 (cd tests/browser && npm ci --no-audit --no-fund --loglevel=error)
 OBSCURA_UPDATE_SCREENSHOTS=1 node --test --test-name-pattern="page screenshots" tests/browser/page.test.mjs >/dev/null

@@ -24,6 +24,8 @@ tools/build.sh  # the core now reads the new table
 browser_costs=()
 if [ -f bench-results/browser-estimators.csv ]; then browser_costs=(--browser-ms bench-results/browser-estimators.csv); fi
 build/obscura-tune --views tools/tuning-views.json --report docs/accuracy.md --images docs/images "${browser_costs[@]}"
+# The same defaults through orthographic cameras: their own section of the report.
+build/obscura-tune --views tools/orthographic-views.json --report docs/accuracy.md --images docs/images
 OBSCURA_UPDATE_GOLDEN=1 ctest --test-dir build -R 'gpu\.osmesa\.Golden' >/dev/null
 tools/render-docs-images.sh
 echo "tune-defaults: rewrote src/effects/ao/TunedDefaults.inc, docs/accuracy.md, docs/images/*.png and"

@@ -71,6 +71,10 @@ struct TuningConfig {
   float reportFactor = 1.0f;         // the one the per-view tables and pictures show
   int evaluations = 40;         // Nelder-Mead budget for the first preset fitted at each knot
   int followEvaluations = 15;   // ... and for the others, which start from its result
+  // Where --report writes in the document: between <!-- obscura-tune:begin --> and <!-- obscura-tune:end -->, or, for
+  // a section named S, <!-- obscura-tune:S:begin --> and <!-- obscura-tune:S:end --> (another set of views measured
+  // with the same defaults, e.g. tools/orthographic-views.json).
+  std::string reportSection;
   std::vector<ViewSpec> views;
 };
 
@@ -94,13 +98,16 @@ TuningConfig loadConfig(const std::string& path) {
     config.reportFactor = json.value("report_factor", 1.0f);
     config.evaluations = json.value("evaluations", 40);
     config.followEvaluations = json.value("follow_evaluations", 15);
+    config.reportSection = json.value("report_section", std::string());
     for (const auto& view : json.at("views")) {
       ViewSpec spec;
       spec.name = view.at("name").get<std::string>();
       const std::string scene = view.value("scene", std::string("builtin"));
       if (scene != "builtin") spec.input.scenePath = scene;
       spec.input.sceneScale = view.value("scene_scale", 1.0f);
-      spec.input.cameraPath = view.at("camera").get<std::string>();
+      // A camera file, or one of the scene's own cameras ("camera_node": its name or index, at time 0).
+      if (view.contains("camera_node")) spec.input.cameraNode = view.at("camera_node").get<std::string>();
+      else spec.input.cameraPath = view.at("camera").get<std::string>();
       spec.objectSize = view.at("object_size").get<float>();
       if (!(spec.objectSize > 0.0f)) fail("views: " + spec.name + ": object_size must be positive");
       spec.input.width = config.width;
@@ -247,7 +254,7 @@ std::vector<TuningCase> loadReferences(TuningView& view, const Scene& scene, con
   }
   // h = min(projScale r / -z, maxScreenRadius * height), as SaoKernel::diskRadiusPixels at G-buffer resolution.
   const AoSettings defaults;
-  const float projScale =
+  const glm::vec2 projScale =
       FrameCamera::from(view.camera, view.camera.width, view.camera.height).projScale(view.camera.height);
   const float maxPixels = defaults.maxScreenRadius * static_cast<float>(view.camera.height);
   for (TuningCase& c : cases) {
@@ -722,6 +729,7 @@ void guardBandStudy(std::vector<TuningCase>& cases, const HeadlessContext& conte
       wide.fovyDegrees = glm::degrees(2.0f * std::atan(std::tan(0.5f * view.camera.fovyRadians()) *
                                                         static_cast<float>(wide.height) /
                                                         static_cast<float>(view.camera.height)));
+      wide.ymag = view.camera.ymag * static_cast<float>(wide.height) / static_cast<float>(view.camera.height);
       AoSettings wideSettings = settings;
       wideSettings.maxScreenRadius =
           settings.maxScreenRadius * static_cast<float>(view.camera.height) / static_cast<float>(wide.height);
@@ -1006,7 +1014,9 @@ void report(std::vector<TuningCase>& cases, std::vector<TuningView>& views, cons
   }
 
   // Replace the generated part of the document, between the markers, keeping the prose around it.
-  const std::string begin = "<!-- obscura-tune:begin -->", end = "<!-- obscura-tune:end -->";
+  const std::string section = config.reportSection.empty() ? "" : config.reportSection + ":";
+  const std::string begin = "<!-- obscura-tune:" + section + "begin -->";
+  const std::string end = "<!-- obscura-tune:" + section + "end -->";
   std::ifstream in(docPath);
   if (!in) throw InputError(docPath + ": cannot open (the report goes between " + begin + " and " + end + ")");
   std::stringstream text;

@@ -279,6 +279,7 @@ function buildControls(obscura) {
 function refreshControls(obscura) {
   for (const control of controls) control.update();
   refreshTimeline(obscura);
+  refreshCamera(obscura);
   const view = obscura.view;
   const radio = document.getElementById(`view-${view}`);
   if (radio) radio.checked = true;
@@ -292,6 +293,41 @@ function refreshControls(obscura) {
 function compareLabel(obscura, name) {
   const effect = obscura.effects.find((e) => e.name === name);
   return effect ? effect.title : name;
+}
+
+// --- Camera ------------------------------------------------------------------------------------------------------
+
+// The Camera menu: the free orbit camera, then the scene's own cameras (glTF cameras on nodes) by name; the
+// orthographic box switches the free camera's projection, from the view shown.
+function wireCamera(obscura) {
+  const act = (action) => {
+    try {
+      action();
+      showError('');
+    } catch (e) {
+      showError(e.message);
+      refreshCamera(obscura);
+    }
+  };
+  $('#camera').addEventListener('change', (e) => act(() => obscura.setCamera(e.target.value)));
+  $('#orthographic').addEventListener('change', (e) => act(() => obscura.setOrthographic(e.target.checked)));
+}
+
+function refreshCamera(obscura) {
+  const camera = obscura.camera();
+  const select = $('#camera');
+  // By index: names may be shared or empty; the core's choice names the same camera by its name where it can.
+  const choices = [['free', 'Free (orbit)'],
+                   ...camera.cameras.map((c, i) => [String(i), `${c.name}${c.orthographic ? ' (orthographic)' : ''}`])];
+  const signature = JSON.stringify(choices);
+  if (select.dataset.choices !== signature) {
+    select.replaceChildren(...choices.map(([value, label]) => element('option', { value, textContent: label })));
+    select.dataset.choices = signature;
+  }
+  const index = camera.cameras.findIndex((c, i) => c.name === camera.choice || String(i) === camera.choice);
+  select.value = camera.choice === 'free' || index < 0 ? 'free' : String(index);
+  select.disabled = camera.cameras.length === 0;
+  $('#orthographic').checked = camera.orthographic;
 }
 
 // --- Timeline ----------------------------------------------------------------------------------------------------
@@ -539,6 +575,7 @@ async function main() {
   obscura.addEventListener('change', () => refreshControls(obscura));
   wireScenes(obscura);
   wireTimeline(obscura);
+  wireCamera(obscura);
   wireKeys(obscura);
   wireUrl(obscura);
   $('#continuous').addEventListener('change', (e) => obscura.setContinuous(e.target.checked));

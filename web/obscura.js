@@ -201,6 +201,20 @@ export class Obscura extends EventTarget {
   zoom(factor) { this.move('obscura_zoom', factor); }
   resetCamera() { this.move('obscura_reset_camera'); }
 
+  // The cameras: the free one (orbit, pan, zoom move it) and the scene's own (glTF cameras on nodes, which move with
+  // its animation). camera() is {choice, orthographic, cameras, eye, target, up, fovy, ymag}: choice 'free' or the
+  // scene camera looked through (its name, or its index where the name does not find it); orthographic, the projection
+  // of the view shown; cameras, the scene's [{name, orthographic}]; the rest the free camera's (fovy in degrees, ymag
+  // the orthographic half height in scene units).
+  camera() { return this.json('obscura_camera'); }
+  // Looks through 'free' or one of the scene's cameras (a name or an index into camera().cameras); the state keeps it
+  // as camera=NAME. Throws ObscuraError for a camera the scene does not have. A scene loaded starts on 'free'; a move
+  // starts the free camera from the view shown.
+  setCamera(choice) { this.call('obscura_set_camera', ['string'], [String(choice)]); }
+  // Makes the free camera orthographic (true) or perspective, from the view shown, keeping the view's size at its
+  // target; the state keeps it as projection=orthographic&ymag=H.
+  setOrthographic(on) { this.call('obscura_set_orthographic', ['number'], [on ? 1 : 0]); }
+
   // Applies a key binding (event.key of a keydown); false if the key is not bound.
   handleKey(key) {
     const done = this.core.ccall('obscura_handle_key', 'number', ['string'], [key]);

@@ -59,8 +59,10 @@ struct Camera {
   float target[3] = {0.0f, 1.0f, 0.0f};
   float up[3] = {0.0f, 1.0f, 0.0f};
   float fovyDegrees = 50.0f;  // vertical field of view
-  float near = 0.1f;
+  float near = 0.1f;          // an orthographic camera's may be 0
   float far = 100.0f;
+  bool orthographic = false;  // parallel projection, `ymag` scene units above and below the view's axis
+  float ymag = 1.0f;          // orthographic: the half height of the view
 };
 
 // Framebuffer::framebuffer meaning "whichever framebuffer is bound when the call is made" (for callers whose

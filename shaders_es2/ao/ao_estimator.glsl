@@ -23,7 +23,9 @@
 
 uniform sampler2D u_gbuffer;
 uniform vec2 u_aoSize;          // this pass's target size: the G-buffer's, or half of it (floor)
-uniform float u_projScale;      // pixels per metre at 1 m: height / (2 tan(fovy / 2)), at G-buffer resolution
+// Pixels per metre at depth z: x / z + y, at G-buffer resolution. Perspective (height / (2 tan(fovy / 2)), 0),
+// orthographic (0, height / (2 ymag)): FrameCamera::projScale.
+uniform vec2 u_projScale;
 uniform float u_radius;         // r, scene units
 uniform float u_invRadius;      // 1 / r
 // The estimator's parameters at the knots h_j = FIRST_KNOT_PIXELS * 2^j pixels of projected radius (AoSettings.h):
@@ -172,7 +174,7 @@ bool aoCentre(out AoCentre c) {
 #else
   c.normal = decodeNormal(centre.rg);
 #endif
-  c.diskRadius = min(u_projScale * u_radius / -c.position.z, u_maxRadiusPixels);
+  c.diskRadius = min(u_radius * (u_projScale.x / -c.position.z + u_projScale.y), u_maxRadiusPixels);
   return true;
 }
 

@@ -41,10 +41,9 @@ uniform float u_ditherOffset;  // per frame, [0, 1)
 // The previous frame's camera: its far-plane rays and depth scale (lib/reconstruct.glsl's uniforms, then), and the
 // transform of its view space into this frame's.
 uniform vec2 u_previousFarHalfExtent;
-uniform float u_previousFarPlane;
-uniform vec2 u_previousDepthToRay;
+uniform vec4 u_previousDepthToRay;
 uniform mat4 u_previousViewToView;
-uniform float u_diskScale;        // pixels per scene unit at 1 m times r: h = u_diskScale / -z (AoCentre's)
+uniform vec2 u_diskScale;         // r times projScale: h = u_diskScale.x / -z + u_diskScale.y (AoCentre's)
 uniform float u_maxRadiusPixels;
 uniform float u_objectsMove;      // 1 when some instance's pose differs from the previous frame's
 uniform vec2 u_tapRotation;       // this frame's turn of the velocity taps: (cos, sin)
@@ -98,7 +97,7 @@ void main() {
   // (u_tapRotation) so that what slips between the taps in one frame is caught in the next.
   float motion = 0.0;
   if (u_objectsMove > 0.5) {
-    float h = min(u_diskScale / -C.z, u_maxRadiusPixels);
+    float h = min(u_diskScale.x / -C.z + u_diskScale.y, u_maxRadiusPixels);
     vec2 centrePixel = uv * u_gbufferSize;
     motion = max(motion, relativeMotion(centrePixel + h * turned(vec2(1.0, 0.0)), velocity));
     motion = max(motion, relativeMotion(centrePixel + h * turned(vec2(0.0, 1.0)), velocity));
@@ -117,10 +116,11 @@ void main() {
 
   // 2. Rejection.
   vec2 historyUv = (gbufferPixelOf(historyPixel) + 0.5) / u_gbufferSize;
-  vec3 previousRay = vec3((historyUv * 2.0 - 1.0) * u_previousFarHalfExtent, -u_previousFarPlane);
+  vec2 previousRay = (historyUv * 2.0 - 1.0) * u_previousFarHalfExtent;
+  float previousDepth = historyCode * (1.0 / 65535.0);
   vec3 Q = (u_previousViewToView *
-            vec4(previousRay * (historyCode * (1.0 / 65535.0) * u_previousDepthToRay.x + u_previousDepthToRay.y), 1.0))
-               .xyz;
+            vec4(previousRay * (previousDepth * u_previousDepthToRay.x + u_previousDepthToRay.y),
+                 previousDepth * u_previousDepthToRay.z + u_previousDepthToRay.w, 1.0)).xyz;
   bool inside = all(greaterThanEqual(historyPixel, vec2(0.0))) && all(lessThan(historyPixel, u_aoSize));
   bool kept = u_historyValid > 0.5 && inside && !isBackgroundCode(historyCode) &&
               abs(dot(n, Q - C)) <= u_planeTolerance;

@@ -57,11 +57,8 @@ const float kGoldenAngle = 2.39996322973;     // pi (3 - sqrt 5): Fibonacci sphe
 const float kGoldenFraction = 0.61803398875;  // (sqrt 5 - 1) / 2: the lengths' low-discrepancy sequence
 const float kLengthSpan = 2.4;                // lengths e^-2.4 .. 1 (Mittring's listing: x (1 + 2.4/N) a sample)
 
-// The G-buffer pixel a view-space point projects to (the inverse of farPlaneRay, lib/reconstruct.glsl).
-vec2 projectToPixel(vec3 p) {
-  vec2 uv = (p.xy * (u_farPlane / max(-p.z, 1e-20)) / u_farHalfExtent) * 0.5 + 0.5;
-  return floor(uv * u_gbufferSize);
-}
+// The G-buffer pixel a view-space point projects to (lib/reconstruct.glsl: uvOfViewPosition).
+vec2 projectToPixel(vec3 p) { return floor(uvOfViewPosition(p) * u_gbufferSize); }
 
 // 1 if the kernel point at `offset` (view space, scene units, from the centre) is occluded, else 0.
 float pointOccluded(AoCentre c, vec3 offset, float invRadius, float bias) {
@@ -82,7 +79,7 @@ void main() {
   float log2DiskRadius = log2(max(c.diskRadius, 1e-3));
   vec3 estimator = estimatorAt(log2DiskRadius);
   // r', the sphere's radius: r, or less where the projected radius was clamped.
-  float shrink = min(c.diskRadius * -c.position.z / (u_projScale * u_radius), 1.0);
+  float shrink = min(c.diskRadius / (u_radius * (u_projScale.x / -c.position.z + u_projScale.y)), 1.0);
   float radius = u_radius * shrink;
   float invRadius = u_invRadius / shrink;
   // The per-pixel reflection vector: uniform on the sphere from two decorrelated hash values.

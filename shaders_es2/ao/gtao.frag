@@ -103,7 +103,7 @@ float sideVisibleFraction(AoCentre c, float centreBackDepth, vec3 V, vec2 side, 
     tapLayers(tapPixel, log2(tapDistance), point, backPoint);
 #else
     vec3 point = tapPoint(tapPixel, log2(tapDistance));
-    vec3 backPoint = point + (u_thickness * u_radius) * normalize(point);  // along the pixel's ray, from the eye
+    vec3 backPoint = point + (u_thickness * u_radius) * eyeRayDirection(point);  // along the pixel's ray
 #endif
     // The occluder along the tap's ray is the segment from its front point to its back point; what occludes is the
     // part of it within r of the centre: w + s (b - w), s in [s0, s1], inside the unit ball (units of r).
@@ -154,7 +154,7 @@ void main() {
   }
   float log2DiskRadius = log2(max(c.diskRadius, 1e-3));
   vec3 estimator = estimatorAt(log2DiskRadius);
-  vec3 V = normalize(-c.position);
+  vec3 V = -eyeRayDirection(c.position);
   // The slices' rotation: a 4x4 ordered (Bayer) pattern, so every 4x4 block holds 16 evenly spaced angles and the
   // bilateral blur (9 taps a direction at the medium preset) averages them all on a flat surface; the interleaved
   // gradient noise SAO uses left diagonal streaks where two slices per pixel sampled a wall's foot. The steps'
@@ -173,7 +173,7 @@ void main() {
   tapLayers(c.pixel, 0.0, centreFront, centreBack);
   float centreBackDepth = -centreBack.z;
 #else
-  float centreBackDepth = -(c.position + (u_thickness * u_radius) * normalize(c.position)).z;
+  float centreBackDepth = -(c.position + (u_thickness * u_radius) * eyeRayDirection(c.position)).z;
 #endif
   float visible = 0.0, open = 0.0;
   for (int slice = 0; slice < GTAO_SLICES; slice++) {

@@ -44,9 +44,13 @@
 //   HBAO_STEPS        taps per direction (N_s)
 #include "ao/ao_estimator.glsl"
 
+// A view-space point's place on the screen, up to a constant scale: in tangent units (x and y over depth), or x and y
+// themselves in orthographic projection.
+vec2 screenPosition(vec3 p) { return p.xy / mix(1.0, -p.z, u_perspective); }
+
 // One direction's occlusion: the attenuated rises of its horizon (the per-step form above).
 float directionOcclusion(AoCentre c, vec3 V, vec2 d, float jitter, float log2DiskRadius, float sinBias) {
-  vec2 centreTangent = c.position.xy / -c.position.z;  // the centre's screen position, in tangent units
+  vec2 centreTangent = screenPosition(c.position);
   float horizon = sinBias;  // the largest rise sin h - sin t so far; starts at the angle bias
   float occlusion = 0.0;
   for (int s = 0; s < HBAO_STEPS; s++) {
@@ -56,7 +60,7 @@ float directionOcclusion(AoCentre c, vec3 V, vec2 d, float jitter, float log2Dis
     vec3 w = (q - c.position) * u_invRadius;  // in units of r
     // The slice through the eye holding this tap: its screen direction X from the centre, and the unit tangent T
     // of that plane perpendicular to V (the tap lies in the plane spanned by T and V).
-    vec2 screen = q.xy / -q.z - centreTangent;
+    vec2 screen = screenPosition(q) - centreTangent;
     float screenLength = length(screen);
     vec3 X = vec3(screen / max(screenLength, 1e-12), 0.0);
     vec3 T = normalize(X - dot(X, V) * V);
@@ -84,7 +88,7 @@ void main() {
   }
   float log2DiskRadius = log2(max(c.diskRadius, 1e-3));
   vec3 estimator = estimatorAt(log2DiskRadius);
-  vec3 V = normalize(-c.position);
+  vec3 V = -eyeRayDirection(c.position);
   // Per-pixel rotation (interleaved gradient noise) and a decorrelated step jitter: the same hash at a transposed,
   // shifted pixel.
   float rotation = rotationAngle(c.aoPixel) * (1.0 / float(HBAO_DIRECTIONS));

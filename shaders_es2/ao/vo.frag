@@ -47,10 +47,11 @@ const float kThinMargin = 0.5;             // a surface this far (units of r) in
 vec3 lineSample(AoCentre c, vec2 offset, float bias) {
   vec2 tapPixel = clamp(floor(c.pixel + 0.5 + offset), vec2(0.0), u_gbufferSize - 1.0);
   vec3 q = tapPoint(tapPixel, log2(max(length(offset), 1.0)));
-  vec3 u = normalize(q);
+  vec3 u = eyeRayDirection(q);  // the eye's ray through q, or the view axis in orthographic projection
   // a: the ray's point at the centre's depth, relative to C; the surface at s_d along the ray from there.
-  vec3 a = (q * (c.position.z / q.z) - c.position) * u_invRadius;
-  float sd = length(q) * (q.z - c.position.z) / q.z * u_invRadius;
+  float t = (q.z - c.position.z) / u.z;
+  vec3 a = (q - u * t - c.position) * u_invRadius;
+  float sd = t * u_invRadius;
   float au = dot(a, u);
   float halfChord = sqrt(max(au * au - dot(a, a) + 1.0, 0.0));
   float s0 = -au - halfChord, s1 = -au + halfChord;

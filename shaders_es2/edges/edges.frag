@@ -7,7 +7,8 @@
 //                  colour   (COLOR_EDGES) a neighbour's display luma above this pixel's by more than t_c
 //   EDGES_PASS 2 rows: the distance to the nearest edge pixel of the row within EDGE_RADIUS -> "edges-distance"
 //   EDGES_PASS 3 draw: d = min_j sqrt(g(y + j)^2 + j^2), coverage strength clamp(width / 2 + 1/2 - d, 0, 1) (eq. 2),
-//                  the line colour mixed over the display colour (TOON: quantised into bands first)
+//                  the line colour mixed over the display colour (TOON: quantised into bands first; HATCHING:
+//                  strokes in bands of its luma first, edges/hatching.glsl)
 #include "lib/precision.glsl"
 #include "lib/packing.glsl"
 #include "lib/srgb.glsl"
@@ -20,6 +21,7 @@ varying vec2 v_uv;
 uniform sampler2D u_gbuffer;     // normal in RG, depth code in BA, NEAREST
 uniform float u_near;
 uniform float u_depthScale;      // (far - near) / 65535: z = near + code * scale
+uniform float u_inverseOrthographicDepth;  // 1 / L for an orthographic camera (EdgesEffect.h); 0: perspective
 uniform float u_depthThreshold;  // t_d
 uniform float u_normalCos;       // cos of the crease angle
 #if COLOR_EDGES
@@ -29,6 +31,17 @@ uniform float u_colorThreshold;  // t_c
 
 float viewDepth(float code) { return isBackgroundCode(code) ? 0.0 : u_near + code * u_depthScale; }
 float reciprocal(float z) { return z > 0.0 ? 1.0 / z : 0.0; }
+
+// Eq. 1 for the pixel of depth code `code` between neighbours of codes a and b: perspective, or orthographic (a
+// uniform branch; EdgesEffect.h).
+float secondDifference(float code, float a, float b) {
+  float z = viewDepth(code);
+  if (u_inverseOrthographicDepth > 0.0) {
+    if (isBackgroundCode(a) || isBackgroundCode(b)) return -1e30;
+    return (2.0 * z - viewDepth(a) - viewDepth(b)) * u_inverseOrthographicDepth;
+  }
+  return z * (reciprocal(viewDepth(a)) + reciprocal(viewDepth(b))) - 2.0;
+}
 
 // The crease test against one neighbour: only the pixel on the nearer side (or both, at equal depth codes) marks it.
 float crease(vec3 normal, float code, vec4 other) {
@@ -48,11 +61,8 @@ void main() {
   vec4 right = texture2D(u_gbuffer, v_uv + vec2(u_texel.x, 0.0));
   vec4 below = texture2D(u_gbuffer, v_uv - vec2(0.0, u_texel.y));
   vec4 above = texture2D(u_gbuffer, v_uv + vec2(0.0, u_texel.y));
-  float z = viewDepth(code);
-  float dx = z * (reciprocal(viewDepth(unpackDepthCode(left.ba))) + reciprocal(viewDepth(unpackDepthCode(right.ba))))
-             - 2.0;
-  float dy = z * (reciprocal(viewDepth(unpackDepthCode(below.ba))) + reciprocal(viewDepth(unpackDepthCode(above.ba))))
-             - 2.0;
+  float dx = secondDifference(code, unpackDepthCode(left.ba), unpackDepthCode(right.ba));
+  float dy = secondDifference(code, unpackDepthCode(below.ba), unpackDepthCode(above.ba));
   float profile = min(dx, dy) < -u_depthThreshold ? 1.0 : 0.0;
   vec3 normal = decodeNormal(centre.rg);
   float creased = max(max(crease(normal, code, left), crease(normal, code, right)),
@@ -82,6 +92,11 @@ void main() {
 }
 
 #else
+#if HATCHING
+#include "lib/reconstruct.glsl"
+#include "edges/hatching.glsl"
+varying vec3 v_farRay;
+#endif
 uniform sampler2D u_distance;  // edges-distance
 uniform sampler2D u_color;     // display-color
 uniform float u_halfWidth;     // width / 2 + 1/2
@@ -108,6 +123,9 @@ void main() {
   vec3 color = texture2D(u_color, v_uv).rgb;
 #if TOON
   color = toonShade(color);
+#endif
+#if HATCHING
+  color = hatch(color, v_uv, v_farRay, u_lineColor);
 #endif
   color = mix(color, u_lineColor, coverage);
   gl_FragColor = vec4(color, mix(fxaaLuma(color), 1.0, u_alphaIsOne));

@@ -25,14 +25,16 @@ varying vec3 v_farRay;
 
 const float ENDLESS = 1e30;  // the background, and rays into unending fog
 
-float fogDistance(vec3 viewPosition, bool background) {
-  float d = length(viewPosition);
+// The fog along `ray` (view space), which starts at `origin`: the eye, or a point of its plane (orthographic).
+float fogDistance(vec3 ray, vec3 origin, bool background) {
+  float d = length(ray);
 #if FOG_HEIGHT
-  float climb = u_falloff * dot(viewPosition, u_upInView) / d;
-  if (background) return climb > 0.0 ? min(u_heightScale / climb, ENDLESS) : ENDLESS;
+  float climb = u_falloff * dot(ray, u_upInView) / d;
+  float heightScale = u_heightScale * exp(clamp(-u_falloff * dot(origin, u_upInView), -80.0, 80.0));
+  if (background) return climb > 0.0 ? min(heightScale / climb, ENDLESS) : ENDLESS;
   float x = climb * d;
   float g = abs(x) < 1e-3 ? 1.0 - 0.5 * x : (1.0 - exp(min(-x, 80.0))) / x;
-  return min(d * u_heightScale * g, ENDLESS);
+  return min(d * heightScale * g, ENDLESS);
 #else
   return background ? ENDLESS : d;
 #endif
@@ -43,7 +45,8 @@ void main() {
   bool background = isBackgroundCode(code);
   // The background's ray is the far-plane ray itself: only its direction counts.
   vec3 viewPosition = background ? v_farRay : viewPositionOnRay(v_farRay, code * (1.0 / 65535.0));
-  float d = fogDistance(viewPosition, background);
+  vec3 ray = eyeRay(viewPosition);  // from the eye, or from its plane (the origin: only height fog reads it)
+  float d = fogDistance(ray, viewPosition - ray, background);
 #if FOG_MODE == 0
   float f = clamp(u_factor.x - u_factor.y * d, 0.0, 1.0);
 #elif FOG_MODE == 1

@@ -6,22 +6,29 @@
 //                                           2001, eq. 13): the radiance a white Lambertian surface reflects.
 //   vec3 environmentSpecular(vec3 r, float roughness)
 //                                           the prefiltered radiance (GGX, split sum: Karis 2013) towards r, levels
-//                                           for roughness 0, 0.2, .., 1, hand-filtered (the texels are RGB9E5).
+//                                           for roughness 0, 0.2, .., 1: RGB9E5 texels filtered by hand, or from
+//                                           ENVIRONMENT_FILTERED_FROM on RGBM texels through the hardware's filter.
 //   vec2 environmentBrdf(float roughness, float nDotV)
 //                                           the split sum's (A, B) from a 32 x 32 table integrated on the CPU
-//                                           (Karis 2013's IntegrateBRDF), bilinear: its bytes are plain linear values.
+//                                           (Karis 2013's IntegrateBRDF), bilinear: its bytes are plain linear values
+//                                           (in the filtered texture, below its levels).
 // lighting.frag's ambientLight combines them into the ambient term, with the material and the occlusion.
 //
 // ENVIRONMENT_LOD 1: the levels are mip levels of u_environment (EXT_shader_texture_lod's texture2DLodEXT at integer
 // levels); 0: they lie side by side in one atlas (level 0 left, 1 .. 5 stacked to its right), read with texture2D.
 // Both fetch the same texel centres, NEAREST, so both give the same values (tests/test_environment.cpp).
+// ENVIRONMENT_FILTERED_FROM: the first level read from u_environmentFiltered (GpuEnvironment::filteredFrom: 2, or
+// ENVIRONMENT_LEVELS for none, where the environment's range makes RGBM under the filter too coarse).
 
 uniform sampler2D u_environment;     // NEAREST; RGB9E5 texels (lib/hdr.glsl)
+// LINEAR: levels ENVIRONMENT_FILTERED_LEVEL .. 5 as RGBM texels (encoding/EnvironmentEncoding.h) inside borders that
+// wrap in u and clamp in v, and the (A, B) table; ENVIRONMENT_FILTERED_SIZE texels (environmentFilteredOrigin).
+uniform sampler2D u_environmentFiltered;
+uniform float u_environmentFilteredScale;  // the RGBM levels' scale times the intensity
 // E(n) / pi = the sum of nine RGB coefficients times 1, x, y, z, xy, yz, xz, x^2 - y^2, z^2: their 27 floats in
 // order, packed in 7 vec4 (7 fragment uniform vectors where 9 vec3 would take 9: GpuEnvironment::irradianceUniform).
 uniform vec4 u_shIrradiance[7];
 uniform float u_environmentIntensity;
-uniform sampler2D u_environmentBrdf;  // LINEAR, clamped: A in R, B in G over (n.v, roughness)
 
 const float ENVIRONMENT_PI = 3.14159265;
 const float ENVIRONMENT_MAX_LEVEL = float(ENVIRONMENT_LEVELS - 1);
@@ -60,7 +67,7 @@ vec3 environmentTexel(vec2 texel, float level, vec2 size) {
 
 // Bilinear between the level's texel centres around uv, wrapping in u and clamping in v (the hardware's filter would
 // blend encoded bytes).
-vec3 environmentLevel(vec2 uv, float level) {
+vec3 environmentLevelByHand(vec2 uv, float level) {
   vec2 size = environmentLevelSize(level);
   vec2 p = uv * size - 0.5;
   vec2 p0 = floor(p);
@@ -71,7 +78,23 @@ vec3 environmentLevel(vec2 uv, float level) {
   float y1 = clamp(p0.y + 1.0, 0.0, size.y - 1.0);
   vec3 top = mix(environmentTexel(vec2(x0, y0), level, size), environmentTexel(vec2(x1, y0), level, size), f.x);
   vec3 bottom = mix(environmentTexel(vec2(x0, y1), level, size), environmentTexel(vec2(x1, y1), level, size), f.x);
-  return mix(top, bottom, f.y);
+  return mix(top, bottom, f.y) * u_environmentIntensity;
+}
+
+// A level of the filtered texture: one fetch through the hardware's bilinear filter, inside the level's border, and
+// RGBM's decoding. Level k >= 2 begins at y = 1 + the bordered heights of levels 2 .. k - 1: 128 - 2^(9 - k) + 2 (k - 2).
+vec3 environmentLevelFiltered(vec2 uv, float level) {
+  vec2 size = environmentLevelSize(level);
+  vec2 origin = vec2(1.0, 128.0 - exp2(9.0 - level) + 2.0 * level - 3.0);
+  vec4 t = texture2D(u_environmentFiltered, (origin + uv * size) / ENVIRONMENT_FILTERED_SIZE);
+  return t.rgb * (t.a * u_environmentFilteredScale);
+}
+
+vec3 environmentLevel(vec2 uv, float level) {
+#if ENVIRONMENT_FILTERED_FROM < ENVIRONMENT_LEVELS
+  if (level >= float(ENVIRONMENT_FILTERED_FROM)) return environmentLevelFiltered(uv, level);
+#endif
+  return environmentLevelByHand(uv, level);
 }
 
 vec3 environmentSpecular(vec3 r, float roughness) {
@@ -80,13 +103,15 @@ vec3 environmentSpecular(vec3 r, float roughness) {
   float level = floor(lod);
   float f = lod - level;
   vec3 c = environmentLevel(uv, level);
-  // A whole level (every material today: roughness 1) reads one level: four fetches instead of eight.
+  // A whole level (roughness 0, 0.2, .., 1) reads one level.
   if (f > 0.0) c = mix(c, environmentLevel(uv, level + 1.0), f);
-  return c * u_environmentIntensity;
+  return c;
 }
 
-// The split sum's BRDF term: specular reflectance = F0 A + B.
+// The split sum's BRDF term: specular reflectance = F0 A + B. The table's texel centres span (0.5 .. 31.5) / 32 of
+// its 32 x 32; its border clamps beyond them.
 vec2 environmentBrdf(float roughness, float nDotV) {
-  return texture2D(u_environmentBrdf, vec2(nDotV, roughness)).rg;
+  vec2 p = ENVIRONMENT_BRDF_ORIGIN + vec2(nDotV, roughness) * ENVIRONMENT_BRDF_SIZE;
+  return texture2D(u_environmentFiltered, p / ENVIRONMENT_FILTERED_SIZE).rg;
 }
 

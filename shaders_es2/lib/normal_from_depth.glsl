@@ -43,13 +43,13 @@ vec3 normalFromDepth(sampler2D gbuffer, vec2 size, vec2 pixel, float code, vec3 
   vec2 dx = vec2(1.0, 0.0), dy = vec2(0.0, 1.0);
   float left = neighbourCode(gbuffer, size, pixel - dx), right = neighbourCode(gbuffer, size, pixel + dx);
   float below = neighbourCode(gbuffer, size, pixel - dy), above = neighbourCode(gbuffer, size, pixel + dy);
-  // The edge test in codes: kNormalEdgeJump of the view depth near + code (far - near) / 65535, u_depthToRay.y being
-  // near / far and .x 1 - near / far.
-  float edge = kNormalEdgeJump * (code + 65535.0 * u_depthToRay.y / u_depthToRay.x);
+  // The edge test in codes: kNormalEdgeJump of the view depth near + code (far - near) / 65535, u_depthToRay.w being
+  // -near and .z near - far (perspective and orthographic alike).
+  float edge = kNormalEdgeJump * (code + 65535.0 * u_depthToRay.w / u_depthToRay.z);
   if (min(abs(code - left), abs(right - code)) > edge || min(abs(code - below), abs(above - code)) > edge)
     return fallback;
   vec3 centre = pointOfCode(size, pixel, code);
   vec3 n = normalize(cross(axisTangent(size, pixel, dx, centre, code, left, right),
                            axisTangent(size, pixel, dy, centre, code, below, above)));
-  return dot(n, centre) > 0.0 ? -n : n;
+  return dot(n, eyeRay(centre)) > 0.0 ? -n : n;  // towards the camera (lib/reconstruct.glsl)
 }

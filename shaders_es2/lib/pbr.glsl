@@ -33,8 +33,9 @@ vec3 fresnelSchlick(vec3 f0, float vh) {
   return f0 + (vec3(1.0) - f0) * (x2 * x2 * x);
 }
 
-// The BRDF times NL for unit n (shading normal), v (to the eye), l (to the light): what illuminance E multiplies.
-vec3 brdfCosine(vec3 n, vec3 v, vec3 l, vec3 diffuseColor, vec3 f0, float roughness) {
+// The BRDF times NL for unit n (shading normal), v (to the eye), l (to the light): what illuminance E multiplies;
+// the specular lobe scaled by `energy` (the lighting's high tier: multiple scattering's energy compensation).
+vec3 brdfCosineCompensated(vec3 n, vec3 v, vec3 l, vec3 diffuseColor, vec3 f0, float roughness, vec3 energy) {
   float nl = dot(n, l);
   if (nl <= 0.0) return vec3(0.0);
   float nv = max(dot(n, v), 1e-4);
@@ -45,7 +46,11 @@ vec3 brdfCosine(vec3 n, vec3 v, vec3 l, vec3 diffuseColor, vec3 f0, float roughn
   vec3 f = fresnelSchlick(f0, vh);
   vec3 specular = f * (distributionGgx(nh, alpha) * visibilitySmithGgx(nl, nv, alpha));
   vec3 diffuse = (vec3(1.0) - f) * diffuseColor / PBR_PI;
-  return (diffuse + specular) * nl;
+  return (diffuse + specular * energy) * nl;
+}
+
+vec3 brdfCosine(vec3 n, vec3 v, vec3 l, vec3 diffuseColor, vec3 f0, float roughness) {
+  return brdfCosineCompensated(n, v, l, diffuseColor, f0, roughness, vec3(1.0));
 }
 
 // Specular occlusion from the ambient occlusion (Lagarde and de Rousiers 2014, "Moving Frostbite to PBR", sec. 4.10.2,

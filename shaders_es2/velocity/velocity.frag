@@ -2,7 +2,8 @@
 // packVelocity, 16 bits per component). Both projections are unjittered, so temporal jitter is not motion.
 // VELOCITY_CAMERA 1: the full-screen pass. Every pixel as if the scene stood still: its view position from the
 //   G-buffer's depth, seen through the previous frame's camera (u_viewToPreviousClip); background pixels as
-//   directions (w = 0), which only the camera's rotation moves.
+//   directions (w = 0), which only the camera's rotation moves. An orthographic camera sees no direction at a point of
+//   its image (every ray is parallel): its background pixels move as the far plane does (w = 1).
 // VELOCITY_CAMERA 0: the geometry drawn over it where something moves (geometry.vert with PREVIOUS 1 gives both clip
 //   positions: the previous pose through the previous camera). ALPHA_MASK as in the G-buffer pass.
 #include "lib/precision.glsl"
@@ -26,7 +27,7 @@ void main() {
 #if VELOCITY_CAMERA
   vec4 gbuffer = texture2D(u_gbuffer, v_uv);
   float code = unpackDepthCode(gbuffer.ba);
-  vec4 p = isBackgroundCode(code) ? vec4(v_farRay, 0.0)
+  vec4 p = isBackgroundCode(code) ? vec4(v_farRay, 1.0 - u_perspective)
                                   : vec4(viewPositionOnRay(v_farRay, code * (1.0 / 65535.0)), 1.0);
   vec4 current = u_unjitteredProjection * p;
   vec4 previous = u_viewToPreviousClip * p;

@@ -44,6 +44,8 @@ obscura::Camera internalCamera(const Camera& camera, int width, int height) {
   c.fovyDegrees = camera.fovyDegrees;
   c.near = camera.near;
   c.far = camera.far;
+  c.orthographic = camera.orthographic;
+  c.ymag = camera.ymag;
   c.width = width;
   c.height = height;
   c.validate("camera");
@@ -60,6 +62,8 @@ Camera publicCamera(const obscura::Camera& c) {
   camera.fovyDegrees = c.fovyDegrees;
   camera.near = c.near;
   camera.far = c.far;
+  camera.orthographic = c.orthographic;
+  camera.ymag = c.ymag;
   return camera;
 }
 

@@ -13,7 +13,8 @@ namespace obscura {
 
 std::string referenceUsage() {
   return "usage: obscura-reference [--scene FILE [--scene-scale S]] [--time T] [--animation A]\n"
-         "                         [--camera CAM.json | --fit] [--size WxH] [--radius R] [--rays N] [--threads N]\n"
+         "                         [--camera CAM.json | --fit | --camera-node C] [--orthographic] [--size WxH]\n"
+         "                         [--radius R] [--rays N] [--threads N]\n"
          "                         [--view ao|depth|mask] [--out FILE.png] [--depth-out FILE.png]\n"
          "                         [--mask-out FILE.png]\n"
          "\n"

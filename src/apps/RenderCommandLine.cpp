@@ -17,7 +17,8 @@ namespace obscura {
 std::string renderUsage() {
   std::string usage =
       "usage: obscura-render [--scene FILE [--scene-scale S]] [--time T] [--animation A] [--fps F] [--frames N]\n"
-      "                      [--camera CAM.json | --fit] [--size WxH] [--view V [--compare SWITCH]] [--out FILE.png]\n"
+      "                      [--camera CAM.json | --fit | --camera-node C] [--orthographic] [--size WxH]\n"
+      "                      [--view V [--compare SWITCH]] [--out FILE.png]\n"
       "                      [--NAME VALUE | --EFFECT | --no-EFFECT ...] [--preset P] [--bench N]\n"
       "                      [--backend osmesa|egl]\n"
       "                      [--accumulate N [--shutter S] [--supersample K]] [--aperture N [--supersample K]]\n"
@@ -32,6 +33,8 @@ std::string renderUsage() {
       "  --fps F           frames per second (default 60): the frame before --time is 1/F earlier, which motion\n"
       "                    vectors measure from\n"
       "  --frames N        draw N frames, at T, T + 1/F, ... (the history carrying over), and write the last\n"
+      "  --at K NAME=V     from frame K of --frames on (0: the first), parameter NAME is V (a change within the\n"
+      "                    sequence: --auto-exposure --frames 70 --at 10 lighting.sun-intensity=50); repeatable\n"
       "  --accumulate N    write the brute-force reference instead of the frame: the mean of N renders with the\n"
       "                    temporal effects off, at times spread over [T - S/(2F), T + S/(2F)]\n"
       "  --shutter S       the reference's shutter, a fraction of the frame interval (default 0.5; 0: one instant)\n"
@@ -93,6 +96,21 @@ RenderOptions parseRenderCommandLine(const std::vector<std::string>& args) {
       if (options.outPath.empty()) throw InputError("--out: empty file name");
     } else if (arg == "--fps") options.fps = parseNumber(arg, value(), 0.01, 10000.0);
     else if (arg == "--frames") options.frames = parseCount(arg, value(), 100000);
+    else if (arg == "--at") {
+      RenderOptions::Change change;
+      change.frame = static_cast<int>(parseNumber(arg, value(), 0.0, 100000.0));
+      const std::string assignment = value();
+      const size_t equals = assignment.find('=');
+      if (equals == std::string::npos) throw InputError("--at: expected NAME=VALUE, got '" + assignment + "'");
+      change.name = assignment.substr(0, equals);
+      change.value = assignment.substr(equals + 1);
+      try {
+        RenderSettings(options.settings).set(change.name, change.value);  // refused now, not at frame K
+      } catch (const InputError& e) {
+        throw InputError(std::string("--at: ") + e.what());
+      }
+      options.changes.push_back(change);
+    }
     else if (arg == "--accumulate") options.accumulate = parseCount(arg, value(), 4096);
     else if (arg == "--shutter") options.shutter = parseNumber(arg, value(), 0.0, 1.0);
     else if (arg == "--supersample") options.supersample = parseCount(arg, value(), 16);
@@ -123,6 +141,10 @@ RenderOptions parseRenderCommandLine(const std::vector<std::string>& args) {
   }
   options.input.check();
   if (compareGiven && options.view != View::Split) throw InputError("--compare: only --view split compares");
+  for (const RenderOptions::Change& change : options.changes)
+    if (change.frame >= options.frames)
+      throw InputError("--at " + std::to_string(change.frame) + ": the sequence has only " +
+                       std::to_string(options.frames) + " frame(s) (--frames N)");
   if (options.accumulate > 0 && (options.view != View::Final || options.benchFrames > 0 || options.frames != 1))
     throw InputError("--accumulate: writes the final image's reference; it takes no --view, --frames or --bench");
   if (options.aperture > 0 && (options.accumulate > 0 || options.shutter != 0.5))
@@ -173,8 +195,10 @@ int runRender(const RenderOptions& options) {
       accumulation.samples = options.accumulate;
       accumulation.supersample = options.supersample;
       accumulation.animation = input.animation;
-      writePng(options.outPath, accumulateShutter(renderer, [&](double) { return camera; }, settings, accumulation)
-                                    .toImage());
+      // A scene camera moves over the shutter interval as the animation moves it.
+      writePng(options.outPath,
+               accumulateShutter(renderer, [&](double t) { return input.cameraAt(t); }, settings, accumulation)
+                   .toImage());
       return 0;
     }
 
@@ -193,9 +217,12 @@ int runRender(const RenderOptions& options) {
     const double interval = 1.0 / options.fps;
     FrameOptions frame;
     frame.animation = input.animation;
+    frame.sceneCamera = input.sceneCamera;
     for (int k = 0; k < options.frames; ++k) {
       frame.time = options.input.time + k * interval;
       frame.previousTime = frame.time - interval;
+      for (const RenderOptions::Change& change : options.changes)
+        if (change.frame == k) settings.set(change.name, change.value);
       renderer.render(camera, settings, options.view, target, frame);
     }
     if (options.benchFrames > 0) {

@@ -24,6 +24,13 @@ struct RenderOptions {
   // one Renderer so that the history carries from frame to frame; the last is written.
   double fps = 60.0;
   int frames = 1;
+  // --at K NAME=VALUE: from frame K of the sequence on (0 is the first), the parameter takes that value: a change
+  // within the sequence, for what adapts over frames (auto exposure stepping through a light change). Repeatable.
+  struct Change {
+    int frame = 0;
+    std::string name, value;
+  };
+  std::vector<Change> changes;
   // --accumulate N: write the brute-force reference of renderer/AccumulationReference.h instead (N sub-frames over the
   // --shutter interval, each --supersample times the size), for the final view only.
   int accumulate = 0;

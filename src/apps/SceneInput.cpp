@@ -66,7 +66,12 @@ bool SceneInput::parseOption(const std::vector<std::string>& args, size_t& i) {
     if (animation.empty()) throw InputError("--animation: expected a name, an index, all or none, got ''");
   }
   else if (arg == "--camera") cameraPath = value();
+  else if (arg == "--camera-node") {
+    cameraNode = value();
+    if (cameraNode.empty()) throw InputError("--camera-node: expected a camera's name or index, got ''");
+  }
   else if (arg == "--fit") fit = true;
+  else if (arg == "--orthographic") orthographic = true;
   else if (arg == "--size") parseSize(value(), &width, &height);
   else return false;
   return true;
@@ -74,6 +79,10 @@ bool SceneInput::parseOption(const std::vector<std::string>& args, size_t& i) {
 
 void SceneInput::check() const {
   if (fit && !cameraPath.empty()) throw InputError("--camera and --fit exclude each other");
+  if (!cameraNode.empty() && (fit || !cameraPath.empty()))
+    throw InputError("--camera-node: the file's camera excludes --camera and --fit");
+  if (!cameraNode.empty() && orthographic)
+    throw InputError("--orthographic: the file's camera (--camera-node) has its own projection");
 }
 
 SceneInput::Loaded SceneInput::load() const {
@@ -90,10 +99,23 @@ SceneInput::Loaded SceneInput::load() const {
       throw InputError(std::string("--") + e.what());  // "--animation 'walk' is not in the scene; choices: ..."
     }
   }
-  if (cameraPath.empty()) {
+  loaded.bounds = loaded.scene.worldBounds();
+  if (!cameraNode.empty()) {
+    try {
+      loaded.sceneCamera = parseSceneCamera(loaded.scene, cameraNode, "--camera-node");
+    } catch (const InputError& e) {
+      throw InputError(scenePath.empty() ? std::string("--camera-node: the built-in scene has no cameras")
+                                         : std::string(e.what()));
+    }
+    const SceneCamera& chosen = loaded.scene.cameras[static_cast<size_t>(loaded.sceneCamera)];
+    const int w = width > 0 ? width : 1280, h = width > 0 ? height : heightForWidth(chosen, w);
+    loaded.camera.width = w;
+    loaded.camera.height = h;
+    loaded.camera = loaded.cameraAt(time);
+  } else if (cameraPath.empty()) {
     // Fitted at the output size: the frustum's aspect decides how much room the bounds need.
     if (fit || !scenePath.empty())
-      loaded.camera = Camera::fit(loaded.scene.worldBounds(), width > 0 ? width : 1280, height > 0 ? height : 720);
+      loaded.camera = Camera::fit(loaded.bounds, width > 0 ? width : 1280, height > 0 ? height : 720);
     else
       loaded.camera = builtinSceneCamera();
   }
@@ -101,7 +123,16 @@ SceneInput::Loaded SceneInput::load() const {
     loaded.camera.width = width;
     loaded.camera.height = height;
   }
+  if (orthographic) loaded.camera = loaded.camera.asOrthographic();
   return loaded;
+}
+
+Camera SceneInput::Loaded::cameraAt(double time) const {
+  if (sceneCamera < 0) return camera;
+  PoseOptions options;
+  options.animation = animation;
+  options.loop = true;  // as FrameOptions' default
+  return sceneCameraAt(scene, sceneCamera, evaluatePose(scene, time, options), bounds, camera.width, camera.height);
 }
 
 Scene SceneInput::Loaded::posedAt(double time) const {
@@ -123,8 +154,12 @@ std::string sceneInputUsage() {
          "  --time T          the moment of the scene's animation, in seconds (default 0; the timeline loops)\n"
          "  --animation A     which animation plays: its name, its index, all (together) or none (the rest pose);\n"
          "                    default: the first\n"
-         "  --camera FILE     camera JSON {eye, target, up, fovy_deg, near, far, width, height}\n"
+         "  --camera FILE     camera JSON {eye, target, up, fovy_deg, near, far, width, height}; an orthographic\n"
+         "                    one: \"type\": \"orthographic\", \"ymag\": its half height in metres\n"
+         "  --camera-node C   look through the file's camera C: its node's or its camera's name, or its index among\n"
+         "                    the file's cameras (it moves with the animation; default size: its frame, 1280 wide)\n"
          "  --fit             frame the scene's bounds at rest (the default for --scene without --camera)\n"
+         "  --orthographic    make the camera orthographic, keeping its view at its target\n"
          "  --size WxH        output size (overrides the camera's width and height; default 1280x720)\n";
 }
 
@@ -146,6 +181,15 @@ void scaleScene(Scene& scene, float scale) {
   const glm::mat4 scaling = glm::scale(glm::mat4(1.0f), glm::vec3(scale));
   for (Instance& instance : scene.instances) instance.world = scaling * instance.world;
   scene.designedAoRadius *= scale;  // a radius the scene was designed for scales with it (scene/SceneScale.h)
+  // The file's cameras see the scaled scene as they saw it: their depths and orthographic extents scale, and their
+  // nodes (below) carry them to their scaled places.
+  for (SceneCamera& camera : scene.cameras) {
+    camera.world = scaling * camera.world;
+    camera.znear *= scale;
+    camera.zfar *= scale;
+    camera.xmag *= scale;
+    camera.ymag *= scale;
+  }
 
   // A posed scene places its instances by the node hierarchy (scene/Animation.h), not by Instance::world: its roots
   // take the scale, and every node and skin joint below them follows. S * T * R * Sc = T(s t) * R * (s Sc) for a

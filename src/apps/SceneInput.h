@@ -8,7 +8,11 @@
 //   --time T           the moment drawn, in seconds on the scene's timeline (default 0; looping)
 //   --animation A      which animation plays: a name, an index, all or none (the rest pose); default: the first
 //   --camera FILE      camera JSON (scene/Camera.h)
+//   --camera-node C    one of the file's cameras: its node's or its camera's name, or its index among them; it moves
+//                      with the animation (FrameOptions::sceneCamera)
 //   --fit              frame the scene's bounds at rest (the default for --scene without --camera)
+//   --orthographic     the camera (the built-in, the fitted or --camera's) made orthographic, with the view it had at
+//                      its target (Camera::asOrthographic)
 //   --size WxH         output size, overriding the camera's
 #include <string>
 #include <vector>
@@ -22,7 +26,9 @@ namespace obscura {
 struct SceneInput {
   std::string scenePath;   // empty: the built-in scene
   std::string cameraPath;  // empty: the built-in scene's camera, or --fit for a file
+  std::string cameraNode;  // --camera-node as given (read once the scene is)
   bool fit = false;
+  bool orthographic = false;
   float sceneScale = 1.0f;
   double time = 0.0;      // seconds on the scene's timeline (scene/Animation.h: looping, as the renderer's default)
   std::string animation;  // as given (it names one of the scene's animations, so it is read once the scene is)
@@ -31,21 +37,27 @@ struct SceneInput {
   // If args[i] is one of the options above, consumes it (and its value, advancing i) and returns true.
   // Throws InputError("--option: problem") on a bad value.
   bool parseOption(const std::vector<std::string>& args, size_t& i);
-  // Throws InputError if the options contradict each other (--camera with --fit).
+  // Throws InputError if the options contradict each other (--camera, --fit and --camera-node; --orthographic with
+  // --camera-node, whose camera has its own projection).
   void check() const;
 
   // What load() returns: the scene (scaled, at rest), the animation chosen (--animation read against the scene's
   // animations; the first by default), its camera (the JSON file's, the one fitted to the scene's bounds at rest at
-  // the output size, or the built-in scene's; --size applied) and the loader's warnings, not yet printed.
+  // the output size, the built-in scene's, or the scene camera's posed at --time; --size applied, else a scene
+  // camera's frame at 1280 pixels wide) and the loader's warnings, not yet printed.
   struct Loaded {
     Scene scene;
     AnimationChoice animation;
     Camera camera;
+    int sceneCamera = -1;  // --camera-node's index in Scene::cameras, for FrameOptions::sceneCamera; -1: none
+    Bounds bounds;         // the scene's at rest (a scene camera's planes hug them, as the Renderer's do)
     std::vector<std::string> warnings;
     // The scene as posed at `time` (evaluatePose, posedScene: skinned and morphed meshes baked), for a tool that
     // draws the scene itself rather than through the renderer (the ray-traced reference); a scene with nothing to
     // pose comes back as it is.
     Scene posedAt(double time) const;
+    // The camera at `time`: the scene camera's where the animation puts it then, else `camera` (which does not move).
+    Camera cameraAt(double time) const;
   };
   // Reads the camera file, then the scene. Throws InputError naming the file on a bad one, and one listing the
   // scene's animations for an --animation it does not have. The warnings are left to the caller to print

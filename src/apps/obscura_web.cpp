@@ -146,12 +146,17 @@ class WebApp {
     const AoSettings& ao = viewer_.state().settings.ao();
     if (const Renderer* renderer = viewer_.renderer())
       if (ao.enabled && ao.temporal && renderer->lastFrame().historyFrames + 1 < ao.temporalFrames) frameWanted_ = true;
-    if (!frameWanted_ && !continuous_ && settleFrames_ <= 0) {
+    // Auto exposure adapts over the frames' intervals (each at most Viewer::kLongestFrameInterval): after a change,
+    // frames are drawn until their intervals add up to the adaptation's time, however long a slow device takes.
+    if (!frameWanted_ && !continuous_ && settleFrames_ <= 0 && adaptationLeft_ <= 0.0) {
       lastFrameTime_ = 0.0;  // the next drawn frame does not follow this one
       return;
     }
     // A change is drawn over framesPerChange() frames (temporal antialiasing converges over its jitter's phases).
-    if (frameWanted_) settleFrames_ = viewer_.framesPerChange();
+    if (frameWanted_) {
+      settleFrames_ = viewer_.framesPerChange();
+      adaptationLeft_ = viewer_.adaptationSeconds();
+    }
     frameWanted_ = false;
     if (timer) timer->beginFrame();
     const double start = emscripten_get_now();
@@ -162,6 +167,7 @@ class WebApp {
       return;
     }
     if (settleFrames_ > 0) --settleFrames_;
+    if (const Renderer* renderer = viewer_.renderer()) adaptationLeft_ -= renderer->lastFrame().frameInterval;
     lastCpuMs_ = emscripten_get_now() - start;
     cpuMs_ = frames_ == 0 ? lastCpuMs_ : cpuMs_ + kSmoothing * (lastCpuMs_ - cpuMs_);
     // The frame time is the interval between animation frames drawn back to back (continuous mode, or a drag).
@@ -195,6 +201,7 @@ class WebApp {
   std::unique_ptr<GpuPassTimer> timer_;
   bool frameWanted_ = true;  // something changed since the last drawn frame
   int settleFrames_ = 0;     // frames still to draw after the last change
+  double adaptationLeft_ = 0.0;  // the frame time (seconds) auto exposure still adapts over after the last change
   bool continuous_ = false;
   int width_ = 0, height_ = 0;
   double lastFrameTime_ = 0.0, frameMs_ = 0.0, cpuMs_ = 0.0;
@@ -247,6 +254,10 @@ EMSCRIPTEN_KEEPALIVE int obscura_create(int checkGlErrors) {
   return attempt([checkGlErrors] {
     RendererOptions options;
     options.checkGlErrors = checkGlErrors != 0;
+    // One app per canvas: the old one lets go of the canvas's context and event handlers before a new one takes
+    // them (made first, the new app lost its context-loss handlers to the old one's destructor; found natively by
+    // tests/test_web_api.cpp).
+    g_app.reset();
     g_app = std::make_unique<WebApp>(options);
   });
 }
@@ -396,6 +407,36 @@ EMSCRIPTEN_KEEPALIVE void obscura_zoom(float factor) {
 EMSCRIPTEN_KEEPALIVE void obscura_reset_camera() {
   g_app->viewer().resetCamera();
   g_app->changed();
+}
+
+// The camera looked through: {choice: "free" or the scene camera's state name, orthographic, cameras: [the scene's
+// cameras: {name, orthographic}], and the free camera's eye, target, up, fovy, ymag}.
+EMSCRIPTEN_KEEPALIVE const char* obscura_camera() {
+  const ViewerState& state = g_app->viewer().state();
+  Json cameras = Json::array();
+  for (size_t i = 0; i < state.sceneCameras.size(); ++i)
+    cameras.push_back(
+        {{"name", state.sceneCameras[i].label(i)}, {"orthographic", state.sceneCameras[i].orthographic}});
+  const Camera shown = g_app->viewer().cameraShown();
+  const Camera& free = state.camera;
+  return returned(Json{{"choice", state.cameraChoice()},
+                       {"orthographic", shown.orthographic},
+                       {"cameras", cameras},
+                       {"eye", {free.eye.x, free.eye.y, free.eye.z}},
+                       {"target", {free.target.x, free.target.y, free.target.z}},
+                       {"up", {free.up.x, free.up.y, free.up.z}},
+                       {"fovy", free.fovyDegrees},
+                       {"ymag", free.ymag}}
+                      .dump());
+}
+
+// "free" or one of the scene's cameras, by name or index.
+EMSCRIPTEN_KEEPALIVE int obscura_set_camera(const char* choice) {
+  return change([&] { g_app->viewer().setCamera(choice); });
+}
+
+EMSCRIPTEN_KEEPALIVE int obscura_set_orthographic(int orthographic) {
+  return change([&] { g_app->viewer().setOrthographic(orthographic != 0); });
 }
 
 // 1: the key is bound and acted; 0 with an empty obscura_error(): not bound; 0 with a message: refused.

@@ -3,11 +3,13 @@
 #include <algorithm>
 #include <cctype>
 #include <cmath>
+#include <random>
 
 #include <glm/geometric.hpp>
 #include <stb_image.h>
 
 #include "base/Error.h"
+#include "environment/PrefilterCache.h"
 
 namespace obscura {
 namespace {
@@ -38,8 +40,10 @@ void frameAround(const glm::dvec3& n, glm::dvec3& t, glm::dvec3& b) {
 }
 
 // Bilinear between texel centres of a w x h equirectangular grid (wrap in u, clamp in v): the addressing of
-// environmentLevel() in lib/environment.glsl.
-glm::vec3 bilinear(const std::vector<glm::vec3>& texels, int w, int h, const glm::vec2& uv) {
+// environmentLevel() in lib/environment.glsl, and what the hardware's filter does inside the filtered texture's
+// borders.
+template <typename T>
+T bilinear(const std::vector<T>& texels, int w, int h, const glm::vec2& uv) {
   const float px = uv.x * static_cast<float>(w) - 0.5f, py = uv.y * static_cast<float>(h) - 0.5f;
   const float fx0 = std::floor(px), fy0 = std::floor(py);
   const float fx = px - fx0, fy = py - fy0;
@@ -47,9 +51,18 @@ glm::vec3 bilinear(const std::vector<glm::vec3>& texels, int w, int h, const glm
   const int x0 = wrap(static_cast<int>(fx0)), x1 = wrap(static_cast<int>(fx0) + 1);
   const int y0 = std::clamp(static_cast<int>(fy0), 0, h - 1), y1 = std::clamp(static_cast<int>(fy0) + 1, 0, h - 1);
   auto at = [&](int x, int y) { return texels[static_cast<size_t>(y) * w + x]; };
-  const glm::vec3 top = at(x0, y0) + (at(x1, y0) - at(x0, y0)) * fx;
-  const glm::vec3 bottom = at(x0, y1) + (at(x1, y1) - at(x0, y1)) * fx;
+  const T top = at(x0, y0) + (at(x1, y0) - at(x0, y0)) * fx;
+  const T bottom = at(x0, y1) + (at(x1, y1) - at(x0, y1)) * fx;
   return top + (bottom - top) * fy;
+}
+
+float brightestChannel(const glm::vec3& c) { return std::max(c.r, std::max(c.g, c.b)); }
+
+std::vector<glm::vec4> normalisedChannels(const std::vector<EnvironmentTexel>& bytes) {
+  std::vector<glm::vec4> out;
+  out.reserve(bytes.size());
+  for (const EnvironmentTexel& b : bytes) out.push_back(glm::vec4(b[0], b[1], b[2], b[3]) * (1.0f / 255.0f));
+  return out;
 }
 
 // The image as level 0's kEnvironmentWidth x kEnvironmentHeight: each texel the mean of n x n bilinear lookups over
@@ -268,8 +281,13 @@ glm::vec3 PrefilteredEnvironment::prefilter(const std::vector<EnvironmentImage>&
   return weight > 0.0 ? glm::vec3(sum / weight) : glm::vec3(0.0f);
 }
 
-PrefilteredEnvironment PrefilteredEnvironment::of(const EnvironmentImage& image, int samples) {
+PrefilteredEnvironment PrefilteredEnvironment::of(const EnvironmentImage& image, int samples,
+                                                  EnvironmentFiltering filtering) {
   PrefilteredEnvironment out;
+  if (prefilter_cache::load(image, samples, &out.levels)) {  // test runs only (PrefilterCache.h)
+    out.encodeLevels(filtering);
+    return out;
+  }
   std::vector<EnvironmentImage> source = {image.width == kEnvironmentWidth && image.height == kEnvironmentHeight
                                               ? image
                                               : resampled(image, kEnvironmentWidth, kEnvironmentHeight)};
@@ -284,7 +302,39 @@ PrefilteredEnvironment PrefilteredEnvironment::of(const EnvironmentImage& image,
       for (int x = 0; x < target.width; ++x)
         target.at(x, y) = prefilter(source, target.texelDirection(x, y), roughness, levelSamples);
   }
-  out.decodeLevels();
+  prefilter_cache::store(image, samples, out.levels);
+  out.encodeLevels(filtering);
+  return out;
+}
+
+EnvironmentFilterError environmentFilterError(const EnvironmentImage& level, EnvironmentEncodingKind kind, float scale,
+                                              bool eightBitFilter, int samples, unsigned seed) {
+  const std::vector<glm::vec4> channels = normalisedChannels(encodeEnvironmentLevel(kind, level.texels, scale));
+  double levelMean = 0.0;
+  for (const glm::vec3& c : level.texels) levelMean += brightestChannel(c);
+  const float floorValue = static_cast<float>(0.01 * levelMean / static_cast<double>(level.texels.size()));
+  std::mt19937 random(seed);
+  std::uniform_real_distribution<float> unit(0.0f, 1.0f);
+  std::vector<double> errors;
+  errors.reserve(static_cast<size_t>(samples));
+  EnvironmentFilterError out;
+  for (int i = 0; i < samples; ++i) {
+    const glm::vec2 uv(unit(random), unit(random));
+    const glm::vec3 reference = bilinear(level.texels, level.width, level.height, uv);
+    glm::vec4 filtered = bilinear(channels, level.width, level.height, uv);
+    // llvmpipe's filter returns 8-bit channels (a fixed-point blend of UNORM8 texels); GPUs keep more bits.
+    if (eightBitFilter) filtered = glm::floor(filtered * 255.0f + 0.5f) / 255.0f;
+    const glm::vec3 got = decodeEnvironmentChannels(kind, filtered, scale);
+    float difference = 0.0f;
+    for (int c = 0; c < 3; ++c) difference = std::max(difference, std::abs(got[c] - reference[c]));
+    const double relative = difference / std::max(brightestChannel(reference), floorValue);
+    errors.push_back(relative);
+    out.mean += relative;
+    out.worst = std::max(out.worst, relative);
+  }
+  out.mean /= std::max(samples, 1);
+  std::sort(errors.begin(), errors.end());
+  if (!errors.empty()) out.p99 = errors[static_cast<size_t>(0.99 * static_cast<double>(errors.size() - 1))];
   return out;
 }
 
@@ -295,11 +345,35 @@ std::vector<HdrTexel> PrefilteredEnvironment::encodedLevel(int level) const {
   return out;
 }
 
-void PrefilteredEnvironment::decodeLevels() {
+std::vector<EnvironmentTexel> PrefilteredEnvironment::filteredLevel(int level) const {
+  return encodeEnvironmentLevel(kEnvironmentEncoding, levels[level].texels, filteredScale_);
+}
+
+void PrefilteredEnvironment::encodeLevels(EnvironmentFiltering filtering) {
   for (int level = 0; level < kEnvironmentLevels; ++level) {
     decoded_[level].clear();
     for (const HdrTexel& t : encodedLevel(level)) decoded_[level].push_back(decodeHdr(t));
   }
+  // One scale for the filtered levels: the brightest channel among them (level 2's: prefiltering only blurs).
+  std::vector<glm::vec3> filteredTexels;
+  for (int level = kEnvironmentFilteredLevel; level < kEnvironmentLevels; ++level)
+    filteredTexels.insert(filteredTexels.end(), levels[level].texels.begin(), levels[level].texels.end());
+  filteredScale_ = environmentLevelScale(kEnvironmentEncoding, filteredTexels);
+  filterError_ = {};
+  for (int level = kEnvironmentFilteredLevel; level < kEnvironmentLevels; ++level) {
+    const EnvironmentFilterError e = environmentFilterError(levels[level], kEnvironmentEncoding, filteredScale_, true,
+                                                            kEnvironmentFilterSamples, 1234u + static_cast<unsigned>(level));
+    filterError_.mean = std::max(filterError_.mean, e.mean);
+    filterError_.p99 = std::max(filterError_.p99, e.p99);
+    filterError_.worst = std::max(filterError_.worst, e.worst);
+  }
+  const bool withinBound =
+      filterError_.p99 <= kEnvironmentFilterBound.p99 && filterError_.worst <= kEnvironmentFilterBound.worst;
+  const bool filtered = filtering == EnvironmentFiltering::Hardware ||
+                        (filtering == EnvironmentFiltering::Measured && withinBound);
+  filteredFrom_ = filtered ? kEnvironmentFilteredLevel : kEnvironmentLevels;
+  for (int level = 0; level < kEnvironmentLevels; ++level)
+    filtered_[level] = level >= filteredFrom_ ? normalisedChannels(filteredLevel(level)) : std::vector<glm::vec4>();
 }
 
 glm::vec3 PrefilteredEnvironment::sample(const glm::vec3& direction, float roughness) const {
@@ -308,7 +382,11 @@ glm::vec3 PrefilteredEnvironment::sample(const glm::vec3& direction, float rough
   const float base = std::floor(lod);
   const float f = lod - base;
   const int k = static_cast<int>(base);
-  auto level = [&](int i) { return bilinear(decoded_[i], levels[i].width, levels[i].height, uv); };
+  auto level = [&](int i) {
+    if (i < filteredFrom_) return bilinear(decoded_[i], levels[i].width, levels[i].height, uv);
+    return decodeEnvironmentChannels(kEnvironmentEncoding,
+                                     bilinear(filtered_[i], levels[i].width, levels[i].height, uv), filteredScale_);
+  };
   const glm::vec3 c = level(k);
   return f > 0.0f ? c + (level(k + 1) - c) * f : c;
 }
@@ -414,30 +492,71 @@ EnvironmentLayout GpuEnvironment::layoutFor(const gl::GlCaps& caps, std::optiona
   return *forced == EnvironmentLayout::MipChain ? best : EnvironmentLayout::Atlas;
 }
 
-std::vector<std::pair<std::string, std::string>> GpuEnvironment::shaderDefines(EnvironmentLayout layout) {
+std::vector<std::pair<std::string, std::string>> GpuEnvironment::shaderDefines(EnvironmentLayout layout,
+                                                                              int filteredFrom) {
+  const glm::ivec2 brdf = environmentFilteredOrigin(-1);
   return {{"ENVIRONMENT_LOD", layout == EnvironmentLayout::MipChain ? "1" : "0"},
           {"ENVIRONMENT_LEVELS", std::to_string(kEnvironmentLevels)},
+          {"ENVIRONMENT_FILTERED_FROM", std::to_string(filteredFrom)},
+          {"ENVIRONMENT_FILTERED_LEVEL", std::to_string(kEnvironmentFilteredLevel)},
+          {"ENVIRONMENT_ENCODING", std::to_string(static_cast<int>(kEnvironmentEncoding))},
           {"ENVIRONMENT_WIDTH", std::to_string(kEnvironmentWidth) + ".0"},
-          {"ENVIRONMENT_HEIGHT", std::to_string(kEnvironmentHeight) + ".0"}};
+          {"ENVIRONMENT_HEIGHT", std::to_string(kEnvironmentHeight) + ".0"},
+          {"ENVIRONMENT_FILTERED_SIZE", "vec2(" + std::to_string(kEnvironmentFilteredWidth) + ".0, " +
+                                            std::to_string(kEnvironmentFilteredHeight) + ".0)"},
+          {"ENVIRONMENT_BRDF_ORIGIN",
+           "vec2(" + std::to_string(brdf.x) + ".0, " + std::to_string(brdf.y) + ".0)"},
+          {"ENVIRONMENT_BRDF_SIZE", std::to_string(kEnvironmentBrdfSize) + ".0"}};
+}
+
+glm::ivec2 environmentFilteredOrigin(int level) {
+  // Levels kEnvironmentFilteredLevel .. 5 stacked from the top, each inside its one-texel border; the table below.
+  int y = 0;
+  const int last = level < 0 ? kEnvironmentLevels : level;
+  for (int j = kEnvironmentFilteredLevel; j < last; ++j) y += (kEnvironmentHeight >> j) + 2;
+  return {1, y + 1};
 }
 
 GpuEnvironment::GpuEnvironment(EnvironmentLayout layout, const PrefilteredEnvironment& specular,
                                const ShIrradiance& sh)
     : layout_(layout),
       texture_(gl::TextureHandle::create()),
-      brdf_(gl::TextureHandle::create()),
+      filtered_(gl::TextureHandle::create()),
+      filteredFrom_(specular.filteredFrom()),
+      filteredScale_(specular.filteredScale()),
       polynomial_(sh.polynomial()) {
   const float* floats = &polynomial_[0].x;  // glm::vec3 is three tightly packed floats
   for (size_t i = 0; i < 27; ++i) packedPolynomial_[i / 4][static_cast<glm::length_t>(i % 4)] = floats[i];
   glActiveTexture(GL_TEXTURE0);
-  // (A, B): plain linear bytes, so the hardware's bilinear filter is the right one.
-  glBindTexture(GL_TEXTURE_2D, brdf_.id());
-  glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA, kEnvironmentBrdfSize, kEnvironmentBrdfSize, 0, GL_RGBA, GL_UNSIGNED_BYTE,
-               environmentBrdfTable().data());
-  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
-  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
-  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_LINEAR);
-  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+  // The filtered texture: RGBM levels and (A, B), plain linear bytes, each inside a border (wrapping in u and
+  // clamping in v for the levels, clamping for the table), so the hardware's bilinear filter reads each as its own.
+  {
+    std::vector<EnvironmentTexel> atlas(static_cast<size_t>(kEnvironmentFilteredWidth) * kEnvironmentFilteredHeight,
+                                        EnvironmentTexel{0, 0, 0, 0});
+    auto place = [&](const std::vector<EnvironmentTexel>& texels, int w, int h, glm::ivec2 origin, bool wrap) {
+      for (int y = -1; y <= h; ++y)
+        for (int x = -1; x <= w; ++x) {
+          const int sx = wrap ? (x + w) % w : std::clamp(x, 0, w - 1), sy = std::clamp(y, 0, h - 1);
+          atlas[static_cast<size_t>(origin.y + y) * kEnvironmentFilteredWidth + static_cast<size_t>(origin.x + x)] =
+              texels[static_cast<size_t>(sy) * static_cast<size_t>(w) + static_cast<size_t>(sx)];
+        }
+    };
+    for (int level = filteredFrom_; level < kEnvironmentLevels; ++level)
+      place(specular.filteredLevel(level), kEnvironmentWidth >> level, kEnvironmentHeight >> level,
+            environmentFilteredOrigin(level), true);
+    const std::vector<std::uint8_t>& table = environmentBrdfTable();
+    std::vector<EnvironmentTexel> brdf(table.size() / 4);
+    for (size_t i = 0; i < brdf.size(); ++i) brdf[i] = {table[4 * i], table[4 * i + 1], table[4 * i + 2], table[4 * i + 3]};
+    place(brdf, kEnvironmentBrdfSize, kEnvironmentBrdfSize, environmentFilteredOrigin(-1), false);
+    glBindTexture(GL_TEXTURE_2D, filtered_.id());
+    glPixelStorei(GL_UNPACK_ALIGNMENT, 4);
+    glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA, kEnvironmentFilteredWidth, kEnvironmentFilteredHeight, 0, GL_RGBA,
+                 GL_UNSIGNED_BYTE, atlas.data());
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_LINEAR);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+  }
 
   glBindTexture(GL_TEXTURE_2D, texture_.id());
   glPixelStorei(GL_UNPACK_ALIGNMENT, 4);

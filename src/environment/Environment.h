@@ -22,14 +22,22 @@
 //   ("Physically Based Shading on Mobile", 2014: envBrdfApprox) was measured too and is off by up to 0.18 in A
 //   (tests/test_environment.cpp prints both against the integral).
 //
-// Storage (GpuEnvironment): RGBA8 texels in scene-color's RGB9E5 encoding (encoding/HdrEncoding.h). An encoded texel
-// cannot be filtered by the hardware, so the textures are NEAREST and the shader filters by hand: four texel centres
-// of a level, each decoded, weighted bilinearly (wrapping in u, clamped in v), and two levels blended by the
-// fractional level. Two layouts give the same texel centres, so the same values:
-//   mip chain  EXT_shader_texture_lod: the roughness levels are mip levels 0 .. 5 of one 512 x 256 texture (6 .. 9
-//              hold level 5's mean, for a complete chain), read with texture2DLodEXT at integer levels.
-//   atlas      otherwise (a documented fallback, core GLES 2 / WebGL 1): level 0 at the left, levels 1 .. 5 stacked
-//              in a column to its right (768 x 256), read with texture2D at computed coordinates.
+// Storage (GpuEnvironment): two textures.
+//   by hand   every level in scene-color's RGB9E5 encoding (encoding/HdrEncoding.h), NEAREST. An encoded texel cannot
+//             be filtered by the hardware, so the shader filters by hand: four texel centres of a level, each
+//             decoded, weighted bilinearly (wrapping in u, clamped in v). Two layouts give the same texel centres:
+//     mip chain  EXT_shader_texture_lod: the roughness levels are mip levels 0 .. 5 of one 512 x 256 texture (6 .. 9
+//                hold level 5's mean, for a complete chain), read with texture2DLodEXT at integer levels.
+//     atlas      otherwise (a documented fallback, core GLES 2 / WebGL 1): level 0 at the left, levels 1 .. 5
+//                stacked in a column to its right (768 x 256), read with texture2D at computed coordinates.
+//   filtered  LINEAR: levels 2 .. 5 (roughness 0.4 .. 1) as RGBM texels with one scale (encoding/
+//             EnvironmentEncoding.h), each inside a one-texel border that repeats its far column and its edge rows,
+//             so that the hardware's bilinear filter wraps in u and clamps in v: one fetch and a multiply per level;
+//             and the (A, B) table below, inside a border that clamps. 130 x 162 texels (environmentFilteredOrigin).
+// The shader reads levels from filteredFrom() on from the filtered texture, the others by hand. filteredFrom() is 2
+// where levels 2 .. 5 read through the filter stay within kEnvironmentFilterBound of the linear texels (measured
+// when the environment is prepared, for a filter whose output keeps only 8 bits, as llvmpipe's does), else 6: none.
+// Two levels are blended by the fractional level.
 #include <array>
 #include <cstdint>
 #include <optional>
@@ -39,6 +47,7 @@
 #include <glm/vec2.hpp>
 #include <glm/vec3.hpp>
 
+#include "encoding/EnvironmentEncoding.h"
 #include "encoding/HdrEncoding.h"
 #include "environment/EnvironmentLayout.h"
 #include "gl/GlCaps.h"
@@ -111,25 +120,56 @@ inline float environmentLevelRoughness(int level) { return static_cast<float>(le
 // GGX's normal distribution D(h) (Walter et al. 2007, Trowbridge-Reitz), alpha = roughness^2.
 double ggxDistribution(double nDotH, double alpha);
 
+// The filtered texture (Storage above): its first level, its encoding, and the error its levels may have against
+// the bilinear filter over their linear texels, relative to the reference's brightest channel at the point (floored
+// at 1 % of the level's mean): at the 99th percentile and at worst, over environmentFilterSamples points per level.
+constexpr int kEnvironmentFilteredLevel = 2;
+constexpr EnvironmentEncodingKind kEnvironmentEncoding = EnvironmentEncodingKind::Rgbm;
+struct EnvironmentFilterError {
+  double mean = 0.0, p99 = 0.0, worst = 0.0;
+};
+inline constexpr EnvironmentFilterError kEnvironmentFilterBound{0.0, 0.02, 0.05};
+constexpr int kEnvironmentFilterSamples = 4096;
+// One level encoded with `kind` and `scale` and read through the bilinear filter at `samples` random points (seeded),
+// against the filter over its linear texels. eightBitFilter: the filter's output rounded to 8 bits per channel.
+EnvironmentFilterError environmentFilterError(const EnvironmentImage& level, EnvironmentEncodingKind kind, float scale,
+                                              bool eightBitFilter, int samples, unsigned seed);
+
 // The environment prefiltered per roughness level (linear radiance).
 struct PrefilteredEnvironment {
   std::array<EnvironmentImage, kEnvironmentLevels> levels;
 
   // `samples`: GGX samples per texel of level 5 (roughness 1); each finer level takes a quarter as many, at least
   // 64 (its texels are four times as many and its lobe narrower). Level 0, roughness 0, is the image resampled.
-  static PrefilteredEnvironment of(const EnvironmentImage& image, int samples = 4096);
+  // `filtering`: which levels the filtered texture holds (Storage above).
+  static PrefilteredEnvironment of(const EnvironmentImage& image, int samples = 4096,
+                                   EnvironmentFiltering filtering = EnvironmentFiltering::Measured);
   // P(r, roughness) for one texel direction by the importance-sampled estimator above.
   static glm::vec3 prefilter(const std::vector<EnvironmentImage>& sourceLevels, const glm::vec3& r, double roughness,
                              int samples);
-  // The mirror of environmentSpecular() in lib/environment.glsl over these levels encoded and decoded as the
-  // texture holds them: hand-filtered bilinear in the two levels around roughness * 5, blended.
+  // The mirror of environmentSpecular() in lib/environment.glsl over these levels as the textures hold them: in the
+  // two levels around roughness * 5, bilinear over the decoded RGB9E5 texels, or (from filteredFrom() on) the decoded
+  // bilinear blend of the RGBM bytes, as the hardware's filter reads them; blended.
   glm::vec3 sample(const glm::vec3& direction, float roughness) const;
   // Each level's texels in the RGB9E5 encoding, rows in the image's order.
   std::vector<HdrTexel> encodedLevel(int level) const;
+  // A level from kEnvironmentFilteredLevel on in kEnvironmentEncoding with filteredScale().
+  std::vector<EnvironmentTexel> filteredLevel(int level) const;
+  // The first level read through the hardware's filter: kEnvironmentFilteredLevel, or kEnvironmentLevels (none).
+  int filteredFrom() const { return filteredFrom_; }
+  // The RGBM scale of the filtered levels: their brightest channel.
+  float filteredScale() const { return filteredScale_; }
+  // The largest error of the filtered levels (an 8-bit filter), which chose filteredFrom().
+  const EnvironmentFilterError& filterError() const { return filterError_; }
 
  private:
-  std::array<std::vector<glm::vec3>, kEnvironmentLevels> decoded_;  // the encoded texels decoded (sample())
-  void decodeLevels();
+  std::array<std::vector<glm::vec3>, kEnvironmentLevels> decoded_;  // the RGB9E5 texels decoded (sample())
+  // The filtered levels' bytes as normalised channels (the hardware filters these, then the shader decodes).
+  std::array<std::vector<glm::vec4>, kEnvironmentLevels> filtered_;
+  int filteredFrom_ = kEnvironmentLevels;
+  float filteredScale_ = 1.0f;
+  EnvironmentFilterError filterError_;
+  void encodeLevels(EnvironmentFiltering filtering);
 };
 
 // The same integral as prefilter() by brute force: every texel of `image` weighted by D(h) (n.l)+ dOmega.
@@ -164,21 +204,33 @@ class GpuEnvironment {
   GpuEnvironment(EnvironmentLayout layout, const PrefilteredEnvironment& specular, const ShIrradiance& sh);
 
   EnvironmentLayout layout() const { return layout_; }
-  GLuint texture() const { return texture_.id(); }
-  GLuint brdfTexture() const { return brdf_.id(); }  // environmentBrdfTable(), LINEAR
+  GLuint texture() const { return texture_.id(); }  // the levels by hand (RGB9E5, NEAREST)
+  // LINEAR: the filtered levels (from filteredFrom(); none when it is kEnvironmentLevels) and environmentBrdfTable().
+  GLuint filteredTexture() const { return filtered_.id(); }
+  int filteredFrom() const { return filteredFrom_; }
+  float filteredScale() const { return filteredScale_; }
   const std::array<glm::vec3, 9>& irradiancePolynomial() const { return polynomial_; }
   // The polynomial as the shader's u_shIrradiance holds it: its 27 floats in order in 7 vec4 (the last float 0), so
   // it takes 7 fragment uniform vectors instead of the 9 that 9 vec3 take under GLSL ES 1.00's packing (Appendix A):
   // the forward lighting must fit GLES 2's 16 (LightingEffect.h).
   const std::array<glm::vec4, 7>& irradianceUniform() const { return packedPolynomial_; }
-  // The shader's defines: ENVIRONMENT_LOD 1 (mip chain) or 0 (atlas), the level count and level 0's size.
-  static std::vector<std::pair<std::string, std::string>> shaderDefines(EnvironmentLayout layout);
+  // The shader's defines: ENVIRONMENT_LOD 1 (mip chain) or 0 (atlas), ENVIRONMENT_FILTERED_FROM (filteredFrom()),
+  // the level count and the textures' sizes.
+  static std::vector<std::pair<std::string, std::string>> shaderDefines(EnvironmentLayout layout, int filteredFrom);
 
  private:
   EnvironmentLayout layout_;
-  gl::TextureHandle texture_, brdf_;
+  gl::TextureHandle texture_, filtered_;
+  int filteredFrom_;
+  float filteredScale_;
   std::array<glm::vec3, 9> polynomial_{};
   std::array<glm::vec4, 7> packedPolynomial_{};
 };
+
+// The filtered texture's size, and where a level's texels (kEnvironmentFilteredLevel .. 5) or the (A, B) table's
+// begin in it (level -1), inside their borders: the levels stacked from the top, the table below them.
+constexpr int kEnvironmentFilteredWidth = (kEnvironmentWidth >> kEnvironmentFilteredLevel) + 2;  // 130
+constexpr int kEnvironmentFilteredHeight = 162;  // 66 + 34 + 18 + 10 + the table's 34
+glm::ivec2 environmentFilteredOrigin(int level);
 
 }  // namespace obscura

@@ -6,4 +6,8 @@ namespace obscura {
 enum class EnvironmentLayout { MipChain, Atlas };
 const char* environmentLayoutName(EnvironmentLayout layout);  // "mipchain", "atlas"
 
+// Which levels the hardware's filter reads (environment/Environment.h, "Storage"): by the measured bound, or one
+// storage forced (the tests and benchmarks compare both).
+enum class EnvironmentFiltering { Measured, ByHand, Hardware };
+
 }  // namespace obscura

@@ -23,24 +23,28 @@
 namespace obscura {
 
 class FramePlanner;
+class FrameSettings;
 class PassContext;
 
 // A target's size relative to the frame (the output size). Half and quarter are floor(size / 2^k), at least 1 pixel
 // (SaoKernel::hierarchyLevelSize); tiles are ceil(size / tile), one texel per tile x tile pixels; tile columns are
 // ceil(width / tile) by the full height, one texel per tile x 1 pixels (the first half of a separable tile pass).
+// A fixed size does not follow the frame (auto exposure's 1 x 1 result and its 128-bin histogram).
 struct TargetSize {
-  enum class Kind { Full, Half, Quarter, Tiles, TileColumns };
+  enum class Kind { Full, Half, Quarter, Tiles, TileColumns, Fixed };
   Kind kind = Kind::Full;
-  int tile = 0;  // Tiles and TileColumns only
+  int tile = 0;    // Tiles and TileColumns; Fixed: the width
+  int height = 0;  // Fixed only
 
   static TargetSize full() { return {Kind::Full, 0}; }
   static TargetSize half() { return {Kind::Half, 0}; }
   static TargetSize quarter() { return {Kind::Quarter, 0}; }
   static TargetSize tiles(int tile) { return {Kind::Tiles, tile}; }
   static TargetSize tileColumns(int tile) { return {Kind::TileColumns, tile}; }
+  static TargetSize fixed(int width, int height) { return {Kind::Fixed, width, height}; }
   glm::ivec2 of(glm::ivec2 frame) const;
-  std::string name() const;  // "full", "half", "quarter", "tiles of 16"
-  bool operator==(const TargetSize& o) const { return kind == o.kind && tile == o.tile; }
+  std::string name() const;  // "full", "half", "quarter", "tiles of 16", "128x64"
+  bool operator==(const TargetSize& o) const { return kind == o.kind && tile == o.tile && height == o.height; }
 };
 
 // How a debug view (shaders_es2/frame/debug_view.frag) shows a target's bytes: decoded, but otherwise as they are (no
@@ -131,6 +135,9 @@ class Effect {
   // Adds this frame's passes (none: the effect has nothing to do with these settings). Called in table order for
   // every effect that is on, and for the effect whose target the frame's debug view shows.
   virtual void plan(FramePlanner& planner) = 0;
+  // Loads or makes what this frame's passes will read with these settings (the lighting's environment), before the
+  // frame is planned, so that plan() only declares passes. Called every frame for every effect, on or off.
+  virtual void prepare(const FrameSettings& settings) { (void)settings; }
 };
 
 }  // namespace obscura

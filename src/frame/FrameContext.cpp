@@ -6,28 +6,41 @@
 
 namespace obscura {
 
-FrameCamera FrameCamera::from(const Camera& camera, int width, int height, glm::vec2 jitterPixels) {
+FrameCamera FrameCamera::from(const Camera& camera, int width, int height, glm::vec2 jitterPixels,
+                              glm::vec2 shearPixelsPerMetre) {
   FrameCamera frame;
   frame.width = width;
   frame.height = height;
   frame.near = camera.near;
   frame.far = camera.far;
-  frame.fovyRadians = camera.fovyRadians();
+  frame.orthographic = camera.orthographic;
   frame.jitter = jitterPixels;
   const float aspect = static_cast<float>(width) / static_cast<float>(height);
+  frame.halfExtent = camera.halfExtent(aspect);
   frame.view = camera.view();
-  frame.projection = glm::perspective(frame.fovyRadians, aspect, camera.near, camera.far);
+  frame.projection = camera.projection(aspect);
   frame.unjitteredProjection = frame.projection;
-  // A jitter of j pixels is 2 j / width in normalised device x. The projection's third column multiplies z_view, and
-  // w = -z_view, so subtracting 2 j / width there moves every depth by the same +2 j / width after the division.
-  frame.projection[2][0] -= 2.0f * jitterPixels.x / static_cast<float>(width);
-  frame.projection[2][1] -= 2.0f * jitterPixels.y / static_cast<float>(height);
-  frame.reconstruction = ViewReconstruction::fromPerspective(frame.fovyRadians, aspect, camera.near, camera.far);
+  // A jitter of j pixels is 2 j / width in normalised device x, a shift by that much after the division by w: the
+  // projection's row x gains 2 j / width times its row w. In perspective row w is (0, 0, -1, 0), so the third column
+  // changes (every depth moves alike once divided by w = -z_view); in orthographic projection w = 1, the fourth.
+  const glm::vec2 shift = 2.0f * jitterPixels / glm::vec2(width, height);
+  for (int column = 0; column < 4; ++column) {
+    frame.projection[column][0] += shift.x * frame.projection[column][3];
+    frame.projection[column][1] += shift.y * frame.projection[column][3];
+  }
+  // The shear: x_ndc += 2 k / width times the view depth -z_view, with w = 1 (orthographic).
+  if (camera.orthographic) {
+    frame.projection[2][0] -= 2.0f * shearPixelsPerMetre.x / static_cast<float>(width);
+    frame.projection[2][1] -= 2.0f * shearPixelsPerMetre.y / static_cast<float>(height);
+  }
+  frame.reconstruction =
+      ViewReconstruction::fromCamera(frame.halfExtent, camera.near, camera.far, camera.orthographic);
   return frame;
 }
 
-float FrameCamera::projScale(int targetHeight) const {
-  return static_cast<float>(targetHeight) / (2.0f * std::tan(fovyRadians * 0.5f));
+glm::vec2 FrameCamera::projScale(int targetHeight) const {
+  const float scale = static_cast<float>(targetHeight) / (2.0f * halfExtent.y);
+  return orthographic ? glm::vec2(0.0f, scale) : glm::vec2(scale, 0.0f);
 }
 
 float halton(std::uint32_t index, std::uint32_t base) {
@@ -41,13 +54,15 @@ float halton(std::uint32_t index, std::uint32_t base) {
 
 ReconstructionUniforms::ReconstructionUniforms(const gl::Program& program)
     : farHalfExtent_(program.uniform("u_farHalfExtent")),
-      farPlane_(program.uniform("u_farPlane")),
-      depthToRay_(program.uniform("u_depthToRay")) {}
+      farPlane_(program.optionalUniform("u_farPlane")),  // only where a pass reads the far plane's depth
+      depthToRay_(program.uniform("u_depthToRay")),
+      perspective_(program.optionalUniform("u_perspective")) {}  // only where a pass follows eye rays
 
 void ReconstructionUniforms::set(const ViewReconstruction& r) const {
   gl::Program::set(farHalfExtent_, r.farHalfExtent);
   gl::Program::set(farPlane_, r.far);
-  gl::Program::set(depthToRay_, glm::vec2(r.depthScale, r.depthBias));
+  gl::Program::set(depthToRay_, r.depthToRay);
+  gl::Program::set(perspective_, r.perspective ? 1.0f : 0.0f);
 }
 
 }  // namespace obscura

@@ -23,13 +23,24 @@ struct FrameCamera {
   glm::mat4 projection{1.0f};  // jittered when the frame is (jitter below)
   glm::mat4 unjitteredProjection{1.0f};  // the same without the jitter (motion vectors)
   ViewReconstruction reconstruction;
-  float near = 0.1f, far = 100.0f, fovyRadians = 1.0f;
+  float near = 0.1f, far = 100.0f;
+  bool orthographic = false;
+  glm::vec2 halfExtent{1.0f};  // Camera::halfExtent at the output's aspect: tan of the half fields of view, or metres
   int width = 1, height = 1;   // the output size; the camera's aspect follows it
   glm::vec2 jitter{0.0f};      // sub-pixel offset of the projection, in pixels (x right, y up)
 
-  static FrameCamera from(const Camera& camera, int width, int height, glm::vec2 jitterPixels = glm::vec2(0.0f));
-  // Pixels per metre at 1 m in front of the camera, for a target `targetHeight` pixels tall.
-  float projScale(int targetHeight) const;
+  // `shearPixelsPerMetre`: a shift of the image that grows by that many pixels per metre of view depth (x right, y
+  // up; FrameOptions::projectionShear), for an orthographic camera only.
+  static FrameCamera from(const Camera& camera, int width, int height, glm::vec2 jitterPixels = glm::vec2(0.0f),
+                          glm::vec2 shearPixelsPerMetre = glm::vec2(0.0f));
+  // How many pixels of a target `targetHeight` pixels tall a length of 1 m spans, facing the camera at depth z
+  // (metres in front of it): projScale.x / z + projScale.y. Perspective: (height / (2 tan(fovy / 2)), 0), the SAO
+  // paper's projScale; orthographic: (0, height / (2 ymag)), the same at every depth.
+  glm::vec2 projScale(int targetHeight) const;
+  float pixelsPerMetre(int targetHeight, float depth) const {
+    const glm::vec2 scale = projScale(targetHeight);
+    return scale.x / depth + scale.y;
+  }
 };
 
 struct FrameContext {
@@ -42,6 +53,7 @@ struct FrameContext {
   // The time of the previous pose (FrameOptions::previousTime, else the previous frame's time, else `time`).
   double previousTime = 0.0;
   double deltaTime = 0.0;      // time - previousTime
+  double frameInterval = 1.0 / 60.0;  // real seconds since the previous frame (FrameOptions::frameInterval)
   bool linesOrPoints = false;  // the scene has points or lines to draw (effects/lines/LinesEffect.h)
   // The scene needs the forward lighting (GpuScene::needsForwardLighting): the G-buffer writes no base colour.
   bool forwardLighting = false;
@@ -59,7 +71,7 @@ class ReconstructionUniforms {
   void set(const ViewReconstruction& reconstruction) const;  // on the program in use
 
  private:
-  GLint farHalfExtent_ = -1, farPlane_ = -1, depthToRay_ = -1;
+  GLint farHalfExtent_ = -1, farPlane_ = -1, depthToRay_ = -1, perspective_ = -1;
 };
 
 }  // namespace obscura

@@ -14,7 +14,7 @@ std::string describe(const PlannedPass& pass) {
 }
 
 auto slotKind(const SlotKey& k) {
-  return std::make_tuple(static_cast<int>(k.size.kind), k.size.tile, k.filter, k.ownDepth);
+  return std::make_tuple(static_cast<int>(k.size.kind), k.size.tile, k.size.height, k.filter, k.ownDepth);
 }
 
 }  // namespace

@@ -34,7 +34,7 @@ inline std::optional<glm::vec3> normalFromDepth(const ViewReconstruction& view, 
   const float code = static_cast<float>(depthCode(pixel.x, pixel.y));
   const float left = codeAt(pixel - dx), right = codeAt(pixel + dx), below = codeAt(pixel - dy),
               above = codeAt(pixel + dy);
-  const float edge = kNormalEdgeJump * (code + 65535.0f * view.depthBias / view.depthScale);
+  const float edge = kNormalEdgeJump * (code + 65535.0f * view.depthToRay.w / view.depthToRay.z);
   if (std::min(std::abs(code - left), std::abs(right - code)) > edge ||
       std::min(std::abs(code - below), std::abs(above - code)) > edge)
     return std::nullopt;
@@ -48,7 +48,7 @@ inline std::optional<glm::vec3> normalFromDepth(const ViewReconstruction& view, 
     return lesser + (0.5f * (back + ahead) - lesser) * agreement;
   };
   const glm::vec3 n = glm::normalize(glm::cross(tangent(dx, left, right), tangent(dy, below, above)));
-  return glm::dot(n, centre) > 0.0f ? -n : n;
+  return glm::dot(n, view.eyeRayDirection(centre)) > 0.0f ? -n : n;  // towards the camera
 }
 
 }  // namespace obscura

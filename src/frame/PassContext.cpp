@@ -33,6 +33,13 @@ const gl::Texture2D& PassContext::texture(const std::string& target) const {
   return pool_.slot(*version.slot).color();
 }
 
+const gl::Texture2D& PassContext::writtenTexture(const std::string& target) const {
+  const TargetVersion& version = writeVersion(target);
+  if (!version.slot)
+    throw PipelineError("pass '" + passName(plan_, pass_) + "' writes '" + target + "', which has no pooled target");
+  return pool_.slot(*version.slot).color();
+}
+
 bool PassContext::has(const std::string& target) const {
   return plan_.passes()[static_cast<size_t>(pass_)].reads.count(target) != 0;
 }

@@ -36,6 +36,9 @@ class PassContext {
   // The colour texture of a target this pass reads. Throws PipelineError for one it did not declare (or an optional
   // read no running pass wrote: ask has() first).
   const gl::Texture2D& texture(const std::string& target) const;
+  // The colour texture of a pooled target this pass writes, for a later draw of the same pass to read back (bloom's
+  // level 2, which is also the frame's `bloom-bright`).
+  const gl::Texture2D& writtenTexture(const std::string& target) const;
   // Whether a declared optional read is there this frame.
   bool has(const std::string& target) const;
   // Binds the framebuffer this pass writes `target` into and sets the viewport to cover it. For the frame's result,

@@ -28,6 +28,10 @@ struct RendererOptions {
   // Where the prefiltered environment's roughness levels live; unset: the mip chain read with texture2DLodEXT where
   // EXT_shader_texture_lod exists, else the atlas (environment/Environment.h). Tests force the atlas to compare both.
   std::optional<EnvironmentLayout> environmentLayout;
+  // Which of the environment's levels the hardware's filter reads; unset (EnvironmentFiltering::Measured): levels
+  // 2 .. 5 where they keep kEnvironmentFilterBound, else none (environment/Environment.h). Benchmarks and tests
+  // force either to compare them.
+  EnvironmentFiltering environmentFiltering = EnvironmentFiltering::Measured;
   // How skinned meshes are drawn; unset: the joint texture where the context has vertex textures and float
   // textures, else the uniform palette (gpu/GpuScene.h). A path the context cannot take falls back the same way.
   std::optional<SkinningPath> skinning;

@@ -2,7 +2,7 @@
 // The texture units of the scene's draws and the lighting pass, in one table. GLES 2 guarantees 8 units to the
 // fragment stage and 8 in all (GL_MAX_COMBINED_TEXTURE_IMAGE_UNITS), none to the vertex stage. The forward lighting
 // of a material with every texture samples eight in its fragment stage (the base colour, the AO, the four PBR
-// textures, the environment and its BRDF table): all eight that GLES 2 guarantees, so the joint texture of vertex
+// textures, the environment's two textures): all eight that GLES 2 guarantees, so the joint texture of vertex
 // skinning needs a ninth unit, which only a context with more than 8 combined units has (GpuScene then takes the
 // uniform palette). The full-screen passes bind their own inputs from unit 0 and restore nothing but unit 0 as active.
 #include "gl/GlCaps.h"
@@ -26,9 +26,9 @@ inline constexpr int kGles2Units = 8;
 inline bool jointTextureFits(const gl::GlCaps& caps) {
   return caps.maxVertexTextureImageUnits > 0 && caps.maxCombinedTextureImageUnits > kGles2Units;
 }
-// The environment's BRDF table: the ninth unit where the context has one, else the joints' unit, which is then free
-// (jointTextureFits is false).
-inline int environmentBrdf(const gl::GlCaps& caps) {
+// The environment's filtered texture (its rough levels and the BRDF table): the ninth unit where the context has one,
+// else the joints' unit, which is then free (jointTextureFits is false).
+inline int environmentFiltered(const gl::GlCaps& caps) {
   return caps.maxCombinedTextureImageUnits > kGles2Units ? kGles2Units : kJoints;
 }
 

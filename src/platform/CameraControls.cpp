@@ -33,7 +33,7 @@ void panCamera(Camera& camera, float dxPixels, float dyPixels, int viewportHeigh
   const glm::vec3 right = glm::normalize(glm::cross(forward, camera.up));
   const glm::vec3 screenUp = glm::cross(right, forward / distance);
   const float metresPerPixel =
-      2.0f * distance * std::tan(camera.fovyRadians() * 0.5f) / static_cast<float>(std::max(viewportHeight, 1));
+      2.0f * camera.halfHeightAt(distance, camera.aspect()) / static_cast<float>(std::max(viewportHeight, 1));
   // The point under the cursor follows it: the camera moves against the drag.
   const glm::vec3 shift = (-dxPixels * right + dyPixels * screenUp) * metresPerPixel;
   camera.eye += shift;
@@ -43,8 +43,11 @@ void panCamera(Camera& camera, float dxPixels, float dyPixels, int viewportHeigh
 void zoomCamera(Camera& camera, float factor, float sceneRadius) {
   const glm::vec3 offset = camera.eye - camera.target;
   const float radius = std::max(sceneRadius, 1e-3f);
-  const float distance = std::clamp(glm::length(offset) * factor, radius * 1e-3f, radius * 1e3f);
+  const float before = glm::length(offset);
+  const float distance = std::clamp(before * factor, radius * 1e-3f, radius * 1e3f);
   camera.eye = camera.target + glm::normalize(offset) * distance;
+  // An orthographic view zooms by its size; it moves with the eye, so that going back to perspective keeps the view.
+  if (camera.orthographic) camera.ymag *= distance / before;
 }
 
 void fitDepthRange(Camera& camera, const Bounds& scene) {

@@ -15,7 +15,8 @@ namespace obscura {
 void orbitCamera(Camera& camera, float dxPixels, float dyPixels, int viewportHeight);
 // Moves eye and target together in the view plane, at the target's depth.
 void panCamera(Camera& camera, float dxPixels, float dyPixels, int viewportHeight);
-// Scales the eye's distance to the target by `factor` (> 1 moves away), within 1e-3 .. 1e3 times `sceneRadius`.
+// Scales the eye's distance to the target by `factor` (> 1 moves away), within 1e-3 .. 1e3 times `sceneRadius`; an
+// orthographic camera's half height scales with it (its view grows as a perspective camera's would).
 void zoomCamera(Camera& camera, float factor, float sceneRadius);
 // Near and far hugging the scene's bounding sphere as seen from the eye, with far/near at most kMaxDepthRatio: the
 // G-buffer's depth renderbuffer is 16-bit on WebGL 1, so a tiny near plane would cost depth precision far away.

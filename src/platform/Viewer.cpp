@@ -5,6 +5,7 @@
 #include <cstdlib>
 
 #include "base/Error.h"
+#include "effects/auto_exposure/AutoExposureEffect.h"
 #include "effects/taa/TaaEffect.h"
 #include "gl/GlObjects.h"
 #include "platform/CameraControls.h"
@@ -80,6 +81,14 @@ const std::vector<Viewer::KeyAction>& Viewer::keyActions() {
       {"(", "exposure - 0.5 EV", step("tonemap.exposure", -0.5)},
       {")", "exposure + 0.5 EV", step("tonemap.exposure", 0.5)},
       {"r", "reset the camera", [](Viewer& v) { v.resetCamera(); }},
+      {"v", "next camera: the free one, then each of the scene's own",
+       [](Viewer& v) {
+         const int count = static_cast<int>(v.state_.sceneCameras.size());
+         if (count == 0) throw InputError("no other camera: the scene has no cameras of its own");
+         v.state_.sceneCamera = v.state_.sceneCamera + 1 < count ? v.state_.sceneCamera + 1 : -1;
+       }},
+      {"x", "orthographic / perspective (the free camera, from the view shown)",
+       [](Viewer& v) { v.setOrthographic(!v.cameraShown().orthographic); }},
       {" ", "play / pause the animation",
        [](Viewer& v) {
          Timeline& timeline = v.requireTimeline(true);
@@ -150,6 +159,8 @@ void Viewer::showScene(Scene scene, const std::string& name, const Camera& camer
   sceneBounds_ = scene_.worldBounds();
   sceneCamera_ = camera;
   state_.camera = camera;
+  state_.sceneCameras = scene_.cameras;
+  state_.sceneCamera = -1;
   state_.sceneLoaded(defaultAoRadius(scene_));  // the scene's own radius, unless a state text gave one
   state_.timeline.sceneLoaded(scene_);           // its first animation, from time 0
 }
@@ -174,22 +185,50 @@ GltfLoadReport Viewer::loadGltfFile(const std::string& path) {
   return report;
 }
 
+Camera Viewer::cameraShown() const {
+  if (state_.sceneCamera < 0) return state_.camera;
+  FrameOptions options;
+  state_.timeline.applyTo(options);
+  const ScenePose pose = evaluatePose(scene_, options.time, PoseOptions{options.animation, options.loop});
+  return sceneCameraAt(scene_, state_.sceneCamera, pose, sceneBounds_, state_.camera.width, state_.camera.height);
+}
+
+void Viewer::takeOverSceneCamera() {
+  if (state_.sceneCamera < 0) return;
+  state_.camera = cameraShown();
+  state_.sceneCamera = -1;
+}
+
+void Viewer::setCamera(const std::string& choice) { state_.setCameraChoice(choice); }
+
+void Viewer::setOrthographic(bool orthographic) {
+  takeOverSceneCamera();
+  state_.camera = orthographic ? state_.camera.asOrthographic() : state_.camera.asPerspective();
+  fitDepthRange(state_.camera, sceneBounds_);
+}
+
 void Viewer::orbit(float dxPixels, float dyPixels, int viewportHeight) {
+  takeOverSceneCamera();
   orbitCamera(state_.camera, dxPixels, dyPixels, viewportHeight);
   fitDepthRange(state_.camera, sceneBounds_);
 }
 
 void Viewer::pan(float dxPixels, float dyPixels, int viewportHeight) {
+  takeOverSceneCamera();
   panCamera(state_.camera, dxPixels, dyPixels, viewportHeight);
   fitDepthRange(state_.camera, sceneBounds_);
 }
 
 void Viewer::zoom(float factor) {
+  takeOverSceneCamera();
   zoomCamera(state_.camera, factor, sceneBounds_.empty() ? 1.0f : sceneBounds_.radius());
   fitDepthRange(state_.camera, sceneBounds_);
 }
 
-void Viewer::resetCamera() { state_.camera = sceneCamera_; }
+void Viewer::resetCamera() {
+  state_.camera = sceneCamera_;
+  state_.sceneCamera = -1;
+}
 
 void Viewer::adjustParameter(const std::string& name, const std::function<double(double)>& change) {
   const auto& params = RenderSettings::parameters();
@@ -224,7 +263,17 @@ void Viewer::render(GLuint framebuffer, int width, int height, PassTimer* timer,
   FrameOptions options;
   options.timer = timer;
   state_.timeline.applyTo(options);  // time, animation, loop
+  if (lastClock_ >= 0.0 && clockSeconds > lastClock_)
+    options.frameInterval = std::min(clockSeconds - lastClock_, kLongestFrameInterval);
+  lastClock_ = clockSeconds;
+  options.sceneCamera = state_.sceneCamera;
   renderer_->render(state_.camera, state_.settings, state_.view, target, options);
+}
+
+double Viewer::adaptationSeconds() const {
+  const AutoExposureSettings& exposure = state_.settings.of<AutoExposureSettings>();
+  if (!exposure.enabled) return 0.0;
+  return std::log(100.0) / std::min(exposure.speedUp, exposure.speedDown);
 }
 
 void Viewer::contextLost() {

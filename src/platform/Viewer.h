@@ -45,11 +45,20 @@ class Viewer {
   ViewerState& state() { return state_; }
   const ViewerState& state() const { return state_; }
 
-  // --- Camera moves (see CameraControls.h); each refits near/far to the scene.
+  // --- Camera moves (see CameraControls.h); each refits near/far to the scene. A move while the view looks through
+  // one of the scene's cameras starts from that camera's view, as the free camera.
   void orbit(float dxPixels, float dyPixels, int viewportHeight);
   void pan(float dxPixels, float dyPixels, int viewportHeight);
   void zoom(float factor);
-  void resetCamera();
+  void resetCamera();  // the scene's own view, through the free camera
+
+  // --- Cameras: the free one and the scene's own (ViewerState::sceneCameras), "free" or one by name or index.
+  void setCamera(const std::string& choice);
+  // The free camera made orthographic or perspective with the same view at its target (Camera::asOrthographic),
+  // starting from the view shown.
+  void setOrthographic(bool orthographic);
+  // The camera the view looks through now: the free one, or the scene camera where the timeline puts it.
+  Camera cameraShown() const;
 
   // --- Keys, the same on the desktop and on the web: what the keyboard types (e.g. "]", " " for space), or, for a
   // key that types nothing, its KeyboardEvent.key name ("ArrowLeft", "ArrowRight", "Home"), which obscura-view maps
@@ -65,14 +74,21 @@ class Viewer {
 
   // Draws one frame of the current state into `framebuffer` (0: the window's or canvas's own) at width x height.
   // `clockSeconds` is the front end's clock (any origin): a playing timeline first advances by its change since the
-  // previous frame (Timeline::tick); the frame shows the timeline's time. Does nothing while the context is lost
-  // (the timeline still advances).
+  // previous frame (Timeline::tick); the frame shows the timeline's time. What adapts over real time (auto exposure)
+  // steps by the clock's change since the previous frame, at most kLongestFrameInterval (a frame drawn after an idle
+  // spell steps as one frame, not as the whole spell); 1/60 s where the clock does not move. Does nothing while the
+  // context is lost (the timeline still advances).
   void render(GLuint framebuffer, int width, int height, PassTimer* timer = nullptr, double clockSeconds = 0.0);
   // Whether frames change by themselves (a timeline playing): a front end drawing on change only then draws on.
   bool playing() const { return state_.timeline.playing(); }
   // Frames a front end drawing on change only draws after each change, the first included: 1, or while an effect that
   // jitters the projection is on (temporal antialiasing), the jitter's 16 phases, over which a still image converges.
   int framesPerChange() const;
+  // Frame time (the intervals render steps by) a front end drawing on change only keeps drawing for after each
+  // change, because frames keep changing by themselves for that long: with auto exposure on, until it has come
+  // within 1 % of the new value at its slower speed (ln 100 / speed); else 0.
+  double adaptationSeconds() const;
+  static constexpr double kLongestFrameInterval = 0.1;
 
   // --- Context loss. contextLost() drops every GL object without deleting it (its names belong to the lost context,
   // see gl::abandonContextObjects); contextRestored() rebuilds the Renderer and the GPU scene from the CPU scene for
@@ -95,6 +111,8 @@ class Viewer {
   // for a key that plays or steps it (`playable`), where the chosen animation has no length ("none").
   Timeline& requireTimeline(bool playable);
   void showScene(Scene scene, const std::string& name, const Camera& camera);
+  // Makes the scene camera looked through (if any) the free camera, at its view.
+  void takeOverSceneCamera();
   // Sets a numeric parameter to change(current value), clamped to the parameter's range.
   void adjustParameter(const std::string& name, const std::function<double(double)>& change);
 
@@ -106,6 +124,7 @@ class Viewer {
   Bounds sceneBounds_;
   Camera sceneCamera_;  // the scene's own view, for resetCamera()
   ViewerState state_;
+  double lastClock_ = -1.0;  // the clock of the last frame drawn (render's clockSeconds); -1: none yet
 };
 
 }  // namespace obscura

@@ -11,7 +11,7 @@
 namespace obscura {
 namespace {
 
-constexpr const char* kCameraKeys[] = {"eye", "target", "up", "fovy", "near", "far"};
+constexpr const char* kCameraKeys[] = {"eye", "target", "up", "fovy", "near", "far", "projection", "ymag", "camera"};
 
 int hexDigit(char c) {
   if (c >= '0' && c <= '9') return c - '0';
@@ -82,6 +82,19 @@ const std::vector<std::string>& ViewerState::viewModes() { return frameViewNames
 
 void ViewerState::setViewMode(const std::string& name) { view.name = parseView(name).name; }
 
+std::string ViewerState::cameraChoice() const {
+  return sceneCamera < 0 ? "free" : sceneCameraKey(sceneCameras, sceneCamera);
+}
+
+void ViewerState::setCameraChoice(const std::string& text) {
+  if (text == "free") {
+    sceneCamera = -1;
+    return;
+  }
+  if (sceneCameras.empty()) throw InputError("camera '" + text + "': the scene has no cameras of its own (only free)");
+  sceneCamera = parseSceneCamera(sceneCameras, text, "camera");
+}
+
 void ViewerState::sceneLoaded(float radius) {
   defaultRadius = radius;
   if (!radiusGiven) settings.ao().radius = radius;
@@ -129,6 +142,11 @@ std::string ViewerState::toQuery() const {
   add("fovy", formatShortest(camera.fovyDegrees));
   add("near", formatShortest(camera.near));
   add("far", formatShortest(camera.far));
+  if (camera.orthographic) {
+    add("projection", "orthographic");
+    add("ymag", formatShortest(camera.ymag));
+  }
+  if (sceneCamera >= 0) add("camera", cameraChoice());
   return query;
 }
 
@@ -174,19 +192,37 @@ bool ViewerState::applyQuery(const std::string& query) {
     throw InputError(std::string("state: ") + e.what());
   }
 
-  bool cameraGiven = false;
+  // A free camera described without a projection is a perspective one, and one described without camera= is the one
+  // looked through: what toQuery leaves out, so that any state comes back as it was.
+  bool cameraGiven = false, freeCameraGiven = false;
+  const bool projectionGiven = values.count("projection") != 0, choiceGiven = values.count("camera") != 0;
   for (const char* key : kCameraKeys) {
     if (!take(key, &text)) continue;
     cameraGiven = true;
+    freeCameraGiven = freeCameraGiven || std::string(key) != "camera";
     const std::string name = key;
     if (name == "eye") next.camera.eye = parseVector(name, text);
     else if (name == "target") next.camera.target = parseVector(name, text);
     else if (name == "up") next.camera.up = parseVector(name, text);
     else if (name == "fovy") next.camera.fovyDegrees = parseFloat(name, text);
     else if (name == "near") next.camera.near = parseFloat(name, text);
-    else next.camera.far = parseFloat(name, text);
+    else if (name == "far") next.camera.far = parseFloat(name, text);
+    else if (name == "ymag") next.camera.ymag = parseFloat(name, text);
+    else if (name == "projection") {
+      if (text != "perspective" && text != "orthographic")
+        throw InputError("state: projection: expected perspective or orthographic, got '" + text + "'");
+      next.camera.orthographic = text == "orthographic";
+    } else {
+      try {
+        next.setCameraChoice(text);
+      } catch (const InputError& e) {
+        throw InputError(std::string("state: ") + e.what());
+      }
+    }
   }
   if (!values.empty()) throw InputError("state: unknown key '" + values.begin()->first + "'");
+  if (freeCameraGiven && !projectionGiven) next.camera.orthographic = false;
+  if (freeCameraGiven && !choiceGiven) next.sceneCamera = -1;
   if (cameraGiven) next.camera.validate("state");
   *this = next;
   return cameraGiven;

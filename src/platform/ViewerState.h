@@ -6,7 +6,9 @@
 // compares: splitSwitches(); written when not "ao"), every parameter of RenderSettings by
 // its name or alias ("radius" for "ao.radius": older links keep working), the timeline (animation: a name, an index,
 // all or none; time in seconds; speed; play and loop: on or off; Timeline.h) and the camera (eye, target, up as
-// x,y,z; fovy in degrees; near; far). The camera's size follows the window or canvas. The AO radius is in the
+// x,y,z; fovy in degrees; near; far; projection=orthographic with ymag, the half height in metres, for an orthographic
+// free camera; camera=NAME or INDEX when the view looks through one of the scene's own cameras instead: the name of
+// its node or camera, or its index among them). The camera's size follows the window or canvas. The AO radius is in the
 // scene's units; each scene loaded gets its own default radius unless a state text gave one (sceneLoaded), and
 // starts at time 0 of its first animation.
 #include <string>
@@ -23,7 +25,15 @@ struct ViewerState {
   View view = View::Final;
   RenderSettings settings;
   Timeline timeline;
-  Camera camera;
+  Camera camera;  // the free camera, which orbits
+  // The shown scene's own cameras (Scene::cameras) and the one the view looks through: -1 the free camera, else an
+  // index into them (FrameOptions::sceneCamera). A scene loaded starts on the free camera.
+  std::vector<SceneCamera> sceneCameras;
+  int sceneCamera = -1;
+  // "free", or the scene camera as state text names it (sceneCameraKey: its name, else its index).
+  std::string cameraChoice() const;
+  // "free", or one of sceneCameras by name or index; throws InputError listing them.
+  void setCameraChoice(const std::string& text);
 
   // The AO radius of the scene shown when nobody sets one (scene/SceneScale.h: defaultAoRadius; the built-in scene:
   // 1). toQuery leaves ao.radius out at this value, so a URL holds a radius only once someone chose one.

@@ -269,20 +269,24 @@ ReferenceFrame AoReferenceTracer::trace(const Camera& camera, const ReferenceSet
 
   const glm::mat4 viewToWorld = glm::inverse(camera.view());
   const glm::mat3 rotation(viewToWorld);
-  const float tanHalfY = std::tan(camera.fovyRadians() * 0.5f);
-  const float tanHalfX = tanHalfY * camera.aspect();
+  const glm::vec2 halfExtent = camera.halfExtent(camera.aspect());  // as the rasteriser's projection has it
 
   auto tracePixel = [&](int x, int y, const RTCIntersectContext& contextTemplate) {
     // The view-space direction has z = -1, so the hit distance t along it is the view depth -z_view, and the
-    // rasteriser's near/far clipping becomes t in [near, far].
+    // rasteriser's near/far clipping becomes t in [near, far]: from the eye through the pixel in perspective; from
+    // the pixel's point of the eye's plane, along the view axis, in orthographic projection.
     const float ndcX = 2.0f * (static_cast<float>(x) + 0.5f) / static_cast<float>(camera.width) - 1.0f;
     const float ndcY = 1.0f - 2.0f * (static_cast<float>(y) + 0.5f) / static_cast<float>(camera.height);
-    const glm::vec3 direction = rotation * glm::vec3(ndcX * tanHalfX, ndcY * tanHalfY, -1.0f);
+    const glm::vec2 onScreen = glm::vec2(ndcX, ndcY) * halfExtent;
+    const glm::vec3 origin =
+        camera.orthographic ? camera.eye + rotation * glm::vec3(onScreen, 0.0f) : camera.eye;
+    const glm::vec3 direction =
+        rotation * (camera.orthographic ? glm::vec3(0.0f, 0.0f, -1.0f) : glm::vec3(onScreen, -1.0f));
     RTCIntersectContext context = contextTemplate;
     RTCRayHit hit{};
-    hit.ray.org_x = camera.eye.x;
-    hit.ray.org_y = camera.eye.y;
-    hit.ray.org_z = camera.eye.z;
+    hit.ray.org_x = origin.x;
+    hit.ray.org_y = origin.y;
+    hit.ray.org_z = origin.z;
     hit.ray.dir_x = direction.x;
     hit.ray.dir_y = direction.y;
     hit.ray.dir_z = direction.z;
@@ -299,7 +303,7 @@ ReferenceFrame AoReferenceTracer::trace(const Camera& camera, const ReferenceSet
 
     glm::vec3 normal = glm::normalize(glm::vec3(hit.hit.Ng_x, hit.hit.Ng_y, hit.hit.Ng_z));
     if (glm::dot(normal, direction) > 0.0f) normal = -normal;  // face the viewer
-    const glm::vec3 point = camera.eye + direction * hit.ray.tfar;
+    const glm::vec3 point = origin + direction * hit.ray.tfar;
     // Offset against self-intersection: a few hundred ulps of the coordinates' magnitude.
     const float scale = std::max({std::abs(point.x), std::abs(point.y), std::abs(point.z), hit.ray.tfar, 1e-3f});
     const size_t index = static_cast<size_t>(y) * static_cast<size_t>(camera.width) + static_cast<size_t>(x);

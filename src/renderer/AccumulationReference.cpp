@@ -7,6 +7,8 @@
 
 #include "base/Error.h"
 #include "effects/dof/DepthOfFieldEffect.h"
+#include "effects/tonemap/TonemapEffect.h"
+#include "encoding/HdrEncoding.h"
 #include "encoding/LinearDepthPacking.h"
 #include "gl/RenderTarget.h"
 #include "renderer/EffectTable.h"
@@ -66,16 +68,19 @@ LinearImage downsampleBox(const std::vector<std::uint8_t>& rgba, int width, int 
 
 namespace {
 
-// One sub-frame of a reference: its camera (the image's size), time and projection shift (pixels of the image).
+// One sub-frame of a reference: its camera (the image's size), time and projection shift (pixels of the image), and
+// the shift's growth with depth (pixels per metre: the orthographic aperture's tilted rays).
 struct SubFrame {
   Camera camera;
   double time = 0.0;
   glm::vec2 shift{0.0f};
+  glm::vec2 shear{0.0f};
 };
 
-// The mean of the sub-frames' final images, each rendered at `k` times its size and box-downsampled.
+// The mean of the sub-frames' final images, each rendered at `k` times its size and box-downsampled. `linearLight`:
+// the mean of their HDR colour (scene-color, decoded), tone-mapped afterwards with the settings' tone mapping.
 LinearImage meanOfRenders(Renderer& renderer, const std::vector<SubFrame>& subFrames, const RenderSettings& settings,
-                          int k, const AnimationChoice& animation, bool loop) {
+                          int k, const AnimationChoice& animation, bool loop, bool linearLight = false) {
   if (k < 1) throw InputError("supersample: expected at least 1");
   const Camera& first = subFrames.front().camera;
   const int width = first.width * k, height = first.height * k;
@@ -94,6 +99,7 @@ LinearImage meanOfRenders(Renderer& renderer, const std::vector<SubFrame>& subFr
   FrameOptions frame;
   frame.animation = animation;
   frame.loop = loop;
+  if (linearLight) frame.retain = {"scene-color"};
   for (const SubFrame& sub : subFrames) {
     Camera camera = sub.camera;
     if (camera.width != first.width || camera.height != first.height)
@@ -103,11 +109,32 @@ LinearImage meanOfRenders(Renderer& renderer, const std::vector<SubFrame>& subFr
     frame.time = sub.time;
     frame.previousTime = sub.time;  // nothing reads motion: the temporal effects are off
     frame.projectionShift = sub.shift * static_cast<float>(k);
+    frame.projectionShear = sub.shear * static_cast<float>(k);
     renderer.render(camera, settings, View::Final, OutputTarget{output.framebuffer(), width, height, {}}, frame);
-    const LinearImage image = downsampleBox(output.readRgba(), width, height, k);
-    for (size_t i = 0; i < sum.rgba.size(); ++i) sum.rgba[i] += image.rgba[i];
+    if (!linearLight) {
+      const LinearImage image = downsampleBox(output.readRgba(), width, height, k);
+      for (size_t i = 0; i < sum.rgba.size(); ++i) sum.rgba[i] += image.rgba[i];
+      continue;
+    }
+    const std::vector<std::uint8_t> hdr = renderer.retained("scene-color").readRgba();  // rows top to bottom
+    for (int y = 0; y < height; ++y)
+      for (int x = 0; x < width; ++x) {
+        const std::uint8_t* t = &hdr[(static_cast<size_t>(y) * width + x) * 4];
+        const glm::vec3 c = decodeHdr(HdrTexel{t[0], t[1], t[2], t[3]}) / static_cast<float>(k * k);
+        float* s = &sum.rgba[(static_cast<size_t>(y / k) * sum.width + x / k) * 4];
+        s[0] += c.r;
+        s[1] += c.g;
+        s[2] += c.b;
+      }
   }
   for (float& v : sum.rgba) v /= static_cast<float>(subFrames.size());
+  if (linearLight) {
+    const ToneMapInUse tone = ToneMapInUse::of(settings.of<TonemapSettings>());
+    for (size_t i = 0; i < sum.rgba.size(); i += 4) {
+      const glm::vec4 display = tone.displayColor(glm::vec3(sum.rgba[i], sum.rgba[i + 1], sum.rgba[i + 2]), false);
+      for (int c = 0; c < 4; ++c) sum.rgba[i + static_cast<size_t>(c)] = display[c];
+    }
+  }
   return sum;
 }
 
@@ -153,16 +180,34 @@ LinearImage accumulateAperture(Renderer& renderer, const Camera& camera, const R
   if (options.samples < 1) throw InputError("aperture samples: expected at least 1, got " +
                                             std::to_string(options.samples));
   const DofSettings& dof = settings.of<DofSettings>();
-  const ThinLens lens = ThinLens::of(dof, camera.height);
+  const ThinLens lens = ThinLens::of(dof, camera.height, camera.orthographic);
   const float focus = lens.usableFocus(
       dof.focus ? *dof.focus : autofocusDistance(renderer, camera, settings, options.time, options.animation));
-  const float projScale = static_cast<float>(camera.height) / (2.0f * std::tan(camera.fovyRadians() * 0.5f));
+  std::vector<SubFrame> subFrames;
+  RenderSettings pinhole = withoutTemporalEffects(settings);
+  pinhole.set("dof", "off");
+  // What the tone mapping adds is not part of the mean (it tone-maps the HDR mean itself).
+  for (const char* added : {"auto-exposure", "lens-flare", "glare"})
+    if (RenderSettings::find(added)) pinhole.set(added, "off");
+  if (camera.orthographic) {
+    // Parallel rays tilted over a disc of slopes about the plane in focus: a point at depth D moves by the slope
+    // times D - P metres, pixelsPerMetre pixels each, so the plane P stays and the rest spreads over the
+    // orthographic CoC (effects/dof/DepthOfFieldEffect.h).
+    const float pixelsPerMetre = FrameCamera::from(camera, camera.width, camera.height).pixelsPerMetre(camera.height,
+                                                                                                        focus);
+    const float slopeRadius = 0.5f * lens.parallelAperture(focus, pixelsPerMetre);
+    for (int i = 0; i < options.samples; ++i) {
+      const glm::vec2 shear = lensPoint(i, options.samples) * slopeRadius * pixelsPerMetre;
+      subFrames.push_back({camera, options.time, -shear * focus, shear});
+    }
+    return meanOfRenders(renderer, subFrames, pinhole, options.supersample, options.animation, true, true);
+  }
+  const float projScale = FrameCamera::from(camera, camera.width, camera.height).projScale(camera.height).x;
   const float lensRadius = 0.5f * lens.pinholeAperture(focus, projScale);
   // The camera's own axes: a lens point (x, y) moves the eye along them, the view direction unchanged.
   const glm::vec3 forward = glm::normalize(camera.target - camera.eye);
   const glm::vec3 right = glm::normalize(glm::cross(forward, camera.up));
   const glm::vec3 up = glm::cross(right, forward);
-  std::vector<SubFrame> subFrames;
   for (int i = 0; i < options.samples; ++i) {
     const glm::vec2 a = lensPoint(i, options.samples) * lensRadius;  // metres on the lens
     SubFrame sub{camera, options.time, glm::vec2(0.0f)};
@@ -172,9 +217,7 @@ LinearImage accumulateAperture(Renderer& renderer, const Camera& camera, const R
     sub.shift = a * (projScale / focus);
     subFrames.push_back(sub);
   }
-  RenderSettings pinhole = withoutTemporalEffects(settings);
-  pinhole.set("dof", "off");
-  return meanOfRenders(renderer, subFrames, pinhole, options.supersample, options.animation, true);
+  return meanOfRenders(renderer, subFrames, pinhole, options.supersample, options.animation, true, true);
 }
 
 }  // namespace obscura

@@ -8,9 +8,12 @@
 //     supersampled, the reference of temporal antialiasing on a moving scene.
 //   - the aperture reference for depth of field: the mean of many pinhole renders from points on the lens
 //     (accumulateAperture below).
-// All average the final image's display values (sRGB-encoded, after the tone curve), which is what the effects they
-// judge are compared on and what a viewer sees; averaging linear light before the tone curve would brighten blurred
-// edges between bright and dark by at most the curve's non-linearity over the two (docs/temporal-effects.md).
+// The shutter and supersampling references average the final image's display values (sRGB-encoded, after the tone
+// curve), which is what the effects they judge (motion blur, antialiasing, on display colour) are compared on and what
+// a viewer sees; averaging linear light before the tone curve would brighten blurred edges between bright and dark by
+// at most the curve's non-linearity over the two (docs/temporal-effects.md). The aperture reference averages linear
+// light, as a lens does and as depth of field (on the HDR colour) gathers it: a small highlight far above display white
+// makes a bokeh disc as bright as a lens would (docs/depth-of-field.md).
 #include <cstdint>
 #include <functional>
 #include <vector>
@@ -75,7 +78,13 @@ LinearImage accumulateShutter(Renderer& renderer, const std::function<Camera(dou
 // lens point, and a point at depth D is spread over a disc of the thin lens's CoC. The lens points are Vogel's
 // golden-angle spiral over the disc (each stands for an equal share of its area). Sub-frames are rendered with
 // withoutTemporalEffects(settings) and the depth of field off, at `supersample` times the size. The focus is dof.focus,
-// or for `auto` the G-buffer's depth at the autofocus pixel (autofocusDistance). Throws InputError for samples < 1.
+// or for `auto` the G-buffer's depth at the autofocus pixel (autofocusDistance). An orthographic camera has no lens:
+// its sub-frames tilt its parallel rays about the plane in focus over a disc of slopes (FrameOptions::projectionShear;
+// ThinLens::parallelAperture), which spreads a point over the orthographic CoC. Throws InputError for samples < 1.
+// The mean is of the sub-frames' HDR colour as the tone mapping reads it (scene-color), tone-mapped on the CPU with
+// tonemap.* (ToneMapInUse): the reference of what the lens gathers, without what comes after the tone curve (edges,
+// motion blur, FXAA) or what the tone mapping adds (auto exposure, the lens flare's and glare's light), which the
+// sub-frames leave out.
 struct ApertureOptions {
   int samples = 64;
   int supersample = 1;

@@ -3,12 +3,16 @@
 #include <set>
 
 #include "effects/ao/AoEffect.h"
+#include "effects/auto_exposure/AutoExposureEffect.h"
 #include "effects/bloom/BloomEffect.h"
+#include "effects/chromatic_aberration/ChromaticAberrationEffect.h"
 #include "effects/dof/DepthOfFieldEffect.h"
 #include "effects/edges/EdgesEffect.h"
 #include "effects/fog/FogEffect.h"
 #include "effects/fxaa/FxaaEffect.h"
 #include "effects/gbuffer/GBufferEffect.h"
+#include "effects/glare/GlareEffect.h"
+#include "effects/lens_flare/LensFlareEffect.h"
 #include "effects/lighting/LightingEffect.h"
 #include "effects/lines/LinesEffect.h"
 #include "effects/motion_blur/MotionBlurEffect.h"
@@ -31,11 +35,16 @@ const std::vector<EffectEntry>& effectTable() {
         EffectEntry::of<LinesEffect>(),     // scene-color, the G-buffer's depth, points and lines -> scene-color
         EffectEntry::of<FogEffect>(),       // scene-color, gbuffer -> scene-color (HDR)
         EffectEntry::of<TaaEffect>(),       // scene-color, velocity, gbuffer, history -> scene-color (HDR)
-        EffectEntry::of<BloomEffect>(),     // scene-color -> scene-color (HDR, its own chain of 1/2 .. 1/64 targets)
-        EffectEntry::of<TonemapEffect>(),   // scene-color -> display-color (sRGB, luma in alpha)
+        EffectEntry::of<BloomEffect>(),     // scene-color -> scene-color (HDR, its own chain of 1/2 .. 1/64 targets),
+                                            // bloom-bright (its level 2, also alone when read with bloom off)
+        EffectEntry::of<LensFlareEffect>(),  // bloom-bright -> lens-light (1/4: ghosts, halo)
+        EffectEntry::of<GlareEffect>(),     // bloom-bright, lens-light -> lens-light (1/4: the streaks added)
+        EffectEntry::of<DepthOfFieldEffect>(),  // scene-color, gbuffer -> scene-color (HDR: near and far fields)
+        EffectEntry::of<AutoExposureEffect>(),  // scene-color, its history -> exposure (1 x 1: the adapted EV)
+        EffectEntry::of<TonemapEffect>(),   // scene-color (exposure, lens-light) -> display-color (sRGB, luma in alpha)
         EffectEntry::of<EdgesEffect>(),     // gbuffer, display-color -> display-color (lines; toon bands)
-        EffectEntry::of<DepthOfFieldEffect>(),  // display-color, gbuffer -> display-color (near and far fields)
         EffectEntry::of<MotionBlurEffect>(),  // display-color, velocity, gbuffer -> display-color
+        EffectEntry::of<ChromaticAberrationEffect>(),  // display-color -> display-color (red and blue fringes)
         EffectEntry::of<FxaaEffect>(),      // display-color -> display-color
     };
     // Names are how everything finds effects, passes and targets: each is used once.

@@ -156,8 +156,24 @@ void Renderer::setScene(const Scene& scene) {
   sceneData_.nodes = scene.nodes;
   sceneData_.skins = scene.skins;
   sceneData_.animations = scene.animations;
+  sceneData_.cameras = scene.cameras;
+  sceneBounds_ = scene.worldBounds();
   dropHistory();
   checkErrors("");
+}
+
+Camera Renderer::frameCamera(const Camera& camera, int width, int height, const FrameOptions& options) const {
+  if (options.sceneCamera < 0) {
+    Camera out = camera;
+    out.width = width;
+    out.height = height;
+    return out;
+  }
+  if (static_cast<size_t>(options.sceneCamera) >= sceneData_.cameras.size())
+    throw InputError("scene camera " + std::to_string(options.sceneCamera) + " is not in the scene (it has " +
+                     std::to_string(sceneData_.cameras.size()) + ")");
+  const ScenePose pose = evaluatePose(sceneData_, options.time, PoseOptions{options.animation, options.loop});
+  return sceneCameraAt(sceneData_, options.sceneCamera, pose, sceneBounds_, width, height);
 }
 
 void Renderer::dropHistory() {
@@ -199,6 +215,13 @@ void Renderer::beginFrame(const Camera& camera, const RenderSettings& settings, 
     dropHistory();
     lastSize_ = size;
   }
+  if (options.sceneCamera >= 0 && static_cast<size_t>(options.sceneCamera) >= sceneData_.cameras.size())
+    throw InputError("scene camera " + std::to_string(options.sceneCamera) + " is not in the scene (it has " +
+                     std::to_string(sceneData_.cameras.size()) + ")");
+  // Another camera, or another projection: a cut, after which nothing of the previous frame applies.
+  const int cameraKey = options.sceneCamera >= 0 ? options.sceneCamera : (camera.orthographic ? -2 : -1);
+  if (hasPrevious_ && cameraKey != previousCameraKey_) dropHistory();
+  previousCameraKey_ = cameraKey;
   pool_.beginFrame(size);
   // Sub-pixel jitter (Halton 2, 3, centred) while an effect that is on asks for it: 16 phases, the frames a still
   // image takes to converge under temporal antialiasing (TaaEffect.h).
@@ -208,14 +231,13 @@ void Renderer::beginFrame(const Camera& camera, const RenderSettings& settings, 
     jitter = glm::vec2(halton(index, 2), halton(index, 3)) - 0.5f;
   }
   FrameContext frame;
-  frame.camera = FrameCamera::from(camera, output.width, output.height, jitter + options.projectionShift);
   frame.hasPrevious = hasPrevious_;
-  frame.previousCamera = hasPrevious_ ? previousCamera_ : frame.camera;
   frame.index = frameIndex_;
   frame.historyFrames = historyFrames_;
   frame.time = time;
   frame.previousTime = options.previousTime.value_or(hasPrevious_ ? previousTime_ : time);
   frame.deltaTime = time - frame.previousTime;
+  frame.frameInterval = options.frameInterval.value_or(frame.deltaTime > 0.0 ? frame.deltaTime : 1.0 / 60.0);
   frame.linesOrPoints = !scene_.lines().empty();
   frame.forwardLighting = scene_.needsForwardLighting();
   frame_ = std::move(frame);
@@ -228,6 +250,26 @@ void Renderer::beginFrame(const Camera& camera, const RenderSettings& settings, 
                      poseOptions.animation == lastPoseOptions_.animation && poseOptions.loop == lastPoseOptions_.loop;
   const ScenePose previous = reuse ? lastPose_ : evaluatePose(sceneData_, frame_.previousTime, poseOptions);
   scene_.setPose(current, previous);
+  // The camera, where the pose puts a scene camera; the previous one is the previous frame's, or where the pose put
+  // the scene camera at the previous time (the same when frames follow one another; the CLI's single frame has
+  // no previous frame, but a previous time).
+  if (options.sceneCamera >= 0) {
+    frameSource_ = sceneCameraAt(sceneData_, options.sceneCamera, current, sceneBounds_, output.width, output.height);
+  } else {
+    frameSource_ = camera;
+    frameSource_.width = output.width;
+    frameSource_.height = output.height;
+  }
+  if (options.projectionShear != glm::vec2(0.0f) && !frameSource_.orthographic)
+    throw InputError("a projection shear needs an orthographic camera");
+  frame_.camera = FrameCamera::from(frameSource_, output.width, output.height, jitter + options.projectionShift,
+                                    options.projectionShear);
+  if (options.sceneCamera >= 0)
+    frame_.previousCamera = FrameCamera::from(
+        sceneCameraAt(sceneData_, options.sceneCamera, previous, sceneBounds_, output.width, output.height),
+        output.width, output.height);
+  else
+    frame_.previousCamera = hasPrevious_ ? previousCamera_ : frame_.camera;
   lastPose_ = current;
   lastPoseOptions_ = poseOptions;
   if (options.timer) options.timer->end("pose");
@@ -245,6 +287,7 @@ void Renderer::endFrame() {
 
 void Renderer::run(const RenderSettings& settings, const View& view, const OutputTarget& output,
                    const FrameOptions& options) {
+  for (const std::unique_ptr<Effect>& effect : effects_) effect->prepare(settings);
   plan_ = plan(settings, frame_, view, options.retain, options.externalGBuffer);
 
   for (size_t i = 0; i < plan_.passes().size(); ++i) {
@@ -277,7 +320,7 @@ void Renderer::render(const Camera& camera, const RenderSettings& settings, cons
     on.set(compared, "on");
     beginFrame(camera, on, output, options);
     const FrameContext right = frame_;
-    if (!jitters(off)) frame_.camera = FrameCamera::from(camera, output.width, output.height);
+    if (!jitters(off)) frame_.camera = FrameCamera::from(frameSource_, output.width, output.height);
     run(off, View::Final, output, options);
     frame_ = right;
     OutputTarget rightHalf = output;

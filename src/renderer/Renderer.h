@@ -77,6 +77,9 @@ struct FrameOptions {
   // The time of the pose motion vectors measure from. Unset: the previous frame's time (this frame's own when there
   // is none, or the scene changed), so a paused timeline has no object motion. The CLI sets time - 1 / fps.
   std::optional<double> previousTime;
+  // Seconds of real time since the previous frame, for what adapts over time whether or not the timeline moves (auto
+  // exposure). Unset: time - previousTime where that is positive, else 1/60 (a paused timeline, a still frame).
+  std::optional<double> frameInterval;
   AnimationChoice animation;  // which animations drive the pose (default: the first; none: the rest pose)
   bool loop = true;           // the timeline wraps at the chosen animations' duration
   // Targets whose contents stay readable after the frame (retained()): tests and tools read them back. Their
@@ -90,6 +93,15 @@ struct FrameOptions {
   // reference (renderer/AccumulationReference.h: accumulateAperture), whose camera sits off the lens's centre and looks
   // through the same plane in focus. Reconstruction from depth ignores it, as it ignores the jitter.
   glm::vec2 projectionShift{0.0f};
+  // A shift that grows with depth, in pixels per metre of view depth (x right, y up), added to projectionShift: the
+  // orthographic aperture reference's tilted parallel rays (accumulateAperture). Orthographic cameras only.
+  glm::vec2 projectionShear{0.0f};
+  // The scene's camera to look through (an index into Scene::cameras, scene/Camera.h), or -1: the `camera`
+  // argument's. The scene's pose places it at `time` (cameraOfScene, at the output's size; of the `camera` argument
+  // only its size is then used), and at the previous pose's time for the motion vectors, so an animated camera's
+  // motion is seen by the velocity pass, motion blur and TAA. Changing cameras (another index, the free camera, or
+  // another projection) is a cut: the history is dropped.
+  int sceneCamera = -1;
 };
 
 class Renderer {
@@ -104,6 +116,9 @@ class Renderer {
 
   // Uploads the scene; drops the history (the previous frame showed another scene).
   void setScene(const Scene& scene);
+  // The camera a frame of `options` at `width` x `height` looks through: options.sceneCamera's at options.time, or
+  // `camera` as given (resized). Throws InputError for a scene camera the scene does not have.
+  Camera frameCamera(const Camera& camera, int width, int height, const FrameOptions& options) const;
   void render(const Camera& camera, const RenderSettings& settings, const View& view, const OutputTarget& output,
               const FrameOptions& options = {});
   void render(const Camera& camera, const RenderSettings& settings, const View& view, const OutputTarget& output,
@@ -157,6 +172,7 @@ class Renderer {
   std::map<std::string, TargetInfo> targets_;     // every table target, by name
   GpuScene scene_;
   Scene sceneData_;  // what the GPU scene was made from, without its images: posed every frame
+  Bounds sceneBounds_;  // its bounds at rest (where a scene camera's target and infinite far plane come from)
   RenderTargetPool pool_;
   FramePlan plan_;
   gl::FramebufferHandle externalGBufferSource_;  // reads the caller's G-buffer texture (importGBuffer)
@@ -168,6 +184,8 @@ class Renderer {
   int historyFrames_ = 0;
   int historyDrops_ = 0;
   FrameCamera previousCamera_;
+  int previousCameraKey_ = -1;  // the scene camera's index, or -1 (free perspective) or -2 (free orthographic)
+  Camera frameSource_;          // this frame's camera, as beginFrame resolved it
   double previousTime_ = 0.0;
   // The last frame's pose, kept to be the next frame's previous one when it asks for that time.
   ScenePose lastPose_;

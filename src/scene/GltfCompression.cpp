@@ -5,6 +5,7 @@
 #include <memory>
 #include <set>
 #include <string_view>
+#include <type_traits>
 
 #include <nlohmann/json.hpp>
 
@@ -194,9 +195,50 @@ int accessorComponents(int type) {
 }
 
 template <typename T>
+constexpr draco::DataType dracoTypeOf() {
+  if constexpr (std::is_same_v<T, std::int8_t>) return draco::DT_INT8;
+  if constexpr (std::is_same_v<T, std::uint8_t>) return draco::DT_UINT8;
+  if constexpr (std::is_same_v<T, std::int16_t>) return draco::DT_INT16;
+  if constexpr (std::is_same_v<T, std::uint16_t>) return draco::DT_UINT16;
+  if constexpr (std::is_same_v<T, std::uint32_t>) return draco::DT_UINT32;
+  if constexpr (std::is_same_v<T, float>) return draco::DT_FLOAT32;
+  return draco::DT_INVALID;
+}
+
+template <typename T>
 std::vector<unsigned char> convertDracoAttribute(const draco::PointAttribute& attribute, size_t points,
                                                  int components, bool* ok) {
   std::vector<unsigned char> out(points * sizeof(T) * static_cast<size_t>(components));
+  const size_t valueBytes = sizeof(T) * static_cast<size_t>(components);
+  if (attribute.data_type() == dracoTypeOf<T>() && attribute.num_components() == components) {
+    // Stored as the accessor declares it: ConvertValue would copy each component unchanged, so the values are copied
+    // as bytes (at once where every point has its own value in order), each checked to lie inside the buffer.
+    const std::uint8_t* begin = attribute.buffer()->data();
+    const std::uint8_t* end = begin + attribute.buffer()->data_size();
+    auto inside = [&](const std::uint8_t* at, size_t bytes) {
+      return at >= begin && at <= end && bytes <= static_cast<size_t>(end - at);
+    };
+    if (attribute.is_mapping_identity() && attribute.byte_stride() == static_cast<std::int64_t>(valueBytes) &&
+        points <= attribute.size()) {
+      const std::uint8_t* first = attribute.GetAddress(draco::AttributeValueIndex(0));
+      if (!inside(first, out.size())) {
+        *ok = false;
+        return {};
+      }
+      std::memcpy(out.data(), first, out.size());
+      return out;
+    }
+    for (size_t p = 0; p < points; ++p) {
+      const draco::AttributeValueIndex index = attribute.mapped_index(draco::PointIndex(static_cast<std::uint32_t>(p)));
+      const std::uint8_t* at = index.value() < attribute.size() ? attribute.GetAddress(index) : nullptr;
+      if (!at || !inside(at, valueBytes)) {
+        *ok = false;
+        return {};
+      }
+      std::memcpy(out.data() + p * valueBytes, at, valueBytes);
+    }
+    return out;
+  }
   std::vector<T> value(static_cast<size_t>(components));
   for (size_t p = 0; p < points; ++p) {
     const draco::AttributeValueIndex index = attribute.mapped_index(draco::PointIndex(static_cast<std::uint32_t>(p)));
@@ -367,22 +409,25 @@ bool compressionExtensionSupported(const std::string& extension, std::string* wh
   return extension == kDraco || extension == kMeshopt;
 }
 
-std::vector<std::uint8_t> prepareCompressedDocument(const std::vector<std::uint8_t>& bytes) {
+std::string_view gltfJsonText(const std::vector<std::uint8_t>& bytes) {
+  const char* text = reinterpret_cast<const char*>(bytes.data());
+  if (bytes.size() < 20 || std::memcmp(bytes.data(), "glTF", 4) != 0) return std::string_view(text, bytes.size());
+  std::uint32_t chunkLength = 0, chunkType = 0;
+  std::memcpy(&chunkLength, bytes.data() + 12, 4);
+  std::memcpy(&chunkType, bytes.data() + 16, 4);
+  if (chunkType != 0x4E4F534Au || chunkLength > bytes.size() - 20) return {};  // "JSON"
+  return std::string_view(text + 20, chunkLength);
+}
+
+bool mentionsCompression(std::string_view json) {
+  return json.find(kMeshopt) != std::string_view::npos || json.find(kDraco) != std::string_view::npos;
+}
+
+std::vector<std::uint8_t> prepareCompressedDocument(const std::vector<std::uint8_t>& bytes, nlohmann::json& document) {
   const bool binary = bytes.size() >= 20 && std::memcmp(bytes.data(), "glTF", 4) == 0;
-  size_t jsonBegin = 0, jsonLength = bytes.size();
-  if (binary) {
-    std::uint32_t chunkLength = 0, chunkType = 0;
-    std::memcpy(&chunkLength, bytes.data() + 12, 4);
-    std::memcpy(&chunkType, bytes.data() + 16, 4);
-    if (chunkType != 0x4E4F534Au || chunkLength > bytes.size() - 20) return {};  // tinygltf will complain
-    jsonBegin = 20;
-    jsonLength = chunkLength;
-  }
-  const char* text = reinterpret_cast<const char*>(bytes.data()) + jsonBegin;
-  const std::string_view view(text, jsonLength);
-  if (view.find(kMeshopt) == std::string_view::npos && view.find(kDraco) == std::string_view::npos) return {};
-  nlohmann::json document = nlohmann::json::parse(text, text + jsonLength, nullptr, false);
-  if (!document.is_object()) return {};
+  const std::string_view view = gltfJsonText(bytes);
+  const size_t jsonLength = view.size();
+  if (!mentionsCompression(view) || !document.is_object()) return {};
   bool changed = false;
   if (document.contains("buffers") && document["buffers"].is_array()) {
     for (auto& buffer : document["buffers"]) {
@@ -430,7 +475,14 @@ std::vector<std::uint8_t> prepareCompressedDocument(const std::vector<std::uint8
   const size_t tailBegin = std::min(bytes.size(), rest);
   std::vector<std::uint8_t> out(12 + 8 + json.size() + (bytes.size() - tailBegin));
   std::memcpy(out.data(), bytes.data(), 8);  // magic and version
-  const std::uint32_t total = static_cast<std::uint32_t>(out.size()), length = static_cast<std::uint32_t>(json.size());
+  // The header's total length moves by what the JSON chunk grew, and no more: a header that disagreed with the file
+  // still disagrees, and tinygltf refuses the mended file as it would the original (found by the fuzzer: set to the
+  // new size, it made a truncated BIN chunk look whole).
+  std::uint32_t declared = 0;
+  std::memcpy(&declared, bytes.data() + 8, 4);
+  const std::uint64_t mendedTotal = std::uint64_t(declared) + json.size() - jsonLength;
+  const std::uint32_t total = static_cast<std::uint32_t>(std::min<std::uint64_t>(mendedTotal, 0xFFFFFFFFu));
+  const std::uint32_t length = static_cast<std::uint32_t>(json.size());
   const std::uint32_t type = 0x4E4F534Au;
   std::memcpy(out.data() + 8, &total, 4);
   std::memcpy(out.data() + 12, &length, 4);

@@ -14,8 +14,10 @@
 // either decodes to accessors the loader checks as usual, or is refused with one line.
 #include <cstdint>
 #include <string>
+#include <string_view>
 #include <vector>
 
+#include <nlohmann/json_fwd.hpp>
 #include <tiny_gltf.h>
 
 #include "scene/GltfLoader.h"
@@ -30,11 +32,18 @@ bool hasMeshoptDecoder();
 // `why` to a one-line reason where it cannot.
 bool compressionExtensionSupported(const std::string& extension, std::string* why);
 
+// The JSON text of a file: all of a .gltf, the first chunk of a .glb (empty where that chunk is not JSON or does not
+// lie inside the file: tinygltf will say so).
+std::string_view gltfJsonText(const std::vector<std::uint8_t>& bytes);
+// Whether `json` names either compression extension: prepareCompressedDocument has nothing to mend otherwise.
+bool mentionsCompression(std::string_view json);
+
 // Before tinygltf parses the file: returns the file (.gltf JSON or .glb) with what tinygltf 2.7 would refuse in a
 // compressed file mended (EXT_meshopt_compression's fallback buffers given 3 bytes of data uri; a Draco primitive's
 // indices accessor without a bufferView given the Draco stream's until it is decoded), or an empty vector when
-// there is nothing to change.
-std::vector<std::uint8_t> prepareCompressedDocument(const std::vector<std::uint8_t>& bytes);
+// there is nothing to change. `document` is gltfJsonText(bytes) parsed (null where mentionsCompression() is false:
+// the loader parses the text for this only where there is something to mend); it is changed.
+std::vector<std::uint8_t> prepareCompressedDocument(const std::vector<std::uint8_t>& bytes, nlohmann::json& document);
 
 // After tinygltf parses it: decodes every EXT_meshopt_compression buffer view and KHR_draco_mesh_compression
 // primitive in place. `file` starts every refusal (InputError); warnings go to `report`.

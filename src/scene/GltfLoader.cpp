@@ -853,6 +853,7 @@ class SceneBuilder {
     const int index = static_cast<int>(scene_.nodes.size());
     restWorld_.push_back((parent >= 0 ? restWorld_[static_cast<size_t>(parent)] : glm::mat4(1.0f)) * node.localRest());
     addLight(source, nodeIndex, index);
+    addCamera(source, nodeIndex, index, node.name);
     scene_.nodes.push_back(std::move(node));
     sourceNode_.push_back(nodeIndex);
     copies_[static_cast<size_t>(nodeIndex)].push_back(index);
@@ -898,6 +899,57 @@ class SceneBuilder {
     out.node = index;
     out.world = restWorld_[static_cast<size_t>(index)];
     scene_.lights.push_back(out);
+  }
+
+  // The node's camera (glTF 2.0 sec. 3.10), perspective or orthographic, with the values the spec requires checked.
+  void addCamera(const tinygltf::Node& source, int nodeIndex, int index, const std::string& nodeName) {
+    if (source.camera < 0) return;
+    if (static_cast<size_t>(source.camera) >= model_.cameras.size())
+      ctx_.refuse("node " + std::to_string(nodeIndex) + " refers to camera " + std::to_string(source.camera) +
+                  ", which does not exist");
+    const tinygltf::Camera& camera = model_.cameras[static_cast<size_t>(source.camera)];
+    const std::string what = "camera " + std::to_string(source.camera);
+    SceneCamera out;
+    out.name = camera.name;
+    out.nodeName = nodeName;
+    out.node = index;
+    out.world = restWorld_[static_cast<size_t>(index)];
+    auto finite = [](double v) { return std::isfinite(v); };
+    if (camera.type == "perspective") {
+      const tinygltf::PerspectiveCamera& p = camera.perspective;
+      if (!(finite(p.yfov) && p.yfov > 0.0 && p.yfov < 3.14159265358979))
+        ctx_.refuse(what + " has yfov " + std::to_string(p.yfov) + " (glTF: radians, > 0 and < pi)");
+      if (!(finite(p.znear) && p.znear > 0.0)) ctx_.refuse(what + " needs znear > 0");
+      if (!(finite(p.zfar) && (p.zfar == 0.0 || p.zfar > p.znear)))
+        ctx_.refuse(what + " needs zfar > znear (or none: infinite)");
+      if (!(finite(p.aspectRatio) && p.aspectRatio >= 0.0)) ctx_.refuse(what + " needs aspectRatio > 0");
+      // The renderer's cameras span 1 .. 170 degrees (scene/Camera.h); a wider one is drawn at 170.
+      const double widest = 170.0 * 3.14159265358979 / 180.0, narrowest = 3.14159265358979 / 180.0;
+      if (p.yfov > widest || p.yfov < narrowest)
+        ctx_.report.warnings.push_back(what + " has yfov " + std::to_string(p.yfov) +
+                                       " radians, beyond 1 .. 170 degrees: drawn at the nearest");
+      out.yfov = static_cast<float>(std::clamp(p.yfov, narrowest, widest));
+      out.aspectRatio = static_cast<float>(p.aspectRatio);
+      out.znear = static_cast<float>(p.znear);
+      out.zfar = static_cast<float>(p.zfar);
+    } else if (camera.type == "orthographic") {
+      const tinygltf::OrthographicCamera& o = camera.orthographic;
+      if (!(finite(o.xmag) && finite(o.ymag) && o.xmag != 0.0 && o.ymag != 0.0))
+        ctx_.refuse(what + " needs xmag and ymag other than 0");
+      // glTF: "SHOULD NOT be negative" (a mirrored view); drawn unmirrored.
+      if (o.xmag < 0.0 || o.ymag < 0.0)
+        ctx_.report.warnings.push_back(what + " has a negative xmag or ymag: drawn with their magnitudes");
+      if (!(finite(o.znear) && finite(o.zfar) && o.znear >= 0.0 && o.zfar > o.znear))
+        ctx_.refuse(what + " needs 0 <= znear < zfar");
+      out.orthographic = true;
+      out.xmag = static_cast<float>(std::abs(o.xmag));
+      out.ymag = static_cast<float>(std::abs(o.ymag));
+      out.znear = static_cast<float>(o.znear);
+      out.zfar = static_cast<float>(o.zfar);
+    } else {
+      ctx_.refuse(what + " has unknown type '" + camera.type + "'");
+    }
+    scene_.cameras.push_back(std::move(out));
   }
 
   // The morph target count of a glTF mesh: every primitive must have the same (glTF 2.0 sec. 3.7.2.2), and the
@@ -1364,26 +1416,18 @@ void refuseUnlessSupported(const Refusal& refuse, const std::string& extension) 
   refuse(why.empty() ? "requires unsupported extension " + extension : why);
 }
 
-// What is read from the JSON before tinygltf parses it: the asset's extensionsRequired (a file that needs, say,
-// Draco has accessors without buffer views, and the user should hear about the extension rather than about
-// accessor 0), and per animation the channels whose target has no node (KHR_animation_pointer's), which tinygltf
-// 2.7 drops without a word.
+// What the loader reads from the JSON apart from tinygltf: the asset's extensionsRequired, to name an extension this
+// build cannot load when tinygltf fails on the file (a file that needs, say, Draco has accessors without buffer
+// views, and the user should hear about the extension rather than about accessor 0), and per animation the channels
+// whose target has no node (KHR_animation_pointer's), which tinygltf 2.7 drops with only an error line.
 struct DocumentFacts {
   std::vector<std::string> requiredExtensions;
   std::vector<int> channelsWithoutNode;  // per animation
 };
 
-DocumentFacts scanDocument(const std::vector<std::uint8_t>& bytes) {
-  std::string_view json(reinterpret_cast<const char*>(bytes.data()), bytes.size());
-  if (bytes.size() >= 20 && std::memcmp(bytes.data(), "glTF", 4) == 0) {
-    std::uint32_t chunkLength = 0, chunkType = 0;
-    std::memcpy(&chunkLength, bytes.data() + 12, 4);
-    std::memcpy(&chunkType, bytes.data() + 16, 4);
-    if (chunkType != 0x4E4F534Au || chunkLength > bytes.size() - 20) return {};  // "JSON"; tinygltf will complain
-    json = json.substr(20, chunkLength);
-  }
-  const nlohmann::json document = nlohmann::json::parse(json.begin(), json.end(), nullptr, false);
+DocumentFacts scanDocument(std::string_view json) {
   DocumentFacts out;
+  const nlohmann::json document = nlohmann::json::parse(json.begin(), json.end(), nullptr, false);
   if (!document.is_object()) return out;
   if (document.contains("extensionsRequired") && document["extensionsRequired"].is_array())
     for (const auto& name : document["extensionsRequired"])
@@ -1402,6 +1446,23 @@ DocumentFacts scanDocument(const std::vector<std::uint8_t>& bytes) {
   return out;
 }
 
+// tinygltf 2.7 checks a .glb's BIN chunk against the file's length without the chunk's own 8-byte header, and then
+// copies a buffer from up to 8 bytes past the end of the file (found by the fuzzer: a heap-buffer-overflow in
+// tinygltf::ParseBuffer). The chunk is checked here first, where tinygltf would accept it.
+void checkGlbBinChunk(const Refusal& refuse, const std::vector<std::uint8_t>& glb) {
+  if (glb.size() < 20 || std::memcmp(glb.data(), "glTF", 4) != 0) return;
+  std::uint32_t length = 0, jsonLength = 0;
+  std::memcpy(&length, glb.data() + 8, 4);
+  std::memcpy(&jsonLength, glb.data() + 12, 4);
+  const std::uint64_t binChunk = 20ull + jsonLength;
+  if (length > glb.size() || binChunk + 12 > length) return;  // tinygltf refuses these, or there is no BIN chunk
+  std::uint32_t binLength = 0;
+  std::memcpy(&binLength, glb.data() + binChunk, 4);
+  if (binChunk + 8 + binLength > length)
+    refuse("the BIN chunk's " + std::to_string(binLength) + " bytes run past the end of the file (" +
+           std::to_string(length) + " bytes)");
+}
+
 Scene loadWithResolver(const std::vector<std::uint8_t>& bytes, const std::string& name, FileResolver resolver,
                        GltfLoadReport* report, const GltfLimits& limits) {
   const Refusal refuse(name);
@@ -1409,11 +1470,16 @@ Scene loadWithResolver(const std::vector<std::uint8_t>& bytes, const std::string
   if (bytes.size() > limits.maxFileBytes) refuse("file is larger than " + std::to_string(limits.maxFileBytes) + " bytes");
   if (bytes.size() > 0xFFFFFFFFull) refuse("file is larger than 4 GiB");
 
-  const DocumentFacts facts = scanDocument(bytes);
-  for (const std::string& ext : facts.requiredExtensions) refuseUnlessSupported(refuse, ext);
+  // tinygltf parses the JSON; the loader reads it again only where tinygltf's result leaves something out (most files,
+  // and most fuzzer inputs, are parsed once): to mend a compressed file, to name a required extension when tinygltf
+  // fails, to count the animation channels tinygltf dropped.
+  const std::string_view json = gltfJsonText(bytes);
   // What tinygltf 2.7 refuses in compressed files, mended (GltfCompression.h).
-  const std::vector<std::uint8_t> prepared = prepareCompressedDocument(bytes);
+  nlohmann::json compressed;
+  if (mentionsCompression(json)) compressed = nlohmann::json::parse(json.begin(), json.end(), nullptr, false);
+  const std::vector<std::uint8_t> prepared = prepareCompressedDocument(bytes, compressed);
   const std::vector<std::uint8_t>& document = prepared.empty() ? bytes : prepared;
+  checkGlbBinChunk(refuse, document);
 
   tinygltf::TinyGLTF gltf;
   resolver.maxBytes = limits.maxFileBytes;
@@ -1431,13 +1497,23 @@ Scene loadWithResolver(const std::vector<std::uint8_t>& bytes, const std::string
                 : gltf.LoadASCIIFromString(&model, &err, &warn, reinterpret_cast<const char*>(document.data()),
                                            static_cast<unsigned>(document.size()), resolver.baseDir);
   } catch (const std::exception& e) {
-    refuse(std::string("malformed glTF: ") + e.what());
+    err = std::string("malformed glTF: ") + e.what();
   }
-  if (!ok) refuse(firstLine(err.empty() ? warn : err));
+  if (!ok) {
+    // Not where the text is no JSON object (nlohmann failed in tinygltf, and would again), nor where extensionsRequired
+    // is not in it (it could only be there spelt with escapes, backslash u).
+    const bool notAnObject = err.rfind("[json.exception.", 0) == 0 || err.rfind("Root element is not a JSON", 0) == 0;
+    if (!notAnObject && (json.find("extensionsRequired") != std::string_view::npos ||
+                         json.find("\\u") != std::string_view::npos))
+      for (const std::string& ext : scanDocument(json).requiredExtensions) refuseUnlessSupported(refuse, ext);
+    refuse(firstLine(err.empty() ? warn : err));
+  }
 
   GltfLoadReport localReport;
   GltfLoadReport& out = report ? *report : localReport;
   if (!warn.empty()) out.warnings.push_back(firstLine(warn));
+  const bool droppedChannels = err.find("field is missing in animation.channels.target") != std::string::npos;
+  const DocumentFacts facts = droppedChannels ? scanDocument(json) : DocumentFacts{};
   for (size_t a = 0; a < facts.channelsWithoutNode.size(); ++a)
     if (facts.channelsWithoutNode[a] > 0)
       out.warnings.push_back("animation " + std::to_string(a) + ": " + std::to_string(facts.channelsWithoutNode[a]) +

@@ -1,6 +1,7 @@
 #include "scene/Scene.h"
 
 #include <algorithm>
+#include <string>
 
 #include <glm/geometric.hpp>
 #include <glm/gtc/matrix_transform.hpp>
@@ -35,6 +36,12 @@ std::size_t Scene::triangleCount() const {
 glm::mat4 Node::localRest() const {
   if (hasMatrix) return matrix;
   return glm::translate(glm::mat4(1.0f), translation) * glm::mat4_cast(rotation) * glm::scale(glm::mat4(1.0f), scale);
+}
+
+std::string SceneCamera::label(size_t index) const {
+  if (!nodeName.empty()) return nodeName;
+  if (!name.empty()) return name;
+  return "camera " + std::to_string(index);
 }
 
 float Animation::duration() const {

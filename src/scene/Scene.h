@@ -91,6 +91,26 @@ struct PunctualLight {
   glm::mat4 world{1.0f};     // at rest
 };
 
+// A glTF camera ("cameras", placed by a node: scene/Camera.h's cameraOfScene poses it), perspective or orthographic,
+// with the file's values. Front ends list them by `label()` and choose one by its index here, the name of its camera
+// or the name of its node.
+struct SceneCamera {
+  std::string name;      // the glTF camera's name (may be empty)
+  std::string nodeName;  // the name of the node that places it (may be empty)
+  bool orthographic = false;
+  float yfov = 0.8f;          // perspective: the vertical field of view, radians
+  float aspectRatio = 0.0f;   // perspective: the frame's aspect ratio; 0: none given (the output's)
+  float xmag = 1.0f, ymag = 1.0f;  // orthographic: the half width and half height of the view
+  float znear = 0.1f;
+  float zfar = 0.0f;     // 0: none given (glTF's infinite perspective projection)
+  int node = -1;         // index into Scene::nodes; -1: fixed at `world`
+  glm::mat4 world{1.0f};  // at rest
+  // The aspect ratio the view was framed for: aspectRatio, or xmag / ymag; 0: none.
+  float frameAspect() const { return orthographic ? xmag / ymag : aspectRatio; }
+  // What a menu shows: the node's name, else the camera's, else "camera N" (N its index in Scene::cameras).
+  std::string label(size_t index) const;
+};
+
 // A morph target: per-vertex displacements added, times the target's weight, to the mesh's rest attributes.
 struct MorphTarget {
   std::vector<glm::vec3> positions;  // one per vertex
@@ -208,6 +228,7 @@ struct Scene {
   std::vector<LineMesh> lineMeshes;        // points and lines
   std::vector<LineInstance> lineInstances;
   std::vector<PunctualLight> lights;       // KHR_lights_punctual point and spot lights
+  std::vector<SceneCamera> cameras;        // the file's cameras, one per node that has one, in node order
   // The AO radius the scene was designed for, in its units; 0 for none (a loaded file), when defaultAoRadius
   // (scene/SceneScale.h) derives one from the scene's size. The built-in scene: 1 (metre).
   float designedAoRadius = 0.0f;

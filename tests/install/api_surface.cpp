@@ -1,6 +1,7 @@
 // Obscura's public API surface (CHANGELOG.md), compiled against the installed headers only and linked with the flags
 // pkg-config gives. Every public declaration is named here with its exact signature, so a change to one breaks this
-// build until the CHANGELOG and this list say so; then it runs a few calls through a headless EGL context.
+// build until the CHANGELOG and this list say so; then it runs a few calls through a headless EGL context
+// (OBSCURA_TEST_BACKEND=osmesa: OSMesa). tests/CMakeLists.txt also builds it in the tree (api.surface).
 //   api_surface PREFIX
 #include <obscura/glfw.h>
 #include <obscura/headless.h>
@@ -37,6 +38,8 @@ static_assert(std::is_constructible_v<Renderer, const Renderer::Options&>);
 [[maybe_unused]] void (Renderer::*const kClearScene)() = &Renderer::clearScene;
 [[maybe_unused]] SceneInfo (Renderer::*const kScene)() const = &Renderer::scene;
 [[maybe_unused]] Camera (Renderer::*const kSceneCamera)(int, int) const = &Renderer::sceneCamera;
+[[maybe_unused]] bool Camera::*const kCameraOrthographic = &Camera::orthographic;
+[[maybe_unused]] float Camera::*const kCameraYmag = &Camera::ymag;
 [[maybe_unused]] void (Renderer::*const kSetText)(const std::string&, const std::string&) = &Renderer::set;
 [[maybe_unused]] void (Renderer::*const kSetNumber)(const std::string&, double) = &Renderer::set;
 [[maybe_unused]] std::string (Renderer::*const kGet)(const std::string&) const = &Renderer::get;
@@ -120,7 +123,9 @@ int main(int argc, char** argv) {
   for (const char* view : {"final", "split", "ao", "ao-raw", "normals", "depth", "mask"})
     check(std::count(views.begin(), views.end(), view) == 1, std::string("view ") + view);
 
-  HeadlessContext context(HeadlessContext::Backend::Egl);
+  // EGL, as a consumer would; the in-tree build of this file (api.surface) runs on OSMesa in the sanitized tree.
+  const char* backend = std::getenv("OBSCURA_TEST_BACKEND");
+  HeadlessContext context(HeadlessContext::parseBackend(backend ? backend : "egl"));
   Renderer renderer({context.getProcAddress(), true});
   check(renderer.scene().triangles > 1000 && renderer.scene().defaultRadius == 1.0f, "the built-in scene at start");
   renderer.set("radius", "0.75");

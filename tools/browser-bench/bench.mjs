@@ -1,21 +1,23 @@
 #!/usr/bin/env node
-// Browser benchmark: Obscura's demo page (WebGL 1) against three.js's plain frame, SAOPass and N8AO (WebGL 2) on the
-// same model, camera, sizes and AO radius, in headless Debian chromium on SwiftShader (the browser tests' flags).
-// Run through tools/browser-bench.sh, which builds the web version and installs this folder's npm packages first.
+// Browser benchmark: Obscura's demo page (WebGL 1) against three.js (WebGL 2) with and without N8AO, and against
+// pmndrs/postprocessing with every effect, on the same model, camera, sizes and AO radius, in headless Debian
+// chromium on SwiftShader (the browser tests' flags). Run through tools/browser-bench.sh, which builds the web version
+// and installs this folder's npm packages first. The renderers and the three comparisons (issue 26): RENDERERS below.
 //
 //   node tools/browser-bench/bench.mjs [--frames N] [--rounds R] [--warmup W] [--sizes 640x360,1280x720]
 //                                      [--quick] [--extras | --no-extras] [--csv FILE] [--shots DIR]
 //
 // --quick: the smoke run (640x360, 1 warm-up frame, 2 rounds of 2 frames, no extras, CSV in the shots folder).
-// --no-extras: only the five renderers the comparison needs (the extras are Obscura with the SAO estimator instead
-// of the default GTAO, three.js plain with antialias: true and N8AOPostPass through pmndrs/postprocessing; on by
-// default except with --quick).
+// --extras: also the renderers that explain figures (Obscura with the SAO estimator, three.js + SAOPass, three.js
+// plain with antialias: true, N8AOPostPass through pmndrs/postprocessing); off by default.
 //
 // Each measured frame is draw + gl.finish() + a 1-pixel gl.readPixels on the renderer's own context. Every renderer
 // has its own page (its own window of the exact size, deviceScaleFactor 1); after a warm-up they take turns, N frames
 // each per turn, R rounds, the first renderer of a round rotating, so a slow spell of the shared machine falls on all
 // of them alike. Reported: the median of the R x N frames per renderer and size, the ratios of those medians, and
-// beside each ratio the median over the rounds of the ratio within a round (the two renderers measured seconds apart).
+// beside each ratio the median over the rounds of the ratio within a round (the two renderers measured seconds apart);
+// beside each figure, how many full-screen and geometry passes the renderer's frame ran (pass-counter.mjs, counted
+// from the WebGL calls the same way for every renderer).
 // Screenshots of every renderer go to build/browser-bench/ and are checked automatically (model visible, same
 // framing as Obscura, AO darker than its AO-off counterpart); a failed check fails the run.
 import fs from 'node:fs';
@@ -28,6 +30,7 @@ import { glbBoundingSphere } from './glb-bounds.mjs';
 import { decodePng } from '../../tests/browser/png.mjs';
 import { startServer } from '../serve-web.mjs';
 import { chromiumFlags, chromiumLaunchOptions } from '../headless-chromium.mjs';
+import { installPassCounter } from './pass-counter.mjs';
 
 const benchDir = path.dirname(fileURLToPath(import.meta.url));
 const sourceDir = path.resolve(benchDir, '..', '..');
@@ -39,7 +42,7 @@ const AO_RADIUS_FRACTION = 0.05;  // of the bounding sphere's diameter, for ever
 
 // --- Options ---------------------------------------------------------------------------------------------------------
 function parseArgs(argv) {
-  const options = { frames: 3, rounds: 10, warmup: 3, sizes: ['640x360', '1280x720'], extras: true, quick: false,
+  const options = { frames: 2, rounds: 5, warmup: 2, sizes: ['640x360', '1280x720'], extras: false, quick: false,
                     csv: path.join(sourceDir, 'bench-results', 'browser-bench.csv'),
                     shots: path.join(sourceDir, 'build', 'browser-bench') };
   const given = new Set();
@@ -89,32 +92,63 @@ function parseArgs(argv) {
 }
 
 // --- Renderers -------------------------------------------------------------------------------------------------------
-// kind 'obscura': the demo page build-web/site/index.html; kind 'three': tools/browser-bench/three.html.
+// kind 'obscura': the demo page build-web/site/index.html with `state` applied over its defaults (its own lighting:
+// the built-in sky, the medium tier); kind 'three': tools/browser-bench/three.html in the given mode. Three groups,
+// as issue 26 sets them:
+//   - the same lighting work on both sides: Obscura's defaults against three.js with the file's materials under a
+//     PMREM of three's RoomEnvironment and the same sun ('three-env-*');
+//   - Obscura's preset low against three.js's benchmark default (the file's materials under a hemisphere light and
+//     the sun: 'three-plain', 'three-n8ao');
+//   - every effect on: Obscura with AO, bloom, depth of field, fog, tone mapping and FXAA against pmndrs/
+//     postprocessing with N8AOPostPass, DepthOfFieldEffect, BloomEffect, ToneMappingEffect, FXAAEffect and three's
+//     fog, under the same environment ('pmndrs-all').
+// `checks`: the screenshot checks that apply (framing against Obscura's AO-off frame, AO visible against the
+// renderer's AO-off counterpart); the every-effect frames blur and fog the model, so only its coverage is checked.
+const ALL_EFFECTS = 'bloom=on&dof=on&fog=on&fog.mode=exp2';
 const RENDERERS = [
-  { id: 'obscura-ao', label: 'Obscura, defaults (AO on)', kind: 'obscura', ao: true },
-  { id: 'obscura-off', label: 'Obscura, AO off', kind: 'obscura', ao: false },
-  { id: 'obscura-sao', label: 'Obscura, AO on with the SAO estimator', kind: 'obscura', ao: true, estimator: 'sao',
-    extra: true },
+  { id: 'obscura-ao', label: 'Obscura, defaults (AO on)', kind: 'obscura', state: '' },
+  { id: 'obscura-off', label: 'Obscura, AO off', kind: 'obscura', state: 'ao=off' },
+  { id: 'obscura-low', label: 'Obscura, preset low (AO on)', kind: 'obscura', state: 'preset=low' },
+  { id: 'obscura-low-off', label: 'Obscura, preset low, AO off', kind: 'obscura', state: 'preset=low&ao=off' },
+  { id: 'obscura-all', label: 'Obscura, AO, bloom, DoF, fog, tone mapping, FXAA', kind: 'obscura',
+    state: ALL_EFFECTS, fog: true, checks: false },
+  { id: 'three-env-plain', label: 'three.js plain, RoomEnvironment', kind: 'three' },
+  { id: 'three-env-n8ao', label: 'three.js + N8AOPass, RoomEnvironment', kind: 'three' },
   { id: 'three-plain', label: 'three.js plain', kind: 'three' },
-  { id: 'three-sao', label: 'three.js + SAOPass', kind: 'three', ao: true },
-  { id: 'three-n8ao', label: 'three.js + N8AOPass', kind: 'three', ao: true },
+  { id: 'three-n8ao', label: 'three.js + N8AOPass', kind: 'three' },
+  { id: 'pmndrs-all', label: 'pmndrs: N8AO, DoF, bloom, tone mapping, FXAA, fog', kind: 'three', fog: true,
+    checks: false },
+  { id: 'obscura-sao', label: 'Obscura, AO on with the SAO estimator', kind: 'obscura', state: 'ao.estimator=sao',
+    extra: true },
+  { id: 'three-sao', label: 'three.js + SAOPass', kind: 'three', extra: true },
   { id: 'three-plain-aa', label: 'three.js plain, antialias: true', kind: 'three', extra: true },
-  { id: 'three-n8ao-pp', label: 'three.js + N8AOPostPass (postprocessing)', kind: 'three', ao: true, extra: true },
+  { id: 'three-n8ao-pp', label: 'three.js + N8AOPostPass (postprocessing)', kind: 'three', extra: true },
 ];
 // Which renderer each AO renderer is checked against (its frame without AO) in the screenshots.
-const AO_OFF_COUNTERPART = { 'obscura-ao': 'obscura-off', 'three-sao': 'three-plain', 'three-n8ao': 'three-plain',
+const AO_OFF_COUNTERPART = { 'obscura-ao': 'obscura-off', 'obscura-low': 'obscura-low-off',
+                             'three-env-n8ao': 'three-env-plain', 'three-n8ao': 'three-plain',
+                             'obscura-sao': 'obscura-off', 'three-sao': 'three-plain',
                              'three-n8ao-pp': 'three-plain' };
-// The ratios reported, as [numerator, denominator, target or null]. Targets from the issue: keyed by size label.
+// The ratios reported, as [numerator, denominator, targets by size label ('*': every size) or null]. Targets:
+// issue 26.
 const RATIOS = [
-  ['obscura-ao', 'three-n8ao', { '1280x720': 0.6, '640x360': 0.8 }],
-  ['obscura-off', 'three-plain', { '*': 1.2 }],
-  ['obscura-ao', 'three-sao', null],
-  ['obscura-ao', 'obscura-off', null],
+  ['obscura-ao', 'three-env-n8ao', { '1280x720': 0.5, '640x360': 0.4 }],
+  ['obscura-off', 'three-env-plain', { '*': 1.0 }],
+  ['obscura-low', 'three-n8ao', { '*': 0.45 }],
+  ['obscura-low-off', 'three-plain', { '*': 1.2 }],
+  ['obscura-all', 'pmndrs-all', { '1280x720': 0.35 }],
+  ['obscura-off', 'obscura-ao', { '*': 1.0 }],
+  ['obscura-ao', 'three-n8ao', null],
+  ['obscura-off', 'three-plain', null],
+  ['three-env-n8ao', 'three-env-plain', null],
   ['three-n8ao', 'three-plain', null],
-  ['three-sao', 'three-plain', null],
+  ['obscura-ao', 'three-sao', null],
   ['obscura-ao', 'three-n8ao-pp', null],
   ['obscura-off', 'three-plain-aa', null],
 ];
+// The every-effect comparison's fog, on both sides: exp2, reaching 20 % at the camera target's distance.
+const FOG_AT_TARGET = 0.2;
+const FOG_COLOR = [0.55, 0.6, 0.66];  // linear
 
 // --- A static server: the site, this folder (pages and node_modules) and the model, on 127.0.0.1 only -----------
 function startBenchServer() {
@@ -135,7 +169,7 @@ function watchErrors(page, name) {
 }
 
 // Obscura's demo page, as a visitor gets it (no debug-gl: no glGetError after every pass), controls panel hidden.
-async function openObscura(browser, base, size, renderer, aoRadius) {
+async function openObscura(browser, base, size, renderer, aoRadius, fogDensity) {
   const context = await browser.newContext({ viewport: { width: size.width, height: size.height },
                                              deviceScaleFactor: 1 });
   const page = await context.newPage();
@@ -144,32 +178,48 @@ async function openObscura(browser, base, size, renderer, aoRadius) {
   await page.waitForFunction(() => document.body.dataset.ready === 'true', null, { timeout: 120000 });
   await page.addStyleTag({ content: '#panel { display: none !important; }' });
   await page.waitForFunction(() => window.obscura.stats().frames > 0, null, { timeout: 120000, polling: 50 });
-  const info = await page.evaluate(async ({ modelUrl, name, radius, ao, estimator }) => {
+  const info = await page.evaluate(async ({ modelUrl, name, radius, state, fog, fogColor }) => {
     const obscura = window.obscura;
     const bytes = await (await fetch(modelUrl)).arrayBuffer();
     const scene = await obscura.loadScene(bytes, name);
-    // Only `radius` and `ao` are set, through set(): the API that stays (radius becomes an alias of ao.radius).
+    // The camera Obscura chose, before any state is applied: three.js gets the same.
+    const camera = obscura.state();
+    // The radius through set() (an alias of ao.radius that stays), then the renderer's state text over it.
     obscura.set('radius', radius);
-    if (!ao) obscura.set('ao', 'off');
-    // A flat background, as three.js's (the framing check reads the model against it): a dim uniform environment,
-    // of the same cost as the default sky, which no lit part of the model matches.
-    obscura.set('lighting.environment', 'uniform');
-    obscura.set('lighting.environment-intensity', 0.3);
-    if (estimator) obscura.set('ao.estimator', estimator);
+    if (state) obscura.setState(`${obscura.state()}&${state}`);
+    if (fog) {
+      obscura.set('fog.density', fog);
+      obscura.set('fog.color', fogColor.join(','));
+    }
     const gl = obscura.canvas.getContext('webgl');  // Obscura's own context
     window.benchDraw = () => obscura.draw();
     window.benchGl = gl;
     obscura.draw();
-    return { scene, state: obscura.state(), context: obscura.context, radius: obscura.get('radius'),
-             ao: obscura.get('ao'), estimator: obscura.get('ao.estimator'),
+    return { scene, state: camera, settings: obscura.state(), context: obscura.context,
+             radius: obscura.get('radius'), ao: obscura.get('ao'), estimator: obscura.get('ao.estimator'),
              drawingBuffer: [gl.drawingBufferWidth, gl.drawingBufferHeight],
              contextAttributes: gl.getContextAttributes() };
-  }, { modelUrl: `${base}/model/${modelName}`, name: modelName, radius: aoRadius, ao: renderer.ao,
-       estimator: renderer.estimator });
+  }, { modelUrl: `${base}/model/${modelName}`, name: modelName, radius: aoRadius, state: renderer.state,
+       fog: renderer.fog ? fogDensity : 0, fogColor: FOG_COLOR });
+  await page.evaluate(`(${installPassCounter.toString()})(window.benchGl)`);
   return { context, page, info };
 }
 
-async function openThree(browser, base, size, renderer, camera, aoRadius) {
+// The model's pixels in Obscura's frame: its 'mask' view (geometry white, background black), drawn once.
+async function obscuraMask(page) {
+  await page.evaluate(() => {
+    window.obscura.setView('mask');
+    window.benchDraw();
+  });
+  const png = await page.screenshot();
+  await page.evaluate(() => {
+    window.obscura.setView('final');
+    window.benchDraw();
+  });
+  return png;
+}
+
+async function openThree(browser, base, size, renderer, camera, aoRadius, fogDensity) {
   const context = await browser.newContext({ viewport: { width: size.width, height: size.height },
                                              deviceScaleFactor: 1 });
   const page = await context.newPage();
@@ -177,7 +227,8 @@ async function openThree(browser, base, size, renderer, camera, aoRadius) {
   await page.goto(`${base}/bench/three.html`);
   await page.waitForFunction(() => document.body.dataset.ready === 'true', null, { timeout: 120000 });
   const info = await page.evaluate((options) => window.benchSetup(options),
-                                   { mode: renderer.id, modelUrl: `${base}/model/${modelName}`, camera, aoRadius });
+                                   { mode: renderer.id, modelUrl: `${base}/model/${modelName}`, camera, aoRadius,
+                                     fog: renderer.fog ? { density: fogDensity, color: FOG_COLOR } : null });
   return { context, page, info };
 }
 
@@ -230,15 +281,17 @@ function summarise(times) {
 // (the framing keeps the model away from the corners); all renderers clear to Obscura's sky colour.
 const isModel = (image, background, i) => [0, 1, 2].some((c) => Math.abs(image.pixels[i * 4 + c] - background[c]) > 6);
 const backgroundOf = (image) => [...image.pixels.subarray(0, 3)];
-function imageFacts(png) {
+// maskPng: Obscura's 'mask' view of the same frame (its background is the sky, not a flat colour).
+function imageFacts(png, maskPng = null) {
   const image = decodePng(png);
+  const maskImage = maskPng ? decodePng(maskPng) : null;
   const background = backgroundOf(image);
   const count = image.width * image.height;
   const mask = new Uint8Array(count);
   let covered = 0, luminance = 0;
   for (let i = 0; i < count; ++i) {
     const p = image.pixels.subarray(i * 4, i * 4 + 3);
-    if (isModel(image, background, i)) {
+    if (maskImage ? maskImage.pixels[i * 4] > 127 : isModel(image, background, i)) {
       mask[i] = 1;
       covered += 1;
       luminance += (0.2126 * p[0] + 0.7152 * p[1] + 0.0722 * p[2]) / 255;
@@ -259,13 +312,13 @@ function intersectionOverUnion(a, b) {
 // How much darker an AO frame is than its AO-off counterpart over the model's pixels (the counterpart's mask):
 // the mean relative darkening, the share of model pixels at least 4/255 darker, and an image of the darkening
 // (grey, amplified 8x, white = none) to see where the AO lands.
-function aoDarkening(on, off) {
+function aoDarkening(on, off, mask) {
   const a = decodePng(on), b = decodePng(off);
-  const count = a.width * a.height, background = backgroundOf(b);
+  const count = a.width * a.height;
   const grey = Buffer.alloc(count, 255);
   let model = 0, visible = 0;
   for (let i = 0; i < count; ++i) {
-    if (!isModel(b, background, i)) continue;
+    if (!mask[i]) continue;
     model += 1;
     const drop = Math.max(...[0, 1, 2].map((c) => b.pixels[i * 4 + c] - a.pixels[i * 4 + c]));
     if (drop >= 4) visible += 1;
@@ -339,9 +392,16 @@ async function main() {
     for (const size of options.sizes) {
       console.log(`\n=== ${size.label} (drawing-buffer pixels, deviceScaleFactor 1) ===`);
       const opened = new Map();
-      // Obscura first: its framing of the model is the camera for three.js.
+      // Obscura first: its framing of the model is the camera for three.js. The fog reaches FOG_AT_TARGET at the
+      // camera target's distance.
+      let fogDensity = 0;
       for (const r of renderers.filter((r) => r.kind === 'obscura')) {
-        opened.set(r.id, await openObscura(browser, base, size, r, aoRadius));
+        opened.set(r.id, await openObscura(browser, base, size, r, aoRadius, fogDensity));
+        if (!fogDensity) {
+          const c = parseCamera(opened.get(r.id).info.state);
+          const distance = Math.hypot(...c.eye.map((e, i) => e - c.target[i]));
+          fogDensity = Math.sqrt(-Math.log(1 - FOG_AT_TARGET)) / distance;
+        }
       }
       const obscuraInfo = opened.get('obscura-ao').info;
       const camera = parseCamera(obscuraInfo.state);
@@ -355,8 +415,12 @@ async function main() {
       if (targetOff > 1e-4 * sphere.radius) {
         failures.push(`${size.label}: Obscura's camera target is ${targetOff} units from the bounding sphere's centre`);
       }
+      console.log(`fog (every-effect frames): exp2, density ${fogDensity.toExponential(4)} per model unit (` +
+                  `${FOG_AT_TARGET * 100} % at the camera target), colour ${FOG_COLOR.join(', ')} linear`);
+      for (const r of renderers.filter((r) => r.kind === 'obscura'))
+        console.log(`  ${r.label}: state ${opened.get(r.id).info.settings}`);
       for (const r of renderers.filter((r) => r.kind === 'three')) {
-        opened.set(r.id, await openThree(browser, base, size, r, camera, aoRadius));
+        opened.set(r.id, await openThree(browser, base, size, r, camera, aoRadius, fogDensity));
       }
       for (const r of renderers) {
         const { info } = opened.get(r.id);
@@ -399,6 +463,12 @@ async function main() {
         console.log(`  warm-up ${pad(r.id, 16)} ${times.map(f2).join(' ')} ms`);
         const after = await opened.get(r.id).page.evaluate(() => window.benchAfterWarmup?.() ?? null);
         if (after) console.log(`    after warm-up: ${JSON.stringify(after)}`);
+        // The passes one frame runs (pass-counter.mjs), counted the same way for every renderer.
+        opened.get(r.id).passes = await opened.get(r.id).page.evaluate(() => {
+          window.benchPasses.reset();
+          window.benchDraw();
+          return window.benchPasses.read();
+        });
       }
       const times = new Map(renderers.map((r) => [r.id, []]));
       const perRound = new Map(renderers.map((r) => [r.id, []]));  // each round's frames, for per-round ratios
@@ -416,7 +486,8 @@ async function main() {
       console.log(`  ${options.rounds} rounds in ${((Date.now() - started) / 1000).toFixed(1)} s; load average ` +
                   `${loadBefore.toFixed(2)} before, ${os.loadavg()[0].toFixed(2)} after`);
       for (const r of renderers) {
-        results.push({ size: size.label, renderer: r, summary: summarise(times.get(r.id)), rounds: perRound.get(r.id) });
+        results.push({ size: size.label, renderer: r, summary: summarise(times.get(r.id)), rounds: perRound.get(r.id),
+                       passes: opened.get(r.id).passes });
       }
 
       // Screenshots: one more frame each, then what the window shows.
@@ -427,21 +498,23 @@ async function main() {
         const file = path.join(options.shots, `${size.label}-${r.id}.png`);
         const png = await page.screenshot({ path: file });
         pngs.set(r.id, png);
-        facts.set(r.id, imageFacts(png));
+        facts.set(r.id, imageFacts(png, r.kind === 'obscura' ? await obscuraMask(page) : null));
       }
       const reference = facts.get('obscura-off');
       for (const r of renderers) {
         const fact = facts.get(r.id);
         const iou = intersectionOverUnion(fact.mask, reference.mask);
-        const counterpart = AO_OFF_COUNTERPART[r.id];
+        const counterpart = r.checks === false ? null : AO_OFF_COUNTERPART[r.id];
         const darker = counterpart ? 1 - fact.meanLuminance / facts.get(counterpart).meanLuminance : null;
-        const ao = counterpart ? aoDarkening(pngs.get(r.id), pngs.get(counterpart)) : null;
+        const ao = counterpart ? aoDarkening(pngs.get(r.id), pngs.get(counterpart), facts.get(counterpart).mask)
+                               : null;
         if (ao) fs.writeFileSync(path.join(options.shots, `${size.label}-${r.id}-ao-x8.png`), ao.image);
         console.log(`  image ${pad(r.id, 16)} model covers ${(fact.coverage * 100).toFixed(1)} %, mean luminance ` +
                     `${fact.meanLuminance.toFixed(3)}, background ${fact.background}, overlap with Obscura AO off ` +
                     `${(iou * 100).toFixed(1)} %` +
                     (ao ? `; vs ${counterpart}: ${(darker * 100).toFixed(1)} % darker on average, ` +
                           `${(ao.visibleShare * 100).toFixed(1)} % of the model's pixels >= 4/255 darker` : ''));
+        if (r.checks === false) continue;
         if (fact.coverage < 0.05) failures.push(`${size.label} ${r.id}: the model covers only ${fact.coverage} of the frame`);
         if (iou < 0.9) failures.push(`${size.label} ${r.id}: framing differs from Obscura's (overlap ${iou})`);
         // AO must show somewhere (Obscura's defaults darken little on a centimetre model: docs/benchmarks.md).
@@ -470,13 +543,18 @@ async function main() {
     const middle = (values) => summarise(values).median;
     return middle(ra.map((frames, k) => middle(frames) / middle(rb[k])));
   };
-  console.log('\nMedian ms per frame (draw + finish + 1-pixel readPixels) [q1 .. q3], fastest frame, frames');
+  console.log('\nMedian ms per frame (draw + finish + 1-pixel readPixels) [q1 .. q3], fastest frame, frames; passes per ' +
+              'frame: full-screen + geometry (pass-counter.mjs)');
   console.log('| renderer | ' + options.sizes.map((s) => s.label).join(' | ') + ' |');
   console.log('|---|' + options.sizes.map(() => '---|').join(''));
+  const passesOf = (size, id) => {
+    const p = results.find((y) => y.size === size && y.renderer.id === id).passes;
+    return `${p.fullscreen} + ${p.geometry}`;
+  };
   for (const r of renderers) {
     const cells = options.sizes.map((s) => {
       const x = results.find((y) => y.size === s.label && y.renderer.id === r.id).summary;
-      return `**${f2(x.median)}** [${f2(x.q1)} .. ${f2(x.q3)}], ${f2(x.min)}, ${x.frames}`;
+      return `**${f2(x.median)}** [${f2(x.q1)} .. ${f2(x.q3)}], ${f2(x.min)}, ${x.frames}; ${passesOf(s.label, r.id)}`;
     });
     console.log(`| ${r.label} | ${cells.join(' | ')} |`);
   }
@@ -494,24 +572,25 @@ async function main() {
       ratioRows.push({ size: s.label, numerator: a, denominator: b, value, rounds, target,
                        a: median(s.label, a), b: median(s.label, b) });
       const verdict = target === null ? '' : value <= target ? `; target <= ${target}: met` : `; target <= ${target}: not met`;
-      return `**${f2(value)}** [${f2(rounds)}] (${f2(median(s.label, a))} / ${f2(median(s.label, b))}${verdict})`;
+      return `**${f2(value)}** [${f2(rounds)}] (${f2(median(s.label, a))} ms, ${passesOf(s.label, a)} / ` +
+             `${f2(median(s.label, b))} ms, ${passesOf(s.label, b)}${verdict})`;
     });
     console.log(`| ${label(a)} / ${label(b)} | ${cells.join(' | ')} |`);
   }
   // AO cost alone: the frame minus the same renderer's frame without AO (a difference of medians).
   for (const s of options.sizes) {
     const obscura = median(s.label, 'obscura-ao') - median(s.label, 'obscura-off');
-    const n8ao = median(s.label, 'three-n8ao') - median(s.label, 'three-plain');
+    const n8ao = median(s.label, 'three-env-n8ao') - median(s.label, 'three-env-plain');
     console.log(`AO alone at ${s.label} (difference of medians): Obscura ${f2(obscura)} ms, N8AO ${f2(n8ao)} ms ` +
-                `(frame minus three.js plain), ratio ${f2(obscura / n8ao)}`);
+                `(frame minus three.js plain, RoomEnvironment), ratio ${f2(obscura / n8ao)}`);
   }
 
   const when = new Date().toISOString();
   fs.mkdirSync(path.dirname(options.csv), { recursive: true });
-  const lines = ['date,size,renderer,label,frames,median_ms,q1_ms,q3_ms,min_ms,max_ms'];
-  for (const { size, renderer, summary: x } of results) {
+  const lines = ['date,size,renderer,label,frames,median_ms,q1_ms,q3_ms,min_ms,max_ms,fullscreen_passes,geometry_passes'];
+  for (const { size, renderer, summary: x, passes } of results) {
     lines.push([when, size, renderer.id, `"${renderer.label}"`, x.frames, f2(x.median), f2(x.q1), f2(x.q3), f2(x.min),
-                f2(x.max)].join(','));
+                f2(x.max), passes.fullscreen, passes.geometry].join(','));
   }
   fs.writeFileSync(options.csv, lines.join('\n') + '\n');
   const ratiosCsv = options.csv.replace(/\.csv$/, '') + '-ratios.csv';

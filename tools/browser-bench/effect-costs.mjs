@@ -2,7 +2,9 @@
 // SwiftShader offers) in the demo page's frame of the built-in scene, playing its animation so that motion blur and
 // the temporal effects have motion to work on, at each size asked. Every effect of the table is measured with its
 // switch on (the others at their defaults), and the AO's temporal accumulation beside the single-frame AO; then the
-// lighting pass on the metallic-roughness sample (assets/scenes/pbr-samples.glb) loaded into the page. Writes a
+// lighting pass on the metallic-roughness sample (assets/scenes/pbr-samples.glb) loaded into the page. The camera's
+// finish adds percentile metering, six streaks, hatching, and the tone mapping with the exposure and the lens light it
+// reads against the tone mapping with bloom alone (what those stages add to the pass they join). Writes a
 // CSV; docs/benchmarks.md ("Every effect at two sizes") shows the figures.
 //
 // Usage: node tools/browser-bench/effect-costs.mjs [--sizes 640x360,1280x720] [--samples N] [--settle MS] [--csv FILE]
@@ -50,6 +52,29 @@ function casesOf(description) {
     cases.push({ label: 'ao 4 taps', effect: 'ao', passes: ao.passes, state: 'ao=on&ao.samples=4' });
     cases.push({ label: 'ao temporal 4 taps', effect: 'ao', passes: ao.passes,
                  state: 'ao=on&ao.temporal=on&ao.samples=4' });
+  }
+  // The camera's finish (issue 29): percentile metering, a six-streak star, hatching; and the tone-mapping pass with
+  // what it joins (the exposure texel, the lens light's upsample) against the same pass with bloom alone, which keeps
+  // it from being absorbed by the lighting too.
+  const byName = (name) => description.effects.find((e) => e.name === name);
+  const tonemap = byName('tonemap');
+  if (byName('auto-exposure'))
+    cases.push({ label: 'auto-exposure percentile', effect: 'auto-exposure', passes: byName('auto-exposure').passes,
+                 state: 'auto-exposure=on&auto-exposure.metering=percentile' });
+  if (byName('glare'))
+    cases.push({ label: 'glare 6 streaks', effect: 'glare', passes: byName('glare').passes,
+                 state: 'glare=on&glare.streaks=6' });
+  if (names.has('edges.style'))
+    cases.push({ label: 'edges hatching', effect: 'edges', passes: byName('edges').passes,
+                 state: 'edges=on&edges.style=hatching' });
+  if (tonemap && byName('bloom')) {
+    cases.push({ label: 'tonemap, bloom on', effect: 'tonemap', passes: tonemap.passes, state: 'bloom=on' });
+    if (byName('auto-exposure'))
+      cases.push({ label: 'tonemap, auto exposure', effect: 'tonemap', passes: tonemap.passes,
+                   state: 'bloom=on&auto-exposure=on' });
+    if (byName('lens-flare'))
+      cases.push({ label: 'tonemap, lens light', effect: 'tonemap', passes: tonemap.passes,
+                   state: 'bloom=on&lens-flare=on' });
   }
   return options.effects ? cases.filter((c) => options.effects.includes(c.effect)) : cases;
 }

@@ -8,8 +8,10 @@ import { EffectComposer } from 'three/addons/postprocessing/EffectComposer.js';
 import { RenderPass } from 'three/addons/postprocessing/RenderPass.js';
 import { SAOPass } from 'three/addons/postprocessing/SAOPass.js';
 import { OutputPass } from 'three/addons/postprocessing/OutputPass.js';
+import { RoomEnvironment } from 'three/addons/environments/RoomEnvironment.js';
 import { N8AOPass, N8AOPostPass } from 'n8ao';
 import * as Postprocessing from 'postprocessing';
+import { installPassCounter } from './pass-counter.mjs';
 
 // Obscura's lighting (src/effects/lighting/LightingEffect.h), in three.js terms. Obscura shades base * (hemisphere(n) *
 // AO + light * max(n.l, 0)) with linear colours; three.js's Lambert term is base / pi times the irradiance, so the same
@@ -55,21 +57,32 @@ function makeRenderer(options = {}) {
   return renderer;
 }
 
-// options: {mode, modelUrl, camera: {eye, target, up, fovy, near, far}, aoRadius, aoOnly}. Resolves to a
+// The image-based light of the modes that do Obscura's lighting work ('three-env-*', 'pmndrs-all'): the file's
+// materials as loaded (MeshStandardMaterial) under scene.environment = a PMREM of three's RoomEnvironment (as three's
+// examples set it up: PMREMGenerator.fromScene(new RoomEnvironment(), 0.04)) and the same directional sun; no
+// hemisphere light (the environment is the ambient light, as Obscura's sky is).
+const ENVIRONMENT_MODES = new Set(['three-env-plain', 'three-env-n8ao', 'pmndrs-all']);
+
+// options: {mode, modelUrl, camera: {eye, target, up, fovy, near, far}, aoRadius, aoOnly, fog}. Resolves to a
 // description of what was set up; afterwards window.benchDraw() draws one frame and window.benchGl is the renderer's
 // context. aoOnly (peer-accuracy.mjs): the AO pass shows its ambient visibility alone, as each pass's own debug
-// output offers it (SAOPass's OUTPUT.SAO, N8AO's "AO" display mode), sRGB-encoded into the canvas.
-window.benchSetup = async ({ mode, modelUrl, camera: c, aoRadius, aoOnly = false }) => {
+// output offers it (SAOPass's OUTPUT.SAO, N8AO's "AO" display mode), sRGB-encoded into the canvas. fog ('pmndrs-all'):
+// {density, color}, three's FogExp2 (1 - exp(-(density d)^2)) as Obscura's exp2 fog (bench.mjs sets both).
+window.benchSetup = async ({ mode, modelUrl, camera: c, aoRadius, aoOnly = false, fog = null }) => {
   const gltf = await new GLTFLoader().loadAsync(modelUrl);
   const scene = new THREE.Scene();
   scene.background = new THREE.Color().setRGB(...LIGHTING.background, THREE.SRGBColorSpace);
   scene.add(gltf.scene);
-  const hemisphere = new THREE.HemisphereLight(linear(LIGHTING.skyColor), linear(LIGHTING.groundColor),
-                                               LIGHTING.intensity);
-  scene.add(hemisphere);
+  const withEnvironment = ENVIRONMENT_MODES.has(mode);
+  if (!withEnvironment) {
+    const hemisphere = new THREE.HemisphereLight(linear(LIGHTING.skyColor), linear(LIGHTING.groundColor),
+                                                 LIGHTING.intensity);
+    scene.add(hemisphere);
+  }
   const sun = new THREE.DirectionalLight(linear(LIGHTING.lightColor), LIGHTING.intensity);
   sun.position.set(...LIGHTING.directionToLight);  // shines towards its target at the origin
   scene.add(sun);
+  if (mode === 'pmndrs-all') scene.fog = new THREE.FogExp2(linear(fog.color), fog.density);
 
   // Box3.setFromObject(..., precise = true): every vertex after its world transform, as Obscura and glb-bounds.mjs.
   scene.updateMatrixWorld(true);
@@ -89,10 +102,19 @@ window.benchSetup = async ({ mode, modelUrl, camera: c, aoRadius, aoOnly = false
 
   const info = { mode, three: THREE.REVISION, bounds, setup: {} };
   let renderer, draw;
-  if (mode === 'three-plain' || mode === 'three-plain-aa') {
+  // The environment is prefiltered once, when the renderer is made (not timed: it is the warm-up's).
+  const environmentFor = (r) => {
+    if (!withEnvironment) return;
+    const pmrem = new THREE.PMREMGenerator(r);
+    scene.environment = pmrem.fromScene(new RoomEnvironment(), 0.04).texture;
+    pmrem.dispose();
+  };
+  if (mode === 'three-plain' || mode === 'three-plain-aa' || mode === 'three-env-plain') {
     renderer = makeRenderer(mode === 'three-plain-aa' ? { antialias: true } : {});
+    environmentFor(renderer);
     draw = () => renderer.render(scene, camera);
-    info.setup = { pipeline: 'renderer.render(scene, camera)' };
+    info.setup = { pipeline: 'renderer.render(scene, camera)' +
+                             (withEnvironment ? ', scene.environment: PMREM of RoomEnvironment' : '') };
   } else if (mode === 'three-sao') {
     renderer = makeRenderer();
     // As three's webgl_postprocessing_sao example: RenderPass, SAOPass, OutputPass (sRGB conversion).
@@ -106,8 +128,9 @@ window.benchSetup = async ({ mode, modelUrl, camera: c, aoRadius, aoOnly = false
     draw = () => composer.render();
     info.setup = { pipeline: 'EffectComposer: RenderPass, SAOPass, OutputPass', saoParams: { ...sao.params },
                    saoResolution: sao.saoMaterial.uniforms.size.value.toArray() };
-  } else if (mode === 'three-n8ao') {
+  } else if (mode === 'three-n8ao' || mode === 'three-env-n8ao') {
     renderer = makeRenderer();
+    environmentFor(renderer);
     // As N8AO's README: N8AOPass replaces the RenderPass; it converts to sRGB itself (gammaCorrection, default on).
     const composer = new EffectComposer(renderer);
     const n8ao = new N8AOPass(scene, camera, renderer.domElement.width, renderer.domElement.height);
@@ -115,7 +138,9 @@ window.benchSetup = async ({ mode, modelUrl, camera: c, aoRadius, aoOnly = false
     if (aoOnly) n8ao.setDisplayMode('AO');
     composer.addPass(n8ao);
     draw = () => composer.render();
-    info.setup = { pipeline: 'EffectComposer: N8AOPass', configuration: { ...n8ao.configuration } };
+    info.setup = { pipeline: 'EffectComposer: N8AOPass' +
+                             (withEnvironment ? ', scene.environment: PMREM of RoomEnvironment' : ''),
+                   configuration: { ...n8ao.configuration } };
     // What N8AO decided at its first frames (depth mip atlas where float targets render, denoiser in use).
     window.benchAfterWarmup = () => JSON.parse(JSON.stringify({
       depthMipAtlas: n8ao.depthMipsSupported, effective: n8ao.effectiveConfiguration ?? null }));
@@ -129,6 +154,31 @@ window.benchSetup = async ({ mode, modelUrl, camera: c, aoRadius, aoOnly = false
     composer.addPass(n8ao);
     draw = () => composer.render();
     info.setup = { pipeline: 'postprocessing EffectComposer: RenderPass, N8AOPostPass',
+                   configuration: { ...n8ao.configuration } };
+  } else if (mode === 'pmndrs-all') {
+    // Every effect Obscura runs in its every-effect frame, as pmndrs/postprocessing's documentation composes them:
+    // RenderPass (with three's FogExp2), N8AOPostPass, then one EffectPass per convolution: depth of field, bloom
+    // with the tone mapping, FXAA. The frame buffers are half-float (HDR for the bloom), the renderer's own tone
+    // mapping off (the ToneMappingEffect's).
+    renderer = makeRenderer({ powerPreference: 'high-performance', antialias: false, stencil: false, depth: false });
+    environmentFor(renderer);
+    const composer = new Postprocessing.EffectComposer(renderer, { frameBufferType: THREE.HalfFloatType });
+    composer.addPass(new Postprocessing.RenderPass(scene, camera));
+    const n8ao = new N8AOPostPass(scene, camera, renderer.domElement.width, renderer.domElement.height);
+    n8ao.configuration.aoRadius = aoRadius;
+    n8ao.configuration.gammaCorrection = false;  // not the last pass
+    composer.addPass(n8ao);
+    const distance = Math.hypot(...c.eye.map((e, i) => e - c.target[i]));
+    const dof = new Postprocessing.DepthOfFieldEffect(camera, { worldFocusDistance: distance,
+                                                                worldFocusRange: bounds.radius, bokehScale: 2 });
+    composer.addPass(new Postprocessing.EffectPass(camera, dof));
+    composer.addPass(new Postprocessing.EffectPass(camera, new Postprocessing.BloomEffect(),
+                                                   new Postprocessing.ToneMappingEffect()));
+    composer.addPass(new Postprocessing.EffectPass(camera, new Postprocessing.FXAAEffect()));
+    draw = () => composer.render();
+    info.setup = { pipeline: 'postprocessing EffectComposer (half float): RenderPass with FogExp2, N8AOPostPass, ' +
+                             'EffectPass(DepthOfFieldEffect), EffectPass(BloomEffect, ToneMappingEffect), ' +
+                             'EffectPass(FXAAEffect); scene.environment: PMREM of RoomEnvironment',
                    configuration: { ...n8ao.configuration } };
   } else {
     throw new Error(`unknown mode ${mode}`);
@@ -145,6 +195,7 @@ window.benchSetup = async ({ mode, modelUrl, camera: c, aoRadius, aoOnly = false
   window.benchDraw = draw;
   window.benchGl = gl;
   window.benchRenderer = renderer;
+  installPassCounter(gl);
   return JSON.parse(JSON.stringify(info));
 };
 

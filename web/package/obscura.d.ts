@@ -105,6 +105,22 @@ export interface SceneInfo {
   [more: string]: unknown;
 }
 
+/** Obscura.camera(): the camera looked through, the scene's own cameras, and the free camera. */
+export interface CameraState {
+  /** 'free', or the scene camera looked through: its name, or its index where the name does not find it. */
+  choice: string;
+  /** The projection of the view shown. */
+  orthographic: boolean;
+  /** The scene's cameras (glTF cameras on nodes), in node order. */
+  cameras: { name: string; orthographic: boolean }[];
+  /** The free camera: eye, target and up in scene units, fovy in degrees, ymag the orthographic half height. */
+  eye: [number, number, number];
+  target: [number, number, number];
+  up: [number, number, number];
+  fovy: number;
+  ymag: number;
+}
+
 export interface Timeline {
   animations: string[];
   animation: string;
@@ -189,6 +205,16 @@ export class Obscura extends EventTarget {
   pan(dx: number, dy: number, viewportHeight?: number): void;
   zoom(factor: number): void;
   resetCamera(): void;
+  /**
+   * The cameras: the free one (orbit, pan, zoom) and the scene's own (glTF cameras on nodes, moved by its animation).
+   * choice: 'free' or the scene camera looked through (its name, or its index); orthographic: the view shown's
+   * projection; the rest the free camera's.
+   */
+  camera(): CameraState;
+  /** Looks through 'free' or a scene camera (a name, or an index into camera().cameras); the state keeps camera=. */
+  setCamera(choice: string | number): void;
+  /** The free camera orthographic or perspective, from the view shown (state: projection=orthographic&ymag=). */
+  setOrthographic(on: boolean): void;
   /** Depth of field's autofocus on (x, y), CSS pixels from the canvas's top left (dof.focus=auto, dof.focus-x/-y). */
   focusAt(x: number, y: number): void;
 

@@ -29,7 +29,6 @@ AoTemporalPass::AoTemporalPass(const EffectResources& resources)
       planeTolerance_(program_.uniform("u_planeTolerance")),
       ditherOffset_(program_.uniform("u_ditherOffset")),
       previousFarHalfExtent_(program_.uniform("u_previousFarHalfExtent")),
-      previousFarPlane_(program_.uniform("u_previousFarPlane")),
       previousDepthToRay_(program_.uniform("u_previousDepthToRay")),
       previousViewToView_(program_.uniform("u_previousViewToView")),
       diskScale_(program_.uniform("u_diskScale")),
@@ -79,8 +78,7 @@ void AoTemporalPass::render(const gl::Texture2D& rawAo, const gl::Texture2D& vel
   reconstruction_.set(frame.camera.reconstruction);
   const ViewReconstruction& previous = frame.previousCamera.reconstruction;
   Program::set(previousFarHalfExtent_, previous.farHalfExtent);
-  Program::set(previousFarPlane_, previous.far);
-  Program::set(previousDepthToRay_, glm::vec2(previous.depthScale, previous.depthBias));
+  Program::set(previousDepthToRay_, previous.depthToRay);
   Program::set(previousViewToView_, frame.camera.view * glm::inverse(frame.previousCamera.view));
   resources_.triangle.draw();
 

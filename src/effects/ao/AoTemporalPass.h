@@ -44,7 +44,7 @@ class AoTemporalPass {
   gl::Program program_;
   ReconstructionUniforms reconstruction_;
   GLint aoRaw_, history_, velocity_, gbuffer_, gbufferSize_, aoSize_, aoScale_, historyValid_, maxFrames_,
-      planeTolerance_, ditherOffset_, previousFarHalfExtent_, previousFarPlane_, previousDepthToRay_,
+      planeTolerance_, ditherOffset_, previousFarHalfExtent_, previousDepthToRay_,
       previousViewToView_, diskScale_, maxRadiusPixels_, objectsMove_, tapRotation_;
   std::optional<Written> written_;
   bool historyWasValid_ = false;  // in the frame written_ names

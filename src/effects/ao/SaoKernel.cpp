@@ -75,8 +75,8 @@ glm::vec2 tapDirection(int tapIndex, int samples, int spiralTurns, float rotatio
   return glm::vec2(std::cos(angle), std::sin(angle));
 }
 
-float diskRadiusPixels(float radius, float viewZ, float projScale, float maxRadiusPixels) {
-  return std::min(projScale * radius / -viewZ, maxRadiusPixels);
+float diskRadiusPixels(float radius, float viewZ, glm::vec2 projScale, float maxRadiusPixels) {
+  return std::min(radius * (projScale.x / -viewZ + projScale.y), maxRadiusPixels);
 }
 
 float tapObscurance(Falloff falloff, const glm::vec3& v, const glm::vec3& n, float radius, float bias) {

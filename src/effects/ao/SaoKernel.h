@@ -6,7 +6,9 @@
 //   alpha_i = (i + 0.5) / s,   theta_i = 2 pi tau alpha_i + phi,   offset_i = alpha_i h (cos theta_i, sin theta_i),
 // where tau (spiral turns) is coprime with s so no two taps share an angle, phi is a per-pixel rotation and
 // h = min(projScale r / -z_C, maxScreenRadius * height) is the world-space radius r projected to pixels
-// (projScale = height / (2 tan(fovy / 2)): pixels per metre at 1 m).
+// (projScale = height / (2 tan(fovy / 2)): pixels per metre at 1 m). An orthographic camera projects r to
+// r height / (2 ymag) pixels at every depth: projScale is the pair (x, y) of FrameCamera::projScale, and
+// h = min(r (projScale.x / -z_C + projScale.y), maxScreenRadius * height) covers both.
 //
 // Per-pixel rotation: interleaved gradient noise (Jimenez 2014), phi = 2 pi fract(52.9829189 fract(0.06711056 x +
 // 0.00583715 y)) at integer pixel (x, y). Arithmetic only, since GLSL ES 1.00 has no bitwise operators (the SAO
@@ -60,8 +62,8 @@ float rotationAngle(float pixelX, float pixelY);
 // Unit direction of tap i and its radius as a fraction of the disk radius (alpha_i).
 glm::vec2 tapDirection(int tapIndex, int samples, int spiralTurns, float rotation, float* radiusFraction);
 
-// Projected disk radius in pixels for a centre at view-space depth viewZ (< 0).
-float diskRadiusPixels(float radius, float viewZ, float projScale, float maxRadiusPixels);
+// Projected disk radius in pixels for a centre at view-space depth viewZ (< 0); projScale: FrameCamera::projScale.
+float diskRadiusPixels(float radius, float viewZ, glm::vec2 projScale, float maxRadiusPixels);
 
 // One tap's contribution to the obscurance sum, for v = Q - C in scene units and bias as a fraction of radius.
 float tapObscurance(Falloff falloff, const glm::vec3& v, const glm::vec3& n, float radius, float bias);

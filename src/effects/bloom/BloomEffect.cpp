@@ -79,7 +79,15 @@ const std::vector<Parameter<BloomSettings>>& BloomSettings::parameters() {
   return table;
 }
 
-EffectInfo BloomEffect::info() { return {"bloom", "Bloom", true, false, {"bloom"}, {}}; }
+EffectInfo BloomEffect::info() {
+  return {"bloom",
+          "Bloom",
+          true,
+          false,
+          {"bloom", "bloom-bright"},
+          {{"bloom-bright", "RGB9E5 (as scene-color): the light above bloom's threshold at 1/4 of the frame (bloom's "
+            "level 2), for the lens flare and the glare", GL_NEAREST, {}}}};
+}
 
 std::vector<ProgramSpec> BloomEffect::programSpecs() { return {spec(0), spec(1), spec(2), spec(3), spec(4)}; }
 
@@ -98,7 +106,11 @@ BloomEffect::BloomEffect(const EffectResources& resources) : resources_(resource
 }
 
 void BloomEffect::plan(FramePlanner& planner) {
+  using Write = PassDecl::Write;
   const BloomSettings settings = planner.settings().of<BloomSettings>();
+  auto bright = [](PassContext& context) {
+    return Bright{[&context] { context.bindForWriting("bloom-bright"); }, &context.writtenTexture("bloom-bright")};
+  };
   if (!settings.enabled) {
     // The chain's targets go once bloom has been off for as long as the pool keeps an unused target.
     if (++plansOff_ >= 8 && !levels_.empty()) {
@@ -107,16 +119,27 @@ void BloomEffect::plan(FramePlanner& planner) {
       alongX_.clear();
       size_ = glm::ivec2(0);
     }
+    // The bright pass alone, which runs only when a later effect reads it.
+    PassDecl pass;
+    pass.name = "bloom-bright";
+    pass.reads = {"scene-color"};
+    pass.writes = {{"bloom-bright", TargetSize::quarter(), Write::Depth::None, ""}};
+    pass.run = [this, settings, bright](PassContext& context) {
+      plansOff_ = 0;
+      renderBright(settings, context.texture("scene-color"), context.size("scene-color"), bright(context));
+    };
+    planner.add(std::move(pass));
     return;
   }
   plansOff_ = 0;
   PassDecl pass;
   pass.name = "bloom";
   pass.reads = {"scene-color"};
-  pass.writes = {{"scene-color", TargetSize::full(), PassDecl::Write::Depth::None, ""}};
-  pass.run = [this, settings](PassContext& context) {
+  pass.writes = {{"scene-color", TargetSize::full(), Write::Depth::None, ""},
+                 {"bloom-bright", TargetSize::quarter(), Write::Depth::None, ""}};
+  pass.run = [this, settings, bright](PassContext& context) {
     render(settings, context.texture("scene-color"), context.size("scene-color"),
-           [&context] { context.bindForWriting("scene-color"); });
+           [&context] { context.bindForWriting("scene-color"); }, bright(context));
   };
   planner.add(std::move(pass));
 }
@@ -143,11 +166,15 @@ void BloomEffect::resize(glm::ivec2 size) {
   }
 }
 
-void BloomEffect::render(const BloomSettings& settings, const gl::Texture2D& sceneColor, glm::ivec2 size,
-                         const std::function<void()>& bindOutput) {
+const gl::Texture2D& BloomEffect::level(int k, const Bright& bright) const {
+  if (k == 2 && bright.texture) return *bright.texture;
+  return levels_[static_cast<size_t>(k - 1)].color();
+}
+
+void BloomEffect::downChain(const BloomSettings& settings, const gl::Texture2D& sceneColor, glm::ivec2 size,
+                            int last, const Bright& bright) {
   using gl::Program;
   resize(size);
-  const int levels = static_cast<int>(levels_.size());
   auto sourceSize = [](const gl::Texture2D& t) { return glm::vec2(t.width(), t.height()); };
 
   // Prefilter: the thresholded scene colour into level 1.
@@ -160,16 +187,33 @@ void BloomEffect::render(const BloomSettings& settings, const gl::Texture2D& sce
   Program::set(prefilter_.threshold, glm::vec3(settings.threshold, knee, knee > 0.0f ? 0.25f / knee : 0.0f));
   resources_.triangle.draw();
 
-  // Down the chain.
+  // Down the chain; level 2 into the bright target where there is one (made even where the chain stops at level 1:
+  // frames under 8 pixels).
   down_.program.use();
   Program::set(down_.source, 0);
-  for (int k = 2; k <= levels; ++k) {
-    levels_[static_cast<size_t>(k - 1)].bindForDrawing();
-    const gl::Texture2D& source = levels_[static_cast<size_t>(k - 2)].color();
+  for (int k = 2; k <= (bright.texture ? std::max(last, 2) : last); ++k) {
+    if (k == 2 && bright.texture) bright.bind();
+    else levels_[static_cast<size_t>(k - 1)].bindForDrawing();
+    const gl::Texture2D& source = level(k - 1, bright);
     source.bind(0);
     Program::set(down_.sourceSize, sourceSize(source));
     resources_.triangle.draw();
   }
+}
+
+void BloomEffect::renderBright(const BloomSettings& settings, const gl::Texture2D& sceneColor, glm::ivec2 size,
+                               const Bright& bright) {
+  downChain(settings, sceneColor, size, 2, bright);
+  gl::restoreBaselineState();
+}
+
+void BloomEffect::render(const BloomSettings& settings, const gl::Texture2D& sceneColor, glm::ivec2 size,
+                         const std::function<void()>& bindOutput, const Bright& bright) {
+  using gl::Program;
+  resize(size);
+  const int levels = static_cast<int>(levels_.size());
+  auto sourceSize = [](const gl::Texture2D& t) { return glm::vec2(t.width(), t.height()); };
+  downChain(settings, sceneColor, size, levels, bright);
 
   // The tent's first half: `coarser` filtered along x into alongX_[k] (level k's width, its own height).
   auto tentAlongX = [&](int k, const gl::Texture2D& coarser) {
@@ -184,12 +228,12 @@ void BloomEffect::render(const BloomSettings& settings, const gl::Texture2D& sce
 
   // Up again: up_k = mix(level_k, tent(up_k+1), radius), from the coarsest level.
   for (int k = levels - 1; k >= 1; --k) {
-    const gl::Texture2D* half = tentAlongX(
-        k, k + 1 == levels ? levels_[static_cast<size_t>(k)].color() : ups_[static_cast<size_t>(k)].color());
+    const gl::Texture2D* half =
+        tentAlongX(k, k + 1 == levels ? level(k + 1, bright) : ups_[static_cast<size_t>(k)].color());
     ups_[static_cast<size_t>(k - 1)].bindForDrawing();
     up_.program.use();
     half->bind(0);
-    levels_[static_cast<size_t>(k - 1)].color().bind(1);
+    level(k, bright).bind(1);
     Program::set(up_.source, 0);
     Program::set(up_.level, 1);
     Program::set(up_.radius, settings.radius);

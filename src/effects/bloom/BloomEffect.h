@@ -28,6 +28,11 @@
 // Jimenez's knee is centred on T instead, and lets a little light below the threshold bloom.) No Karis average on
 // the first level: it would take most of a lone bright pixel's energy away; TAA, before bloom, steadies fireflies.
 //
+// The bright pass for other effects: level 2 (1/4 of the frame: the thresholded light, twice downsampled) is also the
+// frame's `bloom-bright` target, which the lens flare and the glare read (effects/lens_flare, effects/glare), so they
+// need no full-resolution pass of their own. With bloom off, the `bloom-bright` pass makes it alone (prefilter and one
+// downsample), and runs only when something reads it.
+//
 // Encoding: every level is RGBA8 holding RGB9E5 (lib/hdr.glsl), fetched NEAREST, decoded texel by texel and filtered
 // in the shader. No RGBA8 encoding of HDR colour filters correctly under the hardware's bilinear filter (it averages
 // the bytes: RGBM and RGB9E5 multiply a filtered mantissa by a filtered exponent, LogLuv averages logarithms), and
@@ -78,10 +83,23 @@ class BloomEffect : public Effect {
   explicit BloomEffect(const EffectResources& resources);
   void plan(FramePlanner& planner) override;
 
+  // Where level 2 goes besides the chain: the frame's `bloom-bright` target (bound by `bind`, read back as `texture`).
+  struct Bright {
+    std::function<void()> bind;
+    const gl::Texture2D* texture = nullptr;
+  };
   // The whole chain: reads `sceneColor` (RGB9E5, `size` pixels) and draws the frame with its glow into whatever
-  // `bindOutput` binds (its viewport covering `size`). The pass calls it; tests call it on frames of their own.
+  // `bindOutput` binds (its viewport covering `size`), and level 2 into `bright` when given. The pass calls it;
+  // tests call it on frames of their own.
   void render(const BloomSettings& settings, const gl::Texture2D& sceneColor, glm::ivec2 size,
-              const std::function<void()>& bindOutput);
+              const std::function<void()>& bindOutput, const Bright& bright);
+  void render(const BloomSettings& settings, const gl::Texture2D& sceneColor, glm::ivec2 size,
+              const std::function<void()>& bindOutput) {
+    render(settings, sceneColor, size, bindOutput, Bright{});
+  }
+  // The bright pass alone: the prefilter and one downsample, into `bright` (1/4 of `size`).
+  void renderBright(const BloomSettings& settings, const gl::Texture2D& sceneColor, glm::ivec2 size,
+                    const Bright& bright);
 
  private:
   struct Stage {
@@ -89,6 +107,10 @@ class BloomEffect : public Effect {
     GLint source = -1, sourceSize = -1, level = -1, threshold = -1, radius = -1, intensity = -1;
   };
   void resize(glm::ivec2 size);
+  // The prefilter (level 1) and the downsamples to level `last`, level 2 into `bright` where given.
+  void downChain(const BloomSettings& settings, const gl::Texture2D& sceneColor, glm::ivec2 size, int last,
+                 const Bright& bright);
+  const gl::Texture2D& level(int k, const Bright& bright) const;
 
   const EffectResources& resources_;
   Stage prefilter_, down_, tentX_, up_, composite_;

@@ -4,6 +4,10 @@
 #include <cmath>
 #include <string>
 
+#include <glm/common.hpp>
+#include <glm/exponential.hpp>
+
+#include "base/Text.h"
 #include "frame/PassContext.h"
 #include "gl/PipelineState.h"
 
@@ -34,6 +38,10 @@ ProgramSpec spec(int pass, int taps = 0) {
   if (pass == kNear || pass == kFar) {
     name += ",taps=" + std::to_string(taps);
     defines.emplace_back("TAPS", std::to_string(taps));
+  }
+  if (pass == kComposite || pass == kNear) {
+    defines.emplace_back("SMALL_COC", formatShortest(kDofSmallCoc) + (kDofSmallCoc == std::floor(kDofSmallCoc) ? ".0"
+                                                                                                            : ""));
   }
   return ProgramSpec{name + "]", "lib/fullscreen.vert", "dof/dof.frag", defines, {}};
 }
@@ -90,6 +98,13 @@ int DofSettings::taps() const {
   return kPresets[1].taps;
 }
 
+glm::vec3 dofFieldEncode(const glm::vec3& linear) { return glm::sqrt(linear / (1.0f + linear)); }
+
+glm::vec3 dofFieldDecode(const glm::vec3& field) {
+  const glm::vec3 f2 = field * field;
+  return f2 / glm::max(1.0f - f2, glm::vec3(1.0f / 255.0f));
+}
+
 glm::ivec2 DofSettings::focusPixel(int width, int height) const {
   return {std::clamp(static_cast<int>(std::floor(focusX * static_cast<float>(width))), 0, width - 1),
           std::clamp(static_cast<int>(std::floor(focusY * static_cast<float>(height))), 0, height - 1)};
@@ -100,8 +115,9 @@ float DofSettings::maxRadiusPixels(int height) const {
                     static_cast<float>(DepthOfFieldEffect::kMaxTile));
 }
 
-ThinLens ThinLens::of(const DofSettings& settings, int height) {
+ThinLens ThinLens::of(const DofSettings& settings, int height, bool orthographic) {
   ThinLens lens;
+  lens.orthographic = orthographic;
   lens.focalLength = settings.focalLength * 1e-3f;
   const float aperture = lens.focalLength / settings.fstop;  // A = F / N
   lens.scale = aperture * lens.focalLength * static_cast<float>(height) / (settings.sensorHeight * 1e-3f);
@@ -112,12 +128,17 @@ float ThinLens::usableFocus(float focus) const { return std::max(focus, 1.001f *
 
 float ThinLens::coc(float depth, float focus) const {
   const float p = usableFocus(focus);
-  return scale * (depth - p) / (depth * (p - focalLength));
+  return scale * (depth - p) / ((orthographic ? p : depth) * (p - focalLength));
 }
 
 float ThinLens::pinholeAperture(float focus, float projScale) const {
   const float p = usableFocus(focus);
   return scale * p / ((p - focalLength) * projScale);
+}
+
+float ThinLens::parallelAperture(float focus, float pixelsPerMetre) const {
+  const float p = usableFocus(focus);
+  return scale / (p * (p - focalLength) * pixelsPerMetre);
 }
 
 EffectInfo DepthOfFieldEffect::info() {
@@ -128,12 +149,15 @@ EffectInfo DepthOfFieldEffect::info() {
           {"dof-coc", "dof-downsample", "dof-tiles-h", "dof-tiles", "dof-neighbors", "dof-near", "dof-far",
            "dof-composite"},
           {{"dof-coc", "RG: the signed circle of confusion, 16 bits (encoding/CocPacking.h); BA zero", GL_NEAREST, {}},
-           {"dof-half", "RGB: the 2 x 2 mean display colour; A: the smallest CoC of the four, 8 bits", GL_NEAREST, {}},
+           {"dof-half", "RGB: the 2 x 2 mean HDR colour as sqrt(c / (1 + c)); A: the smallest CoC of the four, 8 bits",
+            GL_NEAREST, {}},
            {"dof-tile-columns", kTileEncoding, GL_NEAREST, {}},
            {"dof-tiles", kTileEncoding, GL_NEAREST, {}},
            {"dof-neighbors", kTileEncoding, GL_NEAREST, {}},
-           {"dof-near", "the near field's display colour premultiplied by its coverage (A)", GL_LINEAR, {}},
-           {"dof-far", "the far field's display colour; A 1 where the pixel is far, else all zero", GL_LINEAR, {}}}};
+           {"dof-near", "the near field's HDR colour premultiplied by its coverage (A), as sqrt(c / (1 + c))",
+            GL_LINEAR, {}},
+           {"dof-far", "the far field's HDR colour as sqrt(c / (1 + c)); A 1 where the pixel is far, else all zero",
+            GL_LINEAR, {}}}};
 }
 
 std::vector<ProgramSpec> DepthOfFieldEffect::programSpecs() {
@@ -177,7 +201,8 @@ DepthOfFieldEffect::CompositeProgram::CompositeProgram(gl::Program built)
       nearField(program.uniform("u_near")),
       farField(program.uniform("u_far")),
       range(program.uniform("u_range")),
-      alphaIsOne(program.uniform("u_alphaIsOne")) {}
+      fullSize(program.uniform("u_fullSize")),
+      neighbors(program.uniform("u_neighbors")) {}
 
 DepthOfFieldEffect::DepthOfFieldEffect(const EffectResources& resources)
     : resources_(resources),
@@ -203,7 +228,7 @@ void DepthOfFieldEffect::plan(FramePlanner& planner) {
   if (!settings.enabled) return;
   const FrameCamera& camera = planner.frame().camera;
   // The frame's constants, derived once here: the lens, the CoC range, the tile size K.
-  const ThinLens lens = ThinLens::of(settings, camera.height);
+  const ThinLens lens = ThinLens::of(settings, camera.height, camera.orthographic);
   const float maxRadius = settings.maxRadiusPixels(camera.height);
   const float range = 2.0f * maxRadius;  // the largest |C| drawn: a diameter
   const int k = std::clamp(static_cast<int>(std::ceil(maxRadius)), 1, kMaxTile);
@@ -226,7 +251,7 @@ void DepthOfFieldEffect::plan(FramePlanner& planner) {
     coc_.program.use();
     context.texture("gbuffer").bind(0);
     gl::Program::set(coc_.gbuffer, 0);
-    gl::Program::set(coc_.lens, glm::vec2(lens.scale, lens.focalLength));
+    gl::Program::set(coc_.lens, glm::vec3(lens.scale, lens.focalLength, lens.orthographic ? 0.0f : 1.0f));
     gl::Program::set(coc_.focus, focus);
     gl::Program::set(coc_.focusUv, focusUv);
     gl::Program::set(coc_.autofocus, autofocus ? 1.0f : 0.0f);
@@ -239,12 +264,12 @@ void DepthOfFieldEffect::plan(FramePlanner& planner) {
 
   PassDecl down;
   down.name = "dof-downsample";
-  down.reads = {"display-color", "dof-coc"};
+  down.reads = {"scene-color", "dof-coc"};
   down.writes = {{"dof-half", TargetSize::half(), Write::Depth::None, ""}};
   down.run = [this, range](PassContext& context) {
     context.bindForWriting("dof-half");
     downsample_.program.use();
-    context.texture("display-color").bind(0);
+    context.texture("scene-color").bind(0);
     context.texture("dof-coc").bind(1);
     gl::Program::set(downsample_.color, 0);
     gl::Program::set(downsample_.coc, 1);
@@ -295,12 +320,12 @@ void DepthOfFieldEffect::plan(FramePlanner& planner) {
 
   PassDecl composite;
   composite.name = "dof-composite";
-  composite.reads = {"display-color", "dof-coc", "dof-near", "dof-far"};
-  composite.writes = {{"display-color", TargetSize::full(), Write::Depth::None, ""}};
+  composite.reads = {"scene-color", "dof-coc", "dof-near", "dof-far", "dof-neighbors"};
+  composite.writes = {{"scene-color", TargetSize::full(), Write::Depth::None, ""}};
   composite.run = [this, range](PassContext& context) {
-    context.bindForWriting("display-color");
+    context.bindForWriting("scene-color");
     composite_.program.use();
-    context.texture("display-color").bind(0);
+    context.texture("scene-color").bind(0);
     context.texture("dof-coc").bind(1);
     context.texture("dof-near").bind(2);
     context.texture("dof-far").bind(3);
@@ -309,7 +334,9 @@ void DepthOfFieldEffect::plan(FramePlanner& planner) {
     gl::Program::set(composite_.nearField, 2);
     gl::Program::set(composite_.farField, 3);
     gl::Program::set(composite_.range, range);
-    gl::Program::set(composite_.alphaIsOne, context.writesOutput("display-color") ? 1.0f : 0.0f);
+    gl::Program::set(composite_.fullSize, glm::vec2(context.size("scene-color")));
+    context.texture("dof-neighbors").bind(4);
+    gl::Program::set(composite_.neighbors, 4);
     resources_.triangle.draw();
     gl::restoreBaselineState();
   };

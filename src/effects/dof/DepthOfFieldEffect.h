@@ -11,34 +11,47 @@
 // negative in front of the focus (D < P): C = s (D - P) / (D (P - F)) with s = A F H / h (ThinLens). D and P are
 // depths along the view axis (the G-buffer's linear depth), as the thin-lens equation has them.
 //
+// An orthographic camera has no lens: every ray is parallel, and nothing depends on the eye's distance but its
+// depths. It gets a focal plane at P and a CoC that grows linearly with the distance from it,
+//   C = s (D - P) / (P (P - F)),
+// the thin lens's own CoC to first order around its focus (dC/dD at D = P), so the settings keep their meaning there
+// and the plane P is sharp; unlike the lens's, the blur keeps growing with D behind the focus. Its reference
+// (renderer/AccumulationReference.h: accumulateAperture) tilts parallel rays about the focal plane over a disc of
+// slopes instead of moving a pinhole over a lens (ThinLens::parallelAperture).
+//
 // Passes (RGBA8; the CoC in encoding/CocPacking.h's codes, range R = 2 x the largest radius in pixels):
 //   dof-coc        gbuffer -> dof-coc               the signed CoC per pixel, 16 bits; P from dof.focus, or, for
 //                                                   `auto`, the G-buffer's depth at the focus point (no read-back)
-//   dof-downsample display-color, dof-coc -> dof-half   the 2 x 2 mean colour, the nearest (smallest) CoC, 8 bits
+//   dof-downsample scene-color, dof-coc -> dof-half the 2 x 2 mean HDR colour (as a field: dofFieldEncode), the nearest
+//                                                   (smallest) CoC, 8 bits
 //   dof-tiles-h    dof-coc -> dof-tile-columns      the near field's largest |C| of K pixels of a row (K: the
 //   dof-tiles      dof-tile-columns -> dof-tiles    ... of each K x K tile            largest radius, so that
 //   dof-neighbors  dof-tiles -> dof-neighbors       ... of the 3 x 3 tiles around     a tile's neighbours hold
 //                                                                                     every near pixel reaching it)
 //   dof-near       dof-half, dof-neighbors -> dof-near  the near field: a golden-angle disc of T taps as wide as the
-//                  neighbourhood's largest near CoC, each near sample weighted by whether its own CoC reaches the
-//                  centre (scatter as gather) and by the share of its disc one tap stands for; premultiplied by the
-//                  coverage, so an out-of-focus foreground spreads over the in-focus background behind it
+//                  neighbourhood's largest near CoC, each near sample beyond kDofSmallCoc weighted by whether its own
+//                  CoC reaches the centre (scatter as gather) and by the share of its disc one tap stands for;
+//                  premultiplied by the coverage, so an out-of-focus foreground spreads over the in-focus background
+//                  behind it
 //   dof-far        dof-half -> dof-far              the far field: T taps within the pixel's own CoC, far samples
 //                  only, each reaching with the smaller of its CoC and the centre's (a blurred background does not
 //                  spill over a sharper surface in front); premultiplied by 1 where the pixel is far, else 0
-//   dof-composite  display-color, dof-coc, dof-near, dof-far -> display-color: the sharp pixel, the far field
-//                  blended in by the pixel's own 16-bit CoC (from 1 to 2 pixels), the near field over it by its
-//                  coverage. A pixel whose |C| is under a pixel and that no near field reaches is copied unchanged.
+//   dof-composite  scene-color, dof-coc, dof-near, dof-far, dof-neighbors -> scene-color: a small blur (|C| up to
+//                  kDofSmallCoc) gathered here at full size over the 3 x 3 block, the far field blended in by the
+//                  pixel's own 16-bit CoC, the near field over it by its coverage. A pixel whose |C| is under half a
+//                  pixel and that no near blur reaches is copied unchanged.
 //
-// Where it runs: after the tone mapping, on the display colour, before motion blur and FXAA (docs/architecture.md):
-// the space the aperture reference (renderer/AccumulationReference.h) averages and the motion blur blurs; after TAA, so
-// the gather reads a resolved image; after bloom, so a highlight's glow is blurred with it. A lens integrates light
-// before the tone curve, so a bright highlight's bokeh is dimmer here than a film's (docs/depth-of-field.md).
+// Where it runs: before the tone mapping, on the HDR colour (after bloom, the lens flare and the glare's sources;
+// before auto exposure meters it), as a lens gathers light: a small highlight far above display white makes a bokeh
+// disc as bright as the lens's (docs/depth-of-field.md measures it against the aperture reference, which averages
+// linear light). The half-size fields are plain bytes filtered LINEAR in the composite, so they hold the HDR colour
+// as f = sqrt(c / (1 + c)) (dofFieldEncode), decoded at every tap.
 #include <map>
 #include <optional>
 #include <vector>
 
 #include <glm/vec2.hpp>
+#include <glm/vec3.hpp>
 
 #include "frame/EffectEntry.h"
 #include "frame/TileMaxPasses.h"
@@ -71,17 +84,34 @@ struct DofSettings : ParameterAccess<DofSettings> {
 struct ThinLens {
   float scale = 0.0f;        // s = A F H / h, pixel metres
   float focalLength = 0.05f; // F, metres
+  bool orthographic = false; // the orthographic camera's focal plane (above)
 
-  static ThinLens of(const DofSettings& settings, int height);
+  static ThinLens of(const DofSettings& settings, int height, bool orthographic = false);
   // P as the shader takes it: at least 1.001 F (a lens cannot focus nearer than its focal length).
   float usableFocus(float focus) const;
-  // C in pixels at depth D for the focus P: s (D - P) / (D (P - F)), negative in front of the focus.
+  // C in pixels at depth D for the focus P: s (D - P) / (D (P - F)), negative in front of the focus; orthographic:
+  // s (D - P) / (P (P - F)).
   float coc(float depth, float focus) const;
   // The diameter of the lens a pinhole camera samples (metres in the scene) so that its renders, each sheared to
   // keep the plane at P fixed, blur a point at D over projScale A' |1/D - 1/P| pixels: C's own magnitude, since
-  // C = s P / (P - F) (1/D - 1/P). `projScale`: pixels per metre at 1 m (FrameCamera::projScale).
+  // C = s P / (P - F) (1/D - 1/P). `projScale`: pixels per metre at 1 m (FrameCamera::projScale().x).
   float pinholeAperture(float focus, float projScale) const;
+  // The orthographic camera's: the diameter of the disc of slopes (metres sideways per metre of depth) over which its
+  // parallel rays tilt about the plane at P, so that a point at D moves over pixelsPerMetre T |D - P| pixels: the
+  // orthographic C's magnitude. `pixelsPerMetre`: FrameCamera::pixelsPerMetre.
+  float parallelAperture(float focus, float pixelsPerMetre) const;
 };
+
+// The half-size fields' colour: linear HDR as f = sqrt(c / (1 + c)) per channel in a byte, and back (CPU mirror of
+// toField / fromField in dof.frag): invertible, near sRGB's precision (a byte step is 1.3/255 of display colour at
+// 0.01 and at 0.18 linear, 1.7/255 at 0.5; the tone curve compresses what lies above), up to 255 times display white.
+glm::vec3 dofFieldEncode(const glm::vec3& linear);
+glm::vec3 dofFieldDecode(const glm::vec3& field);
+// Small blurs gathered at full size in the composite: CoCs up to kDofSmallCoc pixels (handing over to the half-size
+// fields over the next pixel), over the 3 x 3 block (a disc of 2.5 pixels would reach the next ring of pixels by a
+// sliver at the sides: measured, the 5 x 5 block is 10 % more accurate on the room's small blurs, and its gather
+// costs about twice as much).
+constexpr float kDofSmallCoc = 2.5f;
 
 class DepthOfFieldEffect : public Effect {
  public:
@@ -113,7 +143,7 @@ class DepthOfFieldEffect : public Effect {
   struct CompositeProgram {
     explicit CompositeProgram(gl::Program built);
     gl::Program program;
-    GLint color, coc, nearField, farField, range, alphaIsOne;
+    GLint color, coc, nearField, farField, range, fullSize, neighbors;
   };
   const GatherProgram& gather(bool nearField, int taps);
 

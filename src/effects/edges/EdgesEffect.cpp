@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <string>
 #include <utility>
 
@@ -18,7 +19,7 @@ namespace {
 
 using Write = PassDecl::Write;
 
-constexpr EdgeStyle kEdgeStyles[] = {EdgeStyle::Lines, EdgeStyle::Toon};
+constexpr EdgeStyle kEdgeStyles[] = {EdgeStyle::Lines, EdgeStyle::Toon, EdgeStyle::Hatching};
 constexpr float kMinWidth = 1.0f, kMaxWidth = 8.0f;
 constexpr float kRadiansPerDegree = 0.017453292519943295f;
 
@@ -38,14 +39,17 @@ ProgramSpec distanceSpec(int radius) {
                      {}};
 }
 
-ProgramSpec drawSpec(int radius, bool toon) {
-  return ProgramSpec{"edges[draw,radius=" + std::to_string(radius) + (toon ? ",toon" : "") + "]",
+ProgramSpec drawSpec(int radius, EdgeStyle style) {
+  const bool toon = style == EdgeStyle::Toon, hatching = style == EdgeStyle::Hatching;
+  return ProgramSpec{"edges[draw,radius=" + std::to_string(radius) + (toon ? ",toon" : hatching ? ",hatching" : "") +
+                         "]",
                      "lib/fullscreen.vert",
                      "edges/edges.frag",
                      {{"EDGES_PASS", "3"},
                       {"EDGE_RADIUS", std::to_string(radius)},
                       {"TOON", toon ? "1" : "0"},
-                      {"FAR_RAY", "0"}},
+                      {"HATCHING", hatching ? "1" : "0"},
+                      {"FAR_RAY", hatching ? "1" : "0"}},
                      {}};
 }
 
@@ -60,6 +64,7 @@ const char* edgeStyleName(EdgeStyle style) {
   switch (style) {
     case EdgeStyle::Lines: return "lines";
     case EdgeStyle::Toon: return "toon";
+    case EdgeStyle::Hatching: return "hatching";
   }
   return "?";
 }
@@ -71,7 +76,9 @@ const std::vector<Parameter<EdgesSettings>>& EdgesSettings::parameters() {
     for (EdgeStyle choice : kEdgeStyles) styles.emplace_back(edgeStyleName(choice), choice);
     return std::vector<Parameter<S>>{
         switchParameter<S>("edges", "lines on the G-buffer's profiles and creases on or off", &S::enabled).primary(),
-        choiceParameter<S, EdgeStyle>("style", "lines: over the shading; toon: the shading in flat bands, and lines",
+        choiceParameter<S, EdgeStyle>("style",
+                                      "lines: over the shading; toon: the shading in flat bands, and lines; hatching: "
+                                      "strokes on white paper, denser where darker, and lines",
                                       &S::style, styles)
             .primary(),
         numberParameter<S>("width", kMinWidth, kMaxWidth, "px", "the lines' width in output pixels", &S::width)
@@ -85,18 +92,20 @@ const std::vector<Parameter<EdgesSettings>>& EdgesSettings::parameters() {
                            "a crease", &S::normalThreshold),
         numberParameter<S>("color-threshold", 0, 1, "", "least step of display luma that is an edge; 0: none",
                            &S::colorThreshold),
-        integerParameter<S>("bands", 2, 16, "", "", "toon: the shading's levels", &S::bands)};
+        integerParameter<S>("bands", 2, 16, "", "", "toon and hatching: the shading's levels", &S::bands),
+        numberParameter<S>("hatch-spacing", 2, 32, "px", "hatching: the pixels between strokes", &S::hatchSpacing)};
   }();
   return table;
 }
 
-EdgeDetector EdgeDetector::of(const EdgesSettings& settings, float near, float far) {
+EdgeDetector EdgeDetector::of(const EdgesSettings& settings, float near, float far, float orthographicDepth) {
   EdgeDetector d;
   d.depthThreshold = settings.depthThreshold;
   d.normalCos = std::cos(settings.normalThreshold * kRadiansPerDegree);
   d.colorThreshold = settings.colorThreshold;
   d.near = near;
   d.depthRange = far - near;
+  d.orthographicDepth = orthographicDepth;
   return d;
 }
 
@@ -106,7 +115,11 @@ float EdgeDetector::viewDepth(const std::uint8_t* texel) const {
   return near + static_cast<float>(code) * (depthRange / 65535.0f);
 }
 
-float EdgeDetector::relativeSecondDifference(float zc, float za, float zb) {
+float EdgeDetector::relativeSecondDifference(float zc, float za, float zb) const {
+  if (orthographicDepth > 0.0f) {
+    if (za == 0.0f || zb == 0.0f) return -std::numeric_limits<float>::infinity();
+    return (2.0f * zc - za - zb) / orthographicDepth;
+  }
   const float wa = za > 0.0f ? 1.0f / za : 0.0f, wb = zb > 0.0f ? 1.0f / zb : 0.0f;
   return zc * (wa + wb) - 2.0f;
 }
@@ -194,7 +207,7 @@ std::vector<ProgramSpec> EdgesEffect::programSpecs() {
   std::vector<ProgramSpec> specs = {detectSpec(false), detectSpec(true)};
   for (int radius = 0; radius <= kMaxRadius; ++radius) specs.push_back(distanceSpec(radius));
   for (int radius = 0; radius <= kMaxRadius; ++radius)
-    for (bool toon : {false, true}) specs.push_back(drawSpec(radius, toon));
+    for (EdgeStyle style : kEdgeStyles) specs.push_back(drawSpec(radius, style));
   return specs;
 }
 
@@ -204,6 +217,7 @@ EdgesEffect::DetectProgram::DetectProgram(gl::Program built, bool colorEdges)
       texel(program.uniform("u_texel")),
       near(program.uniform("u_near")),
       depthScale(program.uniform("u_depthScale")),
+      inverseOrthographicDepth(program.uniform("u_inverseOrthographicDepth")),
       depthThreshold(program.uniform("u_depthThreshold")),
       normalCos(program.uniform("u_normalCos")) {
   if (!colorEdges) return;
@@ -217,7 +231,7 @@ EdgesEffect::DistanceProgram::DistanceProgram(gl::Program built, int radius)
       mask(program.uniform("u_mask")),
       texel(radius > 0 ? program.uniform("u_texel") : -1) {}
 
-EdgesEffect::DrawProgram::DrawProgram(gl::Program built, int radius, bool toon)
+EdgesEffect::DrawProgram::DrawProgram(gl::Program built, int radius, EdgeStyle style)
     : program(std::move(built)),
       distance(program.uniform("u_distance")),
       color(program.uniform("u_color")),
@@ -226,7 +240,8 @@ EdgesEffect::DrawProgram::DrawProgram(gl::Program built, int radius, bool toon)
       lineColor(program.uniform("u_lineColor")),
       strength(program.uniform("u_strength")),
       alphaIsOne(program.uniform("u_alphaIsOne")) {
-  if (toon) bands = program.uniform("u_bands");
+  if (style == EdgeStyle::Toon) bands = program.uniform("u_bands");
+  if (style == EdgeStyle::Hatching) hatching = HatchingUniforms(program);
 }
 
 EdgesEffect::EdgesEffect(const EffectResources& resources) : resources_(resources) {}
@@ -245,11 +260,11 @@ const EdgesEffect::DistanceProgram& EdgesEffect::distance(int radius) {
   return it->second;
 }
 
-const EdgesEffect::DrawProgram& EdgesEffect::draw(int radius, bool toon) {
-  auto it = draws_.find({radius, toon});
+const EdgesEffect::DrawProgram& EdgesEffect::draw(int radius, EdgeStyle style) {
+  auto it = draws_.find({radius, style});
   if (it == draws_.end()) {
-    DrawProgram built(resources_.build(drawSpec(radius, toon)), radius, toon);
-    it = draws_.emplace(std::make_pair(radius, toon), std::move(built)).first;
+    DrawProgram built(resources_.build(drawSpec(radius, style)), radius, style);
+    it = draws_.emplace(std::make_pair(radius, style), std::move(built)).first;
   }
   return it->second;
 }
@@ -258,7 +273,8 @@ void EdgesEffect::plan(FramePlanner& planner) {
   const EdgesSettings settings = planner.settings().of<EdgesSettings>();
   if (!settings.enabled && !planner.showsTargetOf(info())) return;
   const FrameCamera& camera = planner.frame().camera;
-  const EdgeDetector detector = EdgeDetector::of(settings, camera.near, camera.far);
+  const EdgeDetector detector =
+      EdgeDetector::of(settings, camera.near, camera.far, camera.orthographic ? 2.0f * camera.halfExtent.y : 0.0f);
   const bool colorEdges = settings.colorThreshold > 0.0f;
   const glm::vec2 texel(1.0f / static_cast<float>(camera.width), 1.0f / static_cast<float>(camera.height));
 
@@ -276,6 +292,8 @@ void EdgesEffect::plan(FramePlanner& planner) {
     gl::Program::set(p.texel, texel);
     gl::Program::set(p.near, detector.near);
     gl::Program::set(p.depthScale, detector.depthRange / 65535.0f);
+    gl::Program::set(p.inverseOrthographicDepth,
+                     detector.orthographicDepth > 0.0f ? 1.0f / detector.orthographicDepth : 0.0f);
     gl::Program::set(p.depthThreshold, detector.depthThreshold);
     gl::Program::set(p.normalCos, detector.normalCos);
     if (colorEdges) {
@@ -309,11 +327,12 @@ void EdgesEffect::plan(FramePlanner& planner) {
   PassDecl lines;
   lines.name = "edges";
   lines.reads = {"edges-distance", "display-color"};
+  if (settings.style == EdgeStyle::Hatching) lines.reads.push_back("gbuffer");
   lines.writes = {{"display-color", TargetSize::full(), Write::Depth::None, ""}};
   const bool toon = settings.style == EdgeStyle::Toon;
   const glm::vec3 lineColor = linearToSrgb(settings.color);  // derived once: the shader mixes display colours
   lines.run = [this, radius, toon, texel, settings, lineColor](PassContext& context) {
-    const DrawProgram& p = draw(radius, toon);
+    const DrawProgram& p = draw(radius, settings.style);
     context.bindForWriting("display-color");
     p.program.use();
     context.texture("edges-distance").bind(0);
@@ -326,6 +345,10 @@ void EdgesEffect::plan(FramePlanner& planner) {
     gl::Program::set(p.strength, settings.strength);
     gl::Program::set(p.alphaIsOne, context.writesOutput("display-color") ? 1.0f : 0.0f);
     if (toon) gl::Program::set(p.bands, static_cast<float>(settings.bands));
+    if (settings.style == EdgeStyle::Hatching) {
+      context.texture("gbuffer").bind(2);
+      p.hatching.set(context.camera(), settings.hatchSpacing, settings.bands, 2);
+    }
     resources_.triangle.draw();
     gl::restoreBaselineState();
   };

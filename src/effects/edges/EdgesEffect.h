@@ -19,6 +19,10 @@
 //      jump, the deck's profile measure, and it is negative there (the pixel stands in front of its neighbours)
 //      while it is positive on the far pixel. A pixel is a profile pixel where min(D_x, D_y) < -t_d, so the line
 //      lies on the occluding side of the silhouette.
+//      Under an orthographic camera z itself is affine in screen position on a plane, and the eye's distance means
+//      nothing (the image is the same from anywhere along the axis): D_x = (2 z_c - z_left - z_right) / L, with L
+//      the view's height (2 ymag: the depth at which a 53 degree lens sees as much). To first order in the jumps it
+//      is the perspective D at z_c = L, so t_d keeps its meaning; a background neighbour is an infinite jump.
 //    Normals (creases). A pixel is a crease pixel where a neighbour's normal is more than the crease angle away
 //      (n_c . n_n < cos angle) and the neighbour is not nearer (depth code >= the pixel's; ties mark both): the
 //      same rule, the nearer side of the boundary, so a crease too is one pixel wide.
@@ -36,10 +40,11 @@
 //
 // Where in the frame: after the tone mapping, on display colour. The line colour is then the colour on screen, the
 // width is in output pixels, and the tone mapping (or the lighting that absorbs it) still writes display colour
-// directly. Toon (edges.style toon) quantises the display luma Y (BT.601, FXAA's) of each pixel into `bands` equal
-// steps and rescales the colour to the band's centre, c' = min(c L / Y, 1) with L = (min(floor(Y bands), bands - 1)
-// + 1/2) / bands: the shading becomes flat bands and the hue is kept. It quantises what the lighting made (the base
-// colour times the light), which is what a frame without a separate albedo target has on every context.
+// directly. Hatching (edges.style hatching) draws tonal strokes in world space first (Hatching.h). Toon (edges.style
+// toon) quantises the display luma Y (BT.601, FXAA's) of each pixel into `bands` equal steps and rescales the colour
+// to the band's centre, c' = min(c L / Y, 1) with L = (min(floor(Y bands), bands - 1) + 1/2) / bands: the shading
+// becomes flat bands and the hue is kept. It quantises what the lighting made (the base colour times the light), which
+// is what a frame without a separate albedo target has on every context.
 //
 // CPU mirror: EdgeDetector (pass 1), edgeDistances (passes 2 and 3's distance), lineCoverage (eq. 2) and toonShade;
 // tests/test_edges.cpp holds the GPU to them and the lines to the analytic silhouette and creases of a cube.
@@ -49,12 +54,13 @@
 
 #include <glm/vec3.hpp>
 
+#include "effects/edges/Hatching.h"
 #include "frame/EffectEntry.h"
 
 namespace obscura {
 
-enum class EdgeStyle { Lines = 0, Toon = 1 };
-const char* edgeStyleName(EdgeStyle style);  // "lines", "toon"
+enum class EdgeStyle { Lines = 0, Toon = 1, Hatching = 2 };
+const char* edgeStyleName(EdgeStyle style);  // "lines", "toon", "hatching"
 
 struct EdgesSettings : ParameterAccess<EdgesSettings> {
   bool enabled = false;
@@ -65,7 +71,8 @@ struct EdgesSettings : ParameterAccess<EdgesSettings> {
   float depthThreshold = 0.05f;       // t_d: the least relative depth jump that is a profile (eq. 1)
   float normalThreshold = 35.0f;      // degrees between neighbouring normals that make a crease
   float colorThreshold = 0.0f;        // t_c, display luma; 0: no colour edges
-  int bands = 4;                      // toon: shading levels
+  int bands = 4;                      // toon, hatching: shading levels
+  float hatchSpacing = 6.0f;          // hatching: pixels between strokes (effects/edges/Hatching.h)
 
   static const std::vector<Parameter<EdgesSettings>>& parameters();
   void validate() const { validateParameters("edges"); }
@@ -84,8 +91,10 @@ struct EdgeDetector {
   float normalCos = 0.0f;
   float colorThreshold = 0.0f;
   float near = 0.1f, depthRange = 99.9f;  // z = near + code / 65535 depthRange
+  float orthographicDepth = 0.0f;         // L, for an orthographic camera; 0: perspective
 
-  static EdgeDetector of(const EdgesSettings& settings, float near, float far);
+  // `orthographicDepth`: L above (2 ymag), or 0 for a perspective camera.
+  static EdgeDetector of(const EdgesSettings& settings, float near, float far, float orthographicDepth = 0.0f);
   // The view depth z of a texel, 0 for the background.
   float viewDepth(const std::uint8_t* texel) const;
   // Pass 1 over a whole image (4 bytes a pixel, rows in either order: the tests are symmetric); `luma` (one value
@@ -93,8 +102,9 @@ struct EdgeDetector {
   // itself (CLAMP_TO_EDGE).
   std::vector<EdgeFlags> detect(const std::vector<std::uint8_t>& gbuffer, int width, int height,
                                 const std::vector<float>& luma = {}) const;
-  // Eq. 1 along one axis for the pixel of depth zc between neighbours of depths za and zb (0: background).
-  static float relativeSecondDifference(float zc, float za, float zb);
+  // Eq. 1 (or its orthographic form) along one axis for the pixel of depth zc between neighbours of depths za and
+  // zb (0: background).
+  float relativeSecondDifference(float zc, float za, float zb) const;
 };
 
 // R: how far (pixels) a line of `width` reaches from its edge pixel.
@@ -122,7 +132,7 @@ class EdgesEffect : public Effect {
   struct DetectProgram {
     DetectProgram(gl::Program built, bool colorEdges);
     gl::Program program;
-    GLint gbuffer, texel, near, depthScale, depthThreshold, normalCos;
+    GLint gbuffer, texel, near, depthScale, inverseOrthographicDepth, depthThreshold, normalCos;
     GLint color = -1, colorThreshold = -1;
   };
   struct DistanceProgram {
@@ -131,19 +141,20 @@ class EdgesEffect : public Effect {
     GLint mask, texel;
   };
   struct DrawProgram {
-    DrawProgram(gl::Program built, int radius, bool toon);
+    DrawProgram(gl::Program built, int radius, EdgeStyle style);
     gl::Program program;
     GLint distance, color, texel, halfWidth, lineColor, strength, alphaIsOne;
     GLint bands = -1;
+    HatchingUniforms hatching;
   };
   const DetectProgram& detect(bool colorEdges);
   const DistanceProgram& distance(int radius);
-  const DrawProgram& draw(int radius, bool toon);
+  const DrawProgram& draw(int radius, EdgeStyle style);
 
   const EffectResources& resources_;
   std::map<bool, DetectProgram> detects_;
   std::map<int, DistanceProgram> distances_;
-  std::map<std::pair<int, bool>, DrawProgram> draws_;
+  std::map<std::pair<int, EdgeStyle>, DrawProgram> draws_;
 };
 
 }  // namespace obscura

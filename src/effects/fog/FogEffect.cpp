@@ -98,10 +98,14 @@ float FogFactor::fogDistance(float distance, float up) const {
   return std::min(distance * heightScale * g, kEndless);
 }
 
-float FogFactor::at(const glm::vec3& viewPosition, bool background) const {
-  const float distance = glm::length(viewPosition);
-  const float up = glm::dot(viewPosition / distance, upInView);
-  const float d = fogDistance(background ? std::numeric_limits<float>::infinity() : distance, up);
+float FogFactor::at(const glm::vec3& viewPosition, bool background, const glm::vec3& rayOrigin) const {
+  const glm::vec3 ray = viewPosition - rayOrigin;
+  const float distance = glm::length(ray);
+  const float up = glm::dot(ray / distance, upInView);
+  FogFactor fromOrigin = *this;  // the ray starts dot(origin, up) higher than the eye
+  fromOrigin.heightScale *=
+      std::exp(std::clamp(-falloff * glm::dot(rayOrigin, upInView), -kMaxExponent, kMaxExponent));
+  const float d = fromOrigin.fogDistance(background ? std::numeric_limits<float>::infinity() : distance, up);
   switch (mode) {
     case FogMode::Linear: return std::clamp(offset - scale * d, 0.0f, 1.0f);
     case FogMode::Exponential: return std::exp2(-std::min(scale * d, 126.0f));

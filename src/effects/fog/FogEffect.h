@@ -21,6 +21,9 @@
 // exponential fog take it as their distance. A background ray climbing out of the fog (b u > 0) sees the finite
 // d' = e^(-b h_0) / (b u); one level with or below the horizon sees infinite fog.
 //
+// An orthographic camera's rays are parallel, each from its own point of the eye's plane (lib/reconstruct.glsl:
+// eyeRayOrigin): d is the distance from there (the view depth), and h_0 that point's height.
+//
 // CPU mirror: FogFactor below (tests/test_fog.cpp reads the GPU's result back against it per pixel).
 #include <map>
 #include <utility>
@@ -63,8 +66,9 @@ struct FogFactor {
   static FogFactor of(const FogSettings& settings, const glm::mat4& view);
   // d' of a ray of length `distance` (infinity: the background) whose unit direction has world-up component `up`.
   float fogDistance(float distance, float up) const;
-  // f at a view-space point; `background`: the ray through `viewPosition` to infinity.
-  float at(const glm::vec3& viewPosition, bool background) const;
+  // f at a view-space point, seen along the ray from `rayOrigin` (ViewReconstruction::eyeRayOrigin: the eye, or the
+  // eye's plane); `background`: that ray through `viewPosition` to infinity.
+  float at(const glm::vec3& viewPosition, bool background, const glm::vec3& rayOrigin = glm::vec3(0.0f)) const;
 };
 
 class FogEffect : public Effect {

@@ -10,6 +10,7 @@
 #include "base/Error.h"
 #include "encoding/HdrEncoding.h"
 #include "encoding/LinearDepthPacking.h"
+#include "frame/FrameSettings.h"
 #include "frame/PassContext.h"
 #include "gl/PipelineState.h"
 #include "gpu/TextureUnits.h"
@@ -18,7 +19,35 @@ namespace obscura {
 
 const std::vector<Parameter<LightingSettings>>& LightingSettings::parameters() {
   using S = LightingSettings;
-  static const std::vector<Parameter<S>> table = {
+  static const std::vector<Parameter<S>> table = [] {
+    std::vector<std::string> presetNames;
+    for (QualityPreset p : allQualityPresets()) presetNames.push_back(presetName(p));
+    Parameter<S> presetParameter{{"preset", parse::joinChoices(presetNames, " | "),
+                                  "quality preset: the shading tier (low: low, medium: medium, high and ultra: high)",
+                                  ParameterKind::Choice, 0.0, 0.0, presetNames},
+                                 {}, {}, {}, {}};
+    presetParameter.set = [](S& s, const std::string& v) { s.applyPreset(parsePreset(v)); };
+    presetParameter.get = [](const S& s) {
+      return s.matchesPreset(s.preset) ? std::string(presetName(s.preset)) : "";
+    };
+    presetParameter.valid = [](const S&) { return true; };
+    return std::vector<Parameter<S>>{
+      std::move(presetParameter),
+      choiceParameter<S, LightingQuality>(
+          "quality",
+          "shading tier: low (the ambient from spherical harmonics alone, no environment fetch), medium (the "
+          "prefiltered environment), high (with multiple scattering and horizon occlusion); the preset sets it",
+          &S::quality,
+          {{"low", LightingQuality::Low}, {"medium", LightingQuality::Medium}, {"high", LightingQuality::High}})
+          .primary(),
+      choiceParameter<S, LightingDepth>(
+          "depth",
+          "where the lighting finds each pixel's visible surface when nothing else draws the G-buffer (the AO off): "
+          "the G-buffer pass, a depth pre-pass, or its own depth test shading overdrawn fragments; auto: the "
+          "cheapest measured for the tier",
+          &S::depth,
+          {{"auto", LightingDepth::Auto}, {"gbuffer", LightingDepth::GBuffer}, {"prepass", LightingDepth::Prepass},
+           {"overdraw", LightingDepth::Overdraw}}),
       numberParameter<S>("sun-elevation", -90, 90, "degrees",
                          "the sun's height above the horizon (with the sky: the sky is made again, about a second)",
                          &S::sunElevation)
@@ -40,7 +69,31 @@ const std::vector<Parameter<LightingSettings>>& LightingSettings::parameters() {
       numberParameter<S>("environment-intensity", 0, 1000, "", "scales the environment's radiance (ambient light and "
                          "background)", &S::environmentIntensity)
           .primary()};
+  }();
   return table;
+}
+
+namespace {
+LightingQuality qualityOf(QualityPreset preset) {
+  switch (preset) {
+    case QualityPreset::Low: return LightingQuality::Low;
+    case QualityPreset::Medium: return LightingQuality::Medium;
+    default: return LightingQuality::High;
+  }
+}
+}  // namespace
+
+void LightingSettings::applyPreset(QualityPreset which) {
+  preset = which;
+  quality = qualityOf(which);
+}
+
+bool LightingSettings::matchesPreset(QualityPreset which) const { return quality == qualityOf(which); }
+
+LightingDepth LightingSettings::depthInUse(bool deferredForm) const {
+  if (depth != LightingDepth::Auto) return depth;
+  if (quality == LightingQuality::Low) return LightingDepth::Overdraw;
+  return deferredForm ? LightingDepth::GBuffer : LightingDepth::Prepass;
 }
 
 glm::vec3 LightingSettings::directionToSun() const {
@@ -118,10 +171,27 @@ MaterialKind LightingEffect::readKind(const Form& form, MaterialKind kind) {
   return form.counting ? kind.forAlphaOnly() : kind;
 }
 
+LightingEffect::Form LightingEffect::programForm(Form form) {
+  // The counting forms shade nothing; the background reads the environment's level 0 only (by hand).
+  if (form.counting || form.background) {
+    form.quality = LightingQuality::Medium;
+    form.filteredFrom = kEnvironmentLevels;
+  }
+  if (!form.deferred || form.counting) form.overDepth = false;
+  // The low tier reads no prefiltered level.
+  if (form.quality == LightingQuality::Low) form.filteredFrom = kEnvironmentLevels;
+  return form;
+}
+
 // The forms' programs. The background form is the deferred program's background alone, drawn over fullscreen.vert
 // at the far plane (AT_FAR_PLANE).
-ProgramSpec LightingEffect::spec(const Form& form, MaterialKind kind, VertexKind vertex, EnvironmentLayout layout,
+ProgramSpec LightingEffect::spec(const Form& shown, MaterialKind kind, VertexKind vertex, EnvironmentLayout layout,
                                  int lightsPerDraw) {
+  const Form form = programForm(shown);
+  // The low tier's shading reads no level (only the deferred form's background branch does): one program for both
+  // layouts.
+  if (form.quality == LightingQuality::Low && !form.counting && !form.background && form.overDepth == form.deferred)
+    layout = EnvironmentLayout::Atlas;
   const bool fullscreen = form.deferred || form.background;
   std::string name = "lighting[";
   if (form.background) name += "background";
@@ -130,17 +200,24 @@ ProgramSpec LightingEffect::spec(const Form& form, MaterialKind kind, VertexKind
   if (form.counting) name += ",count-shading";
   if (form.toneMap >= 0)
     name += std::string(",tonemap=") + toneMapOperatorName(static_cast<ToneMapOperator>(form.toneMap));
+  const bool shading = !form.counting && !form.background;
+  if (form.overDepth) name += ",over-depth";
+  if (shading && form.quality != LightingQuality::Medium)
+    name += form.quality == LightingQuality::Low ? ",low" : ",high";
+  if (shading && form.filteredFrom < kEnvironmentLevels) name += ",filtered";
   if (!form.counting) name += std::string(",") + environmentLayoutName(layout);
   ProgramSpec s{name + "]", fullscreen ? "lib/fullscreen.vert" : "lib/geometry.vert", "lighting/lighting.frag",
                 {{"DEFERRED", fullscreen ? "1" : "0"},
                  {"BACKGROUND", form.background ? "1" : "0"},
-                 {"AT_FAR_PLANE", form.background ? "1" : "0"},
+                 {"OVER_DEPTH", form.overDepth ? "1" : "0"},
+                 {"AT_FAR_PLANE", form.background || form.overDepth ? "1" : "0"},
                  {"COUNT_SHADING", form.counting ? "1" : "0"},
                  {"TONEMAP_INLINE", form.toneMap >= 0 ? "1" : "0"},
+                 {"LIGHTING_QUALITY", std::to_string(static_cast<int>(form.quality))},
                  {"MAX_PUNCTUAL_LIGHTS", std::to_string(fullscreen ? 0 : lightsPerDraw)},
                  // The deferred forms' view direction is the far-plane ray's.
                  {"FAR_RAY", fullscreen && !form.counting ? "1" : "0"}}};
-  for (auto& define : GpuEnvironment::shaderDefines(layout)) s.defines.push_back(define);
+  for (auto& define : GpuEnvironment::shaderDefines(layout, form.filteredFrom)) s.defines.push_back(define);
   if (layout == EnvironmentLayout::MipChain && !form.counting) s.extensions.push_back("GL_EXT_shader_texture_lod");
   for (auto& define : kind.defines()) s.defines.push_back(define);
   if (!fullscreen)
@@ -149,18 +226,35 @@ ProgramSpec LightingEffect::spec(const Form& form, MaterialKind kind, VertexKind
   return s;
 }
 
-// Every form with the atlas (any GLES 2 context), and the shading forms again with the mip chain.
+// Every form with the atlas (any GLES 2 context), and the shading forms again with the mip chain; the shading forms
+// in each tier, the medium and high ones with and without the filtered levels.
 std::vector<ProgramSpec> LightingEffect::programSpecs(int lightsPerDraw) {
   std::vector<ProgramSpec> specs;
+  struct Shading {
+    LightingQuality quality;
+    int filteredFrom;
+  };
+  const std::vector<Shading> shadings = {{LightingQuality::Low, kEnvironmentLevels},
+                                         {LightingQuality::Medium, kEnvironmentLevels},
+                                         {LightingQuality::Medium, kEnvironmentFilteredLevel},
+                                         {LightingQuality::High, kEnvironmentLevels},
+                                         {LightingQuality::High, kEnvironmentFilteredLevel}};
   for (EnvironmentLayout layout : {EnvironmentLayout::Atlas, EnvironmentLayout::MipChain})
     for (bool deferred : {false, true})
       for (bool counting : {true, false}) {
         if (counting && layout == EnvironmentLayout::MipChain) continue;
         for (int toneMap = -1; toneMap < (counting ? 0 : kToneMapOperatorCount); ++toneMap) {
-          for (MaterialKind kind : MaterialKind::all()) {
-            const Form form{deferred, counting, toneMap, false};
-            if (readKind(form, kind) == kind) specs.push_back(spec(form, kind, {}, layout, lightsPerDraw));
-          }
+          for (const Shading& shading : counting ? std::vector<Shading>{shadings[1]} : shadings)
+            for (bool overDepth : {false, true}) {
+              if (overDepth && (!deferred || counting)) continue;
+              // The low tier's shading reads no level: its forms differ by layout only in the deferred background.
+              if (shading.quality == LightingQuality::Low && layout == EnvironmentLayout::MipChain && overDepth == deferred)
+                continue;
+              for (MaterialKind kind : MaterialKind::all()) {
+                const Form form{deferred, counting, toneMap, false, shading.quality, shading.filteredFrom, overDepth};
+                if (readKind(form, kind) == kind) specs.push_back(spec(form, kind, {}, layout, lightsPerDraw));
+              }
+            }
           if (!deferred && !counting) specs.push_back(spec({false, false, toneMap, true}, {}, {}, layout, 0));
         }
       }
@@ -174,13 +268,15 @@ LightingEffect::Variant::Variant(gl::Program built, bool geometryStage)
       geometry(geometryStage ? GeometryUniforms(program) : GeometryUniforms()),
       farHalfExtent(program.optionalUniform("u_farHalfExtent")),
       farPlane(program.optionalUniform("u_farPlane")),
+      perspective(program.optionalUniform("u_perspective")),
       projection(program.optionalUniform("u_projection")),
       lightDirection(program.optionalUniform("u_lightDirection")),
       lightColor(program.optionalUniform("u_lightColor")),
       viewToEnvironment(program.optionalUniform("u_viewToEnvironment")),
       ao(program.optionalUniform("u_ao")),
       environment(program.optionalUniform("u_environment")),
-      environmentBrdf(program.optionalUniform("u_environmentBrdf")),
+      environmentFiltered(program.optionalUniform("u_environmentFiltered")),
+      environmentFilteredScale(program.optionalUniform("u_environmentFilteredScale")),
       shIrradiance(program.optionalUniform("u_shIrradiance")),
       environmentIntensity(program.optionalUniform("u_environmentIntensity")),
       gbuffer(program.optionalUniform("u_gbuffer")),
@@ -191,7 +287,8 @@ LightingEffect::Variant::Variant(gl::Program built, bool geometryStage)
       lightColorSpot(program.optionalUniform("u_lightColorSpot[0]")),
       lightSpot(program.optionalUniform("u_lightSpot[0]")) {}
 
-const LightingEffect::Variant& LightingEffect::variant(const Form& form, MaterialKind kind, VertexKind vertex) {
+const LightingEffect::Variant& LightingEffect::variant(const Form& asked, MaterialKind kind, VertexKind vertex) {
+  const Form form = programForm(asked);
   const bool fullscreen = form.deferred || form.background;
   const auto key = std::make_tuple(form, readKind(form, kind), fullscreen ? VertexKind{} : vertex.forCurrentFrame());
   auto it = variants_.find(key);
@@ -205,12 +302,20 @@ const LightingEffect::Variant& LightingEffect::variant(const Form& form, Materia
     const gl::Program& program = it->second.program;
     if (!fullscreen) program.uniform("u_projection");
     if (!form.counting)
-      for (const char* name : {"u_viewToEnvironment", "u_environment", "u_environmentIntensity"}) program.uniform(name);
+      for (const char* name : {"u_viewToEnvironment", "u_environmentIntensity"}) program.uniform(name);
+    // The deferred shading alone (roughness 1: level 5) reads no level by hand where level 5 is filtered, and the
+    // low tier none at all; every other form reads level 0 at least (its background, or a smooth material).
+    const bool readsByHand = form.background || (!form.counting && form.quality != LightingQuality::Low &&
+                                                 !(form.overDepth && form.filteredFrom < kEnvironmentLevels));
+    if (readsByHand) program.uniform("u_environment");
     if (fullscreen && !form.counting)
       for (const char* name : {"u_farHalfExtent", "u_farPlane"}) program.uniform(name);
     if (!form.counting && !form.background)
-      for (const char* name : {"u_lightDirection", "u_lightColor", "u_ao", "u_shIrradiance", "u_environmentBrdf"})
-        program.uniform(name);
+      for (const char* name : {"u_lightDirection", "u_lightColor", "u_ao", "u_shIrradiance"}) program.uniform(name);
+    if (!form.counting && !form.background && form.quality != LightingQuality::Low)
+      program.uniform("u_environmentFiltered");
+    if (!form.counting && !form.background && form.filteredFrom < kEnvironmentLevels)
+      program.uniform("u_environmentFilteredScale");
     if (form.deferred) program.uniform("u_gbuffer");
     if (form.deferred && !form.counting) program.uniform("u_baseColor");
     if (!fullscreen && !form.counting)
@@ -222,55 +327,13 @@ const LightingEffect::Variant& LightingEffect::variant(const Form& form, Materia
   return it->second;
 }
 
-// A file that cannot be read is reported once (InputError: the command line stops, the page shows it) and the
-// environment in use stays, so a stale path (a page's URL naming a file dropped in an earlier visit) does not fail
-// every frame.
-void LightingEffect::useEnvironment(const LightingSettings& settings) {
-  const bool sky = settings.environment == "sky";
-  if (environment_ && environmentName_ == settings.environment && (!sky || skyElevation_ == settings.sunElevation))
-    return;
-  const std::string name = settings.environment;
-  environmentName_ = name;
-  struct Prepared {
-    PrefilteredEnvironment specular;
-    ShIrradiance sh;
-    explicit Prepared(const EnvironmentImage& image)
-        : specular(PrefilteredEnvironment::of(image)), sh(ShIrradiance::project(image)) {}
-  };
-  // The built-in environments are prepared once per process: every Renderer starts with the sky, and its
-  // prefiltering is the dearest part of making one.
-  if (sky) {
-    // The sky's sun stands where lighting.sun-* put the direct light. Its azimuth turns the sky about the vertical
-    // (environmentRotation: free); its elevation changes the sky, which is made and prefiltered again (about a second
-    // on this machine's CPU: LightingSettings marks sun-elevation slow, so the page applies it when a drag ends).
-    LightingSettings defaults;
-    static const Prepared defaultSky(
-        ProceduralSky{defaults.directionToSun()}.image(kEnvironmentWidth, kEnvironmentHeight));
-    skyElevation_ = settings.sunElevation;
-    if (settings.sunElevation == defaults.sunElevation) {
-      environment_ = std::make_unique<GpuEnvironment>(layout_, defaultSky.specular, defaultSky.sh);
-      return;
-    }
-    defaults.sunElevation = settings.sunElevation;
-    const Prepared raised(ProceduralSky{defaults.directionToSun()}.image(kEnvironmentWidth, kEnvironmentHeight));
-    environment_ = std::make_unique<GpuEnvironment>(layout_, raised.specular, raised.sh);
-    return;
-  }
-  if (name == "uniform") {
-    static const Prepared furnace(uniformEnvironment(glm::vec3(1.0f)));
-    environment_ = std::make_unique<GpuEnvironment>(layout_, furnace.specular, furnace.sh);
-    return;
-  }
-  EnvironmentImage image;
-  try {
-    image = loadEnvironmentImage(name);
-  } catch (const InputError&) {
-    if (!environment_) useEnvironment(LightingSettings{});
-    environmentName_ = name;
-    throw;
-  }
-  const Prepared prepared(image);
-  environment_ = std::make_unique<GpuEnvironment>(layout_, prepared.specular, prepared.sh);
+// The sky is made with its sun at the default azimuth and turned to the wanted one (environmentRotation): only the
+// elevation changes the sky itself.
+void LightingEffect::prepare(const FrameSettings& frameSettings) {
+  const LightingSettings& settings = frameSettings.of<LightingSettings>();
+  LightingSettings sky;
+  sky.sunElevation = settings.sunElevation;
+  environments_.use(settings.environment, sky.directionToSun());
 }
 
 LightingEffect::LightingEffect(const EffectResources& resources)
@@ -279,14 +342,17 @@ LightingEffect::LightingEffect(const EffectResources& resources)
       stencil_(resources.caps.packedDepthStencil),
       layout_(GpuEnvironment::layoutFor(resources.caps, resources.options.environmentLayout)),
       lightsPerDraw_(punctualLightsPerDraw(resources.caps.maxFragmentUniformVectors)),
-      environmentBrdfUnit_(TextureUnits::environmentBrdf(resources.caps)) {
+      environmentFilteredUnit_(TextureUnits::environmentFiltered(resources.caps)),
+      drawBuffers_(resources.caps.drawBuffers && resources.options.allowDrawBuffers),
+      environments_(layout_, resources.options.environmentFiltering) {
   const HdrTexel t = encodeHdr(light_.background);
   backgroundHdr_ = glm::vec4(LinearDepthPacking::channelFromByte(t[0]), LinearDepthPacking::channelFromByte(t[1]),
                              LinearDepthPacking::channelFromByte(t[2]), LinearDepthPacking::channelFromByte(t[3]));
   // The form of the lit pass before the plan's alternatives, for every material, is built now, so a broken program
   // fails when the renderer is made.
-  for (MaterialKind kind : MaterialKind::all()) variant({false, false, -1, false}, kind, {});
-  useEnvironment(LightingSettings{});
+  environments_.use("sky", LightingSettings{}.directionToSun());
+  for (MaterialKind kind : MaterialKind::all())
+    variant({false, false, -1, false, LightingQuality::Medium, environments_.current().filteredFrom()}, kind, {});
 }
 
 void LightingEffect::plan(FramePlanner& planner) {
@@ -295,17 +361,18 @@ void LightingEffect::plan(FramePlanner& planner) {
   if (planner.declares("ao")) reads.push_back("ao");
   const ToneMapInUse tone = ToneMapInUse::of(planner.settings().of<TonemapSettings>());
   const int op = static_cast<int>(tone.op);
-  const LightingSettings& lighting = planner.settings().of<LightingSettings>();
-  useEnvironment(lighting);
   auto with = [&](std::vector<std::string> more) {
     std::vector<std::string> all = reads;
-    all.insert(all.end(), more.begin(), more.end());
+    for (std::string& target : more)
+      if (std::find(all.begin(), all.end(), target) == all.end()) all.push_back(std::move(target));
     return all;
   };
-  auto runAs = [this, scale = tone.exposureScale, lighting](Form form, std::string output) {
-    return [this, form, output, scale, lighting](PassContext& context) {
-      render(context, form, output, scale, lighting);
-    };
+  // The G-buffer's depth also when nothing else needs the G-buffer, where that is the cheaper (LightingDepth).
+  const LightingSettings& lighting = planner.settings().of<LightingSettings>();
+  const bool deferredForm = drawBuffers_ && !planner.frame().forwardLighting;
+  if (lighting.depthInUse(deferredForm) == LightingDepth::GBuffer) reads.push_back("gbuffer");
+  auto runAs = [this, scale = tone.exposureScale](Form form, std::string output) {
+    return [this, form, output, scale](PassContext& context) { render(context, form, output, scale); };
   };
 
   for (const char* output : {"scene-color", "shading-count"}) {
@@ -330,13 +397,18 @@ void LightingEffect::plan(FramePlanner& planner) {
       const std::vector<Write> toDisplayShared = {
           {"display-color", TargetSize::full(), Write::Depth::Shared, "gbuffer"}};
       const std::vector<Write> toDisplayOwn = {{"display-color", TargetSize::full(), Write::Depth::Own, ""}};
-      // Best first: deferred and tone-mapped, deferred, forward and tone-mapped (with the G-buffer's depth, or its
-      // own); else the pass as declared.
+      // Best first: deferred and tone-mapped (over the G-buffer's depth where a pass reads the display colour after
+      // it; into the output framebuffer, which has no depth, with the background in the same program), deferred,
+      // forward and tone-mapped (with the G-buffer's depth, or its own); else the pass as declared.
       pass.alternatives = {
+          Alternative{{"base-color"}, "tonemap", false, with({"gbuffer", "base-color"}), toDisplayShared,
+                      runAs({true, false, op, false, LightingQuality::Medium, kEnvironmentLevels, true},
+                            "display-color")},
           Alternative{{"base-color"}, "tonemap", true, with({"gbuffer", "base-color"}), toDisplay,
                       runAs({true, false, op, false}, "display-color")},
           Alternative{{"base-color"}, "", false, with({"gbuffer", "base-color"}),
-                      {{output, TargetSize::full(), Write::Depth::None, ""}}, runAs({true, false, -1, false}, output)},
+                      {{output, TargetSize::full(), Write::Depth::Shared, "gbuffer"}},
+                      runAs({true, false, -1, false, LightingQuality::Medium, kEnvironmentLevels, true}, output)},
           Alternative{{"gbuffer"}, "tonemap", false, with({"gbuffer"}), toDisplayShared,
                       runAs({false, false, op, false}, "display-color")},
           Alternative{{}, "tonemap", false, reads, toDisplayOwn, runAs({false, false, op, false}, "display-color")},
@@ -346,10 +418,14 @@ void LightingEffect::plan(FramePlanner& planner) {
   }
 }
 
-void LightingEffect::render(const PassContext& context, const Form& form, const std::string& output,
-                            float exposureScale, const LightingSettings& settings) {
+void LightingEffect::render(const PassContext& context, Form form, const std::string& output, float exposureScale) {
   using gl::Program;
+  const LightingSettings& settings = context.settings().of<LightingSettings>();
   const FrameCamera& camera = context.camera();
+  const GpuEnvironment& environment = environments_.current();
+  // The tier and the environment's storage are read now, not when the plan was made: neither changes its shape.
+  form.quality = settings.quality;
+  form.filteredFrom = environment.filteredFrom();
   context.bindForWriting(output);
   const bool lumaInAlpha = !context.writesOutput(output);
   const ToneMapInUse tone{static_cast<ToneMapOperator>(std::max(form.toneMap, 0)), exposureScale};
@@ -364,7 +440,7 @@ void LightingEffect::render(const PassContext& context, const Form& form, const 
                  : PunctualLightUniforms::of(context.scene().lights(), camera.view, lightsPerDraw_);
   // The texture units: gpu/TextureUnits.h.
   const int kEnvironmentUnit = TextureUnits::kEnvironment;
-  const int kEnvironmentBrdfUnit = environmentBrdfUnit_;
+  const int kEnvironmentFilteredUnit = environmentFilteredUnit_;
   auto setShading = [&](const Variant& v) {
     if (form.counting) return;
     Program::set(v.lightDirection, lightDirection);
@@ -377,24 +453,41 @@ void LightingEffect::render(const PassContext& context, const Form& form, const 
     }
     Program::set(v.ao, TextureUnits::kAo);
     Program::set(v.environment, kEnvironmentUnit);
-    Program::set(v.environmentBrdf, kEnvironmentBrdfUnit);
+    Program::set(v.environmentFiltered, kEnvironmentFilteredUnit);
+    Program::set(v.environmentFilteredScale, environment.filteredScale() * settings.environmentIntensity);
     Program::set(v.farHalfExtent, camera.reconstruction.farHalfExtent);
     Program::set(v.farPlane, camera.reconstruction.far);
-    Program::set(v.shIrradiance, environment_->irradianceUniform().data(), 7);
+    Program::set(v.perspective, camera.reconstruction.perspective ? 1.0f : 0.0f);
+    Program::set(v.shIrradiance, environment.irradianceUniform().data(), 7);
     Program::set(v.environmentIntensity, settings.environmentIntensity);
     Program::set(v.exposure, exposureScale);
     Program::set(v.lumaInAlpha, lumaInAlpha ? 1.0f : 0.0f);
   };
   (context.has("ao") ? context.texture("ao") : white_).bind(TextureUnits::kAo);
   if (!form.counting) {
-    glActiveTexture(GL_TEXTURE0 + kEnvironmentBrdfUnit);
-    glBindTexture(GL_TEXTURE_2D, environment_->brdfTexture());
+    glActiveTexture(GL_TEXTURE0 + kEnvironmentFilteredUnit);
+    glBindTexture(GL_TEXTURE_2D, environment.filteredTexture());
     glActiveTexture(GL_TEXTURE0 + kEnvironmentUnit);
-    glBindTexture(GL_TEXTURE_2D, environment_->texture());
+    glBindTexture(GL_TEXTURE_2D, environment.texture());
   }
+  // The background: the environment where the depth is still 1 (nothing drawn), a full-screen triangle on the far
+  // plane tested LEQUAL against it, writing no depth.
+  auto drawBackground = [&] {
+    const Variant& v = variant({false, false, form.toneMap, true}, {}, {});
+    v.program.use();
+    setShading(v);
+    glDisable(GL_POLYGON_OFFSET_FILL);
+    glEnable(GL_DEPTH_TEST);
+    glDepthFunc(GL_LEQUAL);
+    glDepthMask(GL_FALSE);
+    resources_.triangle.draw();
+  };
 
   if (form.deferred) {
-    // Every pixel once, background included: no clear, no depth.
+    // Every pixel once, background included. Over the G-buffer's depth (form.overDepth): the shading where the
+    // depth is nearer than the far plane (a triangle on the far plane, tested GL_GREATER), then the background where
+    // it is not; else one program for both, which tells the background by the G-buffer's depth code.
+    form.overDepth = form.overDepth && !form.counting && context.sharesDepth(output);
     if (form.counting) {
       glClearColor(0.0f, 0.0f, 0.0f, 0.0f);
       glClear(GL_COLOR_BUFFER_BIT);
@@ -412,7 +505,13 @@ void LightingEffect::render(const PassContext& context, const Form& form, const 
       glEnable(GL_BLEND);
       glBlendFunc(GL_ONE, GL_ONE);
     }
+    if (form.overDepth) {
+      glEnable(GL_DEPTH_TEST);
+      glDepthFunc(GL_GREATER);
+      glDepthMask(GL_FALSE);
+    }
     resources_.triangle.draw();
+    if (form.overDepth) drawBackground();
     gl::restoreBaselineState();
     return;
   }
@@ -425,7 +524,27 @@ void LightingEffect::render(const PassContext& context, const Form& form, const 
     glClearColor(clear.r, clear.g, clear.b, clear.a);
   }
   glEnable(GL_DEPTH_TEST);
-  if (context.sharesDepth(output) && stencil_) {
+  // The depth pre-pass (LightingDepth::Prepass) where the pass has a depth of its own: the scene's nearest depth
+  // first, with the counting forms' trivial fragment stage (the alpha test only) and colour writes off; then the
+  // shading over it, as over the G-buffer's.
+  const bool prepass = !context.sharesDepth(output) &&
+                       settings.depthInUse(drawBuffers_ && !context.frame().forwardLighting) == LightingDepth::Prepass;
+  if (prepass) {
+    glClearDepthf(1.0f);
+    glClear(GL_DEPTH_BUFFER_BIT);
+    glDepthFunc(GL_LESS);
+    glColorMask(GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
+    const Form depthOnly{false, true, -1, false};
+    context.scene().draw(camera.view, [&](MaterialKind kind, VertexKind vertex) -> const GeometryUniforms& {
+      const Variant& v = variant(depthOnly, kind, vertex);
+      v.program.use();
+      Program::set(v.projection, camera.projection);
+      return v.geometry;
+    });
+    glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
+  }
+  const bool overDepth = context.sharesDepth(output) || prepass;
+  if (overDepth && stencil_) {
     // The G-buffer's depth holds each pixel's nearest surface: GL_EQUAL lets only that surface's fragments through,
     // and the stencil (0, set to 1 by the first that passes) only the first of them. A coplanar or edge-on face at
     // exactly that depth is not shaded again: GL_EQUAL alone would shade it too (the shading-count test caught it at
@@ -437,7 +556,7 @@ void LightingEffect::render(const PassContext& context, const Form& form, const 
     glEnable(GL_STENCIL_TEST);
     glStencilFunc(GL_EQUAL, 0, 0xFF);
     glStencilOp(GL_KEEP, GL_KEEP, GL_INCR);
-  } else if (context.sharesDepth(output)) {
+  } else if (overDepth) {
     // Without a stencil buffer: GL_LESS against that depth pulled one resolvable step towards the camera, writing
     // depth, so a later fragment of the same depth fails. Faces seen exactly edge-on may still shade a pixel twice
     // (a hidden one within that step, drawn first); the visible surface, drawn after, still wins.
@@ -461,17 +580,7 @@ void LightingEffect::render(const PassContext& context, const Form& form, const 
     setShading(v);
     return v.geometry;
   });
-  if (!form.counting) {
-    // The background: the environment where the depth is still 1 (nothing drawn), a full-screen triangle on the far
-    // plane tested LEQUAL against it, writing no depth.
-    const Variant& v = variant({false, false, form.toneMap, true}, {}, {});
-    v.program.use();
-    setShading(v);
-    glDisable(GL_POLYGON_OFFSET_FILL);
-    glDepthFunc(GL_LEQUAL);
-    glDepthMask(GL_FALSE);
-    resources_.triangle.draw();
-  }
+  if (!form.counting) drawBackground();
   gl::restoreBaselineState();
 }
 

@@ -45,6 +45,7 @@
 
 #include "effects/tonemap/TonemapEffect.h"
 #include "environment/Environment.h"
+#include "environment/EnvironmentCache.h"
 #include "frame/EffectEntry.h"
 #include "frame/FrameContext.h"
 #include "gl/RenderTarget.h"
@@ -52,10 +53,42 @@
 
 namespace obscura {
 
+// How much of the shading a pixel pays for (lighting.quality; the frame's preset sets it: low -> low, medium ->
+// medium, high and ultra -> high). docs/lighting.md measures each tier's cost and its error against high.
+//   low     the ambient from the spherical harmonics alone: diffuse E(n) / pi, and the specular as the irradiance
+//           towards the reflected direction weighted by Karis's analytic (A, B) fit; no environment or table fetch,
+//           the AO on both alike. The sun and the punctual lights keep their Cook-Torrance lobe.
+//   medium  the split sum: the prefiltered environment and the (A, B) table, Lagarde's specular occlusion.
+//   high    medium, plus the energy the single-scattering lobe loses: multiple scattering in the ambient
+//           (Fdez-Aguera 2019) and the direct lights' energy compensation (Kulla & Conty 2017, as Filament), and the
+//           reflection's horizon occlusion where a normal texture tilts it below the surface (Russell 2015).
+enum class LightingQuality { Low = 0, Medium = 1, High = 2 };
+
+// Where the lighting finds each pixel's visible surface when no other effect draws the G-buffer (the AO off, and no
+// fog, DoF, edges, TAA or motion blur). With the G-buffer, every form shades each pixel once: the deferred form by
+// construction, the forward form by testing GL_EQUAL against the G-buffer's depth.
+//   gbuffer   the G-buffer pass runs anyway: the deferred form where it can shade the scene, else the forward form
+//             over its depth.
+//   prepass   the forward form draws the scene's depth first (colour writes off, the counting form's trivial
+//             fragment stage), then shades over it as over the G-buffer's: two geometry draws, one shading per pixel.
+//   overdraw  the forward form tests its own depth, shading every fragment that is nearer than those drawn before it
+//             (front to back: GpuScene's order).
+//   auto      the medium and high tiers shade each pixel once: gbuffer where the deferred form can shade the scene
+//             (one geometry pass and a full-screen one), else prepass (two geometry passes, the first with no colour
+//             to write, where the G-buffer's would write its normals too); the low tier's shading costs about what a
+//             depth test saves, so it takes overdraw (one geometry pass). docs/lighting.md, "AO off", measures all
+//             three on llvmpipe and SwiftShader.
+enum class LightingDepth { Auto, GBuffer, Prepass, Overdraw };
+
 // The sun: an overcast key light over a strong sky dome, so that ambient carries most of the light and AO reads
 // clearly. Its illuminance is colour x intensity; the default intensity pi makes a white Lambertian surface facing it
 // reflect its colour, as the lighting did before the BRDF had its 1 / pi.
 struct LightingSettings : ParameterAccess<LightingSettings> {
+  LightingQuality quality = LightingQuality::Medium;
+  QualityPreset preset = QualityPreset::Medium;  // the frame preset `quality` came from (applyPreset)
+  LightingDepth depth = LightingDepth::Auto;
+  // What `depth` resolves to with these settings, in a frame whose lighting can take the deferred form or not.
+  LightingDepth depthInUse(bool deferredForm) const;
   float sunElevation = 54.525961f;  // degrees above the horizon (world +y up)
   float sunAzimuth = 52.125016f;    // degrees from +z towards +x
   glm::vec3 sunColor{0.50f, 0.48f, 0.44f};  // linear
@@ -67,6 +100,8 @@ struct LightingSettings : ParameterAccess<LightingSettings> {
 
   glm::vec3 directionToSun() const;  // world space, unit
   static const std::vector<Parameter<LightingSettings>>& parameters();
+  void applyPreset(QualityPreset which);
+  bool matchesPreset(QualityPreset which) const;
   void validate() const { validateParameters("lighting"); }
 };
 
@@ -112,19 +147,28 @@ class LightingEffect : public Effect {
   static glm::mat3 environmentRotation(const LightingSettings& settings);
 
   explicit LightingEffect(const EffectResources& resources);
+  // Loads and prepares the environment lighting.environment names (and, for the sky, lighting.sun-elevation).
+  void prepare(const FrameSettings& settings) override;
   void plan(FramePlanner& planner) override;
 
  private:
   // One form of the pass: deferred or forward, tone-mapped here (an operator) or not, counting or shading.
   // background: the forward forms' full-screen draw of the environment where the scene drew nothing.
+  // quality and filteredFrom (the environment's GpuEnvironment::filteredFrom) matter to the shading forms only.
   struct Form {
     bool deferred = false;
     bool counting = false;
     int toneMap = -1;  // -1: HDR output; else the ToneMapOperator applied here
     bool background = false;
+    LightingQuality quality = LightingQuality::Medium;
+    int filteredFrom = kEnvironmentLevels;
+    // The deferred form over the G-buffer's depth: its shading drawn where the depth is nearer than the far plane,
+    // the background form where it is not, so that each pixel runs one of the two programs (a CPU rasteriser runs
+    // both sides of a branch).
+    bool overDepth = false;
     bool operator<(const Form& o) const {
-      return std::tie(deferred, counting, toneMap, background) <
-             std::tie(o.deferred, o.counting, o.toneMap, o.background);
+      return std::tie(deferred, counting, toneMap, background, quality, filteredFrom, overDepth) <
+             std::tie(o.deferred, o.counting, o.toneMap, o.background, o.quality, o.filteredFrom, o.overDepth);
     }
   };
   struct Variant {
@@ -132,20 +176,19 @@ class LightingEffect : public Effect {
     gl::Program program;
     GeometryUniforms geometry;  // the forward forms' (geometry.vert)
     // The full-screen forms' far-plane ray (fullscreen.vert); only its direction is used, so no depth-to-ray scale.
-    GLint farHalfExtent, farPlane;
+    GLint farHalfExtent, farPlane, perspective;
     GLint projection, lightDirection, lightColor, viewToEnvironment, ao;
-    GLint environment, environmentBrdf, shIrradiance, environmentIntensity;
+    GLint environment, environmentFiltered, environmentFilteredScale, shIrradiance, environmentIntensity;
     GLint gbuffer, baseColor, exposure, lumaInAlpha;
     GLint lightPositionRange, lightColorSpot, lightSpot;
   };
   static MaterialKind readKind(const Form& form, MaterialKind kind);
+  // The form as its program sees it: what a counting or background form does not read is left at its default.
+  static Form programForm(Form form);
   static ProgramSpec spec(const Form& form, MaterialKind kind, VertexKind vertex, EnvironmentLayout layout,
                           int lightsPerDraw);
   const Variant& variant(const Form& form, MaterialKind kind, VertexKind vertex);
-  // Loads, projects and prefilters the environment the settings name, when it is not the one on the GPU.
-  void useEnvironment(const LightingSettings& settings);
-  void render(const PassContext& context, const Form& form, const std::string& output, float exposureScale,
-              const LightingSettings& settings);
+  void render(const PassContext& context, Form form, const std::string& output, float exposureScale);
 
   const EffectResources& resources_;
   // Built on first use: (form, the material kind it reads, the vertex kind).
@@ -156,10 +199,9 @@ class LightingEffect : public Effect {
   glm::vec4 backgroundHdr_;  // the clear colour's radiance in scene-color's encoding, as clear-colour channels
   EnvironmentLayout layout_;              // where the prefiltered levels live (RendererOptions::environmentLayout)
   int lightsPerDraw_;                     // punctualLightsPerDraw of the context's fragment uniform vectors
-  int environmentBrdfUnit_;               // TextureUnits::environmentBrdf
-  std::string environmentName_;           // the lighting.environment value environment_ holds
-  float skyElevation_ = 0.0f;             // the sun's elevation in the sky environment_ holds
-  std::unique_ptr<GpuEnvironment> environment_;
+  int environmentFilteredUnit_;           // TextureUnits::environmentFiltered
+  bool drawBuffers_;                      // the G-buffer pass writes the base colour (GBufferEffect's same test)
+  EnvironmentCache environments_;         // the environment in use (lighting.environment), prepared before planning
 };
 
 }  // namespace obscura

@@ -6,6 +6,7 @@
 // The pass always runs: it is what turns the HDR encoding into displayable colour. Switched off ("tonemap off"),
 // it applies neither the exposure nor a curve: colour is clamped to [0, 1] and encoded sRGB.
 #include <map>
+#include <tuple>
 #include <vector>
 
 #include "encoding/ToneMapping.h"
@@ -47,14 +48,14 @@ class TonemapEffect : public Effect {
 
  private:
   struct Variant {
-    explicit Variant(gl::Program built);
+    Variant(gl::Program built, bool autoExposure, bool addsLensLight);
     gl::Program program;
-    GLint color, exposure, lumaInAlpha;
+    GLint color, exposure, lumaInAlpha, exposureTarget, lensLight, lensLightSize;
   };
-  const Variant& variant(ToneMapOperator op);
+  const Variant& variant(ToneMapOperator op, bool autoExposure, bool lensLight);
 
   const EffectResources& resources_;
-  std::map<ToneMapOperator, Variant> variants_;
+  std::map<std::tuple<ToneMapOperator, bool, bool>, Variant> variants_;
 };
 
 }  // namespace obscura

@@ -1,0 +1,220 @@
+// The camera's finish's per-pixel functions on the GPU (shaders_es2/vignette, grain, dither), against their CPU mirrors
+// and their stated properties: the vignette's factor (1 at the centre, falling outwards, round on screen); the grain's
+// zero mean, its luminance weighting and a new pattern each frame; the dithering's banding on a smooth dark gradient
+// (runs of one 8-bit value) and its mean change.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <string>
+#include <vector>
+
+#include "TestSupport.h"
+#include "effects/chromatic_aberration/ChromaticAberrationEffect.h"
+#include "effects/dither/Dither.h"
+#include "effects/grain/Grain.h"
+#include "effects/vignette/Vignette.h"
+#include "gl/ShaderLibrary.h"
+#include "scene/Primitives.h"
+
+using namespace obscura;
+
+namespace {
+
+// A point program whose fragment is `body` (v_first and v_second: drawPoints' two values).
+gl::Program pointProgram(const std::string& includes, const std::string& body) {
+  test::context();
+  const std::string fragment = "#include \"lib/precision.glsl\"\n#include \"lib/srgb.glsl\"\n" + includes +
+                               "varying vec4 v_first;\nvarying vec3 v_second;\nvoid main() { " + body + " }\n";
+  return gl::Program("finish stage test", ShaderLibrary::composeText(test::kTwoValuePointVertex, {}, {}),
+                     ShaderLibrary::composeText(fragment, {}, {}), true);
+}
+
+// Counts runs of one value longer than `longest` in a row of bytes.
+int longRuns(const std::vector<int>& row, int longest) {
+  int runs = 0, length = 1;
+  for (size_t i = 1; i <= row.size(); ++i) {
+    if (i < row.size() && row[i] == row[i - 1]) {
+      ++length;
+      continue;
+    }
+    if (length > longest) ++runs;
+    length = 1;
+  }
+  return runs;
+}
+
+}  // namespace
+
+TEST(Vignette, TheFactorFallsFromTheCentreAndIsRoundOnScreen) {
+  VignetteSettings settings;
+  const float aspect = 16.0f / 9.0f;
+  const glm::vec3 shape = vignetteShape(settings, aspect);
+  EXPECT_FLOAT_EQ(vignetteFactor({0.5f, 0.5f}, shape), 1.0f);
+  float previous = 1.0f;
+  for (float t = 0.05f; t <= 0.5f; t += 0.05f) {
+    const float f = vignetteFactor({0.5f + t, 0.5f + t}, shape);
+    EXPECT_LT(f, previous) << t;
+    previous = f;
+  }
+  // Round on screen: the same distance in pixels along x and y gives the same factor.
+  EXPECT_NEAR(vignetteFactor({0.5f + 0.2f / aspect, 0.5f}, shape), vignetteFactor({0.5f, 0.7f}, shape), 1e-6f);
+  // The GPU's factor against the mirror over a grid of uv.
+  const gl::Program program = pointProgram("#include \"vignette/vignette.glsl\"\n",
+                                           "gl_FragColor = vec4(vec3(vignetteFactor(v_first.xy)), 1.0);");
+  program.use();
+  gl::Program::set(program.uniform("u_vignetteShape"), shape);
+  std::vector<glm::vec4> uv;
+  for (int y = 0; y < 64; ++y)
+    for (int x = 0; x < 64; ++x)
+      uv.emplace_back((static_cast<float>(x) + 0.5f) / 64.0f, (static_cast<float>(y) + 0.5f) / 64.0f, 0.0f, 0.0f);
+  const std::vector<std::uint8_t> out = test::drawPoints(program, uv);
+  float worst = 0.0f;
+  for (size_t i = 0; i < uv.size(); ++i)
+    worst = std::max(worst, std::abs(out[i * 4] - 255.0f * vignetteFactor(glm::vec2(uv[i]), shape)));
+  EXPECT_LE(worst, 1.0f);
+}
+
+TEST(Grain, HasZeroMeanFollowsTheLuminanceAndChangesEveryFrame) {
+  const gl::Program program = pointProgram("#include \"lib/hash.glsl\"\n#include \"grain/grain.glsl\"\n",
+                                           "gl_FragColor = vec4(grain(v_first.rgb, v_second.xy), 1.0);");
+  GrainSettings settings;
+  settings.enabled = true;
+  auto run = [&](float grey, std::uint64_t frame) {
+    program.use();
+    gl::Program::set(program.uniform("u_grain"), grainUniform(settings, frame));
+    std::vector<glm::vec4> colour(static_cast<size_t>(test::kPointSide) * test::kPointSide, glm::vec4(grey));
+    std::vector<glm::vec3> pixel;
+    for (int i = 0; i < test::kPointSide * test::kPointSide; ++i)
+      pixel.emplace_back(static_cast<float>(i % test::kPointSide) + 0.5f,
+                         static_cast<float>(i / test::kPointSide) + 0.5f, 0.0f);
+    const std::vector<std::uint8_t> out = test::drawPoints(program, colour, pixel);
+    std::vector<float> values(colour.size());
+    for (size_t i = 0; i < values.size(); ++i) values[i] = static_cast<float>(out[i * 4 + 1]) - 255.0f * grey;
+    return values;
+  };
+  auto stats = [](const std::vector<float>& v) {
+    double sum = 0.0, squares = 0.0;
+    for (float x : v) {
+      sum += x;
+      squares += double(x) * x;
+    }
+    const double mean = sum / static_cast<double>(v.size());
+    return std::make_pair(mean, std::sqrt(squares / static_cast<double>(v.size()) - mean * mean));
+  };
+  const std::vector<float> dark = run(0.2f, 0), bright = run(0.9f, 0), next = run(0.2f, 1);
+  const auto [darkMean, darkSd] = stats(dark);
+  const auto [brightMean, brightSd] = stats(bright);
+  double correlation = 0.0;
+  for (size_t i = 0; i < dark.size(); ++i) correlation += double(dark[i] - darkMean) * (next[i] - darkMean);
+  correlation /= static_cast<double>(dark.size()) * darkSd * darkSd;
+  std::printf("grain: at 0.2 mean %+.3f sd %.2f; at 0.9 mean %+.3f sd %.2f (bytes); frame to frame correlation %.3f\n",
+              darkMean, darkSd, brightMean, brightSd, correlation);
+  EXPECT_LT(std::abs(darkMean), 0.3);
+  EXPECT_LT(std::abs(brightMean), 0.3);
+  EXPECT_GT(darkSd, 2.0 * brightSd);
+  EXPECT_LT(std::abs(correlation), 0.1);
+  // The mirror's noise at a few pixels, against the GPU's (the hash's float arithmetic may differ in a last bit).
+  int close = 0;
+  const glm::vec4 u = grainUniform(settings, 0);
+  for (int i = 0; i < 1000; ++i) {
+    const glm::vec2 p(static_cast<float>(i % test::kPointSide) + 0.5f, static_cast<float>(i / test::kPointSide) + 0.5f);
+    close += std::abs(dark[static_cast<size_t>(i)] - 255.0f * (grained(glm::vec3(0.2f), p, u).g - 0.2f)) <= 1.0f;
+  }
+  EXPECT_GE(close, 950);
+}
+
+// A smooth dark gradient, 8/255 to 12/255 over 1024 pixels (a dim sky): quantised as it is, it falls into runs of one
+// value 256 pixels long; dithered, no run is longer than 64 pixels, and the mean moves by less than half a step.
+TEST(Dither, BreaksTheBandsOfADarkGradientWithoutMovingItsMean) {
+  const gl::Program program = pointProgram("#include \"lib/hash.glsl\"\n#include \"dither/dither.glsl\"\n",
+                                           "gl_FragColor = vec4(v_first.rgb, 1.0); "
+                                           "if (v_first.a > 0.5) gl_FragColor.rgb = dither(v_first.rgb, v_second.xy);");
+  const int width = 1024, rows = 32;
+  auto run = [&](bool dithered) {
+    program.use();
+    gl::Program::set(program.uniform("u_ditherSeed"), ditherSeed(7));
+    std::vector<glm::vec4> colour;
+    std::vector<glm::vec3> pixel;
+    for (int y = 0; y < rows; ++y)
+      for (int x = 0; x < width; ++x) {
+        const float v = (8.0f + 4.0f * (static_cast<float>(x) + 0.5f) / width) / 255.0f;
+        colour.emplace_back(glm::vec3(v), dithered ? 1.0f : 0.0f);
+        pixel.emplace_back(static_cast<float>(x) + 0.5f, static_cast<float>(y) + 0.5f, 0.0f);
+      }
+    const std::vector<std::uint8_t> out = test::drawPoints(program, colour, pixel);
+    int runs = 0;
+    double change = 0.0;
+    for (int y = 0; y < rows; ++y) {
+      std::vector<int> row;
+      for (int x = 0; x < width; ++x) {
+        const size_t i = static_cast<size_t>(y) * width + static_cast<size_t>(x);
+        row.push_back(out[i * 4 + 1]);
+        change += out[i * 4 + 1] - 255.0 * colour[i].g;
+      }
+      runs += longRuns(row, 64);
+    }
+    return std::make_pair(runs, change / (static_cast<double>(width) * rows));
+  };
+  const auto [plainRuns, plainChange] = run(false);
+  const auto [ditheredRuns, ditheredChange] = run(true);
+  std::printf("dark gradient: %d runs longer than 64 pixels quantised as it is (mean change %+.3f / 255), %d dithered "
+              "(mean change %+.3f / 255)\n",
+              plainRuns, plainChange, ditheredRuns, ditheredChange);
+  EXPECT_GE(plainRuns, 3 * rows);
+  EXPECT_EQ(ditheredRuns, 0);
+  EXPECT_LT(std::abs(ditheredChange), 0.5);
+  // The offsets are triangular in (-1, 1) steps: mean 0, variance 1/6.
+  double sum = 0.0, squares = 0.0;
+  const glm::vec2 seed = ditherSeed(3);
+  for (int i = 0; i < 100000; ++i) {
+    const glm::vec2 pixel(static_cast<float>(i % 317) + 0.5f, static_cast<float>(i / 317) + 0.5f);
+    const float o = 255.0f * ditherOffset(pixel, seed);
+    sum += o;
+    squares += double(o) * o;
+  }
+  EXPECT_NEAR(sum / 100000.0, 0.0, 0.01);
+  EXPECT_NEAR(squares / 100000.0, 1.0 / 6.0, 0.01);
+}
+
+// A white bar near the right edge of a black frame: red lands further out and blue further in than green, each by
+// the intensity times the bar's distance from the centre (the channels' centroids along x), the centre's colour
+// unchanged.
+TEST(ChromaticAberration, RedAndBlueLieOutsideAndInsideGreenByTheStatedShift) {
+  Renderer renderer = test::makeRenderer();
+  // The bar glows (emission 1: display white), in a black room.
+  Scene scene;
+  test::addStill(scene, test::makeRectangle({1.55f, -2.0f, 0.0f}, {0.04f, 0.0f, 0.0f}, {0.0f, 4.0f, 0.0f}),
+                 glm::vec3(0.0f));
+  scene.materials.back().emissiveFactor = glm::vec3(1.0f);
+  renderer.setScene(scene);
+  const int width = 320, height = 180;
+  const Camera camera = test::makeCamera({0.0f, 0.0f, 3.0f}, {0.0f, 0.0f, 0.0f}, width, height, 0.1f, 100.0f, 60.0f);
+  RenderSettings settings;
+  settings.set("fxaa", "off");
+  settings.set("ao", "off");
+  settings.set("lighting.environment", "uniform");
+  settings.set("lighting.environment-intensity", "0");
+  settings.set("lighting.sun-intensity", "0");
+  settings.set("chromatic-aberration", "on");
+  settings.set("chromatic-aberration.intensity", "0.03");
+  const test::RenderedImage image = test::render(renderer, camera, settings, View::Final);
+  double centroid[3] = {}, mass[3] = {};
+  const int row = height / 2;
+  for (int x = 0; x < width; ++x)
+    for (int c = 0; c < 3; ++c) {
+      const double v = image.channel(x, row, c);
+      centroid[c] += v * (x + 0.5);
+      mass[c] += v;
+    }
+  for (int c = 0; c < 3; ++c) centroid[c] /= mass[c];
+  const double fromCentre = centroid[1] - 0.5 * width;
+  std::printf("bar at %.2f px from the centre: red %+.2f px, blue %+.2f px from green (expected %+.2f, %+.2f)\n",
+              fromCentre, centroid[0] - centroid[1], centroid[2] - centroid[1], 0.03 * fromCentre, -0.03 * fromCentre);
+  ASSERT_GT(fromCentre, 50.0);
+  // Magnified by 1 + k and 1 - k about the centre: k d out and in (to first order in k).
+  EXPECT_NEAR(centroid[0] - centroid[1], 0.03 * fromCentre, 0.5);
+  EXPECT_NEAR(centroid[2] - centroid[1], -0.03 * fromCentre, 0.5);
+  EXPECT_FLOAT_EQ(aberrationSource({0.5f, 0.5f}, 0, 0.03f).x, 0.5f);
+}
