@@ -67,7 +67,8 @@ TEST(EffectTable, ListsTheFrameInOrderWithUniqueNames) {
                                                 "tonemap", "edges", "motion-blur", "chromatic-aberration", "fxaa",
                                                 "resolution"}));
   EXPECT_EQ(framePassNames(),
-            (std::vector<std::string>{"pose", "gbuffer", "base-color", "velocity", "hierarchy", "sao", "ao-temporal",
+            (std::vector<std::string>{"pose", "gbuffer", "base-color", "velocity", "peel", "hierarchy", "sao",
+                                      "ao-temporal",
                                       "blur-h", "blur-v", "upsample", "lighting", "shading-count", "lines", "fog",
                                       "transmission-levels", "transparency", "taa", "bloom", "bloom-bright",
                                       "lens-flare", "glare",

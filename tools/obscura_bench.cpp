@@ -1,7 +1,8 @@
 // obscura-bench: the performance figures of the AO pipeline, measured in one run (docs/benchmarks.md).
 //
 //   obscura-bench [--out DIR] [--frames N] [--backend osmesa|egl] [--quick] [--estimators-only] [--motion-only]
-//                 [--effects-only] [--transparency-only] [--temporal-ao-only]
+//                 [--effects-only] [--finish-only] [--transparency-only] [--temporal-ao-only] [--lighting-only]
+//                 [--ao-layers-only] [--startup-only] [--resolution-only]
 //
 // Prints tables and writes DIR/bench.csv (every measurement), DIR/ratios.csv, DIR/radius_sweep.csv,
 // DIR/radius_sweep.png (gnuplot) and DIR/estimators.csv. Every pass is bounded by glFinish on both sides and
@@ -45,6 +46,10 @@
 //      with the edge upscale and 0.5 with the bilinear one, taking turns, at 640x360 and 1280x720, beside the issue's
 //      target (scale 0.5 + edge <= 0.35 x the full frame); and each upscale's error against the full-size frame
 //      (metrics/UpscaleMetrics.h: MAE, edge MAE; target: edge <= 0.8 x bilinear's) (DIR/resolution.csv)
+//  12. the AO's depth layers and normals (--ao-layers-only: this alone): the default AO against ao.layers 2 and
+//      gbuffer.normals reconstructed, with the depth hierarchy's atlas (the second layer folded into its texels) and
+//      without a hierarchy (the estimator reads the second layer's target beside the G-buffer), taking turns frame by
+//      frame at 640x360 and 1280x720 on the still room and the engine (DIR/ao_layers.csv)
 #include <algorithm>
 #include <cstdio>
 #include <cstdlib>
@@ -111,6 +116,7 @@ struct Options {
   bool startupOnly = false;     // section 0 alone
   bool resolutionOnly = false;  // section 11 alone
   bool lightingOnly = false;    // section 10 alone
+  bool aoLayersOnly = false;    // section 12 alone
 };
 
 struct BenchScene {
@@ -331,10 +337,11 @@ Options parseOptions(int argc, char** argv) {
     else if (arg == "--startup-only") options.startupOnly = true;
     else if (arg == "--resolution-only") options.resolutionOnly = true;
     else if (arg == "--lighting-only") options.lightingOnly = true;
+    else if (arg == "--ao-layers-only") options.aoLayersOnly = true;
     else throw InputError("unknown option '" + arg + "' (usage: obscura-bench [--out DIR] [--frames N] "
                           "[--backend osmesa|egl] [--quick] [--estimators-only] [--motion-only] [--effects-only] "
                           "[--finish-only] [--transparency-only] [--temporal-ao-only] [--lighting-only] "
-                          "[--startup-only] [--resolution-only])");
+                          "[--ao-layers-only] [--startup-only] [--resolution-only])");
   }
   return options;
 }
@@ -383,6 +390,61 @@ void estimatorSection(Bench& bench, const BenchScene& scene, int w, int h, const
           << at(t, "sao") << "," << effect / saoEffect << "\n";
     }
     std::printf("  %s\n", relative.c_str());
+  }
+}
+
+// Section 11: what the AO's second depth layer and its normals from depth cost (docs/accuracy.md has what they buy).
+// GTAO at the medium preset, every configuration taking turns frame by frame: one layer and two, stored normals and
+// reconstructed ones, with the depth hierarchy's atlas (both layers in one texel per tap) and without a hierarchy
+// (every tap reads the G-buffer, and with two layers the second layer's target too: the per-tap cost of a second
+// layer kept apart). Per configuration, the G-buffer pass, the peel, the hierarchy, the estimator, the blur and the
+// AO effect in all.
+void aoLayersSection(Bench& bench, const std::vector<BenchScene>& scenes,
+                     const std::vector<std::pair<int, int>>& sizes, const std::string& outDir) {
+  struct Configuration {
+    const char* name;
+    int layers;
+    const char* normals;
+    bool hierarchy;
+  };
+  const Configuration configurations[] = {{"default", 1, "stored", true},
+                                          {"layers 2", 2, "stored", true},
+                                          {"normals from depth", 1, "reconstructed", true},
+                                          {"layers 2, normals from depth", 2, "reconstructed", true},
+                                          {"no hierarchy", 1, "stored", false},
+                                          {"no hierarchy, layers 2", 2, "stored", false}};
+  std::vector<RenderSettings> settings;
+  for (const Configuration& c : configurations) {
+    RenderSettings s;
+    s.ao().layers = c.layers;
+    s.ao().depthHierarchy = c.hierarchy;
+    s.set("gbuffer.normals", c.normals);
+    settings.push_back(s);
+  }
+  const EffectEntry& aoEffect = effectEntry("ao");
+  std::ofstream csv(outDir + "/ao_layers.csv");
+  csv << "scene,width,height,configuration,gbuffer_ms,peel_ms,hierarchy_ms,estimator_ms,blur_ms,ao_effect_ms,"
+         "ao_effect_over_default\n";
+  std::printf("\n12. The AO's depth layers and normals from depth (GTAO, medium), all configurations taking turns "
+              "frame by frame: ms of the G-buffer pass, the peel, the hierarchy, the estimator, the blur, the AO "
+              "effect (peel to blur), and the AO effect over the default's\n");
+  for (const BenchScene& scene : scenes) {
+    for (const auto& [w, h] : sizes) {
+      const std::vector<PassTimes> times = bench.measure("ao-layers", scene, w, h, settings);
+      const double reference = effectMs(times[0], aoEffect);
+      std::printf("%s %dx%d\n", scene.name.c_str(), w, h);
+      for (size_t c = 0; c < times.size(); ++c) {
+        const PassTimes& t = times[c];
+        const double blur = at(t, "blur-h") + at(t, "blur-v"), effect = effectMs(t, aoEffect);
+        std::printf("  %-30s gbuffer %7.2f  peel %7.2f  hierarchy %6.2f  estimator %7.2f  blur %6.2f  AO %7.2f  "
+                    "x%.2f\n",
+                    configurations[c].name, at(t, "gbuffer"), at(t, "peel"), at(t, "hierarchy"), at(t, "sao"), blur,
+                    effect, effect / reference);
+        csv << scene.name << "," << w << "," << h << "," << configurations[c].name << "," << at(t, "gbuffer") << ","
+            << at(t, "peel") << "," << at(t, "hierarchy") << "," << at(t, "sao") << "," << blur << "," << effect
+            << "," << effect / reference << "\n";
+      }
+    }
   }
 }
 
@@ -1210,6 +1272,11 @@ int main(int argc, char** argv) {
     }
     Bench bench(options, context);
     const BenchScene& builtin = scenes[0];
+    if (options.aoLayersOnly) {
+      aoLayersSection(bench, scenes, effectSizes, options.outDir);
+      std::printf("\nobscura-bench: wrote %s/bench.csv, ao_layers.csv\n", options.outDir.c_str());
+      return 0;
+    }
     if (options.estimatorsOnly) {
       const int w = options.quick ? 640 : 1280, h = options.quick ? 360 : 720;
       estimatorSection(bench, builtin, w, h, options.outDir);

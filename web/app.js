@@ -7,7 +7,8 @@ import { createObscura, ObscuraError } from './obscura.js';
 const VIEW_LABELS = { final: 'Final', split: 'Split: off | on', ao: 'AO', 'ao-raw': 'Raw AO', 'ao-blur-h': 'AO blur H',
                       normals: 'Normals', depth: 'Depth', mask: 'Mask', 'scene-color': 'HDR colour',
                       'display-color': 'Display colour', 'shading-count': 'Shading count',
-                      'base-color': 'Base colour', velocity: 'Motion vectors' };
+                      'base-color': 'Base colour', velocity: 'Motion vectors',
+                      'second-layer': 'Second depth layer', 'normals-from-depth': 'Normals from depth' };
 // Keys of the page itself (the core's bindings come from obscura.keyBindings).
 const PAGE_KEYS = [['h', 'hide / show the controls'], ['o', 'open a scene file']];
 const POINTER_HELP = [['left drag', 'orbit'], ['right drag, shift + drag', 'pan'], ['wheel', 'zoom'],

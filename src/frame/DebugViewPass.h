@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "frame/EffectEntry.h"
+#include "frame/FrameContext.h"
 
 namespace obscura {
 
@@ -20,9 +21,11 @@ class DebugViewPass {
 
  private:
   struct Variant {
-    explicit Variant(gl::Program built) : program(std::move(built)), source(program.uniform("u_source")) {}
+    Variant(gl::Program built, ViewDecoding decoding);
     gl::Program program;
     GLint source;
+    ReconstructionUniforms reconstruction;  // the normals from depth only
+    GLint sourceSize = -1;
   };
   const Variant& variant(ViewDecoding decoding);
 

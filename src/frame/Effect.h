@@ -59,6 +59,8 @@ enum class ViewDecoding {
   Count,     // R holds a count / 255: grey 32/255 per count, white from 8 (the lighting's shading count)
   Velocity,  // encoding/VelocityPacking.h decoded: RG = 0.5 + 64 v (v in uv units: white from 1/128 of the screen a
              // frame; grey 0.5 still), B = 0.5
+  NormalsFromDepth,  // the normal reconstructed from the G-buffer's depth (lib/normal_from_depth.glsl), as Normals;
+                     // where it falls back to the stored normal, black
 };
 
 struct TargetView {

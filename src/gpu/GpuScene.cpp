@@ -367,7 +367,7 @@ void GpuScene::draw(const glm::mat4& view, const ProgramChoice& choose, const Dr
   glActiveTexture(GL_TEXTURE0);
   for (const InstanceGpu* instance : drawOrder(view, options)) {
     const MaterialGpu& material = materials_[static_cast<size_t>(instance->material)];
-    if (material.doubleSided) glDisable(GL_CULL_FACE);
+    if (material.doubleSided || options.bothFaces) glDisable(GL_CULL_FACE);
     else glEnable(GL_CULL_FACE);
     drawInstance(*instance, view, state);
   }

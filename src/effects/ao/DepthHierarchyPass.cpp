@@ -36,13 +36,16 @@ std::vector<std::uint8_t> readRegion(GLuint framebuffer, int x, int y, int width
 
 }  // namespace
 
-std::vector<ProgramSpec> DepthHierarchyPass::programSpecs() {
-  return {ProgramSpec{"depth-hierarchy",
-                      "lib/fullscreen.vert",
-                      "ao/depth_hierarchy.frag",
-                      {{"MAX_MIP_LEVEL", std::to_string(SaoKernel::kMaxMipLevel)}},
-                      {}}};
+ProgramSpec DepthHierarchyPass::programSpec(int layers) {
+  return ProgramSpec{layers == 2 ? "depth-hierarchy[layers=2]" : "depth-hierarchy",
+                     "lib/fullscreen.vert",
+                     "ao/depth_hierarchy.frag",
+                     {{"MAX_MIP_LEVEL", std::to_string(SaoKernel::kMaxMipLevel)},
+                      {"AO_LAYERS", std::to_string(layers)}},
+                     {}};
 }
+
+std::vector<ProgramSpec> DepthHierarchyPass::programSpecs() { return {programSpec(1), programSpec(2)}; }
 
 DepthHierarchyPass::Storage DepthHierarchyPass::storageFor(const gl::GlCaps& caps, std::optional<Storage> forced) {
   if (forced) return *forced == Storage::MipChain && !(caps.shaderTextureLod && caps.fboRenderMipmap)
@@ -60,16 +63,20 @@ const char* DepthHierarchyPass::storageName(Storage storage) {
   return "?";
 }
 
+DepthHierarchyPass::LevelProgram::LevelProgram(gl::Program built)
+    : program(std::move(built)),
+      gbuffer(program.uniform("u_gbuffer")),
+      gbufferSize(program.uniform("u_gbufferSize")),
+      level(program.uniform("u_level")),
+      secondLayer(program.optionalUniform("u_secondLayer")) {}
+
 DepthHierarchyPass::DepthHierarchyPass(const FullscreenTriangle& triangle, const gl::GlCaps& caps, Storage storage,
-                                       gl::Program program)
+                                       const EffectResources& resources)
     : triangle_(triangle),
       caps_(caps),
       requested_(storage),
       active_(storage),
-      program_(std::move(program)),
-      gbuffer_(program_.uniform("u_gbuffer")),
-      gbufferSize_(program_.uniform("u_gbufferSize")),
-      level_(program_.uniform("u_level")) {}
+      programs_{LevelProgram(resources.build(programSpec(1))), LevelProgram(resources.build(programSpec(2)))} {}
 
 DepthHierarchyPass::SamplingUniforms::SamplingUniforms(const gl::Program& sao, Storage storage) {
   switch (storage) {
@@ -152,11 +159,16 @@ void DepthHierarchyPass::resize(int width, int height) {
   glBindFramebuffer(GL_FRAMEBUFFER, 0);
 }
 
-void DepthHierarchyPass::render(const gl::Texture2D& gbuffer) {
-  program_.use();
+void DepthHierarchyPass::render(const gl::Texture2D& gbuffer, const gl::Texture2D* secondLayer) {
+  const LevelProgram& p = programs_[secondLayer ? 1 : 0];
+  p.program.use();
   gbuffer.bind(0);
-  gl::Program::set(gbuffer_, 0);
-  gl::Program::set(gbufferSize_, glm::vec2(gbuffer.width(), gbuffer.height()));
+  gl::Program::set(p.gbuffer, 0);
+  if (secondLayer) {
+    secondLayer->bind(1);
+    gl::Program::set(p.secondLayer, 1);
+  }
+  gl::Program::set(p.gbufferSize, glm::vec2(gbuffer.width(), gbuffer.height()));
   // The atlas also holds level 0 (a copy of the G-buffer's depth key), so every tap reads the one texture.
   const int firstLevel = active_ == Storage::Atlas ? 0 : 1;
   if (active_ == Storage::Atlas) glBindFramebuffer(GL_FRAMEBUFFER, atlas_.framebuffer());
@@ -175,7 +187,7 @@ void DepthHierarchyPass::render(const gl::Texture2D& gbuffer) {
         break;
       }
     }
-    gl::Program::set(level_, static_cast<float>(level));
+    gl::Program::set(p.level, static_cast<float>(level));
     triangle_.draw();
   }
   gl::restoreBaselineState();

@@ -16,7 +16,10 @@ EffectInfo GBufferEffect::info() {
           {{"gbuffer",
             "RG: octahedral view-space normal (254 steps); BA: 16-bit linear depth, high byte in B (65535: background)",
             GL_NEAREST,
-            {{"normals", ViewDecoding::Normals}, {"depth", ViewDecoding::Depth}, {"mask", ViewDecoding::Mask}}},
+            {{"normals", ViewDecoding::Normals},
+             {"normals-from-depth", ViewDecoding::NormalsFromDepth},
+             {"depth", ViewDecoding::Depth},
+             {"mask", ViewDecoding::Mask}}},
            {"base-color",
             "RGB: the material's base colour (factor x texture), sRGB-encoded; A: 1. Written beside the G-buffer where "
             "there are several render targets (the deferred lighting reads it); background undefined",
