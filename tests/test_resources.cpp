@@ -119,6 +119,7 @@ TEST(Resources, AGlErrorRaisedInAPassNamesThatPass) {
     if (pass.rfind("dof-", 0) == 0) frame.set("dof", "on");
     if (pass == "fog" || pass == "bloom") frame.set(pass, "on");
     if (pass.rfind("edges", 0) == 0) frame.set("edges", "on");
+    if (pass == "peel") frame.set("ao.layers", "2");  // the AO's second depth layer
     // The upscale runs below render scale 1, as its own pass where FXAA is off.
     if (pass == "upscale") {
       frame.set("resolution.scale", "0.5");

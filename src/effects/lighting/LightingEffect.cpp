@@ -171,6 +171,7 @@ glm::mat3 LightingEffect::environmentRotation(const LightingSettings& settings) 
 
 int LightingEffect::punctualLightsPerDraw(int maxFragmentUniformVectors, bool layered) {
   const int base = kForwardLightingVectorsWithoutLights + (layered ? kMaterialLayerVectors : 0);
+  if (maxFragmentUniformVectors < base) return -1;
   return std::clamp((maxFragmentUniformVectors - base) / kVectorsPerPunctualLight, 0, kMaxPunctualLights);
 }
 
@@ -253,8 +254,8 @@ ProgramSpec LightingEffect::spec(const Form& shown, MaterialKind kind, VertexKin
 
 // Every form with the atlas (any GLES 2 context), and the shading forms again with the mip chain; the shading forms
 // in each tier, the medium and high ones with and without the filtered levels.
-std::vector<ProgramSpec> LightingEffect::programSpecs(int lightsPerDraw, int layeredLightsPerDraw) {
-  if (layeredLightsPerDraw < 0) layeredLightsPerDraw = lightsPerDraw;
+std::vector<ProgramSpec> LightingEffect::programSpecs(int lightsPerDraw, std::optional<int> layeredLights) {
+  const int layeredLightsPerDraw = layeredLights.value_or(lightsPerDraw);
   std::vector<ProgramSpec> specs;
   struct Shading {
     LightingQuality quality;
@@ -285,6 +286,7 @@ std::vector<ProgramSpec> LightingEffect::programSpecs(int lightsPerDraw, int lay
                                         (toneMap == 0 && (shading.quality != LightingQuality::Medium ||
                                                           shading.filteredFrom != kEnvironmentLevels))))
                   continue;
+                if (kind.layered && layeredLightsPerDraw < 0) continue;
                 const Form form{deferred, counting, toneMap, false, shading.quality, shading.filteredFrom, overDepth};
                 if (readKind(form, kind) == kind)
                   specs.push_back(spec(form, kind, {}, layout, kind.layered ? layeredLightsPerDraw : lightsPerDraw));
@@ -325,7 +327,10 @@ LightingEffect::Variant::Variant(gl::Program built, bool geometryStage)
 const LightingEffect::Variant& LightingEffect::variant(const Form& asked, MaterialKind kind, VertexKind vertex) {
   const Form form = programForm(asked);
   const bool fullscreen = form.deferred || form.background;
-  const auto key = std::make_tuple(form, readKind(form, kind), fullscreen ? VertexKind{} : vertex.forCurrentFrame());
+  MaterialKind read = readKind(form, kind);
+  // A context whose fragment uniform vectors do not hold the layers draws the core material (kMaterialLayerVectors).
+  read.layered = read.layered && layeredLightsPerDraw_ >= 0;
+  const auto key = std::make_tuple(form, read, fullscreen ? VertexKind{} : vertex.forCurrentFrame());
   auto it = variants_.find(key);
   if (it == variants_.end()) {
     const int lights = std::get<1>(key).layered ? layeredLightsPerDraw_ : lightsPerDraw_;

@@ -37,6 +37,7 @@
 // "shading-count" shows 1 as grey 32/255. The tests read it to hold the once-per-pixel promise.
 #include <map>
 #include <memory>
+#include <optional>
 #include <string>
 #include <tuple>
 #include <vector>
@@ -126,8 +127,9 @@ inline constexpr int kMaxPunctualLights = 4;
 // and holds these figures.
 inline constexpr int kForwardLightingVectorsWithoutLights = 15;
 // What the material layers (KHR_materials_specular, _ior, _clearcoat: MaterialKind::layered) add to it: their
-// programs take (maxFragmentUniformVectors - 16) / 3 lights.
-inline constexpr int kMaterialLayerVectors = 1;
+// programs take (maxFragmentUniformVectors - 17) / 3 lights. At GLES 2's minimum of 16 vectors their heaviest form
+// (alpha mask, tone curve inline) does not fit: such a context draws layered materials as the core material.
+inline constexpr int kMaterialLayerVectors = 2;
 inline constexpr int kVectorsPerPunctualLight = 3;
 
 // The sun of a frame: its world direction (towards it, unit) and illuminance, from the settings or, with lighting.sun
@@ -157,12 +159,13 @@ class LightingEffect : public Effect {
   using Settings = LightingSettings;
   static constexpr bool kHasSwitch = false;
   static EffectInfo info();
-  // Every variant, the forward ones with lightsPerDraw punctual lights (the layered ones with layeredLightsPerDraw;
-  // -1: as many).
-  static std::vector<ProgramSpec> programSpecs(int lightsPerDraw = kMaxPunctualLights, int layeredLightsPerDraw = -1);
+  // Every variant, the forward ones with lightsPerDraw punctual lights (the layered ones with layeredLightsPerDraw,
+  // by default as many; none where it is negative: their programs do not fit, punctualLightsPerDraw).
+  static std::vector<ProgramSpec> programSpecs(int lightsPerDraw = kMaxPunctualLights,
+                                               std::optional<int> layeredLightsPerDraw = std::nullopt);
   // The punctual lights per draw a context of this many fragment uniform vectors holds: 4 from 27 vectors, 0 at
   // GLES 2's minimum of 16 (the sun and the environment still light the scene); for the layered materials' programs
-  // 4 from 28.
+  // 4 from 29, and -1 below 17 (they do not fit).
   static int punctualLightsPerDraw(int maxFragmentUniformVectors, bool layered = false);
   // World directions to the environment's: for the sky, the turn about +y that puts its sun at lighting.sun-azimuth;
   // else the identity.
