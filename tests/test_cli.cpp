@@ -90,6 +90,8 @@ TEST(Cli, BadInputExitsWithStatusTwoAndOneLine) {
 
 TEST(Cli, RendersEveryViewOfTheBuiltinSceneOnBothBackends) {
   for (const char* backend : {"osmesa", "egl"}) {
+    // The sanitized tree tests OSMesa only: Mesa's EGL driver leaks in a module LSan cannot name (docs/robustness.md).
+    if (!obscura::test::backendTested(backend)) continue;
     for (const std::string& view : obscura::frameViewNames()) {
       const std::string out = obscura::test::tempPath(std::string("view-") + backend + "-" + view + ".png");
       const obscura::test::ProcessResult r =

@@ -166,8 +166,15 @@ TEST(WebApi, ParametersViewsAndTheStateTextRoundTrip) {
 TEST(WebApi, EveryBoundKeyActsAndAnUnboundOneIsNotAnError) {
   createModule();
   double ms = 0.0;
-  for (const Json& binding : Json::parse(obscura_describe())["keys"]) {
+  // A range over a temporary's member would read freed memory (the sanitizer leg found it): the description is kept.
+  const Json description = Json::parse(obscura_describe());
+  for (const Json& binding : description["keys"]) {
     const std::string key = binding["key"];
+    if (key == "v") {  // the next scene camera: the built-in scene has none, which the key says
+      EXPECT_EQ(obscura_handle_key("v"), 0);
+      EXPECT_NE(std::string(obscura_error()).find("the scene has no cameras"), std::string::npos) << obscura_error();
+      continue;
+    }
     EXPECT_EQ(obscura_handle_key(key.c_str()), 1) << key << ": " << obscura_error();
     frameAt(ms += 16.0);
   }
