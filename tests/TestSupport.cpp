@@ -226,6 +226,13 @@ std::string writeTempFile(const std::string& name, const std::string& text) {
 }
 
 std::string sourceDir() { return OBSCURA_SOURCE_DIR; }
+
+bool backendTested(const std::string& backend) {
+  const char* list = std::getenv("OBSCURA_TEST_BACKENDS");
+  if (!list || !*list) return true;
+  const std::string padded = "," + std::string(list) + ",";
+  return padded.find("," + backend + ",") != std::string::npos;
+}
 std::string assimpModels() { return "/usr/share/assimp/models/glTF2"; }
 
 }  // namespace obscura::test

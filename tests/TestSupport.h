@@ -88,6 +88,9 @@ std::string tempPath(const std::string& name);
 std::string writeTempFile(const std::string& name, const std::string& text);
 
 std::string sourceDir();  // the repository root (for assets and goldens)
+// Whether this tree tests `backend` ("osmesa", "egl"): the comma-separated OBSCURA_TEST_BACKENDS ctest sets from the
+// CMake option of that name; every backend where it is unset.
+bool backendTested(const std::string& backend);
 std::string assimpModels();  // /usr/share/assimp/models/glTF2
 
 }  // namespace obscura::test

@@ -41,7 +41,7 @@ TEST(Cli, BadInputExitsWithStatusTwoAndOneLine) {
       {"--samples 0", "--samples: 0 is out of range"},
       {"--size 10x", "--size: expected WxH"},
       {"--size 0x10", "--size: 0x10 is out of range"},
-      {"--view sideways", "--view: expected final, split, normals, depth, mask, "},
+      {"--view sideways", "--view: expected final, split, normals, normals-from-depth, depth, mask, "},
       {"--tonemap.operator filmic", "--tonemap.operator: expected linear, reinhard, aces, neutral or agx"},
       {"--no-radius", "unknown option '--no-radius'"},
       {"--bench many", "--bench: expected a whole number"},
@@ -90,6 +90,8 @@ TEST(Cli, BadInputExitsWithStatusTwoAndOneLine) {
 
 TEST(Cli, RendersEveryViewOfTheBuiltinSceneOnBothBackends) {
   for (const char* backend : {"osmesa", "egl"}) {
+    // The sanitized tree tests OSMesa only: Mesa's EGL driver leaks in a module LSan cannot name (docs/robustness.md).
+    if (!obscura::test::backendTested(backend)) continue;
     for (const std::string& view : obscura::frameViewNames()) {
       const std::string out = obscura::test::tempPath(std::string("view-") + backend + "-" + view + ".png");
       const obscura::test::ProcessResult r =
