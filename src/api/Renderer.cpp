@@ -8,6 +8,7 @@
 #include "base/Text.h"
 #include "encoding/LinearDepthPacking.h"
 #include "encoding/NormalEncoding.h"
+#include "frame/FullscreenPass.h"
 #include "frame/FullscreenTriangle.h"
 #include "gl/EmbeddedShaders.h"
 #include "gl/GlApi.h"
@@ -171,8 +172,7 @@ struct Renderer::Impl {
 
   gl::RenderTarget callerGBuffer;  // beginGBuffer's
   gl::RenderTarget aoResult;       // ambientOcclusion's
-  gl::Program composite;
-  GLint compositeAo = -1;
+  gl::Program composite;  // strict: its one uniform, u_ao, is set by name
   FullscreenTriangle triangle;
 
   std::uint64_t frames = 0;
@@ -362,19 +362,18 @@ void Renderer::compositeAmbientOcclusion(const Framebuffer& target) {
       throw Error("compositeAmbientOcclusion: the framebuffer is " + std::to_string(target.width) + "x" +
                   std::to_string(target.height) + ", the AO " + std::to_string(impl.aoResult.width()) + "x" +
                   std::to_string(impl.aoResult.height()));
-    if (!impl.composite) {
-      impl.composite = gl::Program("obscura-composite-ao", kCompositeVertex, kCompositeFragment, false);
-      impl.compositeAo = impl.composite.uniform("u_ao");
-    }
+    if (!impl.composite)
+      impl.composite = gl::Program("obscura-composite-ao", kCompositeVertex, kCompositeFragment, /*strict=*/true);
     if (target.framebuffer != kBoundFramebuffer) glBindFramebuffer(GL_FRAMEBUFFER, target.framebuffer);
     glViewport(0, 0, target.width, target.height);
     glEnable(GL_BLEND);
     glBlendFuncSeparate(GL_ZERO, GL_SRC_COLOR, GL_ZERO, GL_ONE);
-    impl.composite.use();
-    impl.aoResult.color().bind(0);
-    gl::Program::set(impl.compositeAo, 0);
-    impl.triangle.draw();
-    gl::restoreBaselineState();
+    {
+      FullscreenDraw draw(impl.composite, impl.triangle);
+      draw.texture("u_ao", impl.aoResult.color());
+      draw.draw();
+    }
+    gl::restoreBaselineState();  // the blending and the viewport
   });
 }
 

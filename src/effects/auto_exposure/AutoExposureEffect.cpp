@@ -4,6 +4,7 @@
 #include <cmath>
 #include <string>
 
+#include "frame/FullscreenPass.h"
 #include "frame/PassContext.h"
 #include "gl/PipelineState.h"
 
@@ -111,50 +112,6 @@ bool AutoExposureEffect::histogramAvailable(const gl::GlCaps& caps) { return cap
 
 AutoExposureEffect::AutoExposureEffect(const EffectResources& resources) : resources_(resources) {}
 
-AutoExposureEffect::Programs& AutoExposureEffect::programs() {
-  if (programs_) return *programs_;
-  auto p = std::make_unique<Programs>();
-  for (Metering metering : {Metering::Average, Metering::Centre}) {
-    Meter& m = metering == Metering::Average ? p->meterAverage : p->meterCentre;
-    m.program = resources_.build(spec(kStageMeter, metering));
-    m.color = m.program.uniform("u_color");
-    m.frameSize = m.program.uniform("u_frameSize");
-    if (metering == Metering::Centre) m.centreScale = m.program.uniform("u_centreScale");
-  }
-  // The bins' and the percentile adaptation's sources have a fixed size, known to the shader.
-  auto grid = [&](Grid& g, int stage, Metering metering, const char* source) {
-    g.program = resources_.build(spec(stage, metering));
-    g.source = g.program.uniform(source);
-    if (stage != kStageBins && metering != Metering::Percentile) g.sourceSize = g.program.uniform("u_sourceSize");
-  };
-  grid(p->reduce, kStageReduce, Metering::Average, "u_source");
-  grid(p->bins, kStageBins, Metering::Average, "u_histogram");
-  for (bool percentile : {false, true}) {
-    Adapt& a = percentile ? p->adaptPercentile : p->adaptMean;
-    grid(a.grid, kStageAdapt, percentile ? Metering::Percentile : Metering::Average, "u_source");
-    if (percentile) a.percentiles = a.grid.program.uniform("u_percentiles");
-    a.history = a.grid.program.uniform("u_history");
-    a.hasHistory = a.grid.program.uniform("u_hasHistory");
-    a.fraction = a.grid.program.uniform("u_fraction");
-    a.exposure = a.grid.program.uniform("u_exposure");
-  }
-  if (histogramAvailable(resources_.caps)) {
-    p->scatter = resources_.build(spec(4, Metering::Percentile));
-    p->scatterMeter = p->scatter.uniform("u_meter");
-    p->scatterMeterSize = p->scatter.uniform("u_meterSize");
-    p->scatterStride = p->scatter.uniform("u_stride");
-    std::vector<float> indices(em::kHistogramMaxSamples);
-    for (size_t i = 0; i < indices.size(); ++i) indices[i] = static_cast<float>(i);
-    p->sampleIndices = gl::BufferHandle::create();
-    glBindBuffer(GL_ARRAY_BUFFER, p->sampleIndices.id());
-    glBufferData(GL_ARRAY_BUFFER, static_cast<GLsizeiptr>(indices.size() * sizeof(float)), indices.data(),
-                 GL_STATIC_DRAW);
-    glBindBuffer(GL_ARRAY_BUFFER, 0);
-  }
-  programs_ = std::move(p);
-  return *programs_;
-}
-
 void AutoExposureEffect::plan(FramePlanner& planner) {
   const AutoExposureSettings settings = planner.settings().of<AutoExposureSettings>();
   if (!settings.enabled) return;
@@ -163,12 +120,14 @@ void AutoExposureEffect::plan(FramePlanner& planner) {
       settings.metering == Metering::Percentile && histogramAvailable(resources_.caps);
   const Metering metering = settings.metering == Metering::Centre ? Metering::Centre : Metering::Average;
 
-  PassDecl meterPass;
-  meterPass.name = "exposure-meter";
-  meterPass.reads = {"scene-color"};
-  meterPass.writes = {{kLevelTargets[0], TargetSize::tiles(kLevelTile[0]), Write::Depth::None, ""}};
-  meterPass.run = [this, metering](PassContext& context) { meter(context, metering); };
-  planner.add(std::move(meterPass));
+  planner.add(fullscreenPass("exposure-meter", spec(kStageMeter, metering), {{"u_color", "scene-color"}},
+                             {kLevelTargets[0], TargetSize::tiles(kLevelTile[0])},
+                             [metering](FullscreenDraw& draw, const PassContext& context) {
+                               const glm::vec2 frame(context.size("scene-color"));
+                               draw.set("u_frameSize", frame);
+                               if (metering == Metering::Centre)
+                                 draw.set("u_centreScale", glm::vec2(2.0f * frame.x / frame.y, 2.0f));
+                             }));
 
   std::string last = kLevelTargets[0];
   if (percentile) {
@@ -179,25 +138,22 @@ void AutoExposureEffect::plan(FramePlanner& planner) {
                        Write::Depth::None, ""}};
     scatter.run = [this](PassContext& context) { histogram(context); };
     planner.add(std::move(scatter));
-    PassDecl sum;
-    sum.name = "exposure-bins";
-    sum.reads = {"exposure-histogram"};
-    sum.writes = {{"exposure-bins", TargetSize::fixed(em::kHistogramBins, 1), Write::Depth::None, ""}};
-    sum.run = [this](PassContext& context) { bins(context); };
-    planner.add(std::move(sum));
+    // The bins' source has a fixed size, known to the shader.
+    planner.add(fullscreenPass("exposure-bins", spec(kStageBins, Metering::Average),
+                               {{"u_histogram", "exposure-histogram"}},
+                               {"exposure-bins", TargetSize::fixed(em::kHistogramBins, 1)}));
     last = "exposure-bins";
   } else {
     const glm::ivec2 frame(planner.frame().camera.width, planner.frame().camera.height);
     const int reductions = em::reductionCount(frame);
     if (reductions > 2) throw PipelineError("auto exposure: a frame this large needs more than two reductions");
     for (int k = 1; k <= reductions; ++k) {
-      PassDecl pass;
-      pass.name = kReducePasses[k - 1];
-      pass.reads = {kLevelTargets[k - 1]};
-      pass.writes = {{kLevelTargets[k], TargetSize::tiles(kLevelTile[k]), Write::Depth::None, ""}};
-      pass.run = [this, from = std::string(kLevelTargets[k - 1]), to = std::string(kLevelTargets[k])](
-                     PassContext& context) { reduce(context, from, to); };
-      planner.add(std::move(pass));
+      const std::string from = kLevelTargets[k - 1];
+      planner.add(fullscreenPass(kReducePasses[k - 1], spec(kStageReduce, Metering::Average), {{"u_source", from}},
+                                 {kLevelTargets[k], TargetSize::tiles(kLevelTile[k])},
+                                 [from](FullscreenDraw& draw, const PassContext& context) {
+                                   draw.set("u_sourceSize", glm::vec2(context.size(from)));
+                                 }));
     }
     last = kLevelTargets[reductions];
   }
@@ -213,93 +169,67 @@ void AutoExposureEffect::plan(FramePlanner& planner) {
   planner.add(std::move(adaptPass));
 }
 
-void AutoExposureEffect::meter(PassContext& context, Metering metering) {
-  const Meter& m = metering == Metering::Centre ? programs().meterCentre : programs().meterAverage;
-  const glm::vec2 frame(context.size("scene-color"));
-  context.bindForWriting(kLevelTargets[0]);
-  m.program.use();
-  context.texture("scene-color").bind(0);
-  gl::Program::set(m.color, 0);
-  gl::Program::set(m.frameSize, frame);
-  if (metering == Metering::Centre) gl::Program::set(m.centreScale, glm::vec2(2.0f * frame.x / frame.y, 2.0f));
-  resources_.triangle.draw();
-  gl::restoreBaselineState();
-}
-
-void AutoExposureEffect::reduce(PassContext& context, const std::string& from, const std::string& to) {
-  const Grid& g = programs().reduce;
-  context.bindForWriting(to);
-  g.program.use();
-  context.texture(from).bind(0);
-  gl::Program::set(g.source, 0);
-  gl::Program::set(g.sourceSize, glm::vec2(context.size(from)));
-  resources_.triangle.draw();
-  gl::restoreBaselineState();
-}
-
-void AutoExposureEffect::histogram(PassContext& context) {
-  Programs& p = programs();
+void AutoExposureEffect::histogram(const PassContext& context) {
   const glm::ivec2 grid = context.size(kLevelTargets[0]);
   const int texels = grid.x * grid.y;
   const int samples = std::min(texels, em::kHistogramMaxSamples);
+  if (!sampleIndices_) {  // 0 .. kHistogramMaxSamples - 1, made on first use
+    std::vector<float> indices(em::kHistogramMaxSamples);
+    for (size_t i = 0; i < indices.size(); ++i) indices[i] = static_cast<float>(i);
+    sampleIndices_ = gl::BufferHandle::create();
+    glBindBuffer(GL_ARRAY_BUFFER, sampleIndices_.id());
+    glBufferData(GL_ARRAY_BUFFER, static_cast<GLsizeiptr>(indices.size() * sizeof(float)), indices.data(),
+                 GL_STATIC_DRAW);
+    glBindBuffer(GL_ARRAY_BUFFER, 0);
+  }
   context.bindForWriting("exposure-histogram");
   glClearColor(0.0f, 0.0f, 0.0f, 0.0f);
   glClear(GL_COLOR_BUFFER_BIT);
   glEnable(GL_BLEND);
   glBlendFunc(GL_ONE, GL_ONE);
-  p.scatter.use();
-  context.texture(kLevelTargets[0]).bind(0);
-  gl::Program::set(p.scatterMeter, 0);
-  gl::Program::set(p.scatterMeterSize, glm::vec2(grid));
-  gl::Program::set(p.scatterStride, static_cast<float>(texels) / static_cast<float>(samples));
-  glBindBuffer(GL_ARRAY_BUFFER, p.sampleIndices.id());
-  glEnableVertexAttribArray(gl::kAttribPosition);
-  glVertexAttribPointer(gl::kAttribPosition, 1, GL_FLOAT, GL_FALSE, 0, nullptr);
-  glDrawArrays(GL_POINTS, 0, samples);
-  glDisableVertexAttribArray(gl::kAttribPosition);
-  glBindBuffer(GL_ARRAY_BUFFER, 0);
-  gl::restoreBaselineState();
+  {
+    // The program, its texture and uniforms as a full-screen draw's; the draw is the samples' points.
+    FullscreenDraw scatter = context.draw(spec(kStageCount, Metering::Percentile));
+    scatter.read("u_meter", kLevelTargets[0]);
+    scatter.set("u_meterSize", glm::vec2(grid));
+    scatter.set("u_stride", static_cast<float>(texels) / static_cast<float>(samples));
+    glBindBuffer(GL_ARRAY_BUFFER, sampleIndices_.id());
+    glEnableVertexAttribArray(gl::kAttribPosition);
+    glVertexAttribPointer(gl::kAttribPosition, 1, GL_FLOAT, GL_FALSE, 0, nullptr);
+    glDrawArrays(GL_POINTS, 0, samples);
+    glDisableVertexAttribArray(gl::kAttribPosition);
+    glBindBuffer(GL_ARRAY_BUFFER, 0);
+  }
+  gl::restoreBaselineState();  // the blending and the clear colour
 }
 
-void AutoExposureEffect::bins(PassContext& context) {
-  const Grid& g = programs().bins;
-  context.bindForWriting("exposure-bins");
-  g.program.use();
-  context.texture("exposure-histogram").bind(0);
-  gl::Program::set(g.source, 0);
-  resources_.triangle.draw();
-  gl::restoreBaselineState();
-}
-
-void AutoExposureEffect::adapt(PassContext& context, const AutoExposureSettings& settings, bool percentile,
+void AutoExposureEffect::adapt(const PassContext& context, const AutoExposureSettings& settings, bool percentile,
                                const std::string& from) {
-  const Adapt& a = percentile ? programs().adaptPercentile : programs().adaptMean;
   RenderTargetPool::History& history = context.history("auto-exposure", TargetSize::fixed(1, 1), GL_NEAREST);
   // One step of 1 - e^(-speed dt) towards the metered value (ExposureMetering::adapt).
   const float dt = static_cast<float>(context.frame().frameInterval);
   const glm::vec2 fraction(1.0f - std::exp(-settings.speedUp * dt), 1.0f - std::exp(-settings.speedDown * dt));
   const float low = std::min(settings.percentileLow, settings.percentileHigh) / 100.0f;
   const float high = std::max(settings.percentileLow, settings.percentileHigh) / 100.0f;
+  const ProgramSpec program = spec(kStageAdapt, percentile ? Metering::Percentile : Metering::Average);
   auto draw = [&] {
-    a.grid.program.use();
-    context.texture(from).bind(0);
-    history.previous().color().bind(1);
-    gl::Program::set(a.grid.source, 0);
-    if (!percentile) gl::Program::set(a.grid.sourceSize, glm::vec2(context.size(from)));
-    gl::Program::set(a.history, 1);
-    gl::Program::set(a.hasHistory, history.valid() ? 1.0f : 0.0f);
-    gl::Program::set(a.fraction, fraction);
-    if (percentile) gl::Program::set(a.percentiles, glm::vec2(low, high));
-    gl::Program::set(a.exposure, glm::vec3(std::min(settings.minEv, settings.maxEv),
-                                           std::max(settings.minEv, settings.maxEv), settings.compensation));
-    resources_.triangle.draw();
+    FullscreenDraw d = context.draw(program);
+    d.read("u_source", from);
+    d.texture("u_history", history.previous().color());
+    // The percentile adaptation's source (the bins) has a fixed size, known to the shader.
+    if (!percentile) d.set("u_sourceSize", glm::vec2(context.size(from)));
+    d.set("u_hasHistory", history.valid() ? 1.0f : 0.0f);
+    d.set("u_fraction", fraction);
+    if (percentile) d.set("u_percentiles", glm::vec2(low, high));
+    d.set("u_exposure", glm::vec3(std::min(settings.minEv, settings.maxEv), std::max(settings.minEv, settings.maxEv),
+                                  settings.compensation));
+    d.draw();
   };
   // The same texel twice: into the history for the next frame, and into the frame's `exposure` for the tone mapping.
   history.current().bindForDrawing();
   draw();
   context.bindForWriting("exposure");
   draw();
-  gl::restoreBaselineState();
 }
 
 }  // namespace obscura

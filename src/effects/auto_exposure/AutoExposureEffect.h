@@ -57,36 +57,14 @@ class AutoExposureEffect : public Effect {
   static bool histogramAvailable(const gl::GlCaps& caps);
 
  private:
-  struct Meter {
-    gl::Program program;
-    GLint color = -1, frameSize = -1, centreScale = -1;
-  };
-  struct Grid {  // the reduce, bins and adapt stages read one texture of this size
-    gl::Program program;
-    GLint source = -1, sourceSize = -1;
-  };
-  struct Adapt {
-    Grid grid;
-    GLint history = -1, hasHistory = -1, fraction = -1, percentiles = -1, exposure = -1;
-  };
-  // Built on first use: a frame without auto exposure builds none of them.
-  struct Programs {
-    Meter meterAverage, meterCentre;
-    Grid reduce, bins;
-    Adapt adaptMean, adaptPercentile;
-    gl::Program scatter;  // empty without a vertex texture unit
-    GLint scatterMeter = -1, scatterMeterSize = -1, scatterStride = -1;
-    gl::BufferHandle sampleIndices;  // 0 .. kHistogramMaxSamples - 1
-  };
-  Programs& programs();
-  void meter(PassContext& context, ExposureMetering::Metering metering);
-  void reduce(PassContext& context, const std::string& from, const std::string& to);
-  void histogram(PassContext& context);
-  void bins(PassContext& context);
-  void adapt(PassContext& context, const AutoExposureSettings& settings, bool percentile, const std::string& from);
+  // The percentile metering's scatter of the meter's texels into the histogram's bins (additive points).
+  void histogram(const PassContext& context);
+  // The adapted exposure, into the history and into the frame's `exposure` target.
+  void adapt(const PassContext& context, const AutoExposureSettings& settings, bool percentile,
+             const std::string& from);
 
   const EffectResources& resources_;
-  std::unique_ptr<Programs> programs_;
+  gl::BufferHandle sampleIndices_;  // 0 .. kHistogramMaxSamples - 1: the histogram's points, made on first use
 };
 
 }  // namespace obscura

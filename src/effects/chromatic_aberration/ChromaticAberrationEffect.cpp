@@ -1,7 +1,7 @@
 #include "effects/chromatic_aberration/ChromaticAberrationEffect.h"
 
+#include "frame/FullscreenPass.h"
 #include "frame/PassContext.h"
-#include "gl/PipelineState.h"
 
 namespace obscura {
 namespace {
@@ -40,39 +40,15 @@ EffectInfo ChromaticAberrationEffect::info() {
 
 std::vector<ProgramSpec> ChromaticAberrationEffect::programSpecs() { return {spec()}; }
 
-const ChromaticAberrationEffect::Program& ChromaticAberrationEffect::program() {
-  if (!program_) {
-    program_ = std::make_unique<Program>();
-    program_->program = resources_.build(spec());
-    program_->color = program_->program.uniform("u_color");
-    program_->size = program_->program.uniform("u_size");
-    program_->shift = program_->program.uniform("u_shift");
-    program_->lumaInAlpha = program_->program.uniform("u_lumaInAlpha");
-  }
-  return *program_;
-}
-
 void ChromaticAberrationEffect::plan(FramePlanner& planner) {
-  const ChromaticAberrationSettings settings = planner.settings().of<ChromaticAberrationSettings>();
-  if (!settings.enabled) return;
-  PassDecl pass;
-  pass.name = "chromatic-aberration";
-  pass.reads = {"display-color"};
-  pass.writes = {{"display-color", TargetSize::full(), PassDecl::Write::Depth::None, ""}};
-  pass.run = [this](PassContext& context) {
-    const float intensity = context.settings().of<ChromaticAberrationSettings>().intensity;
-    const Program& p = program();
-    context.bindForWriting("display-color");
-    p.program.use();
-    context.texture("display-color").bind(0);
-    gl::Program::set(p.color, 0);
-    gl::Program::set(p.size, glm::vec2(context.size("display-color")));
-    gl::Program::set(p.shift, aberrationScales(intensity));
-    gl::Program::set(p.lumaInAlpha, context.writesOutput("display-color") ? 0.0f : 1.0f);
-    resources_.triangle.draw();
-    gl::restoreBaselineState();
-  };
-  planner.add(std::move(pass));
+  if (!planner.settings().of<ChromaticAberrationSettings>().enabled) return;
+  planner.add(fullscreenPass("chromatic-aberration", spec(), {{"u_color", "display-color"}}, {"display-color"},
+                             [](FullscreenDraw& draw, const PassContext& context) {
+                               const float intensity = context.settings().of<ChromaticAberrationSettings>().intensity;
+                               draw.set("u_size", glm::vec2(context.size("display-color")));
+                               draw.set("u_shift", aberrationScales(intensity));
+                               draw.set("u_lumaInAlpha", context.writesOutput("display-color") ? 0.0f : 1.0f);
+                             }));
 }
 
 }  // namespace obscura

@@ -8,7 +8,6 @@
 // dithering), it reads its neighbours, up to k x the half-diagonal away, and a fused program has no neighbours of its
 // input to read (the lighting computes its colour per pixel). It is the one effect of the camera's finish that adds a
 // full-screen pass, and only while it is on (docs/camera-finish.md).
-#include <map>
 #include <vector>
 
 #include <glm/vec2.hpp>
@@ -37,18 +36,8 @@ class ChromaticAberrationEffect : public Effect {
   static EffectInfo info();
   static std::vector<ProgramSpec> programSpecs();
 
-  explicit ChromaticAberrationEffect(const EffectResources& resources) : resources_(resources) {}
+  explicit ChromaticAberrationEffect(const EffectResources&) {}
   void plan(FramePlanner& planner) override;
-
- private:
-  struct Program {
-    gl::Program program;
-    GLint color = -1, size = -1, shift = -1, lumaInAlpha = -1;
-  };
-  const Program& program();
-
-  const EffectResources& resources_;
-  std::unique_ptr<Program> program_;
 };
 
 }  // namespace obscura

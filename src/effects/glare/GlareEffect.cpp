@@ -6,7 +6,7 @@
 #include <glm/trigonometric.hpp>
 
 #include "frame/PassContext.h"
-#include "gl/PipelineState.h"
+#include "frame/FullscreenPass.h"
 
 namespace obscura {
 namespace {
@@ -85,23 +85,6 @@ EffectInfo GlareEffect::info() {
 
 std::vector<ProgramSpec> GlareEffect::programSpecs() { return {spec(false), spec(true)}; }
 
-const GlareEffect::Variant& GlareEffect::variant(bool last) {
-  std::unique_ptr<Variant>& v = variants_[last ? 1 : 0];
-  if (!v) {
-    v = std::make_unique<Variant>();
-    v->program = resources_.build(spec(last));
-    v->source = v->program.uniform("u_source");
-    v->step = v->program.uniform("u_step");
-    v->weights = v->program.uniform("u_weights");
-    if (last) {
-      v->sum = v->program.uniform("u_sum");
-      v->intensity = v->program.uniform("u_intensity");
-      v->hasSum = v->program.uniform("u_hasSum");
-    }
-  }
-  return *v;
-}
-
 void GlareEffect::plan(FramePlanner& planner) {
   const GlareSettings settings = planner.settings().of<GlareSettings>();
   if (!settings.enabled) return;
@@ -115,12 +98,11 @@ void GlareEffect::plan(FramePlanner& planner) {
                                                                     Write::Depth::None, ""});
   pass.writes.push_back({"lens-light", TargetSize::quarter(), Write::Depth::None, ""});
   // This frame's settings (the plan is cached: they do not shape it).
-  pass.run = [this, flare](PassContext& context) { render(context, context.settings().of<GlareSettings>(), flare); };
+  pass.run = [flare](PassContext& context) { render(context, context.settings().of<GlareSettings>(), flare); };
   planner.add(std::move(pass));
 }
 
-void GlareEffect::render(PassContext& context, const GlareSettings& settings, bool flare) {
-  using gl::Program;
+void GlareEffect::render(const PassContext& context, const GlareSettings& settings, bool flare) {
   const glm::vec2 frame(context.camera().width, context.camera().height);
   const std::vector<glm::vec2> rays = glareRays(settings);
   const gl::Texture2D* sum = flare ? &context.texture("lens-light") : nullptr;
@@ -135,22 +117,18 @@ void GlareEffect::render(PassContext& context, const GlareSettings& settings, bo
       const bool last = n == kGlarePasses - 1;
       const bool lastRay = r + 1 == rays.size();
       const std::string target = !last ? kTemporaries[n == 0 ? x : y] : lastRay ? "lens-light" : kTemporaries[x];
-      const Variant& v = variant(last);
-      context.bindForWriting(target);
-      v.program.use();
-      source->bind(0);
-      Program::set(v.source, 0);
+      FullscreenDraw draw = context.draw(spec(last), target);
+      draw.texture("u_source", *source);
       // 4^n steps of 1/320 of the width along the ray, in uv.
       const float spacing = std::pow(4.0f, static_cast<float>(n)) / kGlareStepsPerWidth;
-      Program::set(v.step, spacing * glm::vec2(rays[r].x, rays[r].y * frame.x / frame.y));
-      Program::set(v.weights, glareWeights(n, settings.length));
+      draw.set("u_step", spacing * glm::vec2(rays[r].x, rays[r].y * frame.x / frame.y));
+      draw.set("u_weights", glareWeights(n, settings.length));
       if (last) {
-        Program::set(v.intensity, settings.intensity);
-        Program::set(v.hasSum, sum ? 1.0f : 0.0f);
-        if (sum) sum->bind(1);
-        Program::set(v.sum, 1);
+        draw.set("u_intensity", settings.intensity);
+        draw.set("u_hasSum", sum ? 1.0f : 0.0f);
+        if (sum) draw.texture("u_sum", *sum);
       }
-      resources_.triangle.draw();
+      draw.draw();
       if (!last) source = &context.writtenTexture(target);
     }
     if (r + 1 < rays.size()) {
@@ -158,7 +136,6 @@ void GlareEffect::render(PassContext& context, const GlareSettings& settings, bo
       sumTemporary = x;
     }
   }
-  gl::restoreBaselineState();
 }
 
 }  // namespace obscura

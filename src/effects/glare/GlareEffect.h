@@ -15,8 +15,6 @@
 // The last pass of each ray scales it by the intensity and adds what is gathered so far (the rays before, and the
 // lens flare's `lens-light`, if it ran); the last ray's is the frame's `lens-light`, which the tone mapping adds. Each
 // pass's filter sums to 1, so each streak carries `intensity` times the bright light.
-#include <array>
-#include <memory>
 #include <vector>
 
 #include <glm/vec2.hpp>
@@ -51,19 +49,12 @@ class GlareEffect : public Effect {
   static EffectInfo info();
   static std::vector<ProgramSpec> programSpecs();
 
-  explicit GlareEffect(const EffectResources& resources) : resources_(resources) {}
+  explicit GlareEffect(const EffectResources&) {}
   void plan(FramePlanner& planner) override;
 
  private:
-  struct Variant {
-    gl::Program program;
-    GLint source = -1, step = -1, weights = -1, sum = -1, intensity = -1, hasSum = -1;
-  };
-  const Variant& variant(bool last);
-  void render(PassContext& context, const GlareSettings& settings, bool flare);
-
-  const EffectResources& resources_;
-  std::unique_ptr<Variant> variants_[2];
+  // The streaks' draws (spec(false) for each ray's first passes, spec(true) for its last, which adds the sum).
+  static void render(const PassContext& context, const GlareSettings& settings, bool flare);
 };
 
 }  // namespace obscura

@@ -7,8 +7,8 @@
 #include <glm/geometric.hpp>
 
 #include "encoding/ToneMapping.h"
+#include "frame/FullscreenPass.h"
 #include "frame/PassContext.h"
-#include "gl/PipelineState.h"
 #include "scene/ImageIo.h"
 
 namespace obscura {
@@ -161,25 +161,6 @@ EffectInfo LensFlareEffect::info() {
 
 std::vector<ProgramSpec> LensFlareEffect::programSpecs() { return {spec(false), spec(true)}; }
 
-const LensFlareEffect::Variant& LensFlareEffect::variant(bool dirt) {
-  std::unique_ptr<Variant>& v = variants_[dirt ? 1 : 0];
-  if (!v) {
-    v = std::make_unique<Variant>();
-    v->program = resources_.build(spec(dirt));
-    const gl::Program& p = v->program;
-    v->bright = p.uniform("u_bright");
-    v->brightSize = p.uniform("u_brightSize");
-    v->ghosts = p.uniform("u_ghosts");
-    v->dispersal = p.uniform("u_dispersal");
-    v->haloWidth = p.uniform("u_haloWidth");
-    v->aspect = p.uniform("u_aspect");
-    v->distortion = p.uniform("u_distortion");
-    v->intensity = p.uniform("u_intensity");
-    if (dirt) v->dirt = p.uniform("u_dirt");
-  }
-  return *v;
-}
-
 const gl::Texture2D* LensFlareEffect::dirtTexture(const LensFlareSettings& settings) {
   if (settings.dirt == "none") return nullptr;
   const bool builtin = settings.dirt == "builtin";
@@ -203,33 +184,20 @@ void LensFlareEffect::plan(FramePlanner& planner) {
   const LensFlareSettings& planned = planner.settings().of<LensFlareSettings>();
   if (!planned.enabled) return;
   const bool withDirt = planned.dirt != "none";
-  PassDecl pass;
-  pass.name = "lens-flare";
-  pass.reads = {"bloom-bright"};
-  pass.writes = {{"lens-light", TargetSize::quarter(), PassDecl::Write::Depth::None, ""}};
-  pass.run = [this, withDirt](PassContext& context) {
-    const LensFlareSettings& settings = context.settings().of<LensFlareSettings>();
-    const Variant& v = variant(withDirt);
-    const glm::vec2 frame(context.camera().width, context.camera().height);
-    context.bindForWriting("lens-light");
-    v.program.use();
-    context.texture("bloom-bright").bind(0);
-    gl::Program::set(v.bright, 0);
-    gl::Program::set(v.brightSize, glm::vec2(context.size("bloom-bright")));
-    gl::Program::set(v.ghosts, static_cast<float>(settings.ghosts));
-    gl::Program::set(v.dispersal, settings.dispersal);
-    gl::Program::set(v.haloWidth, settings.haloWidth);
-    gl::Program::set(v.aspect, glm::vec2(frame.x / frame.y, 1.0f));
-    gl::Program::set(v.distortion, settings.distortion);
-    gl::Program::set(v.intensity, settings.intensity);
-    if (withDirt) {
-      dirt_.bind(1);
-      gl::Program::set(v.dirt, 1);
-    }
-    resources_.triangle.draw();
-    gl::restoreBaselineState();
-  };
-  planner.add(std::move(pass));
+  planner.add(fullscreenPass("lens-flare", spec(withDirt), {{"u_bright", "bloom-bright"}},
+                             {"lens-light", TargetSize::quarter()},
+                             [this, withDirt](FullscreenDraw& draw, const PassContext& context) {
+                               const LensFlareSettings& settings = context.settings().of<LensFlareSettings>();
+                               const glm::vec2 frame(context.camera().width, context.camera().height);
+                               draw.set("u_brightSize", glm::vec2(context.size("bloom-bright")));
+                               draw.set("u_ghosts", static_cast<float>(settings.ghosts));
+                               draw.set("u_dispersal", settings.dispersal);
+                               draw.set("u_haloWidth", settings.haloWidth);
+                               draw.set("u_aspect", glm::vec2(frame.x / frame.y, 1.0f));
+                               draw.set("u_distortion", settings.distortion);
+                               draw.set("u_intensity", settings.intensity);
+                               if (withDirt) draw.texture("u_dirt", dirt_);
+                             }));
 }
 
 }  // namespace obscura

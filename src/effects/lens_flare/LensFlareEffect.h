@@ -64,21 +64,13 @@ class LensFlareEffect : public Effect {
   static EffectInfo info();
   static std::vector<ProgramSpec> programSpecs();
 
-  explicit LensFlareEffect(const EffectResources& resources) : resources_(resources) {}
+  explicit LensFlareEffect(const EffectResources&) {}
   void prepare(const FrameSettings& settings) override;  // the lens dirt's image
   void plan(FramePlanner& planner) override;
 
  private:
-  struct Variant {
-    gl::Program program;
-    GLint bright = -1, brightSize = -1, ghosts = -1, dispersal = -1, haloWidth = -1, aspect = -1, distortion = -1,
-          intensity = -1, dirt = -1;
-  };
-  const Variant& variant(bool dirt);
   const gl::Texture2D* dirtTexture(const LensFlareSettings& settings);
 
-  const EffectResources& resources_;
-  std::unique_ptr<Variant> variants_[2];
   std::string dirtName_;
   std::shared_ptr<const Image> dirtImage_;
   gl::Texture2D dirt_;

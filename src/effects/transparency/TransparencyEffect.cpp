@@ -114,69 +114,21 @@ std::vector<ProgramSpec> TransparencyEffect::programSpecs(int fragmentVectors) {
   return specs;
 }
 
-TransparencyEffect::Variant::Variant(gl::Program built)
-    : program(std::move(built)),
-      projection(program.uniform("u_projection")),
-      lightDirection(program.optionalUniform("u_lightDirection")),
-      lightColor(program.optionalUniform("u_lightColor")),
-      viewToEnvironment(program.optionalUniform("u_viewToEnvironment")),
-      environment(program.optionalUniform("u_environment")),
-      environmentFiltered(program.optionalUniform("u_environmentFiltered")),
-      environmentFilteredScale(program.optionalUniform("u_environmentFilteredScale")),
-      shIrradiance(program.optionalUniform("u_shIrradiance")),
-      environmentIntensity(program.optionalUniform("u_environmentIntensity")),
-      lightPositionRange(program.optionalUniform("u_lightPositionRange[0]")),
-      lightColorSpot(program.optionalUniform("u_lightColorSpot[0]")),
-      lightSpot(program.optionalUniform("u_lightSpot[0]")),
-      behind(program.uniform("u_behind")),
-      behindLayout(program.uniform("u_behindLayout")),
-      fogColor(program.optionalUniform("u_fogColor")),
-      fogFactor(program.optionalUniform("u_factor")),
-      falloff(program.optionalUniform("u_falloff")),
-      heightScale(program.optionalUniform("u_heightScale")),
-      upInView(program.optionalUniform("u_upInView")),
-      perspective(program.optionalUniform("u_perspective")) {}  // lit surfaces: the eye's rays (lib/reconstruct.glsl)
-
-const TransparencyEffect::Variant& TransparencyEffect::variant(MaterialKind kind, VertexKind vertex, FogKey fog,
-                                                               ShadingKey shading) {
+const gl::Program& TransparencyEffect::program(MaterialKind kind, VertexKind vertex, FogKey fog,
+                                               ShadingKey shading) const {
   kind.layered = kind.layered && budget_.layers;  // a context too small for the layers draws the core material
   if (kind.unlit) shading = {};
   if (shading.quality == 0) shading.filteredFrom = kEnvironmentLevels;
-  const auto key = std::make_tuple(kind, vertex.forCurrentFrame(), fog, shading);
-  auto it = variants_.find(key);
-  if (it == variants_.end()) {
-    it = variants_
-             .emplace(key, Variant(resources_.build(
-                               spec(kind, std::get<1>(key), fog, shading, layout_, budget_.lights))))
-             .first;
-    // Resolve strictly what a lit surface must use, so a misspelt or dropped uniform is caught where it matters.
-    const gl::Program& program = it->second.program;
-    if (!kind.unlit)
-      for (const char* name : {"u_lightDirection", "u_lightColor", "u_viewToEnvironment", "u_shIrradiance",
-                               "u_environmentIntensity"})
-        program.uniform(name);
-    // The medium and high tiers read the environment's levels (a smooth surface level 0, by hand) and the (A, B)
-    // table in the filtered texture; the low tier neither.
-    if (!kind.unlit && shading.quality != 0)
-      for (const char* name : {"u_environment", "u_environmentFiltered"}) program.uniform(name);
-    if (!kind.unlit && shading.filteredFrom < kEnvironmentLevels) program.uniform("u_environmentFilteredScale");
-    if (fog.on)
-      for (const char* name : {"u_fogColor", "u_factor"}) program.uniform(name);
-    if (kind.transmission)
-      for (const char* name : {"u_transmission", "u_transmissionIor"}) program.uniform(name);
-  }
-  return it->second;
+  const VertexKind stage = vertex.forCurrentFrame();
+  return programs_({kind, stage, fog, shading},
+                   [&] { return spec(kind, stage, fog, shading, layout_, budget_.lights); });
 }
 
 TransparencyEffect::TransparencyEffect(const EffectResources& resources)
     : resources_(resources),
       budget_(budget(resources.caps.maxFragmentUniformVectors)),
       layout_(GpuEnvironment::layoutFor(resources.caps, resources.options.environmentLayout)),
-      levelsProgram_(resources.build(levelsSpec())) {
-  levelsSource_ = levelsProgram_.uniform("u_source");
-  levelsSourceRect_ = levelsProgram_.uniform("u_sourceRect");
-  levelsSourceSize_ = levelsProgram_.uniform("u_sourceSize");
-  levelsTargetOrigin_ = levelsProgram_.uniform("u_targetOrigin");
+      programs_(resources.programs) {
   sourceFramebuffer_ = gl::FramebufferHandle::create();
 }
 
@@ -225,25 +177,26 @@ void TransparencyEffect::renderLevels(const PassContext& context) {
     for (int k = 1; k <= kTransmissionLevels; ++k)
       levels_.emplace_back("transmission level " + std::to_string(k), padded_.x >> k, padded_.y >> k, GL_NEAREST,
                            gl::RenderTarget::Depth::None, false);
-  levelsProgram_.use();
-  gl::Program::set(levelsSource_, 0);
-  gl::Program::set(levelsTargetOrigin_, glm::vec2(0.0f));
   for (int k = 1; k <= kTransmissionLevels; ++k) {
     const gl::RenderTarget& level = levels_[static_cast<size_t>(k - 1)];
     level.bindForDrawing();
-    if (k == 1) {
-      context.texture("scene-color").bind(0);
-      gl::Program::set(levelsSourceRect_, glm::vec4(0.0f, 0.0f, size));
-      gl::Program::set(levelsSourceSize_, glm::vec2(size));
-    } else {
-      const gl::RenderTarget& source = levels_[static_cast<size_t>(k - 2)];
-      source.color().bind(0);
-      // The texels of the level before that hold the frame: ceil(size / 2^(k - 1)).
-      const glm::ivec2 held = (size + ((1 << (k - 1)) - 1)) >> (k - 1);
-      gl::Program::set(levelsSourceRect_, glm::vec4(0.0f, 0.0f, held));
-      gl::Program::set(levelsSourceSize_, glm::vec2(source.width(), source.height()));
+    {
+      FullscreenDraw draw = context.draw(levelsSpec());
+      draw.set("u_targetOrigin", glm::vec2(0.0f));
+      if (k == 1) {
+        draw.read("u_source", "scene-color");
+        draw.set("u_sourceRect", glm::vec4(0.0f, 0.0f, size));
+        draw.set("u_sourceSize", glm::vec2(size));
+      } else {
+        const gl::RenderTarget& source = levels_[static_cast<size_t>(k - 2)];
+        draw.texture("u_source", source.color());
+        // The texels of the level before that hold the frame: ceil(size / 2^(k - 1)).
+        const glm::ivec2 held = (size + ((1 << (k - 1)) - 1)) >> (k - 1);
+        draw.set("u_sourceRect", glm::vec4(0.0f, 0.0f, held));
+        draw.set("u_sourceSize", glm::vec2(source.width(), source.height()));
+      }
+      draw.draw();
     }
-    resources_.triangle.draw();
     // Into the behind texture: level 1 at (W', 0), level k >= 2 at (W' (1.5 - 2^(1 - k)), H' / 2).
     const glm::ivec2 origin = k == 1 ? glm::ivec2(padded_.x, 0)
                                      : glm::ivec2(padded_.x + padded_.x / 2 - (padded_.x >> (k - 1)), padded_.y / 2);
@@ -255,7 +208,6 @@ void TransparencyEffect::renderLevels(const PassContext& context) {
 }
 
 void TransparencyEffect::renderLayer(const PassContext& context) {
-  using gl::Program;
   const glm::ivec2 size = context.size("scene-color");
   fitBehind(size);
   const FrameCamera& camera = context.camera();
@@ -302,34 +254,45 @@ void TransparencyEffect::renderLayer(const PassContext& context) {
   std::copy_n(light.colorSpot.begin(), lights, colorSpot.begin());
   std::copy_n(light.spot.begin(), lights, spot.begin());
   const glm::vec4 layout(size, behind_.width(), behind_.height());
+  const float perspective = camera.reconstruction.perspective ? 1.0f : 0.0f;
   auto choose = [&](MaterialKind kind, VertexKind vertex) -> const gl::Program& {
-    const Variant& v = variant(kind, vertex, fogKey, shadingKey);
-    v.program.use();
-    Program::set(v.projection, camera.projection);
-    Program::set(v.perspective, camera.reconstruction.perspective ? 1.0f : 0.0f);
-    Program::set(v.lightDirection, light.lightDirection);
-    Program::set(v.lightColor, light.lightColor);
-    Program::set(v.viewToEnvironment, light.viewToEnvironment);
-    Program::set(v.environment, TextureUnits::kEnvironment);
-    Program::set(v.environmentFiltered, light.environmentFilteredUnit);
-    Program::set(v.environmentFilteredScale, filteredScale);
-    Program::set(v.shIrradiance, light.environment->irradianceUniform().data(), 7);
-    Program::set(v.environmentIntensity, light.environmentIntensity);
-    if (v.lightPositionRange >= 0) {
-      glUniform4fv(v.lightPositionRange, budget_.lights, &positionRange[0].x);
-      glUniform4fv(v.lightColorSpot, budget_.lights, &colorSpot[0].x);
-      glUniform4fv(v.lightSpot, budget_.lights, &spot[0].x);
+    const gl::Program& p = program(kind, vertex, fogKey, shadingKey);
+    p.use();
+    p.set("u_projection", camera.projection);
+    // Lit surfaces read the eye's rays (lib/reconstruct.glsl); an unlit one does not.
+    if (p.has("u_perspective")) p.set("u_perspective", perspective);
+    if (!kind.unlit) {
+      p.set("u_lightDirection", light.lightDirection);
+      p.set("u_lightColor", light.lightColor);
+      p.set("u_viewToEnvironment", light.viewToEnvironment);
+      p.set("u_shIrradiance", light.environment->irradianceUniform().data(), 7);
+      p.set("u_environmentIntensity", light.environmentIntensity);
+      // The medium and high tiers read the environment's levels (a smooth surface level 0, by hand) and the (A, B)
+      // table in the filtered texture; the low tier neither.
+      if (shadingKey.quality != 0) {
+        p.set("u_environment", TextureUnits::kEnvironment);
+        p.set("u_environmentFiltered", light.environmentFilteredUnit);
+        if (shadingKey.filteredFrom < kEnvironmentLevels) p.set("u_environmentFilteredScale", filteredScale);
+      }
     }
-    Program::set(v.behind, TextureUnits::kAo);
-    Program::set(v.behindLayout, layout);
+    // As many lights as the program takes (the budget's; none unlit).
+    if (const int count = p.arraySize("u_lightPositionRange"); count > 0) {
+      p.set("u_lightPositionRange", positionRange.data(), count);
+      p.set("u_lightColorSpot", colorSpot.data(), count);
+      p.set("u_lightSpot", spot.data(), count);
+    }
+    p.set("u_behind", TextureUnits::kAo);
+    p.set("u_behindLayout", layout);
     if (fogKey.on) {
-      Program::set(v.fogColor, fog.color);
-      Program::set(v.fogFactor, fog.factor);
-      Program::set(v.falloff, fog.falloff);
-      Program::set(v.heightScale, fog.heightScale);
-      Program::set(v.upInView, fog.upInView);
+      p.set("u_fogColor", fog.color);
+      p.set("u_factor", fog.factor);
+      if (fogKey.height) {  // FOG_HEIGHT
+        p.set("u_falloff", fog.falloff);
+        p.set("u_heightScale", fog.heightScale);
+        p.set("u_upInView", fog.upInView);
+      }
     }
-    return v.program;  // the scene sets its per-draw uniforms
+    return p;  // the scene sets its per-draw uniforms
   };
   const GpuScene& scene = context.scene();
   for (const GpuScene::TransparentBatch& batch : scene.transparentBatches(camera.view, camera.projection, size)) {

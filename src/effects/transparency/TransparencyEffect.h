@@ -98,17 +98,10 @@ class TransparencyEffect : public Effect {
     auto key() const { return std::tie(quality, filteredFrom); }
     bool operator<(const ShadingKey& o) const { return key() < o.key(); }
   };
-  struct Variant {
-    explicit Variant(gl::Program built);
-    gl::Program program;
-    GLint projection, lightDirection, lightColor, viewToEnvironment, environment, environmentFiltered;
-    GLint environmentFilteredScale, shIrradiance;
-    GLint environmentIntensity, lightPositionRange, lightColorSpot, lightSpot, behind, behindLayout;
-    GLint fogColor, fogFactor, falloff, heightScale, upInView, perspective;
-  };
   static ProgramSpec spec(MaterialKind kind, VertexKind vertex, FogKey fog, ShadingKey shading,
                           EnvironmentLayout layout, int lights);
-  const Variant& variant(MaterialKind kind, VertexKind vertex, FogKey fog, ShadingKey shading);
+  // The program of a material and vertex kind, fog and shading (the context's budget applied), built on first use.
+  const gl::Program& program(MaterialKind kind, VertexKind vertex, FogKey fog, ShadingKey shading) const;
   // The `behind` texture for frames of this size: the copy's [0, W) x [0, H), then the levels beside it.
   void fitBehind(glm::ivec2 size);
   void renderLevels(const PassContext& context);
@@ -117,9 +110,7 @@ class TransparencyEffect : public Effect {
   const EffectResources& resources_;
   TransparentBudget budget_;
   EnvironmentLayout layout_;
-  std::map<std::tuple<MaterialKind, VertexKind, FogKey, ShadingKey>, Variant> variants_;
-  gl::Program levelsProgram_;
-  GLint levelsSource_, levelsSourceRect_, levelsSourceSize_, levelsTargetOrigin_;
+  ProgramVariants<std::tuple<MaterialKind, VertexKind, FogKey, ShadingKey>> programs_;
   gl::Texture2D behind_;
   glm::ivec2 frameSize_{0}, padded_{0};  // W x H, and W' x H' (multiples of 2^kTransmissionLevels)
   std::vector<gl::RenderTarget> levels_;  // level k at [k - 1], (W' / 2^k) x (H' / 2^k)
