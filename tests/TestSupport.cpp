@@ -51,8 +51,9 @@ const EffectResources& effectResources() {
     return checked;
   }();
   static const FullscreenTriangle* triangle = new FullscreenTriangle();  // lives as long as the context
+  static ProgramCache* programs = new ProgramCache(true);
   static SurfaceShading* surfaces = new SurfaceShading();
-  static const EffectResources resources{context().caps(), options, *triangle, *surfaces};
+  static const EffectResources resources{context().caps(), options, *triangle, *programs, *surfaces};
   return resources;
 }
 

@@ -14,6 +14,7 @@
 #include "TestSupport.h"
 #include "effects/auto_exposure/AutoExposureEffect.h"
 #include "effects/lighting/LightingEffect.h"
+#include "effects/tonemap/TonemapEffect.h"
 #include "encoding/ExposureMetering.h"
 #include "encoding/HdrEncoding.h"
 #include "encoding/ToneMapping.h"

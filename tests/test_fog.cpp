@@ -138,28 +138,87 @@ TEST(Fog, EachModeMatchesItsAnalyticFogFactorPerPixel) {
   }
 }
 
-// The fog runs after the lighting on HDR colour, so the lighting no longer applies the tone curve itself; with the
-// fog off, it does again (one pass fewer).
-TEST(Fog, TheLightingAbsorbsTheToneMappingOnlyWithoutFog) {
-  Renderer renderer = test::makeRenderer();
-  renderer.setScene(makeBuiltinScene());
-  const Camera camera = builtinSceneCamera(96, 64);
-  auto ran = [&](bool fog) {
-    RenderSettings settings;
-    settings.set("fog", fog ? "on" : "off");
-    test::render(renderer, camera, settings, View::Final);
-    std::vector<std::string> names;
-    for (const PlannedPass& pass : renderer.lastPlan().passes()) {
-      if (!pass.live) continue;
-      names.push_back(pass.decl.name);
-      for (const std::string& absorbed : pass.absorbed) names.push_back(absorbed + " (done by " + pass.decl.name + ")");
-    }
-    return names;
-  };
-  const std::vector<std::string> without = ran(false), with = ran(true);
-  EXPECT_EQ(std::count(without.begin(), without.end(), "tonemap"), 0);
-  EXPECT_EQ(std::count(without.begin(), without.end(), "tonemap (done by lighting)"), 1);
-  EXPECT_EQ(std::count(with.begin(), with.end(), "fog"), 1);
-  EXPECT_EQ(std::count(with.begin(), with.end(), "tonemap"), 1) << "runs after the fog";
-  EXPECT_EQ(std::count(with.begin(), with.end(), "tonemap (done by lighting)"), 0);
+// Fog and the tone curve are per-pixel stages (frame/Stage.h): on the default frame they run inside the lighting's
+// pass, in both of its forms, so turning fog on adds no full-screen pass; with TAA between them, the fog still runs in
+// the lighting and the tone curve as a pass of its own (TAA reads the fogged HDR colour).
+TEST(Fog, FogAndToneMappingAddNoFullScreenPassToTheDefaultFrame) {
+  for (bool deferred : {true, false}) {
+    RendererOptions options;
+    options.allowDrawBuffers = deferred;  // without several render targets: the forward form
+    Renderer renderer = test::makeRenderer(options);
+    renderer.setScene(makeBuiltinScene());
+    const Camera camera = builtinSceneCamera(96, 64);
+    auto ran = [&](RenderSettings settings) {
+      test::render(renderer, camera, settings, View::Final);
+      std::vector<std::string> names;
+      for (const PlannedPass& pass : renderer.lastPlan().passes()) {
+        if (!pass.live) continue;
+        names.push_back(pass.decl.name);
+        for (const std::string& absorbed : pass.absorbed)
+          names.push_back(absorbed + " (done by " + pass.decl.name + ")");
+      }
+      return names;
+    };
+    RenderSettings fog;
+    fog.set("fog", "on");
+    const std::vector<std::string> without = ran(RenderSettings()), with = ran(fog);
+    const auto passes = [](const std::vector<std::string>& names) {
+      return std::count_if(names.begin(), names.end(),
+                           [](const std::string& n) { return n.find(" (done by ") == std::string::npos; });
+    };
+    const std::string form = deferred ? "deferred" : "forward";
+    EXPECT_EQ(passes(with), passes(without)) << form;
+    EXPECT_EQ(std::count(without.begin(), without.end(), "tonemap (done by lighting)"), 1) << form;
+    EXPECT_EQ(std::count(with.begin(), with.end(), "fog (done by lighting)"), 1) << form;
+    EXPECT_EQ(std::count(with.begin(), with.end(), "tonemap (done by lighting)"), 1) << form;
+    for (const PlannedPass& pass : renderer.lastPlan().passes())
+      if (pass.live && pass.decl.name == "lighting") {
+        EXPECT_EQ(pass.stageOutput, "display-color") << form;
+      }
+    fog.set("taa", "on");
+    const std::vector<std::string> taa = ran(fog);
+    EXPECT_EQ(std::count(taa.begin(), taa.end(), "fog (done by lighting)"), 1) << form;
+    EXPECT_EQ(std::count(taa.begin(), taa.end(), "tonemap"), 1) << form << ": after TAA, a pass of its own";
+  }
+}
+
+// Fused or run as passes of their own (RendererOptions::fuseStages), the stages give the same image but for the HDR
+// encoding the fused program skips between them (RGB9E5: 9 bits of the largest channel) and the position fog reads
+// (the surface's own against the G-buffer's 16-bit depth): measured here, in both lighting forms, with fog in each
+// mode and every tone curve.
+TEST(Fog, FusedStagesGiveTheImageOfSeparatePasses) {
+  const Camera camera = builtinSceneCamera(160, 90);
+  for (bool deferred : {true, false}) {
+    RendererOptions fused, separate;
+    fused.allowDrawBuffers = separate.allowDrawBuffers = deferred;
+    separate.fuseStages = false;
+    Renderer a = test::makeRenderer(fused), b = test::makeRenderer(separate);
+    a.setScene(makeBuiltinScene());
+    b.setScene(makeBuiltinScene());
+    int worst = 0;
+    double sum = 0.0;
+    size_t count = 0;
+    for (FogMode mode : {FogMode::Linear, FogMode::Exponential, FogMode::SquaredExponential})
+      for (const char* curve : {"neutral", "aces", "agx", "reinhard", "linear"}) {
+        RenderSettings settings;
+        settings.of<FogSettings>() = fogOf(mode, mode == FogMode::Exponential ? 0.35f : 0.0f);
+        settings.set("tonemap.operator", curve);
+        settings.set("tonemap.exposure", "0.5");
+        settings.set("fxaa", "off");  // the stages' own output, drawn into the output
+        const test::RenderedImage one = test::render(a, camera, settings, View::Final);
+        const test::RenderedImage two = test::render(b, camera, settings, View::Final);
+        for (size_t i = 0; i < one.rgba.size(); ++i) {
+          if (i % 4 == 3) continue;
+          const int d = std::abs(int(one.rgba[i]) - int(two.rgba[i]));
+          worst = std::max(worst, d);
+          sum += d;
+          ++count;
+        }
+      }
+    std::printf("%s lighting, fog and tone mapping fused against separate passes: largest difference %d/255, mean "
+                "%.4f/255\n",
+                deferred ? "deferred" : "forward", worst, sum / static_cast<double>(count));
+    EXPECT_LE(worst, 2) << (deferred ? "deferred" : "forward");
+    EXPECT_LT(sum / static_cast<double>(count), 0.1) << (deferred ? "deferred" : "forward");
+  }
 }

@@ -3,6 +3,7 @@
 // reused, a read without a writer is refused with a message naming it).
 #include <algorithm>
 #include <map>
+#include <set>
 
 #include <gtest/gtest.h>
 
@@ -60,26 +61,40 @@ struct Fixture {
 }  // namespace
 
 TEST(EffectTable, ListsTheFrameInOrderWithUniqueNames) {
+  // The order the frame relies on (docs/architecture.md, "The frame as a table"), whatever rows come between: the
+  // G-buffer, then what reads it, the HDR colour's effects up to the tone curve, then the display colour's, FXAA last
+  // of those named here. An effect added to the table needs no line here.
   std::vector<std::string> effects;
   for (const EffectEntry& row : effectTable()) effects.push_back(row.info.name);
-  EXPECT_EQ(effects, (std::vector<std::string>{"gbuffer", "velocity", "ao", "lighting", "lines", "fog", "transparency",
-                                                "taa", "bloom", "lens-flare", "glare", "dof", "auto-exposure",
-                                                "tonemap", "edges", "motion-blur", "chromatic-aberration", "fxaa",
-                                                "resolution"}));
-  EXPECT_EQ(framePassNames(),
-            (std::vector<std::string>{"pose", "gbuffer", "base-color", "velocity", "peel", "hierarchy", "sao",
-                                      "ao-temporal",
-                                      "blur-h", "blur-v", "upsample", "lighting", "shading-count", "lines", "fog",
-                                      "transmission-levels", "transparency", "taa", "bloom", "bloom-bright",
-                                      "lens-flare", "glare",
-                                      "dof-coc", "dof-downsample", "dof-tiles-h", "dof-tiles", "dof-neighbors",
-                                      "dof-near", "dof-far", "dof-composite", "exposure-meter",
-                                      "exposure-reduce", "exposure-reduce-2",
-                                      "exposure-histogram", "exposure-bins", "exposure-adapt", "tonemap",
-                                      "edges-detect", "edges-h", "edges",
-                                      "motion-tiles-h", "motion-tiles", "motion-neighbors", "motion-blur",
-                                      "chromatic-aberration", "fxaa", "upscale",
-                                      "view", "present"}));
+  auto at = [&](const char* name) { return std::find(effects.begin(), effects.end(), name) - effects.begin(); };
+  const std::vector<const char*> order = {"gbuffer", "velocity",     "ao",  "lighting", "lines",
+                                          "fog",     "transparency", "taa", "bloom",    "dof",
+                                          "tonemap", "motion-blur",  "fxaa", "resolution"};
+  for (size_t i = 0; i < order.size(); ++i) {
+    ASSERT_LT(at(order[i]), static_cast<long>(effects.size())) << order[i] << " is not in the table";
+    if (i > 0) {
+      EXPECT_LT(at(order[i - 1]), at(order[i])) << order[i - 1] << " before " << order[i];
+    }
+  }
+  EXPECT_EQ(effects.front(), "gbuffer");
+  // The passes: the pose first, the frame's own last, the passes that carry the colour in the frame's order between;
+  // no name twice (timers and stats key on them).
+  const std::vector<std::string>& passes = framePassNames();
+  ASSERT_GE(passes.size(), 3u);
+  EXPECT_EQ(passes.front(), "pose");
+  EXPECT_EQ(std::vector<std::string>(passes.end() - 2, passes.end()), (std::vector<std::string>{"view", "present"}));
+  auto pass = [&](const char* name) { return std::find(passes.begin(), passes.end(), name) - passes.begin(); };
+  const std::vector<const char*> passOrder = {"gbuffer", "peel",          "hierarchy", "sao",   "lighting",
+                                              "fog",     "taa",           "bloom",     "dof-composite", "tonemap",
+                                              "edges",   "motion-blur",   "fxaa",      "upscale"};
+  for (size_t i = 1; i < passOrder.size(); ++i) {
+    EXPECT_LT(pass(passOrder[i - 1]), pass(passOrder[i])) << passOrder[i];
+  }
+  EXPECT_LT(pass("fxaa"), static_cast<long>(passes.size()));
+  std::set<std::string> unique(passes.begin(), passes.end());
+  EXPECT_EQ(unique.size(), passes.size()) << "a pass name twice";
+  std::set<std::string> uniqueEffects(effects.begin(), effects.end());
+  EXPECT_EQ(uniqueEffects.size(), effects.size()) << "an effect name twice";
   // Every target an effect declares is RGBA8 data with a documented encoding; packed data is never filtered (plain
   // colours may be: the display colour, depth of field's premultiplied half-size fields).
   for (const TargetInfo& target : frameTargets()) {
@@ -203,94 +218,142 @@ TEST(FramePlan, AliasesReadTheTargetTheyStandFor) {
 }
 
 namespace {
-// A lighting pass with the two kinds of alternatives the frame uses: a deferred form, taken when the G-buffer pass
-// writes the base colour (several render targets), and one that also applies the tone curve when the tone pass is
-// the only reader of its colour.
-PassDecl lightingWithAlternatives(bool mayWriteOutput) {
+// A lighting pass with a deferred form, taken when the G-buffer pass writes the base colour (several render
+// targets); both forms take per-pixel stages, the declared (forward) one without drawing into the output.
+PassDecl lightingWithAlternatives(int vectors = 16) {
   PassDecl light = pass("light", {"a"}, {"color"});
-  PassDecl::Alternative folded;
-  folded.absorbing = "tone";
-  folded.mayWriteOutput = mayWriteOutput;
-  folded.reads = {"a"};
-  folded.writes = {{"display-color", TargetSize::full(), PassDecl::Write::Depth::None, ""}};
-  folded.run = [](PassContext&) {};
+  light.stageHead = StageHead{"color", ColorSpace::Hdr, vectors, false};
   PassDecl::Alternative deferred;
   deferred.whenWritten = {"b"};
   deferred.reads = {"a", "b"};
   deferred.writes = {{"color", TargetSize::full(), PassDecl::Write::Depth::None, ""}};
   deferred.run = [](PassContext&) {};
-  light.alternatives = {folded, deferred};
+  deferred.stageHead = StageHead{"color", ColorSpace::Hdr, vectors, true};
+  light.alternatives = {deferred};
   return light;
+}
+
+// A per-pixel stage pass: `name` maps `input` into `output` (the tone curve maps HDR to display colour), reading
+// `also` at its pixel; it takes stages after it itself (as frame/Stage.h's stagePass does).
+PassDecl stage(const std::string& name, const std::string& input, const std::string& output,
+               std::vector<std::string> also = {}, int vectors = 1) {
+  PassDecl p = pass(name, {input}, {output});
+  p.reads.insert(p.reads.end(), also.begin(), also.end());
+  StageDecl decl;
+  decl.name = name;
+  decl.input = input;
+  decl.outputSpace = output == kFinalImageTarget ? ColorSpace::Display : ColorSpace::Hdr;
+  decl.uniformVectors = vectors;
+  p.stage = decl;
+  p.stageHead = StageHead{output, decl.outputSpace, 16, true};
+  return p;
 }
 }  // namespace
 
 TEST(FramePlan, AlternativesAreTakenOnlyWhereTheirConditionsHold) {
-  {  // Tone is the only reader of the colour and writes the result: the lighting does its work and draws the output.
-    Fixture f;
-    f.planner.add(pass("g", {}, {"a"}));
-    f.planner.add(lightingWithAlternatives(true));
-    f.planner.add(pass("tone", {"color"}, {"display-color"}));
-    const FramePlan plan = FramePlan::resolve(std::move(f.planner), kFinalImageTarget, present);
-    EXPECT_EQ(running(plan), (std::vector<std::string>{"g", "light"}));
-    EXPECT_EQ(plan.passes()[1].absorbed, std::vector<std::string>{"tone"});
-    EXPECT_TRUE(written(plan, "tone", "display-color").output);  // the version, now the lighting's
-    EXPECT_EQ(written(plan, "tone", "display-color").writer, 1);
-    EXPECT_EQ(plan.passes()[1].writes.count("color"), 0u);
-  }
-  {  // The same where the alternative may not draw the output: as declared.
-    Fixture f;
-    f.planner.add(pass("g", {}, {"a"}));
-    f.planner.add(lightingWithAlternatives(false));
-    f.planner.add(pass("tone", {"color"}, {"display-color"}));
-    const FramePlan plan = FramePlan::resolve(std::move(f.planner), kFinalImageTarget, present);
-    EXPECT_EQ(running(plan), (std::vector<std::string>{"g", "light", "tone"}));
-    EXPECT_TRUE(plan.passes()[1].absorbed.empty());
-  }
-  {  // A later pass reads the tone pass's result: the fold is allowed without drawing the output.
-    Fixture f;
-    f.planner.add(pass("g", {}, {"a"}));
-    f.planner.add(lightingWithAlternatives(false));
-    f.planner.add(pass("tone", {"color"}, {"display-color"}));
-    f.planner.add(pass("aa", {"display-color"}, {"display-color"}));
-    const FramePlan plan = FramePlan::resolve(std::move(f.planner), kFinalImageTarget, present);
-    EXPECT_EQ(running(plan), (std::vector<std::string>{"g", "light", "aa"}));
-    EXPECT_EQ(plan.passes()[3].reads.at("display-color"), plan.passes()[1].writes.at("display-color"));
-  }
-  {  // Another pass needs the HDR colour (or it is retained): no fold.
-    Fixture f;
-    f.planner.add(pass("g", {}, {"a"}));
-    f.planner.add(lightingWithAlternatives(true));
-    f.planner.add(pass("bloom", {"color"}, {"c"}));
-    f.planner.add(pass("tone", {"color", "c"}, {"display-color"}));
-    const FramePlan plan = FramePlan::resolve(std::move(f.planner), kFinalImageTarget, present);
-    EXPECT_EQ(running(plan), (std::vector<std::string>{"g", "light", "bloom", "tone"}));
-    Fixture r;
-    r.planner.add(pass("g", {}, {"a"}));
-    r.planner.add(lightingWithAlternatives(true));
-    r.planner.add(pass("tone", {"color"}, {"display-color"}));
-    const FramePlan retained = FramePlan::resolve(std::move(r.planner), kFinalImageTarget, present, {"color"});
-    EXPECT_EQ(running(retained), (std::vector<std::string>{"g", "light", "tone"}));
-  }
-  {  // The base colour is written by a running pass: the deferred form, with its reads (the fold is impossible).
+  {  // The base colour is written by a running pass: the deferred form, with its reads.
     Fixture f;
     f.planner.add(pass("g", {}, {"a", "b"}));
-    f.planner.add(lightingWithAlternatives(true));
+    f.planner.add(lightingWithAlternatives());
     f.planner.add(pass("bloom", {"color"}, {"c"}));
     f.planner.add(pass("tone", {"color", "c"}, {"display-color"}));
     const FramePlan plan = FramePlan::resolve(std::move(f.planner), kFinalImageTarget, present);
     EXPECT_EQ(plan.passes()[1].reads.count("b"), 1u);
     EXPECT_EQ(plan.passes()[1].reads.at("b"), plan.passes()[0].writes.at("b"));
+    EXPECT_TRUE(plan.passes()[1].decl.stageHead->mayWriteOutput) << "the deferred form's offer";
   }
   {  // Declared but not written by a running pass: the forward form.
     Fixture f;
     f.planner.add(pass("g", {}, {"a"}));
     f.planner.add(pass("unused", {}, {"b"}));
-    f.planner.add(lightingWithAlternatives(true));
+    f.planner.add(lightingWithAlternatives());
     f.planner.add(pass("bloom", {"color"}, {"c"}));
     f.planner.add(pass("tone", {"color", "c"}, {"display-color"}));
     const FramePlan plan = FramePlan::resolve(std::move(f.planner), kFinalImageTarget, present);
     EXPECT_EQ(running(plan), (std::vector<std::string>{"g", "light", "bloom", "tone"}));
     EXPECT_EQ(plan.passes()[2].reads.count("b"), 0u);
+    EXPECT_FALSE(plan.passes()[2].decl.stageHead->mayWriteOutput);
+  }
+}
+
+TEST(FramePlan, PerPixelStagesFuseIntoThePassBeforeThem) {
+  {  // Fog and the tone curve after the deferred lighting: one pass, drawing the output, reading what fog reads.
+    Fixture f;
+    f.planner.add(pass("g", {}, {"gbuffer", "a", "b"}));
+    f.planner.add(lightingWithAlternatives());
+    f.planner.add(stage("fog", "color", "color", {"gbuffer"}));
+    f.planner.add(stage("tone", "color", "display-color"));
+    const FramePlan plan = FramePlan::resolve(std::move(f.planner), kFinalImageTarget, present);
+    EXPECT_EQ(running(plan), (std::vector<std::string>{"g", "light"}));
+    const PlannedPass& light = plan.passes()[1];
+    EXPECT_EQ(light.absorbed, (std::vector<std::string>{"fog", "tone"}));
+    ASSERT_EQ(light.stages.size(), 2u);
+    EXPECT_EQ(light.stages[0].name, "fog");
+    EXPECT_EQ(light.stageOutput, "display-color");
+    EXPECT_EQ(light.reads.at("gbuffer"), plan.passes()[0].writes.at("gbuffer")) << "fog's read, now the light's";
+    EXPECT_TRUE(written(plan, "tone", "display-color").output) << "the version, now the lighting's, drawn there";
+    EXPECT_EQ(written(plan, "tone", "display-color").writer, 1);
+    EXPECT_EQ(light.writes.count("color"), 0u) << "no HDR colour is stored between them";
+  }
+  {  // The forward form cannot draw into the output: the last stage runs alone (it writes the result).
+    Fixture f;
+    f.planner.add(pass("g", {}, {"gbuffer", "a"}));
+    f.planner.add(lightingWithAlternatives());
+    f.planner.add(stage("fog", "color", "color", {"gbuffer"}));
+    f.planner.add(stage("tone", "color", "display-color"));
+    const FramePlan plan = FramePlan::resolve(std::move(f.planner), kFinalImageTarget, present);
+    EXPECT_EQ(running(plan), (std::vector<std::string>{"g", "light", "tone"}));
+    EXPECT_EQ(plan.passes()[1].absorbed, std::vector<std::string>{"fog"});
+  }
+  {  // ... and can where a later pass reads the display colour (FXAA): all in one pass.
+    Fixture f;
+    f.planner.add(pass("g", {}, {"gbuffer", "a"}));
+    f.planner.add(lightingWithAlternatives());
+    f.planner.add(stage("fog", "color", "color", {"gbuffer"}));
+    f.planner.add(stage("tone", "color", "display-color"));
+    f.planner.add(pass("aa", {"display-color"}, {"display-color"}));
+    const FramePlan plan = FramePlan::resolve(std::move(f.planner), kFinalImageTarget, present);
+    EXPECT_EQ(running(plan), (std::vector<std::string>{"g", "light", "aa"}));
+    EXPECT_EQ(plan.passes()[4].reads.at("display-color"), plan.passes()[1].writes.at("display-color"));
+  }
+  {  // A pass between them that reads the colour (bloom): fog fuses into the lighting, the tone curve runs alone.
+    Fixture f;
+    f.planner.add(pass("g", {}, {"gbuffer", "a", "b"}));
+    f.planner.add(lightingWithAlternatives());
+    f.planner.add(stage("fog", "color", "color", {"gbuffer"}));
+    f.planner.add(pass("bloom", {"color"}, {"color"}));
+    f.planner.add(stage("tone", "color", "display-color"));
+    const FramePlan plan = FramePlan::resolve(std::move(f.planner), kFinalImageTarget, present);
+    EXPECT_EQ(running(plan), (std::vector<std::string>{"g", "light", "bloom", "tone"}));
+    EXPECT_EQ(plan.passes()[1].absorbed, std::vector<std::string>{"fog"});
+  }
+  {  // A colour someone else reads too (a retained one, a view of it) is kept: no fusion.
+    Fixture f;
+    f.planner.add(pass("g", {}, {"gbuffer", "a", "b"}));
+    f.planner.add(lightingWithAlternatives());
+    f.planner.add(stage("tone", "color", "display-color"));
+    const FramePlan plan = FramePlan::resolve(std::move(f.planner), kFinalImageTarget, present, {"color"});
+    EXPECT_EQ(running(plan), (std::vector<std::string>{"g", "light", "tone"}));
+  }
+  {  // A stage that reads what a pass after the head writes cannot run inside the head.
+    Fixture f;
+    f.planner.add(pass("g", {}, {"a", "b"}));
+    f.planner.add(lightingWithAlternatives());
+    f.planner.add(pass("edges", {"a"}, {"c"}));
+    f.planner.add(stage("lines", "color", "color", {"c"}));
+    f.planner.add(stage("tone", "color", "display-color"));
+    const FramePlan plan = FramePlan::resolve(std::move(f.planner), kFinalImageTarget, present);
+    EXPECT_EQ(running(plan), (std::vector<std::string>{"g", "light", "edges", "lines"}));
+    EXPECT_EQ(plan.passes()[3].absorbed, std::vector<std::string>{"tone"}) << "the stage pass takes the next stage";
+  }
+  {  // Stages fuse only within the fragment uniform vectors the head has left.
+    Fixture f;
+    f.planner.add(pass("g", {}, {"gbuffer", "a", "b"}));
+    f.planner.add(lightingWithAlternatives(2));
+    f.planner.add(stage("fog", "color", "color", {"gbuffer"}, 2));
+    f.planner.add(stage("tone", "color", "display-color", {}, 1));
+    const FramePlan plan = FramePlan::resolve(std::move(f.planner), kFinalImageTarget, present);
+    EXPECT_EQ(running(plan), (std::vector<std::string>{"g", "light", "tone"}));
   }
 }
 

@@ -398,6 +398,58 @@ TEST(Pipeline, TheToneMappingPassMatchesItsCpuMirror) {
   }
 }
 
+// The plan is made when its key changes (renderer/Renderer.h: the parameters that shape it, the view, the size, ...),
+// and each pass reads this frame's values from its PassContext: so a cached plan must draw exactly what a plan made
+// for this frame draws, whatever a parameter that does not shape it is set to. Every such parameter of every effect,
+// every effect on, against a renderer that makes its plan every frame; both render the same frames.
+TEST(Plan, ACachedPlanDrawsWhatAFreshOneDraws) {
+  RendererOptions fresh;
+  fresh.cachePlans = false;
+  Renderer cached = test::makeRenderer(), making = test::makeRenderer(fresh);
+  cached.setScene(makeBuiltinScene());
+  making.setScene(makeBuiltinScene());
+  const Camera camera = builtinSceneCamera(128, 72);
+  RenderSettings everything;
+  for (const EffectEntry& row : effectTable())
+    if (row.info.hasSwitch) everything.set(row.info.name, "on");
+  int checked = 0;
+  for (const ParameterInfo& p : RenderSettings::parameters()) {
+    if (p.shapesPlan) continue;
+    ASSERT_TRUE(p.kind == ParameterKind::Number || p.kind == ParameterKind::Color) << p.name;
+    // Another value in range: a colour unlike the defaults, a number a quarter of the way towards its far end.
+    std::string value = "0.2,0.35,0.6";
+    if (p.kind == ParameterKind::Number) {
+      const std::string current = everything.effective(p.name);
+      if (current == "auto") {  // resolved on the GPU (dof.focus): a number well inside the range instead
+        value = formatShortest(static_cast<float>(p.min > 0.0 ? std::sqrt(p.min * p.max) : 0.5 * (p.min + p.max)));
+      } else {
+        const double now = std::stod(current), far = p.max - now > now - p.min ? p.max : p.min;
+        value = formatShortest(static_cast<float>(now + 0.25 * (far - now)));
+      }
+    }
+    RenderSettings changed = everything;
+    changed.set(p.name, value);
+    ASSERT_NO_THROW(changed.validate()) << p.name << " = " << value;
+    const std::uint64_t madeBefore = cached.plansMade();
+    for (Renderer* renderer : {&cached, &making}) test::render(*renderer, camera, everything, View::Final);
+    const test::RenderedImage a = test::render(cached, camera, changed, View::Final);
+    const test::RenderedImage b = test::render(making, camera, changed, View::Final);
+    EXPECT_LE(cached.plansMade() - madeBefore, 1u) << p.name << ": the plan was made again";
+    EXPECT_EQ(a.rgba, b.rgba) << p.name << " = " << value << " drew differently from a cached plan";
+    ++checked;
+  }
+  std::printf("%d parameters that do not shape the plan, each drawn through a cached plan and a fresh one\n", checked);
+  EXPECT_GT(checked, 30);
+  // And the key: a parameter that shapes the plan makes a new one.
+  const std::uint64_t made = cached.plansMade();
+  RenderSettings fog = everything;
+  fog.set("fog.mode", "linear");
+  test::render(cached, camera, fog, View::Final);
+  EXPECT_EQ(cached.plansMade(), made + 1);
+  test::render(cached, camera, everything, View::Final);
+  EXPECT_EQ(cached.plansMade(), made + 1) << "the earlier plan is still cached";
+}
+
 TEST(Pipeline, DebugViewsShowTheirTargetsAsTheyAre) {
   Renderer renderer = test::makeRenderer();
   renderer.setScene(makeBuiltinScene());

@@ -59,7 +59,7 @@ void checkPlaneInTheShader(const Case& c, const gl::RenderTarget& gbuffer, const
                                 gl::RenderTarget::Depth::None, false);
   target.bindForDrawing();
   program.use();
-  ReconstructionUniforms(program).set(frame.reconstruction);
+  setReconstruction(program, frame.reconstruction);
   gbuffer.color().bind(0);
   program.set(program.uniform("u_gbuffer"), 0);
   program.set(program.uniform("u_size"), glm::vec2(gbuffer.width(), gbuffer.height()));

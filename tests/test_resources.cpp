@@ -94,10 +94,16 @@ TEST(Resources, AGlErrorRaisedInAPassNamesThatPass) {
   paneInstance.mesh = static_cast<int>(scene.meshes.size()) - 1;
   scene.instances.push_back(paneInstance);
   renderer.setScene(scene);
-  const Camera camera = builtinSceneCamera(32, 24);
-  const gl::RenderTarget output("output", camera.width, camera.height, GL_NEAREST,
-                                gl::RenderTarget::Depth::Renderbuffer, test::context().caps().depth24);
+  // Bloom's chain has all its levels from 128 pixels up (a level is at least 2 pixels).
+  const Camera small = builtinSceneCamera(32, 24), large = builtinSceneCamera(128, 128);
+  const gl::RenderTarget smallOutput("output", small.width, small.height, GL_NEAREST,
+                                     gl::RenderTarget::Depth::Renderbuffer, test::context().caps().depth24);
+  const gl::RenderTarget largeOutput("output", large.width, large.height, GL_NEAREST,
+                                     gl::RenderTarget::Depth::Renderbuffer, test::context().caps().depth24);
   for (const std::string& pass : framePassNames()) {
+    const bool bloom = pass.rfind("bloom", 0) == 0;
+    const Camera& camera = bloom ? large : small;
+    const gl::RenderTarget& output = bloom ? largeOutput : smallOutput;
     // Where the G-buffer pass writes the base colour too, no frame has a base-colour pass of its own.
     if (pass == "base-color" && test::context().caps().drawBuffers) continue;
     AoSettings settings;
@@ -115,9 +121,10 @@ TEST(Resources, AGlErrorRaisedInAPassNamesThatPass) {
     // The motion blur's passes, TAA's, depth of field's, fog's, bloom's and the edges' run only with their switches
     // on.
     if (pass.rfind("motion-", 0) == 0) frame.set("motion-blur", "on");
-    if (pass == "taa") frame.set("taa", "on");
+    if (pass.rfind("taa", 0) == 0) frame.set("taa", "on");
     if (pass.rfind("dof-", 0) == 0) frame.set("dof", "on");
-    if (pass == "fog" || pass == "bloom") frame.set(pass, "on");
+    if (pass == "fog") frame.set(pass, "on");
+    if (bloom) frame.set("bloom", "on");
     if (pass.rfind("edges", 0) == 0) frame.set("edges", "on");
     if (pass == "peel") frame.set("ao.layers", "2");  // the AO's second depth layer
     // The upscale runs below render scale 1, as its own pass where FXAA is off.
@@ -125,14 +132,15 @@ TEST(Resources, AGlErrorRaisedInAPassNamesThatPass) {
       frame.set("resolution.scale", "0.5");
       frame.set("fxaa", "off");
     }
-    // The lens's light (bloom's bright pass alone, with bloom off); auto exposure, its histogram passes with
+    // The lens flare and the glare; auto exposure, its histogram passes with
     // percentile metering, its reductions on frames wide enough to need one or two.
-    if (pass == "bloom-bright" || pass == "lens-flare") frame.set("lens-flare", "on");
+    if (pass == "lens-flare") frame.set("lens-flare", "on");
     if (pass == "glare" || pass == "chromatic-aberration") frame.set(pass, "on");
     if (pass.rfind("exposure-", 0) == 0) frame.set("auto-exposure", "on");
     if (pass == "exposure-histogram" || pass == "exposure-bins") frame.set("auto-exposure.metering", "percentile");
-    const Camera wide = builtinSceneCamera(pass == "exposure-reduce-2" ? 2100 : pass == "exposure-reduce" ? 200 : 32,
-                                           24);
+    const Camera wide = pass == "exposure-reduce-2" ? builtinSceneCamera(2100, 24)
+                        : pass == "exposure-reduce" ? builtinSceneCamera(200, 24)
+                                                    : camera;
     const gl::RenderTarget wideOutput("output", wide.width, wide.height, GL_NEAREST,
                                       gl::RenderTarget::Depth::Renderbuffer, test::context().caps().depth24);
     FrameOptions options;

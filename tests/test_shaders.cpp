@@ -9,8 +9,12 @@
 
 #include "TestSupport.h"
 #include "base/Error.h"
+#include "effects/fog/FogEffect.h"
 #include "effects/lighting/LightingEffect.h"
+#include "effects/tonemap/TonemapEffect.h"
+#include "frame/Stage.h"
 #include "effects/transparency/TransparencyEffect.h"
+
 #include "gl/ShaderLibrary.h"
 #include "gl/UniformPacking.h"
 
@@ -129,21 +133,24 @@ TEST(Shaders, EveryProgramFitsTheGles2UniformVectors) {
               specs.size(), worstVertex, worstVertexName.c_str(), worstFragment, worstFragmentName.c_str(),
               caps.maxVertexUniformVectors, caps.maxFragmentUniformVectors);
 
-  // The forward lighting's heaviest form (every PBR texture, alpha mask, tone mapping inline) with 0 .. 4 lights:
-  // exactly the figures punctualLightsPerDraw counts with.
-  // The layered materials' heaviest (every texture, the layers, the tone curve inline) takes kMaterialLayerVectors
-  // more.
+  // The forward lighting's heaviest forms (every PBR texture, alpha mask; and the same with the material layers) with
+  // the tone-mapping stage fused, with 0 .. 4 lights: exactly the figures punctualLightsPerDraw counts with (the
+  // layered ones with kMaterialLayerVectors more).
   for (int lights = 0; lights <= kMaxPunctualLights; ++lights) {
-    int most = 0, mostLayered = 0;
-    for (const ProgramSpec& spec : LightingEffect::programSpecs(lights)) {
-      if (spec.name.find("forward,mask,texture,pbr,tonemap=aces,atlas") != std::string::npos)
-        most = std::max(most, rowsOf(spec).second);
-      if (spec.name.find("forward,mask,texture,pbr,layers,tonemap=") != std::string::npos)
-        mostLayered = std::max(mostLayered, rowsOf(spec).second);
-    }
-    EXPECT_EQ(most, kForwardLightingVectorsWithoutLights + lights * kVectorsPerPunctualLight) << lights << " lights";
-    EXPECT_EQ(mostLayered, kForwardLightingVectorsWithoutLights + kMaterialLayerVectors +
-                               lights * kVectorsPerPunctualLight)
+    const std::vector<LightingEffect::StageHeadSpec> heads = LightingEffect::stageHeads(lights);
+    const ProgramSpec& heaviest = heads[heads.size() - 2].program;
+    const ProgramSpec& layered = heads.back().program;
+    ASSERT_NE(heaviest.name.find("forward,mask,texture,pbr,atlas"), std::string::npos) << heaviest.name;
+    ASSERT_NE(layered.name.find("forward,mask,texture,pbr,layers"), std::string::npos) << layered.name;
+    auto fusedRows = [&](const ProgramSpec& head) {
+      return rowsOf(fusedProgram(head, {TonemapEffect::stage(ToneMapOperator::AcesFitted)}, ColorSpace::Hdr)).second;
+    };
+    EXPECT_EQ(fusedRows(heaviest), kForwardLightingVectorsWithoutLights + lights * kVectorsPerPunctualLight)
+        << lights << " lights";
+    // The layered program's rows leave no spare column for the tone curve's two floats: kMaterialLayerVectors counts
+    // that row.
+    EXPECT_EQ(fusedRows(layered),
+              kForwardLightingVectorsWithoutLights + kMaterialLayerVectors + lights * kVectorsPerPunctualLight)
         << lights << " lights";
   }
   EXPECT_EQ(LightingEffect::punctualLightsPerDraw(16, true), -1);
@@ -175,4 +182,41 @@ TEST(Shaders, EveryProgramFitsTheGles2UniformVectors) {
       EXPECT_LT(vectors - most, 3 + 2) << vectors << " vectors: " << heaviest;
     }
   }
+}
+
+// A per-pixel stage fuses into a pass only where its uniforms fit the vectors that pass leaves (frame/Stage.h): each
+// head's program with any stage, or a chain of them, takes at most the vectors the head keeps for itself and the
+// stages declare, as GLSL ES 1.00 packs them; so what a plan fuses fits the context it was planned for.
+TEST(Shaders, FusedStagesTakeNoMoreUniformVectorsThanTheyDeclare) {
+  const gl::GlCaps& caps = test::context().caps();
+  std::vector<StageDecl> stages = FogEffect::stages();
+  for (const StageDecl& stage : TonemapEffect::stages()) stages.push_back(stage);
+  std::vector<std::vector<StageDecl>> chains;
+  for (const StageDecl& stage : stages) chains.push_back({stage});
+  for (const StageDecl& fog : FogEffect::stages())
+    chains.push_back({fog, TonemapEffect::stage(ToneMapOperator::AcesFitted)});
+  std::vector<std::pair<ProgramSpec, int>> heads;  // with the vectors each keeps
+  for (int lights : {0, kMaxPunctualLights})
+    for (const LightingEffect::StageHeadSpec& head : LightingEffect::stageHeads(lights))
+      heads.emplace_back(head.program, head.vectors);
+  int checked = 0;
+  for (const std::vector<StageDecl>& chain : chains) {
+    int declared = 0;
+    for (const StageDecl& stage : chain) declared += stage.uniformVectors;
+    std::vector<std::pair<ProgramSpec, int>> programs = {
+        {fusedProgram(stagePassHead(chain), chain, chain.front().inputSpace), kStagePassUniformVectors}};
+    for (const auto& [head, vectors] : heads)
+      programs.emplace_back(fusedProgram(head, chain, ColorSpace::Hdr), vectors);
+    for (const auto& [spec, vectors] : programs) {
+      if (!std::all_of(spec.extensions.begin(), spec.extensions.end(),
+                       [&](const std::string& e) { return caps.has(e); }))
+        continue;
+      const gl::Program program = spec.build();
+      const gl::StageUniforms uniforms =
+          gl::activeUniformsByStage(program.id(), spec.vertexSource(), spec.fragmentSource());
+      EXPECT_LE(gl::packedUniformRows(uniforms.fragment), vectors + declared) << spec.name;
+      ++checked;
+    }
+  }
+  EXPECT_GT(checked, 50);
 }

@@ -337,9 +337,13 @@ TEST(Transparency, ItsPassesRunOnlyForATransparentLayer) {
     settings.set("transparency", on ? "on" : "off");
     const Camera camera = test::makeCamera({0, 0, 5}, {0, 0, 0}, kSide, kSide, 0.1f, 100.0f, 50.0f);
     test::render(renderer, camera, settings, View::Final);
+    // The passes in the order they run, each followed by the per-pixel stages fused into it (fog into the lighting).
     std::vector<std::string> out;
-    for (const PlannedPass& p : renderer.lastPlan().passes())
-      if (p.live) out.push_back(p.decl.name);
+    for (const PlannedPass& p : renderer.lastPlan().passes()) {
+      if (!p.live) continue;
+      out.push_back(p.decl.name);
+      out.insert(out.end(), p.absorbed.begin(), p.absorbed.end());
+    }
     return out;
   };
   auto has = [](const std::vector<std::string>& list, const char* name) {

@@ -2,7 +2,7 @@
 //
 //   obscura-bench [--out DIR] [--frames N] [--backend osmesa|egl] [--quick] [--estimators-only] [--motion-only]
 //                 [--effects-only] [--finish-only] [--transparency-only] [--temporal-ao-only] [--lighting-only]
-//                 [--ao-layers-only] [--startup-only] [--resolution-only]
+//                 [--ao-layers-only] [--startup-only] [--resolution-only] [--host-only]
 //
 // Prints tables and writes DIR/bench.csv (every measurement), DIR/ratios.csv, DIR/radius_sweep.csv,
 // DIR/radius_sweep.png (gnuplot) and DIR/estimators.csv. Every pass is bounded by glFinish on both sides and
@@ -50,6 +50,12 @@
 //      gbuffer.normals reconstructed, with the depth hierarchy's atlas (the second layer folded into its texels) and
 //      without a hierarchy (the estimator reads the second layer's target beside the G-buffer), taking turns frame by
 //      frame at 640x360 and 1280x720 on the still room and the engine (DIR/ao_layers.csv)
+//  13. host time per frame (--host-only: this alone): the renderer's own CPU time in Renderer::render (the calling
+//      thread's CPU clock: planning, GL calls and what the driver does on that thread; llvmpipe rasterises on threads
+//      of its own), median of 4 x N frames of the moving built-in scene, the defaults and every effect on, at
+//      1280x720 and at 160x90 (where the driver's work is least); DIR/host.csv
+#include <time.h>
+
 #include <algorithm>
 #include <cstdio>
 #include <cstdlib>
@@ -117,6 +123,7 @@ struct Options {
   bool resolutionOnly = false;  // section 11 alone
   bool lightingOnly = false;    // section 10 alone
   bool aoLayersOnly = false;    // section 12 alone
+  bool hostOnly = false;        // section 13 alone
 };
 
 struct BenchScene {
@@ -338,10 +345,11 @@ Options parseOptions(int argc, char** argv) {
     else if (arg == "--resolution-only") options.resolutionOnly = true;
     else if (arg == "--lighting-only") options.lightingOnly = true;
     else if (arg == "--ao-layers-only") options.aoLayersOnly = true;
+    else if (arg == "--host-only") options.hostOnly = true;
     else throw InputError("unknown option '" + arg + "' (usage: obscura-bench [--out DIR] [--frames N] "
                           "[--backend osmesa|egl] [--quick] [--estimators-only] [--motion-only] [--effects-only] "
                           "[--finish-only] [--transparency-only] [--temporal-ao-only] [--lighting-only] "
-                          "[--ao-layers-only] [--startup-only] [--resolution-only])");
+                          "[--ao-layers-only] [--startup-only] [--resolution-only] [--host-only])");
   }
   return options;
 }
@@ -1070,10 +1078,12 @@ void effectsSection(const Options& options, HeadlessContext& context, const std:
     if (bloomAndFog) {
       // Issue 15's target: bloom at 1280x720 under the cost of the G-buffer pass, the two timed in the same frames.
       const FinishPassTimer& t = timers[bloomConfiguration];
+      double bloomMs = 0.0;  // its chain's passes
+      for (const std::string& pass : effectEntry("bloom").info.passes) bloomMs += t.medianMs(pass);
       char line[200];
       std::snprintf(line, sizeof line, "%dx%d: bloom %.2f ms, fog %.2f ms, G-buffer %.2f ms; bloom / G-buffer %.2f", w,
-                    h, t.medianMs("bloom"), t.medianMs("fog"), t.medianMs("gbuffer"),
-                    t.medianMs("bloom") / std::max(t.medianMs("gbuffer"), 1e-9));
+                    h, bloomMs, t.medianMs("fog"), t.medianMs("gbuffer"),
+                    bloomMs / std::max(t.medianMs("gbuffer"), 1e-9));
       targetLines.push_back(line);
     }
     if (dof) {
@@ -1126,6 +1136,92 @@ void effectsSection(const Options& options, HeadlessContext& context, const std:
   }
 }
 
+// Section 13: the renderer's host time per frame. Each frame is drawn after a glFinish, so no earlier frame's work
+// is waited for inside it, and timed by the calling thread's CPU clock (time the thread waits for the rasteriser's
+// threads is not counted) and by the wall clock. The moving built-in scene plays at 60 frames per second, as on the
+// page; the defaults and every effect on; 1280x720 and 160x90 (where the rasteriser's share on this thread is least).
+double threadCpuMs() {
+  timespec t{};
+  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &t);
+  return static_cast<double>(t.tv_sec) * 1e3 + static_cast<double>(t.tv_nsec) * 1e-6;
+}
+
+double wallMs() {
+  timespec t{};
+  clock_gettime(CLOCK_MONOTONIC, &t);
+  return static_cast<double>(t.tv_sec) * 1e3 + static_cast<double>(t.tv_nsec) * 1e-6;
+}
+
+double median(std::vector<double> values) {
+  if (values.empty()) return 0.0;
+  std::sort(values.begin(), values.end());
+  const size_t n = values.size();
+  return n % 2 ? values[n / 2] : 0.5 * (values[n / 2 - 1] + values[n / 2]);
+}
+
+void hostSection(const Options& options, HeadlessContext& context) {
+  const Scene scene = makeBuiltinScene();
+  struct Configuration {
+    std::string name;
+    RenderSettings settings;
+    bool cachePlans = true;
+  };
+  RenderSettings everything;
+  for (const EffectEntry& row : effectTable())
+    if (row.info.hasSwitch) everything.set(row.info.name, "on");
+  // Each also with its plan made every frame (RendererOptions::cachePlans off), in the same frames: what the cache
+  // saves.
+  const std::vector<Configuration> configurations = {{"defaults", RenderSettings()},
+                                                     {"defaults, plan each frame", RenderSettings(), false},
+                                                     {"every effect on", everything},
+                                                     {"every effect, plan each", everything, false}};
+  const std::vector<std::pair<int, int>> sizes = {{1280, 720}, {160, 90}};
+  const int frames = 4 * options.frames;
+  std::ofstream csv(options.outDir + "/host.csv");
+  csv << "configuration,width,height,host_cpu_ms,host_wall_ms\n";
+  std::printf("\n13. Host time per frame, the moving built-in scene playing at 60 fps, %s: the renderer's CPU time in "
+              "render() on the calling thread (and its wall time), median of %d frames, each drawn after glFinish\n",
+              context.caps().renderer.c_str(), frames);
+  std::printf("%-27s %-10s %12s %12s\n", "configuration", "size", "host cpu ms", "host wall ms");
+  for (auto [w, h] : sizes) {
+    const gl::RenderTarget output("bench output", w, h, GL_NEAREST, gl::RenderTarget::Depth::Renderbuffer,
+                                  context.caps().depth24, context.caps().packedDepthStencil);
+    const OutputTarget target{output.framebuffer(), w, h, {}};
+    const Camera camera = builtinSceneCamera(w, h);
+    std::vector<std::unique_ptr<Renderer>> renderers;
+    for (size_t c = 0; c < configurations.size(); ++c) {
+      RendererOptions rendererOptions;
+      rendererOptions.cachePlans = configurations[c].cachePlans;
+      renderers.push_back(std::make_unique<Renderer>(context.caps(), rendererOptions));
+      renderers.back()->setScene(scene);
+    }
+    std::vector<std::vector<double>> cpu(configurations.size()), wall(configurations.size());
+    const int warmUp = 8;
+    FrameOptions frame;
+    for (int f = -warmUp; f < frames; ++f) {
+      frame.time = 1.0 + (f + warmUp) / 60.0;
+      frame.previousTime = frame.time - 1.0 / 60.0;
+      for (size_t c = 0; c < configurations.size(); ++c) {
+        glFinish();
+        const double cpu0 = threadCpuMs(), wall0 = wallMs();
+        renderers[c]->render(camera, configurations[c].settings, View::Final, target, frame);
+        const double cpu1 = threadCpuMs(), wall1 = wallMs();
+        if (f >= 0) {
+          cpu[c].push_back(cpu1 - cpu0);
+          wall[c].push_back(wall1 - wall0);
+        }
+      }
+    }
+    glFinish();
+    for (size_t c = 0; c < configurations.size(); ++c) {
+      const double cpuMs = median(cpu[c]), wallMsMedian = median(wall[c]);
+      std::printf("%-27s %-10s %12.3f %12.3f\n", configurations[c].name.c_str(),
+                  (std::to_string(w) + "x" + std::to_string(h)).c_str(), cpuMs, wallMsMedian);
+      csv << '"' << configurations[c].name << "\"," << w << "," << h << "," << cpuMs << "," << wallMsMedian << "\n";
+    }
+  }
+}
+
 // Section 8c: the camera's finish (issue 29), every configuration in the same frames.
 void finishSection(const Options& options, HeadlessContext& context, const std::vector<std::pair<int, int>>& sizes) {
   const Scene scene = makeBuiltinScene(BuiltinSceneOptions::still());
@@ -1153,16 +1249,21 @@ void finishSection(const Options& options, HeadlessContext& context, const std::
   }
   const std::vector<std::string> columns = {"lighting", "bloom", "bloom-bright", "lens-flare", "glare", "exposure",
                                             "tonemap", "edges"};
+  // exposure and bloom: their passes together; bloom-bright: bloom's first two passes where they ran alone (bloom
+  // off, read by the lens flare or the glare).
   auto ms = [](const FinishPassTimer& t, const std::string& column) {
-    if (column != "exposure") return t.medianMs(column);
     double sum = 0.0;
-    for (const std::string& pass : effectEntry("auto-exposure").info.passes) sum += t.medianMs(pass);
+    if (column == "bloom-bright")
+      return t.medianMs("bloom") > 0.0 ? 0.0 : t.medianMs("bloom-prefilter") + t.medianMs("bloom-down-2");
+    if (column != "exposure" && column != "bloom") return t.medianMs(column);
+    for (const std::string& pass : effectEntry(column == "bloom" ? "bloom" : "auto-exposure").info.passes)
+      sum += t.medianMs(pass);
     return sum;
   };
   std::ofstream csv(options.outDir + "/finish.csv");
   csv << "configuration,width,height,pass,median_ms\n";
   std::printf("\n8c. The camera's finish, the still built-in scene, %s; median ms of %d frames, all configurations "
-              "taking turns (exposure: its passes together; edges: its last pass, where hatching draws)\n",
+              "taking turns (exposure, bloom: their passes together; edges: its last pass, where hatching draws)\n",
               context.caps().renderer.c_str(), options.frames);
   std::printf("%-27s %-9s", "configuration", "size");
   for (const std::string& c : columns) std::printf(" %12s", c.c_str());
@@ -1194,11 +1295,12 @@ void finishSection(const Options& options, HeadlessContext& context, const std::
                   "against %.2f for the lines",
                   w, h, ms(timers[1], "exposure"), ms(timers[2], "exposure"), timers[1].medianMs("tonemap"),
                   tonemapBloom, timers[4].medianMs("lens-flare"), timers[5].medianMs("glare"),
-                  timers[6].medianMs("glare"), timers[7].medianMs("tonemap"), timers[8].medianMs("bloom-bright"),
+                  timers[6].medianMs("glare"), timers[7].medianMs("tonemap"), ms(timers[8], "bloom-bright"),
                   timers[10].medianMs("edges"), timers[9].medianMs("edges"));
     summary.push_back(line);
   }
   for (const std::string& line : summary) std::printf("  %s\n", line.c_str());
+
 }
 
 int main(int argc, char** argv) {
@@ -1236,6 +1338,11 @@ int main(int argc, char** argv) {
     if (options.motionOnly) {  // before Bench, which starts DIR/bench.csv afresh
       motionSection(options, context, options.quick ? 640 : 1280, options.quick ? 360 : 720);
       std::printf("\nobscura-bench: wrote %s/motion.csv\n", options.outDir.c_str());
+      return 0;
+    }
+    if (options.hostOnly) {  // before Bench, which starts DIR/bench.csv afresh
+      hostSection(options, context);
+      std::printf("\nobscura-bench: wrote %s/host.csv\n", options.outDir.c_str());
       return 0;
     }
     if (options.resolutionOnly) {  // before Bench, which starts DIR/bench.csv afresh
@@ -1414,8 +1521,9 @@ int main(int argc, char** argv) {
     finishSection(options, context, effectSizes);
     temporalAoSection(options, context, builtin);
     resolutionSection(options, context, builtin);
+    hostSection(options, context);
     std::printf("\nobscura-bench: wrote %s/startup.csv, bench.csv, ratios.csv, radius_sweep.csv, radius_sweep.png, "
-                "estimators.csv, motion.csv, effects.csv, finish.csv, temporal_ao.csv, resolution.csv\n",
+                "estimators.csv, motion.csv, effects.csv, finish.csv, temporal_ao.csv, resolution.csv, host.csv\n",
                 options.outDir.c_str());
     return 0;
   } catch (const InputError& e) {

@@ -429,7 +429,7 @@ function showStats(obscura) {
   const lines = [`${s.width} x ${s.height} px, ${ratio}, ${s.frames} frames drawn`,
                  `render ${r.width} x ${r.height}: scale ${r.scale.toFixed(2)}, ${dynamic}`,
                  `frame  ${frame}`,
-                 `CPU    ${s.frames > 0 ? s.lastCpuMs.toFixed(2) : '-'} ms in the renderer, last frame`];
+                 `host   ${s.frames > 0 ? s.lastHostMs.toFixed(2) : '-'} ms in the renderer, last frame`];
   lines.push(startupLine(obscura));
   if (s.passMs) {
     lines.push('GPU per pass, a recent frame (EXT_disjoint_timer_query):');

@@ -360,7 +360,8 @@ export class Obscura extends EventTarget {
 
   // {width, height (drawing-buffer pixels), continuous, pending (a change waits for its frame), frameMs (between
   //  frames drawn back to back, smoothed; 0 until there were such frames), cpuMs (time in the renderer, smoothed),
-  //  lastCpuMs (time in the renderer of the last drawn frame), frames (drawn so far), timerQueries
+  //  lastCpuMs (time in the renderer of the last drawn frame), hostMs and lastHostMs (the same for the render call
+  //  alone: the renderer's host time, without the page's canvas work), frames (drawn so far), timerQueries
   //  (EXT_disjoint_timer_query in use), passMs ({gbuffer: ms, ...} of a recent frame, read a few animation frames
   //  after it, drawn or not; null per pass not run; null without timer queries or before the first result),
   //  passesRun (the passes the last frame ran, in order), passesDoneBy ({tonemap: 'lighting'}: passes whose work

@@ -14,9 +14,9 @@
 //                     target the G-buffer pass wrote beside it (several render targets). Each pixel once. Only
 //                     scenes whose materials are all rough dielectrics without emission and without punctual lights
 //                     take it (scene/Scene.h: Material::needsForwardLighting): it shades metallic 0, roughness 1.
-//   TONEMAP_INLINE 0  linear HDR colour in the RGBA8 encoding of lib/hdr.glsl, for the passes after it;
-//                  1  the tone mapping done here, where the tone-mapping pass would be this colour's only reader:
-//                     exposure, curve (TONEMAP_OPERATOR), sRGB, and the luma FXAA reads in alpha.
+//   (the shading forms) the lit linear HDR colour goes through finishPixel (lib/stage.glsl), which the program
+//                     defines before this file: the per-pixel stages fused into the pass (src/frame/Stage.h: fog, the
+//                     tone curve, ...), then the encoding of the last colour (HDR, or display colour with its luma).
 //   BACKGROUND 1      (with DEFERRED 1, over fullscreen.vert at the far plane) the forward forms' background: the
 //                     environment where the scene left the depth at 1.
 //   COUNT_SHADING 1   the diagnostic: each fragment adds 1/255 (additive blending), counting the fragments shaded
@@ -255,27 +255,29 @@ vec3 shade(vec3 base, float metallic, float roughness, vec3 p, vec3 n, vec3 g, f
 // itself (one colour for an orthographic camera, whose rays are parallel).
 vec3 background(vec3 farRay) { return environmentSpecular(u_viewToEnvironment * eyeRay(farRay), 0.0); }
 
-#if TONEMAP_INLINE
-#include "lib/tonemap.glsl"
-uniform float u_lumaInAlpha;     // 1: luma in alpha, for FXAA; 0: alpha 1, for the output framebuffer
-vec4 encodeOutput(vec3 linear) {
-  vec3 display = linearToSrgb(toneMap(linear));
-  return vec4(display, mix(1.0, fxaaLuma(display), u_lumaInAlpha));
-}
-#else
-vec4 encodeOutput(vec3 linear) { return encodeHdr(linear); }
-#endif
-
 #if DEFERRED && BACKGROUND
-void main() { gl_FragColor = encodeOutput(background(v_farRay)); }
+void main() {
+  StagePixel pixel = stagePixel(v_uv);
+  pixel.viewPosition = v_farRay;
+  pixel.background = true;
+  gl_FragColor = finishPixel(background(v_farRay), pixel);
+}
 #elif DEFERRED
 uniform sampler2D u_baseColor;   // sRGB-encoded base colour
 
 void main() {
   vec4 g = texture2D(u_gbuffer, v_uv);
+  float code = unpackDepthCode(g.ba);
+  StagePixel pixel = stagePixel(v_uv);
+  pixel.background = isBackgroundCode(code);
+  pixel.viewNormal = decodeNormal(g.rg);
+  pixel.viewPosition = v_farRay;
+#if STAGE_POSITION
+  if (!pixel.background) pixel.viewPosition = viewPositionOnRay(v_farRay, code * (1.0 / 65535.0));
+#endif
 #if !OVER_DEPTH
-  if (isBackgroundCode(unpackDepthCode(g.ba))) {
-    gl_FragColor = encodeOutput(background(v_farRay));
+  if (pixel.background) {
+    gl_FragColor = finishPixel(background(v_farRay), pixel);
     return;
   }
 #endif
@@ -283,8 +285,9 @@ void main() {
   // Only the view direction matters to the shading here (no punctual lights take this form): the eye's ray through
   // the far plane's point is the surface's (shade takes it through eyeRayDirection). The G-buffer's normal is the
   // surface's own (no normal texture takes this form).
-  vec3 n = decodeNormal(g.rg);
-  gl_FragColor = encodeOutput(shade(base, 0.0, 1.0, v_farRay, n, n, texture2D(u_ao, v_uv).r, vec3(0.0)));
+  gl_FragColor = finishPixel(shade(base, 0.0, 1.0, v_farRay, pixel.viewNormal, pixel.viewNormal,
+                                   texture2D(u_ao, v_uv).r, vec3(0.0)),
+                             pixel);
 }
 #elif UNLIT && !BLENDED
 // KHR_materials_unlit: the base colour (times the vertex colour) as it is; exposure and the tone curve still apply.
@@ -293,7 +296,10 @@ void main() {
 #if ALPHA_MASK
   if (base.a < u_alphaCutoff) discard;
 #endif
-  gl_FragColor = encodeOutput(base.rgb);
+  StagePixel pixel = stagePixel(v_clipPosition.xy / v_clipPosition.w * 0.5 + 0.5);
+  pixel.viewPosition = v_viewPosition;
+  pixel.viewNormal = normalize(v_viewNormal);
+  gl_FragColor = finishPixel(base.rgb, pixel);
 }
 #elif BLENDED
 #include "transparency/composite.glsl"
@@ -313,8 +319,12 @@ void main() {
   // The baked occlusion and the screen-space AO: their minimum, not their product (measured against the ray-traced
   // reference: docs/pbr.md, tests/test_baked_occlusion.cpp); both see much of the same occlusion.
   float occlusion = min(texture2D(u_ao, screenUv).r, surface.occlusion);
-  gl_FragColor = encodeOutput(shade(base.rgb, surface.metallic, surface.roughness, v_viewPosition, n, g, occlusion,
-                                    surface.emissive));
+  StagePixel pixel = stagePixel(screenUv);
+  pixel.viewPosition = v_viewPosition;
+  pixel.viewNormal = n;
+  gl_FragColor = finishPixel(shade(base.rgb, surface.metallic, surface.roughness, v_viewPosition, n, g, occlusion,
+                                   surface.emissive),
+                             pixel);
 }
 #endif
 #endif

@@ -1,8 +1,8 @@
 #include "frame/DebugViewPass.h"
 
 #include "frame/FramePlan.h"
+#include "frame/FullscreenPass.h"
 #include "frame/PassContext.h"
-#include "gl/PipelineState.h"
 
 namespace obscura {
 namespace {
@@ -32,40 +32,15 @@ std::vector<ProgramSpec> DebugViewPass::programSpecs() {
   return specs;
 }
 
-const DebugViewPass::Variant& DebugViewPass::variant(ViewDecoding decoding) {
-  auto it = variants_.find(decoding);
-  if (it == variants_.end())
-    it = variants_.emplace(decoding, Variant(resources_.build(programSpec(decoding)), decoding)).first;
-  return it->second;
-}
-
-DebugViewPass::Variant::Variant(gl::Program built, ViewDecoding decoding)
-    : program(std::move(built)), source(program.uniform("u_source")) {
-  if (decoding != ViewDecoding::NormalsFromDepth) return;
-  reconstruction = ReconstructionUniforms(program);
-  sourceSize = program.uniform("u_sourceSize");
-}
-
 PassDecl DebugViewPass::pass(const std::string& name, const std::string& target, ViewDecoding decoding) {
-  PassDecl pass;
-  pass.name = name;
-  pass.reads = {target};
-  pass.writes = {{kOutputTarget, TargetSize::full(), PassDecl::Write::Depth::None, ""}};
-  pass.run = [this, target, decoding](PassContext& context) {
-    const Variant& v = variant(decoding);
-    context.bindForWriting(kOutputTarget);
-    v.program.use();
-    const gl::Texture2D& source = context.texture(target);
-    source.bind(0);
-    gl::Program::set(v.source, 0);
-    if (v.sourceSize >= 0) {
-      v.reconstruction.set(context.camera().reconstruction);
-      gl::Program::set(v.sourceSize, glm::vec2(source.width(), source.height()));
-    }
-    resources_.triangle.draw();
-    gl::restoreBaselineState();
-  };
-  return pass;
+  std::function<void(FullscreenDraw&, const PassContext&)> uniforms;
+  if (decoding == ViewDecoding::NormalsFromDepth)
+    uniforms = [target](FullscreenDraw& draw, const PassContext& context) {
+      setReconstruction(draw.program(), context.camera().reconstruction);
+      const gl::Texture2D& source = context.texture(target);
+      draw.set("u_sourceSize", glm::vec2(source.width(), source.height()));
+    };
+  return fullscreenPass(name, programSpec(decoding), {{"u_source", target}}, {kOutputTarget}, std::move(uniforms));
 }
 
 }  // namespace obscura

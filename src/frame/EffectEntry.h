@@ -12,6 +12,7 @@
 #include "frame/Effect.h"
 #include "frame/FullscreenTriangle.h"
 #include "frame/Parameters.h"
+#include "frame/ProgramCache.h"
 #include "frame/RendererOptions.h"
 #include "frame/SurfaceShading.h"
 #include "gl/GlCaps.h"
@@ -24,9 +25,11 @@ struct EffectResources {
   const gl::GlCaps& caps;
   const RendererOptions& options;
   const FullscreenTriangle& triangle;
+  ProgramCache& programs;  // every program of the frame, built on first use (strict with options.checkGlErrors)
+  const gl::Program& program(const ProgramSpec& spec) const { return programs.get(spec); }
   // This frame's light and fog for surfaces drawn after the lighting pass (frame/SurfaceShading.h).
   SurfaceShading& surfaces;
-  // Builds a program: strict (gl/Program.h) when options.checkGlErrors is on.
+  // Builds a program of the effect's own (strict with options.checkGlErrors on).
   gl::Program build(const ProgramSpec& spec) const { return spec.build(options.checkGlErrors); }
 };
 
@@ -57,6 +60,14 @@ template <typename S, typename = void>
 struct HasPresets : std::false_type {};
 template <typename S>
 struct HasPresets<S, std::void_t<decltype(std::declval<S&>().applyPreset(QualityPreset::Medium))>> : std::true_type {};
+template <typename E, typename = void>
+struct HasStages : std::false_type {};
+template <typename E>
+struct HasStages<E, std::void_t<decltype(E::stages())>> : std::true_type {};
+template <typename E, typename = void>
+struct HasStageHeads : std::false_type {};
+template <typename E>
+struct HasStageHeads<E, std::void_t<decltype(E::stageHeads())>> : std::true_type {};
 }  // namespace detail
 
 struct EffectEntry {
@@ -71,10 +82,15 @@ struct EffectEntry {
   std::function<bool(const EffectSettingsBase&, QualityPreset)> matchesPreset;  // empty: no presets
   std::function<QualityPreset(const EffectSettingsBase&)> presetOf;             // the preset they came from
   std::vector<ParameterBinding> parameters;                                     // full names, `row` unset
+  // Per-pixel stages (frame/Stage.h), for the shader checks: every variant of the stage it declares, and the
+  // programs stages fuse into that it runs (a fragment file whose main calls finishPixel, and its colour's space).
+  std::function<std::vector<StageDecl>()> stages;
+  std::function<std::vector<std::pair<ProgramSpec, ColorSpace>>()> stageHeads;
 
   // The row of effect class E: E::info(), E::programSpecs(), E(const EffectResources&), and E::Settings with
   // parameters() (local names), validate(), a bool `enabled` when E::kHasSwitch, and optionally presets:
-  // applyPreset(QualityPreset), matchesPreset(QualityPreset) and the QualityPreset `preset` they came from.
+  // applyPreset(QualityPreset), matchesPreset(QualityPreset) and the QualityPreset `preset` they came from; and
+  // optionally E::stages() (its stage's variants) and E::stageHeads() (the programs stages fuse into).
   template <typename E>
   static EffectEntry of() {
     using S = typename E::Settings;
@@ -95,6 +111,17 @@ struct EffectEntry {
       entry.applyPreset = [](EffectSettingsBase& s, QualityPreset p) { cast<S>(s).applyPreset(p); };
       entry.matchesPreset = [](const EffectSettingsBase& s, QualityPreset p) { return cast<S>(s).matchesPreset(p); };
       entry.presetOf = [](const EffectSettingsBase& s) { return cast<S>(s).preset; };
+    }
+    if constexpr (detail::HasStages<E>::value) entry.stages = [] { return E::stages(); };
+    else entry.stages = [] { return std::vector<StageDecl>{}; };
+    if constexpr (detail::HasStageHeads<E>::value) {
+      entry.stageHeads = [] {
+        std::vector<std::pair<ProgramSpec, ColorSpace>> heads;
+        for (const auto& head : E::stageHeads()) heads.emplace_back(head.program, head.space);
+        return heads;
+      };
+    } else {
+      entry.stageHeads = [] { return std::vector<std::pair<ProgramSpec, ColorSpace>>{}; };
     }
     const std::string& effect = entry.info.name;
     for (const Parameter<S>& p : S::parameters()) {

@@ -52,17 +52,15 @@ float halton(std::uint32_t index, std::uint32_t base) {
   return result;
 }
 
-ReconstructionUniforms::ReconstructionUniforms(const gl::Program& program)
-    : farHalfExtent_(program.uniform("u_farHalfExtent")),
-      farPlane_(program.optionalUniform("u_farPlane")),  // only where a pass reads the far plane's depth
-      depthToRay_(program.uniform("u_depthToRay")),
-      perspective_(program.optionalUniform("u_perspective")) {}  // only where a pass follows eye rays
+void setFarRay(const gl::Program& program, const ViewReconstruction& r) {
+  program.set("u_farHalfExtent", r.farHalfExtent);
+  if (program.has("u_farPlane")) program.set("u_farPlane", r.far);
+  if (program.has("u_perspective")) program.set("u_perspective", r.perspective ? 1.0f : 0.0f);
+}
 
-void ReconstructionUniforms::set(const ViewReconstruction& r) const {
-  gl::Program::set(farHalfExtent_, r.farHalfExtent);
-  gl::Program::set(farPlane_, r.far);
-  gl::Program::set(depthToRay_, r.depthToRay);
-  gl::Program::set(perspective_, r.perspective ? 1.0f : 0.0f);
+void setReconstruction(const gl::Program& program, const ViewReconstruction& r) {
+  setFarRay(program, r);
+  program.set("u_depthToRay", r.depthToRay);
 }
 
 }  // namespace obscura

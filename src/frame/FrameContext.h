@@ -72,15 +72,11 @@ struct FrameContext {
 // antialiasing takes (halton(i, 2), halton(i, 3)) - 0.5.
 float halton(std::uint32_t index, std::uint32_t base);
 
-// The uniforms of shaders_es2/lib/reconstruct.glsl, resolved once per program.
-class ReconstructionUniforms {
- public:
-  ReconstructionUniforms() = default;
-  explicit ReconstructionUniforms(const gl::Program& program);
-  void set(const ViewReconstruction& reconstruction) const;  // on the program in use
-
- private:
-  GLint farHalfExtent_ = -1, farPlane_ = -1, depthToRay_ = -1, perspective_ = -1;
-};
+// Sets the uniforms of shaders_es2/lib/reconstruct.glsl on the program in use: the far-plane ray (fullscreen.vert's
+// v_farRay; enough where only its direction is used), and with it the depth-to-ray scale of viewPositionOnRay. The
+// far plane's depth and the perspective switch are set where the program has them (a pass that reads the far
+// plane's depth; one that follows eye rays).
+void setFarRay(const gl::Program& program, const ViewReconstruction& reconstruction);
+void setReconstruction(const gl::Program& program, const ViewReconstruction& reconstruction);
 
 }  // namespace obscura

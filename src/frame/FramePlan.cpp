@@ -14,7 +14,8 @@ std::string describe(const PlannedPass& pass) {
 }
 
 auto slotKind(const SlotKey& k) {
-  return std::make_tuple(static_cast<int>(k.size.kind), k.size.tile, k.size.height, k.filter, k.ownDepth);
+  return std::make_tuple(static_cast<int>(k.size.kind), k.size.tile, k.size.height, k.size.shiftX, k.size.shiftY,
+                         k.filter, k.ownDepth);
 }
 
 }  // namespace
@@ -83,6 +84,7 @@ FramePlan FramePlan::resolve(FramePlanner&& planner, const std::string& result,
       version.size = write.size;
       version.depth = write.depth;
       version.output = write.target == kOutputTarget;
+      version.history = write.history;
       version.external = std::find(entry.externalWrites.begin(), entry.externalWrites.end(), write.target) !=
                          entry.externalWrites.end();
       if (!version.output) {
@@ -205,9 +207,10 @@ FramePlan FramePlan::resolve(FramePlanner&& planner, const std::string& result,
         if (!readsOnlyThis || !used) continue;
         absorbed = *readers.begin();
       }
-      // Take it: the alternative's reads, its code, and the writes (this pass's targets, or the absorbed pass's).
-      std::map<std::string, int> writes = absorbed >= 0 ? plan.passes_[static_cast<size_t>(absorbed)].writes
-                                                        : pass.writes;
+      // Take it: the alternative's reads, its code, its writes (this pass's targets, or the absorbed pass's) and what
+      // it offers stages.
+      std::map<std::string, int> writes =
+          absorbed >= 0 ? plan.passes_[static_cast<size_t>(absorbed)].writes : pass.writes;
       if (writes.size() != alternative.writes.size())
         throw PipelineError(describe(pass) + ": an alternative writes other targets than it stands in for");
       pass.reads.clear();
@@ -215,8 +218,8 @@ FramePlan FramePlan::resolve(FramePlanner&& planner, const std::string& result,
       for (const PassDecl::Write& write : alternative.writes) {
         const auto it = writes.find(write.target);
         if (it == writes.end())
-          throw PipelineError(describe(pass) + ": an alternative writes '" + write.target + "', which it stands in for "
-                              "no pass writing");
+          throw PipelineError(describe(pass) + ": an alternative writes '" + write.target + "', which it stands in "
+                              "for no pass writing");
         TargetVersion& version = plan.versions_[static_cast<size_t>(it->second)];
         version.writer = i;
         version.size = write.size;
@@ -234,7 +237,63 @@ FramePlan FramePlan::resolve(FramePlanner&& planner, const std::string& result,
       pass.decl.optionalReads.clear();
       pass.decl.writes = alternative.writes;
       pass.decl.run = alternative.run;
+      pass.decl.stageHead = alternative.stageHead;
       break;
+    }
+  }
+
+  // Per-pixel stages fuse into the stage head before them (rule 4b).
+  for (int i = 0; i < static_cast<int>(plan.passes_.size()); ++i) {
+    PlannedPass& head = plan.passes_[static_cast<size_t>(i)];
+    if (!head.live || !head.decl.stageHead) continue;
+    const StageHead& offer = *head.decl.stageHead;
+    head.stageOutput = offer.color;
+    if (!planner.fuseStages_) continue;
+    ColorSpace space = offer.space;
+    int vectors = offer.uniformVectors;
+    for (;;) {
+      const auto own = head.writes.find(head.stageOutput);
+      if (own == head.writes.end()) break;
+      const int color = own->second;
+      if (color == resultVersion || retainedVersion(color)) break;
+      const std::vector<int> readers = readersOf(color);
+      if (readers.size() != 1) break;
+      PlannedPass& next = plan.passes_[static_cast<size_t>(readers.front())];
+      if (!next.decl.stage || next.writes.size() != 1) break;
+      const StageDecl& stage = *next.decl.stage;
+      const auto input = next.reads.find(stage.input);
+      if (input == next.reads.end() || input->second != color || stage.inputSpace != space) break;
+      if (stage.uniformVectors > vectors) break;
+      if (!stage.textures.empty() && !offer.bindsTextures) break;
+      // What else it reads, the head must see as it is: written before the head runs.
+      bool readable = true;
+      for (const auto& [target, version] : next.reads) {
+        if (target == stage.input) continue;
+        const auto mine = head.reads.find(target);
+        readable = readable && plan.versions_[static_cast<size_t>(version)].writer < i &&
+                   (mine == head.reads.end() || mine->second == version);
+      }
+      if (!readable) break;
+      const int output = next.writes.begin()->second;
+      TargetVersion& out = plan.versions_[static_cast<size_t>(output)];
+      const TargetVersion& in = plan.versions_[static_cast<size_t>(color)];
+      if (!(out.size == in.size) || out.history || out.external) break;
+      const bool drawnIntoOutput = output == resultVersion && readersOf(output).empty() && !retainedVersion(output);
+      if (drawnIntoOutput && !offer.mayWriteOutput) break;
+      // Fuse: the head writes the stage's output, with its own depth set-up, and reads what the stage reads.
+      vectors -= stage.uniformVectors;
+      space = stage.outputSpace;
+      head.stages.push_back(stage);
+      head.absorbed.push_back(next.decl.name);
+      next.live = false;
+      out.writer = i;
+      out.depth = in.depth;
+      out.depthVersion = in.depthVersion;
+      head.writes.erase(own);
+      head.writes[out.target] = output;
+      head.stageOutput = out.target;
+      for (const auto& [target, version] : next.reads)
+        if (target != stage.input) head.reads[target] = version;
     }
   }
 
@@ -255,7 +314,7 @@ FramePlan FramePlan::resolve(FramePlanner&& planner, const std::string& result,
     for (const auto& [target, version] : pass.reads) resultRead = resultRead || (pass.live && version == resultVersion);
   for (const auto& [target, version] : plan.retained_) resultRead = resultRead || version == resultVersion;
   if (!resultContents.output) {
-    if (!resultRead && !resultContents.external) {
+    if (!resultRead && !resultContents.external && !resultContents.history) {
       resultContents.output = true;
     } else {
       FramePlanner::Entry present{"", presentPass(), {}, {}, {}};
@@ -284,7 +343,7 @@ FramePlan FramePlan::resolve(FramePlanner&& planner, const std::string& result,
     if (!pass.live) continue;
     for (const auto& [target, version] : pass.writes) {
       TargetVersion& v = plan.versions_[static_cast<size_t>(version)];
-      if (v.output || v.external) continue;
+      if (v.output || v.external || v.history) continue;
       SlotKey key{v.size, v.filter, v.depth == PassDecl::Write::Depth::Own, 0};
       while (inUse.count(key)) ++key.index;
       inUse.insert(key);

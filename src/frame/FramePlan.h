@@ -10,9 +10,16 @@
 //   3. Liveness, backwards from the frame's result: a pass runs if it is `keep`, or a running pass reads one of its
 //      versions, or it writes the result. Optional reads never keep a writer alive, and are dropped when theirs
 //      does not run.
-//   4. The result (the frame's final image, or the debug view's output) is written straight into the output
+//   4. Alternatives: each running pass takes the first of its alternatives whose conditions hold.
+//   4b. Per-pixel stages fuse: a stage pass (PassDecl::stage) whose colour input is written by a stage head
+//      (PassDecl::stageHead: the lighting, or another stage pass), and read by it alone, runs inside the head's
+//      program, which then writes the stage's output, when everything else the stage reads is written before the
+//      head runs, its uniforms fit the head's remaining vectors, and (where the head cannot draw into the output
+//      framebuffer) its output is not the frame's result drawn there. Stage after stage, a chain fuses into one
+//      pass; the stages' passes do not run ("done by" the head: PlannedPass::absorbed).
+//   5. The result (the frame's final image, or the debug view's output) is written straight into the output
 //      framebuffer by its writer, unless a running pass also reads that version; then a present pass copies it.
-//   5. Every other version gets a pooled slot: slots are keyed by size, filter and own depth, and a slot is free
+//   6. Every other version gets a pooled slot: slots are keyed by size, filter and own depth, and a slot is free
 //      again once the last pass reading what it holds has run. A pass never writes the slot it reads from.
 #include <map>
 #include <optional>
@@ -44,6 +51,7 @@ struct TargetVersion {
   PassDecl::Write::Depth depth = PassDecl::Write::Depth::None;
   int depthVersion = -1;         // Depth::Shared: the version whose slot's depth renderbuffer is attached
   bool external = false;         // storage the effect keeps itself (not pooled)
+  bool history = false;          // this frame's side of a history target (PassDecl::Write::history; not pooled)
   bool output = false;           // written into the output framebuffer
   int lastReader = -1;           // pass index, -1: none
   std::optional<SlotKey> slot;   // pooled storage
@@ -56,7 +64,10 @@ struct PlannedPass {
   std::map<std::string, int> reads;   // target (or alias) -> version: required reads, and optional ones whose
                                       // writer runs
   std::map<std::string, int> writes;  // target -> version
-  std::vector<std::string> absorbed;  // passes whose work this one does (PassDecl::Alternative::absorbing)
+  std::vector<std::string> absorbed;  // passes whose work this one does: the stages fused into it, in order, or the
+                                      // pass an alternative absorbed (PassDecl::Alternative::absorbing)
+  std::vector<StageDecl> stages;      // those stages
+  std::string stageOutput;            // a stage head's colour target: its own, or its last fused stage's output
 };
 
 // Collects one frame's passes. Effects add theirs in FramePlanner's hands (Effect::plan).
@@ -72,6 +83,8 @@ class FramePlanner {
 
   // The effect whose passes follow (the Renderer sets it before calling Effect::plan).
   void beginEffect(const std::string& effect) { effect_ = effect; }
+  // Whether per-pixel stages fuse (rule 4b; RendererOptions::fuseStages).
+  void setFuseStages(bool fuse) { fuseStages_ = fuse; }
   // The target the frame's debug view shows ("" for the final image). An effect that is off still plans the passes
   // that view needs (showsTargetOf).
   void setViewTarget(const std::string& target) { viewTarget_ = target; }
@@ -101,6 +114,7 @@ class FramePlanner {
   const std::map<std::string, TargetInfo>& targets_;
   std::string effect_;
   std::string viewTarget_;
+  bool fuseStages_ = true;
   std::vector<Entry> entries_;
 };
 

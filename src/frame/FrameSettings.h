@@ -23,6 +23,8 @@ class FrameSettings {
   const S& of() const {
     return EffectEntry::cast<S>(*rows_[rowOf(typeid(S))]);
   }
+  // The settings of the table's row `index`, type-erased (EffectEntry's functions take them).
+  const EffectSettingsBase& rowAt(size_t index) const { return *rows_[index]; }
 
  protected:
   FrameSettings() = default;

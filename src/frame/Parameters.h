@@ -54,6 +54,11 @@ struct ParameterInfo {
   // A change takes a noticeable time (lighting.sun-elevation makes and prefilters the sky again): a slider applies it
   // when the drag ends, not at every step.
   bool slow = false;
+  // A change changes the frame's plan (frame/FramePlan.h): which passes run, their targets' sizes or their programs
+  // (a switch, a choice of variant, a loop bound). The Renderer keys its cached plans on these parameters' values;
+  // the others (numbers and colours, unless marked) reach the passes each frame through their PassContext.
+  // Plan.ACachedPlanDrawsWhatAFreshOneDraws (tests/test_pipeline.cpp) holds every unmarked parameter to it.
+  bool shapesPlan = true;
   std::string effect;                // the effect it belongs to; "" for the frame's own ("preset")
   std::string alias;                 // an older name still accepted everywhere ("radius" for "ao.radius"), or ""
 };
@@ -77,6 +82,12 @@ struct Parameter {
   // Marks it as slow to change (ParameterInfo::slow).
   Parameter slow() && {
     info.slow = true;
+    return std::move(*this);
+  }
+  // Marks a number as one that changes the plan (ParameterInfo::shapesPlan: a threshold that turns a pass on, a size
+  // that sets a loop bound or a target's size).
+  Parameter shapesPlan() && {
+    info.shapesPlan = true;
     return std::move(*this);
   }
 };
@@ -107,6 +118,7 @@ Parameter<S> numberParameter(const char* name, double min, double max, const cha
                              float S::*field) {
   Parameter<S> p{{name, parse::numericRange(min, max, unit, ""), help, ParameterKind::Number, min, max, {}},
                  {}, {}, {}, {}};
+  p.info.shapesPlan = false;  // a value the passes read each frame, unless marked
   p.set = [=](S& s, const std::string& v) { s.*field = parse::number(name, v, min, max, unit); };
   p.get = [field](const S& s) { return formatShortest(s.*field); };
   p.valid = [=](const S& s) { return s.*field >= static_cast<float>(min) && s.*field <= static_cast<float>(max); };
@@ -120,6 +132,7 @@ Parameter<S> autoNumberParameter(const char* name, double min, double max, const
   Parameter<S> p{{name, parse::numericRange(min, max, unit, "or auto"), help, ParameterKind::Number, min, max,
                   {"auto"}},
                  {}, {}, {}, {}};
+  p.info.shapesPlan = false;  // a value the passes read each frame, unless marked
   p.set = [=](S& s, const std::string& v) {
     if (v == "auto") s.*field = std::nullopt;
     else s.*field = parse::number(name, v, min, max, unit);
@@ -157,6 +170,7 @@ Parameter<S> colorParameter(const char* name, double min, double max, const char
   Parameter<S> p{{name, "r,g,b (linear, each " + parse::numericRange(min, max, "", "") + ") or #rrggbb (sRGB)", help,
                   ParameterKind::Color, min, max, {}},
                  {}, {}, {}, {}};
+  p.info.shapesPlan = false;  // a value the passes read each frame
   p.set = [=](S& s, const std::string& v) { s.*field = parse::color(name, v, min, max); };
   p.get = [field](const S& s) { return parse::formatColor(s.*field); };
   p.valid = [=](const S& s) {

@@ -28,6 +28,11 @@ const TargetVersion& PassContext::writeVersion(const std::string& target) const 
 
 const gl::Texture2D& PassContext::texture(const std::string& target) const {
   const TargetVersion& version = readVersion(target);
+  if (version.history) {
+    const RenderTargetPool::History* history = pool_.findHistory(version.target);
+    if (!history) throw PipelineError("pass '" + passName(plan_, pass_) + "' reads history '" + target + "' unwritten");
+    return history->current().color();
+  }
   if (!version.slot)
     throw PipelineError("pass '" + passName(plan_, pass_) + "' reads '" + target + "', which has no pooled target");
   return pool_.slot(*version.slot).color();
@@ -52,7 +57,12 @@ void PassContext::bindForWriting(const std::string& target) const {
     if (output_.region.width > 0 && output_.region.height > 0) {
       glEnable(GL_SCISSOR_TEST);
       glScissor(output_.region.x, output_.region.y, output_.region.width, output_.region.height);
+      scissored_ = true;
     }
+    return;
+  }
+  if (version.history) {
+    pool_.history(version.target, version.size, version.filter).current().bindForDrawing();
     return;
   }
   if (!version.slot)
@@ -92,6 +102,11 @@ bool PassContext::writesOutput(const std::string& target) const { return writeVe
 
 bool PassContext::sharesDepth(const std::string& target) const {
   return writeVersion(target).depth == PassDecl::Write::Depth::Shared;
+}
+
+void PassContext::finish() const {
+  if (scissored_) glDisable(GL_SCISSOR_TEST);
+  scissored_ = false;
 }
 
 }  // namespace obscura

@@ -3,9 +3,11 @@
 // bound to the physical targets the frame plan lent it (or the output framebuffer, for the frame's result).
 #include <string>
 
+#include "frame/EffectEntry.h"
 #include "frame/FrameContext.h"
 #include "frame/FramePlan.h"
 #include "frame/FrameSettings.h"
+#include "frame/FullscreenPass.h"
 #include "frame/RenderTargetPool.h"
 #include "gpu/GpuScene.h"
 
@@ -25,8 +27,10 @@ struct OutputTarget {
 class PassContext {
  public:
   PassContext(const FramePlan& plan, int pass, RenderTargetPool& pool, const FrameContext& frame,
-              const FrameSettings& settings, const GpuScene& scene, const OutputTarget& output)
-      : plan_(plan), pass_(pass), pool_(pool), frame_(frame), settings_(settings), scene_(scene), output_(output) {}
+              const FrameSettings& settings, const GpuScene& scene, const OutputTarget& output,
+              const EffectResources& resources)
+      : plan_(plan), pass_(pass), pool_(pool), frame_(frame), settings_(settings), scene_(scene), output_(output),
+        resources_(resources) {}
 
   const FrameContext& frame() const { return frame_; }
   const FrameCamera& camera() const { return frame_.camera; }
@@ -47,8 +51,32 @@ class PassContext {
   // Binds one framebuffer writing several pooled targets of the same size at once (EXT_draw_buffers:
   // gl_FragData[i] goes to targets[i]), with the depth renderbuffer of the first that has one.
   void bindForWriting(const std::vector<std::string>& targets) const;
-  // The size of a target this pass reads or writes, in pixels.
+  // The size of a target this pass reads or writes, in pixels, and one texel's size in uv units (1 / size).
   glm::ivec2 size(const std::string& target) const;
+  glm::vec2 texelSize(const std::string& target) const { return 1.0f / glm::vec2(size(target)); }
+  // The program of `spec` (the Renderer's, built on first use); by name, its spec made only the first time.
+  const gl::Program& program(const ProgramSpec& spec) const { return resources_.program(spec); }
+  const gl::Program& program(const std::string& name, const std::function<ProgramSpec()>& spec) const {
+    return resources_.programs.get(name, spec);
+  }
+  const EffectResources& resources() const { return resources_; }
+  // This pass as the plan resolved it.
+  const PlannedPass& pass() const { return plan_.passes()[static_cast<size_t>(pass_)]; }
+  // The per-pixel stages fused into this pass (frame/Stage.h), in order, and the target a stage head writes its
+  // colour into: its own, or the last fused stage's output.
+  const std::vector<StageDecl>& stages() const { return pass().stages; }
+  const std::string& stageOutput() const { return pass().stageOutput; }
+  // A full-screen draw of `spec`'s program into `target`, which it binds for writing (frame/FullscreenPass.h).
+  FullscreenDraw draw(const ProgramSpec& spec, const std::string& target) const {
+    bindForWriting(target);
+    return FullscreenDraw(program(spec), resources_.triangle, this);
+  }
+  // The same into the framebuffer bound already (a history target, an effect's own storage).
+  FullscreenDraw draw(const ProgramSpec& spec) const {
+    return FullscreenDraw(program(spec), resources_.triangle, this);
+  }
+  // Restores what the pass context changed (the output region's scissor): called after every pass.
+  void finish() const;
   // Whether this pass writes `target` into the output framebuffer.
   bool writesOutput(const std::string& target) const;
   // Whether `target` is written with another target's depth attached (else its own, or none).
@@ -69,6 +97,8 @@ class PassContext {
   const FrameSettings& settings_;
   const GpuScene& scene_;
   const OutputTarget& output_;
+  const EffectResources& resources_;
+  mutable bool scissored_ = false;
 };
 
 }  // namespace obscura

@@ -92,13 +92,22 @@ RenderTargetPool::History& RenderTargetPool::history(const std::string& name, co
                                                      GLenum filter) {
   History& history = history_[name];
   if (!history.targets_[0]) {
+    // Made on first use, perhaps while a pass draws into another framebuffer: that binding is kept.
+    GLint bound = 0;
+    glGetIntegerv(GL_FRAMEBUFFER_BINDING, &bound);
     const glm::ivec2 pixels = size.of(size_);
     for (int i = 0; i < 2; ++i)
       history.targets_[i] = gl::RenderTarget("history '" + name + "' " + std::to_string(i), pixels.x, pixels.y,
                                              filter, gl::RenderTarget::Depth::None, false);
+    glBindFramebuffer(GL_FRAMEBUFFER, static_cast<GLuint>(bound));
   }
   history.written_ = true;
   return history;
+}
+
+const RenderTargetPool::History* RenderTargetPool::findHistory(const std::string& name) const {
+  const auto it = history_.find(name);
+  return it == history_.end() ? nullptr : &it->second;
 }
 
 void RenderTargetPool::dropHistory() {

@@ -56,6 +56,8 @@ class RenderTargetPool {
     bool written_ = false;
   };
   History& history(const std::string& name, const TargetSize& size, GLenum filter);
+  // A history target made already (this frame's writer asked for it), or null.
+  const History* findHistory(const std::string& name) const;
   // Forgets every history target (a scene change: the previous frame shows another scene).
   void dropHistory();
   // How many times the history was dropped (size changes included), for stats and tests.

@@ -22,6 +22,12 @@ struct RendererOptions {
   bool allowDrawBuffers = true;
   // false: FXAA runs in one draw even where its target has a stencil buffer (FxaaEffect.h; tests compare both).
   bool allowFxaaStencil = true;
+  // false: per-pixel stages run as passes of their own instead of fusing into the pass before them (frame/Stage.h;
+  // tests compare both, the benchmark measures what fusing saves).
+  bool fuseStages = true;
+  // false: the frame's plan is made every frame instead of being found among the cached ones (renderer/Renderer.h;
+  // tests compare both, the benchmark measures what caching saves).
+  bool cachePlans = true;
   // How the depth hierarchy is stored; unset: the extension mip chain where available, else the atlas
   // (DepthHierarchyPass.h). Tests and benchmarks force each storage to compare them.
   std::optional<HierarchyStorage> hierarchyStorage;

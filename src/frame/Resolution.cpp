@@ -16,6 +16,7 @@ const std::vector<Parameter<ResolutionSettings>>& ResolutionSettings::parameters
                          "render scale: the effects run at this fraction of the output's width and height, and one "
                          "pass upscales the result (with dynamic: the largest scale chosen)",
                          &S::scale)
+          .shapesPlan()  // the targets' size, and the upscale pass below 1
           .primary(),
       choiceParameter<S, UpscaleFilter>("upscale",
                                         "how the scaled frame reaches the output: bilinear, or edge-adaptive "
@@ -25,7 +26,8 @@ const std::vector<Parameter<ResolutionSettings>>& ResolutionSettings::parameters
           .primary(),
       numberParameter<S>("sharpness", 0, 1, "",
                          "edge upscale: RCAS-like sharpening (0 off), limited to the local minimum and maximum",
-                         &S::sharpness),
+                         &S::sharpness)
+          .shapesPlan(),  // above 0 the upscale's program sharpens (upscaleVariantName)
       switchParameter<S>("dynamic",
                          "dynamic resolution: the viewers choose the scale each frame (between min-scale and scale) "
                          "to hold target-ms; obscura-render and the API render at scale",

@@ -491,7 +491,12 @@ void GpuScene::drawPiece(const InstanceGpu& instance, int p, const MaterialGpu& 
   const bool newProgram =
       !state.uniforms || !(materialKind == state.programMaterial) || !(vertexKind == state.programVertex);
   if (newProgram) {
-    state.uniforms = &state.choose(materialKind, vertexKind);
+    // The program's per-draw uniforms, resolved on its first draw (programs outlive the scene's draws: they belong
+    // to the Renderer).
+    const gl::Program& program = state.choose(materialKind, vertexKind);
+    auto found = geometryUniforms_.find(&program);
+    if (found == geometryUniforms_.end()) found = geometryUniforms_.emplace(&program, GeometryUniforms(program)).first;
+    state.uniforms = &found->second;
     state.programMaterial = materialKind;
     state.programVertex = vertexKind;
     Program::set(state.uniforms->baseColorTexture, TextureUnits::kBaseColor);

@@ -19,6 +19,7 @@
 #include <array>
 #include <functional>
 #include <optional>
+#include <unordered_map>
 #include <vector>
 
 #include <glm/mat4x4.hpp>
@@ -72,8 +73,9 @@ class GpuScene {
   void setPose(const ScenePose& current, const ScenePose& previous);
 
   // Chooses the program for a draw: the material's kind (gpu/MaterialKind.h) and the vertex stage's
-  // (gpu/VertexKind.h). It makes the program current, sets its per-frame uniforms, and returns its per-draw ones.
-  using ProgramChoice = std::function<const GeometryUniforms&(MaterialKind material, VertexKind vertex)>;
+  // (gpu/VertexKind.h). It makes the program current, sets its per-frame uniforms, and returns it; the scene sets
+  // the per-draw ones by location (GeometryUniforms, resolved once per program).
+  using ProgramChoice = std::function<const gl::Program&(MaterialKind material, VertexKind vertex)>;
   struct DrawOptions {
     bool onlyMoving = false;  // only instances whose pose differs from the previous frame's (velocity)
     // Every face of every material, front or back (culling off): the AO's second depth layer, where an occluder's
@@ -255,6 +257,9 @@ class GpuScene {
   VertexLimits limits_;
   bool desktopGl_ = false;
   mutable Counts counts_;
+  // The per-draw uniforms of each program drawn with, resolved on its first draw (programs outlive the scene's
+  // draws: they belong to the Renderer).
+  mutable std::unordered_map<const gl::Program*, GeometryUniforms> geometryUniforms_;
 };
 
 }  // namespace obscura

@@ -22,6 +22,7 @@
 #include "effects/transparency/TransparencyEffect.h"
 #include "effects/velocity/VelocityEffect.h"
 #include "frame/DebugViewPass.h"
+#include "frame/Stage.h"
 
 namespace obscura {
 
@@ -106,12 +107,44 @@ const std::vector<std::string>& frameViewNames() {
   return names;
 }
 
+std::vector<ProgramSpec> fusedProgramSpecs() {
+  // Every stage variant, in table order, each with the index of its row; and every head.
+  std::vector<std::pair<size_t, StageDecl>> stages;
+  std::vector<std::pair<ProgramSpec, ColorSpace>> heads;
+  for (size_t row = 0; row < effectTable().size(); ++row) {
+    for (StageDecl& stage : effectTable()[row].stages()) stages.emplace_back(row, std::move(stage));
+    for (auto& head : effectTable()[row].stageHeads()) heads.push_back(std::move(head));
+  }
+  // The chains: each variant alone, and each pair of stages of two rows that follow each other in colour space with
+  // one side at its first variant (every variant of each is then fused beside another stage at least once).
+  std::vector<std::vector<StageDecl>> chains;
+  for (const auto& [row, stage] : stages) chains.push_back({stage});
+  for (size_t a = 0; a < stages.size(); ++a)
+    for (size_t b = 0; b < stages.size(); ++b) {
+      const auto& [rowA, first] = stages[a];
+      const auto& [rowB, second] = stages[b];
+      if (rowA >= rowB || first.outputSpace != second.inputSpace) continue;
+      const bool firstVariantA = a == 0 || stages[a - 1].first != rowA;
+      const bool firstVariantB = b == 0 || stages[b - 1].first != rowB;
+      if (firstVariantA || firstVariantB) chains.push_back({first, second});
+    }
+  std::vector<ProgramSpec> specs;
+  for (const std::vector<StageDecl>& chain : chains) {
+    specs.push_back(fusedProgram(stagePassHead(chain), chain, chain.front().inputSpace));
+    for (const auto& [head, space] : heads)
+      if (space == chain.front().inputSpace) specs.push_back(fusedProgram(head, chain, space));
+  }
+  return specs;
+}
+
 std::vector<ProgramSpec> frameProgramSpecs() {
   std::vector<ProgramSpec> specs;
   for (const EffectEntry& row : effectTable()) {
     const std::vector<ProgramSpec> list = row.programSpecs();
     specs.insert(specs.end(), list.begin(), list.end());
   }
+  const std::vector<ProgramSpec> fused = fusedProgramSpecs();
+  specs.insert(specs.end(), fused.begin(), fused.end());
   const std::vector<ProgramSpec> views = DebugViewPass::programSpecs();
   specs.insert(specs.end(), views.begin(), views.end());
   return specs;

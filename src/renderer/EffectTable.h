@@ -20,7 +20,12 @@ const std::vector<std::string>& framePassNames();
 const std::vector<TargetInfo>& frameTargets();
 // The views a frame can show: "final", "split", then every target's views in table order.
 const std::vector<std::string>& frameViewNames();
-// Every program variant the frame may build: the table's, then the debug views'.
+// Every program variant the frame may build: the table's, the fused programs of per-pixel stages (fusedProgramSpecs),
+// then the debug views'.
 std::vector<ProgramSpec> frameProgramSpecs();
+// The fused programs the shader checks build (frame/Stage.h): each stage variant alone, and in pairs of stages that
+// follow each other, each in a stand-alone stage pass and in every program stages fuse into (the lighting's forms).
+// A frame builds the chains its plans fuse, on first use.
+std::vector<ProgramSpec> fusedProgramSpecs();
 
 }  // namespace obscura

@@ -89,13 +89,16 @@ std::string parseCompare(const std::string& name) {
 Renderer::Renderer(const gl::GlCaps& caps, const RendererOptions& options)
     : caps_(withSimulatedLimits(requireUsable(caps), options)),
       options_(options),
-      resources_{caps_, options_, triangle_, surfaces_},
-      views_(resources_),
+      programs_(options.checkGlErrors),
+      resources_{caps_, options_, triangle_, programs_, surfaces_},
       pool_(caps_) {
-  for (const EffectEntry& row : effectTable()) {
-    effects_.push_back(row.create(resources_));
-    if (row.info.name == "ao") ao_ = static_cast<AoEffect*>(effects_.back().get());
-    for (const TargetInfo& target : row.info.targets) targets_[target.name] = target;
+  for (size_t row = 0; row < effectTable().size(); ++row) {
+    const EffectEntry& entry = effectTable()[row];
+    effects_.push_back(entry.create(resources_));
+    if (entry.info.name == "ao") ao_ = static_cast<AoEffect*>(effects_.back().get());
+    for (const TargetInfo& target : entry.info.targets) targets_[target.name] = target;
+    for (size_t p = 0; p < entry.parameters.size(); ++p)
+      if (entry.parameters[p].info.shapesPlan) shapingParameters_.emplace_back(row, p);
   }
   // The table must add up before any frame: plan one with every effect on, at the defaults, for the final image
   // and for every view (PipelineError names the pass and the target that does not).
@@ -119,18 +122,20 @@ FramePlan Renderer::plan(const RenderSettings& settings, const FrameContext& fra
   const auto [target, decoding] = viewTarget(view);
   FramePlanner planner(settings, frame, targets_);
   planner.setViewTarget(target);
+  planner.setFuseStages(options_.fuseStages);
   for (size_t row = 0; row < effects_.size(); ++row) {
     planner.beginEffect(effectTable()[row].info.name);
     if (externalGBuffer != 0 && effectTable()[row].info.name == "gbuffer") planner.add(importGBuffer(externalGBuffer));
     else effects_[row]->plan(planner);
   }
   planner.beginEffect("");
-  if (!target.empty()) planner.add(views_.pass("view", target, decoding));
+  if (!target.empty()) planner.add(DebugViewPass::pass("view", target, decoding));
   // A frame rendered below the output's size ends in the pass that upscales it into the output (the resolution
   // effect's, or FXAA's doing both).
   const bool finalImage = target.empty() && !frame.upscaled();
-  return FramePlan::resolve(std::move(planner), finalImage ? kFinalImageTarget : kOutputTarget,
-                            [&] { return views_.pass("present", kFinalImageTarget, ViewDecoding::Color); }, retain);
+  return FramePlan::resolve(
+      std::move(planner), finalImage ? kFinalImageTarget : kOutputTarget,
+      [&] { return DebugViewPass::pass("present", kFinalImageTarget, ViewDecoding::Color); }, retain);
 }
 
 Renderer::~Renderer() = default;
@@ -323,6 +328,39 @@ void Renderer::endFrame() {
   ++frameIndex_;
 }
 
+Renderer::PlanKey Renderer::planKey(const RenderSettings& settings, const View& view,
+                                    const FrameOptions& options) const {
+  PlanKey key;
+  key.settings.reserve(shapingParameters_.size());
+  for (const auto& [row, parameter] : shapingParameters_)
+    key.settings.push_back(effectTable()[row].parameters[parameter].get(settings.rowAt(row)));
+  key.view = view.name;
+  key.size = {frame_.camera.width, frame_.camera.height};
+  key.outputSize = {frame_.outputWidth, frame_.outputHeight};
+  key.retain = options.retain;
+  key.externalGBuffer = options.externalGBuffer;
+  key.forwardLighting = frame_.forwardLighting;
+  key.linesOrPoints = frame_.linesOrPoints;
+  key.orthographic = frame_.camera.orthographic;
+  return key;
+}
+
+const FramePlan& Renderer::cachedPlan(const RenderSettings& settings, const View& view,
+                                      const FrameOptions& options) {
+  PlanKey key = planKey(settings, view, options);
+  if (!options_.cachePlans) plans_.clear();
+  for (size_t i = 0; i < plans_.size(); ++i)
+    if (plans_[i].key == key) {
+      std::rotate(plans_.begin(), plans_.begin() + static_cast<long>(i), plans_.begin() + static_cast<long>(i) + 1);
+      return *plans_.front().plan;
+    }
+  auto made = std::make_unique<FramePlan>(plan(settings, frame_, view, options.retain, options.externalGBuffer));
+  ++plansMade_;
+  if (plans_.size() == kCachedPlans) plans_.pop_back();
+  plans_.insert(plans_.begin(), CachedPlan{std::move(key), std::move(made)});
+  return *plans_.front().plan;
+}
+
 void Renderer::run(const RenderSettings& settings, const View& view, const OutputTarget& output,
                    const FrameOptions& options) {
   for (const std::unique_ptr<Effect>& effect : effects_) effect->prepare(settings);
@@ -330,14 +368,15 @@ void Renderer::run(const RenderSettings& settings, const View& view, const Outpu
   // comes from the lighting pass as it runs.
   surfaces_.light.published = false;
   surfaces_.fog = surfaceFog(settings.of<FogSettings>(), frame_.camera.view);
-  plan_ = plan(settings, frame_, view, options.retain, options.externalGBuffer);
+  plan_ = &cachedPlan(settings, view, options);
 
-  for (size_t i = 0; i < plan_.passes().size(); ++i) {
-    const PlannedPass& pass = plan_.passes()[i];
+  for (size_t i = 0; i < plan_->passes().size(); ++i) {
+    const PlannedPass& pass = plan_->passes()[i];
     if (!pass.live) continue;
-    PassContext context(plan_, static_cast<int>(i), pool_, frame_, settings, scene_, output);
+    PassContext context(*plan_, static_cast<int>(i), pool_, frame_, settings, scene_, output, resources_);
     if (options.timer) options.timer->begin(pass.decl.name);
     pass.decl.run(context);
+    context.finish();
     if (options.timer) options.timer->end(pass.decl.name);
     checkErrors(pass.decl.name);
   }
@@ -384,10 +423,15 @@ void Renderer::render(const Camera& camera, const RenderSettings& settings, cons
   endFrame();
 }
 
+const FramePlan& Renderer::lastPlan() const {
+  static const FramePlan none;
+  return plan_ ? *plan_ : none;
+}
+
 const gl::RenderTarget& Renderer::retained(const std::string& target) {
-  const int version = plan_.retainedVersion(target);
+  const int version = plan_ ? plan_->retainedVersion(target) : -1;
   if (version < 0) throw InputError("target '" + target + "' was not retained by the last frame");
-  const TargetVersion& v = plan_.versions()[static_cast<size_t>(version)];
+  const TargetVersion& v = plan_->versions()[static_cast<size_t>(version)];
   if (!v.slot) throw InputError("target '" + target + "' is not a pooled target");
   return pool_.slot(*v.slot);
 }

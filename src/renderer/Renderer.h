@@ -20,6 +20,7 @@
 #include "frame/FramePlan.h"
 #include "frame/FullscreenTriangle.h"
 #include "frame/PassContext.h"
+#include "frame/ProgramCache.h"
 #include "frame/RendererOptions.h"
 #include "frame/RenderTargetPool.h"
 #include "gl/GlCaps.h"
@@ -141,7 +142,9 @@ class Renderer {
   const GpuScene& gpuScene() const { return scene_; }
   // The last frame's context and plan (the second half's, for split screen).
   const FrameContext& lastFrame() const { return frame_; }
-  const FramePlan& lastPlan() const { return plan_; }
+  const FramePlan& lastPlan() const;
+  // How many times a frame's plan was made (not found among the cached plans), for tests and stats.
+  std::uint64_t plansMade() const { return plansMade_; }
   // A target the last frame retained (FrameOptions::retain). Throws InputError if it was not retained or written.
   const gl::RenderTarget& retained(const std::string& target);
   // The depth hierarchy's storage in use (the AO effect's).
@@ -160,6 +163,26 @@ class Renderer {
   // Every effect's passes for `view` (a target view, or the final image), resolved.
   FramePlan plan(const RenderSettings& settings, const FrameContext& frame, const View& view,
                  const std::vector<std::string>& retain, GLuint externalGBuffer = 0);
+  // What a plan depends on: the values of the parameters that shape it (ParameterInfo::shapesPlan), the view, the
+  // frame's size and the output's (below it, the frame ends in an upscale), the retained targets, the caller's
+  // G-buffer, what the scene asks of the frame, and the projection.
+  struct PlanKey {
+    std::vector<std::string> settings;
+    std::string view;
+    glm::ivec2 size{0, 0}, outputSize{0, 0};
+    std::vector<std::string> retain;
+    GLuint externalGBuffer = 0;
+    bool forwardLighting = false, linesOrPoints = false, orthographic = false;
+    bool operator==(const PlanKey& o) const {
+      return settings == o.settings && view == o.view && size == o.size && outputSize == o.outputSize &&
+             retain == o.retain &&
+             externalGBuffer == o.externalGBuffer && forwardLighting == o.forwardLighting &&
+             linesOrPoints == o.linesOrPoints && orthographic == o.orthographic;
+    }
+  };
+  PlanKey planKey(const RenderSettings& settings, const View& view, const FrameOptions& options) const;
+  // This frame's plan: a cached one with this key, or a new one (which replaces the least recently used).
+  const FramePlan& cachedPlan(const RenderSettings& settings, const View& view, const FrameOptions& options);
   // The `gbuffer` pass of a frame whose G-buffer the caller drew (FrameOptions::externalGBuffer): a copy.
   PassDecl importGBuffer(GLuint texture);
   // Plans and runs one frame's passes for `view` into `output`.
@@ -169,17 +192,27 @@ class Renderer {
   gl::GlCaps caps_;
   RendererOptions options_;
   FullscreenTriangle triangle_;
+  ProgramCache programs_;  // every program of the frame, the effects' and the fused stages'
   SurfaceShading surfaces_;
   EffectResources resources_;
   std::vector<std::unique_ptr<Effect>> effects_;  // one per table row
   AoEffect* ao_ = nullptr;
-  DebugViewPass views_;
   std::map<std::string, TargetInfo> targets_;     // every table target, by name
   GpuScene scene_;
   Scene sceneData_;  // what the GPU scene was made from, without its images: posed every frame
   Bounds sceneBounds_;  // its bounds at rest (where a scene camera's target and infinite far plane come from)
   RenderTargetPool pool_;
-  FramePlan plan_;
+  // The plans made so far, the most recently used first: a frame whose key matches one reuses it (a split view's two
+  // halves are two). The planning (and every std::function and map it builds) happens only when the key changes.
+  static constexpr size_t kCachedPlans = 4;
+  struct CachedPlan {
+    PlanKey key;
+    std::unique_ptr<FramePlan> plan;
+  };
+  std::vector<CachedPlan> plans_;
+  const FramePlan* plan_ = nullptr;  // the last frame's
+  std::uint64_t plansMade_ = 0;
+  std::vector<std::pair<size_t, size_t>> shapingParameters_;  // (row, parameter) of each parameter in PlanKey
   gl::FramebufferHandle externalGBufferSource_;  // reads the caller's G-buffer texture (importGBuffer)
 
   // History: what the next frame's context calls "previous".

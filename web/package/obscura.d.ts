@@ -143,6 +143,9 @@ export interface Stats {
   frameMs: number;
   cpuMs: number;
   lastCpuMs: number;
+  /** The render call's own time (planning and the passes' WebGL calls), smoothed and of the last drawn frame. */
+  hostMs: number;
+  lastHostMs: number;
   frames: number;
   timerQueries: boolean;
   /** GPU milliseconds per pass of a recent frame (null: the pass did not run), or null without timer queries. */

@@ -57,26 +57,29 @@ AoEffect::AoEffect(const EffectResources& resources)
 void AoEffect::plan(FramePlanner& planner) {
   const AoSettings& settings = planner.settings().of<AoSettings>();
   if (!settings.enabled && !planner.showsTargetOf(info())) return;
+  // What shapes the passes: the resolution, the hierarchy, the temporal accumulation and the blur. Everything else
+  // (the estimator, its samples, the radius, ...) each pass reads from this frame's settings.
   // Half resolution: AO at floor(size / 2), AO pixel p standing for G-buffer pixel 2p.
   const bool half = settings.halfResolution;
   const TargetSize aoSize = half ? TargetSize::half() : TargetSize::full();
   const int aoScale = half ? 2 : 1;
+  auto ao = [](const PassContext& context) -> const AoSettings& { return context.settings().of<AoSettings>(); };
 
+  const bool depthHierarchy = settings.depthHierarchy;
   // ao.layers 2: the second depth layer, for an estimator that reads it (or its view).
-  const bool twoLayers = settings.layersRead() == 2 ||
-                         planner.viewTarget() == "second-layer";
+  const bool twoLayers = settings.layersRead() == 2 || planner.viewTarget() == "second-layer";
   if (twoLayers) {
     PassDecl peel;
     peel.name = "peel";
     peel.reads = {"gbuffer"};
     peel.writes = {{"second-layer", TargetSize::full(), PassDecl::Write::Depth::Own, ""}};
-    peel.run = [this, settings](PassContext& context) {
+    peel.run = [this, ao](PassContext& context) {
       context.bindForWriting("second-layer");
-      peel_.render(context, context.texture("gbuffer"), settings);
+      peel_.render(context, context.texture("gbuffer"), ao(context));
     };
     planner.add(std::move(peel));
   }
-  if (settings.depthHierarchy) {
+  if (depthHierarchy) {
     PassDecl hierarchy;
     hierarchy.name = "hierarchy";
     hierarchy.reads = {"gbuffer"};
@@ -94,19 +97,18 @@ void AoEffect::plan(FramePlanner& planner) {
   PassDecl sao;
   sao.name = "sao";
   sao.reads = {"gbuffer"};
-  if (settings.depthHierarchy) sao.reads.push_back("depth-hierarchy");
+  if (depthHierarchy) sao.reads.push_back("depth-hierarchy");
   if (twoLayers) sao.reads.push_back("second-layer");
   sao.writes = {{"ao-raw", aoSize, PassDecl::Write::Depth::None, ""}};
   // With ao.temporal, each frame's taps turn to new directions and distances (AoTemporal::frameOffset).
   const bool temporal = settings.temporal || planner.viewTarget() == "ao-temporal";
-  const bool normalsFromDepth =
-      planner.settings().of<GBufferSettings>().normals == GBufferNormals::Reconstructed;
-  sao.run = [this, settings, aoScale, temporal, twoLayers, normalsFromDepth](PassContext& context) {
+  const bool normalsFromDepth = planner.settings().of<GBufferSettings>().normals == GBufferNormals::Reconstructed;
+  sao.run = [this, ao, depthHierarchy, aoScale, temporal, twoLayers, normalsFromDepth](PassContext& context) {
     context.bindForWriting("ao-raw");
     // (With the atlas, the estimator reads both layers from the hierarchy's texels and not this target.)
     const gl::Texture2D* secondLayer = twoLayers ? &context.texture("second-layer") : nullptr;
-    sao_.render(context.texture("gbuffer"), settings.depthHierarchy ? &hierarchy_ : nullptr, secondLayer,
-                context.camera(), settings, normalsFromDepth, aoScale, context.size("ao-raw"),
+    sao_.render(context.texture("gbuffer"), depthHierarchy ? &hierarchy_ : nullptr, secondLayer, context.camera(),
+                ao(context), normalsFromDepth, aoScale, context.size("ao-raw"),
                 temporal ? AoTemporal::frameOffset(context.frame().index) : glm::vec2(0.0f));
   };
   planner.add(std::move(sao));
@@ -120,13 +122,14 @@ void AoEffect::plan(FramePlanner& planner) {
     accumulate.name = "ao-temporal";
     accumulate.reads = {"ao-raw", "velocity", "gbuffer"};
     accumulate.writes = {{"ao-temporal", aoSize, PassDecl::Write::Depth::None, ""}};
-    accumulate.run = [this, settings, aoScale, aoSize](PassContext& context) {
+    accumulate.run = [this, ao, aoScale, aoSize](PassContext& context) {
       // One history per AO size: switching to half resolution does not read a full-size history. Asked for before
       // binding: making its targets (the first time) binds their framebuffers.
       RenderTargetPool::History& history = context.history("ao-temporal " + aoSize.name(), aoSize, GL_NEAREST);
       context.bindForWriting("ao-temporal");
       temporal_.render(context.texture("ao-raw"), context.texture("velocity"), context.texture("gbuffer"), history,
-                       context.frame(), settings, aoScale, context.size("ao-temporal"), context.scene().anyMoving());
+                       context.frame(), ao(context), aoScale, context.size("ao-temporal"),
+                       context.scene().anyMoving());
     };
     planner.add(std::move(accumulate));
     unblurred = "ao-temporal";
@@ -141,9 +144,9 @@ void AoEffect::plan(FramePlanner& planner) {
       blur.name = horizontal ? "blur-h" : "blur-v";
       blur.reads = {input, "gbuffer"};
       blur.writes = {{output, aoSize, PassDecl::Write::Depth::None, ""}};
-      blur.run = [this, settings, aoScale, direction, input, output](PassContext& context) {
+      blur.run = [this, ao, aoScale, direction, input, output](PassContext& context) {
         context.bindForWriting(output);
-        blur_.render(direction, context.texture(input), context.texture("gbuffer"), context.camera(), settings,
+        blur_.render(direction, context.texture(input), context.texture("gbuffer"), context.camera(), ao(context),
                      aoScale);
       };
       planner.add(std::move(blur));
@@ -157,11 +160,11 @@ void AoEffect::plan(FramePlanner& planner) {
     upsample.name = "upsample";
     upsample.reads = {"ao", "gbuffer"};
     upsample.writes = {{"ao", TargetSize::full(), PassDecl::Write::Depth::None, ""}};
-    upsample.run = [this, settings](PassContext& context) {
+    upsample.run = [this, ao](PassContext& context) {
       // Reads the half-size AO, writes the full-size one: two versions of "ao", two targets.
       const gl::Texture2D& halfAo = context.texture("ao");
       context.bindForWriting("ao");
-      upsample_.render(halfAo, context.texture("gbuffer"), context.camera(), settings);
+      upsample_.render(halfAo, context.texture("gbuffer"), context.camera(), ao(context));
     };
     planner.add(std::move(upsample));
   }

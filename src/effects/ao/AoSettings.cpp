@@ -83,6 +83,7 @@ const std::vector<Parameter<AoSettings>>& AoSettings::parameters() {
     t.push_back(integerParameter<S>("layers", 1, 2, "", "",
                                     "depth layers GTAO reads (2: a second geometry pass peels the surface behind)",
                                     &S::layers)
+                    .shapesPlan()  // the peel pass, and the estimator's and hierarchy's two-layer programs
                     .primary());
     t.push_back(numberParameter<S>("layer-separation", 0, 10, "fraction of radius",
                                    "the second layer's least distance behind the first", &S::layerSeparation));

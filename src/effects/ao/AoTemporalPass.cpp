@@ -5,7 +5,7 @@
 #include <glm/matrix.hpp>
 
 #include "effects/ao/AoTemporal.h"
-#include "gl/PipelineState.h"
+#include "frame/FullscreenPass.h"
 
 namespace obscura {
 
@@ -13,33 +13,9 @@ std::vector<ProgramSpec> AoTemporalPass::programSpecs() {
   return {ProgramSpec{"ao-temporal", "lib/fullscreen.vert", "ao/ao_temporal.frag", {}, {}}};
 }
 
-AoTemporalPass::AoTemporalPass(const EffectResources& resources)
-    : resources_(resources),
-      program_(resources.build(programSpecs().front())),
-      reconstruction_(program_),
-      aoRaw_(program_.uniform("u_aoRaw")),
-      history_(program_.uniform("u_history")),
-      velocity_(program_.uniform("u_velocity")),
-      gbuffer_(program_.uniform("u_gbuffer")),
-      gbufferSize_(program_.uniform("u_gbufferSize")),
-      aoSize_(program_.uniform("u_aoSize")),
-      aoScale_(program_.uniform("u_aoScale")),
-      historyValid_(program_.uniform("u_historyValid")),
-      maxFrames_(program_.uniform("u_maxFrames")),
-      planeTolerance_(program_.uniform("u_planeTolerance")),
-      ditherOffset_(program_.uniform("u_ditherOffset")),
-      previousFarHalfExtent_(program_.uniform("u_previousFarHalfExtent")),
-      previousDepthToRay_(program_.uniform("u_previousDepthToRay")),
-      previousViewToView_(program_.uniform("u_previousViewToView")),
-      diskScale_(program_.uniform("u_diskScale")),
-      maxRadiusPixels_(program_.uniform("u_maxRadiusPixels")),
-      objectsMove_(program_.uniform("u_objectsMove")),
-      tapRotation_(program_.uniform("u_tapRotation")) {}
-
 void AoTemporalPass::render(const gl::Texture2D& rawAo, const gl::Texture2D& velocity, const gl::Texture2D& gbuffer,
                             RenderTargetPool::History& history, const FrameContext& frame,
                             const AoSettings& settings, int aoScale, glm::ivec2 aoSize, bool objectsMove) {
-  using gl::Program;
   const Written now{frame.index, settings.estimator, settings.samples, aoScale, settings.radius};
   Written expected = now;
   expected.frame = frame.index - 1;
@@ -49,43 +25,41 @@ void AoTemporalPass::render(const gl::Texture2D& rawAo, const gl::Texture2D& vel
   const bool historyValid =
       history.valid() && frame.hasPrevious && (again ? historyWasValid_ : written_ && *written_ == expected);
 
-  program_.use();
-  rawAo.bind(0);
-  Program::set(aoRaw_, 0);
-  history.previous().color().bind(1);
-  Program::set(history_, 1);
-  velocity.bind(2);
-  Program::set(velocity_, 2);
-  gbuffer.bind(3);
-  Program::set(gbuffer_, 3);
-  Program::set(gbufferSize_, glm::vec2(gbuffer.width(), gbuffer.height()));
-  Program::set(aoSize_, glm::vec2(aoSize));
-  Program::set(aoScale_, static_cast<float>(aoScale));
-  Program::set(historyValid_, historyValid ? 1.0f : 0.0f);
-  Program::set(maxFrames_, static_cast<float>(settings.temporalFrames));
-  // The tolerance of the tangent-plane test is the bilateral blur's depth sigma: the distance from the plane at
-  // which the blur, too, stops treating a neighbour as the same surface.
-  Program::set(planeTolerance_, settings.blurDepthSigmaDistance());
-  Program::set(ditherOffset_, AoTemporal::ditherOffset(frame.index));
-  // The projected AO radius, as the estimators have it (ao/ao_estimator.glsl: aoCentre).
-  Program::set(diskScale_, frame.camera.projScale(gbuffer.height()) * settings.radius);
-  Program::set(maxRadiusPixels_, settings.maxScreenRadius * static_cast<float>(gbuffer.height()));
-  Program::set(objectsMove_, objectsMove ? 1.0f : 0.0f);
-  // The velocity taps turn by the frame's rotation offset, an eighth of a turn at most (their pattern repeats every
-  // quarter turn; two rings 45 degrees apart).
-  const float turn = AoTemporal::frameOffset(frame.index).x * 0.25f * 3.14159265f;
-  Program::set(tapRotation_, glm::vec2(std::cos(turn), std::sin(turn)));
-  reconstruction_.set(frame.camera.reconstruction);
-  const ViewReconstruction& previous = frame.previousCamera.reconstruction;
-  Program::set(previousFarHalfExtent_, previous.farHalfExtent);
-  Program::set(previousDepthToRay_, previous.depthToRay);
-  Program::set(previousViewToView_, frame.camera.view * glm::inverse(frame.previousCamera.view));
-  resources_.triangle.draw();
+  {
+    FullscreenDraw draw(resources_.program(programSpecs().front()), resources_.triangle);
+    draw.texture("u_aoRaw", rawAo);
+    draw.texture("u_history", history.previous().color());
+    draw.texture("u_velocity", velocity);
+    draw.texture("u_gbuffer", gbuffer);
+    draw.set("u_gbufferSize", glm::vec2(gbuffer.width(), gbuffer.height()));
+    draw.set("u_aoSize", glm::vec2(aoSize));
+    draw.set("u_aoScale", static_cast<float>(aoScale));
+    draw.set("u_historyValid", historyValid ? 1.0f : 0.0f);
+    draw.set("u_maxFrames", static_cast<float>(settings.temporalFrames));
+    // The tolerance of the tangent-plane test is the bilateral blur's depth sigma: the distance from the plane at
+    // which the blur, too, stops treating a neighbour as the same surface.
+    draw.set("u_planeTolerance", settings.blurDepthSigmaDistance());
+    draw.set("u_ditherOffset", AoTemporal::ditherOffset(frame.index));
+    // The projected AO radius, as the estimators have it (ao/ao_estimator.glsl: aoCentre).
+    draw.set("u_diskScale", frame.camera.projScale(gbuffer.height()) * settings.radius);
+    draw.set("u_maxRadiusPixels", settings.maxScreenRadius * static_cast<float>(gbuffer.height()));
+    draw.set("u_objectsMove", objectsMove ? 1.0f : 0.0f);
+    // The velocity taps turn by the frame's rotation offset, an eighth of a turn at most (their pattern repeats
+    // every quarter turn; two rings 45 degrees apart).
+    const float turn = AoTemporal::frameOffset(frame.index).x * 0.25f * 3.14159265f;
+    draw.set("u_tapRotation", glm::vec2(std::cos(turn), std::sin(turn)));
+    setReconstruction(draw.program(), frame.camera.reconstruction);
+    const ViewReconstruction& previous = frame.previousCamera.reconstruction;
+    draw.set("u_previousFarHalfExtent", previous.farHalfExtent);
+    draw.set("u_previousDepthToRay", previous.depthToRay);
+    draw.set("u_previousViewToView", frame.camera.view * glm::inverse(frame.previousCamera.view));
+    draw.draw();
+  }
 
   // The history the next frame reads: a copy of what was just drawn (the bound framebuffer).
-  history.current().color().bind(0);
+  glBindTexture(GL_TEXTURE_2D, history.current().color().id());
   glCopyTexSubImage2D(GL_TEXTURE_2D, 0, 0, 0, 0, 0, aoSize.x, aoSize.y);
-  gl::restoreBaselineState();
+  glBindTexture(GL_TEXTURE_2D, 0);
   written_ = now;
   historyWasValid_ = historyValid;
 }

@@ -19,7 +19,7 @@ class AoTemporalPass {
  public:
   static std::vector<ProgramSpec> programSpecs();
 
-  explicit AoTemporalPass(const EffectResources& resources);
+  explicit AoTemporalPass(const EffectResources& resources) : resources_(resources) {}
   // `history` sized like the AO; `aoScale` 1 or 2 (half resolution). The bound framebuffer is `aoSize` pixels.
   // `objectsMove`: some instance's pose differs from the previous frame's (GpuScene::anyMoving).
   void render(const gl::Texture2D& rawAo, const gl::Texture2D& velocity, const gl::Texture2D& gbuffer,
@@ -41,11 +41,6 @@ class AoTemporalPass {
   };
 
   const EffectResources& resources_;
-  gl::Program program_;
-  ReconstructionUniforms reconstruction_;
-  GLint aoRaw_, history_, velocity_, gbuffer_, gbufferSize_, aoSize_, aoScale_, historyValid_, maxFrames_,
-      planeTolerance_, ditherOffset_, previousFarHalfExtent_, previousDepthToRay_,
-      previousViewToView_, diskScale_, maxRadiusPixels_, objectsMove_, tapRotation_;
   std::optional<Written> written_;
   bool historyWasValid_ = false;  // in the frame written_ names
 };

@@ -14,15 +14,12 @@ class AoUpsamplePass {
  public:
   static std::vector<ProgramSpec> programSpecs();
 
-  explicit AoUpsamplePass(const EffectResources& resources);
+  explicit AoUpsamplePass(const EffectResources& resources) : resources_(resources) {}
   void render(const gl::Texture2D& halfResolutionAo, const gl::Texture2D& gbuffer, const FrameCamera& camera,
-              const AoSettings& settings);
+              const AoSettings& settings) const;
 
  private:
   const EffectResources& resources_;
-  gl::Program program_;
-  ReconstructionUniforms reconstruction_;
-  GLint ao_, aoSize_, gbuffer_, gbufferSize_, aoScale_, invSigma2_;
 };
 
 }  // namespace obscura

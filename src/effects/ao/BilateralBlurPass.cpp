@@ -1,6 +1,6 @@
 #include "effects/ao/BilateralBlurPass.h"
 
-#include "gl/PipelineState.h"
+#include "frame/FullscreenPass.h"
 
 namespace obscura {
 
@@ -20,59 +20,30 @@ std::vector<ProgramSpec> BilateralBlurPass::programSpecs() {
   return specs;
 }
 
-BilateralBlurPass::Variant::Variant(gl::Program built, bool normalAware)
-    : program(std::move(built)),
-      ao(program.uniform("u_ao")),
-      aoSize(program.uniform("u_aoSize")),
-      stepPixels(program.uniform("u_stepPixels")),
-      gaussianK(program.uniform("u_gaussianK")),
-      invSigma2(program.uniform("u_invSigma2")) {
-  if (normalAware) {
-    reconstruction = ReconstructionUniforms(program);
-    gbuffer = program.uniform("u_gbuffer");
-    gbufferSize = program.uniform("u_gbufferSize");
-    aoScale = program.uniform("u_aoScale");
-  } else {
-    near = program.uniform("u_near");
-    depthRange = program.uniform("u_depthRange");
-  }
-}
-
-const BilateralBlurPass::Variant& BilateralBlurPass::variant(int radius, bool normalAware) {
-  const auto key = std::make_pair(radius, normalAware);
-  auto it = variants_.find(key);
-  if (it == variants_.end())
-    it = variants_.emplace(key, Variant(resources_.build(programSpec(radius, normalAware)), normalAware)).first;
-  return it->second;
-}
-
 void BilateralBlurPass::render(Direction direction, const gl::Texture2D& ao, const gl::Texture2D& gbuffer,
-                               const FrameCamera& camera, const AoSettings& settings, int aoScale) {
-  using gl::Program;
-  const Variant& blur = variant(settings.blurRadius, settings.blurNormalAware);
-  blur.program.use();
-  ao.bind(0);
-  Program::set(blur.ao, 0);
-  Program::set(blur.aoSize, glm::vec2(ao.width(), ao.height()));
+                               const FrameCamera& camera, const AoSettings& settings, int aoScale) const {
+  FullscreenDraw blur(resources_.program(programSpec(settings.blurRadius, settings.blurNormalAware)),
+                      resources_.triangle);
+  blur.texture("u_ao", ao);
+  blur.set("u_aoSize", glm::vec2(ao.width(), ao.height()));
   const float stride = static_cast<float>(settings.blurStride);
-  Program::set(blur.stepPixels,
-               direction == Direction::Horizontal ? glm::vec2(stride, 0.0f) : glm::vec2(0.0f, stride));
+  blur.set("u_stepPixels", direction == Direction::Horizontal ? glm::vec2(stride, 0.0f) : glm::vec2(0.0f, stride));
   // Spatial Gaussian with s = (radius + 1) / 2 taps: the outermost tap keeps exp(-2 R^2 / (R + 1)^2), 0.28 at R = 4.
   const float s = 0.5f * static_cast<float>(settings.blurRadius + 1);
-  Program::set(blur.gaussianK, 1.0f / (2.0f * s * s));
-  Program::set(blur.invSigma2, 1.0f / (settings.blurDepthSigmaDistance() * settings.blurDepthSigmaDistance()));
+  blur.set("u_gaussianK", 1.0f / (2.0f * s * s));
+  blur.set("u_invSigma2", 1.0f / (settings.blurDepthSigmaDistance() * settings.blurDepthSigmaDistance()));
   if (settings.blurNormalAware) {
-    blur.reconstruction.set(camera.reconstruction);
-    Program::set(blur.gbufferSize, glm::vec2(gbuffer.width(), gbuffer.height()));
-    Program::set(blur.aoScale, static_cast<float>(aoScale));
-    gbuffer.bind(1);
-    Program::set(blur.gbuffer, 1);
+    // The tap's surface point and normal, rebuilt at the G-buffer pixel it stands for.
+    setReconstruction(blur.program(), camera.reconstruction);
+    blur.set("u_gbufferSize", glm::vec2(gbuffer.width(), gbuffer.height()));
+    blur.set("u_aoScale", static_cast<float>(aoScale));
+    blur.texture("u_gbuffer", gbuffer);
   } else {
-    Program::set(blur.near, camera.near);
-    Program::set(blur.depthRange, camera.far - camera.near);
+    // Plain depth: z from the depth code alone.
+    blur.set("u_near", camera.near);
+    blur.set("u_depthRange", camera.far - camera.near);
   }
-  resources_.triangle.draw();
-  gl::restoreBaselineState();
+  blur.draw();
 }
 
 }  // namespace obscura

@@ -1,8 +1,6 @@
 #pragma once
 // Separable depth- and normal-aware bilateral blur of the AO (shaders_es2/ao/blur.frag, weights documented there).
 // One direction per call, drawn into the bound target, in the AO + depth key layout of the SAO output.
-#include <map>
-#include <utility>
 #include <vector>
 
 #include "effects/ao/AoSettings.h"
@@ -23,22 +21,10 @@ class BilateralBlurPass {
   // Blurs `ao` (R = AO, GB = depth key) along `direction` into the bound framebuffer, of ao's size.
   // `aoScale`: 1, or 2 when the AO is at half the G-buffer's resolution.
   void render(Direction direction, const gl::Texture2D& ao, const gl::Texture2D& gbuffer, const FrameCamera& camera,
-              const AoSettings& settings, int aoScale);
+              const AoSettings& settings, int aoScale) const;
 
  private:
-  struct Variant {
-    Variant(gl::Program built, bool normalAware);
-    gl::Program program;
-    GLint ao, aoSize, stepPixels, gaussianK, invSigma2;
-    // Normal-aware: the tap's surface point and normal, rebuilt at the G-buffer pixel it stands for.
-    ReconstructionUniforms reconstruction;
-    GLint gbuffer = -1, gbufferSize = -1, aoScale = -1;
-    GLint near = -1, depthRange = -1;  // plain depth: z from the depth code alone
-  };
-  const Variant& variant(int radius, bool normalAware);
-
   const EffectResources& resources_;
-  std::map<std::pair<int, bool>, Variant> variants_;
 };
 
 }  // namespace obscura

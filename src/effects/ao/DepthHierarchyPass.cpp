@@ -5,10 +5,13 @@
 
 #include "base/Error.h"
 #include "effects/ao/SaoKernel.h"
-#include "gl/PipelineState.h"
+#include "frame/FullscreenPass.h"
 
 namespace obscura {
 namespace {
+
+// SeparateTextures: the samplers of levels 1 .. 5 in sao.frag.
+constexpr const char* kLevelSamplers[] = {"u_level1", "u_level2", "u_level3", "u_level4", "u_level5"};
 
 int nextPowerOfTwo(int v) {
   int p = 1;
@@ -63,38 +66,13 @@ const char* DepthHierarchyPass::storageName(Storage storage) {
   return "?";
 }
 
-DepthHierarchyPass::LevelProgram::LevelProgram(gl::Program built)
-    : program(std::move(built)),
-      gbuffer(program.uniform("u_gbuffer")),
-      gbufferSize(program.uniform("u_gbufferSize")),
-      level(program.uniform("u_level")),
-      secondLayer(program.optionalUniform("u_secondLayer")) {}
-
 DepthHierarchyPass::DepthHierarchyPass(const FullscreenTriangle& triangle, const gl::GlCaps& caps, Storage storage,
                                        const EffectResources& resources)
     : triangle_(triangle),
       caps_(caps),
       requested_(storage),
       active_(storage),
-      programs_{LevelProgram(resources.build(programSpec(1))), LevelProgram(resources.build(programSpec(2)))} {}
-
-DepthHierarchyPass::SamplingUniforms::SamplingUniforms(const gl::Program& sao, Storage storage) {
-  switch (storage) {
-    case Storage::SeparateTextures:
-      for (int level = 1; level <= SaoKernel::kMaxMipLevel; ++level)
-        levels[level - 1] = sao.uniform(("u_level" + std::to_string(level)).c_str());
-      break;
-    case Storage::Atlas:
-      atlas = sao.uniform("u_depthAtlas");
-      atlasSize = sao.uniform("u_depthAtlasSize");
-      atlasLevelRows = sao.uniform("u_atlasLevelRows");
-      break;
-    case Storage::MipChain:
-      mips = sao.uniform("u_depthMips");
-      mipsSize = sao.uniform("u_depthMipsSize");
-      break;
-  }
-}
+      programs_(resources.programs) {}
 
 DepthHierarchyPass::Region DepthHierarchyPass::atlasRegion(int level) const {
   const glm::ivec2 size = levelSize(width_, height_, level);
@@ -160,15 +138,10 @@ void DepthHierarchyPass::resize(int width, int height) {
 }
 
 void DepthHierarchyPass::render(const gl::Texture2D& gbuffer, const gl::Texture2D* secondLayer) {
-  const LevelProgram& p = programs_[secondLayer ? 1 : 0];
-  p.program.use();
-  gbuffer.bind(0);
-  gl::Program::set(p.gbuffer, 0);
-  if (secondLayer) {
-    secondLayer->bind(1);
-    gl::Program::set(p.secondLayer, 1);
-  }
-  gl::Program::set(p.gbufferSize, glm::vec2(gbuffer.width(), gbuffer.height()));
+  FullscreenDraw draw(programs_.get(programSpec(secondLayer ? 2 : 1)), triangle_);
+  draw.texture("u_gbuffer", gbuffer);
+  if (secondLayer) draw.texture("u_secondLayer", *secondLayer);
+  draw.set("u_gbufferSize", glm::vec2(gbuffer.width(), gbuffer.height()));
   // The atlas also holds level 0 (a copy of the G-buffer's depth key), so every tap reads the one texture.
   const int firstLevel = active_ == Storage::Atlas ? 0 : 1;
   if (active_ == Storage::Atlas) glBindFramebuffer(GL_FRAMEBUFFER, atlas_.framebuffer());
@@ -187,36 +160,27 @@ void DepthHierarchyPass::render(const gl::Texture2D& gbuffer, const gl::Texture2
         break;
       }
     }
-    gl::Program::set(p.level, static_cast<float>(level));
-    triangle_.draw();
+    draw.set("u_level", static_cast<float>(level));
+    draw.draw();
   }
-  gl::restoreBaselineState();
 }
 
-void DepthHierarchyPass::bindForSampling(const SamplingUniforms& uniforms, int firstUnit) const {
-  using gl::Program;
+void DepthHierarchyPass::bindForSampling(FullscreenDraw& sao) const {
   switch (active_) {
     case Storage::SeparateTextures:
-      for (int level = 1; level <= SaoKernel::kMaxMipLevel; ++level) {
-        const int unit = firstUnit + level - 1;
-        levels_[static_cast<size_t>(level - 1)].color().bind(unit);
-        Program::set(uniforms.levels[level - 1], unit);
-      }
+      for (int level = 1; level <= SaoKernel::kMaxMipLevel; ++level)
+        sao.texture(kLevelSamplers[level - 1], levels_[static_cast<size_t>(level - 1)].color());
       break;
     case Storage::Atlas: {
-      atlas_.color().bind(firstUnit);
-      Program::set(uniforms.atlas, firstUnit);
-      Program::set(uniforms.atlasSize, glm::vec2(atlas_.width(), atlas_.height()));
+      sao.texture("u_depthAtlas", atlas_.color());
+      sao.set("u_depthAtlasSize", glm::vec2(atlas_.width(), atlas_.height()));
       // Levels 2 .. 5 start at these rows (level 1 at row 0).
-      Program::set(uniforms.atlasLevelRows,
-                   glm::vec4(atlasRegion(2).y, atlasRegion(3).y, atlasRegion(4).y, atlasRegion(5).y));
+      sao.set("u_atlasLevelRows", glm::vec4(atlasRegion(2).y, atlasRegion(3).y, atlasRegion(4).y, atlasRegion(5).y));
       break;
     }
     case Storage::MipChain:
-      glActiveTexture(static_cast<GLenum>(GL_TEXTURE0 + firstUnit));
-      glBindTexture(GL_TEXTURE_2D, mipTexture_.id());
-      Program::set(uniforms.mips, firstUnit);
-      Program::set(uniforms.mipsSize, glm::vec2(mipWidth_, mipHeight_));
+      sao.texture("u_depthMips", mipTexture_.id());
+      sao.set("u_depthMipsSize", glm::vec2(mipWidth_, mipHeight_));
       break;
   }
 }

@@ -20,6 +20,7 @@
 #include <vector>
 
 #include "frame/EffectEntry.h"
+#include "frame/FullscreenPass.h"
 #include "frame/FullscreenTriangle.h"
 #include "frame/RendererOptions.h"
 #include "gl/GlCaps.h"
@@ -51,16 +52,8 @@ class DepthHierarchyPass {
   // `secondLayer` (ao.layers 2: effects/ao/DepthPeelPass.h) given, every level's RG holds its depth code at the
   // picked pixel instead of the pick's offset (shaders_es2/ao/hierarchy_pick.glsl gives the offset then).
   void render(const gl::Texture2D& gbuffer, const gl::Texture2D* secondLayer = nullptr);
-  // The uniforms of sao.frag that bindForSampling() sets, resolved once per SAO program.
-  struct SamplingUniforms {
-    SamplingUniforms() = default;
-    SamplingUniforms(const gl::Program& sao, Storage storage);
-    GLint levels[5] = {-1, -1, -1, -1, -1};                 // SeparateTextures: u_level1 .. u_level5
-    GLint atlas = -1, atlasSize = -1, atlasLevelRows = -1;  // Atlas
-    GLint mips = -1, mipsSize = -1;                         // MipChain
-  };
-  // Binds the levels for sao.frag (DEPTH_HIERARCHY 1, 2 or 3) to texture units firstUnit, firstUnit + 1, ...
-  void bindForSampling(const SamplingUniforms& uniforms, int firstUnit) const;
+  // Binds the levels for sao.frag (DEPTH_HIERARCHY 1, 2 or 3) to the draw's next units, and sets their uniforms.
+  void bindForSampling(FullscreenDraw& sao) const;
   // Level m (0 .. 5; 0 only with the atlas) read back, rows top to bottom, whatever the storage (tests, tools).
   std::vector<std::uint8_t> readLevel(int m) const;
 
@@ -73,12 +66,7 @@ class DepthHierarchyPass {
   const FullscreenTriangle& triangle_;
   gl::GlCaps caps_;
   Storage requested_, active_;
-  struct LevelProgram {
-    explicit LevelProgram(gl::Program built);
-    gl::Program program;
-    GLint gbuffer, gbufferSize, level, secondLayer;
-  };
-  LevelProgram programs_[2];  // one layer, two layers
+  ProgramCache& programs_;  // the level programs, one layer and two (programSpec), built on first use
   int width_ = 0, height_ = 0;
   std::vector<gl::RenderTarget> levels_;  // SeparateTextures: levels 1..5
   gl::RenderTarget atlas_;                // Atlas: levels 0..5

@@ -29,15 +29,6 @@ std::vector<ProgramSpec> DepthPeelPass::programSpecs() {
   return specs;
 }
 
-DepthPeelPass::Variant::Variant(gl::Program built)
-    : program(std::move(built)),
-      geometry(program),
-      projection(program.uniform("u_projection")),
-      near(program.uniform("u_near")),
-      depthRange(program.uniform("u_depthRange")),
-      gbuffer(program.uniform("u_gbuffer")),
-      minSeparation(program.uniform("u_minSeparation")) {}
-
 float DepthPeelPass::separation(const AoSettings& settings, const FrameCamera& camera) {
   return std::max(settings.layerSeparation * settings.radius / (camera.far - camera.near), 2.0f / 65535.0f);
 }
@@ -51,14 +42,8 @@ std::uint16_t DepthPeelPass::secondLayerCode(std::uint16_t firstCode, const std:
   return nearest > 1.0f ? LinearDepthPacking::kBackgroundCode : LinearDepthPacking::codeFromDepth(nearest);
 }
 
-const DepthPeelPass::Variant& DepthPeelPass::variant(MaterialKind material, VertexKind vertex) {
-  const auto key = std::make_tuple(material.forAlphaOnly(), vertex);
-  auto it = variants_.find(key);
-  if (it == variants_.end()) it = variants_.emplace(key, Variant(resources_.build(peelSpec(material, vertex)))).first;
-  return it->second;
-}
-
-void DepthPeelPass::render(const PassContext& context, const gl::Texture2D& gbuffer, const AoSettings& settings) {
+void DepthPeelPass::render(const PassContext& context, const gl::Texture2D& gbuffer,
+                           const AoSettings& settings) const {
   const FrameCamera& camera = context.camera();
   // Nothing behind: depth code 65535, as the G-buffer's background.
   glClearColor(1.0f, 1.0f, 1.0f, 1.0f);
@@ -74,15 +59,16 @@ void DepthPeelPass::render(const PassContext& context, const gl::Texture2D& gbuf
   options.bothFaces = true;
   context.scene().draw(
       camera.view,
-      [&](MaterialKind kind, VertexKind vertex) -> const GeometryUniforms& {
-        const Variant& v = variant(kind, vertex);
-        v.program.use();
-        gl::Program::set(v.projection, camera.projection);
-        gl::Program::set(v.near, camera.near);
-        gl::Program::set(v.depthRange, camera.far - camera.near);
-        gl::Program::set(v.gbuffer, kGBufferUnit);
-        gl::Program::set(v.minSeparation, minSeparation);
-        return v.geometry;
+      [&](MaterialKind kind, VertexKind vertex) -> const gl::Program& {
+        const gl::Program& program =
+            programs_({kind.forAlphaOnly(), vertex}, [&] { return peelSpec(kind, vertex); });
+        program.use();
+        program.set("u_projection", camera.projection);
+        program.set("u_near", camera.near);
+        program.set("u_depthRange", camera.far - camera.near);
+        program.set("u_gbuffer", kGBufferUnit);
+        program.set("u_minSeparation", minSeparation);
+        return program;
       },
       options);
   gl::restoreBaselineState();

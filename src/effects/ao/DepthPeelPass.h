@@ -13,8 +13,7 @@
 // both layers in one fetch per tap (effects/ao/DepthHierarchyPass.h); without a hierarchy (or for taps that read the
 // G-buffer, with the separate-texture or mip-chain storages) the estimator reads this target beside the G-buffer.
 #include <cstdint>
-#include <map>
-#include <tuple>
+#include <utility>
 #include <vector>
 
 #include "effects/ao/AoSettings.h"
@@ -35,21 +34,12 @@ class DepthPeelPass {
   // than `separation` behind the first; the background code where there is none.
   static std::uint16_t secondLayerCode(std::uint16_t firstCode, const std::vector<float>& crossings,
                                        float separation);
-  explicit DepthPeelPass(const EffectResources& resources) : resources_(resources) {}
+  explicit DepthPeelPass(const EffectResources& resources) : programs_(resources.programs) {}
   // Draws the second layer into the bound framebuffer (with its own depth buffer), reading the first from `gbuffer`.
-  void render(const PassContext& context, const gl::Texture2D& gbuffer, const AoSettings& settings);
+  void render(const PassContext& context, const gl::Texture2D& gbuffer, const AoSettings& settings) const;
 
  private:
-  struct Variant {
-    explicit Variant(gl::Program built);
-    gl::Program program;
-    GeometryUniforms geometry;
-    GLint projection, near, depthRange, gbuffer, minSeparation;
-  };
-  const Variant& variant(MaterialKind material, VertexKind vertex);
-
-  const EffectResources& resources_;
-  std::map<std::tuple<MaterialKind, VertexKind>, Variant> variants_;
+  ProgramVariants<std::pair<MaterialKind, VertexKind>> programs_;  // per material (its alpha test) and vertex kind
 };
 
 }  // namespace obscura

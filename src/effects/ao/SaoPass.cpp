@@ -4,7 +4,7 @@
 #include <array>
 
 #include "effects/ao/SaoKernel.h"
-#include "gl/PipelineState.h"
+#include "frame/FullscreenPass.h"
 
 namespace obscura {
 namespace {
@@ -121,78 +121,40 @@ std::vector<ProgramSpec> SaoPass::programSpecs() {
   return specs;
 }
 
-SaoPass::Variant::Variant(gl::Program built, std::optional<Storage> storage)
-    : program(std::move(built)),
-      reconstruction(program),
-      hierarchy(storage ? DepthHierarchyPass::SamplingUniforms(program, *storage)
-                        : DepthHierarchyPass::SamplingUniforms()),
-      gbuffer(program.uniform("u_gbuffer")),
-      gbufferSize(program.uniform("u_gbufferSize")),
-      aoSize(program.uniform("u_aoSize")),
-      aoScale(program.uniform("u_aoScale")),
-      projScale(program.uniform("u_projScale")),
-      radius(program.uniform("u_radius")),
-      invRadius(program.uniform("u_invRadius")),
-      estimatorKnots(program.uniform("u_estimatorKnots[0]")),
-      maxRadiusPixels(program.uniform("u_maxRadiusPixels")),
-      frameOffset(program.uniform("u_frameOffset")),
-      thickness(program.optionalUniform("u_thickness")),
-      secondLayer(program.optionalUniform("u_secondLayer")),
-      surfaceGap(program.optionalUniform("u_surfaceGap")) {}
-
-const SaoPass::Variant& SaoPass::variant(const AoSettings& settings, std::optional<Storage> hierarchy, int layers,
-                                         bool normalsFromDepth) {
-  // Only SAO's programs depend on the spiral and the falloff.
-  const bool sao = settings.estimator == AoEstimator::Sao;
-  const auto key = std::make_tuple(settings.estimator, settings.samples, sao ? settings.spiralTurns : 1,
-                                   sao ? settings.falloff : Falloff::Sao2012, hierarchyDefine(hierarchy), layers,
-                                   normalsFromDepth);
-  auto it = variants_.find(key);
-  if (it == variants_.end())
-    it = variants_
-             .emplace(key, Variant(resources_.build(programSpec(settings.estimator, settings.samples,
-                                                                std::get<2>(key), std::get<3>(key), hierarchy,
-                                                                layers, normalsFromDepth)),
-                                   hierarchy))
-             .first;
-  return it->second;
-}
-
 void SaoPass::render(const gl::Texture2D& gbuffer, const DepthHierarchyPass* hierarchy,
                      const gl::Texture2D* secondLayer, const FrameCamera& camera, const AoSettings& settings,
-                     bool normalsFromDepth, int aoScale, glm::ivec2 aoSize, glm::vec2 frameOffset) {
-  using gl::Program;
+                     bool normalsFromDepth, int aoScale, glm::ivec2 aoSize, glm::vec2 frameOffset) const {
   const std::optional<Storage> storage = hierarchy ? std::optional<Storage>(hierarchy->storage()) : std::nullopt;
-  const Variant& sao = variant(settings, storage, secondLayer ? 2 : 1, normalsFromDepth);
-  sao.program.use();
-  gbuffer.bind(0);
-  Program::set(sao.gbuffer, 0);
-  if (hierarchy) hierarchy->bindForSampling(sao.hierarchy, 1);
-  // After the hierarchy's units (1 .. 5 for separate textures). The atlas holds the second layer itself.
-  constexpr int kSecondLayerUnit = 6;
-  if (secondLayer && sao.secondLayer >= 0) {
-    secondLayer->bind(kSecondLayerUnit);
-    Program::set(sao.secondLayer, kSecondLayerUnit);
-  }
-  Program::set(sao.gbufferSize, glm::vec2(gbuffer.width(), gbuffer.height()));
-  Program::set(sao.aoSize, glm::vec2(aoSize));
-  Program::set(sao.aoScale, static_cast<float>(aoScale));
-  sao.reconstruction.set(camera.reconstruction);
-  Program::set(sao.projScale, camera.projScale(gbuffer.height()));
-  Program::set(sao.radius, settings.radius);
-  Program::set(sao.invRadius, 1.0f / settings.radius);
+  // Only SAO's programs depend on the spiral and the falloff.
+  const bool sao = settings.estimator == AoEstimator::Sao;
+  FullscreenDraw draw(resources_.program(programSpec(settings.estimator, settings.samples,
+                                                     sao ? settings.spiralTurns : 1,
+                                                     sao ? settings.falloff : Falloff::Sao2012, storage,
+                                                     secondLayer ? 2 : 1, normalsFromDepth)),
+                      resources_.triangle);
+  draw.texture("u_gbuffer", gbuffer);
+  if (hierarchy) hierarchy->bindForSampling(draw);
+  // The atlas holds the second layer itself; the other storages read its target.
+  if (secondLayer && draw.program().has("u_secondLayer")) draw.texture("u_secondLayer", *secondLayer);
+  draw.set("u_gbufferSize", glm::vec2(gbuffer.width(), gbuffer.height()));
+  draw.set("u_aoSize", glm::vec2(aoSize));
+  draw.set("u_aoScale", static_cast<float>(aoScale));
+  setReconstruction(draw.program(), camera.reconstruction);
+  draw.set("u_projScale", camera.projScale(gbuffer.height()));
+  draw.set("u_radius", settings.radius);
+  draw.set("u_invRadius", 1.0f / settings.radius);
   const EstimatorKnots knots = settings.estimatorKnots();
   std::array<glm::vec3, kEstimatorKnots> packed;
   for (int j = 0; j < kEstimatorKnots; ++j)
     packed[static_cast<size_t>(j)] = {intensityScale(settings, knots.at[j].intensity), knots.at[j].bias,
                                       knots.at[j].contrast};
-  Program::set(sao.estimatorKnots, packed.data(), kEstimatorKnots);
-  Program::set(sao.maxRadiusPixels, settings.maxScreenRadius * static_cast<float>(gbuffer.height()));
-  Program::set(sao.frameOffset, frameOffset);
-  Program::set(sao.thickness, settings.thickness);
-  Program::set(sao.surfaceGap, settings.surfaceGap);
-  resources_.triangle.draw();
-  gl::restoreBaselineState();
+  draw.set("u_estimatorKnots", packed.data(), kEstimatorKnots);
+  draw.set("u_maxRadiusPixels", settings.maxScreenRadius * static_cast<float>(gbuffer.height()));
+  draw.set("u_frameOffset", frameOffset);
+  // GTAO's occluder thickness (its variants alone).
+  if (draw.program().has("u_thickness")) draw.set("u_thickness", settings.thickness);
+  if (draw.program().has("u_surfaceGap")) draw.set("u_surfaceGap", settings.surfaceGap);
+  draw.draw();
 }
 
 }  // namespace obscura

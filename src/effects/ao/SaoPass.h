@@ -3,9 +3,7 @@
 // R = ambient visibility, GB = the centre's 16-bit depth code (the blur's key, so the blur reads a single texture).
 // Shaders: shaders_es2/ao/gtao.frag, sao.frag (CPU mirror and equations: effects/ao/SaoKernel.h), hbao.frag, vo.frag or
 // crytek.frag; all share ao/ao_estimator.glsl. Far taps read the depth hierarchy when one is given.
-#include <map>
 #include <optional>
-#include <tuple>
 #include <vector>
 
 #include "effects/ao/AoSettings.h"
@@ -44,30 +42,19 @@ class SaoPass {
   // Every variant the presets and the documented sample counts (4, 8, 11, 16, 24, 32) use.
   static std::vector<ProgramSpec> programSpecs();
 
-  SaoPass(const EffectResources& resources) : resources_(resources) {}
+  explicit SaoPass(const EffectResources& resources) : resources_(resources) {}
   // Draws into the bound framebuffer, whose size is `aoSize`: the G-buffer's, or floor(size / 2) at half
   // resolution (`aoScale` 2). `hierarchy` null: every tap reads the G-buffer.
   // `frameOffset`: the taps' per-frame rotation and distance jitter (AoTemporal::frameOffset; zero without
   // ao.temporal).
-  // `secondLayer` (ao.layers 2): the depth peel's target, or null for one layer.
+  // `secondLayer` (ao.layers 2): the depth peel's target, or null for one layer. `normalsFromDepth`: gbuffer.normals
+  // reconstructed.
   void render(const gl::Texture2D& gbuffer, const DepthHierarchyPass* hierarchy, const gl::Texture2D* secondLayer,
               const FrameCamera& camera, const AoSettings& settings, bool normalsFromDepth, int aoScale,
-              glm::ivec2 aoSize, glm::vec2 frameOffset = glm::vec2(0.0f));
+              glm::ivec2 aoSize, glm::vec2 frameOffset = glm::vec2(0.0f)) const;
 
  private:
-  struct Variant {
-    explicit Variant(gl::Program built, std::optional<Storage> hierarchy);
-    gl::Program program;
-    ReconstructionUniforms reconstruction;
-    DepthHierarchyPass::SamplingUniforms hierarchy;
-    GLint gbuffer, gbufferSize, aoSize, aoScale, projScale, radius, invRadius, estimatorKnots, maxRadiusPixels,
-        frameOffset, thickness, secondLayer, surfaceGap;
-  };
-  const Variant& variant(const AoSettings& settings, std::optional<Storage> hierarchy, int layers,
-                         bool normalsFromDepth);
-
   const EffectResources& resources_;
-  std::map<std::tuple<AoEstimator, int, int, Falloff, int, int, bool>, Variant> variants_;
 };
 
 }  // namespace obscura

@@ -206,8 +206,9 @@ void AutoExposureEffect::plan(FramePlanner& planner) {
   adaptPass.name = "exposure-adapt";
   adaptPass.reads = {last};
   adaptPass.writes = {{"exposure", TargetSize::fixed(1, 1), Write::Depth::None, ""}};
-  adaptPass.run = [this, settings, percentile, last](PassContext& context) {
-    adapt(context, settings, percentile, last);
+  // This frame's settings (the plan is cached: only the metering shapes it).
+  adaptPass.run = [this, percentile, last](PassContext& context) {
+    adapt(context, context.settings().of<AutoExposureSettings>(), percentile, last);
   };
   planner.add(std::move(adaptPass));
 }

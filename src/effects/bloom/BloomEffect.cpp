@@ -5,7 +5,7 @@
 #include <string>
 
 #include "frame/PassContext.h"
-#include "gl/PipelineState.h"
+
 
 namespace obscura {
 namespace {
@@ -18,9 +18,6 @@ ProgramSpec spec(int stage) {
                      "bloom/bloom.frag",
                      {{"BLOOM_STAGE", std::to_string(stage)}, {"FAR_RAY", "0"}}};
 }
-
-// Level k's size: floor(frame / 2^k), at least 1 (TargetSize's halving).
-glm::ivec2 levelSize(glm::ivec2 frame, int k) { return glm::max(frame / (1 << k), glm::ivec2(1)); }
 
 }  // namespace
 
@@ -79,180 +76,167 @@ const std::vector<Parameter<BloomSettings>>& BloomSettings::parameters() {
   return table;
 }
 
+namespace {
+
+const char* kLevelEncoding = "linear HDR colour, RGB9E5 as scene-color (lib/hdr.glsl)";
+
+// Level 2 is also the frame's `bloom-bright`, the light above the threshold at 1/4 of the frame that the lens flare and
+// the glare read (its passes run without the rest of the chain when they read it with bloom off).
+std::string level(int k) { return k == 2 ? "bloom-bright" : "bloom-" + std::to_string(k); }
+std::string up(int k) { return "bloom-up-" + std::to_string(k); }
+std::string tent(int k) { return "bloom-tent-" + std::to_string(k); }
+// Level k's size (floor(frame / 2^k), at least 1), and the tent's first half towards up k (up 0: the frame): level
+// k's width, level k + 1's height.
+TargetSize levelSize(int k) { return TargetSize::scaled(k, k); }
+TargetSize tentSize(int k) { return TargetSize::scaled(k, k + 1); }
+
+// The chain's draws, into the framebuffer bound, from the textures given: the passes run them on pooled targets,
+// BloomEffect::render on targets of its own.
+void prefilter(const EffectResources& r, const gl::Texture2D& scene, const BloomSettings& settings) {
+  FullscreenDraw draw(r.program(spec(0)), r.triangle);
+  draw.texture("u_source", scene);
+  draw.set("u_sourceSize", glm::vec2(scene.width(), scene.height()));
+  const float knee = settings.knee * settings.threshold;
+  draw.set("u_threshold", glm::vec3(settings.threshold, knee, knee > 0.0f ? 0.25f / knee : 0.0f));
+  draw.draw();
+}
+void down(const EffectResources& r, const gl::Texture2D& finer) {
+  FullscreenDraw draw(r.program(spec(1)), r.triangle);
+  draw.texture("u_source", finer).set("u_sourceSize", glm::vec2(finer.width(), finer.height()));
+  draw.draw();
+}
+void tentAlongX(const EffectResources& r, const gl::Texture2D& coarser) {
+  FullscreenDraw draw(r.program(spec(2)), r.triangle);
+  draw.texture("u_source", coarser).set("u_sourceSize", glm::vec2(coarser.width(), coarser.height()));
+  draw.draw();
+}
+// up k = mix(level k, tent(up k+1), radius) (stage 3), or the frame plus intensity x tent(up 1) (stage 4).
+void upOrComposite(const EffectResources& r, bool composite, const gl::Texture2D& half, const gl::Texture2D& level,
+                   const BloomSettings& settings) {
+  FullscreenDraw draw(r.program(spec(composite ? 4 : 3)), r.triangle);
+  draw.texture("u_source", half).texture("u_level", level);
+  draw.set("u_sourceSize", glm::vec2(half.width(), half.height()));
+  if (composite) draw.set("u_intensity", settings.intensity);
+  else draw.set("u_radius", settings.radius);
+  draw.draw();
+}
+
+}  // namespace
+
 EffectInfo BloomEffect::info() {
-  return {"bloom",
-          "Bloom",
-          true,
-          false,
-          {"bloom", "bloom-bright"},
-          {{"bloom-bright", "RGB9E5 (as scene-color): the light above bloom's threshold at 1/4 of the frame (bloom's "
-            "level 2), for the lens flare and the glare", GL_NEAREST, {}}}};
+  EffectInfo info{"bloom", "Bloom", true, false, {"bloom-prefilter"}, {}};
+  for (int k = 2; k <= kMaxLevels; ++k) info.passes.push_back("bloom-down-" + std::to_string(k));
+  for (int k = kMaxLevels - 1; k >= 1; --k) {
+    info.passes.push_back(tent(k));
+    info.passes.push_back(up(k));
+  }
+  info.passes.push_back(tent(0));
+  info.passes.push_back("bloom");
+  for (int k = 1; k <= kMaxLevels; ++k) {
+    info.targets.push_back({level(k),
+                            k == 2 ? std::string("level 2 (1/4): the light above bloom's threshold, for the lens flare "
+                                                 "and the glare too: ") + kLevelEncoding
+                                   : std::string("level ") + std::to_string(k) + " (1/" + std::to_string(1 << k) +
+                                         "): " + kLevelEncoding,
+                            GL_NEAREST, {}});
+    if (k < kMaxLevels)
+      info.targets.push_back({up(k), std::string("up ") + std::to_string(k) + ", level k and the tent of up k + 1 " +
+                                         "mixed by the radius: " + kLevelEncoding, GL_NEAREST, {}});
+  }
+  for (int k = 0; k < kMaxLevels; ++k)
+    info.targets.push_back({tent(k), std::string("the tent along x towards up ") + std::to_string(k) +
+                                         " (level k's width, level k + 1's height): " + kLevelEncoding,
+                            GL_NEAREST, {}});
+  return info;
 }
 
 std::vector<ProgramSpec> BloomEffect::programSpecs() { return {spec(0), spec(1), spec(2), spec(3), spec(4)}; }
 
-BloomEffect::BloomEffect(const EffectResources& resources) : resources_(resources) {
-  Stage* stages[] = {&prefilter_, &down_, &tentX_, &up_, &composite_};
-  for (int s = 0; s < 5; ++s) {
-    Stage& stage = *stages[s];
-    stage.program = resources_.build(spec(s));
-    stage.source = stage.program.uniform("u_source");
-    stage.sourceSize = stage.program.uniform("u_sourceSize");
-    if (s == 0) stage.threshold = stage.program.uniform("u_threshold");
-    if (s >= 3) stage.level = stage.program.uniform("u_level");
-    if (s == 3) stage.radius = stage.program.uniform("u_radius");
-    if (s == 4) stage.intensity = stage.program.uniform("u_intensity");
-  }
-}
+BloomEffect::BloomEffect(const EffectResources& resources) : resources_(resources) {}
 
 void BloomEffect::plan(FramePlanner& planner) {
+  // Off, the prefilter and the first downsample still run when a later effect reads `bloom-bright` (level 2).
+  const bool enabled = planner.settings().of<BloomSettings>().enabled;
   using Write = PassDecl::Write;
-  const BloomSettings settings = planner.settings().of<BloomSettings>();
-  auto bright = [](PassContext& context) {
-    return Bright{[&context] { context.bindForWriting("bloom-bright"); }, &context.writtenTexture("bloom-bright")};
+  const FrameCamera& camera = planner.frame().camera;
+  const int levels = enabled ? bloomLevels({camera.width, camera.height}) : 2;
+  auto bloom = [](const PassContext& context) -> const BloomSettings& {
+    return context.settings().of<BloomSettings>();
   };
-  if (!settings.enabled) {
-    // The chain's targets go once bloom has been off for as long as the pool keeps an unused target.
-    if (++plansOff_ >= 8 && !levels_.empty()) {
-      levels_.clear();
-      ups_.clear();
-      alongX_.clear();
-      size_ = glm::ivec2(0);
-    }
-    // The bright pass alone, which runs only when a later effect reads it.
+  auto add = [&](const std::string& name, std::vector<std::string> reads, const std::string& target, TargetSize size,
+                 std::function<void(PassContext&)> run, std::vector<std::string> programs) {
     PassDecl pass;
-    pass.name = "bloom-bright";
-    pass.reads = {"scene-color"};
-    pass.writes = {{"bloom-bright", TargetSize::quarter(), Write::Depth::None, ""}};
-    pass.run = [this, settings, bright](PassContext& context) {
-      plansOff_ = 0;
-      renderBright(settings, context.texture("scene-color"), context.size("scene-color"), bright(context));
+    pass.name = name;
+    pass.reads = std::move(reads);
+    pass.writes = {{target, size, Write::Depth::None, ""}};
+    pass.programs = std::move(programs);
+    pass.run = [target, run = std::move(run)](PassContext& context) {
+      context.bindForWriting(target);
+      run(context);
     };
     planner.add(std::move(pass));
-    return;
-  }
-  plansOff_ = 0;
-  PassDecl pass;
-  pass.name = "bloom";
-  pass.reads = {"scene-color"};
-  pass.writes = {{"scene-color", TargetSize::full(), Write::Depth::None, ""},
-                 {"bloom-bright", TargetSize::quarter(), Write::Depth::None, ""}};
-  pass.run = [this, settings, bright](PassContext& context) {
-    render(settings, context.texture("scene-color"), context.size("scene-color"),
-           [&context] { context.bindForWriting("scene-color"); }, bright(context));
   };
-  planner.add(std::move(pass));
-}
 
-void BloomEffect::resize(glm::ivec2 size) {
-  if (size == size_ && !levels_.empty()) return;
-  size_ = size;
-  levels_.clear();
-  ups_.clear();
-  alongX_.clear();
-  const int levels = bloomLevels(size);
-  for (int k = 1; k <= levels; ++k) {
-    const glm::ivec2 s = levelSize(size, k);
-    levels_.emplace_back("bloom level " + std::to_string(k), s.x, s.y, GL_NEAREST, gl::RenderTarget::Depth::None,
-                         false);
-    if (k < levels)
-      ups_.emplace_back("bloom up " + std::to_string(k), s.x, s.y, GL_NEAREST, gl::RenderTarget::Depth::None, false);
+  // The thresholded frame into level 1, then down the chain.
+  add("bloom-prefilter", {"scene-color"}, level(1), levelSize(1),
+      [this, bloom](PassContext& context) { prefilter(resources_, context.texture("scene-color"), bloom(context)); },
+      {spec(0).name});
+  // Level 2 even where the chain stops at level 1 (frames under 8 pixels): it is `bloom-bright`.
+  for (int k = 2; k <= std::max(levels, 2); ++k)
+    add("bloom-down-" + std::to_string(k), {level(k - 1)}, level(k), levelSize(k),
+        [this, finer = level(k - 1)](PassContext& context) { down(resources_, context.texture(finer)); },
+        {spec(1).name});
+  if (!enabled) return;
+  // Up again from the coarsest level: each up k mixes level k with the tent of the coarser up (level L itself at
+  // the bottom), the tent taken in two passes (along x, then along y in the up's own draw).
+  for (int k = levels - 1; k >= 0; --k) {
+    const std::string coarser = k + 1 == levels ? level(levels) : up(k + 1);
+    add(tent(k), {coarser}, tent(k), tentSize(k),
+        [this, coarser](PassContext& context) { tentAlongX(resources_, context.texture(coarser)); }, {spec(2).name});
+    if (k == 0) break;
+    add(up(k), {tent(k), level(k)}, up(k), levelSize(k),
+        [this, bloom, k](PassContext& context) {
+          upOrComposite(resources_, false, context.texture(tent(k)), context.texture(level(k)), bloom(context));
+        },
+        {spec(3).name});
   }
-  // The tent's first half for up k (and the composite, k = 0): level k's width, level k + 1's height.
-  for (int k = 0; k < levels; ++k) {
-    const glm::ivec2 s(k == 0 ? size.x : levelSize(size, k).x, levelSize(size, k + 1).y);
-    alongX_.emplace_back("bloom tent " + std::to_string(k), s.x, s.y, GL_NEAREST, gl::RenderTarget::Depth::None,
-                         false);
-  }
-}
-
-const gl::Texture2D& BloomEffect::level(int k, const Bright& bright) const {
-  if (k == 2 && bright.texture) return *bright.texture;
-  return levels_[static_cast<size_t>(k - 1)].color();
-}
-
-void BloomEffect::downChain(const BloomSettings& settings, const gl::Texture2D& sceneColor, glm::ivec2 size,
-                            int last, const Bright& bright) {
-  using gl::Program;
-  resize(size);
-  auto sourceSize = [](const gl::Texture2D& t) { return glm::vec2(t.width(), t.height()); };
-
-  // Prefilter: the thresholded scene colour into level 1.
-  levels_[0].bindForDrawing();
-  prefilter_.program.use();
-  sceneColor.bind(0);
-  Program::set(prefilter_.source, 0);
-  Program::set(prefilter_.sourceSize, glm::vec2(size));
-  const float knee = settings.knee * settings.threshold;
-  Program::set(prefilter_.threshold, glm::vec3(settings.threshold, knee, knee > 0.0f ? 0.25f / knee : 0.0f));
-  resources_.triangle.draw();
-
-  // Down the chain; level 2 into the bright target where there is one (made even where the chain stops at level 1:
-  // frames under 8 pixels).
-  down_.program.use();
-  Program::set(down_.source, 0);
-  for (int k = 2; k <= (bright.texture ? std::max(last, 2) : last); ++k) {
-    if (k == 2 && bright.texture) bright.bind();
-    else levels_[static_cast<size_t>(k - 1)].bindForDrawing();
-    const gl::Texture2D& source = level(k - 1, bright);
-    source.bind(0);
-    Program::set(down_.sourceSize, sourceSize(source));
-    resources_.triangle.draw();
-  }
-}
-
-void BloomEffect::renderBright(const BloomSettings& settings, const gl::Texture2D& sceneColor, glm::ivec2 size,
-                               const Bright& bright) {
-  downChain(settings, sceneColor, size, 2, bright);
-  gl::restoreBaselineState();
+  // The frame with its glow.
+  add("bloom", {tent(0), "scene-color"}, "scene-color", TargetSize::full(),
+      [this, bloom](PassContext& context) {
+        upOrComposite(resources_, true, context.texture(tent(0)), context.texture("scene-color"), bloom(context));
+      },
+      {spec(4).name});
 }
 
 void BloomEffect::render(const BloomSettings& settings, const gl::Texture2D& sceneColor, glm::ivec2 size,
-                         const std::function<void()>& bindOutput, const Bright& bright) {
-  using gl::Program;
-  resize(size);
-  const int levels = static_cast<int>(levels_.size());
-  auto sourceSize = [](const gl::Texture2D& t) { return glm::vec2(t.width(), t.height()); };
-  downChain(settings, sceneColor, size, levels, bright);
-
-  // The tent's first half: `coarser` filtered along x into alongX_[k] (level k's width, its own height).
-  auto tentAlongX = [&](int k, const gl::Texture2D& coarser) {
-    alongX_[static_cast<size_t>(k)].bindForDrawing();
-    tentX_.program.use();
-    coarser.bind(0);
-    Program::set(tentX_.source, 0);
-    Program::set(tentX_.sourceSize, sourceSize(coarser));
-    resources_.triangle.draw();
-    return &alongX_[static_cast<size_t>(k)].color();
+                         const std::function<void()>& bindOutput) const {
+  const int levels = bloomLevels(size);
+  auto target = [&](const std::string& name, TargetSize s) {
+    const glm::ivec2 pixels = s.of(size);
+    return gl::RenderTarget("bloom " + name, pixels.x, pixels.y, GL_NEAREST, gl::RenderTarget::Depth::None, false);
   };
-
-  // Up again: up_k = mix(level_k, tent(up_k+1), radius), from the coarsest level.
-  for (int k = levels - 1; k >= 1; --k) {
-    const gl::Texture2D* half =
-        tentAlongX(k, k + 1 == levels ? level(k + 1, bright) : ups_[static_cast<size_t>(k)].color());
-    ups_[static_cast<size_t>(k - 1)].bindForDrawing();
-    up_.program.use();
-    half->bind(0);
-    level(k, bright).bind(1);
-    Program::set(up_.source, 0);
-    Program::set(up_.level, 1);
-    Program::set(up_.radius, settings.radius);
-    Program::set(up_.sourceSize, sourceSize(*half));
-    resources_.triangle.draw();
+  std::vector<gl::RenderTarget> levelTargets, ups(static_cast<size_t>(levels));
+  for (int k = 1; k <= levels; ++k) {
+    levelTargets.push_back(target(level(k), levelSize(k)));
+    levelTargets.back().bindForDrawing();
+    if (k == 1) prefilter(resources_, sceneColor, settings);
+    else down(resources_, levelTargets[static_cast<size_t>(k - 2)].color());
   }
-
-  // The frame with its glow.
-  const gl::Texture2D* half = tentAlongX(0, levels == 1 ? levels_[0].color() : ups_[0].color());
-  bindOutput();
-  composite_.program.use();
-  half->bind(0);
-  sceneColor.bind(1);
-  Program::set(composite_.source, 0);
-  Program::set(composite_.level, 1);
-  Program::set(composite_.sourceSize, sourceSize(*half));
-  Program::set(composite_.intensity, settings.intensity);
-  resources_.triangle.draw();
-  gl::restoreBaselineState();
+  for (int k = levels - 1; k >= 0; --k) {
+    const gl::Texture2D& coarser =
+        k + 1 == levels ? levelTargets.back().color() : ups[static_cast<size_t>(k + 1)].color();
+    const gl::RenderTarget half = target(tent(k), tentSize(k));
+    half.bindForDrawing();
+    tentAlongX(resources_, coarser);
+    if (k == 0) {
+      bindOutput();
+      upOrComposite(resources_, true, half.color(), sceneColor, settings);
+    } else {
+      ups[static_cast<size_t>(k)] = target(up(k), levelSize(k));
+      ups[static_cast<size_t>(k)].bindForDrawing();
+      upOrComposite(resources_, false, half.color(), levelTargets[static_cast<size_t>(k - 1)].color(), settings);
+    }
+  }
 }
 
 }  // namespace obscura

@@ -5,15 +5,16 @@
 // back with a 3x3 tent, each level blended with the one below, and added to the frame. The lecture deck's glow
 // (Samuelcik, "Post-processing", "Glow": threshold, blur downsampled, add back) with the modern filters.
 //
-//   prefilter   scene-color (full) -> level 1 (1/2): the 13-tap filter over 6 x 6 texels, each texel's colour
-//               first scaled by the soft threshold below (per texel, so a single bright pixel keeps its energy)
-//   down k      level k-1 -> level k (1/2^k), k = 2 .. 6: the 13-tap filter
-//   up k        level k (its own size) + up k+1 (tent-filtered, 4 x 4 texels by hand) -> up k, k = 5 .. 1:
-//               up_k = (1 - radius) level_k + radius tent(up_k+1)  (up_6 is level 6)
-//   composite   scene-color + intensity x tent(up_1) -> scene-color (full)
-// The tent is separable: each upsample and the composite take it in two passes, along x into a target of the finer
-// width and the coarser height (4 fetches), then along y (4 more): 8 decoded texels instead of 16 (measured in
-// docs/bloom-and-fog.md).
+//   bloom-prefilter  scene-color (full) -> bloom-1 (1/2): the 13-tap filter over 6 x 6 texels, each texel's colour
+//                    first scaled by the soft threshold below (per texel, so a single bright pixel keeps its energy)
+//   bloom-down-k     bloom-(k-1) -> bloom-k (1/2^k), k = 2 .. 6: the 13-tap filter
+//   bloom-up-k       bloom-k (its own size) + up k+1 (tent-filtered, 4 x 4 texels by hand) -> bloom-up-k, k = 5 .. 1:
+//                    up_k = (1 - radius) level_k + radius tent(up_k+1)  (up_6 is level 6)
+//   bloom            scene-color + intensity x tent(up_1) -> scene-color (full): the composite
+// Each is a pass of the plan, its target pooled (fewer levels where 1/2^k of the frame would be under 2 pixels).
+// The tent is separable: each upsample and the composite take it in two passes, bloom-tent-k along x into a target
+// of the finer width and the coarser height (4 fetches), then along y in the up's own draw (4 more): 8 decoded
+// texels instead of 16 (measured in docs/bloom-and-fog.md).
 // Every filter's weights sum to 1 and every level covers the frame, so each level holds the same light as the
 // thresholded frame, and so does up_1 whatever the radius: the glow adds `intensity` times the light above the
 // threshold (tests/test_bloom.cpp measures it); the radius moves it between the narrow levels and the wide ones.
@@ -83,42 +84,14 @@ class BloomEffect : public Effect {
   explicit BloomEffect(const EffectResources& resources);
   void plan(FramePlanner& planner) override;
 
-  // Where level 2 goes besides the chain: the frame's `bloom-bright` target (bound by `bind`, read back as `texture`).
-  struct Bright {
-    std::function<void()> bind;
-    const gl::Texture2D* texture = nullptr;
-  };
-  // The whole chain: reads `sceneColor` (RGB9E5, `size` pixels) and draws the frame with its glow into whatever
-  // `bindOutput` binds (its viewport covering `size`), and level 2 into `bright` when given. The pass calls it;
-  // tests call it on frames of their own.
+  // The whole chain on targets of its own, made for the call: reads `sceneColor` (RGB9E5, `size` pixels) and draws
+  // the frame with its glow into whatever `bindOutput` binds (its viewport covering `size`). The frame runs the same
+  // draws as its passes, on pooled targets; tests call this on frames of their own.
   void render(const BloomSettings& settings, const gl::Texture2D& sceneColor, glm::ivec2 size,
-              const std::function<void()>& bindOutput, const Bright& bright);
-  void render(const BloomSettings& settings, const gl::Texture2D& sceneColor, glm::ivec2 size,
-              const std::function<void()>& bindOutput) {
-    render(settings, sceneColor, size, bindOutput, Bright{});
-  }
-  // The bright pass alone: the prefilter and one downsample, into `bright` (1/4 of `size`).
-  void renderBright(const BloomSettings& settings, const gl::Texture2D& sceneColor, glm::ivec2 size,
-                    const Bright& bright);
+              const std::function<void()>& bindOutput) const;
 
  private:
-  struct Stage {
-    gl::Program program;
-    GLint source = -1, sourceSize = -1, level = -1, threshold = -1, radius = -1, intensity = -1;
-  };
-  void resize(glm::ivec2 size);
-  // The prefilter (level 1) and the downsamples to level `last`, level 2 into `bright` where given.
-  void downChain(const BloomSettings& settings, const gl::Texture2D& sceneColor, glm::ivec2 size, int last,
-                 const Bright& bright);
-  const gl::Texture2D& level(int k, const Bright& bright) const;
-
   const EffectResources& resources_;
-  Stage prefilter_, down_, tentX_, up_, composite_;
-  glm::ivec2 size_{0, 0};
-  std::vector<gl::RenderTarget> levels_;  // level k at k - 1: 1/2 .. 1/2^levels
-  std::vector<gl::RenderTarget> ups_;     // up k at k - 1, k = 1 .. levels - 1
-  std::vector<gl::RenderTarget> alongX_;  // the tent along x towards up k (0: the frame): level k's width, k+1's height
-  int plansOff_ = 0;                      // consecutive frames planned with bloom off (the targets go after 8)
 };
 
 }  // namespace obscura

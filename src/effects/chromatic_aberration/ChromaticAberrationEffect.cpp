@@ -59,7 +59,8 @@ void ChromaticAberrationEffect::plan(FramePlanner& planner) {
   pass.name = "chromatic-aberration";
   pass.reads = {"display-color"};
   pass.writes = {{"display-color", TargetSize::full(), PassDecl::Write::Depth::None, ""}};
-  pass.run = [this, intensity = settings.intensity](PassContext& context) {
+  pass.run = [this](PassContext& context) {
+    const float intensity = context.settings().of<ChromaticAberrationSettings>().intensity;
     const Program& p = program();
     context.bindForWriting("display-color");
     p.program.use();

@@ -9,7 +9,6 @@
 
 #include "base/Text.h"
 #include "frame/PassContext.h"
-#include "gl/PipelineState.h"
 
 namespace obscura {
 namespace {
@@ -86,7 +85,8 @@ const std::vector<Parameter<DofSettings>>& DofSettings::parameters() {
         numberParameter<S>("focus-x", 0, 1, "of the width", "autofocus point, from the left", &S::focusX),
         numberParameter<S>("focus-y", 0, 1, "of the height", "autofocus point, from the top", &S::focusY),
         numberParameter<S>("max-radius", 1, 64, "px at 720 rows",
-                           "the largest blur radius in pixels at 720 rows (scaled with the height)", &S::maxRadius),
+                           "the largest blur radius in pixels at 720 rows (scaled with the height)", &S::maxRadius)
+            .shapesPlan(),  // the tiles' size
         std::move(quality)};
   }();
   return table;
@@ -170,177 +170,74 @@ std::vector<ProgramSpec> DepthOfFieldEffect::programSpecs() {
   return specs;
 }
 
-DepthOfFieldEffect::CocProgram::CocProgram(gl::Program built)
-    : program(std::move(built)),
-      gbuffer(program.uniform("u_gbuffer")),
-      lens(program.uniform("u_lens")),
-      focus(program.uniform("u_focus")),
-      focusUv(program.uniform("u_focusUv")),
-      autofocus(program.uniform("u_autofocus")),
-      depthRange(program.uniform("u_depthRange")),
-      range(program.uniform("u_range")) {}
-
-DepthOfFieldEffect::DownsampleProgram::DownsampleProgram(gl::Program built)
-    : program(std::move(built)),
-      color(program.uniform("u_color")),
-      coc(program.uniform("u_coc")),
-      fullSize(program.uniform("u_fullSize")),
-      halfSize(program.uniform("u_halfSize")),
-      range(program.uniform("u_range")) {}
-
-DepthOfFieldEffect::GatherProgram::GatherProgram(gl::Program built)
-    : program(std::move(built)),
-      half(program.uniform("u_half")),
-      halfSize(program.uniform("u_halfSize")),
-      range(program.uniform("u_range")) {}
-
-DepthOfFieldEffect::CompositeProgram::CompositeProgram(gl::Program built)
-    : program(std::move(built)),
-      color(program.uniform("u_color")),
-      coc(program.uniform("u_coc")),
-      nearField(program.uniform("u_near")),
-      farField(program.uniform("u_far")),
-      range(program.uniform("u_range")),
-      fullSize(program.uniform("u_fullSize")),
-      neighbors(program.uniform("u_neighbors")) {}
-
-DepthOfFieldEffect::DepthOfFieldEffect(const EffectResources& resources)
-    : resources_(resources),
-      coc_(resources.build(spec(kCoc))),
-      downsample_(resources.build(spec(kDownsample))),
-      tileMax_(resources, spec(kTileColumns), spec(kTiles), spec(kNeighbors)),
-      columnsRange_(tileMax_.columnsProgram().uniform("u_range")),
-      composite_(resources.build(spec(kComposite))) {}
-
-const DepthOfFieldEffect::GatherProgram& DepthOfFieldEffect::gather(bool nearField, int taps) {
-  auto it = gathers_.find({nearField, taps});
-  if (it == gathers_.end()) {
-    GatherProgram p(resources_.build(spec(nearField ? kNear : kFar, taps)));
-    if (nearField) p.neighbors = p.program.uniform("u_neighbors");
-    else p.maxRadius = p.program.uniform("u_maxRadius");
-    it = gathers_.emplace(std::make_pair(nearField, taps), std::move(p)).first;
-  }
-  return it->second;
-}
+DepthOfFieldEffect::DepthOfFieldEffect(const EffectResources&) {}
 
 void DepthOfFieldEffect::plan(FramePlanner& planner) {
-  const DofSettings settings = planner.settings().of<DofSettings>();
+  const DofSettings& settings = planner.settings().of<DofSettings>();
   if (!settings.enabled) return;
-  const FrameCamera& camera = planner.frame().camera;
-  // The frame's constants, derived once here: the lens, the CoC range, the tile size K.
-  const ThinLens lens = ThinLens::of(settings, camera.height, camera.orthographic);
-  const float maxRadius = settings.maxRadiusPixels(camera.height);
+  // What shapes the passes: the CoC range and the tile size K (from the largest radius and the frame's height), the
+  // gathers' taps (the preset).
+  const float maxRadius = settings.maxRadiusPixels(planner.frame().camera.height);
   const float range = 2.0f * maxRadius;  // the largest |C| drawn: a diameter
   const int k = std::clamp(static_cast<int>(std::ceil(maxRadius)), 1, kMaxTile);
-  const bool autofocus = !settings.focus.has_value();
-  const float focus = autofocus ? 0.0f : lens.usableFocus(*settings.focus);
-  // The focus pixel's centre in uv (y up), so that NEAREST reads that texel on any rasteriser.
-  const glm::ivec2 focusPixel = settings.focusPixel(camera.width, camera.height);
-  const glm::vec2 focusUv((static_cast<float>(focusPixel.x) + 0.5f) / static_cast<float>(camera.width),
-                          (static_cast<float>(camera.height - 1 - focusPixel.y) + 0.5f) /
-                              static_cast<float>(camera.height));
-  const glm::vec2 depthRange(camera.near, camera.far - camera.near);  // view depth = near + d (far - near)
   const int taps = settings.taps();
 
-  PassDecl coc;
-  coc.name = "dof-coc";
-  coc.reads = {"gbuffer"};
-  coc.writes = {{"dof-coc", TargetSize::full(), Write::Depth::None, ""}};
-  coc.run = [this, lens, range, autofocus, focus, focusUv, depthRange](PassContext& context) {
-    context.bindForWriting("dof-coc");
-    coc_.program.use();
-    context.texture("gbuffer").bind(0);
-    gl::Program::set(coc_.gbuffer, 0);
-    gl::Program::set(coc_.lens, glm::vec3(lens.scale, lens.focalLength, lens.orthographic ? 0.0f : 1.0f));
-    gl::Program::set(coc_.focus, focus);
-    gl::Program::set(coc_.focusUv, focusUv);
-    gl::Program::set(coc_.autofocus, autofocus ? 1.0f : 0.0f);
-    gl::Program::set(coc_.depthRange, depthRange);
-    gl::Program::set(coc_.range, range);
-    resources_.triangle.draw();
-    gl::restoreBaselineState();
-  };
-  planner.add(std::move(coc));
+  planner.add(fullscreenPass(
+      "dof-coc", spec(kCoc), {{"u_gbuffer", "gbuffer"}}, {"dof-coc"},
+      [range](FullscreenDraw& draw, const PassContext& context) {
+        // This frame's lens and focus.
+        const DofSettings& dof = context.settings().of<DofSettings>();
+        const FrameCamera& camera = context.camera();
+        const ThinLens lens = ThinLens::of(dof, camera.height, camera.orthographic);
+        const bool autofocus = !dof.focus.has_value();
+        // The focus pixel's centre in uv (y up), so that NEAREST reads that texel on any rasteriser.
+        const glm::ivec2 focusPixel = dof.focusPixel(camera.width, camera.height);
+        const glm::vec2 focusUv((static_cast<float>(focusPixel.x) + 0.5f) / static_cast<float>(camera.width),
+                                (static_cast<float>(camera.height - 1 - focusPixel.y) + 0.5f) /
+                                    static_cast<float>(camera.height));
+        draw.set("u_lens", glm::vec3(lens.scale, lens.focalLength, lens.orthographic ? 0.0f : 1.0f));
+        draw.set("u_focus", autofocus ? 0.0f : lens.usableFocus(*dof.focus));
+        draw.set("u_focusUv", focusUv);
+        draw.set("u_autofocus", autofocus ? 1.0f : 0.0f);
+        draw.set("u_depthRange", glm::vec2(camera.near, camera.far - camera.near));  // depth = near + d (far - near)
+        draw.set("u_range", range);
+      }));
 
-  PassDecl down;
-  down.name = "dof-downsample";
-  down.reads = {"scene-color", "dof-coc"};
-  down.writes = {{"dof-half", TargetSize::half(), Write::Depth::None, ""}};
-  down.run = [this, range](PassContext& context) {
-    context.bindForWriting("dof-half");
-    downsample_.program.use();
-    context.texture("scene-color").bind(0);
-    context.texture("dof-coc").bind(1);
-    gl::Program::set(downsample_.color, 0);
-    gl::Program::set(downsample_.coc, 1);
-    gl::Program::set(downsample_.fullSize, glm::vec2(context.size("dof-coc")));
-    gl::Program::set(downsample_.halfSize, glm::vec2(context.size("dof-half")));
-    gl::Program::set(downsample_.range, range);
-    resources_.triangle.draw();
-    gl::restoreBaselineState();
-  };
-  planner.add(std::move(down));
+  planner.add(fullscreenPass("dof-downsample", spec(kDownsample),
+                             {{"u_color", "scene-color"}, {"u_coc", "dof-coc"}},
+                             {"dof-half", TargetSize::half(), Write::Depth::None, ""},
+                             [range](FullscreenDraw& draw, const PassContext& context) {
+                               draw.set("u_fullSize", glm::vec2(context.size("dof-coc")));
+                               draw.set("u_halfSize", glm::vec2(context.size("dof-half")));
+                               draw.set("u_range", range);
+                             }));
 
-  const glm::vec2 frame(static_cast<float>(camera.width), static_cast<float>(camera.height));
-  tileMax_.plan(planner, "dof", "dof-coc", k, frame,
-                [this, range] { gl::Program::set(columnsRange_, range); });
+  // The first tile pass decodes the 16-bit CoC; the others compare bytes.
+  TileMaxPasses::plan(planner, "dof", "dof-coc", k, spec(kTileColumns), spec(kTiles), spec(kNeighbors),
+                      [range](FullscreenDraw& draw, const PassContext&) { draw.set("u_range", range); });
 
-  auto gatherPass = [this, taps, range, maxRadius](bool nearField) {
-    return [this, nearField, taps, range, maxRadius](PassContext& context) {
-      const GatherProgram& p = gather(nearField, taps);
-      const std::string target = nearField ? "dof-near" : "dof-far";
-      context.bindForWriting(target);
-      p.program.use();
-      context.texture("dof-half").bind(0);
-      gl::Program::set(p.half, 0);
-      if (nearField) {
-        context.texture("dof-neighbors").bind(1);
-        gl::Program::set(p.neighbors, 1);
-      }
-      gl::Program::set(p.halfSize, glm::vec2(context.size("dof-half")));
-      gl::Program::set(p.range, range);
-      if (!nearField) gl::Program::set(p.maxRadius, maxRadius);
-      resources_.triangle.draw();
-      gl::restoreBaselineState();
+  auto gather = [range, maxRadius](bool nearField) {
+    return [range, nearField, maxRadius](FullscreenDraw& draw, const PassContext& context) {
+      draw.set("u_halfSize", glm::vec2(context.size("dof-half")));
+      draw.set("u_range", range);
+      if (!nearField) draw.set("u_maxRadius", maxRadius);
     };
   };
-  PassDecl nearPass;
-  nearPass.name = "dof-near";
-  nearPass.reads = {"dof-half", "dof-neighbors"};
-  nearPass.writes = {{"dof-near", TargetSize::half(), Write::Depth::None, ""}};
-  nearPass.run = gatherPass(true);
-  planner.add(std::move(nearPass));
+  planner.add(fullscreenPass("dof-near", spec(kNear, taps), {{"u_half", "dof-half"}, {"u_neighbors", "dof-neighbors"}},
+                             {"dof-near", TargetSize::half(), Write::Depth::None, ""}, gather(true)));
+  planner.add(fullscreenPass("dof-far", spec(kFar, taps), {{"u_half", "dof-half"}},
+                             {"dof-far", TargetSize::half(), Write::Depth::None, ""}, gather(false)));
 
-  PassDecl farPass;
-  farPass.name = "dof-far";
-  farPass.reads = {"dof-half"};
-  farPass.writes = {{"dof-far", TargetSize::half(), Write::Depth::None, ""}};
-  farPass.run = gatherPass(false);
-  planner.add(std::move(farPass));
-
-  PassDecl composite;
-  composite.name = "dof-composite";
-  composite.reads = {"scene-color", "dof-coc", "dof-near", "dof-far", "dof-neighbors"};
-  composite.writes = {{"scene-color", TargetSize::full(), Write::Depth::None, ""}};
-  composite.run = [this, range](PassContext& context) {
-    context.bindForWriting("scene-color");
-    composite_.program.use();
-    context.texture("scene-color").bind(0);
-    context.texture("dof-coc").bind(1);
-    context.texture("dof-near").bind(2);
-    context.texture("dof-far").bind(3);
-    gl::Program::set(composite_.color, 0);
-    gl::Program::set(composite_.coc, 1);
-    gl::Program::set(composite_.nearField, 2);
-    gl::Program::set(composite_.farField, 3);
-    gl::Program::set(composite_.range, range);
-    gl::Program::set(composite_.fullSize, glm::vec2(context.size("scene-color")));
-    context.texture("dof-neighbors").bind(4);
-    gl::Program::set(composite_.neighbors, 4);
-    resources_.triangle.draw();
-    gl::restoreBaselineState();
-  };
-  planner.add(std::move(composite));
+  planner.add(fullscreenPass("dof-composite", spec(kComposite),
+                             {{"u_color", "scene-color"},
+                              {"u_coc", "dof-coc"},
+                              {"u_near", "dof-near"},
+                              {"u_far", "dof-far"},
+                              {"u_neighbors", "dof-neighbors"}},
+                             {"scene-color"}, [range](FullscreenDraw& draw, const PassContext& context) {
+                               draw.set("u_range", range);
+                               draw.set("u_fullSize", glm::vec2(context.size("scene-color")));
+                             }));
 }
 
 }  // namespace obscura

@@ -46,7 +46,6 @@
 // disc as bright as the lens's (docs/depth-of-field.md measures it against the aperture reference, which averages
 // linear light). The half-size fields are plain bytes filtered LINEAR in the composite, so they hold the HDR colour
 // as f = sqrt(c / (1 + c)) (dofFieldEncode), decoded at every tap.
-#include <map>
 #include <optional>
 #include <vector>
 
@@ -123,37 +122,6 @@ class DepthOfFieldEffect : public Effect {
 
   explicit DepthOfFieldEffect(const EffectResources& resources);
   void plan(FramePlanner& planner) override;
-
- private:
-  struct CocProgram {
-    explicit CocProgram(gl::Program built);
-    gl::Program program;
-    GLint gbuffer, lens, focus, focusUv, autofocus, depthRange, range;
-  };
-  struct DownsampleProgram {
-    explicit DownsampleProgram(gl::Program built);
-    gl::Program program;
-    GLint color, coc, fullSize, halfSize, range;
-  };
-  struct GatherProgram {
-    explicit GatherProgram(gl::Program built);
-    gl::Program program;
-    GLint half, halfSize, range, maxRadius = -1, neighbors = -1;
-  };
-  struct CompositeProgram {
-    explicit CompositeProgram(gl::Program built);
-    gl::Program program;
-    GLint color, coc, nearField, farField, range, fullSize, neighbors;
-  };
-  const GatherProgram& gather(bool nearField, int taps);
-
-  const EffectResources& resources_;
-  CocProgram coc_;
-  DownsampleProgram downsample_;
-  TileMaxPasses tileMax_;
-  GLint columnsRange_;  // the first tile pass decodes the 16-bit CoC; the others compare bytes
-  CompositeProgram composite_;
-  std::map<std::pair<bool, int>, GatherProgram> gathers_;  // by (near, taps)
 };
 
 }  // namespace obscura

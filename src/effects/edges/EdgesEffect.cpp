@@ -12,12 +12,9 @@
 #include "encoding/NormalEncoding.h"
 #include "encoding/ToneMapping.h"
 #include "frame/PassContext.h"
-#include "gl/PipelineState.h"
 
 namespace obscura {
 namespace {
-
-using Write = PassDecl::Write;
 
 constexpr EdgeStyle kEdgeStyles[] = {EdgeStyle::Lines, EdgeStyle::Toon, EdgeStyle::Hatching};
 constexpr float kMinWidth = 1.0f, kMaxWidth = 8.0f;
@@ -82,7 +79,8 @@ const std::vector<Parameter<EdgesSettings>>& EdgesSettings::parameters() {
                                       &S::style, styles)
             .primary(),
         numberParameter<S>("width", kMinWidth, kMaxWidth, "px", "the lines' width in output pixels", &S::width)
-            .primary(),
+            .primary()
+            .shapesPlan(),  // the line's reach R, the passes' loop bound
         colorParameter<S>("color", 0, 1, "the lines' colour", &S::color).primary(),
         numberParameter<S>("strength", 0, 1, "", "the lines' opacity", &S::strength),
         numberParameter<S>("depth-threshold", 0.001, 1, "",
@@ -91,7 +89,8 @@ const std::vector<Parameter<EdgesSettings>>& EdgesSettings::parameters() {
         numberParameter<S>("normal-threshold", 1, 179, "degrees", "least angle between neighbouring normals that is "
                            "a crease", &S::normalThreshold),
         numberParameter<S>("color-threshold", 0, 1, "", "least step of display luma that is an edge; 0: none",
-                           &S::colorThreshold),
+                           &S::colorThreshold)
+            .shapesPlan(),  // above 0 the detection reads the display colour
         integerParameter<S>("bands", 2, 16, "", "", "toon and hatching: the shading's levels", &S::bands),
         numberParameter<S>("hatch-spacing", 2, 32, "px", "hatching: the pixels between strokes", &S::hatchSpacing)};
   }();
@@ -211,148 +210,57 @@ std::vector<ProgramSpec> EdgesEffect::programSpecs() {
   return specs;
 }
 
-EdgesEffect::DetectProgram::DetectProgram(gl::Program built, bool colorEdges)
-    : program(std::move(built)),
-      gbuffer(program.uniform("u_gbuffer")),
-      texel(program.uniform("u_texel")),
-      near(program.uniform("u_near")),
-      depthScale(program.uniform("u_depthScale")),
-      inverseOrthographicDepth(program.uniform("u_inverseOrthographicDepth")),
-      depthThreshold(program.uniform("u_depthThreshold")),
-      normalCos(program.uniform("u_normalCos")) {
-  if (!colorEdges) return;
-  color = program.uniform("u_color");
-  colorThreshold = program.uniform("u_colorThreshold");
-}
-
-// At radius 0 the passes fetch the pixel itself: the compiler drops u_texel (location -1, which GL ignores).
-EdgesEffect::DistanceProgram::DistanceProgram(gl::Program built, int radius)
-    : program(std::move(built)),
-      mask(program.uniform("u_mask")),
-      texel(radius > 0 ? program.uniform("u_texel") : -1) {}
-
-EdgesEffect::DrawProgram::DrawProgram(gl::Program built, int radius, EdgeStyle style)
-    : program(std::move(built)),
-      distance(program.uniform("u_distance")),
-      color(program.uniform("u_color")),
-      texel(radius > 0 ? program.uniform("u_texel") : -1),
-      halfWidth(program.uniform("u_halfWidth")),
-      lineColor(program.uniform("u_lineColor")),
-      strength(program.uniform("u_strength")),
-      alphaIsOne(program.uniform("u_alphaIsOne")) {
-  if (style == EdgeStyle::Toon) bands = program.uniform("u_bands");
-  if (style == EdgeStyle::Hatching) hatching = HatchingUniforms(program);
-}
-
-EdgesEffect::EdgesEffect(const EffectResources& resources) : resources_(resources) {}
-
-const EdgesEffect::DetectProgram& EdgesEffect::detect(bool colorEdges) {
-  auto it = detects_.find(colorEdges);
-  if (it == detects_.end())
-    it = detects_.emplace(colorEdges, DetectProgram(resources_.build(detectSpec(colorEdges)), colorEdges)).first;
-  return it->second;
-}
-
-const EdgesEffect::DistanceProgram& EdgesEffect::distance(int radius) {
-  auto it = distances_.find(radius);
-  if (it == distances_.end())
-    it = distances_.emplace(radius, DistanceProgram(resources_.build(distanceSpec(radius)), radius)).first;
-  return it->second;
-}
-
-const EdgesEffect::DrawProgram& EdgesEffect::draw(int radius, EdgeStyle style) {
-  auto it = draws_.find({radius, style});
-  if (it == draws_.end()) {
-    DrawProgram built(resources_.build(drawSpec(radius, style)), radius, style);
-    it = draws_.emplace(std::make_pair(radius, style), std::move(built)).first;
-  }
-  return it->second;
-}
+EdgesEffect::EdgesEffect(const EffectResources&) {}
 
 void EdgesEffect::plan(FramePlanner& planner) {
-  const EdgesSettings settings = planner.settings().of<EdgesSettings>();
+  const EdgesSettings& settings = planner.settings().of<EdgesSettings>();
   if (!settings.enabled && !planner.showsTargetOf(info())) return;
-  const FrameCamera& camera = planner.frame().camera;
-  const EdgeDetector detector =
-      EdgeDetector::of(settings, camera.near, camera.far, camera.orthographic ? 2.0f * camera.halfExtent.y : 0.0f);
+  // What shapes the passes: colour edges (a read of the display colour), the line's reach R (the loops' bound), the
+  // style.
   const bool colorEdges = settings.colorThreshold > 0.0f;
-  const glm::vec2 texel(1.0f / static_cast<float>(camera.width), 1.0f / static_cast<float>(camera.height));
-
-  PassDecl detectPass;
-  detectPass.name = "edges-detect";
-  detectPass.reads = {"gbuffer"};
-  if (colorEdges) detectPass.reads.push_back("display-color");
-  detectPass.writes = {{"edges-mask", TargetSize::full(), Write::Depth::None, ""}};
-  detectPass.run = [this, detector, colorEdges, texel](PassContext& context) {
-    const DetectProgram& p = detect(colorEdges);
-    context.bindForWriting("edges-mask");
-    p.program.use();
-    context.texture("gbuffer").bind(0);
-    gl::Program::set(p.gbuffer, 0);
-    gl::Program::set(p.texel, texel);
-    gl::Program::set(p.near, detector.near);
-    gl::Program::set(p.depthScale, detector.depthRange / 65535.0f);
-    gl::Program::set(p.inverseOrthographicDepth,
-                     detector.orthographicDepth > 0.0f ? 1.0f / detector.orthographicDepth : 0.0f);
-    gl::Program::set(p.depthThreshold, detector.depthThreshold);
-    gl::Program::set(p.normalCos, detector.normalCos);
-    if (colorEdges) {
-      context.texture("display-color").bind(1);
-      gl::Program::set(p.color, 1);
-      gl::Program::set(p.colorThreshold, detector.colorThreshold);
-    }
-    resources_.triangle.draw();
-    gl::restoreBaselineState();
-  };
-  planner.add(std::move(detectPass));
+  std::vector<TextureInput> detectInputs = {{"u_gbuffer", "gbuffer"}};
+  if (colorEdges) detectInputs.push_back({"u_color", "display-color"});
+  planner.add(fullscreenPass(
+      "edges-detect", detectSpec(colorEdges), std::move(detectInputs), {"edges-mask"},
+      [colorEdges](FullscreenDraw& draw, const PassContext& context) {
+        const FrameCamera& camera = context.camera();
+        const EdgeDetector detector =
+            EdgeDetector::of(context.settings().of<EdgesSettings>(), camera.near, camera.far,
+                             camera.orthographic ? 2.0f * camera.halfExtent.y : 0.0f);
+        draw.set("u_texel", context.texelSize("edges-mask"));
+        draw.set("u_near", detector.near);
+        draw.set("u_depthScale", detector.depthRange / 65535.0f);
+        draw.set("u_inverseOrthographicDepth",
+                 detector.orthographicDepth > 0.0f ? 1.0f / detector.orthographicDepth : 0.0f);
+        draw.set("u_depthThreshold", detector.depthThreshold);
+        draw.set("u_normalCos", detector.normalCos);
+        if (colorEdges) draw.set("u_colorThreshold", detector.colorThreshold);
+      }));
   if (!settings.enabled) return;  // a debug view of the mask
 
+  // At radius 0 the passes fetch the pixel itself: the compiler drops u_texel.
   const int radius = lineRadius(settings.width);
-  PassDecl rows;
-  rows.name = "edges-h";
-  rows.reads = {"edges-mask"};
-  rows.writes = {{"edges-distance", TargetSize::full(), Write::Depth::None, ""}};
-  rows.run = [this, radius, texel](PassContext& context) {
-    const DistanceProgram& p = distance(radius);
-    context.bindForWriting("edges-distance");
-    p.program.use();
-    context.texture("edges-mask").bind(0);
-    gl::Program::set(p.mask, 0);
-    if (p.texel >= 0) gl::Program::set(p.texel, texel);
-    resources_.triangle.draw();
-    gl::restoreBaselineState();
-  };
-  planner.add(std::move(rows));
+  planner.add(fullscreenPass("edges-h", distanceSpec(radius), {{"u_mask", "edges-mask"}}, {"edges-distance"},
+                             [radius](FullscreenDraw& draw, const PassContext& context) {
+                               if (radius > 0) draw.set("u_texel", context.texelSize("edges-distance"));
+                             }));
 
-  PassDecl lines;
-  lines.name = "edges";
-  lines.reads = {"edges-distance", "display-color"};
-  if (settings.style == EdgeStyle::Hatching) lines.reads.push_back("gbuffer");
-  lines.writes = {{"display-color", TargetSize::full(), Write::Depth::None, ""}};
-  const bool toon = settings.style == EdgeStyle::Toon;
-  const glm::vec3 lineColor = linearToSrgb(settings.color);  // derived once: the shader mixes display colours
-  lines.run = [this, radius, toon, texel, settings, lineColor](PassContext& context) {
-    const DrawProgram& p = draw(radius, settings.style);
-    context.bindForWriting("display-color");
-    p.program.use();
-    context.texture("edges-distance").bind(0);
-    context.texture("display-color").bind(1);
-    gl::Program::set(p.distance, 0);
-    gl::Program::set(p.color, 1);
-    if (p.texel >= 0) gl::Program::set(p.texel, texel);
-    gl::Program::set(p.halfWidth, settings.width * 0.5f + 0.5f);
-    gl::Program::set(p.lineColor, lineColor);
-    gl::Program::set(p.strength, settings.strength);
-    gl::Program::set(p.alphaIsOne, context.writesOutput("display-color") ? 1.0f : 0.0f);
-    if (toon) gl::Program::set(p.bands, static_cast<float>(settings.bands));
-    if (settings.style == EdgeStyle::Hatching) {
-      context.texture("gbuffer").bind(2);
-      p.hatching.set(context.camera(), settings.hatchSpacing, settings.bands, 2);
-    }
-    resources_.triangle.draw();
-    gl::restoreBaselineState();
-  };
-  planner.add(std::move(lines));
+  const EdgeStyle style = settings.style;
+  std::vector<TextureInput> drawInputs = {{"u_distance", "edges-distance"}, {"u_color", "display-color"}};
+  if (style == EdgeStyle::Hatching) drawInputs.push_back({"u_gbuffer", "gbuffer"});
+  planner.add(fullscreenPass(
+      "edges", drawSpec(radius, style), std::move(drawInputs), {"display-color"},
+      [radius, style](FullscreenDraw& draw, const PassContext& context) {
+        const EdgesSettings& edges = context.settings().of<EdgesSettings>();
+        if (radius > 0) draw.set("u_texel", context.texelSize("display-color"));
+        draw.set("u_halfWidth", edges.width * 0.5f + 0.5f);
+        draw.set("u_lineColor", linearToSrgb(edges.color));  // the shader mixes display colours
+        draw.set("u_strength", edges.strength);
+        draw.set("u_alphaIsOne", context.writesOutput("display-color") ? 1.0f : 0.0f);
+        if (style == EdgeStyle::Toon) draw.set("u_bands", static_cast<float>(edges.bands));
+        if (style == EdgeStyle::Hatching)
+          setHatching(draw.program(), context.camera(), edges.hatchSpacing, edges.bands, draw.unit("u_gbuffer"));
+      }));
 }
 
 }  // namespace obscura

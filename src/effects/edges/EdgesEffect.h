@@ -49,7 +49,6 @@
 // CPU mirror: EdgeDetector (pass 1), edgeDistances (passes 2 and 3's distance), lineCoverage (eq. 2) and toonShade;
 // tests/test_edges.cpp holds the GPU to them and the lines to the analytic silhouette and creases of a cube.
 #include <cstdint>
-#include <map>
 #include <vector>
 
 #include <glm/vec3.hpp>
@@ -127,34 +126,6 @@ class EdgesEffect : public Effect {
 
   explicit EdgesEffect(const EffectResources& resources);
   void plan(FramePlanner& planner) override;
-
- private:
-  struct DetectProgram {
-    DetectProgram(gl::Program built, bool colorEdges);
-    gl::Program program;
-    GLint gbuffer, texel, near, depthScale, inverseOrthographicDepth, depthThreshold, normalCos;
-    GLint color = -1, colorThreshold = -1;
-  };
-  struct DistanceProgram {
-    DistanceProgram(gl::Program built, int radius);
-    gl::Program program;
-    GLint mask, texel;
-  };
-  struct DrawProgram {
-    DrawProgram(gl::Program built, int radius, EdgeStyle style);
-    gl::Program program;
-    GLint distance, color, texel, halfWidth, lineColor, strength, alphaIsOne;
-    GLint bands = -1;
-    HatchingUniforms hatching;
-  };
-  const DetectProgram& detect(bool colorEdges);
-  const DistanceProgram& distance(int radius);
-  const DrawProgram& draw(int radius, EdgeStyle style);
-
-  const EffectResources& resources_;
-  std::map<bool, DetectProgram> detects_;
-  std::map<int, DistanceProgram> distances_;
-  std::map<std::pair<int, EdgeStyle>, DrawProgram> draws_;
 };
 
 }  // namespace obscura

@@ -64,24 +64,15 @@ glm::vec2 pixelWorldSize(const glm::mat4& projection, int height) {
   return {projection[2][3] * scale, projection[3][3] * scale};
 }
 
-HatchingUniforms::HatchingUniforms(const gl::Program& program)
-    : reconstruction_(program),
-      gbuffer_(program.uniform("u_gbuffer")),
-      viewToWorld_(program.uniform("u_viewToWorld")),
-      cameraWorld_(program.uniform("u_cameraWorld")),
-      pixelWorld_(program.uniform("u_pixelWorld")),
-      spacing_(program.uniform("u_hatchSpacing")),
-      bands_(program.uniform("u_hatchBands")) {}
-
-void HatchingUniforms::set(const FrameCamera& camera, float spacing, int bands, int gbufferUnit) const {
+void setHatching(const gl::Program& program, const FrameCamera& camera, float spacing, int bands, int gbufferUnit) {
   const glm::mat4 cameraToWorld = glm::inverse(camera.view);
-  reconstruction_.set(camera.reconstruction);
-  gl::Program::set(gbuffer_, gbufferUnit);
-  gl::Program::set(viewToWorld_, glm::mat3(cameraToWorld));
-  gl::Program::set(cameraWorld_, glm::vec3(cameraToWorld[3]));
-  gl::Program::set(pixelWorld_, pixelWorldSize(camera.unjitteredProjection, camera.height));
-  gl::Program::set(spacing_, spacing);
-  gl::Program::set(bands_, static_cast<float>(bands));
+  setReconstruction(program, camera.reconstruction);
+  program.set("u_gbuffer", gbufferUnit);
+  program.set("u_viewToWorld", glm::mat3(cameraToWorld));
+  program.set("u_cameraWorld", glm::vec3(cameraToWorld[3]));
+  program.set("u_pixelWorld", pixelWorldSize(camera.unjitteredProjection, camera.height));
+  program.set("u_hatchSpacing", spacing);
+  program.set("u_hatchBands", static_cast<float>(bands));
 }
 
 }  // namespace obscura

@@ -40,17 +40,7 @@ glm::vec3 hatchedColor(const glm::vec3& display, const glm::vec3& worldPosition,
 // w = -z for a perspective projection, 1 for an orthographic one.
 glm::vec2 pixelWorldSize(const glm::mat4& projection, int height);
 
-// The hatching uniforms of a program, resolved once.
-class HatchingUniforms {
- public:
-  HatchingUniforms() = default;
-  explicit HatchingUniforms(const gl::Program& program);
-  // On the program in use; the G-buffer bound to `gbufferUnit`.
-  void set(const FrameCamera& camera, float spacing, int bands, int gbufferUnit) const;
-
- private:
-  ReconstructionUniforms reconstruction_;
-  GLint gbuffer_ = -1, viewToWorld_ = -1, cameraWorld_ = -1, pixelWorld_ = -1, spacing_ = -1, bands_ = -1;
-};
+// Sets the hatching uniforms on the program in use (by name: gl/Program.h); the G-buffer bound to `gbufferUnit`.
+void setHatching(const gl::Program& program, const FrameCamera& camera, float spacing, int bands, int gbufferUnit);
 
 }  // namespace obscura

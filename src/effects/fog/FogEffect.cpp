@@ -8,7 +8,7 @@
 #include <glm/matrix.hpp>
 
 #include "frame/PassContext.h"
-#include "gl/PipelineState.h"
+#include "frame/Stage.h"
 
 namespace obscura {
 namespace {
@@ -19,15 +19,6 @@ constexpr float kLog2E = 1.4426950408889634f;
 constexpr float kMaxExponent = 80.0f;
 // The distance standing for "no end" (the background, a ray into unending fog): every mode's f is 0 there.
 constexpr float kEndless = 1e30f;
-
-ProgramSpec spec(FogMode mode, bool height) {
-  return ProgramSpec{std::string("fog[") + fogModeName(mode) + (height ? ",height" : "") + "]",
-                     "lib/fullscreen.vert",
-                     "fog/fog.frag",
-                     {{"FOG_MODE", std::to_string(static_cast<int>(mode))},
-                      {"FOG_HEIGHT", height ? "1" : "0"},
-                      {"FAR_RAY", "1"}}};
-}
 
 }  // namespace
 
@@ -60,7 +51,8 @@ const std::vector<Parameter<FogSettings>>& FogSettings::parameters() {
             .primary(),
         numberParameter<S>("height-falloff", 0, 100, "per metre",
                            "the density at world height h is density x e^(-falloff h); 0: uniform fog",
-                           &S::heightFalloff)};
+                           &S::heightFalloff)
+            .shapesPlan()};  // above 0 the stage's variant with height
   }();
   return table;
 }
@@ -119,67 +111,44 @@ float FogFactor::at(const glm::vec3& viewPosition, bool background, const glm::v
 
 EffectInfo FogEffect::info() { return {"fog", "Fog", true, false, {"fog"}, {}}; }
 
-std::vector<ProgramSpec> FogEffect::programSpecs() {
-  std::vector<ProgramSpec> specs;
-  for (FogMode mode : kFogModes)
-    for (bool height : {false, true}) specs.push_back(spec(mode, height));
-  return specs;
+StageDecl FogEffect::stage(FogMode mode, bool height) {
+  StageDecl stage;
+  stage.name = "fog";
+  stage.variant = std::string(fogModeName(mode)) + (height ? ",height" : "");
+  stage.file = "fog/fog.glsl";
+  stage.function = "fogStage";
+  stage.defines = {{"FOG_MODE", std::to_string(static_cast<int>(mode))}, {"FOG_HEIGHT", height ? "1" : "0"}};
+  stage.input = "scene-color";
+  stage.position = true;
+  // u_fogColor (vec3) and u_fogFactor (vec2) in two rows; with the height, u_fogUpInView (vec3) in a third, its
+  // two floats beside the vec3s.
+  stage.uniformVectors = height ? 3 : 2;
+  stage.uniforms = [height](const gl::Program& program, const PassContext& context) {
+    const FogSettings& fog = context.settings().of<FogSettings>();
+    const FogFactor factor = FogFactor::of(fog, context.camera().view);
+    program.set("u_fogColor", fog.color);
+    program.set("u_fogFactor", glm::vec2(factor.offset, factor.scale));
+    if (height) {
+      program.set("u_fogFalloff", factor.falloff);
+      program.set("u_fogHeightScale", factor.heightScale);
+      program.set("u_fogUpInView", factor.upInView);
+    }
+  };
+  return stage;
 }
 
-FogEffect::Variant::Variant(gl::Program built)
-    : program(std::move(built)),
-      reconstruction(program),
-      color(program.uniform("u_color")),
-      gbuffer(program.uniform("u_gbuffer")),
-      fogColor(program.uniform("u_fogColor")),
-      factor(program.uniform("u_factor")),
-      falloff(-1),
-      heightScale(-1),
-      upInView(-1) {}
-
-const FogEffect::Variant& FogEffect::variant(FogMode mode, bool height) {
-  auto it = variants_.find({mode, height});
-  if (it == variants_.end()) {
-    Variant v(resources_.build(spec(mode, height)));
-    if (height) {
-      v.falloff = v.program.uniform("u_falloff");
-      v.heightScale = v.program.uniform("u_heightScale");
-      v.upInView = v.program.uniform("u_upInView");
-    }
-    it = variants_.emplace(std::make_pair(mode, height), std::move(v)).first;
-  }
-  return it->second;
+std::vector<StageDecl> FogEffect::stages() {
+  std::vector<StageDecl> stages;
+  for (FogMode mode : kFogModes)
+    for (bool height : {false, true}) stages.push_back(stage(mode, height));
+  return stages;
 }
 
 void FogEffect::plan(FramePlanner& planner) {
-  const FogSettings settings = planner.settings().of<FogSettings>();
+  const FogSettings& settings = planner.settings().of<FogSettings>();
   if (!settings.enabled) return;
-  PassDecl pass;
-  pass.name = "fog";
-  pass.reads = {"scene-color", "gbuffer"};
-  pass.writes = {{"scene-color", TargetSize::full(), PassDecl::Write::Depth::None, ""}};
-  pass.run = [this, settings](PassContext& context) {
-    const FogFactor fog = FogFactor::of(settings, context.camera().view);
-    const bool height = fog.falloff > 0.0f;
-    const Variant& v = variant(settings.mode, height);
-    context.bindForWriting("scene-color");
-    v.program.use();
-    v.reconstruction.set(context.camera().reconstruction);
-    context.texture("scene-color").bind(0);
-    context.texture("gbuffer").bind(1);
-    gl::Program::set(v.color, 0);
-    gl::Program::set(v.gbuffer, 1);
-    gl::Program::set(v.fogColor, settings.color);
-    gl::Program::set(v.factor, glm::vec2(fog.offset, fog.scale));
-    if (height) {
-      gl::Program::set(v.falloff, fog.falloff);
-      gl::Program::set(v.heightScale, fog.heightScale);
-      gl::Program::set(v.upInView, fog.upInView);
-    }
-    resources_.triangle.draw();
-    gl::restoreBaselineState();
-  };
-  planner.add(std::move(pass));
+  // A per-pixel stage: it runs inside the lighting where it can, and as a pass of its own otherwise.
+  planner.add(stagePass(resources_, stage(settings.mode, settings.heightFalloff > 0.0f), "scene-color"));
 }
 
 }  // namespace obscura

@@ -1,8 +1,10 @@
 #pragma once
-// Distance fog (shaders_es2/fog/fog.frag): the lit HDR colour ("scene-color") blended towards a fog colour by the
-// distance from the camera, reconstructed from the G-buffer's 16-bit linear depth (no extra geometry pass). It runs
-// right after the lighting, on linear HDR colour before TAA, bloom and tone mapping, so the fog colour is tone-mapped
-// with the scene and the AO (which darkens the lighting's ambient term) is covered by the fog like everything else.
+// Distance fog (shaders_es2/fog/fog.glsl): the lit HDR colour ("scene-color") blended towards a fog colour by the
+// distance from the camera. It runs right after the lighting, on linear HDR colour before TAA, bloom and tone
+// mapping, so the fog colour is tone-mapped with the scene and the AO (which darkens the lighting's ambient term) is
+// covered by the fog like everything else. It is a per-pixel stage (frame/Stage.h): inside the lighting's pass where
+// nothing comes between them, with the surface's own position, and otherwise a pass of its own that reconstructs the
+// position from the G-buffer's 16-bit linear depth (no extra geometry pass either way).
 //
 // The lecture decks' equations (Schmalstieg, "Image-space effects", "Fog function"; Samuelcik, "Post-processing"):
 //   c = f c_s + (1 - f) c_f                   c_s the surface's colour, c_f the fog colour, f the fog factor
@@ -25,8 +27,6 @@
 // eyeRayOrigin): d is the distance from there (the view depth), and h_0 that point's height.
 //
 // CPU mirror: FogFactor below (tests/test_fog.cpp reads the GPU's result back against it per pixel).
-#include <map>
-#include <utility>
 #include <vector>
 
 #include <glm/mat4x4.hpp>
@@ -76,22 +76,16 @@ class FogEffect : public Effect {
   using Settings = FogSettings;
   static constexpr bool kHasSwitch = true;
   static EffectInfo info();
-  static std::vector<ProgramSpec> programSpecs();
+  static std::vector<ProgramSpec> programSpecs() { return {}; }  // its programs are the fused ones (stages())
+  // Its stage in a variant (the mode; the height falloff or not), and every variant, for the shader checks.
+  static StageDecl stage(FogMode mode, bool height);
+  static std::vector<StageDecl> stages();
 
   explicit FogEffect(const EffectResources& resources) : resources_(resources) {}
   void plan(FramePlanner& planner) override;
 
  private:
-  struct Variant {
-    explicit Variant(gl::Program built);
-    gl::Program program;
-    ReconstructionUniforms reconstruction;
-    GLint color, gbuffer, fogColor, factor, falloff, heightScale, upInView;
-  };
-  const Variant& variant(FogMode mode, bool height);
-
   const EffectResources& resources_;
-  std::map<std::pair<FogMode, bool>, Variant> variants_;
 };
 
 }  // namespace obscura

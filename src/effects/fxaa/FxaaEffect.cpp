@@ -4,7 +4,6 @@
 
 #include "frame/FramePlan.h"
 #include "frame/PassContext.h"
-#include "gl/PipelineState.h"
 
 namespace obscura {
 namespace {
@@ -132,91 +131,77 @@ std::vector<ProgramSpec> FxaaEffect::programSpecs() {
   return specs;
 }
 
-FxaaEffect::Variant::Variant(gl::Program built, int quality)
-    : program(std::move(built)),
-      color(program.uniform("u_color")),
-      texel(program.uniform("u_texel")),
-      edgeThreshold(program.uniform("u_edgeThreshold")),
-      edgeThresholdMin(program.uniform("u_edgeThresholdMin")),
-      sharpness(program.optionalUniform("u_sharpness")) {
-  if (quality == 0) return;
-  size = program.uniform("u_size");
-  subpix = program.uniform("u_subpix");
-  // The step table is the preset's constant: set once, it stays with the program.
-  const std::vector<float>& steps = fxaaSearchSteps(quality);
-  program.use();
-  glUniform1fv(program.uniform("u_searchSteps[0]"), static_cast<GLsizei>(steps.size()), steps.data());
-  glUseProgram(0);
-}
-
-const FxaaEffect::Variant& FxaaEffect::variant(int quality, const ResolutionSettings* upscale) {
-  const auto key = std::make_pair(quality, upscale ? upscaleVariantName(*upscale) : std::string());
-  auto it = variants_.find(key);
-  if (it == variants_.end())
-    it = variants_.emplace(key, Variant(resources_.build(spec(quality, upscale)), quality)).first;
-  return it->second;
-}
-
 void FxaaEffect::plan(FramePlanner& planner) {
-  const FxaaSettings settings = planner.settings().of<FxaaSettings>();
+  const FxaaSettings& settings = planner.settings().of<FxaaSettings>();
   if (!settings.enabled) return;
   PassDecl pass;
   pass.name = "fxaa";
   pass.reads = {"display-color"};
   pass.writes = {{"display-color", TargetSize::full(), PassDecl::Write::Depth::None, ""}};
-  pass.run = [this, settings](PassContext& context) { run(context, "display-color", settings, nullptr); };
+  const ProgramSpec full = spec(settings.quality), classify = spec(0);
+  pass.programs = {classify.name, full.name};
+  pass.run = run(full, classify, "display-color", false);
   if (planner.frame().upscaled()) {
     // The frame renders below the output's size: FXAA and the upscale in one pass over the output, where nothing
     // else reads FXAA's result (a retained display colour keeps the two passes).
-    const ResolutionSettings upscale = planner.settings().of<ResolutionSettings>();
+    const ResolutionSettings& upscale = planner.settings().of<ResolutionSettings>();
     PassDecl::Alternative both;
     both.absorbing = "upscale";
     both.mayWriteOutput = true;
     both.reads = {"display-color"};
     both.writes = {{kOutputTarget, TargetSize::full(), PassDecl::Write::Depth::None, ""}};
-    both.run = [this, settings, upscale](PassContext& context) { run(context, kOutputTarget, settings, &upscale); };
+    both.run = run(spec(settings.quality, &upscale), spec(0, &upscale), kOutputTarget, true);
     pass.alternatives.push_back(std::move(both));
   }
   planner.add(std::move(pass));
 }
 
-void FxaaEffect::run(PassContext& context, const std::string& output, const FxaaSettings& settings,
-                     const ResolutionSettings* upscale) {
-  const gl::Texture2D& input = context.texture("display-color");
-  const glm::vec2 size(static_cast<float>(input.width()), static_cast<float>(input.height()));
-  context.bindForWriting(output);
-  input.bind(0);
-  GLint stencilBits = 0;
-  glGetIntegerv(GL_STENCIL_BITS, &stencilBits);
-  if (stencilBits > 0 && resources_.options.allowFxaaStencil) {
-    // Stencil 1 everywhere (within the output's region: the clear is scissored like the draws); the classifying
-    // draw sets 0 where it writes, and discards the edge pixels, which keep 1.
-    glEnable(GL_STENCIL_TEST);
-    glClearStencil(1);
-    glClear(GL_STENCIL_BUFFER_BIT);
-    glStencilFunc(GL_ALWAYS, 0, 0xFF);
-    glStencilOp(GL_KEEP, GL_KEEP, GL_REPLACE);
-    draw(variant(0, upscale), settings, size, upscale);
-    glStencilFunc(GL_EQUAL, 1, 0xFF);
-    glStencilOp(GL_KEEP, GL_KEEP, GL_KEEP);
-  }
-  draw(variant(settings.quality, upscale), settings, size, upscale);
-  gl::restoreBaselineState();
-}
-
-void FxaaEffect::draw(const Variant& v, const FxaaSettings& settings, glm::vec2 size,
-                      const ResolutionSettings* upscale) const {
-  v.program.use();
-  gl::Program::set(v.color, 0);
-  gl::Program::set(v.texel, 1.0f / size);
-  gl::Program::set(v.edgeThreshold, settings.edgeThreshold);
-  gl::Program::set(v.edgeThresholdMin, settings.edgeThresholdMin);
-  if (v.size >= 0) {
-    gl::Program::set(v.size, size);
-    gl::Program::set(v.subpix, settings.subpix);
-  }
-  if (v.sharpness >= 0 && upscale) gl::Program::set(v.sharpness, upscale->sharpness);
-  resources_.triangle.draw();
+std::function<void(PassContext&)> FxaaEffect::run(ProgramSpec full, ProgramSpec classify, std::string output,
+                                                  bool upscales) const {
+  return [this, full, classify, output, upscales](PassContext& context) {
+    const FxaaSettings& fxaa = context.settings().of<FxaaSettings>();
+    // The source's texel (FXAA's steps are in its pixels, also where the pass writes the larger output).
+    const glm::vec2 texel = context.texelSize("display-color");
+    auto draw = [&](const ProgramSpec& spec) {
+      FullscreenDraw d = context.draw(spec);
+      d.read("u_color", "display-color");
+      d.set("u_texel", texel);
+      d.set("u_edgeThreshold", fxaa.edgeThreshold);
+      d.set("u_edgeThresholdMin", fxaa.edgeThresholdMin);
+      if (&spec == &full) {
+        d.set("u_size", 1.0f / texel);
+        d.set("u_subpix", fxaa.subpix);
+        // The preset's step table: the program's constant (uploaded when it changes, once).
+        const std::vector<float>& steps = fxaaSearchSteps(fxaa.quality);
+        d.set("u_searchSteps", steps.data(), static_cast<int>(steps.size()));
+      }
+      // The edge upscale's sharpening (its variants with UPSCALE_SHARPEN).
+      if (upscales && d.program().has("u_sharpness"))
+        d.set("u_sharpness", context.settings().of<ResolutionSettings>().sharpness);
+      d.draw();
+    };
+    context.bindForWriting(output);
+    GLint stencilBits = 0;
+    glGetIntegerv(GL_STENCIL_BITS, &stencilBits);
+    if (stencilBits > 0 && resources_.options.allowFxaaStencil) {
+      // Stencil 1 everywhere (within the output's region: the clear is scissored like the draws); the classifying
+      // draw sets 0 where it writes, and discards the edge pixels, which keep 1.
+      glEnable(GL_STENCIL_TEST);
+      glClearStencil(1);
+      glClear(GL_STENCIL_BUFFER_BIT);
+      glStencilFunc(GL_ALWAYS, 0, 0xFF);
+      glStencilOp(GL_KEEP, GL_KEEP, GL_REPLACE);
+      draw(classify);
+      glStencilFunc(GL_EQUAL, 1, 0xFF);
+      glStencilOp(GL_KEEP, GL_KEEP, GL_KEEP);
+      draw(full);
+      glDisable(GL_STENCIL_TEST);
+      glStencilFunc(GL_ALWAYS, 0, 0xFF);
+      glClearStencil(0);
+    } else {
+      draw(full);
+    }
+  };
 }
 
 }  // namespace obscura

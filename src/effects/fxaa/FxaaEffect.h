@@ -15,7 +15,7 @@
 // rasterisers pay for far more often (SwiftShader runs both sides of every branch, masked): llvmpipe's FXAA pass went
 // from about 40 to 13 ms at 1280x720. On SwiftShader the page's frame was no faster (WebCanvas.cpp), so the canvas
 // has no stencil and the pass there is one draw.
-#include <map>
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -57,22 +57,12 @@ class FxaaEffect : public Effect {
   void plan(FramePlanner& planner) override;
 
  private:
-  struct Variant {
-    Variant(gl::Program built, int quality);  // quality 0: the classifying draw (FXAA_CLASSIFY)
-    gl::Program program;
-    GLint color, texel, edgeThreshold, edgeThresholdMin;
-    GLint size = -1, subpix = -1;  // the full draw's
-    GLint sharpness = -1;          // the upscaling variants' with sharpening
-  };
-  // `upscale`: null for FXAA alone, else the upscale it does too.
-  const Variant& variant(int quality, const ResolutionSettings* upscale);
-  void draw(const Variant& v, const FxaaSettings& settings, glm::vec2 size, const ResolutionSettings* upscale) const;
-  // The pass's draws: the classifying one first where the target written has a stencil buffer.
-  void run(PassContext& context, const std::string& output, const FxaaSettings& settings,
-           const ResolutionSettings* upscale);
+  // The pass's draws into `output`: the classifying one first where the target written has a stencil buffer, then
+  // `full`; `upscales`: the variants that also upscale into the output (frame/Resolution.h).
+  std::function<void(PassContext&)> run(ProgramSpec full, ProgramSpec classify, std::string output,
+                                        bool upscales) const;
 
   const EffectResources& resources_;
-  std::map<std::pair<int, std::string>, Variant> variants_;  // by quality and upscaleVariantName ("" alone)
 };
 
 }  // namespace obscura

@@ -64,32 +64,20 @@ std::vector<ProgramSpec> GBufferEffect::programSpecs() {
   return specs;
 }
 
-GBufferEffect::Variant::Variant(gl::Program built)
-    : program(std::move(built)),
-      geometry(program),
-      projection(program.uniform("u_projection")),
-      // The base-colour-only variant computes no depth.
-      near(program.optionalUniform("u_near")),
-      depthRange(program.optionalUniform("u_depthRange")) {}
-
-const GBufferEffect::Variant& GBufferEffect::variant(Output output, MaterialKind kind, VertexKind vertex) {
-  const int o = static_cast<int>(output);
-  const auto key = std::make_tuple(o, readKind(o, kind, shadingNormals_), vertex.forCurrentFrame());
-  auto it = variants_.find(key);
-  if (it == variants_.end())
-    it = variants_
-             .emplace(key, Variant(resources_.build(spec(o, std::get<1>(key), std::get<2>(key), shadingNormals_))))
-             .first;
-  return it->second;
-}
-
 GBufferEffect::GBufferEffect(const EffectResources& resources)
-    : resources_(resources),
-      drawBuffers_(resources.caps.drawBuffers && resources.options.allowDrawBuffers),
-      shadingNormals_(resources.options.gbufferShadingNormals) {
+    : drawBuffers_(resources.caps.drawBuffers && resources.options.allowDrawBuffers),
+      shadingNormals_(resources.options.gbufferShadingNormals),
+      programs_(resources.programs) {
   // Every variant is built on first use: the material kinds a scene has. Building all eight here cost the page's
   // start-up a program each (docs/resolution.md, "Start-up"); the shader tests build every variant
   // (Shaders.EveryVariantCompilesAndLinks), so a broken one still fails there.
+}
+
+const gl::Program& GBufferEffect::program(Output output, MaterialKind kind, VertexKind vertex) const {
+  const int o = static_cast<int>(output);
+  const MaterialKind read = readKind(o, kind, shadingNormals_);
+  const VertexKind stage = vertex.forCurrentFrame();
+  return programs_({o, read, stage}, [&] { return spec(o, read, stage, shadingNormals_); });
 }
 
 void GBufferEffect::plan(FramePlanner& planner) {
@@ -114,7 +102,7 @@ void GBufferEffect::plan(FramePlanner& planner) {
   }
 }
 
-void GBufferEffect::render(const PassContext& context, Output output) {
+void GBufferEffect::render(const PassContext& context, Output output) const {
   const FrameCamera& camera = context.camera();
   if (output == Output::Both) context.bindForWriting(std::vector<std::string>{"gbuffer", "base-color"});
   else context.bindForWriting(output == Output::GBuffer ? "gbuffer" : "base-color");
@@ -129,13 +117,15 @@ void GBufferEffect::render(const PassContext& context, Output output) {
   glEnable(GL_DEPTH_TEST);
   glDepthFunc(GL_LESS);
 
-  context.scene().draw(camera.view, [&](MaterialKind kind, VertexKind vertex) -> const GeometryUniforms& {
-    const Variant& v = variant(output, kind, vertex);
-    v.program.use();
-    gl::Program::set(v.projection, camera.projection);
-    gl::Program::set(v.near, camera.near);
-    gl::Program::set(v.depthRange, camera.far - camera.near);
-    return v.geometry;
+  context.scene().draw(camera.view, [&](MaterialKind kind, VertexKind vertex) -> const gl::Program& {
+    const gl::Program& p = program(output, kind, vertex);
+    p.use();
+    p.set("u_projection", camera.projection);
+    if (output != Output::BaseColor) {  // the base colour alone computes no depth
+      p.set("u_near", camera.near);
+      p.set("u_depthRange", camera.far - camera.near);
+    }
+    return p;
   });
   gl::restoreBaselineState();
 }

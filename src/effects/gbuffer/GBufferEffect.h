@@ -7,7 +7,6 @@
 // Where the context has several render targets (EXT_draw_buffers, WEBGL_draw_buffers), the same pass also writes
 // the material's base colour into "base-color", so the lighting can be a full-screen pass instead of drawing the
 // scene again: on a CPU rasteriser a pass over a 110k-triangle model costs about 50 ms whatever the size.
-#include <map>
 #include <tuple>
 #include <vector>
 
@@ -28,23 +27,15 @@ class GBufferEffect : public Effect {
   void plan(FramePlanner& planner) override;
 
  private:
-  struct Variant {
-    Variant() = default;
-    explicit Variant(gl::Program built);
-    gl::Program program;
-    GeometryUniforms geometry;
-    GLint projection = -1, near = -1, depthRange = -1;
-  };
   // What a pass writes: the G-buffer, the base colour, or both at once (several render targets).
   enum class Output { GBuffer = 0, BaseColor = 1, Both = 2 };
-  void render(const PassContext& context, Output output);
-  const Variant& variant(Output output, MaterialKind kind, VertexKind vertex);
+  void render(const PassContext& context, Output output) const;
+  const gl::Program& program(Output output, MaterialKind kind, VertexKind vertex) const;
 
-  const EffectResources& resources_;
   bool drawBuffers_;  // the context can write both in one pass (and RendererOptions allows it)
   bool shadingNormals_;  // RendererOptions::gbufferShadingNormals
   // (output, the material kind as that output reads it, the vertex kind)
-  std::map<std::tuple<int, MaterialKind, VertexKind>, Variant> variants_;
+  ProgramVariants<std::tuple<int, MaterialKind, VertexKind>> programs_;
 };
 
 }  // namespace obscura

@@ -114,7 +114,8 @@ void GlareEffect::plan(FramePlanner& planner) {
   for (const char* temporary : kTemporaries) pass.writes.push_back({temporary, TargetSize::quarter(),
                                                                     Write::Depth::None, ""});
   pass.writes.push_back({"lens-light", TargetSize::quarter(), Write::Depth::None, ""});
-  pass.run = [this, settings, flare](PassContext& context) { render(context, settings, flare); };
+  // This frame's settings (the plan is cached: they do not shape it).
+  pass.run = [this, flare](PassContext& context) { render(context, context.settings().of<GlareSettings>(), flare); };
   planner.add(std::move(pass));
 }
 

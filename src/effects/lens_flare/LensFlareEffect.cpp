@@ -193,16 +193,23 @@ const gl::Texture2D* LensFlareEffect::dirtTexture(const LensFlareSettings& setti
   return &dirt_;
 }
 
+// The dirt image is read here, before the plan (which is cached, and neither loads nor frees).
+void LensFlareEffect::prepare(const FrameSettings& frameSettings) {
+  const LensFlareSettings& settings = frameSettings.of<LensFlareSettings>();
+  if (settings.enabled) dirtTexture(settings);  // reads a file where one is named and not read yet
+}
+
 void LensFlareEffect::plan(FramePlanner& planner) {
-  const LensFlareSettings settings = planner.settings().of<LensFlareSettings>();
-  if (!settings.enabled) return;
-  const gl::Texture2D* dirt = dirtTexture(settings);  // reads a file where one is named and not read yet
+  const LensFlareSettings& planned = planner.settings().of<LensFlareSettings>();
+  if (!planned.enabled) return;
+  const bool withDirt = planned.dirt != "none";
   PassDecl pass;
   pass.name = "lens-flare";
   pass.reads = {"bloom-bright"};
   pass.writes = {{"lens-light", TargetSize::quarter(), PassDecl::Write::Depth::None, ""}};
-  pass.run = [this, settings, dirt](PassContext& context) {
-    const Variant& v = variant(dirt != nullptr);
+  pass.run = [this, withDirt](PassContext& context) {
+    const LensFlareSettings& settings = context.settings().of<LensFlareSettings>();
+    const Variant& v = variant(withDirt);
     const glm::vec2 frame(context.camera().width, context.camera().height);
     context.bindForWriting("lens-light");
     v.program.use();
@@ -215,8 +222,8 @@ void LensFlareEffect::plan(FramePlanner& planner) {
     gl::Program::set(v.aspect, glm::vec2(frame.x / frame.y, 1.0f));
     gl::Program::set(v.distortion, settings.distortion);
     gl::Program::set(v.intensity, settings.intensity);
-    if (dirt) {
-      dirt->bind(1);
+    if (withDirt) {
+      dirt_.bind(1);
       gl::Program::set(v.dirt, 1);
     }
     resources_.triangle.draw();

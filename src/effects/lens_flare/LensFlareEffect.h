@@ -65,6 +65,7 @@ class LensFlareEffect : public Effect {
   static std::vector<ProgramSpec> programSpecs();
 
   explicit LensFlareEffect(const EffectResources& resources) : resources_(resources) {}
+  void prepare(const FrameSettings& settings) override;  // the lens dirt's image
   void plan(FramePlanner& planner) override;
 
  private:

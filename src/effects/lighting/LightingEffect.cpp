@@ -12,6 +12,7 @@
 #include "encoding/LinearDepthPacking.h"
 #include "frame/FrameSettings.h"
 #include "frame/PassContext.h"
+#include "frame/Stage.h"
 #include "gl/PipelineState.h"
 #include "gpu/TextureUnits.h"
 
@@ -209,6 +210,7 @@ LightingEffect::Form LightingEffect::programForm(Form form) {
   return form;
 }
 
+
 // The forms' programs. The background form is the deferred program's background alone, drawn over fullscreen.vert
 // at the far plane (AT_FAR_PLANE).
 ProgramSpec LightingEffect::spec(const Form& shown, MaterialKind kind, VertexKind vertex, EnvironmentLayout layout,
@@ -224,8 +226,6 @@ ProgramSpec LightingEffect::spec(const Form& shown, MaterialKind kind, VertexKin
   else if (form.deferred) name += "deferred";
   else name += "forward" + kind.nameSuffix() + vertex.nameSuffix();
   if (form.counting) name += ",count-shading";
-  if (form.toneMap >= 0)
-    name += std::string(",tonemap=") + toneMapOperatorName(static_cast<ToneMapOperator>(form.toneMap));
   const bool shading = !form.counting && !form.background;
   if (form.overDepth) name += ",over-depth";
   if (shading && form.quality != LightingQuality::Medium)
@@ -238,7 +238,6 @@ ProgramSpec LightingEffect::spec(const Form& shown, MaterialKind kind, VertexKin
                  {"OVER_DEPTH", form.overDepth ? "1" : "0"},
                  {"AT_FAR_PLANE", form.background || form.overDepth ? "1" : "0"},
                  {"COUNT_SHADING", form.counting ? "1" : "0"},
-                 {"TONEMAP_INLINE", form.toneMap >= 0 ? "1" : "0"},
                  {"LIGHTING_QUALITY", std::to_string(static_cast<int>(form.quality))},
                  {"MAX_PUNCTUAL_LIGHTS", std::to_string(fullscreen ? 0 : lightsPerDraw)},
                  // The deferred forms' view direction is the far-plane ray's.
@@ -248,12 +247,41 @@ ProgramSpec LightingEffect::spec(const Form& shown, MaterialKind kind, VertexKin
   for (auto& define : kind.defines()) s.defines.push_back(define);
   if (!fullscreen)
     for (auto& define : vertex.defines()) s.defines.push_back(define);
-  if (form.toneMap >= 0) s.defines.push_back(toneMapShaderDefine(static_cast<ToneMapOperator>(form.toneMap)));
-  return s;
+  // The shading forms call finishPixel: they take per-pixel stages (frame/Stage.h), none at least.
+  return form.counting ? s : fusedProgram(s, {}, ColorSpace::Hdr);
+}
+
+std::vector<LightingEffect::StageHeadSpec> LightingEffect::stageHeads(int lightsPerDraw) {
+  const MaterialKind heaviest{true, true, true};
+  const int forward = kForwardLightingVectorsWithoutStages + lightsPerDraw * kVectorsPerPunctualLight;
+  std::vector<StageHeadSpec> heads;
+  for (const Form& form : {Form{true, false, false}, Form{false, false, true}})
+    heads.push_back({spec(form, {}, {}, EnvironmentLayout::Atlas, 0), ColorSpace::Hdr,
+                     kDeferredLightingVectorsWithoutStages});
+  for (MaterialKind kind : {MaterialKind{}, heaviest})
+    heads.push_back({spec({false, false, false}, kind, {}, EnvironmentLayout::Atlas, lightsPerDraw), ColorSpace::Hdr,
+                     forward});
+  // The layered materials' heaviest, with as many lights.
+  const MaterialKind layered{true, true, true, false, true, false};
+  heads.push_back({spec({false, false, false}, layered, {}, EnvironmentLayout::Atlas, lightsPerDraw), ColorSpace::Hdr,
+                   forward + kMaterialLayerVectors});
+  for (StageHeadSpec& head : heads) head.program = withoutStages(head.program);
+  return heads;
+}
+
+// A shading form's program as fusedProgram takes it: the head, without the (empty) chain spec() gives it.
+ProgramSpec LightingEffect::withoutStages(ProgramSpec head) {
+  head.fragmentText.clear();
+  head.name = head.name.substr(0, head.name.find('+'));
+  head.defines.erase(std::remove_if(head.defines.begin(), head.defines.end(),
+                                    [](const auto& d) { return d.first.rfind("STAGE_", 0) == 0; }),
+                     head.defines.end());
+  return head;
 }
 
 // Every form with the atlas (any GLES 2 context), and the shading forms again with the mip chain; the shading forms
-// in each tier, the medium and high ones with and without the filtered levels.
+// in each tier, the medium and high ones with and without the filtered levels; no stage fused (frameProgramSpecs adds
+// the chains).
 std::vector<ProgramSpec> LightingEffect::programSpecs(int lightsPerDraw, std::optional<int> layeredLights) {
   const int layeredLightsPerDraw = layeredLights.value_or(lightsPerDraw);
   std::vector<ProgramSpec> specs;
@@ -270,105 +298,43 @@ std::vector<ProgramSpec> LightingEffect::programSpecs(int lightsPerDraw, std::op
     for (bool deferred : {false, true})
       for (bool counting : {true, false}) {
         if (counting && layout == EnvironmentLayout::MipChain) continue;
-        for (int toneMap = -1; toneMap < (counting ? 0 : kToneMapOperatorCount); ++toneMap) {
-          for (const Shading& shading : counting ? std::vector<Shading>{shadings[1]} : shadings)
-            for (bool overDepth : {false, true}) {
-              if (overDepth && (!deferred || counting)) continue;
-              // The low tier's shading reads no level: its forms differ by layout only in the deferred background.
-              if (shading.quality == LightingQuality::Low && layout == EnvironmentLayout::MipChain &&
-                  overDepth == deferred)
-                continue;
-              for (MaterialKind kind : MaterialKind::all()) {
-                // The extended kinds (unlit, layered) take the forward forms only (Material::needsForwardLighting),
-                // with the atlas, in HDR in every tier and with one tone curve in the medium one: enough for the
-                // shader checks to compile every #if of them, without multiplying the programs by every curve.
-                if (kind.extended() && (deferred || layout != EnvironmentLayout::Atlas || toneMap > 0 ||
-                                        (toneMap == 0 && (shading.quality != LightingQuality::Medium ||
-                                                          shading.filteredFrom != kEnvironmentLevels))))
-                  continue;
-                if (kind.layered && layeredLightsPerDraw < 0) continue;
-                const Form form{deferred, counting, toneMap, false, shading.quality, shading.filteredFrom, overDepth};
-                if (readKind(form, kind) == kind)
-                  specs.push_back(spec(form, kind, {}, layout, kind.layered ? layeredLightsPerDraw : lightsPerDraw));
-              }
+        for (const Shading& shading : counting ? std::vector<Shading>{shadings[1]} : shadings)
+          for (bool overDepth : {false, true}) {
+            if (overDepth && (!deferred || counting)) continue;
+            // The low tier's shading reads no level: its forms differ by layout only in the deferred background.
+            if (shading.quality == LightingQuality::Low && layout == EnvironmentLayout::MipChain &&
+                overDepth == deferred)
+              continue;
+            for (MaterialKind kind : MaterialKind::all()) {
+              // The extended kinds (unlit, layered) take the forward forms only (Material::needsForwardLighting),
+              // with the atlas, in every tier: enough for the shader checks to compile every #if of them.
+              if (kind.extended() && (deferred || layout != EnvironmentLayout::Atlas)) continue;
+              if (kind.layered && layeredLightsPerDraw < 0) continue;
+              const Form form{deferred, counting, false, shading.quality, shading.filteredFrom, overDepth};
+              if (readKind(form, kind) == kind)
+                specs.push_back(spec(form, kind, {}, layout, kind.layered ? layeredLightsPerDraw : lightsPerDraw));
             }
-          if (!deferred && !counting) specs.push_back(spec({false, false, toneMap, true}, {}, {}, layout, 0));
-        }
+          }
+        if (!deferred && !counting) specs.push_back(spec({false, false, true}, {}, {}, layout, 0));
       }
   for (VertexKind vertex : VertexKind::validated())
-    specs.push_back(spec({false, false, -1, false}, {}, vertex, EnvironmentLayout::Atlas, lightsPerDraw));
+    specs.push_back(spec({false, false, false}, {}, vertex, EnvironmentLayout::Atlas, lightsPerDraw));
   return specs;
 }
 
-LightingEffect::Variant::Variant(gl::Program built, bool geometryStage)
-    : program(std::move(built)),
-      geometry(geometryStage ? GeometryUniforms(program) : GeometryUniforms()),
-      farHalfExtent(program.optionalUniform("u_farHalfExtent")),
-      farPlane(program.optionalUniform("u_farPlane")),
-      perspective(program.optionalUniform("u_perspective")),
-      projection(program.optionalUniform("u_projection")),
-      lightDirection(program.optionalUniform("u_lightDirection")),
-      lightColor(program.optionalUniform("u_lightColor")),
-      viewToEnvironment(program.optionalUniform("u_viewToEnvironment")),
-      ao(program.optionalUniform("u_ao")),
-      environment(program.optionalUniform("u_environment")),
-      environmentFiltered(program.optionalUniform("u_environmentFiltered")),
-      environmentFilteredScale(program.optionalUniform("u_environmentFilteredScale")),
-      shIrradiance(program.optionalUniform("u_shIrradiance")),
-      environmentIntensity(program.optionalUniform("u_environmentIntensity")),
-      gbuffer(program.optionalUniform("u_gbuffer")),
-      baseColor(program.optionalUniform("u_baseColor")),
-      exposure(program.optionalUniform("u_exposure")),
-      lumaInAlpha(program.optionalUniform("u_lumaInAlpha")),
-      lightPositionRange(program.optionalUniform("u_lightPositionRange[0]")),
-      lightColorSpot(program.optionalUniform("u_lightColorSpot[0]")),
-      lightSpot(program.optionalUniform("u_lightSpot[0]")) {}
-
-const LightingEffect::Variant& LightingEffect::variant(const Form& asked, MaterialKind kind, VertexKind vertex) {
+const gl::Program& LightingEffect::program(const Form& asked, MaterialKind kind, VertexKind vertex,
+                                           const std::vector<StageDecl>& stages, const std::string& chain) const {
   const Form form = programForm(asked);
   const bool fullscreen = form.deferred || form.background;
   MaterialKind read = readKind(form, kind);
   // A context whose fragment uniform vectors do not hold the layers draws the core material (kMaterialLayerVectors).
   read.layered = read.layered && layeredLightsPerDraw_ >= 0;
-  const auto key = std::make_tuple(form, read, fullscreen ? VertexKind{} : vertex.forCurrentFrame());
-  auto it = variants_.find(key);
-  if (it == variants_.end()) {
-    const int lights = std::get<1>(key).layered ? layeredLightsPerDraw_ : lightsPerDraw_;
-    it = variants_
-             .emplace(key, Variant(resources_.build(spec(form, std::get<1>(key), std::get<2>(key), layout_, lights)),
-                                   !fullscreen))
-             .first;
-    it->second.lights = fullscreen ? 0 : lights;
-    // Resolve strictly what this form must use, so a misspelt or dropped uniform is caught where it matters.
-    const gl::Program& program = it->second.program;
-    // An unlit material reads no light (KHR_materials_unlit).
-    const bool lit = !form.counting && !std::get<1>(key).unlit;
-    if (!fullscreen) program.uniform("u_projection");
-    if (lit)
-      for (const char* name : {"u_viewToEnvironment", "u_environmentIntensity"}) program.uniform(name);
-    // The deferred shading alone (roughness 1: level 5) reads no level by hand where level 5 is filtered, and the
-    // low tier none at all; every other form reads level 0 at least (its background, or a smooth material).
-    const bool readsByHand = form.background || (lit && form.quality != LightingQuality::Low &&
-                                                 !(form.overDepth && form.filteredFrom < kEnvironmentLevels));
-    if (readsByHand) program.uniform("u_environment");
-    if (fullscreen && !form.counting)
-      for (const char* name : {"u_farHalfExtent", "u_farPlane"}) program.uniform(name);
-    if (lit && !form.background)
-      for (const char* name : {"u_lightDirection", "u_lightColor", "u_ao", "u_shIrradiance"}) program.uniform(name);
-    if (lit && !form.background && form.quality != LightingQuality::Low) program.uniform("u_environmentFiltered");
-    if (lit && !form.background && form.filteredFrom < kEnvironmentLevels)
-      program.uniform("u_environmentFilteredScale");
-    if (form.deferred) program.uniform("u_gbuffer");
-    if (form.deferred && !form.counting) program.uniform("u_baseColor");
-    if (!fullscreen && lit)
-      for (const char* name : {"u_metallicRoughness", "u_emissive"}) program.uniform(name);
-    if (!fullscreen && lit && lights > 0) program.uniform("u_lightPositionRange[0]");
-    if (!fullscreen && lit && std::get<1>(key).layered)
-      for (const char* name : {"u_specular", "u_clearcoat", "u_clearcoatRoughness"}) program.uniform(name);
-    if (form.toneMap >= 0)
-      for (const char* name : {"u_exposure", "u_lumaInAlpha"}) program.uniform(name);
-  }
-  return it->second;
+  const VertexKind stage = fullscreen ? VertexKind{} : vertex.forCurrentFrame();
+  return programs_({form, read, stage, chain}, [&] {
+    const ProgramSpec head = spec(form, read, stage, layout_, read.layered ? layeredLightsPerDraw_ : lightsPerDraw_);
+    if (form.counting || stages.empty()) return head;
+    return fusedProgram(withoutStages(head), stages, ColorSpace::Hdr);
+  });
 }
 
 // The sky is made with its sun at the default azimuth and turned to the wanted one (environmentRotation): only the
@@ -382,6 +348,7 @@ void LightingEffect::prepare(const FrameSettings& frameSettings) {
 
 LightingEffect::LightingEffect(const EffectResources& resources)
     : resources_(resources),
+      programs_(resources.programs),
       white_(1, 1, GL_NEAREST, std::vector<std::uint8_t>{255, 255, 255, 255}.data()),
       stencil_(resources.caps.packedDepthStencil),
       layout_(GpuEnvironment::layoutFor(resources.caps, resources.options.environmentLayout)),
@@ -390,9 +357,6 @@ LightingEffect::LightingEffect(const EffectResources& resources)
       environmentFilteredUnit_(TextureUnits::environmentFiltered(resources.caps)),
       drawBuffers_(resources.caps.drawBuffers && resources.options.allowDrawBuffers),
       environments_(layout_, resources.options.environmentFiltering) {
-  const HdrTexel t = encodeHdr(light_.background);
-  backgroundHdr_ = glm::vec4(LinearDepthPacking::channelFromByte(t[0]), LinearDepthPacking::channelFromByte(t[1]),
-                             LinearDepthPacking::channelFromByte(t[2]), LinearDepthPacking::channelFromByte(t[3]));
   // The variants are built on first use, as the G-buffer's are (GBufferEffect.cpp): building every material's here
   // cost the page's start-up a program each (docs/resolution.md, "Start-up").
   environments_.use("sky", LightingSettings{}.directionToSun());
@@ -400,23 +364,33 @@ LightingEffect::LightingEffect(const EffectResources& resources)
 
 void LightingEffect::plan(FramePlanner& planner) {
   using Write = PassDecl::Write;
+  using Alternative = PassDecl::Alternative;
   std::vector<std::string> reads;
   if (planner.declares("ao")) reads.push_back("ao");
-  const ToneMapInUse tone = ToneMapInUse::of(planner.settings().of<TonemapSettings>());
-  const int op = static_cast<int>(tone.op);
+  // The G-buffer's depth also when nothing else needs the G-buffer, where that is the cheaper (LightingDepth).
+  const LightingSettings& lighting = planner.settings().of<LightingSettings>();
+  const bool deferredForm = drawBuffers_ && !planner.frame().forwardLighting;
+  if (lighting.depthInUse(deferredForm) == LightingDepth::GBuffer) reads.push_back("gbuffer");
   auto with = [&](std::vector<std::string> more) {
     std::vector<std::string> all = reads;
     for (std::string& target : more)
       if (std::find(all.begin(), all.end(), target) == all.end()) all.push_back(std::move(target));
     return all;
   };
-  // The G-buffer's depth also when nothing else needs the G-buffer, where that is the cheaper (LightingDepth).
-  const LightingSettings& lighting = planner.settings().of<LightingSettings>();
-  const bool deferredForm = drawBuffers_ && !planner.frame().forwardLighting;
-  if (lighting.depthInUse(deferredForm) == LightingDepth::GBuffer) reads.push_back("gbuffer");
-  auto runAs = [this, scale = tone.exposureScale](Form form, std::string output) {
-    return [this, form, output, scale](PassContext& context) { render(context, form, output, scale); };
+  auto runAs = [this](Form form) {
+    return [this, form](PassContext& context) { render(context, form); };
   };
+  // What each shading form offers the per-pixel stages after it (fog, the tone curve): the fragment uniform vectors
+  // its heaviest program leaves, and whether it may draw into the output framebuffer (the forward form depth-tests,
+  // and the output has no depth; the deferred form then shades without the G-buffer's depth: render()).
+  const int vectors = resources_.caps.maxFragmentUniformVectors;
+  // The forward form's heaviest program: the most lights, or a layered material's layers and its lights (the layers'
+  // kMaterialLayerVectors leave no spare column for a stage's floats, Shaders.EveryProgramFitsTheGles2...).
+  const int forwardOwn = std::max(kForwardLightingVectorsWithoutStages + lightsPerDraw_ * kVectorsPerPunctualLight,
+                                  kForwardLightingVectorsWithoutStages + kMaterialLayerVectors +
+                                      layeredLightsPerDraw_ * kVectorsPerPunctualLight);
+  const StageHead forward{"scene-color", ColorSpace::Hdr, vectors - forwardOwn, false};
+  const StageHead deferred{"scene-color", ColorSpace::Hdr, vectors - kDeferredLightingVectorsWithoutStages, true};
 
   for (const char* output : {"scene-color", "shading-count"}) {
     const bool counting = std::string(output) == "shading-count";
@@ -429,33 +403,19 @@ void LightingEffect::plan(FramePlanner& planner) {
     pass.reads = reads;
     pass.optionalReads = {"gbuffer"};  // its depth, when the G-buffer pass runs anyway
     pass.writes = {{output, TargetSize::full(), Write::Depth::Shared, "gbuffer"}};
-    pass.run = runAs({false, counting, -1, false}, output);
-    using Alternative = PassDecl::Alternative;
+    pass.run = runAs({false, counting, false});
+    if (!counting) pass.stageHead = forward;
+    // Deferred where the G-buffer pass writes the base colour beside the G-buffer: over the G-buffer's depth (the
+    // shading where something was drawn, the background where not: each pixel runs one program).
     if (counting) {
-      pass.alternatives.push_back(Alternative{{"base-color"}, "", false, {"gbuffer"},
-                                              {{output, TargetSize::full(), Write::Depth::None, ""}},
-                                              runAs({true, true, -1, false}, output)});
+      pass.alternatives = {Alternative{{"base-color"}, {"gbuffer"},
+                                       {{output, TargetSize::full(), Write::Depth::None, ""}},
+                                       runAs({true, true, false}), std::nullopt, "", false}};
     } else {
-      const std::vector<Write> toDisplay = {{"display-color", TargetSize::full(), Write::Depth::None, ""}};
-      const std::vector<Write> toDisplayShared = {
-          {"display-color", TargetSize::full(), Write::Depth::Shared, "gbuffer"}};
-      const std::vector<Write> toDisplayOwn = {{"display-color", TargetSize::full(), Write::Depth::Own, ""}};
-      // Best first: deferred and tone-mapped (over the G-buffer's depth where a pass reads the display colour after
-      // it; into the output framebuffer, which has no depth, with the background in the same program), deferred,
-      // forward and tone-mapped (with the G-buffer's depth, or its own); else the pass as declared.
-      pass.alternatives = {
-          Alternative{{"base-color"}, "tonemap", false, with({"gbuffer", "base-color"}), toDisplayShared,
-                      runAs({true, false, op, false, LightingQuality::Medium, kEnvironmentLevels, true},
-                            "display-color")},
-          Alternative{{"base-color"}, "tonemap", true, with({"gbuffer", "base-color"}), toDisplay,
-                      runAs({true, false, op, false}, "display-color")},
-          Alternative{{"base-color"}, "", false, with({"gbuffer", "base-color"}),
-                      {{output, TargetSize::full(), Write::Depth::Shared, "gbuffer"}},
-                      runAs({true, false, -1, false, LightingQuality::Medium, kEnvironmentLevels, true}, output)},
-          Alternative{{"gbuffer"}, "tonemap", false, with({"gbuffer"}), toDisplayShared,
-                      runAs({false, false, op, false}, "display-color")},
-          Alternative{{}, "tonemap", false, reads, toDisplayOwn, runAs({false, false, op, false}, "display-color")},
-      };
+      pass.alternatives = {Alternative{{"base-color"}, with({"gbuffer", "base-color"}),
+                                       {{output, TargetSize::full(), Write::Depth::Shared, "gbuffer"}},
+                                       runAs({true, false, false, LightingQuality::Medium, kEnvironmentLevels, true}),
+                                       deferred, "", false}};
     }
     planner.add(std::move(pass));
   }
@@ -480,52 +440,65 @@ void LightingEffect::publish(const PassContext& context, const Sun& sun, const g
   out.spot.assign(all.spot, all.spot + all.count);
 }
 
-void LightingEffect::render(const PassContext& context, Form form, const std::string& output, float exposureScale) {
-  using gl::Program;
-  const LightingSettings& settings = context.settings().of<LightingSettings>();
+void LightingEffect::render(const PassContext& context, Form form) const {
   const FrameCamera& camera = context.camera();
+  const LightingSettings& settings = context.settings().of<LightingSettings>();
   const GpuEnvironment& environment = environments_.current();
   // The tier and the environment's storage are read now, not when the plan was made: neither changes its shape.
   form.quality = settings.quality;
   form.filteredFrom = environment.filteredFrom();
+  // Its colour, or that of the per-pixel stages fused into it (frame/Stage.h), which its programs run after the
+  // shading.
+  static const std::vector<StageDecl> none;
+  const std::string output = form.counting ? std::string("shading-count") : context.stageOutput();
+  const std::vector<StageDecl>& stages = form.counting ? none : context.stages();
+  const std::string chain = fusedProgramName("", stages);
   context.bindForWriting(output);
-  const bool lumaInAlpha = !context.writesOutput(output);
-  const ToneMapInUse tone{static_cast<ToneMapOperator>(std::max(form.toneMap, 0)), exposureScale};
+  const bool writesOutput = context.writesOutput(output);
 
   const glm::mat3 viewRotation(camera.view);
   const Sun sun = Sun::of(settings, context.scene().lights());
   const glm::vec3 lightDirection = glm::normalize(viewRotation * sun.directionToSun);
   const glm::mat3 viewToWorld = glm::transpose(viewRotation);  // the view's rotation is orthonormal
   const glm::mat3 viewToEnvironment = environmentRotation(settings) * viewToWorld;
-  const bool fullscreen = form.deferred || form.background;
   const PunctualLightUniforms lights =
-      fullscreen ? PunctualLightUniforms{}
-                 : PunctualLightUniforms::of(context.scene().lights(), camera.view, lightsPerDraw_, sun.fileLight);
+      form.deferred ? PunctualLightUniforms{}
+                    : PunctualLightUniforms::of(context.scene().lights(), camera.view, lightsPerDraw_, sun.fileLight);
   if (!form.counting) publish(context, sun, lightDirection, viewToEnvironment, settings);
   // The texture units: gpu/TextureUnits.h.
   const int kEnvironmentUnit = TextureUnits::kEnvironment;
   const int kEnvironmentFilteredUnit = environmentFilteredUnit_;
-  auto setShading = [&](const Variant& v) {
-    if (form.counting) return;
-    Program::set(v.lightDirection, lightDirection);
-    Program::set(v.lightColor, sun.illuminance);
-    Program::set(v.viewToEnvironment, viewToEnvironment);
-    if (v.lightPositionRange >= 0) {
-      glUniform4fv(v.lightPositionRange, v.lights, &lights.positionRange[0].x);
-      glUniform4fv(v.lightColorSpot, v.lights, &lights.colorSpot[0].x);
-      glUniform4fv(v.lightSpot, v.lights, &lights.spot[0].x);
+  // The uniforms of a form's program, where it has them: a form, tier, storage or material kind (unlit) may leave
+  // any out (the draws' own, and the full-screen forms' ray, are set strictly).
+  auto setShading = [&](const gl::Program& p, const Form& f) {
+    if (f.counting) return;
+    auto optional = [&p](const char* name, const auto& value) {
+      if (p.has(name)) p.set(name, value);
+    };
+    const bool fullscreen = f.deferred || f.background;
+    optional("u_viewToEnvironment", viewToEnvironment);  // an unlit material reads no light (KHR_materials_unlit)
+    optional("u_environmentIntensity", settings.environmentIntensity);
+    optional("u_environment", kEnvironmentUnit);
+    optional("u_environmentFiltered", kEnvironmentFilteredUnit);
+    optional("u_environmentFilteredScale", environment.filteredScale() * settings.environmentIntensity);
+    // The far-plane ray (only its direction is used), and along it the position where a stage reads it.
+    if (fullscreen) setFarRay(p, camera.reconstruction);
+    else optional("u_perspective", camera.reconstruction.perspective ? 1.0f : 0.0f);
+    if (f.deferred && !f.background && chainNeedsPosition(stages))
+      p.set("u_depthToRay", camera.reconstruction.depthToRay);
+    if (!f.background) {
+      optional("u_lightDirection", lightDirection);
+      optional("u_lightColor", sun.illuminance);
+      optional("u_ao", TextureUnits::kAo);
+      if (p.has("u_shIrradiance")) p.set("u_shIrradiance", environment.irradianceUniform().data(), 7);
     }
-    Program::set(v.ao, TextureUnits::kAo);
-    Program::set(v.environment, kEnvironmentUnit);
-    Program::set(v.environmentFiltered, kEnvironmentFilteredUnit);
-    Program::set(v.environmentFilteredScale, environment.filteredScale() * settings.environmentIntensity);
-    Program::set(v.farHalfExtent, camera.reconstruction.farHalfExtent);
-    Program::set(v.farPlane, camera.reconstruction.far);
-    Program::set(v.perspective, camera.reconstruction.perspective ? 1.0f : 0.0f);
-    Program::set(v.shIrradiance, environment.irradianceUniform().data(), 7);
-    Program::set(v.environmentIntensity, settings.environmentIntensity);
-    Program::set(v.exposure, exposureScale);
-    Program::set(v.lumaInAlpha, lumaInAlpha ? 1.0f : 0.0f);
+    // As many lights as the program takes (MAX_PUNCTUAL_LIGHTS: fewer for the layered materials).
+    if (const int count = fullscreen ? 0 : p.arraySize("u_lightPositionRange"); count > 0) {
+      p.set("u_lightPositionRange", lights.positionRange, count);
+      p.set("u_lightColorSpot", lights.colorSpot, count);
+      p.set("u_lightSpot", lights.spot, count);
+    }
+    setStageUniforms(p, stages, context, writesOutput);
   };
   (context.has("ao") ? context.texture("ao") : white_).bind(TextureUnits::kAo);
   if (!form.counting) {
@@ -537,9 +510,10 @@ void LightingEffect::render(const PassContext& context, Form form, const std::st
   // The background: the environment where the depth is still 1 (nothing drawn), a full-screen triangle on the far
   // plane tested LEQUAL against it, writing no depth.
   auto drawBackground = [&] {
-    const Variant& v = variant({false, false, form.toneMap, true}, {}, {});
-    v.program.use();
-    setShading(v);
+    const Form background{false, false, true};
+    const gl::Program& p = program(background, {}, {}, stages, chain);
+    p.use();
+    setShading(p, background);
     glDisable(GL_POLYGON_OFFSET_FILL);
     glEnable(GL_DEPTH_TEST);
     glDepthFunc(GL_LEQUAL);
@@ -550,20 +524,21 @@ void LightingEffect::render(const PassContext& context, Form form, const std::st
   if (form.deferred) {
     // Every pixel once, background included. Over the G-buffer's depth (form.overDepth): the shading where the
     // depth is nearer than the far plane (a triangle on the far plane, tested GL_GREATER), then the background where
-    // it is not; else one program for both, which tells the background by the G-buffer's depth code.
-    form.overDepth = form.overDepth && !form.counting && context.sharesDepth(output);
+    // it is not; else (the output framebuffer, which has no depth) one program for both, which tells the background
+    // by the G-buffer's depth code.
+    form.overDepth = form.overDepth && !form.counting && context.sharesDepth(output) && !writesOutput;
     if (form.counting) {
       glClearColor(0.0f, 0.0f, 0.0f, 0.0f);
       glClear(GL_COLOR_BUFFER_BIT);
     }
-    const Variant& v = variant(form, {}, {});
-    v.program.use();
-    setShading(v);
+    const gl::Program& p = program(form, {}, {}, stages, chain);
+    p.use();
+    setShading(p, form);
     context.texture("gbuffer").bind(TextureUnits::kBaseColor);
-    Program::set(v.gbuffer, TextureUnits::kBaseColor);
+    p.set("u_gbuffer", TextureUnits::kBaseColor);
     if (!form.counting) {
       context.texture("base-color").bind(TextureUnits::kPbr[0]);
-      Program::set(v.baseColor, TextureUnits::kPbr[0]);
+      p.set("u_baseColor", TextureUnits::kPbr[0]);
     }
     if (form.counting) {
       glEnable(GL_BLEND);
@@ -580,13 +555,9 @@ void LightingEffect::render(const PassContext& context, Form form, const std::st
     return;
   }
 
-  if (form.counting) {
-    glClearColor(0.0f, 0.0f, 0.0f, 0.0f);
-  } else {
-    // Where no geometry is, the background's radiance, encoded as the lit pixels are.
-    const glm::vec4 clear = form.toneMap >= 0 ? tone.displayColor(light_.background, lumaInAlpha) : backgroundHdr_;
-    glClearColor(clear.r, clear.g, clear.b, clear.a);
-  }
+  // Every pixel is drawn: by the scene, or by the background where the depth is still 1 (the shading forms; the
+  // count adds to zero).
+  glClearColor(0.0f, 0.0f, 0.0f, 0.0f);
   glEnable(GL_DEPTH_TEST);
   // The depth pre-pass (LightingDepth::Prepass) where the pass has a depth of its own: the scene's nearest depth
   // first, with the counting forms' trivial fragment stage (the alpha test only) and colour writes off; then the
@@ -598,12 +569,12 @@ void LightingEffect::render(const PassContext& context, Form form, const std::st
     glClear(GL_DEPTH_BUFFER_BIT);
     glDepthFunc(GL_LESS);
     glColorMask(GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
-    const Form depthOnly{false, true, -1, false};
-    context.scene().draw(camera.view, [&](MaterialKind kind, VertexKind vertex) -> const GeometryUniforms& {
-      const Variant& v = variant(depthOnly, kind, vertex);
-      v.program.use();
-      Program::set(v.projection, camera.projection);
-      return v.geometry;
+    const Form depthOnly{false, true, false};
+    context.scene().draw(camera.view, [&](MaterialKind kind, VertexKind vertex) -> const gl::Program& {
+      const gl::Program& p = program(depthOnly, kind, vertex, none, "");
+      p.use();
+      p.set("u_projection", camera.projection);
+      return p;
     });
     glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
   }
@@ -637,12 +608,12 @@ void LightingEffect::render(const PassContext& context, Form form, const std::st
     glEnable(GL_BLEND);
     glBlendFunc(GL_ONE, GL_ONE);
   }
-  context.scene().draw(camera.view, [&](MaterialKind kind, VertexKind vertex) -> const GeometryUniforms& {
-    const Variant& v = variant(form, kind, vertex);
-    v.program.use();
-    Program::set(v.projection, camera.projection);
-    setShading(v);
-    return v.geometry;
+  context.scene().draw(camera.view, [&](MaterialKind kind, VertexKind vertex) -> const gl::Program& {
+    const gl::Program& p = program(form, kind, vertex, stages, chain);
+    p.use();
+    p.set("u_projection", camera.projection);
+    setShading(p, form);
+    return p;
   });
   if (!form.counting) drawBackground();
   gl::restoreBaselineState();

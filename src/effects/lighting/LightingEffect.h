@@ -35,7 +35,6 @@
 // Its second target, "shading-count", is a diagnostic: the same pass with the same reads and depth set-up, counting
 // how many fragments each pixel shaded (additive blending of 1/255) instead of shading them; the view
 // "shading-count" shows 1 as grey 32/255. The tests read it to hold the once-per-pixel promise.
-#include <map>
 #include <memory>
 #include <optional>
 #include <string>
@@ -44,7 +43,6 @@
 
 #include <glm/vec3.hpp>
 
-#include "effects/tonemap/TonemapEffect.h"
 #include "environment/Environment.h"
 #include "environment/EnvironmentCache.h"
 #include "frame/EffectEntry.h"
@@ -111,11 +109,6 @@ struct LightingSettings : ParameterAccess<LightingSettings> {
   void validate() const { validateParameters("lighting"); }
 };
 
-// The fixed parts of the light.
-struct Lighting {
-  glm::vec3 background{0.349f, 0.415f, 0.501f};  // the clear colour under the forward forms' drawn background
-};
-
 // KHR_lights_punctual lights per draw: the forward lighting's loop bound (MAX_PUNCTUAL_LIGHTS), at most
 // kMaxPunctualLights, as many as the context's fragment uniform vectors hold (LightingEffect::punctualLightsPerDraw).
 // A frame with more lights takes, for every draw, those that light the camera's surroundings most (the largest
@@ -131,6 +124,11 @@ inline constexpr int kForwardLightingVectorsWithoutLights = 15;
 // (alpha mask, tone curve inline) does not fit: such a context draws layered materials as the core material.
 inline constexpr int kMaterialLayerVectors = 2;
 inline constexpr int kVectorsPerPunctualLight = 3;
+// What the forms keep for themselves, before any per-pixel stage fuses into them (frame/Stage.h: the stages get the
+// rest): the forward form's the same 15 (the tone-mapping stage's two floats take spare columns), the deferred
+// form's 14.
+inline constexpr int kForwardLightingVectorsWithoutStages = 15;
+inline constexpr int kDeferredLightingVectorsWithoutStages = 14;
 
 // The sun of a frame: its world direction (towards it, unit) and illuminance, from the settings or, with lighting.sun
 // file, from the scene's first directional light (`fileLight` its index in the lights, which then light the scene
@@ -163,6 +161,16 @@ class LightingEffect : public Effect {
   // by default as many; none where it is negative: their programs do not fit, punctualLightsPerDraw).
   static std::vector<ProgramSpec> programSpecs(int lightsPerDraw = kMaxPunctualLights,
                                                std::optional<int> layeredLightsPerDraw = std::nullopt);
+  // The programs per-pixel stages fuse into (frame/Stage.h), as fusedProgram takes them, for the shader checks: the
+  // deferred form, the background, the forward form of the plainest and of the heaviest material, and of the heaviest
+  // layered one (with the atlas, and `lightsPerDraw` punctual lights). `vectors`: the fragment uniform vectors the
+  // head keeps for itself.
+  struct StageHeadSpec {
+    ProgramSpec program;
+    ColorSpace space;
+    int vectors = 0;
+  };
+  static std::vector<StageHeadSpec> stageHeads(int lightsPerDraw = 0);
   // The punctual lights per draw a context of this many fragment uniform vectors holds: 4 from 27 vectors, 0 at
   // GLES 2's minimum of 16 (the sun and the environment still light the scene); for the layered materials' programs
   // 4 from 29, and -1 below 17 (they do not fit).
@@ -177,13 +185,12 @@ class LightingEffect : public Effect {
   void plan(FramePlanner& planner) override;
 
  private:
-  // One form of the pass: deferred or forward, tone-mapped here (an operator) or not, counting or shading.
+  // One form of the pass: deferred or forward, counting or shading (the per-pixel stages fused into it: PassContext).
   // background: the forward forms' full-screen draw of the environment where the scene drew nothing.
   // quality and filteredFrom (the environment's GpuEnvironment::filteredFrom) matter to the shading forms only.
   struct Form {
     bool deferred = false;
     bool counting = false;
-    int toneMap = -1;  // -1: HDR output; else the ToneMapOperator applied here
     bool background = false;
     LightingQuality quality = LightingQuality::Medium;
     int filteredFrom = kEnvironmentLevels;
@@ -192,39 +199,29 @@ class LightingEffect : public Effect {
     // both sides of a branch).
     bool overDepth = false;
     bool operator<(const Form& o) const {
-      return std::tie(deferred, counting, toneMap, background, quality, filteredFrom, overDepth) <
-             std::tie(o.deferred, o.counting, o.toneMap, o.background, o.quality, o.filteredFrom, o.overDepth);
+      return std::tie(deferred, counting, background, quality, filteredFrom, overDepth) <
+             std::tie(o.deferred, o.counting, o.background, o.quality, o.filteredFrom, o.overDepth);
     }
-  };
-  struct Variant {
-    Variant(gl::Program built, bool geometryStage);
-    gl::Program program;
-    GeometryUniforms geometry;  // the forward forms' (geometry.vert)
-    // The full-screen forms' far-plane ray (fullscreen.vert); only its direction is used, so no depth-to-ray scale.
-    GLint farHalfExtent, farPlane, perspective;
-    GLint projection, lightDirection, lightColor, viewToEnvironment, ao;
-    GLint environment, environmentFiltered, environmentFilteredScale, shIrradiance, environmentIntensity;
-    GLint gbuffer, baseColor, exposure, lumaInAlpha;
-    GLint lightPositionRange, lightColorSpot, lightSpot;
-    int lights = 0;  // MAX_PUNCTUAL_LIGHTS
   };
   static MaterialKind readKind(const Form& form, MaterialKind kind);
   // The form as its program sees it: what a counting or background form does not read is left at its default.
   static Form programForm(Form form);
   static ProgramSpec spec(const Form& form, MaterialKind kind, VertexKind vertex, EnvironmentLayout layout,
                           int lightsPerDraw);
-  const Variant& variant(const Form& form, MaterialKind kind, VertexKind vertex);
-  void render(const PassContext& context, Form form, const std::string& output, float exposureScale);
+  static ProgramSpec withoutStages(ProgramSpec head);
+  // The program of a form for a material and vertex kind, with the per-pixel stages fused into the pass (`chain`:
+  // their names, the key).
+  const gl::Program& program(const Form& form, MaterialKind kind, VertexKind vertex,
+                             const std::vector<StageDecl>& stages, const std::string& chain) const;
+  void render(const PassContext& context, Form form) const;
   void publish(const PassContext& context, const Sun& sun, const glm::vec3& lightDirection,
                const glm::mat3& viewToEnvironment, const LightingSettings& settings) const;
 
   const EffectResources& resources_;
-  // Built on first use: (form, the material kind it reads, the vertex kind).
-  std::map<std::tuple<Form, MaterialKind, VertexKind>, Variant> variants_;
+  // Built on first use: (form, the material kind it reads, the vertex kind, the fused stages).
+  ProgramVariants<std::tuple<Form, MaterialKind, VertexKind, std::string>> programs_;
   gl::Texture2D white_;  // AO = 1 when the AO is off
   bool stencil_;         // the G-buffer's depth has stencil bits (RenderTargetPool): shade exactly once
-  Lighting light_;
-  glm::vec4 backgroundHdr_;  // the clear colour's radiance in scene-color's encoding, as clear-colour channels
   EnvironmentLayout layout_;              // where the prefiltered levels live (RendererOptions::environmentLayout)
   int lightsPerDraw_;                     // punctualLightsPerDraw of the context's fragment uniform vectors
   int layeredLightsPerDraw_;              // the same for the layered materials' programs

@@ -26,13 +26,7 @@ EffectInfo LinesEffect::info() { return {"lines", "Points and lines", false, fal
 
 std::vector<ProgramSpec> LinesEffect::programSpecs() { return {copySpec(), linesSpec()}; }
 
-LinesEffect::LinesEffect(const EffectResources& resources)
-    : resources_(resources), copy_(resources.build(copySpec())), lines_(resources.build(linesSpec())) {
-  copyColor_ = copy_.uniform("u_color");
-  modelViewProjection_ = lines_.uniform("u_modelViewProjection");
-  pointSize_ = lines_.uniform("u_pointSize");
-  position_ = glGetAttribLocation(lines_.id(), "a_position");
-  color_ = glGetAttribLocation(lines_.id(), "a_color");
+LinesEffect::LinesEffect(const EffectResources& resources) : resources_(resources) {
   GLfloat range[2] = {1.0f, 1.0f};
   glGetFloatv(GL_ALIASED_POINT_SIZE_RANGE, range);
   maxPointSize_ = std::max(1.0f, range[1]);
@@ -45,16 +39,13 @@ void LinesEffect::plan(FramePlanner& planner) {
   pass.name = "lines";
   pass.reads = {"scene-color", "gbuffer"};
   pass.writes = {{"scene-color", TargetSize::full(), Write::Depth::Shared, "gbuffer"}};
+  pass.programs = {copySpec().name, linesSpec().name};
   pass.run = [this](PassContext& context) { run(context); };
   planner.add(std::move(pass));
 }
 
 void LinesEffect::run(const PassContext& context) const {
-  context.bindForWriting("scene-color");
-  copy_.use();
-  context.texture("scene-color").bind(0);
-  gl::Program::set(copyColor_, 0);
-  resources_.triangle.draw();
+  context.draw(copySpec(), "scene-color").read("u_color", "scene-color").draw();
 
   // Without the G-buffer's depth (the plan's fallback), nothing hides them: the target's own depth starts clear.
   if (!context.sharesDepth("scene-color")) glClear(GL_DEPTH_BUFFER_BIT);
@@ -62,14 +53,21 @@ void LinesEffect::run(const PassContext& context) const {
   glDepthFunc(GL_LEQUAL);
   glDepthMask(GL_FALSE);
   if (resources_.caps.desktopGl) glEnable(kVertexProgramPointSize);
-  lines_.use();
+  const gl::Program& lines = context.program(linesSpec());
+  lines.use();
   const FrameCamera& camera = context.camera();
   const float pointSize = std::clamp(std::round(static_cast<float>(context.size("scene-color").y) / 360.0f), 1.0f,
                                      maxPointSize_);
-  gl::Program::set(pointSize_, pointSize);
+  lines.set("u_pointSize", pointSize);
+  // The per-draw matrix and the attributes by location (GpuLines sets them for every piece).
+  if (position_ < -1) {
+    position_ = glGetAttribLocation(lines.id(), "a_position");
+    color_ = glGetAttribLocation(lines.id(), "a_color");
+  }
+  const GLint modelViewProjection = lines.uniform("u_modelViewProjection");
   const glm::mat4 viewProjection = camera.projection * camera.view;
-  context.scene().lines().draw(viewProjection, false, modelViewProjection_, position_, color_);
-  context.scene().lines().draw(viewProjection, true, modelViewProjection_, position_, color_);
+  context.scene().lines().draw(viewProjection, false, modelViewProjection, position_, color_);
+  context.scene().lines().draw(viewProjection, true, modelViewProjection, position_, color_);
   if (resources_.caps.desktopGl) glDisable(kVertexProgramPointSize);
   gl::restoreBaselineState();
 }

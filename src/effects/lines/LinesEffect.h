@@ -28,9 +28,7 @@ class LinesEffect : public Effect {
   void run(const PassContext& context) const;
 
   const EffectResources& resources_;
-  gl::Program copy_, lines_;
-  GLint copyColor_ = -1;
-  GLint modelViewProjection_ = -1, pointSize_ = -1, position_ = -1, color_ = -1;
+  mutable GLint position_ = -2, color_ = -2;  // the lines program's attributes, found on its first use
   float maxPointSize_ = 1.0f;
 };
 

@@ -5,12 +5,9 @@
 #include <string>
 
 #include "frame/PassContext.h"
-#include "gl/PipelineState.h"
 
 namespace obscura {
 namespace {
-
-using Write = PassDecl::Write;
 
 constexpr float kReferenceHeight = 720.0f;  // max-radius is in pixels at this many rows
 
@@ -47,7 +44,8 @@ const std::vector<Parameter<MotionBlurSettings>>& MotionBlurSettings::parameters
                           "taps per pixel along the neighbourhood's motion", &S::samples),
       numberParameter<S>("max-radius", 1, 64, "px at 720 rows",
                          "the longest blur, half its length in pixels at 720 rows (scaled with the height)",
-                         &S::maxRadius)};
+                         &S::maxRadius)
+          .shapesPlan()};  // the tiles' size
   return table;
 }
 
@@ -75,81 +73,42 @@ std::vector<ProgramSpec> MotionBlurEffect::programSpecs() {
   return specs;
 }
 
-MotionBlurEffect::ReconstructProgram::ReconstructProgram(gl::Program built)
-    : program(std::move(built)),
-      color(program.uniform("u_color")),
-      velocity(program.uniform("u_velocity")),
-      gbuffer(program.uniform("u_gbuffer")),
-      neighborMax(program.uniform("u_neighborMax")),
-      tilesSize(program.uniform("u_tilesSize")),
-      tile(program.uniform("u_tile")),
-      near(program.uniform("u_near")),
-      depthRange(program.uniform("u_depthRange")),
-      alphaIsOne(program.uniform("u_alphaIsOne")),
-      frameSize(program.uniform("u_frameSize")),
-      halfExposure(program.uniform("u_halfExposure")),
-      maxRadius(program.uniform("u_maxRadius")) {}
-
-MotionBlurEffect::MotionBlurEffect(const EffectResources& resources)
-    : resources_(resources),
-      tileMax_(resources, spec(1), spec(2), spec(3)),
-      columnsHalfExposure_(tileMax_.columnsProgram().uniform("u_halfExposure")),
-      columnsMaxRadius_(tileMax_.columnsProgram().uniform("u_maxRadius")) {}
-
-const MotionBlurEffect::ReconstructProgram& MotionBlurEffect::reconstruction(int samples) {
-  auto it = reconstructions_.find(samples);
-  if (it == reconstructions_.end())
-    it = reconstructions_.emplace(samples, ReconstructProgram(resources_.build(spec(4, samples)))).first;
-  return it->second;
-}
+MotionBlurEffect::MotionBlurEffect(const EffectResources&) {}
 
 void MotionBlurEffect::plan(FramePlanner& planner) {
   const MotionBlurSettings& settings = planner.settings().of<MotionBlurSettings>();
   if (!settings.enabled && !planner.showsTargetOf(info())) return;
-  const FrameCamera& camera = planner.frame().camera;
-  // The frame's constants, derived once here: K, the velocity-to-half-vector scale, the depth range.
-  const int k = settings.tileSize(camera.height);
-  const glm::vec2 frame(static_cast<float>(camera.width), static_cast<float>(camera.height));
-  const glm::vec2 halfExposure = 0.5f * settings.shutter * frame;
-  const float maxRadius = static_cast<float>(k);
+  // K, from the frame's height: the tiles' size.
+  const int k = settings.tileSize(planner.frame().camera.height);
   const float tile = static_cast<float>(k);
+  // The velocity-to-half-vector scale, from this frame's shutter and size.
+  auto halfExposure = [](const PassContext& context) {
+    const FrameCamera& camera = context.camera();
+    return 0.5f * context.settings().of<MotionBlurSettings>().shutter * glm::vec2(camera.width, camera.height);
+  };
 
-  tileMax_.plan(planner, "motion", "velocity", k, frame, [this, halfExposure, maxRadius] {
-    gl::Program::set(columnsHalfExposure_, halfExposure);
-    gl::Program::set(columnsMaxRadius_, maxRadius);
-  });
+  TileMaxPasses::plan(planner, "motion", "velocity", k, spec(1), spec(2), spec(3),
+                      [halfExposure, tile](FullscreenDraw& draw, const PassContext& context) {
+                        draw.set("u_halfExposure", halfExposure(context));
+                        draw.set("u_maxRadius", tile);
+                      });
 
   if (!settings.enabled) return;  // a debug view of the tiles
-  PassDecl blur;
-  blur.name = "motion-blur";
-  blur.reads = {"display-color", "velocity", "gbuffer", "motion-neighbors"};
-  blur.writes = {{"display-color", TargetSize::full(), Write::Depth::None, ""}};
-  const int samples = settings.samples;
-  const float near = camera.near, depthRange = camera.far - camera.near;
-  blur.run = [this, samples, frame, tile, halfExposure, maxRadius, near, depthRange](PassContext& context) {
-    const ReconstructProgram& p = reconstruction(samples);
-    context.bindForWriting("display-color");
-    p.program.use();
-    context.texture("display-color").bind(0);
-    context.texture("velocity").bind(1);
-    context.texture("gbuffer").bind(2);
-    context.texture("motion-neighbors").bind(3);
-    gl::Program::set(p.color, 0);
-    gl::Program::set(p.velocity, 1);
-    gl::Program::set(p.gbuffer, 2);
-    gl::Program::set(p.neighborMax, 3);
-    gl::Program::set(p.tilesSize, glm::vec2(context.size("motion-neighbors")));
-    gl::Program::set(p.tile, tile);
-    gl::Program::set(p.near, near);
-    gl::Program::set(p.depthRange, depthRange);
-    gl::Program::set(p.alphaIsOne, context.writesOutput("display-color") ? 1.0f : 0.0f);
-    gl::Program::set(p.frameSize, frame);
-    gl::Program::set(p.halfExposure, halfExposure);
-    gl::Program::set(p.maxRadius, maxRadius);
-    resources_.triangle.draw();
-    gl::restoreBaselineState();
-  };
-  planner.add(std::move(blur));
+  planner.add(fullscreenPass(
+      "motion-blur", spec(4, settings.samples),
+      {{"u_color", "display-color"}, {"u_velocity", "velocity"}, {"u_gbuffer", "gbuffer"},
+       {"u_neighborMax", "motion-neighbors"}},
+      {"display-color"}, [halfExposure, tile](FullscreenDraw& draw, const PassContext& context) {
+        const FrameCamera& camera = context.camera();
+        draw.set("u_tilesSize", glm::vec2(context.size("motion-neighbors")));
+        draw.set("u_tile", tile);
+        draw.set("u_near", camera.near);
+        draw.set("u_depthRange", camera.far - camera.near);
+        draw.set("u_alphaIsOne", context.writesOutput("display-color") ? 1.0f : 0.0f);
+        draw.set("u_frameSize", glm::vec2(camera.width, camera.height));
+        draw.set("u_halfExposure", halfExposure(context));
+        draw.set("u_maxRadius", tile);
+      }));
 }
 
 }  // namespace obscura

@@ -26,7 +26,6 @@
 // (renderer/AccumulationReference.h) averages and a viewer sees, and cheap to read (no HDR decode per tap). A camera
 // integrates light before its tone curve, so a bright highlight's streak is a little dimmer here than a film's
 // (docs/temporal-effects.md).
-#include <map>
 #include <vector>
 
 #include "frame/EffectEntry.h"
@@ -57,20 +56,6 @@ class MotionBlurEffect : public Effect {
 
   explicit MotionBlurEffect(const EffectResources& resources);
   void plan(FramePlanner& planner) override;
-
- private:
-  struct ReconstructProgram {
-    explicit ReconstructProgram(gl::Program built);
-    gl::Program program;
-    GLint color, velocity, gbuffer, neighborMax, tilesSize, tile, near, depthRange, alphaIsOne, frameSize,
-        halfExposure, maxRadius;
-  };
-  const ReconstructProgram& reconstruction(int samples);
-
-  const EffectResources& resources_;
-  TileMaxPasses tileMax_;
-  GLint columnsHalfExposure_, columnsMaxRadius_;  // the first tile pass turns velocities into half-vectors
-  std::map<int, ReconstructProgram> reconstructions_;  // by sample count
 };
 
 }  // namespace obscura

@@ -2,7 +2,7 @@
 
 #include "frame/FramePlan.h"
 #include "frame/PassContext.h"
-#include "gl/PipelineState.h"
+#include "frame/FullscreenPass.h"
 
 namespace obscura {
 namespace {
@@ -24,42 +24,18 @@ std::vector<ProgramSpec> ResolutionEffect::programSpecs() {
   return specs;
 }
 
-ResolutionEffect::Variant::Variant(gl::Program built)
-    : program(std::move(built)),
-      color(program.uniform("u_color")),
-      size(program.uniform("u_size")),
-      texel(program.uniform("u_texel")),
-      sharpness(program.optionalUniform("u_sharpness")) {}
-
-const ResolutionEffect::Variant& ResolutionEffect::variant(const ResolutionSettings& settings) {
-  const std::string name = upscaleVariantName(settings);
-  auto it = variants_.find(name);
-  if (it == variants_.end()) it = variants_.emplace(name, Variant(resources_.build(spec(settings)))).first;
-  return it->second;
-}
-
 void ResolutionEffect::plan(FramePlanner& planner) {
   if (!planner.frame().upscaled()) return;
-  const ResolutionSettings settings = planner.settings().of<ResolutionSettings>();
-  PassDecl pass;
-  pass.name = "upscale";
-  pass.reads = {kFinalImageTarget};
-  pass.writes = {{kOutputTarget, TargetSize::full(), PassDecl::Write::Depth::None, ""}};
-  pass.run = [this, settings](PassContext& context) {
-    const gl::Texture2D& input = context.texture(kFinalImageTarget);
-    const glm::vec2 size(static_cast<float>(input.width()), static_cast<float>(input.height()));
-    const Variant& v = variant(settings);
-    context.bindForWriting(kOutputTarget);
-    input.bind(0);
-    v.program.use();
-    gl::Program::set(v.color, 0);
-    gl::Program::set(v.size, size);
-    gl::Program::set(v.texel, 1.0f / size);
-    if (v.sharpness >= 0) gl::Program::set(v.sharpness, settings.sharpness);
-    resources_.triangle.draw();
-    gl::restoreBaselineState();
-  };
-  planner.add(std::move(pass));
+  planner.add(fullscreenPass("upscale", spec(planner.settings().of<ResolutionSettings>()),
+                             {{"u_color", kFinalImageTarget}}, {kOutputTarget},
+                             [](FullscreenDraw& draw, const PassContext& context) {
+                               const glm::vec2 texel = context.texelSize(kFinalImageTarget);
+                               draw.set("u_size", 1.0f / texel);
+                               draw.set("u_texel", texel);
+                               // The edge upscale's sharpening (its variants with UPSCALE_SHARPEN).
+                               if (draw.program().has("u_sharpness"))
+                                 draw.set("u_sharpness", context.settings().of<ResolutionSettings>().sharpness);
+                             }));
 }
 
 }  // namespace obscura

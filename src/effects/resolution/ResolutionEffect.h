@@ -9,8 +9,6 @@
 // The rest of the frame needs no change for a scale: the Renderer sizes the frame context and the pooled targets to
 // the render size (renderer/Renderer.cpp), and every effect sizes its work by them. What is measured against
 // rendering at full size: tests/test_upscale.cpp and docs/resolution.md.
-#include <map>
-#include <utility>
 #include <vector>
 
 #include "frame/EffectEntry.h"
@@ -25,19 +23,8 @@ class ResolutionEffect : public Effect {
   static EffectInfo info();
   static std::vector<ProgramSpec> programSpecs();
 
-  explicit ResolutionEffect(const EffectResources& resources) : resources_(resources) {}
+  explicit ResolutionEffect(const EffectResources&) {}
   void plan(FramePlanner& planner) override;
-
- private:
-  struct Variant {
-    explicit Variant(gl::Program built);
-    gl::Program program;
-    GLint color, size, texel, sharpness = -1;
-  };
-  const Variant& variant(const ResolutionSettings& settings);
-
-  const EffectResources& resources_;
-  std::map<std::string, Variant> variants_;  // by upscaleVariantName
 };
 
 }  // namespace obscura

@@ -4,7 +4,7 @@
 #include <cmath>
 
 #include "frame/PassContext.h"
-#include "gl/PipelineState.h"
+
 
 namespace obscura {
 namespace {
@@ -57,12 +57,20 @@ const std::vector<Parameter<TaaSettings>>& TaaSettings::parameters() {
       numberParameter<S>("feedback", 0, 0.98, "", "the history's weight per frame (0.9: about the last 10 frames)",
                          &S::feedback)
           .primary(),
-      numberParameter<S>("sharpen", 0, 1, "", "sharpening of the output (0 off)", &S::sharpen)};
+      numberParameter<S>("sharpen", 0, 1, "", "sharpening of the output (0 off)", &S::sharpen)
+          .shapesPlan()};  // above 0 the sharpening output
   return table;
 }
 
 EffectInfo TaaEffect::info() {
-  EffectInfo info{"taa", "Temporal antialiasing", true, true, {"taa"}, {}};
+  EffectInfo info{"taa",
+                  "Temporal antialiasing",
+                  true,
+                  true,
+                  {"taa", "taa-depth", "taa-output"},
+                  {{"taa-color", "the resolved HDR colour, RGB9E5 (lib/hdr.glsl); a history target", GL_NEAREST, {}},
+                   {"taa-depth", "the G-buffer as this frame saw it (its BA depth code); a history target", GL_NEAREST,
+                    {}}}};
   info.temporal = true;
   return info;
 }
@@ -71,101 +79,53 @@ std::vector<ProgramSpec> TaaEffect::programSpecs() {
   return {resolveSpec(), outputSpec(false), outputSpec(true), depthSpec()};
 }
 
-TaaEffect::TaaEffect(const EffectResources& resources) : resources_(resources) {
-  resolve_.program = resources_.build(resolveSpec());
-  gl::Program& r = resolve_.program;
-  resolve_.reconstruction = ReconstructionUniforms(r);
-  resolve_.color = r.uniform("u_color");
-  resolve_.velocity = r.uniform("u_velocity");
-  resolve_.gbuffer = r.uniform("u_gbuffer");
-  resolve_.history = r.uniform("u_history");
-  resolve_.previousGbuffer = r.uniform("u_previousGbuffer");
-  resolve_.texel = r.uniform("u_texel");
-  resolve_.size = r.uniform("u_size");
-  resolve_.feedback = r.uniform("u_feedback");
-  resolve_.gamma = r.uniform("u_gamma");
-  resolve_.viewToPreviousView = r.uniform("u_viewToPreviousView");
-  for (bool sharpen : {false, true}) {
-    OutputProgram& o = sharpen ? sharpened_ : copy_;
-    o.program = resources_.build(outputSpec(sharpen));
-    o.resolved = o.program.uniform("u_resolved");
-    if (sharpen) {
-      o.texel = o.program.uniform("u_texel");
-      o.sharpen = o.program.uniform("u_sharpen");
-    }
-  }
-  depthCopy_ = resources_.build(depthSpec());
-  depthCopyGbuffer_ = depthCopy_.uniform("u_gbuffer");
-}
+TaaEffect::TaaEffect(const EffectResources&) {}
 
 void TaaEffect::plan(FramePlanner& planner) {
-  const TaaSettings settings = planner.settings().of<TaaSettings>();
+  const TaaSettings& settings = planner.settings().of<TaaSettings>();
   if (!settings.enabled) return;
-  PassDecl pass;
-  pass.name = "taa";
-  pass.reads = {"scene-color", "velocity", "gbuffer"};
-  pass.writes = {{"scene-color", TargetSize::full(), PassDecl::Write::Depth::None, ""}};
-  pass.run = [this, settings](PassContext& context) { render(context, settings); };
-  planner.add(std::move(pass));
-}
-
-void TaaEffect::render(PassContext& context, const TaaSettings& settings) {
-  using gl::Program;
-  RenderTargetPool::History& color = context.history("taa-color", TargetSize::full(), GL_NEAREST);
-  RenderTargetPool::History& depth = context.history("taa-depth", TargetSize::full(), GL_NEAREST);
-  // Both histories are made and dropped together; one frame of this effect per frame of the Renderer (a split view
-  // comparing another switch runs the pass twice in one frame, over the same history).
-  const FrameContext& frame = context.frame();
-  if (!color.valid() || !depth.valid() || !frame.hasPrevious) {
-    historyFrames_ = 0;
-  } else if (frame.index != lastFrameIndex_) {
-    ++historyFrames_;
-  }
-  lastFrameIndex_ = frame.index;
-
-  const glm::ivec2 size = context.size("scene-color");
-  const glm::vec2 texel(1.0f / static_cast<float>(size.x), 1.0f / static_cast<float>(size.y));
-
-  // 1. Resolve into the history.
-  color.current().bindForDrawing();
-  resolve_.program.use();
-  resolve_.reconstruction.set(context.camera().reconstruction);
-  context.texture("scene-color").bind(0);
-  context.texture("velocity").bind(1);
-  context.texture("gbuffer").bind(2);
-  color.previous().color().bind(3);
-  depth.previous().color().bind(4);
-  Program::set(resolve_.color, 0);
-  Program::set(resolve_.velocity, 1);
-  Program::set(resolve_.gbuffer, 2);
-  Program::set(resolve_.history, 3);
-  Program::set(resolve_.previousGbuffer, 4);
-  Program::set(resolve_.texel, texel);
-  Program::set(resolve_.size, glm::vec2(size));
-  Program::set(resolve_.feedback, taaFeedback(settings.feedback, historyFrames_));
-  Program::set(resolve_.gamma, kTaaClipGamma);
-  Program::set(resolve_.viewToPreviousView, frame.previousCamera.view * glm::inverse(context.camera().view));
-  resources_.triangle.draw();
+  using Write = PassDecl::Write;
+  // 1. The resolve: this frame's colour blended into the history ("taa-color", this frame's side of it).
+  planner.add(fullscreenPass(
+      "taa", resolveSpec(), {{"u_color", "scene-color"}, {"u_velocity", "velocity"}, {"u_gbuffer", "gbuffer"}},
+      {"taa-color", TargetSize::full(), Write::Depth::None, "", true},
+      [this](FullscreenDraw& draw, const PassContext& context) {
+        RenderTargetPool::History& color = context.history("taa-color", TargetSize::full(), GL_NEAREST);
+        RenderTargetPool::History& depth = context.history("taa-depth", TargetSize::full(), GL_NEAREST);
+        // Both histories are made and dropped together; one frame of this effect per frame of the Renderer (a split
+        // view comparing another switch runs the pass twice in one frame, over the same history).
+        const FrameContext& frame = context.frame();
+        if (!color.valid() || !depth.valid() || !frame.hasPrevious) {
+          historyFrames_ = 0;
+        } else if (frame.index != lastFrameIndex_) {
+          ++historyFrames_;
+        }
+        lastFrameIndex_ = frame.index;
+        const glm::ivec2 size = context.size("scene-color");
+        draw.texture("u_history", color.previous().color());
+        draw.texture("u_previousGbuffer", depth.previous().color());
+        setReconstruction(draw.program(), context.camera().reconstruction);
+        draw.set("u_texel", 1.0f / glm::vec2(size));
+        draw.set("u_size", glm::vec2(size));
+        draw.set("u_feedback", taaFeedback(context.settings().of<TaaSettings>().feedback, historyFrames_));
+        draw.set("u_gamma", kTaaClipGamma);
+        draw.set("u_viewToPreviousView", frame.previousCamera.view * glm::inverse(context.camera().view));
+      }));
 
   // 2. The depth this frame saw, for the next frame's disocclusion test.
-  depth.current().bindForDrawing();
-  depthCopy_.use();
-  context.texture("gbuffer").bind(0);
-  Program::set(depthCopyGbuffer_, 0);
-  resources_.triangle.draw();
+  PassDecl depth = fullscreenPass("taa-depth", depthSpec(), {{"u_gbuffer", "gbuffer"}},
+                                  {"taa-depth", TargetSize::full(), Write::Depth::None, "", true});
+  depth.keep = true;
+  planner.add(std::move(depth));
 
   // 3. The resolved colour out, sharpened or as it is.
-  context.bindForWriting("scene-color");
-  const OutputProgram& out = settings.sharpen > 0.0f ? sharpened_ : copy_;
-  out.program.use();
-  color.current().color().bind(0);
-  Program::set(out.resolved, 0);
-  if (settings.sharpen > 0.0f) {
-    Program::set(out.texel, texel);
-    Program::set(out.sharpen, settings.sharpen);
-  }
-  resources_.triangle.draw();
-  gl::restoreBaselineState();
+  const bool sharpen = settings.sharpen > 0.0f;
+  planner.add(fullscreenPass("taa-output", outputSpec(sharpen), {{"u_resolved", "taa-color"}}, {"scene-color"},
+                             [sharpen](FullscreenDraw& draw, const PassContext& context) {
+                               if (!sharpen) return;
+                               draw.set("u_texel", context.texelSize("scene-color"));
+                               draw.set("u_sharpen", context.settings().of<TaaSettings>().sharpen);
+                             }));
 }
 
 }  // namespace obscura

@@ -81,23 +81,6 @@ class TaaEffect : public Effect {
   void plan(FramePlanner& planner) override;
 
  private:
-  struct ResolveProgram {
-    gl::Program program;
-    ReconstructionUniforms reconstruction;
-    GLint color = -1, velocity = -1, gbuffer = -1, history = -1, previousGbuffer = -1;
-    GLint texel = -1, size = -1, feedback = -1, gamma = -1, viewToPreviousView = -1;
-  };
-  struct OutputProgram {
-    gl::Program program;
-    GLint resolved = -1, texel = -1, sharpen = -1;
-  };
-  void render(PassContext& context, const TaaSettings& settings);
-
-  const EffectResources& resources_;
-  ResolveProgram resolve_;
-  OutputProgram copy_, sharpened_;
-  gl::Program depthCopy_;
-  GLint depthCopyGbuffer_ = -1;
   // Frames in this effect's own history (its targets are made on first use, so it may start after the Renderer's).
   int historyFrames_ = 0;
   std::uint64_t lastFrameIndex_ = ~std::uint64_t(0);

@@ -1,24 +1,9 @@
 #include "effects/tonemap/TonemapEffect.h"
 
 #include "frame/PassContext.h"
-#include "gl/PipelineState.h"
+#include "frame/Stage.h"
 
 namespace obscura {
-namespace {
-
-ProgramSpec spec(ToneMapOperator op, bool autoExposure, bool lensLight) {
-  return ProgramSpec{std::string("tonemap[") + toneMapOperatorName(op) + (autoExposure ? ",auto-exposure" : "") +
-                         (lensLight ? ",lens-light" : "") + "]",
-                     "lib/fullscreen.vert",
-                     "tonemap/tonemap.frag",
-                     {toneMapShaderDefine(op),
-                      {"AUTO_EXPOSURE", autoExposure ? "1" : "0"},
-                      {"LENS_LIGHT", lensLight ? "1" : "0"},
-                      {"FAR_RAY", "0"}},
-                     {}};
-}
-
-}  // namespace
 
 const std::vector<Parameter<TonemapSettings>>& TonemapSettings::parameters() {
   using S = TonemapSettings;
@@ -60,68 +45,52 @@ EffectInfo TonemapEffect::info() {
             {{"display-color", ViewDecoding::Color}}}}};
 }
 
-std::vector<ProgramSpec> TonemapEffect::programSpecs() {
-  std::vector<ProgramSpec> specs;
-  for (ToneMapOperator op : kToneMapOperators)
-    for (bool autoExposure : {false, true})
-      for (bool lensLight : {false, true}) specs.push_back(spec(op, autoExposure, lensLight));
-  return specs;
+StageDecl TonemapEffect::stage(ToneMapOperator op, bool autoExposure, bool lensLight) {
+  StageDecl stage;
+  stage.name = "tonemap";
+  stage.variant = std::string(toneMapOperatorName(op)) + (autoExposure ? ",auto-exposure" : "") +
+                  (lensLight ? ",lens-light" : "");
+  stage.file = "tonemap/tonemap.glsl";
+  stage.function = "tonemapStage";
+  stage.defines = {toneMapShaderDefine(op),
+                   {"AUTO_EXPOSURE", autoExposure ? "1" : "0"},
+                   {"LENS_LIGHT", lensLight ? "1" : "0"}};
+  stage.input = "scene-color";
+  stage.outputSpace = ColorSpace::Display;
+  // Auto exposure's 1 x 1 result and the light the lens adds, read beside the colour (so the stage runs in a pass
+  // after theirs: it cannot fuse into the lighting, which runs before them).
+  if (autoExposure) stage.textures.push_back({"u_exposureTarget", "exposure"});
+  if (lensLight) stage.textures.push_back({"u_lensLight", "lens-light"});
+  // u_exposure and the output's u_lumaInAlpha: two floats, which take the spare columns of the rows of the programs
+  // it fuses into; with the lens light, its size (a vec2) takes one row more at most
+  // (Shaders.FusedStagesTakeNoMoreUniformVectorsThanTheyDeclare holds it).
+  stage.uniformVectors = lensLight ? 1 : 0;
+  stage.uniforms = [autoExposure, lensLight](const gl::Program& program, const PassContext& context) {
+    // With auto exposure, its exposure replaces the manual one.
+    program.set("u_exposure",
+                autoExposure ? 1.0f : ToneMapInUse::of(context.settings().of<TonemapSettings>()).exposureScale);
+    if (lensLight) program.set("u_lensLightSize", glm::vec2(context.size("lens-light")));
+  };
+  return stage;
 }
 
-TonemapEffect::Variant::Variant(gl::Program built, bool autoExposure, bool addsLensLight)
-    : program(std::move(built)),
-      color(program.uniform("u_color")),
-      exposure(program.uniform("u_exposure")),
-      lumaInAlpha(program.uniform("u_lumaInAlpha")),
-      exposureTarget(autoExposure ? program.uniform("u_exposureTarget") : -1),
-      lensLight(addsLensLight ? program.uniform("u_lensLight") : -1),
-      lensLightSize(addsLensLight ? program.uniform("u_lensLightSize") : -1) {}
-
-const TonemapEffect::Variant& TonemapEffect::variant(ToneMapOperator op, bool autoExposure, bool lensLight) {
-  const auto key = std::make_tuple(op, autoExposure, lensLight);
-  auto it = variants_.find(key);
-  if (it == variants_.end())
-    it = variants_.emplace(key, Variant(resources_.build(spec(op, autoExposure, lensLight)), autoExposure, lensLight))
-             .first;
-  return it->second;
+std::vector<StageDecl> TonemapEffect::stages() {
+  std::vector<StageDecl> stages;
+  for (ToneMapOperator op : kToneMapOperators)
+    for (bool autoExposure : {false, true})
+      for (bool lensLight : {false, true}) stages.push_back(stage(op, autoExposure, lensLight));
+  return stages;
 }
 
 void TonemapEffect::plan(FramePlanner& planner) {
-  // Off: the same pass without exposure or curve (it still decodes the HDR colour for display).
+  // Off: the same stage without exposure or curve (it still decodes the HDR colour for display). A per-pixel stage:
+  // it runs inside the pass before it (the lighting, the fog) where nothing else reads the HDR colour.
   // With auto exposure (an earlier effect writes `exposure`), its exposure replaces the manual one. The light the
   // lens adds (`lens-light`: the lens flare, the glare), at 1/4 of the frame, is added before the exposure.
-  const ToneMapInUse use = ToneMapInUse::of(planner.settings().of<TonemapSettings>());
-  const bool autoExposure = planner.settings().of<TonemapSettings>().enabled && planner.declares("exposure");
+  const TonemapSettings& settings = planner.settings().of<TonemapSettings>();
+  const bool autoExposure = settings.enabled && planner.declares("exposure");
   const bool lensLight = planner.declares("lens-light");
-  const ToneMapOperator op = use.op;
-  const float exposure = autoExposure ? 1.0f : use.exposureScale;
-  PassDecl pass;
-  pass.name = "tonemap";
-  pass.reads = {"scene-color"};
-  if (autoExposure) pass.reads.push_back("exposure");
-  if (lensLight) pass.reads.push_back("lens-light");
-  pass.writes = {{"display-color", TargetSize::full(), PassDecl::Write::Depth::None, ""}};
-  pass.run = [this, op, exposure, autoExposure, lensLight](PassContext& context) {
-    const Variant& v = variant(op, autoExposure, lensLight);
-    context.bindForWriting("display-color");
-    v.program.use();
-    context.texture("scene-color").bind(0);
-    gl::Program::set(v.color, 0);
-    gl::Program::set(v.exposure, exposure);
-    if (autoExposure) {
-      context.texture("exposure").bind(1);
-      gl::Program::set(v.exposureTarget, 1);
-    }
-    if (lensLight) {
-      context.texture("lens-light").bind(2);
-      gl::Program::set(v.lensLight, 2);
-      gl::Program::set(v.lensLightSize, glm::vec2(context.size("lens-light")));
-    }
-    gl::Program::set(v.lumaInAlpha, context.writesOutput("display-color") ? 0.0f : 1.0f);
-    resources_.triangle.draw();
-    gl::restoreBaselineState();
-  };
-  planner.add(std::move(pass));
+  planner.add(stagePass(resources_, stage(ToneMapInUse::of(settings).op, autoExposure, lensLight), "display-color"));
 }
 
 }  // namespace obscura

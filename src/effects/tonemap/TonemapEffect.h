@@ -3,10 +3,10 @@
 // to display values by a curve (lib/tonemap.glsl: ACES fitted, Khronos PBR Neutral, AgX, Reinhard), and encoded sRGB
 // into "display-color", with the luma FXAA wants in alpha. CPU mirror: encoding/ToneMapping.h.
 //
-// The pass always runs: it is what turns the HDR encoding into displayable colour. Switched off ("tonemap off"),
-// it applies neither the exposure nor a curve: colour is clamped to [0, 1] and encoded sRGB.
-#include <map>
-#include <tuple>
+// A per-pixel stage (frame/Stage.h, shaders_es2/tonemap/tonemap.glsl): it runs inside the lighting's pass (or the
+// fog's) where nothing else reads the HDR colour in between, and as a pass of its own after TAA or bloom. It always
+// runs: it is what turns the HDR encoding into displayable colour. Switched off ("tonemap off"), it applies neither
+// the exposure nor a curve: colour is clamped to [0, 1] and encoded sRGB.
 #include <vector>
 
 #include "encoding/ToneMapping.h"
@@ -26,8 +26,7 @@ struct TonemapSettings : ParameterAccess<TonemapSettings> {
 };
 
 // The tone mapping a frame applies: its curve and exposure multiplier, with "off" meaning neither (the linear curve,
-// 2^0). The tone-mapping pass applies it, and so does the lighting pass where it takes that pass's place
-// (LightingEffect.h).
+// 2^0), wherever the stage runs.
 struct ToneMapInUse {
   ToneMapOperator op = ToneMapOperator::Linear;
   float exposureScale = 1.0f;
@@ -41,21 +40,16 @@ class TonemapEffect : public Effect {
   using Settings = TonemapSettings;
   static constexpr bool kHasSwitch = true;
   static EffectInfo info();
-  static std::vector<ProgramSpec> programSpecs();
+  static std::vector<ProgramSpec> programSpecs() { return {}; }  // its programs are the fused ones (stages())
+  // Its stage for a curve, and every curve's, for the shader checks.
+  static StageDecl stage(ToneMapOperator op, bool autoExposure = false, bool lensLight = false);
+  static std::vector<StageDecl> stages();
 
   explicit TonemapEffect(const EffectResources& resources) : resources_(resources) {}
   void plan(FramePlanner& planner) override;
 
  private:
-  struct Variant {
-    Variant(gl::Program built, bool autoExposure, bool addsLensLight);
-    gl::Program program;
-    GLint color, exposure, lumaInAlpha, exposureTarget, lensLight, lensLightSize;
-  };
-  const Variant& variant(ToneMapOperator op, bool autoExposure, bool lensLight);
-
   const EffectResources& resources_;
-  std::map<std::tuple<ToneMapOperator, bool, bool>, Variant> variants_;
 };
 
 }  // namespace obscura

@@ -116,7 +116,6 @@ std::vector<ProgramSpec> TransparencyEffect::programSpecs(int fragmentVectors) {
 
 TransparencyEffect::Variant::Variant(gl::Program built)
     : program(std::move(built)),
-      geometry(program),
       projection(program.uniform("u_projection")),
       lightDirection(program.optionalUniform("u_lightDirection")),
       lightColor(program.optionalUniform("u_lightColor")),
@@ -303,7 +302,7 @@ void TransparencyEffect::renderLayer(const PassContext& context) {
   std::copy_n(light.colorSpot.begin(), lights, colorSpot.begin());
   std::copy_n(light.spot.begin(), lights, spot.begin());
   const glm::vec4 layout(size, behind_.width(), behind_.height());
-  auto choose = [&](MaterialKind kind, VertexKind vertex) -> const GeometryUniforms& {
+  auto choose = [&](MaterialKind kind, VertexKind vertex) -> const gl::Program& {
     const Variant& v = variant(kind, vertex, fogKey, shadingKey);
     v.program.use();
     Program::set(v.projection, camera.projection);
@@ -330,7 +329,7 @@ void TransparencyEffect::renderLayer(const PassContext& context) {
       Program::set(v.heightScale, fog.heightScale);
       Program::set(v.upInView, fog.upInView);
     }
-    return v.geometry;
+    return v.program;  // the scene sets its per-draw uniforms
   };
   const GpuScene& scene = context.scene();
   for (const GpuScene::TransparentBatch& batch : scene.transparentBatches(camera.view, camera.projection, size)) {

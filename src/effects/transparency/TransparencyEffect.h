@@ -101,7 +101,6 @@ class TransparencyEffect : public Effect {
   struct Variant {
     explicit Variant(gl::Program built);
     gl::Program program;
-    GeometryUniforms geometry;
     GLint projection, lightDirection, lightColor, viewToEnvironment, environment, environmentFiltered;
     GLint environmentFilteredScale, shIrradiance;
     GLint environmentIntensity, lightPositionRange, lightColorSpot, lightSpot, behind, behindLayout;

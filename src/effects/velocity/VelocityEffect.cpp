@@ -46,28 +46,12 @@ std::vector<ProgramSpec> VelocityEffect::programSpecs() {
   return specs;
 }
 
-VelocityEffect::GeometryVariant::GeometryVariant(gl::Program built)
-    : program(std::move(built)),
-      geometry(program),
-      projection(program.uniform("u_projection")),
-      unjitteredProjection(program.uniform("u_unjitteredProjection")),
-      previousViewProjection(program.uniform("u_previousViewProjection")) {}
-
-const VelocityEffect::GeometryVariant& VelocityEffect::variant(MaterialKind material, VertexKind vertex) {
-  const auto key = std::make_tuple(material.forAlphaOnly(), vertex);
-  auto it = variants_.find(key);
-  if (it == variants_.end())
-    it = variants_.emplace(key, GeometryVariant(resources_.build(geometrySpec(material, vertex)))).first;
-  return it->second;
-}
-
-VelocityEffect::VelocityEffect(const EffectResources& resources) : resources_(resources) {
-  camera_.program = resources_.build(cameraSpec());
-  camera_.reconstruction = ReconstructionUniforms(camera_.program);
-  camera_.gbuffer = camera_.program.uniform("u_gbuffer");
-  camera_.unjitteredProjection = camera_.program.uniform("u_unjitteredProjection");
-  camera_.viewToPreviousClip = camera_.program.uniform("u_viewToPreviousClip");
-  // The geometry variants are built on first use, as the G-buffer's are (GBufferEffect.cpp).
+VelocityEffect::VelocityEffect(const EffectResources& resources)
+    : resources_(resources),
+      geometry_(resources.programs) {
+  // The camera's program is built now, so a broken one fails when the renderer is made; the geometry variants on
+  // first use, as the G-buffer's are (GBufferEffect.cpp).
+  resources_.program(cameraSpec());
 }
 
 void VelocityEffect::plan(FramePlanner& planner) {
@@ -76,25 +60,24 @@ void VelocityEffect::plan(FramePlanner& planner) {
   pass.name = "velocity";
   pass.reads = {"gbuffer"};
   pass.writes = {{"velocity", TargetSize::full(), Write::Depth::Shared, "gbuffer"}};
+  pass.programs = {cameraSpec().name};
   pass.run = [this](PassContext& context) { render(context); };
   planner.add(std::move(pass));
 }
 
 void VelocityEffect::render(const PassContext& context) {
-  using gl::Program;
   const FrameCamera& camera = context.camera();
   const FrameCamera& previous = context.frame().previousCamera;
   const glm::mat4 previousViewProjection = previous.unjitteredProjection * previous.view;
-  context.bindForWriting("velocity");
 
-  // 1. The camera's motion everywhere, from depth.
-  camera_.program.use();
-  camera_.reconstruction.set(camera.reconstruction);
-  context.texture("gbuffer").bind(0);
-  Program::set(camera_.gbuffer, 0);
-  Program::set(camera_.unjitteredProjection, camera.unjitteredProjection);
-  Program::set(camera_.viewToPreviousClip, previousViewProjection * glm::inverse(camera.view));
-  resources_.triangle.draw();
+  {  // 1. The camera's motion everywhere, from depth.
+    FullscreenDraw draw = context.draw(cameraSpec(), "velocity");
+    draw.read("u_gbuffer", "gbuffer");
+    setReconstruction(draw.program(), camera.reconstruction);
+    draw.set("u_unjitteredProjection", camera.unjitteredProjection);
+    draw.set("u_viewToPreviousClip", previousViewProjection * glm::inverse(camera.view));
+    draw.draw();
+  }
 
   // 2. What moves, over it, where it is the visible surface.
   GpuScene::DrawOptions options;
@@ -105,17 +88,18 @@ void VelocityEffect::render(const PassContext& context) {
     glDepthMask(GL_FALSE);
     context.scene().draw(
         camera.view,
-        [&](MaterialKind kind, VertexKind vertex) -> const GeometryUniforms& {
-          const GeometryVariant& v = variant(kind, vertex);
-          v.program.use();
-          Program::set(v.projection, camera.projection);
-          Program::set(v.unjitteredProjection, camera.unjitteredProjection);
-          Program::set(v.previousViewProjection, previousViewProjection);
-          return v.geometry;
+        [&](MaterialKind kind, VertexKind vertex) -> const gl::Program& {
+          const gl::Program& program =
+              geometry_({kind.forAlphaOnly(), vertex}, [&] { return geometrySpec(kind, vertex); });
+          program.use();
+          program.set("u_projection", camera.projection);
+          program.set("u_unjitteredProjection", camera.unjitteredProjection);
+          program.set("u_previousViewProjection", previousViewProjection);
+          return program;
         },
         options);
+    gl::restoreBaselineState();
   }
-  gl::restoreBaselineState();
 }
 
 }  // namespace obscura

@@ -12,8 +12,8 @@
 //      invariant positions), so only their visible fragments overwrite the camera's motion.
 // RendererOptions::velocityDrawsEverything draws every instance in step 2 instead: the measured alternative
 // (docs/benchmarks.md, section 7), and the check that both give the same vectors.
-#include <map>
-#include <tuple>
+
+#include <utility>
 
 #include "frame/EffectEntry.h"
 #include "frame/FrameContext.h"
@@ -32,23 +32,10 @@ class VelocityEffect : public Effect {
   void plan(FramePlanner& planner) override;
 
  private:
-  struct CameraProgram {
-    gl::Program program;
-    ReconstructionUniforms reconstruction;
-    GLint gbuffer = -1, unjitteredProjection = -1, viewToPreviousClip = -1;
-  };
-  struct GeometryVariant {
-    explicit GeometryVariant(gl::Program built);
-    gl::Program program;
-    GeometryUniforms geometry;
-    GLint projection = -1, unjitteredProjection = -1, previousViewProjection = -1;
-  };
   void render(const PassContext& context);
-  const GeometryVariant& variant(MaterialKind material, VertexKind vertex);
 
   const EffectResources& resources_;
-  CameraProgram camera_;
-  std::map<std::tuple<MaterialKind, VertexKind>, GeometryVariant> variants_;
+  ProgramVariants<std::pair<MaterialKind, VertexKind>> geometry_;  // the moving instances' programs
 };
 
 }  // namespace obscura

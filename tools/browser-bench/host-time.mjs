@@ -1,0 +1,95 @@
+// The renderer's host time per frame in the browser: stats().lastHostMs (the page's "host" line: the wall time of
+// the renderer's render call on the page's thread, WebGL calls included, the GPU's own work not; builds before it had
+// only lastCpuMs, which also holds the page's canvas work) over frames drawn
+// back to back (continuous mode) on the demo page's built-in scene, playing, at each size asked: the defaults and
+// every effect on. Writes a CSV; docs/benchmarks.md ("Host time per frame") shows the figures.
+//
+// Usage: node tools/browser-bench/host-time.mjs [--sizes 1280x720,640x360] [--samples N] [--settle MS] [--csv FILE]
+//   (defaults: both sizes, 30 frames per case, 2500 ms for each case's shaders to compile, bench-results/
+//   browser-host.csv)
+import fs from 'node:fs';
+import path from 'node:path';
+import { fileURLToPath } from 'node:url';
+import { chromium } from 'playwright-core';
+import { startServer } from '../serve-web.mjs';
+import { chromiumLaunchOptions, parseOptions } from '../headless-chromium.mjs';
+
+const root = path.resolve(path.dirname(fileURLToPath(import.meta.url)), '..', '..');
+const options = { sizes: '1280x720,640x360', samples: 30, settle: 2500,
+                  csv: path.join(root, 'bench-results', 'browser-host.csv') };
+parseOptions(process.argv.slice(2), {
+  '--sizes': (v) => { options.sizes = v; },
+  '--samples': (v) => { options.samples = Number(v); },
+  '--settle': (v) => { options.settle = Number(v); },
+  '--csv': (v) => { options.csv = path.resolve(v); },
+}, path.basename(import.meta.url));
+const sizes = options.sizes.split(',').map((s) => s.split('x').map(Number));
+if (!sizes.every(([w, h]) => w > 0 && h > 0) || !(options.samples > 0 && options.settle >= 0))
+  throw new Error('--sizes WxH,... and --samples N must be positive, --settle MS not negative');
+
+const median = (values) => {
+  const sorted = [...values].sort((a, b) => a - b);
+  const mid = sorted.length >> 1;
+  return sorted.length % 2 ? sorted[mid] : 0.5 * (sorted[mid - 1] + sorted[mid]);
+};
+
+const rows = [];
+const server = await startServer(process.env.OBSCURA_WEB_SITE ?? path.join(root, 'build-web', 'site'));
+const browser = await chromium.launch(chromiumLaunchOptions);
+try {
+  for (const [width, height] of sizes) {
+    const page = await (await browser.newContext({ viewport: { width, height }, deviceScaleFactor: 1 })).newPage();
+    const errors = [];
+    page.on('pageerror', (e) => errors.push(String(e)));
+    await page.goto(`http://127.0.0.1:${server.address().port}/`);
+    await page.waitForFunction(() => document.body.dataset.ready === 'true', null, { timeout: 120000 });
+    await page.addStyleTag({ content: '#panel { display: none !important; }' });
+    const effects = await page.evaluate(() => window.obscura.effects.filter((e) => e.switch).map((e) => e.name));
+    const cases = [{ label: 'defaults', state: '' },
+                   { label: 'every effect on', state: effects.map((e) => `${e}=on`).join('&') }];
+    console.log(`${width}x${height}, ${await page.evaluate(() => window.obscura.context.renderer)}`);
+    for (const c of cases) {
+      const result = await page.evaluate(async ({ state, samples, settle }) => {
+        const o = window.obscura;
+        const query = new URLSearchParams();
+        for (const p of o.parameters) if (p.name !== 'preset' && !p.name.endsWith('.preset')) query.set(p.name, p.default);
+        for (const [key, value] of new URLSearchParams(state)) query.set(key, value);
+        query.set('time', '1');
+        query.set('play', 'on');
+        query.set('view', 'final');
+        o.setState(query.toString());
+        o.setContinuous(true);
+        await new Promise((r) => setTimeout(r, settle));
+        const host = [];
+        let last = null;
+        for (let tries = 0; host.length < samples && tries < 50 * samples; ++tries) {
+          await new Promise((r) => setTimeout(r, 20));
+          const s = o.stats();
+          if (s.frames === last) continue;
+          last = s.frames;
+          host.push(s.lastHostMs ?? s.lastCpuMs);
+        }
+        o.setContinuous(false);
+        o.pause();
+        return { host, passes: o.stats().passesRun };
+      }, { state: c.state, samples: options.samples, settle: options.settle });
+      const sorted = [...result.host].sort((a, b) => a - b);
+      const row = { label: c.label, width, height, hostMs: median(result.host), frames: result.host.length,
+                    passes: result.passes.length, low: sorted[0], high: sorted[sorted.length - 1] };
+      rows.push(row);
+      console.log(`${c.label.padEnd(20)} host ${row.hostMs.toFixed(2).padStart(7)} ms  (median of ${row.frames} ` +
+                  `frames, ${row.low.toFixed(2)} .. ${row.high.toFixed(2)}; ${row.passes} passes: ` +
+                  `${result.passes.join(', ')})`);
+    }
+    if (errors.length) throw new Error(`page errors: ${errors.join('; ')}`);
+    await page.context().close();
+  }
+  fs.mkdirSync(path.dirname(options.csv), { recursive: true });
+  fs.writeFileSync(options.csv, 'configuration,width,height,host_ms,frames,passes\n' +
+    rows.map((r) => `${r.label},${r.width},${r.height},${r.hostMs.toFixed(3)},${r.frames},${r.passes}`).join('\n') +
+    '\n');
+  console.log(`wrote ${path.relative(root, options.csv)}`);
+} finally {
+  await browser.close();
+  server.stop();
+}
