@@ -88,6 +88,20 @@ TEST(Cli, BadInputExitsWithStatusTwoAndOneLine) {
   }
 }
 
+// obscura-gltf-check prints one JSON line per file whatever the file is called: a name that is not UTF-8 (which
+// the refusal quotes) prints with U+FFFD in place of the stray byte, and the files after it are still checked.
+TEST(Cli, GltfCheckPrintsALineForAFileNamedInBytesThatAreNotUtf8) {
+  const std::string strange = writeFile("latin1-caf\xe9.gltf", "{\"asset\": ");
+  const std::string box = obscura::test::assimpModels() + "/BoxTextured-glTF/BoxTextured.gltf";
+  const obscura::test::ProcessResult result =
+      obscura::test::runProcess(OBSCURA_GLTF_CHECK_BINARY, "'" + strange + "' '" + box + "'");
+  EXPECT_EQ(result.status, 0) << result.err;
+  const std::string replacement = "\xef\xbf\xbd";
+  EXPECT_NE(result.out.find("latin1-caf" + replacement + ".gltf\",\"loaded\":false"), std::string::npos)
+      << result.out;
+  EXPECT_NE(result.out.find("BoxTextured.gltf\",\"loaded\":true"), std::string::npos) << result.out;
+}
+
 TEST(Cli, RendersEveryViewOfTheBuiltinSceneOnBothBackends) {
   for (const char* backend : {"osmesa", "egl"}) {
     // The sanitized tree tests OSMesa only: Mesa's EGL driver leaks in a module LSan cannot name (docs/robustness.md).

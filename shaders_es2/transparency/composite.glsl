@@ -93,7 +93,7 @@ void main() {
   {
     float roughness = clamp(surface.roughness, PBR_MIN_ROUGHNESS, 1.0);
     float metallic = clamp(surface.metallic, 0.0, 1.0);
-    vec3 v = -normalize(v_viewPosition);
+    vec3 v = -eyeRayDirection(v_viewPosition);  // parallel rays under an orthographic camera
     vec2 scaleBias = splitSumScaleBias(roughness, clamp(dot(n, v), 1e-4, 1.0));
     vec3 f0, f90;
     fresnelColors(base.rgb, metallic, f0, f90);
