@@ -9,6 +9,7 @@
 #include <memory>
 #include <sstream>
 
+#include "encoding/HdrEncoding.h"
 #include "gl/GlObjects.h"
 #include "gl/PipelineState.h"
 
@@ -60,6 +61,33 @@ FrameOptions retaining(std::vector<std::string> targets) {
   FrameOptions options;
   options.retain = std::move(targets);
   return options;
+}
+
+int worstByteDifference(const RenderedImage& a, const RenderedImage& b) {
+  EXPECT_EQ(a.rgba.size(), b.rgba.size());
+  int worst = 0;
+  for (size_t i = 0; i < std::min(a.rgba.size(), b.rgba.size()); ++i)
+    worst = std::max(worst, std::abs(a.rgba[i] - b.rgba[i]));
+  return worst;
+}
+
+HdrImage retainedHdr(Renderer& renderer, const std::string& target) {
+  const gl::RenderTarget& t = renderer.retained(target);
+  const std::vector<std::uint8_t> bytes = t.readRgba();  // rows top to bottom
+  HdrImage image{{t.width(), t.height()}, std::vector<glm::vec3>(static_cast<size_t>(t.width()) * t.height())};
+  for (int row = 0; row < t.height(); ++row)
+    for (int x = 0; x < t.width(); ++x) {
+      const size_t i = (static_cast<size_t>(row) * t.width() + x) * 4;
+      image.pixels[static_cast<size_t>(t.height() - 1 - row) * t.width() + x] =
+          decodeHdr(HdrTexel{bytes[i], bytes[i + 1], bytes[i + 2], bytes[i + 3]});
+    }
+  return image;
+}
+
+float brightestChannel(const HdrImage& image) {
+  float brightest = 0.0f;
+  for (const glm::vec3& c : image.pixels) brightest = std::max(brightest, std::max(c.r, std::max(c.g, c.b)));
+  return brightest;
 }
 
 std::vector<std::uint8_t> drawPoints(const gl::Program& program, const std::vector<glm::vec4>& normal,
@@ -226,6 +254,13 @@ std::string writeTempFile(const std::string& name, const std::string& text) {
 }
 
 std::string sourceDir() { return OBSCURA_SOURCE_DIR; }
+
+bool backendTested(const std::string& backend) {
+  const char* list = std::getenv("OBSCURA_TEST_BACKENDS");
+  if (!list || !*list) return true;
+  const std::string padded = "," + std::string(list) + ",";
+  return padded.find("," + backend + ",") != std::string::npos;
+}
 std::string assimpModels() { return "/usr/share/assimp/models/glTF2"; }
 
 }  // namespace obscura::test

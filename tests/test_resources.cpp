@@ -131,6 +131,12 @@ TEST(Resources, AGlErrorRaisedInAPassNamesThatPass) {
     if (pass == "fog") frame.set(pass, "on");
     if (bloom) frame.set("bloom", "on");
     if (pass.rfind("edges", 0) == 0) frame.set("edges", "on");
+    if (pass == "peel") frame.set("ao.layers", "2");  // the AO's second depth layer
+    // The upscale runs below render scale 1, as its own pass where FXAA is off.
+    if (pass == "upscale") {
+      frame.set("resolution.scale", "0.5");
+      frame.set("fxaa", "off");
+    }
     // The lens flare and the glare; auto exposure, its histogram passes with
     // percentile metering, its reductions on frames wide enough to need one or two.
     if (pass == "lens-flare") frame.set("lens-flare", "on");

@@ -248,13 +248,31 @@ TEST(Sao, ScalingTheSceneAndTheRadiusTogetherGivesTheSameAo) {
   const Scene metres = makeBuiltinScene();
   const Camera camera = builtinSceneCamera(320, 180);
   Renderer renderer = test::makeRenderer();
-  for (const auto& [estimator, preset] :
-       {std::pair(AoEstimator::Sao, QualityPreset::Medium), std::pair(AoEstimator::Sao, QualityPreset::Low),
-        std::pair(AoEstimator::Gtao, QualityPreset::Medium), std::pair(AoEstimator::Hbao, QualityPreset::Medium),
-        std::pair(AoEstimator::Vo, QualityPreset::Medium), std::pair(AoEstimator::Crytek, QualityPreset::Medium)}) {
-    AoSettings settings;
-    settings.applyPreset(preset);
-    settings.estimator = estimator;
+  // Every estimator, and GTAO with each option of the depth layers and the normals (ao.layers 2: the peel's
+  // separation is in units of r; gbuffer.normals reconstructed: the differences are of scaled depths alike).
+  struct Variant {
+    AoEstimator estimator;
+    QualityPreset preset;
+    const char* layers;
+    const char* normals;
+  };
+  for (const Variant& variant :
+       {Variant{AoEstimator::Sao, QualityPreset::Medium, "1", "stored"},
+        Variant{AoEstimator::Sao, QualityPreset::Low, "1", "stored"},
+        Variant{AoEstimator::Gtao, QualityPreset::Medium, "1", "stored"},
+        Variant{AoEstimator::Gtao, QualityPreset::Medium, "2", "stored"},
+        Variant{AoEstimator::Gtao, QualityPreset::Medium, "1", "reconstructed"},
+        Variant{AoEstimator::Gtao, QualityPreset::Low, "2", "reconstructed"},
+        Variant{AoEstimator::Hbao, QualityPreset::Medium, "1", "stored"},
+        Variant{AoEstimator::Vo, QualityPreset::Medium, "1", "stored"},
+        Variant{AoEstimator::Crytek, QualityPreset::Medium, "1", "stored"}}) {
+    const AoEstimator estimator = variant.estimator;
+    const QualityPreset preset = variant.preset;
+    RenderSettings settings;
+    settings.ao().applyPreset(preset);
+    settings.ao().estimator = estimator;
+    settings.set("ao.layers", variant.layers);
+    settings.set("gbuffer.normals", variant.normals);
     renderer.setScene(metres);
     const test::RenderedImage expected = test::render(renderer, camera, settings, View::Ao);
     for (float scale : {0.001f, 0.01f, 100.0f}) {
@@ -266,13 +284,14 @@ TEST(Sao, ScalingTheSceneAndTheRadiusTogetherGivesTheSameAo) {
       scaledCamera.target *= scale;
       scaledCamera.near *= scale;
       scaledCamera.far *= scale;
-      AoSettings scaledSettings = settings;
-      scaledSettings.radius = settings.radius * scale;
+      RenderSettings scaledSettings = settings;
+      scaledSettings.ao().radius = settings.ao().radius * scale;
       const test::RenderedImage ao = test::render(renderer, scaledCamera, scaledSettings, View::Ao);
       int worst = 0;
       for (size_t i = 0; i < ao.rgba.size(); i += 4) worst = std::max(worst, std::abs(ao.rgba[i] - expected.rgba[i]));
-      EXPECT_LE(worst, 1) << estimatorName(estimator) << ", " << presetName(preset) << ", scale " << scale
-                          << ": max difference " << worst << "/255";
+      EXPECT_LE(worst, 1) << estimatorName(estimator) << ", " << presetName(preset) << ", " << variant.layers
+                          << " layers, normals " << variant.normals << ", scale " << scale << ": max difference "
+                          << worst << "/255";
     }
   }
 }

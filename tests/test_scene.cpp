@@ -165,7 +165,8 @@ TEST(CameraJson, RefusesBadInputSayingWhatAndWhere) {
       {R"({"eye":[0,0,5],"target":[0,0,0],"fov":50})", "unknown field 'fov'"},
   };
   for (const auto& [text, expect] : cases) {
-    const std::string message = refusal([&] { Camera::fromJson(text, "cam.json"); });
+    const std::string& json = text;  // a structured binding cannot be captured before C++20 (clang refuses)
+    const std::string message = refusal([&] { Camera::fromJson(json, "cam.json"); });
     EXPECT_EQ(message.rfind("cam.json: ", 0), 0u) << text << " -> " << message;
     EXPECT_NE(message.find(expect), std::string::npos) << text << " -> " << message;
   }

@@ -118,7 +118,9 @@ TEST(Shaders, EveryProgramFitsTheGles2UniformVectors) {
   for (ProgramSpec& spec : Renderer::allProgramSpecs())
     if (spec.name.rfind("lighting[", 0) != 0 && spec.name.rfind("transparency[", 0) != 0)
       specs.push_back(std::move(spec));
-  for (ProgramSpec& spec : LightingEffect::programSpecs(minimumLights)) specs.push_back(std::move(spec));
+  for (ProgramSpec& spec : LightingEffect::programSpecs(
+           minimumLights, LightingEffect::punctualLightsPerDraw(FragmentLimits::gles2Minimum().uniformVectors, true)))
+    specs.push_back(std::move(spec));
   const int gles2Vectors = FragmentLimits::gles2Minimum().uniformVectors;
   for (ProgramSpec& spec : TransparencyEffect::programSpecs(gles2Vectors)) specs.push_back(std::move(spec));
   int worstVertex = 0, worstFragment = 0;
@@ -138,7 +140,7 @@ TEST(Shaders, EveryProgramFitsTheGles2UniformVectors) {
 
   // The forward lighting's heaviest forms (every PBR texture, alpha mask; and the same with the material layers) with
   // the tone-mapping stage fused, with 0 .. 4 lights: exactly the figures punctualLightsPerDraw counts with (the
-  // layered ones kMaterialLayerVectors and a row more).
+  // layered ones with kMaterialLayerVectors more).
   for (int lights = 0; lights <= kMaxPunctualLights; ++lights) {
     const std::vector<LightingEffect::StageHeadSpec> heads = LightingEffect::stageHeads(lights);
     const ProgramSpec& heaviest = heads[heads.size() - 2].program;
@@ -150,17 +152,22 @@ TEST(Shaders, EveryProgramFitsTheGles2UniformVectors) {
     };
     EXPECT_EQ(fusedRows(heaviest), kForwardLightingVectorsWithoutLights + lights * kVectorsPerPunctualLight)
         << lights << " lights";
-    // The layered program's rows leave no spare column for the tone curve's two floats: one row more.
+    // The layered program's rows leave no spare column for the tone curve's two floats: kMaterialLayerVectors counts
+    // that row.
     EXPECT_EQ(fusedRows(layered),
-              kForwardLightingVectorsWithoutLights + kMaterialLayerVectors + 1 + lights * kVectorsPerPunctualLight)
+              kForwardLightingVectorsWithoutLights + kMaterialLayerVectors + lights * kVectorsPerPunctualLight)
         << lights << " lights";
   }
-  EXPECT_EQ(LightingEffect::punctualLightsPerDraw(27, true), 3);
-  EXPECT_EQ(LightingEffect::punctualLightsPerDraw(28, true), 4);
+  EXPECT_EQ(LightingEffect::punctualLightsPerDraw(16, true), -1);
+  EXPECT_EQ(LightingEffect::punctualLightsPerDraw(17, true), 0);
+  EXPECT_EQ(LightingEffect::punctualLightsPerDraw(28, true), 3);
+  EXPECT_EQ(LightingEffect::punctualLightsPerDraw(29, true), 4);
 
   // The transparent layer's programs at each budget a context's fragment vectors give (TransparencyEffect::budget):
-  // the heaviest fits those vectors, and takes exactly kTransparentVectors, the fog's, the layers', the filtered
-  // levels' and 3 per light.
+  // the heaviest fits those vectors, and leaves fewer than 5 spare (a light's 3, and 2 that packing may leave part-
+  // filled) unless every light is on. GLSL ES 1.00's packing is not
+  // additive (a float of one feature fills a row another left part-empty: the layers take 2 vectors without the fog
+  // and 1 with it), so the constants are the dearer figures and the budget is held to fit, not to equal them.
   const int wholeLayer =
       kTransparentVectors + kTransparentFogVectors + kTransparentLayerVectors + kTransparentFilteredVectors + 12;
   for (int vectors = gles2Vectors; vectors <= wholeLayer; ++vectors) {
@@ -172,11 +179,13 @@ TEST(Shaders, EveryProgramFitsTheGles2UniformVectors) {
       if (rows > most) std::tie(most, heaviest) = std::make_pair(rows, spec.name);
     }
     EXPECT_LE(most, vectors) << heaviest;
-    EXPECT_EQ(most, kTransparentVectors + (budget.fog ? kTransparentFogVectors : 0) +
+    EXPECT_LE(most, kTransparentVectors + (budget.fog ? kTransparentFogVectors : 0) +
                         (budget.layers ? kTransparentLayerVectors : 0) +
                         (budget.filtered && !budget.fog ? kTransparentFilteredVectors : 0) + 3 * budget.lights)
         << vectors << " vectors: " << heaviest;
-
+    if (budget.lights < kMaxPunctualLights) {
+      EXPECT_LT(vectors - most, 3 + 2) << vectors << " vectors: " << heaviest;
+    }
   }
 }
 

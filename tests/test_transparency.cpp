@@ -239,6 +239,42 @@ TEST(Transparency, TransmissionShowsTheSceneBehindBlurredByTheRoughness) {
   EXPECT_NEAR(roughMean, sharpMean, 0.15);
 }
 
+// Through an orthographic camera every eye ray is parallel, so a flat clear pane facing the camera transmits the same
+// share of the wall behind it at the image's centre and at its corner. The transmission's Fresnel term takes the eye
+// ray's direction (lib/reconstruct.glsl's eyeRayDirection), not the direction from the eye's point: with the latter,
+// the corner, seen at 76 degrees from that point, would transmit about a quarter less.
+TEST(Transparency, TransmissionThroughAnOrthographicCameraIsTheSameAcrossAFlatPane) {
+  Scene scene;
+  scene.materials.push_back({});
+  scene.materials[0].unlit = true;
+  scene.materials[0].baseColorFactor = glm::vec4(1.0f);
+  Mesh wall = test::makeRectangle({-3, -3, -1}, {6, 0, 0}, {0, 6, 0});
+  wall.material = 0;
+  scene.meshes.push_back(wall);
+  scene.instances.push_back({0, glm::mat4(1.0f), -1, -1});
+  Material glass;
+  glass.metallicFactor = 0.0f;
+  glass.roughnessFactor = 0.0f;
+  glass.transmissionFactor = 1.0f;
+  glass.doubleSided = true;
+  scene.materials.push_back(glass);
+  addPane(scene, 0.5f, 2.0f, 1);
+  RenderSettings settings = plainSettings();
+  settings.set("lighting.sun-intensity", "0");
+  settings.set("lighting.environment-intensity", "0");
+  Renderer renderer = test::makeRenderer();
+  renderer.setScene(scene);
+  Camera camera = test::makeCamera({0, 0, 1}, {0, 0, 0}, kSide, kSide, 0.1f, 100.0f, 50.0f);
+  camera.orthographic = true;
+  camera.ymag = 1.4f;  // the corner pixel's point lies 1.9 m off the axis, 0.5 m in front of the eye's plane
+  test::render(renderer, camera, settings, View::Final, test::retaining({"scene-color"}));
+  const HdrFrame frame{kSide, kSide, renderer.retained("scene-color").readRgba()};
+  const double centre = frame.at(kSide / 2, kSide / 2).g, corner = frame.at(1, 1).g;
+  std::printf("transmitted through the pane: %.4f at the centre, %.4f at the corner\n", centre, corner);
+  EXPECT_GT(centre, 0.5);
+  EXPECT_NEAR(corner, centre, 0.02 * centre);
+}
+
 // KHR_materials_unlit: a cube's faces, however they face the sun and the sky, show its base colour through the tone
 // curve alone, one colour within 1/255 (display); with COLOR_0, the base colour times the vertex colour.
 TEST(Unlit, AnUnlitCubesFacesShowOneColour) {

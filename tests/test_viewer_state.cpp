@@ -99,7 +99,7 @@ TEST(ViewerState, RefusesBadTextAndKeepsTheState) {
   const std::pair<const char*, const char*> cases[] = {
       {"colour=red", "unknown key 'colour'"},
       {"radius=0", "state: radius: 0 is out of range"},
-      {"view=wireframe", "state: view: expected final, split, normals, depth, mask, "},
+      {"view=wireframe", "state: view: expected final, split, normals, normals-from-depth, depth, mask, "},
       {"eye=1,2", "eye: expected x,y,z"},
       {"eye=1,2,x", "eye: expected a number"},
       {"eye=0,0,0&target=0,0,0", "target: must differ from eye"},

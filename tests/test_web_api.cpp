@@ -22,7 +22,7 @@ using Json = nlohmann::json;
 namespace page = obscura::test::page;
 
 extern "C" {
-int obscura_create(int checkGlErrors);
+int obscura_create(int checkGlErrors, int dynamicResolution);
 const char* obscura_error();
 const char* obscura_describe();
 int obscura_set(const char* name, const char* value);
@@ -74,7 +74,7 @@ Json stats() { return Json::parse(obscura_stats()); }
 // The module with GL error checks after every pass (as the browser tests create it), at the default display size.
 void createModule() {
   page::setDisplaySize(160, 90);
-  ASSERT_EQ(obscura_create(1), 1) << obscura_error();
+  ASSERT_EQ(obscura_create(1, 0), 1) << obscura_error();
   page::loggedErrors();
 }
 
@@ -166,8 +166,15 @@ TEST(WebApi, ParametersViewsAndTheStateTextRoundTrip) {
 TEST(WebApi, EveryBoundKeyActsAndAnUnboundOneIsNotAnError) {
   createModule();
   double ms = 0.0;
-  for (const Json& binding : Json::parse(obscura_describe())["keys"]) {
+  // A range over a temporary's member would read freed memory (the sanitizer leg found it): the description is kept.
+  const Json description = Json::parse(obscura_describe());
+  for (const Json& binding : description["keys"]) {
     const std::string key = binding["key"];
+    if (key == "v") {  // the next scene camera: the built-in scene has none, which the key says
+      EXPECT_EQ(obscura_handle_key("v"), 0);
+      EXPECT_NE(std::string(obscura_error()).find("the scene has no cameras"), std::string::npos) << obscura_error();
+      continue;
+    }
     EXPECT_EQ(obscura_handle_key(key.c_str()), 1) << key << ": " << obscura_error();
     frameAt(ms += 16.0);
   }

@@ -1,7 +1,12 @@
 #pragma once
 // Writing meshes into a glTF 2.0 model with tinygltf, for the tools that make sample scenes (obscura-make-room,
-// obscura-make-pbr-samples): each array one buffer view of buffer 0 (4-byte aligned) and one accessor; a mesh one
-// primitive, one glTF mesh and one node placed by a matrix.
+// obscura-make-pbr-samples, obscura-make-glass-samples): each array one buffer view of buffer 0 (4-byte aligned) and
+// one accessor; a mesh one primitive, one glTF mesh and one node placed by a matrix. SampleSceneWriter adds the
+// materials, square RGBA8 textures, lights and nodes of one scene, and writes it as a .glb.
+#include <cstdio>
+#include <iostream>
+#include <string>
+#include <utility>
 #include <vector>
 
 #include <glm/mat4x4.hpp>
@@ -69,5 +74,87 @@ inline int appendMeshNode(tinygltf::Model& model, const Mesh& mesh, int material
   model.nodes.push_back(node);
   return static_cast<int>(model.nodes.size()) - 1;
 }
+
+// A material of base colour, metallic and roughness factors; the caller adds textures and extensions.
+inline tinygltf::Material factorMaterial(const glm::vec4& base, double metallic, double roughness) {
+  tinygltf::Material m;
+  m.pbrMetallicRoughness.baseColorFactor = {base.r, base.g, base.b, base.a};
+  m.pbrMetallicRoughness.metallicFactor = metallic;
+  m.pbrMetallicRoughness.roughnessFactor = roughness;
+  return m;
+}
+
+// One sample scene: buffer 0, one repeating trilinear sampler, and scene 0 holding every node added.
+struct SampleSceneWriter {
+  tinygltf::Model model;
+  tinygltf::Scene root;
+
+  SampleSceneWriter(const std::string& generator, std::vector<std::string> extensionsUsed) {
+    model.asset.version = "2.0";
+    model.asset.generator = generator;
+    model.buffers.resize(1);
+    model.extensionsUsed = std::move(extensionsUsed);
+    tinygltf::Sampler repeat;
+    repeat.minFilter = TINYGLTF_TEXTURE_FILTER_LINEAR_MIPMAP_LINEAR;
+    repeat.magFilter = TINYGLTF_TEXTURE_FILTER_LINEAR;
+    model.samplers.push_back(repeat);
+  }
+
+  // A `side` x `side` RGBA8 image (stored as PNG) and its texture; returns the texture's index.
+  int texture(const std::string& name, int side, std::vector<unsigned char> rgba) {
+    tinygltf::Image image;
+    image.name = name;
+    image.width = image.height = side;
+    image.component = 4;
+    image.bits = 8;
+    image.pixel_type = TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE;
+    image.image = std::move(rgba);
+    image.mimeType = "image/png";
+    model.images.push_back(image);
+    tinygltf::Texture texture;
+    texture.source = static_cast<int>(model.images.size()) - 1;
+    texture.sampler = 0;
+    model.textures.push_back(texture);
+    return static_cast<int>(model.textures.size()) - 1;
+  }
+
+  int material(tinygltf::Material m) {
+    model.materials.push_back(std::move(m));
+    return static_cast<int>(model.materials.size()) - 1;
+  }
+
+  // The mesh (with texture coordinates) as a node of the scene; returns the node's index.
+  int mesh(const Mesh& mesh, int material, const glm::mat4& world) {
+    const int node = appendMeshNode(model, mesh, material, world, true);
+    root.nodes.push_back(node);
+    return node;
+  }
+
+  // A KHR_lights_punctual light in a node of the scene placed by `world`.
+  void light(tinygltf::Light light, const glm::mat4& world) {
+    model.lights.push_back(std::move(light));
+    tinygltf::Node node;
+    tinygltf::Value::Object reference;
+    reference["light"] = tinygltf::Value(static_cast<int>(model.lights.size()) - 1);
+    node.extensions["KHR_lights_punctual"] = tinygltf::Value(reference);
+    node.matrix.assign(&world[0][0], &world[0][0] + 16);
+    model.nodes.push_back(node);
+    root.nodes.push_back(static_cast<int>(model.nodes.size()) - 1);
+  }
+
+  // Scene 0 as the default, written as a .glb with embedded images and buffers; prints what it wrote (`summary`) and
+  // returns the tool's exit status.
+  int writeGlb(const std::string& tool, const std::string& path, const std::string& summary) {
+    model.scenes.push_back(root);
+    model.defaultScene = 0;
+    tinygltf::TinyGLTF writer;
+    if (!writer.WriteGltfSceneToFile(&model, path, true, true, false, true)) {
+      std::cerr << tool << ": cannot write " << path << "\n";
+      return 1;
+    }
+    std::printf("%s: wrote %s (%s)\n", tool.c_str(), path.c_str(), summary.c_str());
+    return 0;
+  }
+};
 
 }  // namespace obscura::tools

@@ -2,7 +2,8 @@
 // {"file": PATH, "loaded": true|false, "refusal": the one-line refusal or "", "warnings": [...], "triangles": N}.
 // tools/gltf-validator/conformance.mjs sets it beside the Khronos glTF-Validator's report (docs/robustness.md).
 //
-// Usage: obscura-gltf-check FILE...   (exit status 0 whatever the files hold; 2 for a usage error)
+// Usage: obscura-gltf-check FILE...   (exit status 0 whatever the files hold and however they are named; 2 for a
+// usage error)
 #include <iostream>
 #include <string>
 
@@ -28,7 +29,9 @@ int main(int argc, char** argv) {
     } catch (const obscura::InputError& e) {
       line["refusal"] = e.what();
     }
-    std::cout << line.dump() << "\n";
+    // A path or a refusal may hold bytes that are not UTF-8 (a file name, a file's own text quoted in the
+    // refusal): they print as U+FFFD rather than end the run with nlohmann's type_error.
+    std::cout << line.dump(-1, ' ', false, nlohmann::json::error_handler_t::replace) << "\n";
   }
   return 0;
 }

@@ -50,67 +50,13 @@ tinygltf::Value object(std::initializer_list<std::pair<const char*, tinygltf::Va
   return tinygltf::Value(o);
 }
 
-tinygltf::Material factors(glm::vec4 base, double metallic, double roughness) {
-  tinygltf::Material m;
-  m.pbrMetallicRoughness.baseColorFactor = {base.r, base.g, base.b, base.a};
-  m.pbrMetallicRoughness.metallicFactor = metallic;
-  m.pbrMetallicRoughness.roughnessFactor = roughness;
-  return m;
-}
-
-struct Writer {
-  tinygltf::Model model;
-  tinygltf::Scene root;
-
-  Writer() {
-    model.asset.version = "2.0";
-    model.asset.generator = "obscura-make-glass-samples (tools/make_glass_samples.cpp); units: metres";
-    model.buffers.resize(1);
-    model.extensionsUsed = {"KHR_materials_transmission", "KHR_materials_clearcoat", "KHR_materials_ior",
-                            "KHR_materials_specular", "KHR_materials_unlit"};
-    tinygltf::Sampler repeat;
-    repeat.minFilter = TINYGLTF_TEXTURE_FILTER_LINEAR_MIPMAP_LINEAR;
-    repeat.magFilter = TINYGLTF_TEXTURE_FILTER_LINEAR;
-    model.samplers.push_back(repeat);
-  }
-
-  int texture(const std::string& name, std::vector<unsigned char> rgba) {
-    tinygltf::Image image;
-    image.name = name;
-    image.width = image.height = kStripes;
-    image.component = 4;
-    image.bits = 8;
-    image.pixel_type = TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE;
-    image.image = std::move(rgba);
-    image.mimeType = "image/png";
-    model.images.push_back(image);
-    tinygltf::Texture texture;
-    texture.source = static_cast<int>(model.images.size()) - 1;
-    texture.sampler = 0;
-    model.textures.push_back(texture);
-    return static_cast<int>(model.textures.size()) - 1;
-  }
-
-  int material(tinygltf::Material m) {
-    model.materials.push_back(std::move(m));
-    return static_cast<int>(model.materials.size()) - 1;
-  }
-
-  int mesh(const Mesh& mesh, int material, const glm::mat4& world) {
-    const int node = tools::appendMeshNode(model, mesh, material, world, true);
-    root.nodes.push_back(node);
-    return node;
-  }
-};
-
-tinygltf::Model build() {
-  Writer w;
+void build(tools::SampleSceneWriter& w) {
   // The floor, and the back wall's stripes.
   Mesh floor;
   addQuad(floor, {-3, 0, 2}, {3, 0, 2}, {3, 0, -2}, {-3, 0, -2});
-  w.mesh(floor, w.material(factors({0.55f, 0.55f, 0.55f, 1.0f}, 0.0, 0.9)), glm::mat4(1.0f));
-  tinygltf::Material wall = factors({1, 1, 1, 1}, 0.0, 0.8);
-  wall.pbrMetallicRoughness.baseColorTexture.index = w.texture("stripes", stripes());
+  w.mesh(floor, w.material(tools::factorMaterial({0.55f, 0.55f, 0.55f, 1.0f}, 0.0, 0.9)), glm::mat4(1.0f));
+  tinygltf::Material wall = tools::factorMaterial({1, 1, 1, 1}, 0.0, 0.8);
+  wall.pbrMetallicRoughness.baseColorTexture.index = w.texture("stripes", kStripes, stripes());
   Mesh wallMesh;
   addQuad(wallMesh, {-3, 0, -1}, {3, 0, -1}, {3, 2.2f, -1}, {-3, 2.2f, -1});
   w.mesh(wallMesh, w.material(wall), glm::mat4(1.0f));
@@ -118,7 +64,7 @@ tinygltf::Model build() {
   // Glass spheres: transmission 1, ior 1.5 (the default, written out), roughness 0, 0.25, 0.5.
   const Mesh sphere = makeSphere(0.32f, 48, 24);
   for (int i = 0; i < 3; ++i) {
-    tinygltf::Material glass = factors({1, 1, 1, 1}, 0.0, 0.25 * i);
+    tinygltf::Material glass = tools::factorMaterial({1, 1, 1, 1}, 0.0, 0.25 * i);
     glass.extensions["KHR_materials_transmission"] = object({{"transmissionFactor", tinygltf::Value(1.0)}});
     glass.extensions["KHR_materials_ior"] = object({{"ior", tinygltf::Value(1.5)}});
     w.mesh(sphere, w.material(glass),
@@ -127,8 +73,8 @@ tinygltf::Model build() {
 
   // Two overlapping blended panes, double-sided.
   for (int i = 0; i < 2; ++i) {
-    tinygltf::Material pane = factors(i == 0 ? glm::vec4(0.9f, 0.15f, 0.1f, 0.4f) : glm::vec4(0.1f, 0.3f, 0.9f, 0.4f),
-                                      0.0, 0.1);
+    const glm::vec4 colour = i == 0 ? glm::vec4(0.9f, 0.15f, 0.1f, 0.4f) : glm::vec4(0.1f, 0.3f, 0.9f, 0.4f);
+    tinygltf::Material pane = tools::factorMaterial(colour, 0.0, 0.1);
     pane.alphaMode = "BLEND";
     pane.doubleSided = true;
     Mesh quad;
@@ -140,7 +86,7 @@ tinygltf::Model build() {
 
   // Clear-coated spheres: rough red paint under a smooth coat (ior 1.8, a warm specular), brushed blue metal under a
   // half coat.
-  tinygltf::Material paint = factors({0.7f, 0.05f, 0.04f, 1}, 0.0, 0.8);
+  tinygltf::Material paint = tools::factorMaterial({0.7f, 0.05f, 0.04f, 1}, 0.0, 0.8);
   paint.extensions["KHR_materials_clearcoat"] =
       object({{"clearcoatFactor", tinygltf::Value(1.0)}, {"clearcoatRoughnessFactor", tinygltf::Value(0.05)}});
   paint.extensions["KHR_materials_ior"] = object({{"ior", tinygltf::Value(1.8)}});
@@ -148,13 +94,13 @@ tinygltf::Model build() {
       {{"specularColorFactor", tinygltf::Value(tinygltf::Value::Array{tinygltf::Value(1.0), tinygltf::Value(0.8),
                                                                       tinygltf::Value(0.6)})}});
   w.mesh(sphere, w.material(paint), glm::translate(glm::mat4(1.0f), glm::vec3(1.3f, 0.32f, 0.5f)));
-  tinygltf::Material metal = factors({0.3f, 0.45f, 0.8f, 1}, 1.0, 0.5);
+  tinygltf::Material metal = tools::factorMaterial({0.3f, 0.45f, 0.8f, 1}, 1.0, 0.5);
   metal.extensions["KHR_materials_clearcoat"] =
       object({{"clearcoatFactor", tinygltf::Value(0.5)}, {"clearcoatRoughnessFactor", tinygltf::Value(0.2)}});
   w.mesh(sphere, w.material(metal), glm::translate(glm::mat4(1.0f), glm::vec3(2.1f, 0.32f, 0.3f)));
 
   // An unlit box with vertex colours, yellow at the bottom to magenta at the top.
-  tinygltf::Material unlit = factors({1, 1, 1, 1}, 0.0, 1.0);
+  tinygltf::Material unlit = tools::factorMaterial({1, 1, 1, 1}, 0.0, 1.0);
   unlit.extensions["KHR_materials_unlit"] = tinygltf::Value(tinygltf::Value::Object{});
   Mesh box = makeBox({-0.25f, 0.0f, -0.25f}, {0.25f, 0.5f, 0.25f});
   std::vector<glm::vec4> colours;
@@ -165,10 +111,6 @@ tinygltf::Model build() {
   tinygltf::Mesh& written = w.model.meshes[static_cast<size_t>(w.model.nodes[static_cast<size_t>(node)].mesh)];
   written.primitives[0].attributes["COLOR_0"] = tools::appendAccessor(
       w.model, colours, TINYGLTF_TARGET_ARRAY_BUFFER, TINYGLTF_COMPONENT_TYPE_FLOAT, TINYGLTF_TYPE_VEC4);
-
-  w.model.scenes.push_back(w.root);
-  w.model.defaultScene = 0;
-  return w.model;
 }
 
 }  // namespace
@@ -178,13 +120,11 @@ int main(int argc, char** argv) {
     std::cerr << "usage: obscura-make-glass-samples OUT.glb   (writes the glass and layers sample; see the source)\n";
     return argc == 2 ? 0 : 2;
   }
-  tinygltf::Model model = build();
-  tinygltf::TinyGLTF writer;
-  if (!writer.WriteGltfSceneToFile(&model, argv[1], true, true, false, true)) {
-    std::cerr << "obscura-make-glass-samples: cannot write " << argv[1] << "\n";
-    return 1;
-  }
-  std::printf("obscura-make-glass-samples: wrote %s (%zu meshes, %zu materials)\n", argv[1], model.meshes.size(),
-              model.materials.size());
-  return 0;
+  tools::SampleSceneWriter writer("obscura-make-glass-samples (tools/make_glass_samples.cpp); units: metres",
+                                  {"KHR_materials_transmission", "KHR_materials_clearcoat", "KHR_materials_ior",
+                                   "KHR_materials_specular", "KHR_materials_unlit"});
+  build(writer);
+  return writer.writeGlb("obscura-make-glass-samples", argv[1],
+                         std::to_string(writer.model.meshes.size()) + " meshes, " +
+                             std::to_string(writer.model.materials.size()) + " materials");
 }

@@ -70,8 +70,9 @@ std::vector<unsigned char> stripesMetallicRoughness() {  // G roughness, B metal
   for (int y = 0; y < kTextureSize; ++y)
     for (int x = 0; x < kTextureSize; ++x) {
       const bool metal = (x / 16) % 2 == 0;
-      rgba.insert(rgba.end(), {0, static_cast<unsigned char>(metal ? 40 : 230), static_cast<unsigned char>(metal ? 255 : 0),
-                               255});
+      const auto roughness = static_cast<unsigned char>(metal ? 40 : 230);
+      const auto metallic = static_cast<unsigned char>(metal ? 255 : 0);
+      rgba.insert(rgba.end(), {0, roughness, metallic, 255});
     }
   return rgba;
 }
@@ -87,112 +88,48 @@ std::vector<unsigned char> emissiveGrid() {  // sRGB: a bright grid of lines on 
   return rgba;
 }
 
-struct Writer {
-  tinygltf::Model model;
-  tinygltf::Scene root;
-
-  Writer() {
-    model.asset.version = "2.0";
-    model.asset.generator = "obscura-make-pbr-samples (tools/make_pbr_samples.cpp); units: metres";
-    model.buffers.resize(1);
-    model.extensionsUsed = {"KHR_texture_transform", "KHR_materials_emissive_strength", "KHR_lights_punctual"};
-    tinygltf::Sampler repeat;
-    repeat.minFilter = TINYGLTF_TEXTURE_FILTER_LINEAR_MIPMAP_LINEAR;
-    repeat.magFilter = TINYGLTF_TEXTURE_FILTER_LINEAR;
-    model.samplers.push_back(repeat);
-  }
-
-  int texture(const std::string& name, std::vector<unsigned char> rgba) {
-    tinygltf::Image image;
-    image.name = name;
-    image.width = image.height = kTextureSize;
-    image.component = 4;
-    image.bits = 8;
-    image.pixel_type = TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE;
-    image.image = std::move(rgba);
-    image.mimeType = "image/png";
-    model.images.push_back(image);
-    tinygltf::Texture texture;
-    texture.source = static_cast<int>(model.images.size()) - 1;
-    texture.sampler = 0;
-    model.textures.push_back(texture);
-    return static_cast<int>(model.textures.size()) - 1;
-  }
-
-  int material(tinygltf::Material m) {
-    model.materials.push_back(std::move(m));
-    return static_cast<int>(model.materials.size()) - 1;
-  }
-
-  void mesh(const Mesh& mesh, int material, const glm::mat4& world) {
-    root.nodes.push_back(tools::appendMeshNode(model, mesh, material, world, true));
-  }
-
-  void light(tinygltf::Light light, const glm::mat4& world) {
-    model.lights.push_back(std::move(light));
-    tinygltf::Node node;
-    tinygltf::Value::Object reference;
-    reference["light"] = tinygltf::Value(static_cast<int>(model.lights.size()) - 1);
-    node.extensions["KHR_lights_punctual"] = tinygltf::Value(reference);
-    node.matrix.assign(&world[0][0], &world[0][0] + 16);
-    addNode(node);
-  }
-
-  void addNode(const tinygltf::Node& node) {
-    model.nodes.push_back(node);
-    root.nodes.push_back(static_cast<int>(model.nodes.size()) - 1);
-  }
-};
-
 tinygltf::Value transform(float scaleU, float scaleV) {
   tinygltf::Value::Object t;
   t["scale"] = tinygltf::Value(tinygltf::Value::Array{tinygltf::Value(scaleU), tinygltf::Value(scaleV)});
   return tinygltf::Value(t);
 }
 
-tinygltf::Material factors(glm::vec3 base, double metallic, double roughness) {
-  tinygltf::Material m;
-  m.pbrMetallicRoughness.baseColorFactor = {base.r, base.g, base.b, 1.0};
-  m.pbrMetallicRoughness.metallicFactor = metallic;
-  m.pbrMetallicRoughness.roughnessFactor = roughness;
-  return m;
-}
-
-tinygltf::Model build() {
-  Writer w;
+void build(tools::SampleSceneWriter& w) {
   // The spheres: a red dielectric row in front, a gold row behind, roughness 0.1 .. 1.0 from left to right.
   const Mesh sphere = makeSphere(0.35f, 48, 24);
   for (int row = 0; row < 2; ++row)
     for (int i = 0; i < 5; ++i) {
       const double roughness = 0.1 + 0.225 * i;
-      const int material = w.material(row == 0 ? factors({0.80f, 0.12f, 0.08f}, 0.0, roughness)
-                                               : factors({1.00f, 0.77f, 0.34f}, 1.0, roughness));
+      const int material = w.material(row == 0 ? tools::factorMaterial({0.80f, 0.12f, 0.08f, 1.0f}, 0.0, roughness)
+                                               : tools::factorMaterial({1.00f, 0.77f, 0.34f, 1.0f}, 1.0, roughness));
       w.mesh(sphere, material,
-             glm::translate(glm::mat4(1.0f), glm::vec3(-1.8f + 0.9f * static_cast<float>(i), 0.35f, row == 0 ? 0.7f : -0.3f)));
+             glm::translate(glm::mat4(1.0f),
+                            glm::vec3(-1.8f + 0.9f * static_cast<float>(i), 0.35f, row == 0 ? 0.7f : -0.3f)));
     }
 
   // The floor: tiles (normal and occlusion textures, repeated 6 x 4 by one KHR_texture_transform).
-  tinygltf::Material floor = factors({0.55f, 0.53f, 0.50f}, 0.0, 0.7);
-  floor.normalTexture.index = w.texture("tile normals", tileNormals());
+  tinygltf::Material floor = tools::factorMaterial({0.55f, 0.53f, 0.50f, 1.0f}, 0.0, 0.7);
+  floor.normalTexture.index = w.texture("tile normals", kTextureSize, tileNormals());
   floor.normalTexture.extensions["KHR_texture_transform"] = transform(6.0f, 4.0f);
-  floor.occlusionTexture.index = w.texture("grout occlusion", groutOcclusion());
+  floor.occlusionTexture.index = w.texture("grout occlusion", kTextureSize, groutOcclusion());
   floor.occlusionTexture.extensions["KHR_texture_transform"] = transform(6.0f, 4.0f);
   Mesh floorMesh;
   addQuad(floorMesh, {-3, 0, 2}, {3, 0, 2}, {3, 0, -2}, {-3, 0, -2});
   w.mesh(floorMesh, w.material(floor), glm::mat4(1.0f));
 
   // The back wall: polished metal and rough paint stripes (a metallicRoughness texture), repeated 4 times across.
-  tinygltf::Material wall = factors({0.70f, 0.72f, 0.75f}, 1.0, 1.0);
-  wall.pbrMetallicRoughness.metallicRoughnessTexture.index = w.texture("metal stripes", stripesMetallicRoughness());
+  tinygltf::Material wall = tools::factorMaterial({0.70f, 0.72f, 0.75f, 1.0f}, 1.0, 1.0);
+  wall.pbrMetallicRoughness.metallicRoughnessTexture.index =
+      w.texture("metal stripes", kTextureSize, stripesMetallicRoughness());
   wall.pbrMetallicRoughness.metallicRoughnessTexture.extensions["KHR_texture_transform"] = transform(4.0f, 1.0f);
   Mesh wallMesh;
   addQuad(wallMesh, {-3, 0, -1}, {3, 0, -1}, {3, 2.2f, -1}, {-3, 2.2f, -1});
   w.mesh(wallMesh, w.material(wall), glm::mat4(1.0f));
 
   // The emissive panel on the wall, brighter than 1 (KHR_materials_emissive_strength).
-  tinygltf::Material panel = factors({0.05f, 0.05f, 0.05f}, 0.0, 0.5);
+  tinygltf::Material panel = tools::factorMaterial({0.05f, 0.05f, 0.05f, 1.0f}, 0.0, 0.5);
   panel.emissiveFactor = {1.0, 0.55, 0.2};
-  panel.emissiveTexture.index = w.texture("emissive grid", emissiveGrid());
+  panel.emissiveTexture.index = w.texture("emissive grid", kTextureSize, emissiveGrid());
   tinygltf::Value::Object strength;
   strength["emissiveStrength"] = tinygltf::Value(8.0);
   panel.extensions["KHR_materials_emissive_strength"] = tinygltf::Value(strength);
@@ -216,10 +153,6 @@ tinygltf::Model build() {
   // At (-2.6, 2.4, 1.6), its -z turned towards (-1.2, 0, 0.2).
   const glm::vec3 from(-2.6f, 2.4f, 1.6f), to(-1.2f, 0.0f, 0.2f);
   w.light(spot, glm::inverse(glm::lookAt(from, to, glm::vec3(0, 1, 0))));
-
-  w.model.scenes.push_back(w.root);
-  w.model.defaultScene = 0;
-  return w.model;
 }
 
 }  // namespace
@@ -229,13 +162,11 @@ int main(int argc, char** argv) {
     std::cerr << "usage: obscura-make-pbr-samples OUT.glb   (writes the metallic-roughness sample; see the source)\n";
     return argc == 2 ? 0 : 2;
   }
-  tinygltf::Model model = build();
-  tinygltf::TinyGLTF writer;
-  if (!writer.WriteGltfSceneToFile(&model, argv[1], true, true, false, true)) {
-    std::cerr << "obscura-make-pbr-samples: cannot write " << argv[1] << "\n";
-    return 1;
-  }
-  std::printf("obscura-make-pbr-samples: wrote %s (%zu meshes, %zu textures, %zu lights)\n", argv[1],
-              model.meshes.size(), model.textures.size(), model.lights.size());
-  return 0;
+  tools::SampleSceneWriter writer("obscura-make-pbr-samples (tools/make_pbr_samples.cpp); units: metres",
+                                  {"KHR_texture_transform", "KHR_materials_emissive_strength", "KHR_lights_punctual"});
+  build(writer);
+  return writer.writeGlb("obscura-make-pbr-samples", argv[1],
+                         std::to_string(writer.model.meshes.size()) + " meshes, " +
+                             std::to_string(writer.model.textures.size()) + " textures, " +
+                             std::to_string(writer.model.lights.size()) + " lights");
 }

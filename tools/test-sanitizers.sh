@@ -22,7 +22,7 @@ if [ "$mode" = build ] || [ "$mode" = all ]; then
   # The tests' binaries and the tools they run, and the fuzzer (tools/fuzz-gltf.sh) from the same objects.
   cmake --build build-asan -j"$jobs" --target obscura_cpu_tests obscura_gpu_tests obscura_temporal_ao_tests \
     obscura_reference_tests obscura_accuracy_tests obscura_web_api_tests obscura_api_surface obscura_cli_tests \
-    obscura-shaders obscura-hdr-study obscura-gltf-fuzzer
+    obscura-shaders obscura-hdr-study obscura-gltf-check obscura-gltf-fuzzer
 fi
 [ "$mode" = run ] || [ "$mode" = all ] || exit 0
 

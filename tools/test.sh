@@ -20,8 +20,10 @@ report() {
   local status=$?
   python3 tools/test-report.py "$stages" --junit "$junit" --junit "$PWD/build-asan/ctest-junit.xml" \
     --results "$results" --results build-asan/test-results || true
-  echo "  (CPU time of everything run: $(times | tail -n 1 | awk '{print "user " $1 ", system " $2}'))"
-  rm -f "$stages"
+  # `times` in a command substitution would report the substitution's own subshell: it writes to a file instead.
+  times > "$stages.times"
+  echo "  (CPU time of everything run: $(tail -n 1 "$stages.times" | awk '{print "user " $1 ", system " $2}'))"
+  rm -f "$stages" "$stages.times"
   exit "$status"
 }
 trap report EXIT

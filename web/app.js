@@ -7,12 +7,17 @@ import { createObscura, ObscuraError } from './obscura.js';
 const VIEW_LABELS = { final: 'Final', split: 'Split: off | on', ao: 'AO', 'ao-raw': 'Raw AO', 'ao-blur-h': 'AO blur H',
                       normals: 'Normals', depth: 'Depth', mask: 'Mask', 'scene-color': 'HDR colour',
                       'display-color': 'Display colour', 'shading-count': 'Shading count',
-                      'base-color': 'Base colour', velocity: 'Motion vectors' };
+                      'base-color': 'Base colour', velocity: 'Motion vectors',
+                      'second-layer': 'Second depth layer', 'normals-from-depth': 'Normals from depth' };
 // Keys of the page itself (the core's bindings come from obscura.keyBindings).
 const PAGE_KEYS = [['h', 'hide / show the controls'], ['o', 'open a scene file']];
 const POINTER_HELP = [['left drag', 'orbit'], ['right drag, shift + drag', 'pan'], ['wheel', 'zoom'],
                       ['one finger', 'orbit'], ['two fingers', 'pinch to zoom, move to pan']];
 const SLIDER_STEPS = 1000;
+// Narrow or touch screens (phones, tablets) start with the panel closed, so that the image is what a visitor sees
+// first; style.css makes the panel a sheet along the bottom there.
+// 600 CSS pixels: phones in portrait are at most about 430 wide; a 640 x 360 desktop window keeps its panel.
+const COMPACT_SCREEN = '(max-width: 600px), (pointer: coarse)';
 
 const $ = (selector) => document.querySelector(selector);
 const controls = [];  // {name, update()} per parameter control
@@ -53,7 +58,8 @@ function sliderScale(parameter, low = parameter.min, high = parameter.max) {
     min: 0,
     max: SLIDER_STEPS,
     toSlider: (v) => Math.round(SLIDER_STEPS * (v - low) / span),
-    fromSlider: (t) => Number((low + span * t / SLIDER_STEPS).toPrecision(4)),
+    // Where the number box rounds to the parameter's step, the slider gives that value: what is shown is applied.
+    fromSlider: (t) => Number(roundToStep(parameter, Number((low + span * t / SLIDER_STEPS).toPrecision(4)))),
   };
 }
 
@@ -74,6 +80,18 @@ function sceneSpan(parameter, previous, centre, value) {
   span.low = Math.max(span.low, parameter.min);
   span.high = Math.min(span.high, parameter.max);
   return span;
+}
+
+// A number as its field shows it: rounded to the parameter's step (parameter.step, from the core: a power of ten near
+// a thousandth of the range, 1 for integers), so the sun's elevation reads 54.5, not 54.52596. Values under 100 steps
+// (fog's density 0.02 on a range of 0 .. 100, the AO's fitted bias 0.0663) and parameters whose step is 0 (ranges
+// over decades, which the slider covers logarithmically) show three significant figures instead.
+function roundToStep(parameter, value) {
+  const v = Number(value);
+  if (value === '' || !Number.isFinite(v)) return String(value);
+  if (!(parameter.step > 0) || Math.abs(v) < 100 * parameter.step) return String(Number(v.toPrecision(3)));
+  const decimals = Math.max(0, -Math.floor(Math.log10(parameter.step) + 1e-9));
+  return String(Number((Math.round(v / parameter.step) * parameter.step).toFixed(decimals)));
 }
 
 // A parameter's element id: "param-ao-radius" for "ao.radius" (ids with dots are awkward in CSS selectors).
@@ -179,11 +197,13 @@ function parameterControl(obscura, parameter) {
                    `(the scene's default ${span.centre} in the middle); ${parameter.range} typed`;
   };
   const number = element('input', { type: 'number', min: parameter.min, max: parameter.max,
-                                    step: parameter.kind === 'integer' ? 1 : 'any', title: parameter.range,
-                                    ariaLabel: `${parameter.name} value` });
+                                    step: parameter.kind === 'integer' ? 1 : parameter.step || 'any',
+                                    title: parameter.range, ariaLabel: `${parameter.name} value` });
   // A slow parameter (parameter.slow: the sky is made again) is applied when the drag ends; the number follows it.
   if (parameter.slow) {
-    slider.addEventListener('input', () => { number.value = String(scale.fromSlider(Number(slider.value))); });
+    slider.addEventListener('input', () => {
+      number.value = roundToStep(parameter, scale.fromSlider(Number(slider.value)));
+    });
     slider.addEventListener('change', () => apply(scale.fromSlider(Number(slider.value))));
   } else {
     slider.addEventListener('input', () => apply(scale.fromSlider(Number(slider.value))));
@@ -210,7 +230,7 @@ function parameterControl(obscura, parameter) {
       const value = obscura.effective(parameter.name);
       if (parameter.name === FOLLOWS_SCENE) followScene(Number(value));
       slider.value = scale.toSlider(Number(value));
-      if (document.activeElement !== number) number.value = value;
+      if (document.activeElement !== number) number.value = roundToStep(parameter, value);
       if (auto) auto.checked = obscura.get(parameter.name) === 'auto';
     },
   };
@@ -401,8 +421,16 @@ function showStats(obscura) {
   const s = obscura.stats();
   const frame = s.frameMs > 0 ? `${s.frameMs.toFixed(1)} ms (${(1000 / s.frameMs).toFixed(0)} fps)`
                               : '- (drawn on change only: redraw continuously to measure)';
-  const lines = [`${s.width} x ${s.height} px, ${s.frames} frames drawn`, `frame  ${frame}`,
+  const r = s.render;
+  const ratio = r.pixelRatio < r.devicePixelRatio ? `pixel ratio ${r.pixelRatio} (device ${r.devicePixelRatio})`
+                                                  : `pixel ratio ${r.pixelRatio}`;
+  const dynamic = !r.dynamic ? 'fixed'
+    : `dynamic: ${r.meanMs > 0 ? `${r.meanMs.toFixed(1)} ms` : 'measuring'} (${r.measuredBy}), target ${r.targetMs} ms`;
+  const lines = [`${s.width} x ${s.height} px, ${ratio}, ${s.frames} frames drawn`,
+                 `render ${r.width} x ${r.height}: scale ${r.scale.toFixed(2)}, ${dynamic}`,
+                 `frame  ${frame}`,
                  `host   ${s.frames > 0 ? s.lastHostMs.toFixed(2) : '-'} ms in the renderer, last frame`];
+  lines.push(startupLine(obscura));
   if (s.passMs) {
     lines.push('GPU per pass, a recent frame (EXT_disjoint_timer_query):');
     let total = 0;
@@ -513,10 +541,13 @@ function wireKeys(obscura) {
   });
 }
 
-function togglePanel() {
-  const collapsed = $('#panel').classList.toggle('collapsed');
-  $('#panel-toggle').textContent = collapsed ? 'Show' : 'Hide';
-  $('#panel-toggle').setAttribute('aria-expanded', String(!collapsed));
+function togglePanel() { setPanelOpen($('#panel').classList.contains('collapsed')); }
+
+function setPanelOpen(open) {
+  $('#panel').classList.toggle('collapsed', !open);
+  $('#panel').classList.toggle('expanded', open);
+  $('#panel-toggle').textContent = open ? 'Hide' : 'Controls';
+  $('#panel-toggle').setAttribute('aria-expanded', String(open));
 }
 
 // The URL follows every change (replaceState, so the back button is not flooded), at most a few times a second.
@@ -547,10 +578,26 @@ function urlFlags() {
   return PAGE_FLAGS.filter((flag) => params.has(flag)).map((flag) => `&${flag}`).join('');
 }
 
+// Start-up, from the JS API's figures (obscura.startup()) and the page's own: how long after navigation the first frame
+// was on screen (performance.now() counts from the navigation's start).
+let shownAt = null;
+function startupLine(obscura) {
+  const s = obscura.startup();
+  const ms = (v) => (v === null || v === undefined ? '-' : `${Math.round(v)}`);
+  const parts = Object.entries(s.coreParts).filter(([, v]) => v >= 1).sort((a, b) => b[1] - a[1])
+    .map(([name, v]) => `${name} ${ms(v)}`).join(', ');
+  return `start  wasm ${ms(s.wasmMs)} ms, core ${ms(s.coreMs)} ms${parts ? ` (${parts})` : ''}, ` +
+         `first frame ${ms(s.firstFrameMs)} ms; shown ${shownAt === null ? '-' : (shownAt / 1000).toFixed(2)} s ` +
+         'after navigation';
+}
+
 async function main() {
   let obscura;
+  if (matchMedia(COMPACT_SCREEN).matches) setPanelOpen(false);
   try {
-    obscura = await createObscura($('#view'), { checkGlErrors: new URLSearchParams(location.search).has('debug-gl') });
+    // The page's frames follow the frame time (resolution.dynamic on: the API's default is off).
+    obscura = await createObscura($('#view'), { checkGlErrors: new URLSearchParams(location.search).has('debug-gl'),
+                                                dynamicResolution: true });
   } catch (e) {
     showError(`Obscura cannot start here: ${e.message}`);
     $('#stats').textContent = '';
@@ -580,6 +627,10 @@ async function main() {
   $('#continuous').addEventListener('change', (e) => obscura.setContinuous(e.target.checked));
   setInterval(() => showStats(obscura), 250);
   document.body.dataset.ready = 'true';
+  await obscura.firstFrame;
+  shownAt = performance.now();
+  document.body.dataset.shownScale = String(obscura.stats().render.scale);
+  document.body.dataset.shown = String(shownAt);
 }
 
 main();

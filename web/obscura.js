@@ -25,16 +25,26 @@ export class ObscuraError extends Error {
 // Starts the core on `canvas` and resolves to an Obscura instance once the first frames are scheduled.
 // Options:
 //   pointerControls (default true): orbit / pan / zoom with mouse, touch and wheel on the canvas.
+//   dynamicResolution (default false): resolution.dynamic's default here: on, the render scale follows the frame time
+//     (resolution.target-ms), the demo page's choice; off, frames are drawn at resolution.scale.
 //   checkGlErrors (default false): glGetError after every pass; a GL error stops drawing and is logged as a console
 //     error naming the pass (for tests and debugging: each check waits for the GPU).
 //   wasmUrl: where obscura-core.wasm is served (default: beside this file, found through import.meta.url; bundlers
 //     that follow `new URL(..., import.meta.url)` copy the file and rewrite the URL).
-export async function createObscura(canvas, { pointerControls = true, checkGlErrors = false, wasmUrl } = {}) {
+export async function createObscura(canvas, { pointerControls = true, checkGlErrors = false, dynamicResolution = false,
+                                             wasmUrl } = {}) {
+  const start = performance.now();
   const core = await createObscuraCore(coreOptions(canvas, wasmUrl));
+  const wasmMs = performance.now() - start;
   const obscura = new Obscura(core, canvas);
-  if (!core._obscura_create(checkGlErrors ? 1 : 0)) throw new ObscuraError(core.UTF8ToString(core._obscura_error()));
+  if (!core._obscura_create(checkGlErrors ? 1 : 0, dynamicResolution ? 1 : 0)) {
+    throw new ObscuraError(core.UTF8ToString(core._obscura_error()));
+  }
   obscura.description = obscura.json('obscura_describe');
   if (pointerControls) obscura.attachPointerControls();
+  obscura.wasmMs = wasmMs;
+  obscura.createMs = performance.now() - start;
+  obscura.firstFrame = obscura.waitForFirstFrame();
   return obscura;
 }
 
@@ -377,10 +387,40 @@ export class Obscura extends EventTarget {
   //  after it, drawn or not; null per pass not run; null without timer queries or before the first result),
   //  passesRun (the passes the last frame ran, in order), passesDoneBy ({tonemap: 'lighting'}: passes whose work
   //  another pass did in the last frame, so they did not run and have no time of their own), history ({frames:
-  //  consecutive frames the history survived, drops: how often it was dropped (resize, scene change), frameIndex}:
-  //  starts afresh after a context loss), pooledTargets (render targets the frame keeps), contextLost, contextRestores, glObjects: {textures,
-  //  buffers, ...} (live GL objects), error (why frames stopped, or '')}
+  //  consecutive frames the history survived, drops: how often it was dropped (resize, scene change, a new render
+  //  scale), frameIndex}: starts afresh after a context loss), pooledTargets (render targets the frame keeps),
+  //  contextLost, contextRestores, glObjects: {textures, buffers, ...} (live GL objects), error (why frames stopped,
+  //  or ''), render ({width, height: the size the effects ran at, scale: the render scale, pixelRatio: the canvas's
+  //  device pixels per CSS pixel (devicePixelRatio up to resolution.max-pixel-ratio), devicePixelRatio, dynamic
+  //  (resolution.dynamic), measuredBy ('gpu': timer queries, 'cpu': the interval between frames drawn back to
+  //  back), meanMs (dynamic resolution's mean frame time at this scale; 0 while it measures), targetMs, changes (of
+  //  the scale so far)}), startup (the core's start-up figures: see startup())}
   stats() { return this.json('obscura_stats'); }
+
+  // Start-up, in ms: {wasmMs (fetching, compiling and instantiating obscura-core.wasm), createMs (all of
+  // createObscura: the wasm, then the core's own start, coreMs, of which coreParts: the WebGL context, the programs
+  // compiled, the sky made and prefiltered, the scene uploaded, ...), firstFrameMs (from createObscura's end to the
+  // animation frame after the first frame was drawn: the first frame's whole cost, as stats().frameMs measures a
+  // steady one; null until then), firstFrameCpuMs (its time in the renderer), firstFrameParts (what the first frame
+  // did besides drawing: programs compiled on first use, ...)}. `firstFrame` is a promise of the same once the first
+  // frame is on screen.
+  startup() {
+    const s = this.stats().startup;
+    return { wasmMs: this.wasmMs, createMs: this.createMs, coreMs: s.createMs, coreParts: s.createParts,
+             firstFrameMs: s.firstFrameMs, firstFrameCpuMs: s.firstFrameCpuMs, firstFrameParts: s.firstFrameParts };
+  }
+
+  // Resolves to startup() once a frame has been drawn and the browser has run the animation frame after it.
+  waitForFirstFrame() {
+    return new Promise((resolve) => {
+      const poll = () => {
+        const startup = this.startup();
+        if (startup.firstFrameMs !== null) resolve(startup);
+        else requestAnimationFrame(poll);
+      };
+      requestAnimationFrame(poll);
+    });
+  }
 
   // Draws a frame now into the canvas, outside the animation-frame schedule (an embedder drawing on its own clock,
   // a benchmark that bounds each frame with gl.finish). Throws ObscuraError if no frame could be drawn.

@@ -9,12 +9,17 @@
 //                      3: every tap reads levels 0..5, regions of one atlas texture (one fetch, no branch)
 //   MAX_MIP_LEVEL, LOG_MAX_OFFSET   the hierarchy's depth and the SAO paper's level choice (see tapPoint)
 //   ESTIMATOR_KNOTS, FIRST_KNOT_PIXELS  the knots of the fitted parameters (AoSettings.h)
+//   AO_LAYERS          1: the G-buffer's depth; 2: also the second depth layer (ao.layers 2), through tapLayers
+//   NORMALS_FROM_DEPTH 1: the centre's normal reconstructed from its neighbours' depths (gbuffer.normals
+//                      reconstructed: lib/normal_from_depth.glsl), the stored one where that falls back
 //
 // Output: R = ambient visibility A, GB = the centre's 16-bit depth code (the blur's key), A = 1.
 #include "lib/precision.glsl"
 #include "lib/packing.glsl"
 #include "lib/reconstruct.glsl"
 #include "ao/ao_resolution.glsl"
+#include "ao/hierarchy_pick.glsl"
+#include "lib/normal_from_depth.glsl"
 
 uniform sampler2D u_gbuffer;
 uniform vec2 u_aoSize;          // this pass's target size: the G-buffer's, or half of it (floor)
@@ -44,6 +49,9 @@ uniform sampler2D u_depthAtlas;  // level 0 at the origin, levels 1 .. 5 in a co
 uniform vec2 u_depthAtlasSize;
 uniform vec4 u_atlasLevelRows;   // first rows of levels 2 .. 5 (level 1 starts at row 0)
 #endif
+#if AO_LAYERS == 2 && DEPTH_HIERARCHY != 3
+uniform sampler2D u_secondLayer;  // the second layer's depth in BA (effects/ao/DepthPeelPass.h), for G-buffer taps
+#endif
 
 varying vec2 v_uv;
 varying vec3 v_farRay;
@@ -63,17 +71,22 @@ float rotationAngle(vec2 pixel) { return kTwoPi * fract(interleavedGradientNoise
 // A per-pixel jitter of the tap distances in [0, 1), shifted by u_frameOffset.y per frame (as the rotation).
 float radialJitter(vec2 pixel) { return fract(interleavedGradientNoise(pixel) + u_frameOffset.y); }
 
-// The surface point a tap at G-buffer pixel `tapPixel`, 2^log2TapDistance pixels from the centre, reads.
+// The texel a tap at G-buffer pixel `tapPixel`, 2^log2TapDistance pixels from the centre, reads, and the G-buffer
+// pixel whose depth it holds (`pixel`). BA: that pixel's depth code; with AO_LAYERS 2, RG: its second layer's.
 // SAO paper, sec. 3.3: a tap at distance h reads level m = clamp(floor(log2 h) - LOG_MAX_OFFSET, 0, MAX_MIP_LEVEL),
 // so taps within 2^(LOG_MAX_OFFSET + 1) pixels read full resolution and each farther octave reads a level half as
 // fine. Neighbouring pixels' far taps then land in the same few texels (cache hits), and the cost per pixel stops
 // growing with the projected radius. Level m holds the real depth of one pixel per 2^m x 2^m block (no averaging)
-// and that pixel's place in the block, so the point is rebuilt on that pixel's own ray.
-vec3 tapPoint(vec2 tapPixel, float log2TapDistance) {
-  vec2 pixel = tapPixel;
+// and that pixel's place in the block (with AO_LAYERS 2, its closed form: ao/hierarchy_pick.glsl), so the point is
+// rebuilt on that pixel's own ray.
+vec4 tapTexel(vec2 tapPixel, float log2TapDistance, out vec2 pixel) {
+  pixel = tapPixel;
   vec4 texel;
 #if DEPTH_HIERARCHY == 0
   texel = texture2D(u_gbuffer, (pixel + 0.5) / u_gbufferSize);
+#if AO_LAYERS == 2
+  texel.rg = texture2D(u_secondLayer, (pixel + 0.5) / u_gbufferSize).ba;
+#endif
 #else
   float level = clamp(floor(log2TapDistance) - float(LOG_MAX_OFFSET), 0.0, float(MAX_MIP_LEVEL));
   float scale = exp2(level);
@@ -87,7 +100,12 @@ vec3 tapPoint(vec2 tapPixel, float log2TapDistance) {
   texel = texture2D(u_depthAtlas, (origin + levelPixel + 0.5) / u_depthAtlasSize);
 #else
   if (level < 0.5) {
-    texel = vec4(0.0, 0.0, texture2D(u_gbuffer, (pixel + 0.5) / u_gbufferSize).ba);  // RG: no offset in the block
+    vec2 uv = (pixel + 0.5) / u_gbufferSize;
+#if AO_LAYERS == 2
+    texel = vec4(texture2D(u_secondLayer, uv).ba, texture2D(u_gbuffer, uv).ba);
+#else
+    texel = vec4(0.0, 0.0, texture2D(u_gbuffer, uv).ba);  // RG: no offset in the block
+#endif
   } else {
     vec2 uv = (levelPixel + 0.5) / size;
 #if DEPTH_HIERARCHY == 1
@@ -103,10 +121,33 @@ vec3 tapPoint(vec2 tapPixel, float log2TapDistance) {
   }
 #endif
   // The picked pixel: its block's corner plus its place in the block (0 at level 0).
+#if AO_LAYERS == 2
+  pixel = min(levelPixel * scale + hierarchyPickOffset(levelPixel, level), u_gbufferSize - 1.0);
+#else
   pixel = levelPixel * scale + channelsToBytes(texel.rg);
 #endif
+#endif
+  return texel;
+}
+
+// The surface point (view space) a tap reads: the first layer's.
+vec3 tapPoint(vec2 tapPixel, float log2TapDistance) {
+  vec2 pixel;
+  vec4 texel = tapTexel(tapPixel, log2TapDistance, pixel);
   return viewPositionOnRay(farPlaneRay((pixel + 0.5) / u_gbufferSize), unpackLinearDepth(texel.ba));
 }
+
+#if AO_LAYERS == 2
+// Both layers' points on the tap's pixel ray: `front` as tapPoint, `back` the second layer's (the far plane's where
+// nothing lies behind: an occluder that does not end).
+void tapLayers(vec2 tapPixel, float log2TapDistance, out vec3 front, out vec3 back) {
+  vec2 pixel;
+  vec4 texel = tapTexel(tapPixel, log2TapDistance, pixel);
+  vec3 ray = farPlaneRay((pixel + 0.5) / u_gbufferSize);
+  front = viewPositionOnRay(ray, unpackLinearDepth(texel.ba));
+  back = viewPositionOnRay(ray, unpackLinearDepth(texel.rg));
+}
+#endif
 
 // The centre of this AO pixel: its G-buffer pixel, view-space point and normal, and the radius projected to pixels
 // at its depth, clamped (SAO paper sec. 3.2). False on the background.
@@ -128,7 +169,11 @@ bool aoCentre(out AoCentre c) {
   float code = unpackDepthCode(centre.ba);
   if (isBackgroundCode(code)) return false;
   c.position = viewPositionOnRay(farPlaneRay(uv), code * (1.0 / 65535.0));
+#if NORMALS_FROM_DEPTH
+  c.normal = normalFromDepth(u_gbuffer, u_gbufferSize, c.pixel, code, decodeNormal(centre.rg));
+#else
   c.normal = decodeNormal(centre.rg);
+#endif
   c.diskRadius = min(u_radius * (u_projScale.x / -c.position.z + u_projScale.y), u_maxRadiusPixels);
   return true;
 }

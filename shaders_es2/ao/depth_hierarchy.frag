@@ -11,12 +11,20 @@
 // its 2^m x 2^m block (0 .. 2^m - 1 per axis), so the SAO pass rebuilds each far tap at the exact pixel whose
 // depth it read: a real surface point, where the SAO reference code reuses the tap's own pixel ray (off the
 // surface by the depth slope across the block, which darkens planes seen at grazing angles).
+//
+// AO_LAYERS 2 (ao.layers 2): RG = the second layer's depth code at the picked pixel (effects/ao/DepthPeelPass.h), so
+// a tap reads both layers in one fetch; the pick is then the closed form of ao/hierarchy_pick.glsl, which the
+// estimator computes again instead of reading it.
 #include "lib/precision.glsl"
 #include "lib/packing.glsl"
+#include "ao/hierarchy_pick.glsl"
 
 uniform sampler2D u_gbuffer;
 uniform vec2 u_gbufferSize;  // level-0 size in pixels
 uniform float u_level;       // m >= 1
+#if AO_LAYERS == 2
+uniform sampler2D u_secondLayer;
+#endif
 
 varying vec2 v_uv;
 varying vec3 v_farRay;
@@ -28,6 +36,12 @@ vec2 levelSize(float k) { return max(floor(u_gbufferSize / exp2(k)), vec2(1.0));
 void main() {
   // The output is the viewport of level m; v_uv spans it.
   vec2 levelPixel = floor(v_uv * levelSize(u_level));
+#if AO_LAYERS == 2
+  vec2 pick = min(levelPixel * exp2(u_level) + hierarchyPickOffset(levelPixel, u_level), u_gbufferSize - 1.0);
+  vec2 pickUv = (pick + 0.5) / u_gbufferSize;
+  gl_FragColor = vec4(bytesToChannels(channelsToBytes(texture2D(u_secondLayer, pickUv).ba)),
+                      bytesToChannels(channelsToBytes(texture2D(u_gbuffer, pickUv).ba)));
+#else
   vec2 p = levelPixel;
   for (int step = 0; step < MAX_MIP_LEVEL; step++) {
     float k = u_level - float(step);  // going from level k to level k - 1
@@ -36,4 +50,5 @@ void main() {
   }
   vec2 depthChannels = texture2D(u_gbuffer, (p + 0.5) / u_gbufferSize).ba;
   gl_FragColor = vec4(bytesToChannels(p - levelPixel * exp2(u_level)), bytesToChannels(channelsToBytes(depthChannels)));
+#endif
 }

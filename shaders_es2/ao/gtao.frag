@@ -15,31 +15,41 @@
 // unoccluded surface at exactly 1 whatever its slices' angles, and the blur averages the rotations.
 //
 // Per slice side, STEPS taps march out to the projected radius h, at distances ((s + jitter) / STEPS)^2 h (dense
-// near the centre, where occluders subtend most; XeGTAO's sample distribution power 2). A tap's point Q counts when
-// it lies within r of the centre C: its horizon cosine is dot(normalize(Q - C), V), faded to the side's lowest
-// value over the last FALLOFF_FRACTION of r (the reference's cut at r, smoothed so depth noise does not flicker).
-// Thickness heuristic (GTAO course, sec. "thickness"): a height field makes every occluder infinitely thick behind
-// its front face, so a thin object (a pillar, a railing) would hide the sky behind it for the whole slice. When a
-// tap farther out lies lower than the horizon found so far, the occluder may have ended: the horizon falls a
-// fraction THIN_OCCLUDER_BLEND of the way towards it.
+// near the centre, where occluders subtend most; XeGTAO's sample distribution power 2).
+//
+// Occluders with a thickness (ao.layers, ao.thickness). A height field makes every occluder infinitely thick behind
+// its front face, so a thin object (a pillar, a railing) in front of a far surface hides the sky behind it for the
+// whole slice: the halo. Here a tap occludes only the directions to the segment of its pixel's ray between its front
+// point and its back point, clipped to the ball of radius r about the centre (the reference's cut at r): the back
+// point is the second depth layer's (ao.layers 2, effects/ao/DepthPeelPass.h: for a closed occluder its back face),
+// or, with one layer, the point ao.thickness r behind the front (the heuristic, fitted: docs/accuracy.md). Two
+// consecutive taps whose depth ranges overlap, within ao.surface-gap r, are one occluder: the quadrilateral between
+// their segments is solid too (the first tap joins the centre's own surface this way), so a continuous surface
+// occludes as the height field's horizon does, and only a gap in depth lets the sky through. The union of the
+// occluded directions is kept per side as 8 sectors of u = a(direction) / a(hemisphere edge), the cosine-weighted
+// share of the side's open arc between V and the direction (eq. 10's half: sideArc), so every sector weighs the same;
+// each tap's interval covers sectors by fraction, and the side's visibility is the mean uncovered fraction. This is
+// the visibility bitmask of Therrien, Levesque, Gilet ("Screen Space Indirect Lighting with Visibility Bitmasks",
+// 2023) in GLSL ES 1.00's arithmetic (two vec4 of coverage, no bitwise operators), cosine-weighted, with the
+// segments' connectivity for a pixel's few taps. With an unbounded thickness and every tap connected it is exactly
+// the horizon integral above.
 //
 // Fitted parameters (ao/ao_estimator.glsl): the obscurance O = 1 - V goes through the shared
-// A = max(0, 1 - sigma O)^k; beta (a fraction of r) lifts the horizon of taps within beta r of the tangent plane
-// (the same tessellation and depth-quantisation guard as SAO's bias).
+// A = max(0, 1 - sigma O)^k; beta (a fraction of r) fades out taps whose nearest occluding point lies within beta r
+// of the tangent plane (the same tessellation and depth-quantisation guard as SAO's bias).
 //
-// Compile-time constants, beside those of ao/ao_estimator.glsl:
+// Compile-time constants, beside those of ao/ao_estimator.glsl (AO_LAYERS among them):
 //   GTAO_SLICES   slices per pixel (each rotated by pi / GTAO_SLICES, all by the per-pixel angle)
 //   GTAO_STEPS    taps per side of a slice (so GTAO_SIDES x GTAO_SLICES x GTAO_STEPS taps in all)
 //   GTAO_SIDES    2: both sides of each slice. 1 (small budgets): one side per pixel, picked at random in
 //                 proportion to its open arc and weighted so that the expectation is the two-sided slice's (see
-//                 main); the budget buys twice the steps, a longer horizon search, whose maximum misses fewer
-//                 occluders than half as many taps (averaged over frames by the temporal AO, that bias would stay)
-//   THIN_OCCLUDER_BLEND  the thickness heuristic's blend (0: a height field)
+//                 main); the budget buys twice the steps, a longer search, which misses fewer occluders than half as
+//                 many taps (averaged over frames by the temporal AO, that bias would stay)
 #include "ao/ao_estimator.glsl"
 
 const float kPi = 3.14159265359;
 const float kHalfPi = 1.57079632679;
-const float kFalloffFraction = 0.05;  // the horizon fades out over the last twentieth of r
+const float kFalloffFraction = 0.05;  // an occluder fades out over the last twentieth of r
 
 // acos to about 0.01 rad with one square root (Lagarde's fit, as XeGTAO's XeGTAO_FastACos): GLSL's acos costs a
 // polynomial and more on CPU rasterisers, and AO needs no more precision than this.
@@ -70,26 +80,70 @@ float sideArc(float c, float sideSign, float gamma, float cosGamma, float sinGam
   return 0.25 * (-cosTwiceHMinusGamma + cosGamma + 2.0 * (clamped ? limit : h) * sinGamma);
 }
 
-// The highest horizon cosine along one side of a slice (direction `side` in pixels, unit length).
-float sideHorizon(AoCentre c, vec3 V, vec2 side, float jitter, float log2DiskRadius, float bias) {
-  float horizon = -1.0;
+uniform float u_thickness;   // one layer: an occluder's assumed thickness behind its front face, in units of r
+uniform float u_surfaceGap;  // the depth gap two taps' segments may leave and still be one occluder, units of r
+
+// The visible fraction of one side of a slice (direction `side` in pixels, unit length; `sideSign` +1 or -1; its open
+// arc `openSide`): the mean uncovered fraction of its 8 sectors of u (see the top of the file).
+float sideVisibleFraction(AoCentre c, float centreBackDepth, vec3 V, vec2 side, float sideSign, float jitter,
+                          float bias, float gamma, float cosGamma, float sinGamma, float openSide) {
+  vec4 occupiedLow = vec4(0.0), occupiedHigh = vec4(0.0);
+  const vec4 kSectorLow = vec4(0.0, 0.125, 0.25, 0.375);
+  float inverseOpen = 1.0 / max(openSide, 1e-4);
+  // The previous tap's segment along the side: its u range, whether it reaches into the ball and its depths; first
+  // the centre's, whose surface lies along the tangent plane (u = 1).
+  float previousLo = 1.0, previousHi = 1.0, previousFrontDepth = -c.position.z, previousBackDepth = centreBackDepth;
+  float previousInside = 1.0;
   for (int s = 0; s < GTAO_STEPS; s++) {
     float fraction = (float(s) + jitter) * (1.0 / float(GTAO_STEPS));
-    float tapDistance = max(fraction * fraction * c.diskRadius, 1.0);  // at least the neighbouring pixel
+    float tapDistance = max(fraction * fraction * c.diskRadius, 1.0);
     vec2 tapPixel = clamp(floor(c.pixel + 0.5 + tapDistance * side), vec2(0.0), u_gbufferSize - 1.0);
-    vec3 w = (tapPoint(tapPixel, log2(tapDistance)) - c.position) * u_invRadius;  // in units of r
-    float distance = length(w);
-    float cosine = dot(w, V) / max(distance, 1e-4);
-    // Taps within beta r of the tangent plane do not occlude (the tangent plane itself is no occluder); the step is a
-    // ramp over the next beta r (at least 0.01 r), so a tap does not flip in and out with depth quantisation.
-    float aboveTangent = clamp((dot(w, c.normal) - bias) / max(bias, 0.01), 0.0, 1.0);
-    float weight = clamp((1.0 - distance) * (1.0 / kFalloffFraction), 0.0, 1.0) * aboveTangent;
-    float tapHorizon = mix(-1.0, cosine, weight);
-    // Higher: the new horizon. Lower (and in range): the thickness heuristic's partial step down.
-    float blend = tapHorizon > horizon ? 1.0 : float(THIN_OCCLUDER_BLEND) * step(0.001, weight);
-    horizon = mix(horizon, tapHorizon, blend);
+#if AO_LAYERS == 2
+    vec3 point, backPoint;
+    tapLayers(tapPixel, log2(tapDistance), point, backPoint);
+#else
+    vec3 point = tapPoint(tapPixel, log2(tapDistance));
+    vec3 backPoint = point + (u_thickness * u_radius) * eyeRayDirection(point);  // along the pixel's ray
+#endif
+    // The occluder along the tap's ray is the segment from its front point to its back point; what occludes is the
+    // part of it within r of the centre: w + s (b - w), s in [s0, s1], inside the unit ball (units of r).
+    vec3 w = (point - c.position) * u_invRadius;
+    vec3 e = (backPoint - point) * u_invRadius;
+    float ee = max(dot(e, e), 1e-8), we = dot(w, e);
+    float discriminant = we * we - ee * (dot(w, w) - 1.0);
+    float root = sqrt(max(discriminant, 0.0));
+    float s0 = max((-we - root) / ee, 0.0), s1 = min((-we + root) / ee, 1.0);
+    vec3 near = w + s0 * e, far = w + s1 * e;
+    float inside = discriminant > 0.0 && s0 < s1 ? 1.0 : 0.0;
+    // The segment fades out as its closest point to the centre nears r, over the last FALLOFF_FRACTION of r (the
+    // reference's cut at r, smoothed so depth quantisation does not flicker). One whose nearest point lies within
+    // beta r of the tangent plane does not occlude (the tangent plane itself is no occluder), with a ramp over the
+    // next beta r (at least 0.01 r) for the same reason.
+    vec3 closest = w + clamp(-we / ee, 0.0, 1.0) * e;
+    float weight = inside * clamp((1.0 - length(closest)) * (1.0 / kFalloffFraction), 0.0, 1.0) *
+                   clamp((dot(near, c.normal) - bias) / max(bias, 0.01), 0.0, 1.0);
+    float uNear = sideArc(clamp(dot(near, V) / max(length(near), 1e-4), -1.0, 1.0), sideSign, gamma, cosGamma,
+                          sinGamma) * inverseOpen;
+    float uFar = sideArc(clamp(dot(far, V) / max(length(far), 1e-4), -1.0, 1.0), sideSign, gamma, cosGamma,
+                         sinGamma) * inverseOpen;
+    float tapLo = min(uNear, uFar), tapHi = max(uNear, uFar);
+    // Two consecutive segments whose depth ranges overlap (within the gap) are one occluder: the quadrilateral
+    // between them is solid too, and from the centre it covers the directions between its four corners. The join
+    // ramps in over the last quarter of the gap, so a depth quantised differently does not flip it.
+    float overlap = min(-backPoint.z, previousBackDepth) + u_surfaceGap * u_radius - max(-point.z, previousFrontDepth);
+    float joined = previousInside * inside * clamp(overlap / max(0.25 * u_surfaceGap, 0.01) * u_invRadius, 0.0, 1.0);
+    float lo = mix(tapLo, min(tapLo, previousLo), joined), hi = mix(tapHi, max(tapHi, previousHi), joined);
+    previousLo = tapLo;
+    previousHi = tapHi;
+    previousInside = inside;
+    previousFrontDepth = -point.z;
+    previousBackDepth = -backPoint.z;
+    occupiedLow = max(occupiedLow, weight * clamp((min(vec4(hi), kSectorLow + 0.125) - max(vec4(lo), kSectorLow)) *
+                                                      8.0, 0.0, 1.0));
+    occupiedHigh = max(occupiedHigh, weight * clamp((min(vec4(hi), kSectorLow + 0.625) -
+                                                     max(vec4(lo), kSectorLow + 0.5)) * 8.0, 0.0, 1.0));
   }
-  return horizon;
+  return 1.0 - dot(occupiedLow + occupiedHigh, vec4(0.125));
 }
 
 void main() {
@@ -113,6 +167,14 @@ void main() {
   float sideChoice = radialJitter(c.aoPixel.yx + vec2(5.0, 3.0));  // decorrelated from the steps' jitter
 #endif
 
+  // The depth of the centre's own back point: the first segment joins the centre's surface through it.
+#if AO_LAYERS == 2
+  vec3 centreFront, centreBack;
+  tapLayers(c.pixel, 0.0, centreFront, centreBack);
+  float centreBackDepth = -centreBack.z;
+#else
+  float centreBackDepth = -(c.position + (u_thickness * u_radius) * eyeRayDirection(c.position)).z;
+#endif
   float visible = 0.0, open = 0.0;
   for (int slice = 0; slice < GTAO_SLICES; slice++) {
     float phi = (float(slice) + noise) * (kPi / float(GTAO_SLICES));
@@ -129,23 +191,24 @@ void main() {
 
     // An open sky: both horizons at the hemisphere's edge, eq. 10 = cos gamma + gamma sin gamma.
     float openSky = cosGamma + gamma * sinGamma;
+    float openPlus = 0.5 * openSky + 0.25 * kPi * sinGamma;  // eq. 10's half with h_1 = gamma + pi/2
 #if GTAO_SIDES == 1
-    // One side, drawn with probability o_s / (o_+ + o_-), its open arc's share (o_+ = 1/2 (cos gamma + gamma sin
-    // gamma) + pi/4 sin gamma: eq. 10's half with h_1 = gamma + pi/2), and weighted (o_+ + o_-) a_s / o_s: its
-    // expectation is a(h_0, h_1), the two-sided slice's, and the visibility stays in [0, 1].
-    float openPlus = 0.5 * openSky + 0.25 * kPi * sinGamma;
+    // One side, drawn with probability o_s / (o_+ + o_-), its open arc's share, and weighted (o_+ + o_-) a_s / o_s
+    // with a_s = o_s f_s (f_s its visible fraction): its expectation is the two-sided slice's, and the visibility
+    // stays in [0, 1].
     float sideSign = sideChoice * openSky < openPlus ? 1.0 : -1.0;
     float openSide = sideSign > 0.0 ? openPlus : openSky - openPlus;
-    float cs = clamp(sideHorizon(c, V, sideSign * d, jitter, log2DiskRadius, estimator.y), -1.0, 1.0);
-    visible += projectedLength * openSky * sideArc(cs, sideSign, gamma, cosGamma, sinGamma) / max(openSide, 1e-4);
-    open += projectedLength * openSky;
+    visible += projectedLength * openSky *
+               sideVisibleFraction(c, centreBackDepth, V, sideSign * d, sideSign, jitter, estimator.y, gamma,
+                                   cosGamma, sinGamma, openSide);
 #else
-    float c1 = clamp(sideHorizon(c, V, d, jitter, log2DiskRadius, estimator.y), -1.0, 1.0);
-    float c0 = clamp(sideHorizon(c, V, -d, jitter, log2DiskRadius, estimator.y), -1.0, 1.0);
     visible += projectedLength *
-               (sideArc(c0, -1.0, gamma, cosGamma, sinGamma) + sideArc(c1, 1.0, gamma, cosGamma, sinGamma));
-    open += projectedLength * openSky;
+               (openPlus * sideVisibleFraction(c, centreBackDepth, V, d, 1.0, jitter, estimator.y, gamma, cosGamma,
+                                               sinGamma, openPlus) +
+                (openSky - openPlus) * sideVisibleFraction(c, centreBackDepth, V, -d, -1.0, jitter, estimator.y,
+                                                           gamma, cosGamma, sinGamma, openSky - openPlus));
 #endif
+    open += projectedLength * openSky;
   }
   float visibility = clamp(visible / max(open, 1e-4), 0.0, 1.0);
   gl_FragColor = aoOutput(c, 1.0 - visibility, estimator);

@@ -5,6 +5,7 @@
 //                 2 depth: G-buffer linear depth   5 colour: RGB as stored
 //                                                  6 count: R * 32 (a count / 255: 1 -> 32/255, 8 and more white)
 //                                                  7 velocity: RG = 0.5 + 64 v (uv units, clamped), B = 0.5
+//                 8 normals from depth: lib/normal_from_depth.glsl, n * 0.5 + 0.5 (black where it falls back)
 // The target may be smaller than the view (half-resolution AO): sampled NEAREST at the view's uv.
 #include "lib/precision.glsl"
 #include "lib/packing.glsl"
@@ -13,6 +14,12 @@
 uniform sampler2D u_source;
 
 varying vec2 v_uv;
+#if VIEW_DECODING == 8
+#include "lib/reconstruct.glsl"
+#include "lib/normal_from_depth.glsl"
+uniform vec2 u_sourceSize;
+varying vec3 v_farRay;
+#endif
 
 void main() {
   vec4 texel = texture2D(u_source, v_uv);
@@ -31,6 +38,10 @@ void main() {
   gl_FragColor = vec4(texel.rgb, 1.0);
 #elif VIEW_DECODING == 7
   gl_FragColor = vec4(clamp(0.5 + 64.0 * unpackVelocity(texel), 0.0, 1.0), 0.5, 1.0);
+#elif VIEW_DECODING == 8
+  float code = unpackDepthCode(texel.ba);
+  vec3 n = normalFromDepth(u_source, u_sourceSize, floor(v_uv * u_sourceSize), code, vec3(-1.0));
+  gl_FragColor = isBackgroundCode(code) ? vec4(0.0, 0.0, 0.0, 1.0) : vec4(n * 0.5 + 0.5, 1.0);
 #else
   // Bytes written as (b + 0.25) / 255, so rounding and truncating targets both store 32 per count (lib/packing.glsl).
   gl_FragColor = vec4(vec3(min((floor(texel.r * 255.0 + 0.5) * 32.0 + 0.25) * (1.0 / 255.0), 1.0)), 1.0);

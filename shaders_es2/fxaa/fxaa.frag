@@ -24,6 +24,16 @@
 //   4. the pixel is resampled towards the edge by the offset that puts its coverage where the nearer end implies,
 //      or by the subpixel term (the 3x3 average's distance from the pixel, smoothed: (3 - 2c) c^2, squared, times
 //      SUBPIX), whichever is larger.
+//
+// UPSCALE 1 or 2 (frame/Resolution.h: the frame rendered below the output's size, FxaaEffect.h): the pass writes the
+// output at its own size and also upscales (lib/upscale.glsl, UPSCALE 1 bilinear, 2 edge). Each output pixel runs
+// steps 1 to 4 on the source texel under it (u_texel is the source's), then reads the upscale at its own point,
+// moved by the resample offset of step 4 (zero where step 1 leaves the texel alone), so FXAA's work and the
+// upscale's are done in one pass over the output.
+#ifndef UPSCALE
+#define UPSCALE 0
+#endif
+
 #include "lib/precision.glsl"
 
 uniform sampler2D u_color;          // RGB display colour, A its luma; NEAREST
@@ -37,6 +47,11 @@ uniform float u_searchSteps[FXAA_SEARCH_STEPS];  // the preset's step lengths, p
 #endif
 
 varying vec2 v_uv;
+
+#if UPSCALE
+#include "lib/upscale.glsl"
+vec3 upscaled(vec2 offset) { return upscale(v_uv + offset, 1.0 / u_texel, u_texel); }
+#endif
 
 float lumaOff(vec2 uv, float x, float y) { return texture2D(u_color, uv + vec2(x, y) * u_texel).a; }
 
@@ -57,7 +72,11 @@ float lumaAt(vec2 uv) { return bilinear(uv).a; }
 #endif
 
 void main() {
+#if UPSCALE
+  vec2 posM = (floor(v_uv / u_texel) + 0.5) * u_texel;  // the source texel under the output pixel
+#else
   vec2 posM = v_uv;
+#endif
   vec4 rgbyM = texture2D(u_color, posM);
   float lumaM = rgbyM.a;
   float lumaS = lumaOff(posM, 0.0, 1.0);
@@ -69,7 +88,11 @@ void main() {
   float rangeMin = min(min(lumaN, lumaW), min(lumaE, min(lumaS, lumaM)));
   float range = rangeMax - rangeMin;
   if (range < max(u_edgeThresholdMin, rangeMax * u_edgeThreshold)) {
+#if UPSCALE
+    gl_FragColor = vec4(upscaled(vec2(0.0)), 1.0);
+#else
     gl_FragColor = vec4(rgbyM.rgb, 1.0);
+#endif
     return;
   }
 #if FXAA_CLASSIFY
@@ -144,8 +167,12 @@ void main() {
   float pixelOffset = 0.5 - min(dstN, dstP) / (dstN + dstP);
   float subpixF = (3.0 - 2.0 * subpixC) * subpixC * subpixC;
   float offset = max(goodSpan ? pixelOffset : 0.0, subpixF * subpixF * u_subpix);
+#if UPSCALE
+  gl_FragColor = vec4(upscaled(horzSpan ? vec2(0.0, offset * lengthSign) : vec2(offset * lengthSign, 0.0)), 1.0);
+#else
   if (horzSpan) posM.y += offset * lengthSign;
   else posM.x += offset * lengthSign;
   gl_FragColor = vec4(bilinear(posM).rgb, 1.0);
+#endif
 #endif
 }

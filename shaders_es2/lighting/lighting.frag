@@ -201,6 +201,19 @@ vec3 coated(vec3 base, vec3 p, vec3 n, vec3 v, float occlusion) {
 }
 #endif
 
+// The material's Fresnel colours at normal (f0) and grazing (f90) incidence, metallic clamped to [0, 1]: with
+// KHR_materials_specular and _ior the dielectric's from u_specular, else glTF's core 0.04 and 1; a metal's are its base
+// colour and 1.
+void fresnelColors(vec3 base, float metallic, out vec3 f0, out vec3 f90) {
+#if MATERIAL_LAYERS
+  f0 = mix(u_specular.rgb, base, metallic);
+  f90 = vec3(mix(u_specular.a, 1.0, metallic));
+#else
+  f0 = mix(vec3(0.04), base, metallic);
+  f90 = vec3(1.0);
+#endif
+}
+
 // The lit colour of a surface point: p its view-space position, n its shading normal and g the surface's own normal
 // (unit, facing the viewer).
 vec3 shade(vec3 base, float metallic, float roughness, vec3 p, vec3 n, vec3 g, float occlusion, vec3 emissive) {
@@ -208,14 +221,8 @@ vec3 shade(vec3 base, float metallic, float roughness, vec3 p, vec3 n, vec3 g, f
   roughness = clamp(roughness, PBR_MIN_ROUGHNESS, 1.0);
   metallic = clamp(metallic, 0.0, 1.0);
   vec3 diffuseColor = base * (1.0 - metallic);
-#if MATERIAL_LAYERS
-  // KHR_materials_specular and _ior: the dielectric's F0 and F90 (a metal's are its base colour and 1).
-  vec3 f0 = mix(u_specular.rgb, base, metallic);
-  vec3 f90 = vec3(mix(u_specular.a, 1.0, metallic));
-#else
-  vec3 f0 = mix(vec3(0.04), base, metallic);
-  vec3 f90 = vec3(1.0);
-#endif
+  vec3 f0, f90;
+  fresnelColors(base, metallic, f0, f90);
 #if TRANSMISSION
   // Thin-walled transmission takes this share of the diffuse lobe (transparency/composite.glsl adds what it lets
   // through).

@@ -93,15 +93,10 @@ void main() {
   {
     float roughness = clamp(surface.roughness, PBR_MIN_ROUGHNESS, 1.0);
     float metallic = clamp(surface.metallic, 0.0, 1.0);
-    vec3 v = -normalize(v_viewPosition);
+    vec3 v = -eyeRayDirection(v_viewPosition);  // parallel rays under an orthographic camera
     vec2 scaleBias = splitSumScaleBias(roughness, clamp(dot(n, v), 1e-4, 1.0));
-#if MATERIAL_LAYERS
-    vec3 f0 = mix(u_specular.rgb, base.rgb, metallic);
-    vec3 f90 = vec3(mix(u_specular.a, 1.0, metallic));
-#else
-    vec3 f0 = mix(vec3(0.04), base.rgb, metallic);
-    vec3 f90 = vec3(1.0);
-#endif
+    vec3 f0, f90;
+    fresnelColors(base.rgb, metallic, f0, f90);
     vec3 specularAlbedo = f0 * scaleBias.x + f90 * scaleBias.y;
     color += u_transmission * (1.0 - metallic) * (vec3(1.0) - specularAlbedo) * base.rgb *
              transmittedLight(pixel, roughness);

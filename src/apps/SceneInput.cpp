@@ -127,20 +127,21 @@ SceneInput::Loaded SceneInput::load() const {
   return loaded;
 }
 
-Camera SceneInput::Loaded::cameraAt(double time) const {
+Camera SceneInput::Loaded::cameraAt(double seconds) const {
   if (sceneCamera < 0) return camera;
   PoseOptions options;
   options.animation = animation;
   options.loop = true;  // as FrameOptions' default
-  return sceneCameraAt(scene, sceneCamera, evaluatePose(scene, time, options), bounds, camera.width, camera.height);
+  return sceneCameraAt(scene, sceneCamera, evaluatePose(scene, seconds, options), bounds, camera.width,
+                       camera.height);
 }
 
-Scene SceneInput::Loaded::posedAt(double time) const {
+Scene SceneInput::Loaded::posedAt(double seconds) const {
   if (!scene.animated()) return scene;
   PoseOptions options;
   options.animation = animation;
   options.loop = true;  // as FrameOptions' default, which obscura-render draws with
-  return posedScene(scene, evaluatePose(scene, time, options));
+  return posedScene(scene, evaluatePose(scene, seconds, options));
 }
 
 void SceneInput::printWarnings(const char* tool, const std::vector<std::string>& warnings) const {

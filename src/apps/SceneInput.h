@@ -52,12 +52,12 @@ struct SceneInput {
     int sceneCamera = -1;  // --camera-node's index in Scene::cameras, for FrameOptions::sceneCamera; -1: none
     Bounds bounds;         // the scene's at rest (a scene camera's planes hug them, as the Renderer's do)
     std::vector<std::string> warnings;
-    // The scene as posed at `time` (evaluatePose, posedScene: skinned and morphed meshes baked), for a tool that
+    // The scene as posed at `seconds` (evaluatePose, posedScene: skinned and morphed meshes baked), for a tool that
     // draws the scene itself rather than through the renderer (the ray-traced reference); a scene with nothing to
     // pose comes back as it is.
-    Scene posedAt(double time) const;
-    // The camera at `time`: the scene camera's where the animation puts it then, else `camera` (which does not move).
-    Camera cameraAt(double time) const;
+    Scene posedAt(double seconds) const;
+    // The camera at `seconds`: the scene camera's where the animation puts it then, else `camera` (which does not move).
+    Camera cameraAt(double seconds) const;
   };
   // Reads the camera file, then the scene. Throws InputError naming the file on a bad one, and one listing the
   // scene's animations for an --animation it does not have. The warnings are left to the caller to print

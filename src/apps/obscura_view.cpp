@@ -3,8 +3,10 @@
 // one leaves the current scene and says why in the title bar and on stderr). Timings are shown in the title bar.
 //
 // usage: obscura-view [FILE.glb|FILE.gltf] [--size WxH] [--state QUERY] [--screenshot OUT.png [--frames N]]
+#include <algorithm>
 #include <cctype>
 #include <cmath>
+#include <cstdint>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
@@ -212,8 +214,9 @@ std::string title(const Viewer& viewer, double frameMs, const GpuPassTimer& time
   char text[512];
   const View& view = viewer.state().view;
   const std::string shown = view == View::Split ? "split: " + view.compare + " off | on" : view.name;
-  std::snprintf(text, sizeof text, "Obscura - %s - %s - %.1f ms (%.0f fps)", viewer.sceneName().c_str(),
-                shown.c_str(), frameMs, frameMs > 0.0 ? 1000.0 / frameMs : 0.0);
+  std::snprintf(text, sizeof text, "Obscura - %s - %s - %.1f ms (%.0f fps) - scale %.2f%s", viewer.sceneName().c_str(),
+                shown.c_str(), frameMs, frameMs > 0.0 ? 1000.0 / frameMs : 0.0, viewer.renderScale(),
+                viewer.state().settings.get("resolution.dynamic") == "on" ? " (dynamic)" : "");
   std::string out = text;
   // What the keys change, as in use (bias, intensity and contrast on "auto" show their fitted values). The radius is
   // in the scene's units (metres only for the built-in scene), so it goes without a unit.
@@ -268,14 +271,25 @@ int run(const Options& options) {
   GpuPassTimer timer(window.caps(), &GlfwWindow::procAddress);
 
   double last = glfwGetTime(), lastTitle = 0.0, frameMs = 0.0;
+  float lastScale = 1.0f;              // the render scale of the last frame drawn
+  std::uint64_t timerResults = 0;      // the GPU timer's results given to dynamic resolution
   for (int frame = 1; !glfwWindowShouldClose(window.handle()); ++frame) {
     glfwPollEvents();
     int width = 0, height = 0;
     glfwGetFramebufferSize(window.handle(), &width, &height);
     if (width > 0 && height > 0) {  // 0 x 0 while minimised
-      timer.beginFrame();
+      timer.beginFrame(viewer.dynamicResolution().scale());
       viewer.render(0, width, height, timer.available() ? &timer : nullptr, glfwGetTime());
       timer.endFrame();
+      lastScale = viewer.renderScale();
+    }
+    // Dynamic resolution (resolution.dynamic) measures a frame by the GPU timer where there is one (the sum of its
+    // passes), else by the interval between frames (below).
+    if (timer.results() != timerResults) {
+      timerResults = timer.results();
+      double gpuMs = 0.0;
+      for (double pass : timer.lastResult()) gpuMs += std::max(pass, 0.0);
+      viewer.frameMeasured(gpuMs, static_cast<float>(timer.lastResultTag()));
     }
     if (!options.screenshot.empty() && frame >= options.frames) {
       Image image;
@@ -290,6 +304,7 @@ int run(const Options& options) {
     const double now = glfwGetTime();
     const double ms = (now - last) * 1000.0;
     frameMs = frameMs == 0.0 ? ms : frameMs + kSmoothing * (ms - frameMs);
+    if (!timer.available()) viewer.frameMeasured(ms, lastScale);
     last = now;
     if (now - lastTitle >= kTitleInterval) {
       glfwSetWindowTitle(window.handle(), title(viewer, frameMs, timer, input.message()).c_str());

@@ -11,6 +11,7 @@
 #include <emscripten/emscripten.h>
 #include <emscripten/html5.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <exception>
@@ -26,8 +27,10 @@
 
 #include "base/Error.h"
 #include "base/Text.h"
+#include "base/TimeSpent.h"
 #include "effects/ao/DepthHierarchyPass.h"
 #include "environment/Environment.h"
+#include "frame/Resolution.h"
 #include "gl/GlObjects.h"
 #include "gl/RenderTarget.h"
 #include "platform/GpuPassTimer.h"
@@ -41,14 +44,33 @@ namespace {
 
 // Exponential moving average weight of the newest frame in the displayed timings.
 constexpr double kSmoothing = 0.1;
+// The most frames drawn after a change for dynamic resolution to find its scale (DynamicResolution::refining).
+constexpr int kRefineFrames = 120;
+
+// Where the time between obscura_create and the first frame went, in ms by name (base/TimeSpent.h).
+Json timesSpent(const std::map<std::string, TimeSpent::Total>& totals) {
+  Json out = Json::object();
+  for (const auto& [name, total] : totals) out[name] = total.ms;
+  return out;
+}
 
 class WebApp {
  public:
-  explicit WebApp(const RendererOptions& options)
+  // `dynamicResolution`: this page's default for resolution.dynamic (the demo page's: on).
+  WebApp(const RendererOptions& options, bool dynamicResolution)
       : canvas_([this] { contextLost(); }, [this] { contextRestored(); }),
         viewer_(gl::GlCaps::query(), options),
         timer_(std::make_unique<GpuPassTimer>(viewer_.caps(), &WebCanvas::procAddress)) {
+    if (dynamicResolution) viewer_.state().setDefault("resolution.dynamic", "on");
     emscripten_request_animation_frame_loop(&WebApp::animationFrame, this);
+  }
+
+  // Start-up: what making the app took (obscura_create: the context, the renderer's programs, the sky, the scene),
+  // measured by its caller around the constructor.
+  void created(double ms) {
+    createMs_ = ms;
+    createParts_ = timesSpent(TimeSpent::take());
+    createdAt_ = emscripten_get_now();
   }
 
   Viewer& viewer() { return viewer_; }
@@ -58,6 +80,7 @@ class WebApp {
   void changed() {
     renderError_.clear();
     frameWanted_ = true;
+    refineFrames_ = kRefineFrames;
   }
   void setContinuous(bool continuous) {
     continuous_ = continuous;
@@ -67,7 +90,7 @@ class WebApp {
   // Draws one frame at the canvas's display size; returns false (and keeps the message) if the renderer failed.
   bool draw(GpuPassTimer* timer) {
     if (canvas_.lost() || !renderError_.empty()) return false;
-    canvas_.fitToDisplay(viewer_.caps().maxRenderSize(), &width_, &height_);
+    fit(&width_, &height_);
     try {
       // The host time: the render call alone (the page's canvas work around it is not the renderer's).
       const double start = emscripten_get_now();
@@ -105,8 +128,31 @@ class WebApp {
         }
     }
     const gl::LiveObjects& live = gl::liveObjects();
+    const ResolutionSettings& resolution = viewer_.state().settings.of<ResolutionSettings>();
+    const DynamicResolution& dynamic = viewer_.dynamicResolution();
+    Json render = {{"scale", viewer_.renderScale()},
+                   {"pixelRatio", canvas_.pixelRatio()},
+                   {"devicePixelRatio", WebCanvas::devicePixelRatio()},
+                   {"dynamic", resolution.dynamic},
+                   {"measuredBy", timer_ && timer_->available() ? "gpu" : "cpu"},
+                   {"meanMs", dynamic.meanMs()},
+                   {"framesMeasured", dynamic.framesMeasured()},
+                   {"refining", dynamic.refining()},
+                   {"step", dynamic.step()},
+                   {"targetMs", resolution.targetMs},
+                   {"changes", dynamic.changes()}};
+    if (const Renderer* renderer = viewer_.renderer()) {
+      render["width"] = renderer->lastFrame().camera.width;
+      render["height"] = renderer->lastFrame().camera.height;
+    }
+    Json startup = {{"createMs", createMs_}, {"createParts", createParts_},
+                    {"firstFrameMs", firstFrameMs_ > 0.0 ? Json(firstFrameMs_) : Json(nullptr)},
+                    {"firstFrameCpuMs", firstFrameCpuMs_ > 0.0 ? Json(firstFrameCpuMs_) : Json(nullptr)},
+                    {"firstFrameParts", firstFrameParts_}};
     return Json{{"width", width_},
                 {"height", height_},
+                {"render", render},
+                {"startup", startup},
                 {"continuous", continuous_},
                 {"pending", frameWanted_},
                 {"frameMs", frameMs_},
@@ -141,16 +187,42 @@ class WebApp {
   void frame(double timeMs) {
     time_ = timeMs * 0.001;
     if (canvas_.lost()) return;
+    // The first frame is done once the browser runs the next animation frame (it has presented it): start-up's end.
+    if (frames_ > 0 && firstFrameMs_ == 0.0) {
+      firstFrameMs_ = emscripten_get_now() - createdAt_;
+      firstFrameParts_ = timesSpent(TimeSpent::take());
+    }
     GpuPassTimer* timer = timer_ && timer_->available() ? timer_.get() : nullptr;
-    if (timer) timer->collectResults();
+    if (timer) {
+      timer->collectResults();
+      // Dynamic resolution measures by the GPU's time where the timer queries are there (a frame's passes).
+      if (timer->results() != timerResults_) {
+        timerResults_ = timer->results();
+        double ms = 0.0;
+        for (double pass : timer->lastResult()) ms += std::max(pass, 0.0);
+        viewer_.frameMeasured(ms, static_cast<float>(timer->lastResultTag()));
+      }
+    }
     int width = 0, height = 0;
-    if (canvas_.fitToDisplay(viewer_.caps().maxRenderSize(), &width, &height)) frameWanted_ = true;
+    if (fit(&width, &height)) {
+      frameWanted_ = true;
+      refineFrames_ = kRefineFrames;  // a new size: dynamic resolution measures afresh
+    }
     if (viewer_.playing()) frameWanted_ = true;  // a playing timeline changes every frame by itself
     // The temporal AO accumulates over frames: a still view keeps drawing until its history holds
     // ao.temporal-frames frames (the last drawn frame's history held historyFrames + 1).
     const AoSettings& ao = viewer_.state().settings.ao();
     if (const Renderer* renderer = viewer_.renderer())
       if (ao.enabled && ao.temporal && renderer->lastFrame().historyFrames + 1 < ao.temporalFrames) frameWanted_ = true;
+    // Dynamic resolution starts at its smallest scale and climbs while frames show room (DynamicResolution::refining):
+    // a still view draws on until it is there, within a budget of frames per change (timer results may never come).
+    if (viewer_.state().settings.of<ResolutionSettings>().dynamic) {
+      if (viewer_.dynamicResolution().scale() != lastScale_) frameWanted_ = true;  // it chose another scale
+      if (viewer_.dynamicResolution().refining() && refineFrames_ > 0) {
+        frameWanted_ = true;
+        --refineFrames_;
+      }
+    }
     // Auto exposure adapts over the frames' intervals (each at most Viewer::kLongestFrameInterval): after a change,
     // frames are drawn until their intervals add up to the adaptation's time, however long a slow device takes.
     if (!frameWanted_ && !continuous_ && settleFrames_ <= 0 && adaptationLeft_ <= 0.0) {
@@ -163,9 +235,13 @@ class WebApp {
       adaptationLeft_ = viewer_.adaptationSeconds();
     }
     frameWanted_ = false;
-    if (timer) timer->beginFrame();
+    // Without timer queries, dynamic resolution measures the interval from the last frame to this one, when the two
+    // were drawn back to back (the last frame's cost, drawing and presenting).
+    if (!timer && lastFrameTime_ > 0.0) viewer_.frameMeasured(timeMs - lastFrameTime_, lastScale_);
+    if (timer) timer->beginFrame(viewer_.state().settings.of<ResolutionSettings>().dynamic ? nextScale() : 1.0);
     const double start = emscripten_get_now();
     const bool drawn = draw(timer);
+    lastScale_ = viewer_.renderScale();
     if (timer) timer->endFrame();
     if (!drawn) {
       lastFrameTime_ = 0.0;
@@ -174,6 +250,7 @@ class WebApp {
     if (settleFrames_ > 0) --settleFrames_;
     if (const Renderer* renderer = viewer_.renderer()) adaptationLeft_ -= renderer->lastFrame().frameInterval;
     lastCpuMs_ = emscripten_get_now() - start;
+    if (frames_ == 0) firstFrameCpuMs_ = lastCpuMs_;
     cpuMs_ = frames_ == 0 ? lastCpuMs_ : cpuMs_ + kSmoothing * (lastCpuMs_ - cpuMs_);
     hostMs_ = frames_ == 0 ? lastHostMs_ : hostMs_ + kSmoothing * (lastHostMs_ - hostMs_);
     // The frame time is the interval between animation frames drawn back to back (continuous mode, or a drag).
@@ -184,6 +261,14 @@ class WebApp {
     lastFrameTime_ = timeMs;
     ++frames_;
   }
+
+  // The drawing buffer fitted to the canvas's CSS size, at the pixel ratio resolution.max-pixel-ratio allows.
+  bool fit(int* width, int* height) {
+    return canvas_.fitToDisplay(viewer_.caps().maxRenderSize(),
+                                viewer_.state().settings.of<ResolutionSettings>().maxPixelRatio, width, height);
+  }
+  // The scale the next frame draws at, with dynamic resolution on.
+  double nextScale() const { return viewer_.dynamicResolution().scale(); }
 
   void contextLost() {
     timer_.reset();  // its queries belong to the lost context: viewer_.contextLost() abandons them with the rest
@@ -218,6 +303,11 @@ class WebApp {
   long frames_ = 0;
   int restores_ = 0;
   std::string renderError_;
+  float lastScale_ = 1.0f;              // the render scale of the last frame drawn
+  int refineFrames_ = kRefineFrames;    // frames dynamic resolution may still draw on since the last change
+  std::uint64_t timerResults_ = 0;      // the GPU timer's results fed to dynamic resolution
+  double createMs_ = 0.0, createdAt_ = 0.0, firstFrameMs_ = 0.0, firstFrameCpuMs_ = 0.0;
+  Json createParts_ = Json::object(), firstFrameParts_ = Json::object();
 };
 
 std::unique_ptr<WebApp> g_app;
@@ -247,6 +337,15 @@ int change(Body&& body) {
   return ok;
 }
 
+// The step a user interface rounds a number parameter's value to (the page's number fields): a power of ten near a
+// thousandth of its range, a slider's resolution (sun elevation -90 .. 90: 0.1); 1 for integers. 0 for a range that
+// spans two decades or more above zero (the page's slider is logarithmic there): three significant figures.
+double parameterStep(const ParameterInfo& p) {
+  if (p.kind == ParameterKind::Integer) return 1.0;
+  if (p.min > 0.0 && p.max / p.min >= 100.0) return 0.0;
+  return std::pow(10.0, std::floor(std::log10((p.max - p.min) / 1000.0)));
+}
+
 const char* returned(std::string text) {
   g_returned = std::move(text);
   return g_returned.c_str();
@@ -257,16 +356,20 @@ const char* returned(std::string text) {
 extern "C" {
 
 // checkGlErrors: glGetError after every pass; an error stops the frame and is logged as a console error naming the
-// pass (the browser tests turn it on; it costs a round trip per pass).
-EMSCRIPTEN_KEEPALIVE int obscura_create(int checkGlErrors) {
-  return attempt([checkGlErrors] {
+// pass (the browser tests turn it on; it costs a round trip per pass). dynamicResolution: resolution.dynamic's
+// default on this page (the demo page's: on; the API's: off).
+EMSCRIPTEN_KEEPALIVE int obscura_create(int checkGlErrors, int dynamicResolution) {
+  return attempt([checkGlErrors, dynamicResolution] {
     RendererOptions options;
     options.checkGlErrors = checkGlErrors != 0;
     // One app per canvas: the old one lets go of the canvas's context and event handlers before a new one takes
     // them (made first, the new app lost its context-loss handlers to the old one's destructor; found natively by
     // tests/test_web_api.cpp).
     g_app.reset();
-    g_app = std::make_unique<WebApp>(options);
+    TimeSpent::take();  // start-up's figures start here
+    const double start = emscripten_get_now();
+    g_app = std::make_unique<WebApp>(options, dynamicResolution != 0);
+    g_app->created(emscripten_get_now() - start);
   });
 }
 
@@ -284,6 +387,7 @@ EMSCRIPTEN_KEEPALIVE const char* obscura_describe() {
     if (p.kind == ParameterKind::Number || p.kind == ParameterKind::Integer) {
       item["min"] = p.min;
       item["max"] = p.max;
+      item["step"] = parameterStep(p);
     }
     if (!p.choices.empty()) item["choices"] = p.choices;  // for a number: words accepted besides numbers ("auto")
     parameters.push_back(item);

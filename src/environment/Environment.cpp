@@ -6,9 +6,11 @@
 #include <random>
 
 #include <glm/geometric.hpp>
+#include <glm/trigonometric.hpp>
 #include <stb_image.h>
 
 #include "base/Error.h"
+#include "base/TimeSpent.h"
 #include "environment/PrefilterCache.h"
 
 namespace obscura {
@@ -139,10 +141,27 @@ glm::vec3 ProceduralSky::radiance(const glm::vec3& direction) const {
 }
 
 EnvironmentImage ProceduralSky::image(int width, int height) const {
+  const TimedScope timed("sky");
   EnvironmentImage out(width, height);
   constexpr int n = 4;
-  for (int y = 0; y < height; ++y)
+  // Supersampled only where the radiance is not smooth within a texel: the disc's edge (texels whose centre lies
+  // within the disc's radius and two texel diagonals of its centre) and the rows near the horizon's kinks (the sky's
+  // sqrt(up) at up = 0, the ground's blend at up = 0 and -0.1). Elsewhere the centre's radiance is the texel's mean
+  // within 0.1 % (tests/test_environment.cpp measures it against supersampling every texel): the gradient and the
+  // glow, (cos gamma)^64, change little over a texel of 180 / height degrees.
+  const glm::vec3 toSun = glm::normalize(sunDirection);
+  const double texel = kPi / height;
+  const float nearSun = static_cast<float>(std::cos(std::acos(static_cast<double>(sunCosRadius)) + 3.0 * texel));
+  for (int y = 0; y < height; ++y) {
+    const double up0 = std::cos(y * texel), up1 = std::cos((y + 1) * texel);  // the row's up, from top to bottom
+    const double margin = 4.0 * texel;
+    const bool kinked = (up1 < margin && up0 > -margin) || (up1 < -0.1 + margin && up0 > -0.1 - margin);
     for (int x = 0; x < width; ++x) {
+      const glm::vec3 centre = out.texelDirection(x, y);
+      if (!kinked && glm::dot(centre, toSun) < nearSun) {
+        out.at(x, y) = radiance(centre);
+        continue;
+      }
       glm::vec3 sum(0.0f);
       for (int j = 0; j < n; ++j)
         for (int i = 0; i < n; ++i)
@@ -151,6 +170,7 @@ EnvironmentImage ProceduralSky::image(int width, int height) const {
                (static_cast<float>(y) + (static_cast<float>(j) + 0.5f) / n) / static_cast<float>(height)}));
       out.at(x, y) = sum / static_cast<float>(n * n);
     }
+  }
   return out;
 }
 
@@ -202,6 +222,7 @@ std::array<float, 9> ShIrradiance::basis(const glm::vec3& d) {
 }
 
 ShIrradiance ShIrradiance::project(const EnvironmentImage& image) {
+  const TimedScope timed("irradiance");
   std::array<glm::dvec3, 9> sum{};
   for (int y = 0; y < image.height; ++y) {
     const double solidAngle = image.texelSolidAngle(y);
@@ -281,8 +302,22 @@ glm::vec3 PrefilteredEnvironment::prefilter(const std::vector<EnvironmentImage>&
   return weight > 0.0 ? glm::vec3(sum / weight) : glm::vec3(0.0f);
 }
 
+glm::vec3 sunDirection(float elevationDegrees, float azimuthDegrees) {
+  const float elevation = glm::radians(elevationDegrees), azimuth = glm::radians(azimuthDegrees);
+  return {std::cos(elevation) * std::sin(azimuth), std::sin(elevation), std::cos(elevation) * std::cos(azimuth)};
+}
+
+PrefilteredEnvironment PrefilteredEnvironment::fromLevels(std::array<EnvironmentImage, kEnvironmentLevels> levels,
+                                                          EnvironmentFiltering filtering) {
+  PrefilteredEnvironment out;
+  out.levels = std::move(levels);
+  out.encodeLevels(filtering);
+  return out;
+}
+
 PrefilteredEnvironment PrefilteredEnvironment::of(const EnvironmentImage& image, int samples,
                                                   EnvironmentFiltering filtering) {
+  const TimedScope timed("prefilter");
   PrefilteredEnvironment out;
   if (prefilter_cache::load(image, samples, &out.levels)) {  // test runs only (PrefilterCache.h)
     out.encodeLevels(filtering);
@@ -439,20 +474,26 @@ glm::vec2 envBrdfIntegrated(float roughness, float nDotV, int samples) {
   return glm::vec2(static_cast<float>(a / samples), static_cast<float>(b / samples));
 }
 
+std::vector<std::uint8_t> computeEnvironmentBrdfTable() {
+  const TimedScope timed("brdf table");
+  std::vector<std::uint8_t> bytes;
+  for (int j = 0; j < kEnvironmentBrdfSize; ++j)
+    for (int i = 0; i < kEnvironmentBrdfSize; ++i) {
+      const glm::vec2 ab = envBrdfIntegrated((static_cast<float>(j) + 0.5f) / kEnvironmentBrdfSize,
+                                             (static_cast<float>(i) + 0.5f) / kEnvironmentBrdfSize, 1024);
+      auto byte = [](float v) { return static_cast<std::uint8_t>(std::lround(std::clamp(v, 0.0f, 1.0f) * 255.0f)); };
+      bytes.insert(bytes.end(), {byte(ab.x), byte(ab.y), 0, 255});
+    }
+  return bytes;
+}
+
+#if OBSCURA_BOOTSTRAP_ENVIRONMENT
+// tools/bake_environment.cpp, which makes the baked table, is built with this file alone: it computes it.
 const std::vector<std::uint8_t>& environmentBrdfTable() {
-  static const std::vector<std::uint8_t> table = [] {
-    std::vector<std::uint8_t> bytes;
-    for (int j = 0; j < kEnvironmentBrdfSize; ++j)
-      for (int i = 0; i < kEnvironmentBrdfSize; ++i) {
-        const glm::vec2 ab = envBrdfIntegrated((static_cast<float>(j) + 0.5f) / kEnvironmentBrdfSize,
-                                               (static_cast<float>(i) + 0.5f) / kEnvironmentBrdfSize, 1024);
-        auto byte = [](float v) { return static_cast<std::uint8_t>(std::lround(std::clamp(v, 0.0f, 1.0f) * 255.0f)); };
-        bytes.insert(bytes.end(), {byte(ab.x), byte(ab.y), 0, 255});
-      }
-    return bytes;
-  }();
+  static const std::vector<std::uint8_t> table = computeEnvironmentBrdfTable();
   return table;
 }
+#endif
 
 glm::vec2 environmentBrdf(float roughness, float nDotV) {
   const std::vector<std::uint8_t>& table = environmentBrdfTable();
@@ -525,6 +566,7 @@ GpuEnvironment::GpuEnvironment(EnvironmentLayout layout, const PrefilteredEnviro
       filteredFrom_(specular.filteredFrom()),
       filteredScale_(specular.filteredScale()),
       polynomial_(sh.polynomial()) {
+  const TimedScope timed("environment upload");
   const float* floats = &polynomial_[0].x;  // glm::vec3 is three tightly packed floats
   for (size_t i = 0; i < 27; ++i) packedPolynomial_[i / 4][static_cast<glm::length_t>(i % 4)] = floats[i];
   glActiveTexture(GL_TEXTURE0);

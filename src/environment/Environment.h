@@ -76,6 +76,12 @@ struct EnvironmentImage {
   EnvironmentImage halved() const;
 };
 
+// The direction towards a sun `elevationDegrees` above the horizon (+y up), `azimuthDegrees` from +z towards +x: unit.
+glm::vec3 sunDirection(float elevationDegrees, float azimuthDegrees);
+// The default sun (LightingSettings' lighting.sun-elevation and sun-azimuth): the built-in sky made for it is ready
+// when a process starts (environment/BuiltinSky.h).
+constexpr float kBuiltinSunElevation = 54.525961f, kBuiltinSunAzimuth = 52.125016f;
+
 // The built-in sky: a zenith-to-horizon gradient, a ground below, and a sun disc with a glow around it towards
 // `sunDirection` (the default sun's direction, LightingSettings::directionToSun).
 struct ProceduralSky {
@@ -144,6 +150,9 @@ struct PrefilteredEnvironment {
   // `filtering`: which levels the filtered texture holds (Storage above).
   static PrefilteredEnvironment of(const EnvironmentImage& image, int samples = 4096,
                                    EnvironmentFiltering filtering = EnvironmentFiltering::Measured);
+  // Levels made elsewhere (environment/BuiltinSky.h: at build time), encoded for `filtering` as of() encodes its own.
+  static PrefilteredEnvironment fromLevels(std::array<EnvironmentImage, kEnvironmentLevels> levels,
+                                           EnvironmentFiltering filtering);
   // P(r, roughness) for one texel direction by the importance-sampled estimator above.
   static glm::vec3 prefilter(const std::vector<EnvironmentImage>& sourceLevels, const glm::vec3& r, double roughness,
                              int samples);
@@ -182,8 +191,10 @@ glm::vec2 envBrdfApprox(float roughness, float nDotV);
 glm::vec2 envBrdfIntegrated(float roughness, float nDotV, int samples = 2048);
 
 // The table the shader reads: texel (i, j) holds round(255 A), round(255 B) in R and G at n.v = (i + 0.5) / size,
-// roughness = (j + 0.5) / size, rows from roughness 0. Computed once per process.
+// roughness = (j + 0.5) / size, rows from roughness 0. computeEnvironmentBrdfTable() integrates it (about 2 million
+// samples); environmentBrdfTable() is the one made when the library was built (environment/BuiltinSky.h).
 constexpr int kEnvironmentBrdfSize = 32;
+std::vector<std::uint8_t> computeEnvironmentBrdfTable();
 const std::vector<std::uint8_t>& environmentBrdfTable();
 // The table read as the GPU's LINEAR, clamped lookup at (n.v, roughness) reads it: lib/environment.glsl's
 // environmentBrdf().

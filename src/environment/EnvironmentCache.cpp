@@ -1,9 +1,12 @@
 #include "environment/EnvironmentCache.h"
 
 #include <list>
+#include <memory>
 #include <mutex>
+#include <utility>
 
 #include "base/Error.h"
+#include "environment/BuiltinSky.h"
 
 namespace obscura {
 namespace {
@@ -14,6 +17,7 @@ struct Prepared {
   ShIrradiance sh;
   Prepared(const EnvironmentImage& image, EnvironmentFiltering filtering)
       : specular(PrefilteredEnvironment::of(image, 4096, filtering)), sh(ShIrradiance::project(image)) {}
+  explicit Prepared(PreparedEnvironment made) : specular(std::move(made.specular)), sh(made.irradiance) {}
 };
 
 // The built-in environments prepared so far in this process, most recently used first. Eight of them (about 4 MB
@@ -35,11 +39,17 @@ class BuiltinEnvironments {
           return entries_.front().prepared;
         }
     }
-    // Prepared outside the lock: a second thread asking for the same one prepares it twice, which is only time.
-    auto prepared = std::make_shared<const Prepared>(
-        name == "sky" ? ProceduralSky{skySun}.image(kEnvironmentWidth, kEnvironmentHeight)
-                      : uniformEnvironment(glm::vec3(1.0f)),
-        filtering);
+    // Prepared outside the lock: a second thread asking for the same one prepares it twice, which is only time. The
+    // default sun's sky was prefiltered when the library was built (environment/BuiltinSky.h): milliseconds, where
+    // another sun's takes about a second of CPU.
+    std::shared_ptr<const Prepared> prepared;
+    if (name == "sky" && skySun == builtinSkySun())
+      prepared = std::make_shared<const Prepared>(builtinSky(filtering));
+    else
+      prepared = std::make_shared<const Prepared>(name == "sky" ? ProceduralSky{skySun}.image(kEnvironmentWidth,
+                                                                                               kEnvironmentHeight)
+                                                                : uniformEnvironment(glm::vec3(1.0f)),
+                                                  filtering);
     std::lock_guard<std::mutex> lock(mutex_);
     entries_.push_front({name, skySun, filtering, prepared});
     if (entries_.size() > kCapacity) entries_.pop_back();

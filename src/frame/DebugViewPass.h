@@ -5,6 +5,7 @@
 #include <vector>
 
 #include "frame/EffectEntry.h"
+#include "frame/FrameContext.h"
 
 namespace obscura {
 

@@ -69,6 +69,8 @@ enum class ViewDecoding {
   Count,     // R holds a count / 255: grey 32/255 per count, white from 8 (the lighting's shading count)
   Velocity,  // encoding/VelocityPacking.h decoded: RG = 0.5 + 64 v (v in uv units: white from 1/128 of the screen a
              // frame; grey 0.5 still), B = 0.5
+  NormalsFromDepth,  // the normal reconstructed from the G-buffer's depth (lib/normal_from_depth.glsl), as Normals;
+                     // where it falls back to the stored normal, black
 };
 
 struct TargetView {
@@ -176,9 +178,16 @@ struct PassDecl {
     // base colour the G-buffer pass writes where it has several render targets, and runs.
     std::vector<std::string> whenWritten;
     std::vector<std::string> reads;
-    std::vector<Write> writes;  // the same targets as the pass's
+    std::vector<Write> writes;  // without `absorbing`: the same targets as the pass's
     std::function<void(PassContext&)> run;
     std::optional<StageHead> stageHead;  // what this form offers the stages after it
+    // "" or the name of a pass that is the only running reader of what this pass writes, reads nothing else, and
+    // whose own writes are read by a running pass (or, with `mayWriteOutput`, are the frame's result). The
+    // alternative then does that pass's work too: it writes that pass's targets (its `writes` name them), and that
+    // pass does not run ("done by" this one). For a pass that reads its neighbours, which no stage can fuse: FXAA
+    // does the upscale of a frame rendered below the output's size.
+    std::string absorbing;
+    bool mayWriteOutput = false;
   };
 
   std::string name;                        // one of its effect's EffectInfo::passes
@@ -203,8 +212,8 @@ class Effect {
  public:
   virtual ~Effect() = default;
   // Makes ready what this frame's settings ask the effect to hold (the lighting's environment): loads it, or keeps
-  // what it has. Called every frame for every effect, on or off, in table order, before the plan (which is cached: plan() is not called every
-  // frame, and neither loads nor frees).
+  // what it has. Called every frame for every effect, on or off, in table order, before the plan (which is cached:
+  // plan() is not called every frame, and neither loads nor frees).
   virtual void prepare(const FrameSettings& settings) { (void)settings; }
   // Adds this frame's passes (none: the effect has nothing to do with these settings). Called in table order for
   // every effect that is on, and for the effect whose target the frame's debug view shows. Pure: it declares passes

@@ -145,7 +145,7 @@ struct EffectEntry {
   static const S& cast(const EffectSettingsBase& s) { return static_cast<const EffectSettingsOf<S>&>(s).value; }
 };
 
-// An effect's settings without a parameter: the G-buffer and the lighting, for now.
+// An effect's settings without a parameter: the lines and the velocity, for now.
 struct NoSettings : ParameterAccess<NoSettings> {
   static const std::vector<Parameter<NoSettings>>& parameters() {
     static const std::vector<Parameter<NoSettings>> none;

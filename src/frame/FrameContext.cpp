@@ -7,7 +7,7 @@
 namespace obscura {
 
 FrameCamera FrameCamera::from(const Camera& camera, int width, int height, glm::vec2 jitterPixels,
-                              glm::vec2 shearPixelsPerMetre) {
+                              glm::vec2 shearPixelsPerMetre, float aspect) {
   FrameCamera frame;
   frame.width = width;
   frame.height = height;
@@ -15,7 +15,7 @@ FrameCamera FrameCamera::from(const Camera& camera, int width, int height, glm::
   frame.far = camera.far;
   frame.orthographic = camera.orthographic;
   frame.jitter = jitterPixels;
-  const float aspect = static_cast<float>(width) / static_cast<float>(height);
+  if (aspect <= 0.0f) aspect = static_cast<float>(width) / static_cast<float>(height);
   frame.halfExtent = camera.halfExtent(aspect);
   frame.view = camera.view();
   frame.projection = camera.projection(aspect);

@@ -26,13 +26,15 @@ struct FrameCamera {
   float near = 0.1f, far = 100.0f;
   bool orthographic = false;
   glm::vec2 halfExtent{1.0f};  // Camera::halfExtent at the output's aspect: tan of the half fields of view, or metres
-  int width = 1, height = 1;   // the output size; the camera's aspect follows it
+  int width = 1, height = 1;   // the size the frame renders at (the output's, or less: frame/Resolution.h)
   glm::vec2 jitter{0.0f};      // sub-pixel offset of the projection, in pixels (x right, y up)
 
   // `shearPixelsPerMetre`: a shift of the image that grows by that many pixels per metre of view depth (x right, y
-  // up; FrameOptions::projectionShear), for an orthographic camera only.
+  // up; FrameOptions::projectionShear), for an orthographic camera only. `aspect` 0: width / height. A frame rendered
+  // below the output's size (frame/Resolution.h) takes the output's, so that rounding its sides does not stretch the
+  // image.
   static FrameCamera from(const Camera& camera, int width, int height, glm::vec2 jitterPixels = glm::vec2(0.0f),
-                          glm::vec2 shearPixelsPerMetre = glm::vec2(0.0f));
+                          glm::vec2 shearPixelsPerMetre = glm::vec2(0.0f), float aspect = 0.0f);
   // How many pixels of a target `targetHeight` pixels tall a length of 1 m spans, facing the camera at depth z
   // (metres in front of it): projScale.x / z + projScale.y. Perspective: (height / (2 tan(fovy / 2)), 0), the SAO
   // paper's projScale; orthographic: (0, height / (2 ymag)), the same at every depth.
@@ -60,6 +62,10 @@ struct FrameContext {
   bool transmission = false;
   // The scene needs the forward lighting (GpuScene::needsForwardLighting): the G-buffer writes no base colour.
   bool forwardLighting = false;
+  // The output's size. The frame renders at camera.width x camera.height, which is less where the render scale is
+  // below 1 (frame/Resolution.h): then one pass at the end upscales the result into the output.
+  int outputWidth = 1, outputHeight = 1;
+  bool upscaled() const { return outputWidth != camera.width || outputHeight != camera.height; }
 };
 
 // Halton low-discrepancy sequence (radical inverse of `index` in `base`), index >= 1: the jitter of temporal

@@ -185,23 +185,54 @@ FramePlan FramePlan::resolve(FramePlanner&& planner, const std::string& result,
       if (!std::all_of(alternative.whenWritten.begin(), alternative.whenWritten.end(), written) ||
           !std::all_of(alternative.reads.begin(), alternative.reads.end(), written))
         continue;
-      // Take it: the alternative's reads, its code, its writes (this pass's targets) and what it offers stages.
-      if (pass.writes.size() != alternative.writes.size())
+      int absorbed = -1;
+      if (!alternative.absorbing.empty()) {
+        // The one running reader of everything this pass writes, reading nothing else.
+        std::set<int> readers;
+        bool kept = false;
+        for (const auto& [target, version] : pass.writes) {
+          for (int j : readersOf(version)) readers.insert(j);
+          kept = kept || version == resultVersion || retainedVersion(version);
+        }
+        if (kept || readers.size() != 1) continue;
+        const PlannedPass& reader = plan.passes_[static_cast<size_t>(*readers.begin())];
+        if (reader.decl.name != alternative.absorbing) continue;
+        bool readsOnlyThis = true;
+        for (const auto& [target, version] : reader.reads)
+          readsOnlyThis = readsOnlyThis && plan.versions_[static_cast<size_t>(version)].writer == i;
+        bool used = true;  // its results are read, or (where allowed) are the frame's result
+        for (const auto& [target, version] : reader.writes)
+          used = used && (!readersOf(version).empty() || retainedVersion(version) ||
+                          (alternative.mayWriteOutput && version == resultVersion));
+        if (!readsOnlyThis || !used) continue;
+        absorbed = *readers.begin();
+      }
+      // Take it: the alternative's reads, its code, its writes (this pass's targets, or the absorbed pass's) and what
+      // it offers stages.
+      std::map<std::string, int> writes =
+          absorbed >= 0 ? plan.passes_[static_cast<size_t>(absorbed)].writes : pass.writes;
+      if (writes.size() != alternative.writes.size())
         throw PipelineError(describe(pass) + ": an alternative writes other targets than it stands in for");
       pass.reads.clear();
       for (const std::string& read : alternative.reads) pass.reads[read] = seen.at(read);
       for (const PassDecl::Write& write : alternative.writes) {
-        const auto it = pass.writes.find(write.target);
-        if (it == pass.writes.end())
-          throw PipelineError(describe(pass) + ": an alternative writes '" + write.target + "', which the pass does "
-                              "not");
+        const auto it = writes.find(write.target);
+        if (it == writes.end())
+          throw PipelineError(describe(pass) + ": an alternative writes '" + write.target + "', which it stands in "
+                              "for no pass writing");
         TargetVersion& version = plan.versions_[static_cast<size_t>(it->second)];
+        version.writer = i;
         version.size = write.size;
         version.depth = write.depth;
         version.depthVersion = -1;
         if (write.depth == PassDecl::Write::Depth::Shared && pass.reads.count(write.depthFrom))
           version.depthVersion = pass.reads.at(write.depthFrom);
       }
+      if (absorbed >= 0) {
+        plan.passes_[static_cast<size_t>(absorbed)].live = false;
+        pass.absorbed.push_back(plan.passes_[static_cast<size_t>(absorbed)].decl.name);
+      }
+      pass.writes = writes;
       pass.decl.reads = alternative.reads;
       pass.decl.optionalReads.clear();
       pass.decl.writes = alternative.writes;

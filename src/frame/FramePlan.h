@@ -65,7 +65,8 @@ struct PlannedPass {
   std::map<std::string, int> reads;   // target (or alias) -> version: required reads, and optional ones whose
                                       // writer runs
   std::map<std::string, int> writes;  // target -> version
-  std::vector<std::string> absorbed;  // passes whose work this one does: the stages fused into it, in order
+  std::vector<std::string> absorbed;  // passes whose work this one does: the stages fused into it, in order, or the
+                                      // pass an alternative absorbed (PassDecl::Alternative::absorbing)
   std::vector<StageDecl> stages;      // those stages
   std::string stageOutput;            // a stage head's colour target: its own, or its last fused stage's output
 };

@@ -4,6 +4,7 @@
 #include <sstream>
 
 #include "base/Error.h"
+#include "base/TimeSpent.h"
 #include "gl/EmbeddedShaders.h"
 
 namespace obscura {
@@ -65,6 +66,7 @@ std::string ProgramSpec::fragmentSource() const {
                               : ShaderLibrary::composeText(fragmentText, defines, extensions);
 }
 gl::Program ProgramSpec::build(bool strict) const {
+  const TimedScope timed("programs");
   return gl::Program(name, vertexSource(), fragmentSource(), strict);
 }
 

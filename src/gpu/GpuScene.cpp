@@ -6,6 +6,7 @@
 #include <glm/gtc/matrix_inverse.hpp>
 
 #include "base/Error.h"
+#include "base/TimeSpent.h"
 #include "gpu/TextureUnits.h"
 #include "scene/MeshProcessing.h"
 #include "scene/TexturePreparation.h"
@@ -57,6 +58,7 @@ gl::BufferHandle vec3Buffer(const std::vector<glm::vec3>& values) {
 }  // namespace
 
 GpuScene::GpuScene(const Scene& scene, const gl::GlCaps& caps, const Options& options) {
+  const TimedScope timed("scene upload");
   desktopGl_ = caps.desktopGl;
   // The caps carry the limits a test simulates (RendererOptions::simulateVertexLimits, applied by the Renderer).
   limits_ = {caps.maxVertexUniformVectors, caps.maxVertexAttribs, caps.maxVertexTextureImageUnits};
@@ -365,7 +367,7 @@ void GpuScene::draw(const glm::mat4& view, const ProgramChoice& choose, const Dr
   glActiveTexture(GL_TEXTURE0);
   for (const InstanceGpu* instance : drawOrder(view, options)) {
     const MaterialGpu& material = materials_[static_cast<size_t>(instance->material)];
-    if (material.doubleSided) glDisable(GL_CULL_FACE);
+    if (material.doubleSided || options.bothFaces) glDisable(GL_CULL_FACE);
     else glEnable(GL_CULL_FACE);
     drawInstance(*instance, view, state);
   }

@@ -78,6 +78,9 @@ class GpuScene {
   using ProgramChoice = std::function<const gl::Program&(MaterialKind material, VertexKind vertex)>;
   struct DrawOptions {
     bool onlyMoving = false;  // only instances whose pose differs from the previous frame's (velocity)
+    // Every face of every material, front or back (culling off): the AO's second depth layer, where an occluder's
+    // back faces bound its thickness (effects/ao/DepthPeelPass.h).
+    bool bothFaces = false;
   };
   // Draws every instance of the opaque layer (every material but the transparent ones, Material::transparent, which
   // drawTransparent draws): opaque materials first, then masked ones, each group front to back (by the distance of

@@ -13,6 +13,8 @@ namespace obscura::TextureUnits {
 // colour on kPbr[0]).
 inline constexpr int kBaseColor = 0;
 inline constexpr int kAo = 1;  // the lighting pass's AO
+// The AO's depth peel (effects/ao/DepthPeelPass.h) reads the G-buffer on the AO's unit, free in that pass.
+inline constexpr int kPeeledGBuffer = kAo;
 // A PBR_TEXTURES material's metallic-roughness, normal, occlusion and emissive textures.
 inline constexpr int kPbr[4] = {2, 3, 5, 6};
 inline constexpr int kJoints = 4;  // the vertex stage's joint texture (GpuScene)

@@ -79,6 +79,8 @@ bool GpuPassTimer::collect(Frame& frame) {
   }
   frame.pending = false;
   hasResult_ = true;
+  lastResultTag_ = frame.tag;
+  ++results_;
   return true;
 }
 
@@ -95,7 +97,7 @@ void GpuPassTimer::collectResults() {
   }
 }
 
-void GpuPassTimer::beginFrame() {
+void GpuPassTimer::beginFrame(double tag) {
   recording_ = false;
   if (!available_) return;
   collectResults();
@@ -103,6 +105,7 @@ void GpuPassTimer::beginFrame() {
   Frame& frame = frames_[static_cast<size_t>(current_)];
   if (frame.pending) return;  // results of this slot have not come back yet: skip measuring this frame
   frame.used.assign(frame.used.size(), false);
+  frame.tag = tag;
   recording_ = true;
 }
 

@@ -32,8 +32,8 @@ class GpuPassTimer : public PassTimer {
   // calls it on every tick anyway, so the last drawn frame's times still arrive.
   void collectResults();
   // Around each drawn frame: beginFrame() collects results, then measures the frame's passes if its query slot is
-  // free again.
-  void beginFrame();
+  // free again. `tag` comes back with the frame's results (lastResultTag: the render scale it was drawn at).
+  void beginFrame(double tag = 0.0);
   void endFrame();
   // A pass that runs twice in one frame (split screen runs the frame twice) is measured the first time.
   void begin(const std::string& pass) override;
@@ -43,6 +43,9 @@ class GpuPassTimer : public PassTimer {
   // did not run reads as a negative value); false before the first one.
   bool hasResult() const { return hasResult_; }
   const std::vector<double>& lastResult() const { return lastResult_; }
+  // The tag of that frame, and how many frames' results have come back so far (a new result: the count moved).
+  double lastResultTag() const { return lastResultTag_; }
+  std::uint64_t results() const { return results_; }
 
  private:
   struct Functions;
@@ -50,6 +53,7 @@ class GpuPassTimer : public PassTimer {
     std::vector<GLuint> queries;
     std::vector<bool> used;
     bool pending = false;
+    double tag = 0.0;
   };
   bool collect(Frame& frame);
 
@@ -62,6 +66,8 @@ class GpuPassTimer : public PassTimer {
   int measuring_ = -1;  // the pass whose query is open
   bool hasResult_ = false;
   std::vector<double> lastResult_;
+  double lastResultTag_ = 0.0;
+  std::uint64_t results_ = 0;
 };
 
 }  // namespace obscura

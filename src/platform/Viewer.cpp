@@ -5,8 +5,10 @@
 #include <cstdlib>
 
 #include "base/Error.h"
+#include "base/TimeSpent.h"
 #include "effects/auto_exposure/AutoExposureEffect.h"
 #include "effects/taa/TaaEffect.h"
+#include "frame/Resolution.h"
 #include "gl/GlObjects.h"
 #include "platform/CameraControls.h"
 #include "scene/BuiltinScene.h"
@@ -154,6 +156,7 @@ Viewer::~Viewer() = default;
 
 void Viewer::showScene(Scene scene, const std::string& name, const Camera& camera) {
   if (renderer_) renderer_->setScene(scene);  // first: if the upload fails, nothing has changed
+  dynamic_.forget();                          // another scene costs otherwise
   scene_ = std::move(scene);
   sceneName_ = name;
   sceneBounds_ = scene_.worldBounds();
@@ -165,7 +168,14 @@ void Viewer::showScene(Scene scene, const std::string& name, const Camera& camer
   state_.timeline.sceneLoaded(scene_);           // its first animation, from time 0
 }
 
-void Viewer::loadBuiltinScene() { showScene(makeBuiltinScene(), "built-in scene", builtinSceneCamera()); }
+void Viewer::loadBuiltinScene() {
+  Scene scene;
+  {
+    const TimedScope timed("built-in scene");
+    scene = makeBuiltinScene();
+  }
+  showScene(std::move(scene), "built-in scene", builtinSceneCamera());
+}
 
 GltfLoadReport Viewer::loadGltf(const std::vector<std::uint8_t>& bytes, const std::string& name,
                                 const std::map<std::string, std::vector<std::uint8_t>>& sideFiles) {
@@ -263,6 +273,16 @@ void Viewer::render(GLuint framebuffer, int width, int height, PassTimer* timer,
   FrameOptions options;
   options.timer = timer;
   state_.timeline.applyTo(options);  // time, animation, loop
+  const ResolutionSettings& resolution = state_.settings.of<ResolutionSettings>();
+  renderScale_ = resolution.scale;
+  if (width != lastWidth_ || height != lastHeight_) dynamic_.forget();
+  lastWidth_ = width;
+  lastHeight_ = height;
+  if (resolution.dynamic) {
+    dynamic_.configure(resolution.targetMs, std::min(resolution.minScale, resolution.scale), resolution.scale);
+    renderScale_ = dynamic_.scale();
+    options.renderScale = renderScale_;
+  }
   if (lastClock_ >= 0.0 && clockSeconds > lastClock_)
     options.frameInterval = std::min(clockSeconds - lastClock_, kLongestFrameInterval);
   lastClock_ = clockSeconds;

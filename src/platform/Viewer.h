@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "gl/GlCaps.h"
+#include "platform/DynamicResolution.h"
 #include "platform/ViewerState.h"
 #include "renderer/Renderer.h"
 #include "scene/GltfLoader.h"
@@ -79,6 +80,14 @@ class Viewer {
   // spell steps as one frame, not as the whole spell); 1/60 s where the clock does not move. Does nothing while the
   // context is lost (the timeline still advances).
   void render(GLuint framebuffer, int width, int height, PassTimer* timer = nullptr, double clockSeconds = 0.0);
+  // --- Dynamic resolution (resolution.dynamic, frame/Resolution.h): with it on, render() draws at the scale the
+  // controller chose (platform/DynamicResolution.h) from the frame times the front end measures: GPU timer queries
+  // where the context has them, else the interval between frames drawn back to back. `scale`: the frame's.
+  void frameMeasured(double ms, float scale) { dynamic_.measured(ms, scale); }
+  // The render scale of the last frame drawn, and the controller.
+  float renderScale() const { return renderScale_; }
+  const DynamicResolution& dynamicResolution() const { return dynamic_; }
+
   // Whether frames change by themselves (a timeline playing): a front end drawing on change only then draws on.
   bool playing() const { return state_.timeline.playing(); }
   // Frames a front end drawing on change only draws after each change, the first included: 1, or while an effect that
@@ -124,6 +133,9 @@ class Viewer {
   Bounds sceneBounds_;
   Camera sceneCamera_;  // the scene's own view, for resetCamera()
   ViewerState state_;
+  DynamicResolution dynamic_;
+  float renderScale_ = 1.0f;
+  int lastWidth_ = 0, lastHeight_ = 0;  // the last frame's output size (a new one: dynamic_ measures afresh)
   double lastClock_ = -1.0;  // the clock of the last frame drawn (render's clockSeconds); -1: none yet
 };
 

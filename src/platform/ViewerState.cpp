@@ -82,6 +82,11 @@ const std::vector<std::string>& ViewerState::viewModes() { return frameViewNames
 
 void ViewerState::setViewMode(const std::string& name) { view.name = parseView(name).name; }
 
+void ViewerState::setDefault(const std::string& name, const std::string& value) {
+  defaults.set(name, value);
+  settings.set(name, value);
+}
+
 std::string ViewerState::cameraChoice() const {
   return sceneCamera < 0 ? "free" : sceneCameraKey(sceneCameras, sceneCamera);
 }
@@ -109,7 +114,7 @@ std::string ViewerState::toQuery() const {
   // Presets first, as applyQuery applies them: the frame's preset when every effect holds one, else each effect's
   // remembered preset (which the AO also uses to pick its fitted estimator parameters) where it is not the default.
   // The parameters that follow are those differing from what those presets set.
-  RenderSettings base;
+  RenderSettings base = defaults;
   base.ao().radius = defaultRadius;  // the scene's default; AoSettings' own default (1) is the built-in scene's
   const std::string framePreset = settings.get("preset");
   if (!framePreset.empty() && framePreset != base.get("preset")) {

@@ -24,6 +24,9 @@ namespace obscura {
 struct ViewerState {
   View view = View::Final;
   RenderSettings settings;
+  // The parameters' defaults in this viewer: the table's, except where the front end chose its own (setDefault: the
+  // page turns dynamic resolution on). toQuery leaves out what equals them.
+  RenderSettings defaults;
   Timeline timeline;
   Camera camera;  // the free camera, which orbits
   // The shown scene's own cameras (Scene::cameras) and the one the view looks through: -1 the free camera, else an
@@ -45,6 +48,9 @@ struct ViewerState {
   // A scene whose default AO radius is `radius` is now shown: records it, and sets ao.radius to it unless
   // radiusGiven.
   void sceneLoaded(float radius);
+
+  // Makes `value` the default of parameter `name` here, and its value now (throws InputError as RenderSettings::set).
+  void setDefault(const std::string& name, const std::string& value);
 
   // The view names a viewer offers, in order (the Renderer's: frameViewNames()).
   static const std::vector<std::string>& viewModes();

@@ -7,6 +7,7 @@
 #include <emscripten/html5.h>
 
 #include "base/Error.h"
+#include "base/TimeSpent.h"
 #include "gl/GlApi.h"
 
 namespace obscura {
@@ -30,6 +31,7 @@ EM_JS(void, obscura_enable_extensions_again, (int handle), {
 
 WebCanvas::WebCanvas(std::function<void()> onLost, std::function<void()> onRestored)
     : onLost_(std::move(onLost)), onRestored_(std::move(onRestored)) {
+  const TimedScope timed("context");
   obscura_register_canvas();
   EmscriptenWebGLContextAttributes attributes;
   emscripten_webgl_init_context_attributes(&attributes);
@@ -82,10 +84,13 @@ EM_BOOL WebCanvas::contextRestored(int, const void*, void* self) {
   return EM_TRUE;
 }
 
-bool WebCanvas::fitToDisplay(int maxSize, int* width, int* height) {
+double WebCanvas::devicePixelRatio() { return emscripten_get_device_pixel_ratio(); }
+
+bool WebCanvas::fitToDisplay(int maxSize, double maxPixelRatio, int* width, int* height) {
   double cssWidth = 0.0, cssHeight = 0.0;
   emscripten_get_element_css_size(kCanvas, &cssWidth, &cssHeight);
-  const double ratio = emscripten_get_device_pixel_ratio();
+  const double ratio = std::min(emscripten_get_device_pixel_ratio(), maxPixelRatio);
+  pixelRatio_ = ratio;
   const int w = std::clamp(static_cast<int>(std::lround(cssWidth * ratio)), 1, std::max(maxSize, 1));
   const int h = std::clamp(static_cast<int>(std::lround(cssHeight * ratio)), 1, std::max(maxSize, 1));
   int current[2] = {0, 0};

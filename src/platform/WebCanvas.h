@@ -22,9 +22,14 @@ class WebCanvas {
   WebCanvas& operator=(const WebCanvas&) = delete;
 
   bool lost() const { return lost_; }
-  // Sizes the drawing buffer to the canvas's CSS size times devicePixelRatio, each side at most `maxSize`, and
-  // returns that size; true if it changed.
-  bool fitToDisplay(int maxSize, int* width, int* height);
+  // Sizes the drawing buffer to the canvas's CSS size times the pixel ratio, devicePixelRatio but at most
+  // `maxPixelRatio` (resolution.max-pixel-ratio: a phone at DPR 3 then draws 2 x 2 device pixels per CSS pixel, 4
+  // where 3 x 3 would be 9, and the browser scales the canvas up), each side at most `maxSize`, and returns that
+  // size; true if it changed.
+  bool fitToDisplay(int maxSize, double maxPixelRatio, int* width, int* height);
+  // The pixel ratio of the last fit, and the device's.
+  double pixelRatio() const { return pixelRatio_; }
+  static double devicePixelRatio();
 
   // Resolves WebGL 1 and extension entry points (GpuPassTimer's loader).
   static void* procAddress(const char* name);
@@ -36,6 +41,7 @@ class WebCanvas {
   EMSCRIPTEN_WEBGL_CONTEXT_HANDLE context_ = 0;
   std::function<void()> onLost_, onRestored_;
   bool lost_ = false;
+  double pixelRatio_ = 1.0;
 };
 
 }  // namespace obscura

@@ -19,6 +19,7 @@
 #include "effects/lighting/LightingEffect.h"
 #include "effects/lines/LinesEffect.h"
 #include "effects/motion_blur/MotionBlurEffect.h"
+#include "effects/resolution/ResolutionEffect.h"
 #include "effects/taa/TaaEffect.h"
 #include "effects/tonemap/TonemapEffect.h"
 #include "effects/transparency/TransparencyEffect.h"
@@ -60,6 +61,8 @@ const std::vector<EffectEntry>& effectTable() {
         EffectEntry::of<MotionBlurEffect>(),  // display-color, velocity, gbuffer -> display-color
         EffectEntry::of<ChromaticAberrationEffect>(),  // display-color -> display-color (red and blue fringes)
         EffectEntry::of<FxaaEffect>(),      // display-color -> display-color
+        // display-color at the render scale -> the output at its size (only below scale 1; FXAA's pass where it runs)
+        EffectEntry::of<ResolutionEffect>(),
     };
     // Names are how everything finds effects, passes and targets: each is used once.
     std::set<std::string> effects, passes, targets;

@@ -6,6 +6,7 @@
 #include "base/Error.h"
 #include "effects/ao/AoEffect.h"
 #include "effects/fog/FogEffect.h"
+#include "frame/Resolution.h"
 #include "gl/PipelineState.h"
 
 namespace obscura {
@@ -107,11 +108,13 @@ Renderer::Renderer(const gl::GlCaps& caps, const RendererOptions& options)
   RenderSettings everyEffect;
   for (size_t row = 0; row < effectTable().size(); ++row)
     if (effectTable()[row].info.hasSwitch) everyEffect.set(effectTable()[row].info.name, "on");
-  for (bool forwardLighting : {false, true}) {  // a scene the deferred lighting can shade, and one it cannot
-    probe.forwardLighting = forwardLighting;
-    for (const std::string& name : frameViewNames())
-      if (name != "split") plan(everyEffect, probe, View{name}, {});
-  }
+  for (bool forwardLighting : {false, true})  // a scene the deferred lighting can shade, and one it cannot
+    for (int outputWidth : {1, 2}) {            // rendered at the output's size, and below it (upscaled)
+      probe.forwardLighting = forwardLighting;
+      probe.outputWidth = outputWidth;
+      for (const std::string& name : frameViewNames())
+        if (name != "split") plan(everyEffect, probe, View{name}, {});
+    }
 }
 
 FramePlan Renderer::plan(const RenderSettings& settings, const FrameContext& frame, const View& view,
@@ -127,8 +130,11 @@ FramePlan Renderer::plan(const RenderSettings& settings, const FrameContext& fra
   }
   planner.beginEffect("");
   if (!target.empty()) planner.add(DebugViewPass::pass("view", target, decoding));
+  // A frame rendered below the output's size ends in the pass that upscales it into the output (the resolution
+  // effect's, or FXAA's doing both).
+  const bool finalImage = target.empty() && !frame.upscaled();
   return FramePlan::resolve(
-      std::move(planner), target.empty() ? kFinalImageTarget : kOutputTarget,
+      std::move(planner), finalImage ? kFinalImageTarget : kOutputTarget,
       [&] { return DebugViewPass::pass("present", kFinalImageTarget, ViewDecoding::Color); }, retain);
 }
 
@@ -230,14 +236,20 @@ bool Renderer::jitters(const RenderSettings& settings) {
   return false;
 }
 
-void Renderer::beginFrame(const Camera& camera, const RenderSettings& settings, const OutputTarget& output,
-                          const FrameOptions& options) {
+void Renderer::beginFrame(const Camera& camera, const RenderSettings& settings, glm::ivec2 size,
+                          const OutputTarget& output, const FrameOptions& options) {
   const double time = options.time;
-  const glm::ivec2 size(output.width, output.height);
-  if (size != lastSize_) {
+  const glm::ivec2 outputSize(output.width, output.height);
+  if (outputSize != lastOutputSize_) {
     dropHistory();
-    lastSize_ = size;
+  } else if (size != lastSize_) {
+    // A new render scale (dynamic resolution changes it often): the history targets go (the pool drops them with
+    // the old size: TAA and the temporal AO start afresh, as after any drop), but the previous camera and pose stay,
+    // since motion vectors are in uv units, the same at every size, and motion blur needs them this very frame.
+    historyFrames_ = 0;
   }
+  lastOutputSize_ = outputSize;
+  lastSize_ = size;
   if (options.sceneCamera >= 0 && static_cast<size_t>(options.sceneCamera) >= sceneData_.cameras.size())
     throw InputError("scene camera " + std::to_string(options.sceneCamera) + " is not in the scene (it has " +
                      std::to_string(sceneData_.cameras.size()) + ")");
@@ -265,6 +277,8 @@ void Renderer::beginFrame(const Camera& camera, const RenderSettings& settings, 
   frame.transparent = scene_.hasTransparent();
   frame.transmission = scene_.hasTransmission();
   frame.forwardLighting = scene_.needsForwardLighting();
+  frame.outputWidth = output.width;
+  frame.outputHeight = output.height;
   frame_ = std::move(frame);
 
   // The scene's pose now and at the previous time (the last frame's pose when that is the one asked for).
@@ -287,12 +301,16 @@ void Renderer::beginFrame(const Camera& camera, const RenderSettings& settings, 
   }
   if (options.projectionShear != glm::vec2(0.0f) && !frameSource_.orthographic)
     throw InputError("a projection shear needs an orthographic camera");
-  frame_.camera = FrameCamera::from(frameSource_, output.width, output.height, jitter + options.projectionShift,
-                                    options.projectionShear);
+  // At a render scale below 1 the frame is size.x x size.y but keeps the output's aspect (frame/Resolution.h); the
+  // shear, in the output's pixels, shrinks with it.
+  const float aspect = static_cast<float>(output.width) / static_cast<float>(output.height);
+  const float scale = static_cast<float>(size.x) / static_cast<float>(output.width);
+  frame_.camera = FrameCamera::from(frameSource_, size.x, size.y, jitter + options.projectionShift,
+                                    options.projectionShear * scale, aspect);
   if (options.sceneCamera >= 0)
     frame_.previousCamera = FrameCamera::from(
-        sceneCameraAt(sceneData_, options.sceneCamera, previous, sceneBounds_, output.width, output.height),
-        output.width, output.height);
+        sceneCameraAt(sceneData_, options.sceneCamera, previous, sceneBounds_, output.width, output.height), size.x,
+        size.y, glm::vec2(0.0f), glm::vec2(0.0f), aspect);
   else
     frame_.previousCamera = hasPrevious_ ? previousCamera_ : frame_.camera;
   lastPose_ = current;
@@ -318,6 +336,7 @@ Renderer::PlanKey Renderer::planKey(const RenderSettings& settings, const View& 
     key.settings.push_back(effectTable()[row].parameters[parameter].get(settings.rowAt(row)));
   key.view = view.name;
   key.size = {frame_.camera.width, frame_.camera.height};
+  key.outputSize = {frame_.outputWidth, frame_.outputHeight};
   key.retain = options.retain;
   key.externalGBuffer = options.externalGBuffer;
   key.forwardLighting = frame_.forwardLighting;
@@ -372,6 +391,12 @@ void Renderer::render(const Camera& camera, const RenderSettings& settings, cons
     throw InputError("output size " + std::to_string(output.width) + "x" + std::to_string(output.height) +
                      " is outside what this context can render (1 .. " + std::to_string(limit) + " per side)");
 
+  const float scale = options.renderScale.value_or(settings.of<ResolutionSettings>().scale);
+  if (!(scale > 0.0f && scale <= 1.0f))
+    throw InputError("render scale " + std::to_string(scale) + " is outside 0 .. 1");
+  // A G-buffer the caller drew is at the output's size: such a frame renders at it.
+  const glm::ivec2 size = options.externalGBuffer != 0 ? glm::ivec2(output.width, output.height)
+                                                       : renderSize({output.width, output.height}, scale);
   if (view == View::Split) {
     // Two frames of one frame context into one output: the compared switch off, then on over the right half. The
     // frame starts as the right half's (its jitter, when that half has temporal antialiasing); the left half draws
@@ -380,16 +405,18 @@ void Renderer::render(const Camera& camera, const RenderSettings& settings, cons
     const std::string compared = parseCompare(view.compare);
     off.set(compared, "off");
     on.set(compared, "on");
-    beginFrame(camera, on, output, options);
+    beginFrame(camera, on, size, output, options);
     const FrameContext right = frame_;
-    if (!jitters(off)) frame_.camera = FrameCamera::from(frameSource_, output.width, output.height);
+    if (!jitters(off))
+      frame_.camera = FrameCamera::from(frameSource_, size.x, size.y, glm::vec2(0.0f), glm::vec2(0.0f),
+                                        static_cast<float>(output.width) / static_cast<float>(output.height));
     run(off, View::Final, output, options);
     frame_ = right;
     OutputTarget rightHalf = output;
     rightHalf.region = {output.width / 2, 0, output.width - output.width / 2, output.height};
     run(on, View::Final, rightHalf, options);
   } else {
-    beginFrame(camera, settings, output, options);
+    beginFrame(camera, settings, size, output, options);
     parseView(view.name);
     run(settings, view, output, options);
   }

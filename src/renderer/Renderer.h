@@ -94,6 +94,9 @@ struct FrameOptions {
   // reference (renderer/AccumulationReference.h: accumulateAperture), whose camera sits off the lens's centre and looks
   // through the same plane in focus. Reconstruction from depth ignores it, as it ignores the jitter.
   glm::vec2 projectionShift{0.0f};
+  // The render scale of this frame (frame/Resolution.h), in place of resolution.scale: what dynamic resolution chose
+  // (platform/DynamicResolution.h). Unset: resolution.scale.
+  std::optional<float> renderScale;
   // A shift that grows with depth, in pixels per metre of view depth (x right, y up), added to projectionShift: the
   // orthographic aperture reference's tilted parallel rays (accumulateAperture). Orthographic cameras only.
   glm::vec2 projectionShear{0.0f};
@@ -151,7 +154,8 @@ class Renderer {
   size_t pooledTargets() const { return pool_.slotCount(); }
 
  private:
-  void beginFrame(const Camera& camera, const RenderSettings& settings, const OutputTarget& output,
+  // `size`: the size the frame renders at (the output's, or less: frame/Resolution.h).
+  void beginFrame(const Camera& camera, const RenderSettings& settings, glm::ivec2 size, const OutputTarget& output,
                   const FrameOptions& options);
   void endFrame();
   void dropHistory();
@@ -160,16 +164,18 @@ class Renderer {
   FramePlan plan(const RenderSettings& settings, const FrameContext& frame, const View& view,
                  const std::vector<std::string>& retain, GLuint externalGBuffer = 0);
   // What a plan depends on: the values of the parameters that shape it (ParameterInfo::shapesPlan), the view, the
-  // frame's size, the retained targets, the caller's G-buffer, what the scene asks of the frame, and the projection.
+  // frame's size and the output's (below it, the frame ends in an upscale), the retained targets, the caller's
+  // G-buffer, what the scene asks of the frame, and the projection.
   struct PlanKey {
     std::vector<std::string> settings;
     std::string view;
-    glm::ivec2 size{0, 0};
+    glm::ivec2 size{0, 0}, outputSize{0, 0};
     std::vector<std::string> retain;
     GLuint externalGBuffer = 0;
     bool forwardLighting = false, linesOrPoints = false, orthographic = false;
     bool operator==(const PlanKey& o) const {
-      return settings == o.settings && view == o.view && size == o.size && retain == o.retain &&
+      return settings == o.settings && view == o.view && size == o.size && outputSize == o.outputSize &&
+             retain == o.retain &&
              externalGBuffer == o.externalGBuffer && forwardLighting == o.forwardLighting &&
              linesOrPoints == o.linesOrPoints && orthographic == o.orthographic;
     }
@@ -222,7 +228,8 @@ class Renderer {
   // The last frame's pose, kept to be the next frame's previous one when it asks for that time.
   ScenePose lastPose_;
   PoseOptions lastPoseOptions_;
-  glm::ivec2 lastSize_{0, 0};
+  glm::ivec2 lastSize_{0, 0};        // the last frame's render size
+  glm::ivec2 lastOutputSize_{0, 0};  // and its output's
 };
 
 }  // namespace obscura

@@ -47,8 +47,10 @@ export async function startBrowser() {
 const glErrorWarning = /GL_INVALID_|GL_OUT_OF_MEMORY|WebGL: INVALID_/;
 
 // Opens the page at `url` and waits until Obscura has drawn its first frame. The page runs with `debug-gl`
-// (glGetError after every pass; an error stops drawing and is logged as a console error naming the pass). Console
-// errors, GL errors reported as warnings, uncaught exceptions and failed requests are collected in page.errors.
+// (glGetError after every pass; an error stops drawing and is logged as a console error naming the pass), and with
+// dynamic resolution off unless the URL says otherwise (resolution.dynamic: the page's default is on, which would
+// change the render scale between the frames a test compares). Console errors, GL errors reported as warnings,
+// uncaught exceptions and failed requests are collected in page.errors.
 export async function openPage(context, url) {
   const page = await context.newPage();
   page.errors = [];
@@ -63,6 +65,7 @@ export async function openPage(context, url) {
   });
   const checked = new URL(url);
   checked.searchParams.set('debug-gl', '');
+  if (!checked.searchParams.has('resolution.dynamic')) checked.searchParams.set('resolution.dynamic', 'off');
   await page.goto(checked.toString());
   await page.waitForFunction(() => document.body.dataset.ready === 'true', null, { timeout: 60000 });
   await waitForDrawn(page);

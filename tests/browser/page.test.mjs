@@ -86,6 +86,28 @@ describe('demo page', () => {
     assert.notDeepEqual(aoView.pixels, withAo.pixels);
   });
 
+  test('issue 30: ao.layers and gbuffer.normals through the page and the JS API', { timeout: 120000 }, async () => {
+    await page.locator('#view-ao').check();
+    const oneLayer = await snapshot(page);
+    // The second depth layer, through the JS API: a peel pass more, and a different AO.
+    await page.evaluate(() => window.obscura.set('ao.layers', '2'));
+    assert.equal(await page.evaluate(() => window.obscura.get('ao.layers')), '2');
+    const twoLayers = await snapshot(page);
+    assert.ok(compareImages(oneLayer, twoLayers).r.differing > 0.01, 'two layers change the AO');
+    // Normals from depth, through the page's control in the G-buffer's section.
+    await page.locator('#effect-gbuffer #param-gbuffer-normals').selectOption('reconstructed');
+    assert.equal(await page.evaluate(() => window.obscura.get('gbuffer.normals')), 'reconstructed');
+    assert.ok(compareImages(twoLayers, await snapshot(page)).r.differing > 0.001, 'the reconstructed normals too');
+    // The G-buffer's view of them.
+    await page.locator('#view-normals-from-depth').check();
+    assert.ok(luminanceStats(await snapshot(page)).max > 0.5, 'the normals-from-depth view draws');
+    await page.evaluate(() => {
+      window.obscura.set('ao.layers', '1');
+      window.obscura.set('gbuffer.normals', 'stored');
+    });
+    await page.locator('#view-final').check();
+  });
+
   test('the panel groups the controls by effect, from the effect table', { timeout: 120000 }, async () => {
     const table = await page.evaluate(() => window.obscura.effects.map((e) => ({
       name: e.name, title: e.title, parameters: e.parameters })));

@@ -13,6 +13,8 @@ export interface CreateOptions {
   pointerControls?: boolean;
   /** glGetError after every pass; a GL error stops drawing (for tests and debugging; default false). */
   checkGlErrors?: boolean;
+  /** resolution.dynamic's default: the render scale follows the frame time (the demo page's choice; default false). */
+  dynamicResolution?: boolean;
   /** Where obscura-core.wasm is served (default: beside obscura.js, through import.meta.url). */
   wasmUrl?: string | URL;
 }
@@ -22,7 +24,8 @@ export function createObscura(canvas: HTMLCanvasElement, options?: CreateOptions
 
 /** Starts Obscura's AO on the page's own WebGL 1 context (the one the page made on `canvas` first). */
 export function createAmbientOcclusion(
-  canvas: HTMLCanvasElement, options?: Omit<CreateOptions, 'pointerControls'>): Promise<ObscuraAmbientOcclusion>;
+  canvas: HTMLCanvasElement, options?: Omit<CreateOptions, 'pointerControls' | 'dynamicResolution'>,
+): Promise<ObscuraAmbientOcclusion>;
 
 export type ParameterKind = 'switch' | 'number' | 'integer' | 'choice' | 'color' | 'text';
 
@@ -157,7 +160,24 @@ export interface Stats {
   glObjects: Record<string, number>;
   /** Why frames stopped, or ''. */
   error: string;
+  /** The size the effects ran at, the render scale and dynamic resolution's state (docs/resolution.md). */
+  render: {
+    width: number; height: number; scale: number; pixelRatio: number; devicePixelRatio: number; dynamic: boolean;
+    measuredBy: 'gpu' | 'cpu'; meanMs: number; framesMeasured: number; refining: boolean; step: number;
+    targetMs: number; changes: number;
+  };
   [more: string]: unknown;
+}
+
+/** Where start-up went, in ms (Obscura.startup()). */
+export interface Startup {
+  wasmMs: number;
+  createMs: number;
+  coreMs: number;
+  coreParts: Record<string, number>;
+  firstFrameMs: number | null;
+  firstFrameCpuMs: number | null;
+  firstFrameParts: Record<string, number>;
 }
 
 export interface Snapshot {
@@ -256,6 +276,10 @@ export class Obscura extends EventTarget {
   // Measurements.
   setContinuous(continuous: boolean): void;
   stats(): Stats;
+  /** Where start-up went (the page prints it in its stats). */
+  startup(): Startup;
+  /** startup() once the first frame is on screen. */
+  readonly firstFrame: Promise<Startup>;
   draw(): void;
   snapshot(): Snapshot;
   attachPointerControls(): void;

@@ -1,6 +1,7 @@
 #include "effects/ao/AoEffect.h"
 
 #include "effects/ao/AoTemporal.h"
+#include "frame/GBufferSettings.h"
 #include "frame/PassContext.h"
 
 namespace obscura {
@@ -15,12 +16,17 @@ EffectInfo AoEffect::info() {
           "Ambient obscurance",
           true,
           false,
-          {"hierarchy", "sao", "ao-temporal", "blur-h", "blur-v", "upsample"},
+          {"peel", "hierarchy", "sao", "ao-temporal", "blur-h", "blur-v", "upsample"},
           {{"depth-hierarchy",
             "SAO's depth levels 1 .. 5 (one picked pixel's depth per 2^m block, and where it lies in the block); kept "
             "by the effect as an atlas or a mip chain, not pooled",
             GL_NEAREST,
             {}},
+           {"second-layer",
+            "BA: the second depth layer's 16-bit linear depth (ao.layers 2: the nearest surface at least the layer "
+            "separation behind the G-buffer's; 65535: none)",
+            GL_NEAREST,
+            {{"second-layer", ViewDecoding::Depth}}},
            {"ao-raw", kAoEncoding, GL_NEAREST, {{"ao-raw", ViewDecoding::Grey}}},
            {"ao-temporal",
             std::string(kAoEncoding) + "; A: the frames its running mean holds (effects/ao/AoTemporal.h)",
@@ -32,7 +38,8 @@ EffectInfo AoEffect::info() {
 
 std::vector<ProgramSpec> AoEffect::programSpecs() {
   std::vector<ProgramSpec> specs = DepthHierarchyPass::programSpecs();
-  for (const auto& list : {SaoPass::programSpecs(), AoTemporalPass::programSpecs(), BilateralBlurPass::programSpecs(),
+  for (const auto& list : {DepthPeelPass::programSpecs(), SaoPass::programSpecs(), AoTemporalPass::programSpecs(),
+                           BilateralBlurPass::programSpecs(),
                            AoUpsamplePass::programSpecs()})
     specs.insert(specs.end(), list.begin(), list.end());
   return specs;
@@ -40,8 +47,8 @@ std::vector<ProgramSpec> AoEffect::programSpecs() {
 
 AoEffect::AoEffect(const EffectResources& resources)
     : hierarchy_(resources.triangle, resources.caps,
-                 DepthHierarchyPass::storageFor(resources.caps, resources.options.hierarchyStorage),
-                 resources.build(DepthHierarchyPass::programSpecs().front())),
+                 DepthHierarchyPass::storageFor(resources.caps, resources.options.hierarchyStorage), resources),
+      peel_(resources),
       sao_(resources),
       temporal_(resources),
       blur_(resources),
@@ -59,15 +66,29 @@ void AoEffect::plan(FramePlanner& planner) {
   auto ao = [](const PassContext& context) -> const AoSettings& { return context.settings().of<AoSettings>(); };
 
   const bool depthHierarchy = settings.depthHierarchy;
+  // ao.layers 2: the second depth layer, for an estimator that reads it (or its view).
+  const bool twoLayers = settings.layersRead() == 2 || planner.viewTarget() == "second-layer";
+  if (twoLayers) {
+    PassDecl peel;
+    peel.name = "peel";
+    peel.reads = {"gbuffer"};
+    peel.writes = {{"second-layer", TargetSize::full(), PassDecl::Write::Depth::Own, ""}};
+    peel.run = [this, ao](PassContext& context) {
+      context.bindForWriting("second-layer");
+      peel_.render(context, context.texture("gbuffer"), ao(context));
+    };
+    planner.add(std::move(peel));
+  }
   if (depthHierarchy) {
     PassDecl hierarchy;
     hierarchy.name = "hierarchy";
     hierarchy.reads = {"gbuffer"};
+    if (twoLayers) hierarchy.reads.push_back("second-layer");
     hierarchy.writes = {{"depth-hierarchy", TargetSize::full(), PassDecl::Write::Depth::None, ""}};
-    hierarchy.run = [this](PassContext& context) {
+    hierarchy.run = [this, twoLayers](PassContext& context) {
       const glm::ivec2 size = context.size("gbuffer");
       hierarchy_.resize(size.x, size.y);
-      hierarchy_.render(context.texture("gbuffer"));
+      hierarchy_.render(context.texture("gbuffer"), twoLayers ? &context.texture("second-layer") : nullptr);
     };
     planner.add(std::move(hierarchy));
     planner.markExternal("depth-hierarchy");
@@ -77,13 +98,17 @@ void AoEffect::plan(FramePlanner& planner) {
   sao.name = "sao";
   sao.reads = {"gbuffer"};
   if (depthHierarchy) sao.reads.push_back("depth-hierarchy");
+  if (twoLayers) sao.reads.push_back("second-layer");
   sao.writes = {{"ao-raw", aoSize, PassDecl::Write::Depth::None, ""}};
   // With ao.temporal, each frame's taps turn to new directions and distances (AoTemporal::frameOffset).
   const bool temporal = settings.temporal || planner.viewTarget() == "ao-temporal";
-  sao.run = [this, ao, depthHierarchy, aoScale, temporal](PassContext& context) {
+  const bool normalsFromDepth = planner.settings().of<GBufferSettings>().normals == GBufferNormals::Reconstructed;
+  sao.run = [this, ao, depthHierarchy, aoScale, temporal, twoLayers, normalsFromDepth](PassContext& context) {
     context.bindForWriting("ao-raw");
-    sao_.render(context.texture("gbuffer"), depthHierarchy ? &hierarchy_ : nullptr, context.camera(), ao(context),
-                aoScale, context.size("ao-raw"),
+    // (With the atlas, the estimator reads both layers from the hierarchy's texels and not this target.)
+    const gl::Texture2D* secondLayer = twoLayers ? &context.texture("second-layer") : nullptr;
+    sao_.render(context.texture("gbuffer"), depthHierarchy ? &hierarchy_ : nullptr, secondLayer, context.camera(),
+                ao(context), normalsFromDepth, aoScale, context.size("ao-raw"),
                 temporal ? AoTemporal::frameOffset(context.frame().index) : glm::vec2(0.0f));
   };
   planner.add(std::move(sao));

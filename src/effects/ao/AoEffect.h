@@ -1,11 +1,14 @@
 #pragma once
-// Ambient obscurance: Scalable Ambient Obscurance (McGuire, Mara, Luebke, HPG 2012) from the G-buffer, with SAO's
-// depth hierarchy and a separable bilateral blur, at full or half resolution. Settings: effects/ao/AoSettings.h.
+// Ambient obscurance from the G-buffer (the estimators of ao.estimator, GTAO by default; SAO's depth hierarchy; an
+// optional second depth layer) and a separable bilateral blur, at full or half resolution. Settings:
+// effects/ao/AoSettings.h.
 //
 // Passes (each skipped when its settings turn it off):
-//   hierarchy  G-buffer -> depth-hierarchy (its own storage: an atlas 1.5 times the frame's width, or a mip chain;
-//              effects/ao/DepthHierarchyPass.h)
-//   sao        G-buffer (+ hierarchy) -> ao-raw (full or half size)
+//   peel       scene, G-buffer -> second-layer (ao.layers 2: the nearest surface behind the visible one;
+//              effects/ao/DepthPeelPass.h)
+//   hierarchy  G-buffer (+ second-layer) -> depth-hierarchy (its own storage: an atlas 1.5 times the frame's width,
+//              or a mip chain; effects/ao/DepthHierarchyPass.h)
+//   sao        G-buffer (+ hierarchy, + second-layer) -> ao-raw (full or half size)
 //   ao-temporal  ao-raw, velocity, G-buffer, history -> ao-temporal (ao.temporal: effects/ao/AoTemporalPass.h)
 //   blur-h     ao-raw (or ao-temporal) -> ao-blur-h   blur-v   ao-blur-h -> ao   (without the blur, ao is its input)
 //   upsample   ao (half size) -> ao (full size), at half resolution
@@ -18,6 +21,7 @@
 #include "effects/ao/AoUpsamplePass.h"
 #include "effects/ao/BilateralBlurPass.h"
 #include "effects/ao/DepthHierarchyPass.h"
+#include "effects/ao/DepthPeelPass.h"
 #include "effects/ao/SaoPass.h"
 #include "frame/EffectEntry.h"
 
@@ -38,6 +42,7 @@ class AoEffect : public Effect {
 
  private:
   DepthHierarchyPass hierarchy_;
+  DepthPeelPass peel_;
   SaoPass sao_;
   AoTemporalPass temporal_;
   BilateralBlurPass blur_;

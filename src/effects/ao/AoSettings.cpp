@@ -80,6 +80,17 @@ const std::vector<Parameter<AoSettings>>& AoSettings::parameters() {
     for (Parameter<S>& p : t)
       if (p.info.name != "ao" && p.info.name != "preset") p.info.alias = p.info.name;
     // Newer than prefixes: "ao." names only.
+    t.push_back(integerParameter<S>("layers", 1, 2, "", "",
+                                    "depth layers GTAO reads (2: a second geometry pass peels the surface behind)",
+                                    &S::layers)
+                    .shapesPlan()  // the peel pass, and the estimator's and hierarchy's two-layer programs
+                    .primary());
+    t.push_back(numberParameter<S>("layer-separation", 0, 10, "fraction of radius",
+                                   "the second layer's least distance behind the first", &S::layerSeparation));
+    t.push_back(numberParameter<S>("thickness", 0.01, 1000, "fraction of radius",
+                                   "one layer: the thickness GTAO assumes behind an occluder's front", &S::thickness));
+    t.push_back(numberParameter<S>("surface-gap", 0, 1000, "fraction of radius",
+                                   "depth gap between taps that GTAO still takes for one occluder", &S::surfaceGap));
     t.push_back(switchParameter<S>("temporal", "accumulate the AO over frames through the motion vectors",
                                    &S::temporal)
                     .primary());
@@ -165,6 +176,7 @@ namespace {
 struct TunedEntry {
   AoEstimator estimator;
   QualityPreset preset;
+  int layers;  // ao.layers (the estimator's table for two layers, where it reads them)
   float radiusPixels;
   EstimatorParameters parameters;
 };
@@ -192,11 +204,20 @@ EstimatorParameters EstimatorKnots::interpolate(float radiusPixels) const {
   return e;
 }
 
-EstimatorKnots tunedEstimatorKnots(AoEstimator estimator, QualityPreset preset) {
+bool estimatorReadsSecondLayer(AoEstimator estimator) { return estimator == AoEstimator::Gtao; }
+
+bool hasTunedEstimatorKnots(AoEstimator estimator, QualityPreset preset, int layers) {
+  for (const TunedEntry& entry : kTunedTable)
+    if (entry.estimator == estimator && entry.preset == preset && entry.layers == layers) return true;
+  return false;
+}
+
+EstimatorKnots tunedEstimatorKnots(AoEstimator estimator, QualityPreset preset, int layers) {
+  if (!hasTunedEstimatorKnots(estimator, preset, layers)) layers = 1;
   EstimatorKnots knots;
   for (EstimatorParameters& e : knots.at) e = kPaperEstimatorParameters;
   for (const TunedEntry& entry : kTunedTable) {
-    if (entry.estimator != estimator || entry.preset != preset) continue;
+    if (entry.estimator != estimator || entry.preset != preset || entry.layers != layers) continue;
     for (int j = 0; j < kEstimatorKnots; ++j)
       if (std::abs(entry.radiusPixels - estimatorKnotPixels(j)) < 1e-3f) knots.at[j] = entry.parameters;
   }
@@ -204,7 +225,7 @@ EstimatorKnots tunedEstimatorKnots(AoEstimator estimator, QualityPreset preset) 
 }
 
 EstimatorKnots AoSettings::estimatorKnots() const {
-  EstimatorKnots knots = tunedEstimatorKnots(estimator, preset);
+  EstimatorKnots knots = tunedEstimatorKnots(estimator, preset, layersRead());
   for (EstimatorParameters& e : knots.at) {
     if (intensity) e.intensity = *intensity;
     if (bias) e.bias = *bias;

@@ -60,9 +60,16 @@ struct EstimatorKnots {
   EstimatorParameters interpolate(float radiusPixels) const;
 };
 
+// Whether the estimator reads a second depth layer (ao.layers 2): GTAO, where an occluder covers only the directions
+// between its two layers. The others read the first alone, and ao.layers 2 draws no second layer for them.
+bool estimatorReadsSecondLayer(AoEstimator estimator);
+
 // The knots fitted to the ray-traced reference (src/effects/ao/TunedDefaults.inc, written by tools/tune-defaults.sh)
-// for `preset`; the SAO paper's values at every knot for a preset the table does not cover.
-EstimatorKnots tunedEstimatorKnots(AoEstimator estimator, QualityPreset preset);
+// for `preset` and `layers` depth layers (those for one layer where the table has none for two); the SAO paper's
+// values at every knot for a preset the table does not cover.
+EstimatorKnots tunedEstimatorKnots(AoEstimator estimator, QualityPreset preset, int layers = 1);
+// Whether the table has rows of its own for this estimator, preset and layer count.
+bool hasTunedEstimatorKnots(AoEstimator estimator, QualityPreset preset, int layers);
 
 struct AoSettings : ParameterAccess<AoSettings> {
   bool enabled = true;
@@ -92,6 +99,25 @@ struct AoSettings : ParameterAccess<AoSettings> {
   // radii of 2 to 4 object sizes a clamp at half the height left out occluders the reference counts (GTAO's mean MAE
   // at 4 object sizes 0.096 -> 0.082; docs/accuracy.md).
   float maxScreenRadius = 1.0f;
+
+  // --- Occluders' thickness (GTAO: shaders_es2/ao/gtao.frag) ---
+  // An occluder occludes only between its front face and a back point on the same pixel ray: with one layer the
+  // point `thickness` r behind the front (a heuristic: a height field, infinitely thick, puts halos around thin
+  // objects in front of far surfaces), with two layers the second layer's. Measured against the reference
+  // (docs/accuracy.md, "Thickness").
+  float thickness = 0.5f;
+  // Two consecutive taps whose depth ranges (front to back) overlap within this gap, a fraction of r, are one
+  // occluder, solid between them; a larger step lets the sky through between them (docs/accuracy.md).
+  float surfaceGap = 0.5f;
+
+  // --- Depth layers ---
+  // 1: the G-buffer's depth alone. 2: a second geometry pass peels the nearest surface at least layerSeparation r
+  // behind the visible one (effects/ao/DepthPeelPass.h), and GTAO counts an occluder only between the two layers
+  // (the other estimators read the first layer alone, and no second layer is drawn for them).
+  int layers = 1;
+  // The peel's minimum separation, a fraction of r (and at least two depth codes): 0.01 measured best against the
+  // reference; 0.05 skipped thin balusters' back faces, which then took the wall behind as their back (halos).
+  float layerSeparation = 0.01f;
 
   // --- Depth hierarchy and resolution ---
   bool depthHierarchy = true;  // SAO's depth MIP: far taps read coarser levels (cost independent of radius)
@@ -128,6 +154,8 @@ struct AoSettings : ParameterAccess<AoSettings> {
   EstimatorParameters estimatorAt(float radiusPixels = kShownKnotPixels) const;
   // The blur's depth sigma in scene units (blurDepthSigma times the radius).
   float blurDepthSigmaDistance() const { return blurDepthSigma * radius; }
+  // The depth layers the estimator reads: `layers`, or 1 for an estimator that reads one alone.
+  int layersRead() const { return estimatorReadsSecondLayer(estimator) ? layers : 1; }
   // Throws InputError if a field is out of range (for settings built in code).
   void validate() const;
 };

@@ -39,13 +39,16 @@ std::vector<std::uint8_t> readRegion(GLuint framebuffer, int x, int y, int width
 
 }  // namespace
 
-std::vector<ProgramSpec> DepthHierarchyPass::programSpecs() {
-  return {ProgramSpec{"depth-hierarchy",
-                      "lib/fullscreen.vert",
-                      "ao/depth_hierarchy.frag",
-                      {{"MAX_MIP_LEVEL", std::to_string(SaoKernel::kMaxMipLevel)}},
-                      {}}};
+ProgramSpec DepthHierarchyPass::programSpec(int layers) {
+  return ProgramSpec{layers == 2 ? "depth-hierarchy[layers=2]" : "depth-hierarchy",
+                     "lib/fullscreen.vert",
+                     "ao/depth_hierarchy.frag",
+                     {{"MAX_MIP_LEVEL", std::to_string(SaoKernel::kMaxMipLevel)},
+                      {"AO_LAYERS", std::to_string(layers)}},
+                     {}};
 }
+
+std::vector<ProgramSpec> DepthHierarchyPass::programSpecs() { return {programSpec(1), programSpec(2)}; }
 
 DepthHierarchyPass::Storage DepthHierarchyPass::storageFor(const gl::GlCaps& caps, std::optional<Storage> forced) {
   if (forced) return *forced == Storage::MipChain && !(caps.shaderTextureLod && caps.fboRenderMipmap)
@@ -64,12 +67,12 @@ const char* DepthHierarchyPass::storageName(Storage storage) {
 }
 
 DepthHierarchyPass::DepthHierarchyPass(const FullscreenTriangle& triangle, const gl::GlCaps& caps, Storage storage,
-                                       gl::Program program)
+                                       const EffectResources& resources)
     : triangle_(triangle),
       caps_(caps),
       requested_(storage),
       active_(storage),
-      program_(std::move(program)) {}
+      programs_(resources.programs) {}
 
 DepthHierarchyPass::Region DepthHierarchyPass::atlasRegion(int level) const {
   const glm::ivec2 size = levelSize(width_, height_, level);
@@ -134,9 +137,10 @@ void DepthHierarchyPass::resize(int width, int height) {
   glBindFramebuffer(GL_FRAMEBUFFER, 0);
 }
 
-void DepthHierarchyPass::render(const gl::Texture2D& gbuffer) {
-  FullscreenDraw draw(program_, triangle_);
+void DepthHierarchyPass::render(const gl::Texture2D& gbuffer, const gl::Texture2D* secondLayer) {
+  FullscreenDraw draw(programs_.get(programSpec(secondLayer ? 2 : 1)), triangle_);
   draw.texture("u_gbuffer", gbuffer);
+  if (secondLayer) draw.texture("u_secondLayer", *secondLayer);
   draw.set("u_gbufferSize", glm::vec2(gbuffer.width(), gbuffer.height()));
   // The atlas also holds level 0 (a copy of the G-buffer's depth key), so every tap reads the one texture.
   const int firstLevel = active_ == Storage::Atlas ? 0 : 1;

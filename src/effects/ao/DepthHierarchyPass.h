@@ -19,6 +19,7 @@
 #include <optional>
 #include <vector>
 
+#include "frame/EffectEntry.h"
 #include "frame/FullscreenPass.h"
 #include "frame/FullscreenTriangle.h"
 #include "frame/RendererOptions.h"
@@ -35,6 +36,8 @@ class DepthHierarchyPass {
   // takes an optional Storage).
   using Storage = HierarchyStorage;
 
+  // The level program for one depth layer (RG: the pick's offset) or two (RG: the second layer's depth code).
+  static ProgramSpec programSpec(int layers);
   static std::vector<ProgramSpec> programSpecs();
   // MipChain where the context has both extensions, else Atlas; `forced` overrides (tests, benchmarks). An Atlas
   // falls back to SeparateTextures at sizes it would not fit (see storage()).
@@ -42,11 +45,13 @@ class DepthHierarchyPass {
   static const char* storageName(Storage storage);
 
   DepthHierarchyPass(const FullscreenTriangle& triangle, const gl::GlCaps& caps, Storage storage,
-                     gl::Program program);
+                     const EffectResources& resources);
   // The storage in use: the one asked for, or SeparateTextures when an atlas of this size would not fit.
   Storage storage() const { return active_; }
   void resize(int width, int height);
-  void render(const gl::Texture2D& gbuffer);
+  // `secondLayer` (ao.layers 2: effects/ao/DepthPeelPass.h) given, every level's RG holds its depth code at the
+  // picked pixel instead of the pick's offset (shaders_es2/ao/hierarchy_pick.glsl gives the offset then).
+  void render(const gl::Texture2D& gbuffer, const gl::Texture2D* secondLayer = nullptr);
   // Binds the levels for sao.frag (DEPTH_HIERARCHY 1, 2 or 3) to the draw's next units, and sets their uniforms.
   void bindForSampling(FullscreenDraw& sao) const;
   // Level m (0 .. 5; 0 only with the atlas) read back, rows top to bottom, whatever the storage (tests, tools).
@@ -61,7 +66,7 @@ class DepthHierarchyPass {
   const FullscreenTriangle& triangle_;
   gl::GlCaps caps_;
   Storage requested_, active_;
-  gl::Program program_;
+  ProgramCache& programs_;  // the level programs, one layer and two (programSpec), built on first use
   int width_ = 0, height_ = 0;
   std::vector<gl::RenderTarget> levels_;  // SeparateTextures: levels 1..5
   gl::RenderTarget atlas_;                // Atlas: levels 0..5

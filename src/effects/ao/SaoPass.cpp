@@ -45,7 +45,7 @@ float SaoPass::intensityScale(const AoSettings& settings, float intensity) {
 }
 
 ProgramSpec SaoPass::programSpec(AoEstimator estimator, int samples, int spiralTurns, Falloff falloff,
-                                 std::optional<Storage> hierarchy) {
+                                 std::optional<Storage> hierarchy, int layers, bool normalsFromDepth) {
   ProgramSpec spec;
   const std::string depth = hierarchy ? DepthHierarchyPass::storageName(*hierarchy) : "gbuffer";
   spec.vertexFile = "lib/fullscreen.vert";
@@ -53,7 +53,9 @@ ProgramSpec SaoPass::programSpec(AoEstimator estimator, int samples, int spiralT
                   {"MAX_MIP_LEVEL", std::to_string(SaoKernel::kMaxMipLevel)},
                   {"LOG_MAX_OFFSET", std::to_string(SaoKernel::kLogMaxOffset)},
                   {"ESTIMATOR_KNOTS", std::to_string(kEstimatorKnots)},
-                  {"FIRST_KNOT_PIXELS", std::to_string(static_cast<int>(kFirstKnotPixels))}};
+                  {"FIRST_KNOT_PIXELS", std::to_string(static_cast<int>(kFirstKnotPixels))},
+                  {"AO_LAYERS", std::to_string(layers)},
+                  {"NORMALS_FROM_DEPTH", normalsFromDepth ? "1" : "0"}};
   // The estimator's shader and its compile-time constants; the program's name lists them as label=value.
   struct Constant {
     const char* define;
@@ -67,7 +69,8 @@ ProgramSpec SaoPass::programSpec(AoEstimator estimator, int samples, int spiralT
       spec.defines.push_back({c.define, std::to_string(c.value)});
       spec.name += std::string(c.label) + "=" + std::to_string(c.value) + ",";
     }
-    spec.name += extra + "depth=" + depth + "]";
+    spec.name += extra + (layers == 2 ? "layers=2," : "") + (normalsFromDepth ? "normals=depth," : "") +
+                 "depth=" + depth + "]";
   };
   switch (estimator) {
     case AoEstimator::Gtao: {
@@ -75,9 +78,6 @@ ProgramSpec SaoPass::programSpec(AoEstimator estimator, int samples, int spiralT
       use("gtao", {{"GTAO_SLICES", "slices", sampling.slices},
                    {"GTAO_STEPS", "steps", sampling.steps},
                    {"GTAO_SIDES", "sides", sampling.sides}});
-      // The thickness heuristic's step down (gtao.frag): 0.1 measured best against the reference, 0 and 0.25 worse
-      // (docs/accuracy.md, "What was tried").
-      spec.defines.push_back({"THIN_OCCLUDER_BLEND", "0.1"});
       break;
     }
     case AoEstimator::Hbao: {
@@ -103,31 +103,39 @@ std::vector<ProgramSpec> SaoPass::programSpecs() {
                                                  Storage::Atlas};
   for (int samples : {4, 8, 11, 16, 24, 32}) {
     for (std::optional<Storage> hierarchy : depthSources) {
-      for (Falloff falloff : {Falloff::Sao2012, Falloff::Alchemy2011})
-        specs.push_back(
-            programSpec(AoEstimator::Sao, samples, SaoKernel::bestSpiralTurns(samples), falloff, hierarchy));
-      for (AoEstimator other : {AoEstimator::Gtao, AoEstimator::Hbao, AoEstimator::Vo, AoEstimator::Crytek}) {
-        ProgramSpec spec = programSpec(other, samples, 1, Falloff::Sao2012, hierarchy);
-        // Sample counts that split alike (HBAO's 8 and 11: 4 x 2) share a program: listed once.
-        if (std::none_of(specs.begin(), specs.end(), [&](const ProgramSpec& s) { return s.name == spec.name; }))
-          specs.push_back(std::move(spec));
+      for (bool normalsFromDepth : {false, true}) {
+        for (Falloff falloff : {Falloff::Sao2012, Falloff::Alchemy2011})
+          specs.push_back(programSpec(AoEstimator::Sao, samples, SaoKernel::bestSpiralTurns(samples), falloff,
+                                      hierarchy, 1, normalsFromDepth));
+        for (AoEstimator other : {AoEstimator::Gtao, AoEstimator::Hbao, AoEstimator::Vo, AoEstimator::Crytek}) {
+          for (int layers = 1; layers <= (estimatorReadsSecondLayer(other) ? 2 : 1); ++layers) {
+            ProgramSpec spec = programSpec(other, samples, 1, Falloff::Sao2012, hierarchy, layers, normalsFromDepth);
+            // Sample counts that split alike (HBAO's 8 and 11: 4 x 2) share a program: listed once.
+            if (std::none_of(specs.begin(), specs.end(), [&](const ProgramSpec& s) { return s.name == spec.name; }))
+              specs.push_back(std::move(spec));
+          }
+        }
       }
     }
   }
   return specs;
 }
 
-void SaoPass::render(const gl::Texture2D& gbuffer, const DepthHierarchyPass* hierarchy, const FrameCamera& camera,
-                     const AoSettings& settings, int aoScale, glm::ivec2 aoSize, glm::vec2 frameOffset) const {
+void SaoPass::render(const gl::Texture2D& gbuffer, const DepthHierarchyPass* hierarchy,
+                     const gl::Texture2D* secondLayer, const FrameCamera& camera, const AoSettings& settings,
+                     bool normalsFromDepth, int aoScale, glm::ivec2 aoSize, glm::vec2 frameOffset) const {
   const std::optional<Storage> storage = hierarchy ? std::optional<Storage>(hierarchy->storage()) : std::nullopt;
   // Only SAO's programs depend on the spiral and the falloff.
   const bool sao = settings.estimator == AoEstimator::Sao;
   FullscreenDraw draw(resources_.program(programSpec(settings.estimator, settings.samples,
                                                      sao ? settings.spiralTurns : 1,
-                                                     sao ? settings.falloff : Falloff::Sao2012, storage)),
+                                                     sao ? settings.falloff : Falloff::Sao2012, storage,
+                                                     secondLayer ? 2 : 1, normalsFromDepth)),
                       resources_.triangle);
   draw.texture("u_gbuffer", gbuffer);
   if (hierarchy) hierarchy->bindForSampling(draw);
+  // The atlas holds the second layer itself; the other storages read its target.
+  if (secondLayer && draw.program().has("u_secondLayer")) draw.texture("u_secondLayer", *secondLayer);
   draw.set("u_gbufferSize", glm::vec2(gbuffer.width(), gbuffer.height()));
   draw.set("u_aoSize", glm::vec2(aoSize));
   draw.set("u_aoScale", static_cast<float>(aoScale));
@@ -143,6 +151,9 @@ void SaoPass::render(const gl::Texture2D& gbuffer, const DepthHierarchyPass* hie
   draw.set("u_estimatorKnots", packed.data(), kEstimatorKnots);
   draw.set("u_maxRadiusPixels", settings.maxScreenRadius * static_cast<float>(gbuffer.height()));
   draw.set("u_frameOffset", frameOffset);
+  // GTAO's occluder thickness (its variants alone).
+  if (draw.program().has("u_thickness")) draw.set("u_thickness", settings.thickness);
+  if (draw.program().has("u_surfaceGap")) draw.set("u_surfaceGap", settings.surfaceGap);
   draw.draw();
 }
 

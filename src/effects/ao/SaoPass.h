@@ -18,8 +18,10 @@ class SaoPass {
   using Storage = DepthHierarchyPass::Storage;
   // The program variant for an estimator, a sample count, spiral turns, falloff (SAO) and depth source
   // (compile-time constants): no hierarchy (every tap reads the G-buffer), or the hierarchy in the given storage.
+  // `layers` 2: the variant that also reads the second depth layer (ao.layers 2). `normalsFromDepth`: the centre's
+  // normal reconstructed from the depth (gbuffer.normals reconstructed: lib/normal_from_depth.glsl).
   static ProgramSpec programSpec(AoEstimator estimator, int samples, int spiralTurns, Falloff falloff,
-                                 std::optional<Storage> hierarchy);
+                                 std::optional<Storage> hierarchy, int layers = 1, bool normalsFromDepth = false);
   // GTAO's split of `samples` taps: slices per pixel, sides of each (2, or 1 below 8 samples) and taps per side
   // (sides x slices x steps, about samples).
   struct GtaoSampling {
@@ -45,9 +47,11 @@ class SaoPass {
   // resolution (`aoScale` 2). `hierarchy` null: every tap reads the G-buffer.
   // `frameOffset`: the taps' per-frame rotation and distance jitter (AoTemporal::frameOffset; zero without
   // ao.temporal).
-  void render(const gl::Texture2D& gbuffer, const DepthHierarchyPass* hierarchy, const FrameCamera& camera,
-              const AoSettings& settings, int aoScale, glm::ivec2 aoSize,
-              glm::vec2 frameOffset = glm::vec2(0.0f)) const;
+  // `secondLayer` (ao.layers 2): the depth peel's target, or null for one layer. `normalsFromDepth`: gbuffer.normals
+  // reconstructed.
+  void render(const gl::Texture2D& gbuffer, const DepthHierarchyPass* hierarchy, const gl::Texture2D* secondLayer,
+              const FrameCamera& camera, const AoSettings& settings, bool normalsFromDepth, int aoScale,
+              glm::ivec2 aoSize, glm::vec2 frameOffset = glm::vec2(0.0f)) const;
 
  private:
   const EffectResources& resources_;

@@ -2,6 +2,7 @@
 
 #include <map>
 
+#include "frame/FramePlan.h"
 #include "frame/PassContext.h"
 
 namespace obscura {
@@ -47,19 +48,17 @@ constexpr FxaaPreset kPresets[] = {
     {QualityPreset::Ultra, 39, 0.063f, 0.0312f},
 };
 
-// quality 0: the classifying draw, which has no search.
-ProgramSpec spec(int quality) {
-  if (quality == 0)
-    return ProgramSpec{"fxaa[classify]", "lib/fullscreen.vert", "fxaa/fxaa.frag",
-                       {{"FXAA_CLASSIFY", "1"}, {"FAR_RAY", "0"}},
-                       {}};
-  return ProgramSpec{"fxaa[quality=" + std::to_string(quality) + "]",
-                     "lib/fullscreen.vert",
-                     "fxaa/fxaa.frag",
-                     {{"FXAA_CLASSIFY", "0"},
-                      {"FXAA_SEARCH_STEPS", std::to_string(fxaaSearchSteps(quality).size())},
-                      {"FAR_RAY", "0"}},
-                     {}};
+// quality 0: the classifying draw, which has no search. `upscale`: the upscale the pass does too (null: none).
+ProgramSpec spec(int quality, const ResolutionSettings* upscale = nullptr) {
+  std::vector<std::pair<std::string, std::string>> defines = {{"FXAA_CLASSIFY", quality == 0 ? "1" : "0"},
+                                                              {"FAR_RAY", "0"}};
+  if (quality != 0) defines.emplace_back("FXAA_SEARCH_STEPS", std::to_string(fxaaSearchSteps(quality).size()));
+  std::string name = quality == 0 ? "fxaa[classify" : "fxaa[quality=" + std::to_string(quality);
+  if (upscale) {
+    for (const auto& define : upscaleShaderDefines(*upscale)) defines.push_back(define);
+    name += ",upscale=" + upscaleVariantName(*upscale);
+  }
+  return ProgramSpec{name + "]", "lib/fullscreen.vert", "fxaa/fxaa.frag", defines, {}};
 }
 
 }  // namespace
@@ -125,6 +124,10 @@ EffectInfo FxaaEffect::info() { return {"fxaa", "FXAA", true, false, {"fxaa"}, {
 std::vector<ProgramSpec> FxaaEffect::programSpecs() {
   std::vector<ProgramSpec> specs = {spec(0)};
   for (const auto& [lottes, steps] : searchStepTable()) specs.push_back(spec(lottes));
+  for (const ResolutionSettings& upscale : upscaleVariants()) {
+    specs.push_back(spec(0, &upscale));
+    for (const auto& [lottes, steps] : searchStepTable()) specs.push_back(spec(lottes, &upscale));
+  }
   return specs;
 }
 
@@ -137,8 +140,27 @@ void FxaaEffect::plan(FramePlanner& planner) {
   pass.writes = {{"display-color", TargetSize::full(), PassDecl::Write::Depth::None, ""}};
   const ProgramSpec full = spec(settings.quality), classify = spec(0);
   pass.programs = {classify.name, full.name};
-  pass.run = [this, full, classify](PassContext& context) {
+  pass.run = run(full, classify, "display-color", false);
+  if (planner.frame().upscaled()) {
+    // The frame renders below the output's size: FXAA and the upscale in one pass over the output, where nothing
+    // else reads FXAA's result (a retained display colour keeps the two passes).
+    const ResolutionSettings& upscale = planner.settings().of<ResolutionSettings>();
+    PassDecl::Alternative both;
+    both.absorbing = "upscale";
+    both.mayWriteOutput = true;
+    both.reads = {"display-color"};
+    both.writes = {{kOutputTarget, TargetSize::full(), PassDecl::Write::Depth::None, ""}};
+    both.run = run(spec(settings.quality, &upscale), spec(0, &upscale), kOutputTarget, true);
+    pass.alternatives.push_back(std::move(both));
+  }
+  planner.add(std::move(pass));
+}
+
+std::function<void(PassContext&)> FxaaEffect::run(ProgramSpec full, ProgramSpec classify, std::string output,
+                                                  bool upscales) const {
+  return [this, full, classify, output, upscales](PassContext& context) {
     const FxaaSettings& fxaa = context.settings().of<FxaaSettings>();
+    // The source's texel (FXAA's steps are in its pixels, also where the pass writes the larger output).
     const glm::vec2 texel = context.texelSize("display-color");
     auto draw = [&](const ProgramSpec& spec) {
       FullscreenDraw d = context.draw(spec);
@@ -153,9 +175,12 @@ void FxaaEffect::plan(FramePlanner& planner) {
         const std::vector<float>& steps = fxaaSearchSteps(fxaa.quality);
         d.set("u_searchSteps", steps.data(), static_cast<int>(steps.size()));
       }
+      // The edge upscale's sharpening (its variants with UPSCALE_SHARPEN).
+      if (upscales && d.program().has("u_sharpness"))
+        d.set("u_sharpness", context.settings().of<ResolutionSettings>().sharpness);
       d.draw();
     };
-    context.bindForWriting("display-color");
+    context.bindForWriting(output);
     GLint stencilBits = 0;
     glGetIntegerv(GL_STENCIL_BITS, &stencilBits);
     if (stencilBits > 0 && resources_.options.allowFxaaStencil) {
@@ -177,7 +202,6 @@ void FxaaEffect::plan(FramePlanner& planner) {
       draw(full);
     }
   };
-  planner.add(std::move(pass));
 }
 
 }  // namespace obscura

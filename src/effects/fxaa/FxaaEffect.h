@@ -15,10 +15,12 @@
 // rasterisers pay for far more often (SwiftShader runs both sides of every branch, masked): llvmpipe's FXAA pass went
 // from about 40 to 13 ms at 1280x720. On SwiftShader the page's frame was no faster (WebCanvas.cpp), so the canvas
 // has no stencil and the pass there is one draw.
-#include <map>
+#include <functional>
+#include <string>
 #include <vector>
 
 #include "frame/EffectEntry.h"
+#include "frame/Resolution.h"
 
 namespace obscura {
 
@@ -39,6 +41,11 @@ struct FxaaSettings : ParameterAccess<FxaaSettings> {
 // The search's step lengths of one of Lottes' quality presets (FXAA_QUALITY__P0 ..), in pixels.
 const std::vector<float>& fxaaSearchSteps(int quality);
 
+// Below render scale 1 (frame/Resolution.h) FXAA's pass also upscales the frame into the output, in place of the
+// resolution effect's `upscale` pass (PassDecl::Alternative::absorbing): each output pixel runs FXAA on the source
+// texel under it and reads the upscale (lib/upscale.glsl) at its own point moved by FXAA's resample offset, so
+// where FXAA leaves a texel alone the pixel is exactly the upscale's, and where it antialiases an edge the upscale
+// reads from across the edge as FXAA's resample would (shaders_es2/fxaa/fxaa.frag, UPSCALE).
 class FxaaEffect : public Effect {
  public:
   using Settings = FxaaSettings;
@@ -50,6 +57,11 @@ class FxaaEffect : public Effect {
   void plan(FramePlanner& planner) override;
 
  private:
+  // The pass's draws into `output`: the classifying one first where the target written has a stencil buffer, then
+  // `full`; `upscales`: the variants that also upscale into the output (frame/Resolution.h).
+  std::function<void(PassContext&)> run(ProgramSpec full, ProgramSpec classify, std::string output,
+                                        bool upscales) const;
+
   const EffectResources& resources_;
 };
 

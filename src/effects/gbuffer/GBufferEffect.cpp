@@ -16,7 +16,10 @@ EffectInfo GBufferEffect::info() {
           {{"gbuffer",
             "RG: octahedral view-space normal (254 steps); BA: 16-bit linear depth, high byte in B (65535: background)",
             GL_NEAREST,
-            {{"normals", ViewDecoding::Normals}, {"depth", ViewDecoding::Depth}, {"mask", ViewDecoding::Mask}}},
+            {{"normals", ViewDecoding::Normals},
+             {"normals-from-depth", ViewDecoding::NormalsFromDepth},
+             {"depth", ViewDecoding::Depth},
+             {"mask", ViewDecoding::Mask}}},
            {"base-color",
             "RGB: the material's base colour (factor x texture), sRGB-encoded; A: 1. Written beside the G-buffer where "
             "there are several render targets (the deferred lighting reads it); background undefined",
@@ -65,9 +68,9 @@ GBufferEffect::GBufferEffect(const EffectResources& resources)
     : drawBuffers_(resources.caps.drawBuffers && resources.options.allowDrawBuffers),
       shadingNormals_(resources.options.gbufferShadingNormals),
       programs_(resources.programs) {
-  // The variants of the pass every frame runs are built now, so a broken program fails when the renderer is made;
-  // the others (the base colour alone, for its view) on first use.
-  for (MaterialKind kind : MaterialKind::all()) program(drawBuffers_ ? Output::Both : Output::GBuffer, kind, {});
+  // Every variant is built on first use: the material kinds a scene has. Building all eight here cost the page's
+  // start-up a program each (docs/resolution.md, "Start-up"); the shader tests build every variant
+  // (Shaders.EveryVariantCompilesAndLinks), so a broken one still fails there.
 }
 
 const gl::Program& GBufferEffect::program(Output output, MaterialKind kind, VertexKind vertex) const {

@@ -11,13 +11,14 @@
 #include <vector>
 
 #include "frame/EffectEntry.h"
+#include "frame/GBufferSettings.h"
 #include "gpu/GpuScene.h"
 
 namespace obscura {
 
 class GBufferEffect : public Effect {
  public:
-  using Settings = NoSettings;
+  using Settings = GBufferSettings;  // gbuffer.normals: read by the AO (frame/GBufferSettings.h)
   static constexpr bool kHasSwitch = false;
   static EffectInfo info();
   static std::vector<ProgramSpec> programSpecs();

@@ -101,10 +101,7 @@ LightingDepth LightingSettings::depthInUse(bool deferredForm) const {
   return deferredForm ? LightingDepth::GBuffer : LightingDepth::Prepass;
 }
 
-glm::vec3 LightingSettings::directionToSun() const {
-  const float elevation = glm::radians(sunElevation), azimuth = glm::radians(sunAzimuth);
-  return {std::cos(elevation) * std::sin(azimuth), std::sin(elevation), std::cos(elevation) * std::cos(azimuth)};
-}
+glm::vec3 LightingSettings::directionToSun() const { return sunDirection(sunElevation, sunAzimuth); }
 
 Sun Sun::of(const LightingSettings& settings, const std::vector<PunctualLight>& lights) {
   Sun sun;
@@ -175,6 +172,7 @@ glm::mat3 LightingEffect::environmentRotation(const LightingSettings& settings) 
 
 int LightingEffect::punctualLightsPerDraw(int maxFragmentUniformVectors, bool layered) {
   const int base = kForwardLightingVectorsWithoutLights + (layered ? kMaterialLayerVectors : 0);
+  if (maxFragmentUniformVectors < base) return -1;
   return std::clamp((maxFragmentUniformVectors - base) / kVectorsPerPunctualLight, 0, kMaxPunctualLights);
 }
 
@@ -266,7 +264,7 @@ std::vector<LightingEffect::StageHeadSpec> LightingEffect::stageHeads(int lights
   // The layered materials' heaviest, with as many lights.
   const MaterialKind layered{true, true, true, false, true, false};
   heads.push_back({spec({false, false, false}, layered, {}, EnvironmentLayout::Atlas, lightsPerDraw), ColorSpace::Hdr,
-                   forward + kMaterialLayerVectors + 1});
+                   forward + kMaterialLayerVectors});
   for (StageHeadSpec& head : heads) head.program = withoutStages(head.program);
   return heads;
 }
@@ -284,8 +282,8 @@ ProgramSpec LightingEffect::withoutStages(ProgramSpec head) {
 // Every form with the atlas (any GLES 2 context), and the shading forms again with the mip chain; the shading forms
 // in each tier, the medium and high ones with and without the filtered levels; no stage fused (frameProgramSpecs adds
 // the chains).
-std::vector<ProgramSpec> LightingEffect::programSpecs(int lightsPerDraw, int layeredLightsPerDraw) {
-  if (layeredLightsPerDraw < 0) layeredLightsPerDraw = lightsPerDraw;
+std::vector<ProgramSpec> LightingEffect::programSpecs(int lightsPerDraw, std::optional<int> layeredLights) {
+  const int layeredLightsPerDraw = layeredLights.value_or(lightsPerDraw);
   std::vector<ProgramSpec> specs;
   struct Shading {
     LightingQuality quality;
@@ -311,6 +309,7 @@ std::vector<ProgramSpec> LightingEffect::programSpecs(int lightsPerDraw, int lay
               // The extended kinds (unlit, layered) take the forward forms only (Material::needsForwardLighting),
               // with the atlas, in every tier: enough for the shader checks to compile every #if of them.
               if (kind.extended() && (deferred || layout != EnvironmentLayout::Atlas)) continue;
+              if (kind.layered && layeredLightsPerDraw < 0) continue;
               const Form form{deferred, counting, false, shading.quality, shading.filteredFrom, overDepth};
               if (readKind(form, kind) == kind)
                 specs.push_back(spec(form, kind, {}, layout, kind.layered ? layeredLightsPerDraw : lightsPerDraw));
@@ -327,7 +326,9 @@ const gl::Program& LightingEffect::program(const Form& asked, MaterialKind kind,
                                            const std::vector<StageDecl>& stages, const std::string& chain) const {
   const Form form = programForm(asked);
   const bool fullscreen = form.deferred || form.background;
-  const MaterialKind read = readKind(form, kind);
+  MaterialKind read = readKind(form, kind);
+  // A context whose fragment uniform vectors do not hold the layers draws the core material (kMaterialLayerVectors).
+  read.layered = read.layered && layeredLightsPerDraw_ >= 0;
   const VertexKind stage = fullscreen ? VertexKind{} : vertex.forCurrentFrame();
   return programs_({form, read, stage, chain}, [&] {
     const ProgramSpec head = spec(form, read, stage, layout_, read.layered ? layeredLightsPerDraw_ : lightsPerDraw_);
@@ -356,13 +357,9 @@ LightingEffect::LightingEffect(const EffectResources& resources)
       environmentFilteredUnit_(TextureUnits::environmentFiltered(resources.caps)),
       drawBuffers_(resources.caps.drawBuffers && resources.options.allowDrawBuffers),
       environments_(layout_, resources.options.environmentFiltering) {
-  // The form of the lit pass before the plan's alternatives, for every material, is built now, so a broken program
-  // fails when the renderer is made.
+  // The variants are built on first use, as the G-buffer's are (GBufferEffect.cpp): building every material's here
+  // cost the page's start-up a program each (docs/resolution.md, "Start-up").
   environments_.use("sky", LightingSettings{}.directionToSun());
-  for (MaterialKind kind : MaterialKind::all())
-    if (!kind.extended())
-      program({false, false, false, LightingQuality::Medium, environments_.current().filteredFrom()}, kind, {}, {},
-              "");
 }
 
 void LightingEffect::plan(FramePlanner& planner) {
@@ -387,10 +384,10 @@ void LightingEffect::plan(FramePlanner& planner) {
   // its heaviest program leaves, and whether it may draw into the output framebuffer (the forward form depth-tests,
   // and the output has no depth; the deferred form then shades without the G-buffer's depth: render()).
   const int vectors = resources_.caps.maxFragmentUniformVectors;
-  // The forward form's heaviest program: the most lights, or a layered material's layer and its lights (whose rows
-  // leave no spare column for a stage's floats: one row more, measured by Shaders.EveryProgramFitsTheGles2...).
+  // The forward form's heaviest program: the most lights, or a layered material's layers and its lights (the layers'
+  // kMaterialLayerVectors leave no spare column for a stage's floats, Shaders.EveryProgramFitsTheGles2...).
   const int forwardOwn = std::max(kForwardLightingVectorsWithoutStages + lightsPerDraw_ * kVectorsPerPunctualLight,
-                                  kForwardLightingVectorsWithoutStages + kMaterialLayerVectors + 1 +
+                                  kForwardLightingVectorsWithoutStages + kMaterialLayerVectors +
                                       layeredLightsPerDraw_ * kVectorsPerPunctualLight);
   const int units = TextureUnits::stageUnits(resources_.caps);
   const StageHead forward{"scene-color", ColorSpace::Hdr, vectors - forwardOwn, false, false, units,
@@ -416,12 +413,12 @@ void LightingEffect::plan(FramePlanner& planner) {
     if (counting) {
       pass.alternatives = {Alternative{{"base-color"}, {"gbuffer"},
                                        {{output, TargetSize::full(), Write::Depth::None, ""}},
-                                       runAs({true, true, false}), std::nullopt}};
+                                       runAs({true, true, false}), std::nullopt, "", false}};
     } else {
       pass.alternatives = {Alternative{{"base-color"}, with({"gbuffer", "base-color"}),
                                        {{output, TargetSize::full(), Write::Depth::Shared, "gbuffer"}},
                                        runAs({true, false, false, LightingQuality::Medium, kEnvironmentLevels, true}),
-                                       deferred}};
+                                       deferred, "", false}};
     }
     planner.add(std::move(pass));
   }

@@ -36,6 +36,7 @@
 // how many fragments each pixel shaded (additive blending of 1/255) instead of shading them; the view
 // "shading-count" shows 1 as grey 32/255. The tests read it to hold the once-per-pixel promise.
 #include <memory>
+#include <optional>
 #include <string>
 #include <tuple>
 #include <vector>
@@ -92,8 +93,8 @@ struct LightingSettings : ParameterAccess<LightingSettings> {
   LightingDepth depth = LightingDepth::Auto;
   // What `depth` resolves to with these settings, in a frame whose lighting can take the deferred form or not.
   LightingDepth depthInUse(bool deferredForm) const;
-  float sunElevation = 54.525961f;  // degrees above the horizon (world +y up)
-  float sunAzimuth = 52.125016f;    // degrees from +z towards +x
+  float sunElevation = kBuiltinSunElevation;  // degrees above the horizon (world +y up)
+  float sunAzimuth = kBuiltinSunAzimuth;      // degrees from +z towards +x
   glm::vec3 sunColor{0.50f, 0.48f, 0.44f};  // linear
   float sunIntensity = 3.14159265f;         // lux per unit of colour
   // "sky": the built-in ProceduralSky; "uniform": radiance 1 from every direction (the white furnace); else the path
@@ -119,8 +120,9 @@ inline constexpr int kMaxPunctualLights = 4;
 // and holds these figures.
 inline constexpr int kForwardLightingVectorsWithoutLights = 15;
 // What the material layers (KHR_materials_specular, _ior, _clearcoat: MaterialKind::layered) add to it: their
-// programs take (maxFragmentUniformVectors - 16) / 3 lights.
-inline constexpr int kMaterialLayerVectors = 1;
+// programs take (maxFragmentUniformVectors - 17) / 3 lights. At GLES 2's minimum of 16 vectors their heaviest form
+// (alpha mask, tone curve inline) does not fit: such a context draws layered materials as the core material.
+inline constexpr int kMaterialLayerVectors = 2;
 inline constexpr int kVectorsPerPunctualLight = 3;
 // What the forms keep for themselves, before any per-pixel stage fuses into them (frame/Stage.h: the stages get the
 // rest): the forward form's the same 15 (the tone-mapping stage's two floats take spare columns), the deferred
@@ -155,9 +157,10 @@ class LightingEffect : public Effect {
   using Settings = LightingSettings;
   static constexpr bool kHasSwitch = false;
   static EffectInfo info();
-  // Every variant, the forward ones with lightsPerDraw punctual lights (the layered ones with layeredLightsPerDraw;
-  // -1: as many).
-  static std::vector<ProgramSpec> programSpecs(int lightsPerDraw = kMaxPunctualLights, int layeredLightsPerDraw = -1);
+  // Every variant, the forward ones with lightsPerDraw punctual lights (the layered ones with layeredLightsPerDraw,
+  // by default as many; none where it is negative: their programs do not fit, punctualLightsPerDraw).
+  static std::vector<ProgramSpec> programSpecs(int lightsPerDraw = kMaxPunctualLights,
+                                               std::optional<int> layeredLightsPerDraw = std::nullopt);
   // The programs per-pixel stages fuse into (frame/Stage.h), as fusedProgram takes them, for the shader checks: the
   // deferred form, the background, the forward form of the plainest and of the heaviest material, and of the heaviest
   // layered one (with the atlas, and `lightsPerDraw` punctual lights). `vectors`: the fragment uniform vectors the
@@ -170,7 +173,7 @@ class LightingEffect : public Effect {
   static std::vector<StageHeadSpec> stageHeads(int lightsPerDraw = 0);
   // The punctual lights per draw a context of this many fragment uniform vectors holds: 4 from 27 vectors, 0 at
   // GLES 2's minimum of 16 (the sun and the environment still light the scene); for the layered materials' programs
-  // 4 from 28.
+  // 4 from 29, and -1 below 17 (they do not fit).
   static int punctualLightsPerDraw(int maxFragmentUniformVectors, bool layered = false);
   // World directions to the environment's: for the sky, the turn about +y that puts its sun at lighting.sun-azimuth;
   // else the identity.

@@ -57,7 +57,7 @@ inline constexpr int kTransmissionLevels = 6;
 // levels are read by hand: the same light, dearer), then the lights.
 // Shaders.EveryProgramFitsTheGles2UniformVectors holds these figures.
 inline constexpr int kTransparentVectors = 16;
-inline constexpr int kTransparentLayerVectors = 1;
+inline constexpr int kTransparentLayerVectors = 2;
 inline constexpr int kTransparentFogVectors = 3;
 inline constexpr int kTransparentFilteredVectors = 1;
 

@@ -49,11 +49,9 @@ std::vector<ProgramSpec> VelocityEffect::programSpecs() {
 VelocityEffect::VelocityEffect(const EffectResources& resources)
     : resources_(resources),
       geometry_(resources.programs) {
-  // The programs of the pass every frame with motion runs are built now, so a broken one fails when the renderer is
-  // made.
+  // The camera's program is built now, so a broken one fails when the renderer is made; the geometry variants on
+  // first use, as the G-buffer's are (GBufferEffect.cpp).
   resources_.program(cameraSpec());
-  for (MaterialKind kind : MaterialKind::all())
-    geometry_({kind.forAlphaOnly(), {}}, [&] { return geometrySpec(kind, {}); });
 }
 
 void VelocityEffect::plan(FramePlanner& planner) {
