@@ -305,7 +305,8 @@ TEST(FinishStages, TheVignetteInTheFrameIsTheMirrorsOfTheFrameWithoutIt) {
   settings.set("vignette.roundness", "0.5");
   const test::RenderedImage vignetted = builtinFrame(renderer, settings);
   const glm::vec3 shape =
-      vignetteShape(settings.of<VignetteSettings>(), static_cast<float>(plain.width) / static_cast<float>(plain.height));
+      vignetteShape(settings.of<VignetteSettings>(),
+                    static_cast<float>(plain.width) / static_cast<float>(plain.height));
   float worst = 0.0f, darkest = 1.0f;
   const float width = static_cast<float>(plain.width), height = static_cast<float>(plain.height);
   for (int y = 0; y < plain.height; ++y)

@@ -227,8 +227,8 @@ std::string gradingRanIn(const Renderer& renderer) {
 // Through the frame: an identity LUT leaves the image within a byte, and a LUT of a known function gives that
 // function of the ungraded image within two (the stage reads the tone curve's unquantised colour, the function here
 // its bytes: half a step more at most, times the function's slope); the white balance, CDL, saturation and contrast
-// give the mirror's grade of the ungraded image within a byte. In both lighting forms; the deferred one runs the grade inside the
-// lighting's pass, its LUT on the unit the lighting leaves to stages.
+// give the mirror's grade of the ungraded image within a byte. With and without several render targets
+// (RendererOptions::allowDrawBuffers); the grade runs inside the lighting's pass, its LUT on the unit the lighting leaves to stages.
 TEST(Grading, ThroughTheFrameAnIdentityLutChangesNothingAndAKnownFunctionMatches) {
   auto known = [](const glm::vec3& c) {
     const glm::vec3 s = c * c * (3.0f - 2.0f * c);
