@@ -1,7 +1,9 @@
 // The camera's finish's per-pixel functions on the GPU (shaders_es2/vignette, grain, dither), against their CPU mirrors
 // and their stated properties: the vignette's factor (1 at the centre, falling outwards, round on screen); the grain's
 // zero mean, its luminance weighting and a new pattern each frame; the dithering's banding on a smooth dark gradient
-// (runs of one 8-bit value) and its mean change.
+// (runs of one 8-bit value) and its mean change. Then as stages of the real frame: with every per-pixel stage on, the
+// frame has no more full-screen passes than the default one; the vignette and the grain against their mirrors applied
+// to the frame without them; the dithering on a fog ramp.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -15,7 +17,10 @@
 #include "effects/dither/Dither.h"
 #include "effects/grain/Grain.h"
 #include "effects/vignette/Vignette.h"
+#include "encoding/ColorLut.h"
 #include "gl/ShaderLibrary.h"
+#include "renderer/Renderer.h"
+#include "scene/BuiltinScene.h"
 #include "scene/Primitives.h"
 
 using namespace obscura;
@@ -25,10 +30,11 @@ namespace {
 // A point program whose fragment is `body` (v_first and v_second: drawPoints' two values).
 gl::Program pointProgram(const std::string& includes, const std::string& body) {
   test::context();
-  const std::string fragment = "#include \"lib/precision.glsl\"\n#include \"lib/srgb.glsl\"\n" + includes +
+  const std::string fragment = "#include \"lib/precision.glsl\"\n#include \"lib/stage.glsl\"\n" + includes +
                                "varying vec4 v_first;\nvarying vec3 v_second;\nvoid main() { " + body + " }\n";
-  return gl::Program("finish stage test", ShaderLibrary::composeText(test::kTwoValuePointVertex, {}, {}),
-                     ShaderLibrary::composeText(fragment, {}, {}), true);
+  const std::vector<std::pair<std::string, std::string>> defines = {{"STAGE_OUTPUT_DISPLAY", "1"}};
+  return gl::Program("finish stage test", ShaderLibrary::composeText(test::kTwoValuePointVertex, defines, {}),
+                     ShaderLibrary::composeText(fragment, defines, {}), true);
 }
 
 // Counts runs of one value longer than `longest` in a row of bytes.
@@ -134,7 +140,6 @@ TEST(Dither, BreaksTheBandsOfADarkGradientWithoutMovingItsMean) {
   const int width = 1024, rows = 32;
   auto run = [&](bool dithered) {
     program.use();
-    gl::Program::set(program.uniform("u_ditherSeed"), ditherSeed(7));
     std::vector<glm::vec4> colour;
     std::vector<glm::vec3> pixel;
     for (int y = 0; y < rows; ++y)
@@ -167,10 +172,9 @@ TEST(Dither, BreaksTheBandsOfADarkGradientWithoutMovingItsMean) {
   EXPECT_LT(std::abs(ditheredChange), 0.5);
   // The offsets are triangular in (-1, 1) steps: mean 0, variance 1/6.
   double sum = 0.0, squares = 0.0;
-  const glm::vec2 seed = ditherSeed(3);
   for (int i = 0; i < 100000; ++i) {
     const glm::vec2 pixel(static_cast<float>(i % 317) + 0.5f, static_cast<float>(i / 317) + 0.5f);
-    const float o = 255.0f * ditherOffset(pixel, seed);
+    const float o = 255.0f * ditherOffset(pixel);
     sum += o;
     squares += double(o) * o;
   }
@@ -217,4 +221,196 @@ TEST(ChromaticAberration, RedAndBlueLieOutsideAndInsideGreenByTheStatedShift) {
   EXPECT_NEAR(centroid[0] - centroid[1], 0.03 * fromCentre, 0.5);
   EXPECT_NEAR(centroid[2] - centroid[1], -0.03 * fromCentre, 0.5);
   EXPECT_FLOAT_EQ(aberrationSource({0.5f, 0.5f}, 0, 0.03f).x, 0.5f);
+}
+
+namespace {
+
+// The live passes of the last plan, by name, with the stages each absorbed as "NAME (done by PASS)".
+std::vector<std::string> livePasses(const Renderer& renderer) {
+  std::vector<std::string> names;
+  for (const PlannedPass& pass : renderer.lastPlan().passes()) {
+    if (!pass.live) continue;
+    names.push_back(pass.decl.name);
+    for (const std::string& absorbed : pass.absorbed) names.push_back(absorbed + " (done by " + pass.decl.name + ")");
+  }
+  return names;
+}
+
+long fullscreenPasses(const std::vector<std::string>& names) {
+  return std::count_if(names.begin(), names.end(),
+                       [](const std::string& n) { return n.find(" (done by ") == std::string::npos; });
+}
+
+std::string joined(const std::vector<std::string>& names) {
+  std::string out;
+  for (const std::string& n : names) out += (out.empty() ? "" : ", ") + n;
+  return out;
+}
+
+// The built-in scene through the real frame without FXAA (each pixel its own), at 160 x 90.
+test::RenderedImage builtinFrame(Renderer& renderer, RenderSettings settings) {
+  settings.set("fxaa", "off");
+  return test::render(renderer, builtinSceneCamera(160, 90), settings, View::Final);
+}
+
+}  // namespace
+
+// Issue 29: with every per-pixel stage on (fog, the tone curve, grading with its LUT and every other part, the
+// vignette, the grain, the dithering) the frame has no more full-screen passes than the default frame: they run
+// inside the lighting's pass, in both lighting forms; and with TAA on, inside the tone curve's pass after it.
+TEST(FinishStages, EveryStageOnAddsNoFullScreenPassToTheDefaultFrame) {
+  const std::string lut = test::writeTempFile("plan.cube", writeCubeLut(ColorLut::identity(17)));
+  for (bool deferred : {true, false})
+    for (bool taa : {false, true}) {
+      RendererOptions options;
+      options.allowDrawBuffers = deferred;
+      Renderer renderer = test::makeRenderer(options);
+      renderer.setScene(makeBuiltinScene());
+      const Camera camera = builtinSceneCamera(96, 64);
+      RenderSettings base;
+      if (taa) base.set("taa", "on");
+      test::render(renderer, camera, base, View::Final);
+      const std::vector<std::string> plain = livePasses(renderer);
+      RenderSettings every = base;
+      for (const char* on : {"fog", "tonemap", "grading", "vignette", "grain", "dither"}) every.set(on, "on");
+      every.set("grading.lut", lut);
+      every.set("grading.temperature", "5000");
+      every.set("grading.saturation", "1.2");
+      test::render(renderer, camera, every, View::Final);
+      const std::vector<std::string> all = livePasses(renderer);
+      const std::string form = std::string(deferred ? "deferred" : "forward") + (taa ? ", taa" : "");
+      std::printf("%s: default frame %s\n  every stage on: %s\n", form.c_str(), joined(plain).c_str(),
+                  joined(all).c_str());
+      EXPECT_EQ(fullscreenPasses(all), fullscreenPasses(plain)) << form;
+      const std::string head = taa ? "tonemap" : "lighting";
+      for (const char* stage : {"grading", "vignette", "grain", "dither"}) {
+        EXPECT_EQ(std::count(all.begin(), all.end(), std::string(stage) + " (done by " + head + ")"), 1)
+            << form << ": " << stage;
+      }
+    }
+}
+
+// The vignette through the frame: the mirror's factor on the display-referred light of the frame without it, at
+// each pixel's uv, within a byte and a half (the stage multiplies the tone curve's unquantised colour, the mirror
+// that colour's bytes).
+TEST(FinishStages, TheVignetteInTheFrameIsTheMirrorsOfTheFrameWithoutIt) {
+  Renderer renderer = test::makeRenderer();
+  renderer.setScene(makeBuiltinScene());
+  RenderSettings plainSettings;
+  plainSettings.set("dither", "off");
+  const test::RenderedImage plain = builtinFrame(renderer, plainSettings);
+  RenderSettings settings = plainSettings;
+  settings.set("vignette", "on");
+  settings.set("vignette.intensity", "0.6");
+  settings.set("vignette.roundness", "0.5");
+  const test::RenderedImage vignetted = builtinFrame(renderer, settings);
+  const glm::vec3 shape =
+      vignetteShape(settings.of<VignetteSettings>(),
+                    static_cast<float>(plain.width) / static_cast<float>(plain.height));
+  float worst = 0.0f, darkest = 1.0f;
+  const float width = static_cast<float>(plain.width), height = static_cast<float>(plain.height);
+  for (int y = 0; y < plain.height; ++y)
+    for (int x = 0; x < plain.width; ++x) {
+      const float fx = static_cast<float>(x), fy = static_cast<float>(y);
+      const glm::vec2 uv((fx + 0.5f) / width, 1.0f - (fy + 0.5f) / height);  // rows top to bottom
+      const glm::vec3 in(plain.channel(x, y, 0), plain.channel(x, y, 1), plain.channel(x, y, 2));
+      const glm::vec3 expected = 255.0f * obscura::vignetted(in / 255.0f, uv, shape);
+      for (int c = 0; c < 3; ++c) worst = std::max(worst, std::abs(vignetted.channel(x, y, c) - expected[c]));
+      darkest = std::min(darkest, vignetteFactor(uv, shape));
+    }
+  std::printf("vignette through the frame: worst %.2f / 255 from the mirror; the corners' factor %.3f\n", worst,
+              darkest);
+  EXPECT_LT(darkest, 0.5f);
+  EXPECT_LE(worst, 1.5f);
+}
+
+// The grain through the frame, at the frame's index: the mirror's grain on the frame without it, at each pixel's
+// gl_FragCoord, within a byte and a half for nearly every value (the hash's float arithmetic may differ in a last
+// bit, moving a cell's value), and a new pattern in the next frame.
+TEST(FinishStages, TheGrainInTheFrameIsTheMirrorsAtTheFramesIndex) {
+  Renderer renderer = test::makeRenderer();  // a fresh renderer: its frames are 0, 1, 2, ...
+  renderer.setScene(makeBuiltinScene());
+  RenderSettings plainSettings;
+  plainSettings.set("dither", "off");
+  const test::RenderedImage plain = builtinFrame(renderer, plainSettings);  // frame 0
+  RenderSettings settings = plainSettings;
+  settings.set("grain", "on");
+  settings.set("grain.intensity", "0.2");
+  const test::RenderedImage first = builtinFrame(renderer, settings);   // frame 1
+  const test::RenderedImage second = builtinFrame(renderer, settings);  // frame 2
+  const glm::vec4 u = grainUniform(settings.of<GrainSettings>(), 1);
+  int close = 0, values = 0, changed = 0;
+  double mean = 0.0;
+  for (int y = 0; y < plain.height; ++y)
+    for (int x = 0; x < plain.width; ++x) {
+      // Rows top to bottom, gl_FragCoord from below.
+      const glm::vec2 fragCoord(static_cast<float>(x) + 0.5f, static_cast<float>(plain.height - y) - 0.5f);
+      const glm::vec3 in(plain.channel(x, y, 0), plain.channel(x, y, 1), plain.channel(x, y, 2));
+      const glm::vec3 expected = 255.0f * grained(in / 255.0f, fragCoord, u);
+      for (int c = 0; c < 3; ++c) {
+        close += std::abs(first.channel(x, y, c) - glm::clamp(expected[c], 0.0f, 255.0f)) <= 1.5f;
+        changed += first.channel(x, y, c) != second.channel(x, y, c);
+        mean += first.channel(x, y, c) - in[c];
+        ++values;
+      }
+    }
+  std::printf("grain through the frame: %.2f %% of the values within 1.5 / 255 of the mirror, mean change %+.3f / 255, "
+              "%.1f %% of the values change in the next frame\n",
+              100.0 * close / values, mean / values, 100.0 * changed / values);
+  EXPECT_GE(close, values * 99 / 100);
+  EXPECT_LT(std::abs(mean / values), 0.5);
+  EXPECT_GT(changed, values / 2);
+}
+
+// Dithering through the frame, on a smooth dark gradient: linear fog over a black plane tilted away from an
+// orthographic camera, whose view depth, and so the fog, grows linearly down the frame (from black to about 11/255,
+// about 45 rows per 8-bit value). Quantised as it is, the columns fall into runs of one value longer than 32 pixels;
+// dithered (the default), none is, and the mean moves by less than half a step.
+TEST(FinishStages, DitheringInTheFrameBreaksTheBandsOfAFogRamp) {
+  Scene scene;
+  test::addStill(scene, test::makeRectangle({-3.0f, -3.0f, -3.0f}, {6.0f, 0.0f, 0.0f}, {0.0f, 6.0f, 6.0f}),
+                 glm::vec3(0.0f));
+  Renderer renderer = test::makeRenderer();
+  renderer.setScene(scene);
+  Camera camera = test::makeCamera({0.0f, 0.0f, 5.0f}, {0.0f, 0.0f, 0.0f}, 64, 512, 0.1f, 20.0f, 50.0f);
+  camera.orthographic = true;
+  camera.ymag = 2.0f;
+  RenderSettings settings;
+  settings.set("ao", "off");
+  settings.set("lighting.environment", "uniform");
+  settings.set("lighting.environment-intensity", "0");
+  settings.set("lighting.sun-intensity", "0");
+  settings.set("tonemap.operator", "linear");
+  settings.set("fog", "on");
+  settings.set("fog.mode", "linear");
+  settings.set("fog.start", "3");
+  settings.set("fog.end", "7");
+  settings.set("fog.color", "0.0035,0.0035,0.0035");
+  auto measure = [&](bool dithered) {
+    RenderSettings s = settings;
+    s.set("dither", dithered ? "on" : "off");
+    const test::RenderedImage image = test::render(renderer, camera, s, View::Final);
+    int runs = 0;
+    double sum = 0.0;
+    int top = 255, bottom = 0;
+    for (int x = 0; x < image.width; ++x) {
+      std::vector<int> column;
+      for (int y = 0; y < image.height; ++y) {
+        column.push_back(image.channel(x, y, 1));
+        sum += image.channel(x, y, 1);
+      }
+      runs += longRuns(column, 32);
+      top = std::min(top, column.front());
+      bottom = std::max(bottom, column.back());
+    }
+    return std::make_tuple(runs, sum / (static_cast<double>(image.width) * image.height), top, bottom);
+  };
+  const auto [plainRuns, plainMean, plainTop, plainBottom] = measure(false);
+  const auto [ditheredRuns, ditheredMean, ditheredTop, ditheredBottom] = measure(true);
+  std::printf("fog ramp %d .. %d / 255 over 512 rows: %d runs longer than 32 pixels quantised as it is, %d dithered; "
+              "mean %.3f / 255 undithered, %.3f dithered (change %+.3f)\n",
+              plainTop, plainBottom, plainRuns, ditheredRuns, plainMean, ditheredMean, ditheredMean - plainMean);
+  EXPECT_GE(plainRuns, 5 * 64) << "the ramp must band without dithering";
+  EXPECT_EQ(ditheredRuns, 0);
+  EXPECT_LT(std::abs(ditheredMean - plainMean), 0.5);
 }

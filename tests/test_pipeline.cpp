@@ -238,7 +238,9 @@ TEST(Pipeline, TheFrameIsTheSameWhicheverFormTheLightingTakes) {
     }
     ASSERT_NE(lighting, nullptr);
     EXPECT_EQ(tonemapRan, form.retainHdr) << "the tone pass is folded into the lighting unless the HDR is read";
-    EXPECT_EQ(lighting->absorbed, form.retainHdr ? std::vector<std::string>{} : std::vector<std::string>{"tonemap"});
+    // The tone curve and the dithering (on by default) inside the lighting's pass.
+    EXPECT_EQ(lighting->absorbed,
+              (form.retainHdr ? std::vector<std::string>{} : std::vector<std::string>{"tonemap", "dither"}));
     EXPECT_EQ(lighting->reads.count("base-color") == 1, form.allowDrawBuffers && drawBuffers);
     images.push_back(image.rgba);
   }

@@ -94,6 +94,11 @@ TEST(Resources, AGlErrorRaisedInAPassNamesThatPass) {
   paneInstance.mesh = static_cast<int>(scene.meshes.size()) - 1;
   scene.instances.push_back(paneInstance);
   renderer.setScene(scene);
+  // The display colour's stages run as passes of their own where the stages do not fuse.
+  RendererOptions separateStages;
+  separateStages.fuseStages = false;
+  Renderer separate = test::makeRenderer(separateStages);
+  separate.setScene(scene);
   // Bloom's chain has all its levels from 128 pixels up (a level is at least 2 pixels).
   const Camera small = builtinSceneCamera(32, 24), large = builtinSceneCamera(128, 128);
   const gl::RenderTarget smallOutput("output", small.width, small.height, GL_NEAREST,
@@ -137,6 +142,9 @@ TEST(Resources, AGlErrorRaisedInAPassNamesThatPass) {
     if (pass == "lens-flare") frame.set("lens-flare", "on");
     if (pass == "glare" || pass == "chromatic-aberration") frame.set(pass, "on");
     if (pass.rfind("exposure-", 0) == 0) frame.set("auto-exposure", "on");
+    const bool displayStage = pass == "grading" || pass == "vignette" || pass == "grain" || pass == "dither";
+    if (displayStage) frame.set(pass, "on");
+    if (pass == "grading") frame.set("grading.saturation", "1.2");
     if (pass == "exposure-histogram" || pass == "exposure-bins") frame.set("auto-exposure.metering", "percentile");
     const Camera wide = pass == "exposure-reduce-2" ? builtinSceneCamera(2100, 24)
                         : pass == "exposure-reduce" ? builtinSceneCamera(200, 24)
@@ -153,8 +161,8 @@ TEST(Resources, AGlErrorRaisedInAPassNamesThatPass) {
         renderer.render(wide, frame, view, OutputTarget{wideOutput.framebuffer(), wide.width, wide.height, {}},
                         options);
       else
-        renderer.render(camera, frame, view, OutputTarget{output.framebuffer(), camera.width, camera.height, {}},
-                        options);
+        (displayStage ? separate : renderer)
+            .render(camera, frame, view, OutputTarget{output.framebuffer(), camera.width, camera.height, {}}, options);
       ADD_FAILURE() << "the GL error raised in " << pass << " went unnoticed";
     } catch (const GlError& e) {
       EXPECT_NE(std::string(e.what()).find("after pass " + pass), std::string::npos) << e.what();

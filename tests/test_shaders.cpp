@@ -9,13 +9,18 @@
 
 #include "TestSupport.h"
 #include "base/Error.h"
+#include "effects/dither/Dither.h"
 #include "effects/fog/FogEffect.h"
+#include "effects/grading/ColorGrading.h"
+#include "effects/grain/Grain.h"
 #include "effects/lighting/LightingEffect.h"
 #include "effects/tonemap/TonemapEffect.h"
+#include "effects/vignette/Vignette.h"
 #include "frame/Stage.h"
 #include "effects/transparency/TransparencyEffect.h"
 
 #include "gl/ShaderLibrary.h"
+#include "renderer/EffectTable.h"
 #include "gl/UniformPacking.h"
 
 using namespace obscura;
@@ -189,12 +194,22 @@ TEST(Shaders, EveryProgramFitsTheGles2UniformVectors) {
 // stages declare, as GLSL ES 1.00 packs them; so what a plan fuses fits the context it was planned for.
 TEST(Shaders, FusedStagesTakeNoMoreUniformVectorsThanTheyDeclare) {
   const gl::GlCaps& caps = test::context().caps();
-  std::vector<StageDecl> stages = FogEffect::stages();
-  for (const StageDecl& stage : TonemapEffect::stages()) stages.push_back(stage);
+  // Every stage of the table (fog, the tone curve, the display colour's: grading, vignette, grain, dithering).
+  std::vector<StageDecl> stages, display;
+  for (const EffectEntry& row : effectTable())
+    for (const StageDecl& stage : row.stages()) {
+      stages.push_back(stage);
+      if (stage.inputSpace == ColorSpace::Display) display.push_back(stage);
+    }
   std::vector<std::vector<StageDecl>> chains;
   for (const StageDecl& stage : stages) chains.push_back({stage});
   for (const StageDecl& fog : FogEffect::stages())
     chains.push_back({fog, TonemapEffect::stage(ToneMapOperator::AcesFitted)});
+  // The tone curve with each display stage after it, and with all of them, the heaviest variant of each.
+  const StageDecl tone = TonemapEffect::stage(ToneMapOperator::Neutral);
+  for (const StageDecl& stage : display) chains.push_back({tone, stage});
+  chains.push_back({FogEffect::stage(FogMode::Exponential, false), tone, GradingEffect::stage(true, true),
+                    VignetteEffect::stage(), GrainEffect::stage(), DitherEffect::stage()});
   std::vector<std::pair<ProgramSpec, int>> heads;  // with the vectors each keeps
   for (int lights : {0, kMaxPunctualLights})
     for (const LightingEffect::StageHeadSpec& head : LightingEffect::stageHeads(lights))
@@ -205,8 +220,9 @@ TEST(Shaders, FusedStagesTakeNoMoreUniformVectorsThanTheyDeclare) {
     for (const StageDecl& stage : chain) declared += stage.uniformVectors;
     std::vector<std::pair<ProgramSpec, int>> programs = {
         {fusedProgram(stagePassHead(chain), chain, chain.front().inputSpace), kStagePassUniformVectors}};
-    for (const auto& [head, vectors] : heads)
-      programs.emplace_back(fusedProgram(head, chain, ColorSpace::Hdr), vectors);
+    if (chain.front().inputSpace == ColorSpace::Hdr)
+      for (const auto& [head, vectors] : heads)
+        programs.emplace_back(fusedProgram(head, chain, ColorSpace::Hdr), vectors);
     for (const auto& [spec, vectors] : programs) {
       if (!std::all_of(spec.extensions.begin(), spec.extensions.end(),
                        [&](const std::string& e) { return caps.has(e); }))

@@ -291,6 +291,7 @@ TEST(Unlit, AnUnlitCubesFacesShowOneColour) {
     scene.instances.push_back({0, glm::mat4(1.0f), -1, -1});
     RenderSettings settings;
     settings.set("fxaa", "off");
+    settings.set("dither", "off");  // one colour: dithering would spread it over a step each side
     const Camera camera = test::makeCamera({3, 2.5f, 4}, {0, 0, 0}, kSide, kSide, 0.1f, 100.0f, 50.0f);
     Renderer renderer = test::makeRenderer();
     renderer.setScene(scene);

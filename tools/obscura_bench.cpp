@@ -29,6 +29,9 @@
 //      and glare on bloom, hatching against the lines, at 640x360 and 1280x720, all taking turns frame by frame;
 //      each configuration's passes, and what the tone mapping pays for reading the exposure and adding the lens's
 //      light (DIR/finish.csv)
+//   8e. the display colour's stages (--stages-only: this alone): grading (its balance, its LUT, both), the vignette,
+//      the grain and the dithering, fused into the lighting (and with TAA into the tone curve's pass), at 640x360
+//      and 1280x720 taking turns frame by frame; what each adds to the pass it joins (DIR/stages.csv)
 //   8d. the transparent pass, transmission and clear coat on the glass sample and its variants
 //      (assets/scenes/glass-samples.glb), with section 8 (--transparency-only: this alone; DIR/transparency.csv)
 //   9. temporal AO (--temporal-ao-only: this alone): the default AO in one frame against 4 taps accumulated by
@@ -77,6 +80,7 @@
 #include "effects/ao/AoSettings.h"
 #include "effects/ao/DepthHierarchyPass.h"
 #include "effects/ao/SaoKernel.h"
+#include "encoding/ColorLut.h"
 #include "frame/Resolution.h"
 #include "gl/RenderTarget.h"
 #include "metrics/UpscaleMetrics.h"
@@ -117,6 +121,7 @@ struct Options {
   bool motionOnly = false;      // section 7 alone
   bool effectsOnly = false;     // section 8 alone
   bool finishOnly = false;      // section 8c alone
+  bool stagesOnly = false;      // section 8e alone
   bool transparencyOnly = false;  // section 8d alone
   bool temporalAoOnly = false;  // section 9 alone
   bool startupOnly = false;     // section 0 alone
@@ -339,6 +344,7 @@ Options parseOptions(int argc, char** argv) {
     else if (arg == "--motion-only") options.motionOnly = true;
     else if (arg == "--effects-only") options.effectsOnly = true;
     else if (arg == "--finish-only") options.finishOnly = true;
+    else if (arg == "--stages-only") options.stagesOnly = true;
     else if (arg == "--transparency-only") options.transparencyOnly = true;
     else if (arg == "--temporal-ao-only") options.temporalAoOnly = true;
     else if (arg == "--startup-only") options.startupOnly = true;
@@ -348,8 +354,8 @@ Options parseOptions(int argc, char** argv) {
     else if (arg == "--host-only") options.hostOnly = true;
     else throw InputError("unknown option '" + arg + "' (usage: obscura-bench [--out DIR] [--frames N] "
                           "[--backend osmesa|egl] [--quick] [--estimators-only] [--motion-only] [--effects-only] "
-                          "[--finish-only] [--transparency-only] [--temporal-ao-only] [--lighting-only] "
-                          "[--ao-layers-only] [--startup-only] [--resolution-only] [--host-only])");
+                          "[--finish-only] [--stages-only] [--transparency-only] [--temporal-ao-only] "
+                          "[--lighting-only] [--ao-layers-only] [--startup-only] [--resolution-only] [--host-only])");
   }
   return options;
 }
@@ -1303,6 +1309,78 @@ void finishSection(const Options& options, HeadlessContext& context, const std::
 
 }
 
+// Section 8e: the display colour's per-pixel stages (issue 29: grading, vignette, grain, dithering). They add no pass:
+// what each costs is what it adds to the pass it is fused into, the lighting's (the default frame) or, with TAA, the
+// tone curve's stage pass; measured against the same frame without it (without dithering for the dithering itself),
+// every configuration taking turns frame by frame.
+void stagesSection(const Options& options, HeadlessContext& context, const std::vector<std::pair<int, int>>& sizes) {
+  const Scene scene = makeBuiltinScene(BuiltinSceneOptions::still());
+  // A 33-point LUT (a warm grade), written where the results go: what a .cube from a grading tool is.
+  const std::string lut = options.outDir + "/warm.cube";
+  std::ofstream(lut) << writeCubeLut(ColorLut::of(33, [](const glm::vec3& c) {
+    return glm::vec3(std::min(1.0f, 1.05f * c.r + 0.02f), c.g, 0.85f * c.b);
+  }));
+  const std::vector<std::pair<std::string, std::string>> balance = {
+      {"grading", "on"}, {"grading.temperature", "5000"}, {"grading.saturation", "1.2"}, {"grading.contrast", "1.1"}};
+  struct Configuration {
+    std::string name;
+    std::vector<std::pair<std::string, std::string>> set;
+  };
+  auto with = [](std::vector<std::pair<std::string, std::string>> a,
+                 const std::vector<std::pair<std::string, std::string>>& b) {
+    a.insert(a.end(), b.begin(), b.end());
+    return a;
+  };
+  const std::vector<std::pair<std::string, std::string>> lutOn = {{"grading", "on"}, {"grading.lut", lut}};
+  const std::vector<std::pair<std::string, std::string>> every =
+      with(with(balance, {{"grading.lut", lut}}), {{"vignette", "on"}, {"grain", "on"}});
+  const std::vector<Configuration> configurations = {
+      {"dither off", {{"dither", "off"}}},
+      {"defaults (dither)", {}},
+      {"grading: balance", balance},
+      {"grading: LUT", lutOn},
+      {"grading: balance + LUT", with(balance, {{"grading.lut", lut}})},
+      {"vignette", {{"vignette", "on"}}},
+      {"grain", {{"grain", "on"}}},
+      {"all four", every},
+      {"taa, dither off", {{"taa", "on"}, {"dither", "off"}}},
+      {"taa, all four", with(every, {{"taa", "on"}})}};
+  std::vector<RenderSettings> settings;
+  for (const Configuration& c : configurations) {
+    RenderSettings s;
+    for (const auto& [name, value] : c.set) s.set(name, value);
+    settings.push_back(s);
+  }
+  std::ofstream csv(options.outDir + "/stages.csv");
+  csv << "configuration,width,height,pass,median_ms\n";
+  std::printf("\n8e. The display colour's stages, the still built-in scene, %s; median ms of %d frames, all "
+              "configurations taking turns; each adds to the pass it is fused into (lighting; with TAA, tonemap)\n",
+              context.caps().renderer.c_str(), options.frames);
+  std::printf("%-24s %-9s %9s %9s %9s %9s\n", "configuration", "size", "lighting", "tonemap", "frame", "adds");
+  for (auto [w, h] : sizes) {
+    const std::vector<FinishPassTimer> timers =
+        timeTakingTurns(options, context, scene, builtinSceneCamera(w, h), settings, false);
+    for (size_t c = 0; c < configurations.size(); ++c) {
+      double frameMs = 0.0;
+      for (const std::string& pass : framePassNames()) frameMs += timers[c].medianMs(pass);
+      // Against the frame without it: the defaults for a stage added to them, no dithering for the dithering and
+      // for the four (which include it), the TAA frame without dithering for the TAA ones.
+      const bool taa = c >= 8;
+      const size_t base = taa ? 8 : (c == 1 || c == 7) ? 0 : 1;
+      const std::string joined = taa ? "tonemap" : "lighting";
+      const double adds = c == 0 || c == 8 ? 0.0 : timers[c].medianMs(joined) - timers[base].medianMs(joined);
+      std::printf("%-24s %-9s %9.2f %9.2f %9.2f %+9.2f\n", configurations[c].name.c_str(),
+                  (std::to_string(w) + "x" + std::to_string(h)).c_str(), timers[c].medianMs("lighting"),
+                  timers[c].medianMs("tonemap"), frameMs, adds);
+      for (const char* pass : {"lighting", "tonemap"})
+        csv << '"' << configurations[c].name << "\"," << w << "," << h << "," << pass << ","
+            << timers[c].medianMs(pass) << "\n";
+      csv << '"' << configurations[c].name << "\"," << w << "," << h << ",frame," << frameMs << "\n";
+      csv << '"' << configurations[c].name << "\"," << w << "," << h << ",adds-to-" << joined << "," << adds << "\n";
+    }
+  }
+}
+
 int main(int argc, char** argv) {
   try {
     const Options options = parseOptions(argc, argv);
@@ -1363,6 +1441,11 @@ int main(int argc, char** argv) {
                     options.quick ? std::vector<std::pair<int, int>>{{320, 180}}
                                   : std::vector<std::pair<int, int>>{{640, 360}, {1280, 720}});
       std::printf("\nobscura-bench: wrote %s/finish.csv\n", options.outDir.c_str());
+      return 0;
+    }
+    if (options.stagesOnly) {  // before Bench, which starts DIR/bench.csv afresh
+      stagesSection(options, context, effectSizes);
+      std::printf("\nobscura-bench: wrote %s/stages.csv\n", options.outDir.c_str());
       return 0;
     }
     if (options.effectsOnly) {  // before Bench, which starts DIR/bench.csv afresh
@@ -1519,11 +1602,13 @@ int main(int argc, char** argv) {
     motionSection(options, context, w, h);
     effectsSection(options, context, effectSizes);
     finishSection(options, context, effectSizes);
+    stagesSection(options, context, effectSizes);
     temporalAoSection(options, context, builtin);
     resolutionSection(options, context, builtin);
     hostSection(options, context);
     std::printf("\nobscura-bench: wrote %s/startup.csv, bench.csv, ratios.csv, radius_sweep.csv, radius_sweep.png, "
-                "estimators.csv, motion.csv, effects.csv, finish.csv, temporal_ao.csv, resolution.csv, host.csv\n",
+                "estimators.csv, motion.csv, effects.csv, finish.csv, stages.csv, temporal_ao.csv, resolution.csv, "
+                "host.csv\n",
                 options.outDir.c_str());
     return 0;
   } catch (const InputError& e) {

@@ -61,6 +61,14 @@ flare="--camera tools/docs-flare-camera.json --lighting.sun-elevation 16 --light
 build/obscura-render $flare --out "$out/flare_bloom.png"
 build/obscura-render $flare --lens-flare --lens-flare.intensity 0.15 --glare --glare.streaks 6 --glare.angle 15 \
   --glare.intensity 0.1 --out "$out/flare_glare.png"
+# Colour grading and the display colour's stages (docs/camera-finish.md): ungraded | a grade by the parameters (white
+# balance, saturation, contrast, a CDL offset), the vignette and grain | a .cube LUT (assets/luts/teal-orange.cube).
+build/obscura-render --size 480x270 --out "$out/grading_off.png"
+build/obscura-render --size 480x270 --grading --grading.temperature 7200 --grading.tint 4 --grading.saturation 1.2 \
+  --grading.contrast 1.15 --grading.offset -0.005,-0.005,0.005 --vignette --vignette.intensity 0.3 \
+  --vignette.smoothness 0.5 --grain --grain.intensity 0.06 --out "$out/grading_balance.png"
+build/obscura-render --size 480x270 --grading --grading.lut assets/luts/teal-orange.cube --grading.contrast 1.1 \
+  --vignette --vignette.intensity 0.3 --vignette.smoothness 0.5 --out "$out/grading_lut.png"
 # Depth of field (docs/depth-of-field.md): an 85 mm lens at f/1.2 focused on the red sphere (autofocus on the point
 # 0.48, 0.58 of the frame); pinhole | depth of field | the mean of 64 pinhole renders over the lens (the reference).
 dof="--size 640x360 --dof.focal-length 85 --dof.fstop 1.2 --dof.focus-x 0.48 --dof.focus-y 0.58"
@@ -80,8 +88,8 @@ build/obscura-render $pbr --bloom --out "$out/pbr_samples_bloom.png"
 build/obscura-render --scene assets/scenes/glass-samples.glb --camera tools/docs-glass-camera.json \
   --out "$out/glass_samples.png"
 echo "render-docs-images: wrote $out/builtin_*.png, motion_*.png, ao_*.png, aa_*.png, bloom.png, fog_height.png," \
-  "edges.png, edges_toon.png, edges_hatching.png, auto_exposure_*.png, flare_*.png, dof*.png, lighting_*.png," \
-  "pbr_*.png, glass_samples.png"
+  "edges.png, edges_toon.png, edges_hatching.png, auto_exposure_*.png, flare_*.png, grading_*.png, dof*.png," \
+  "lighting_*.png, pbr_*.png, glass_samples.png"
 
 (cd tests/browser && npm ci --no-audit --no-fund --loglevel=error)
 OBSCURA_UPDATE_SCREENSHOTS=1 node --test --test-name-pattern="page screenshots" tests/browser/page.test.mjs >/dev/null

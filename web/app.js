@@ -142,8 +142,8 @@ function parameterControl(obscura, parameter) {
     return { row, update: () => { select.value = obscura.get(parameter.name); } };
   }
   if (parameter.kind === 'text') {
-    // Named built-ins (lighting.environment: sky, uniform) in a list, which also shows a file in use; a dropped
-    // .hdr file sets it too (loadFiles).
+    // Named built-ins (lighting.environment: sky, uniform; grading.lut: none) in a list, which also shows a file in
+    // use; a dropped .hdr or .cube file sets it too (loadFiles).
     const select = element('select', { id });
     for (const choice of parameter.choices || []) {
       select.append(element('option', { value: choice, textContent: choice }));
@@ -470,7 +470,7 @@ async function loadFiles(obscura, files) {
   setStatus(`Loading ${Array.from(files).map((f) => f.name).join(', ')}…`);
   try {
     showScene(await obscura.loadFiles(files, { onProgress: (fraction) => { progress.value = fraction; } }));
-    refreshControls(obscura);  // an .hdr sets lighting.environment
+    refreshControls(obscura);  // an .hdr sets lighting.environment, a .cube grading.lut
   } catch (e) {
     // The core keeps the previous scene on screen; say why this one was refused.
     setStatus('');

@@ -268,9 +268,15 @@ export class Obscura extends EventTarget {
 
   // Reads File objects (from a file picker or a drop) and loads the one .glb or .gltf among them, the others being
   // its side files. onProgress(fraction) follows the reading.
-  // An .hdr among them (alone) becomes the environment instead (loadEnvironment); resolves to scene() either way.
+  // An .hdr among them (alone) becomes the environment instead (loadEnvironment), a .cube (alone) the colour grade's
+  // LUT (loadLut); resolves to scene() either way.
   async loadFiles(files, { onProgress = () => {} } = {}) {
     files = Array.from(files);
+    const luts = files.filter((f) => /\.cube$/i.test(f.name));
+    if (luts.length === 1 && files.length === 1) {
+      await this.loadLut(await readFile(luts[0], (bytes) => onProgress(bytes / (luts[0].size || 1))), luts[0].name);
+      return this.scene();
+    }
     const environments = files.filter((f) => /\.hdr$/i.test(f.name));
     if (environments.length === 1 && files.length === 1) {
       const file = environments[0];
@@ -303,6 +309,21 @@ export class Obscura extends EventTarget {
       'obscura_add_environment', 'string', ['string', 'number', 'number'], [name, pointer, size]));
     if (!path) throw new ObscuraError(this.core.UTF8ToString(this.core._obscura_error()));
     this.set('lighting.environment', path);
+    this.changed();
+    return path;
+  }
+
+  // A 3D LUT for colour grading (an Adobe / Resolve .cube file, as bytes or text): kept in the module's file system,
+  // set as grading.lut (its path there) and grading switched on. Throws ObscuraError on a malformed file, naming its
+  // line; the grade in use stays then. set('grading.lut', 'none') takes it off.
+  async loadLut(cube, name = 'grade.cube') {
+    const bytes = typeof cube === 'string' ? new TextEncoder().encode(cube)
+      : cube instanceof Uint8Array ? cube : new Uint8Array(cube);
+    const path = this.withBytes(bytes, (pointer, size) => this.core.ccall(
+      'obscura_add_lut', 'string', ['string', 'number', 'number'], [name, pointer, size]));
+    if (!path) throw new ObscuraError(this.core.UTF8ToString(this.core._obscura_error()));
+    this.set('grading.lut', path);
+    this.set('grading', 'on');
     this.changed();
     return path;
   }

@@ -1,11 +1,14 @@
-// Colour grading on display colour (src/effects/grading/ColorGrading.h: the steps, their sources, and the CPU mirror
-// gradeDisplay, which tests/test_grading.cpp holds this to). Needs lib/precision.glsl and lib/srgb.glsl first.
+// Colour grading on display colour, a per-pixel stage after the tone curve (src/effects/grading/ColorGrading.h: the
+// steps, their sources, and the CPU mirror gradeDisplay, which tests/test_grading.cpp holds this to). Needs
+// lib/precision.glsl and lib/stage.glsl first.
 //   GRADING_BALANCE 1   white balance, ASC CDL, saturation, contrast (display-linear), else none of them
 //   GRADING_LUT 1       the 3D LUT: its RGBA8 strip (encoding/ColorLut.h), bilinear in red and green by the hardware,
 //                       linear in blue by hand between two slices
 #if GRADING_BALANCE
-uniform mat3 u_gradingWhiteBalance;  // M^-1 diag(LMS(D65) / LMS(white)) M, on linear Rec. 709
-uniform vec3 u_gradingSlope, u_gradingOffset, u_gradingPower;
+// diag(slope) M^-1 diag(LMS(D65) / LMS(white)) M on linear Rec. 709: the white balance and the CDL's slope in one
+// matrix, made on the CPU once a frame (gradingBalance).
+uniform mat3 u_gradingBalance;
+uniform vec3 u_gradingOffset, u_gradingPower;
 uniform vec2 u_gradingSaturationContrast;
 #endif
 #if GRADING_LUT
@@ -33,8 +36,7 @@ vec3 gradingLut(vec3 srgb) {
 
 vec3 gradeDisplay(vec3 srgb) {
 #if GRADING_BALANCE
-  vec3 c = u_gradingWhiteBalance * srgbToLinear(srgb);
-  c = pow(max(c * u_gradingSlope + u_gradingOffset, 0.0), u_gradingPower);
+  vec3 c = pow(max(u_gradingBalance * srgbToLinear(srgb) + u_gradingOffset, 0.0), u_gradingPower);
   float luma = dot(c, vec3(0.2126, 0.7152, 0.0722));
   c = vec3(luma) + u_gradingSaturationContrast.x * (c - vec3(luma));
   c = 0.18 * pow(max(c, 0.0) * (1.0 / 0.18), vec3(u_gradingSaturationContrast.y));
@@ -45,3 +47,5 @@ vec3 gradeDisplay(vec3 srgb) {
 #endif
   return srgb;
 }
+
+vec3 gradingStage(vec3 srgb, StagePixel pixel) { return gradeDisplay(srgb); }

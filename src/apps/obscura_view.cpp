@@ -44,7 +44,7 @@ const char* kUsage =
     "usage: obscura-view [FILE.glb|FILE.gltf] [--size WxH] [--state QUERY] [--screenshot OUT.png [--frames N]]\n"
     "\n"
     "Shows a glTF 2.0 scene (default: the built-in scene) with Scalable Ambient Obscurance in an OpenGL ES 2.0\n"
-    "window. Drop a .glb or .gltf on the window to load it.\n"
+    "window. Drop a .glb or .gltf on the window to load it, a .cube to grade with it (grading.lut).\n"
     "Each scene loaded gets its default AO radius, 5 % of its bounding-sphere diameter to two significant figures\n"
     "(the built-in scene: 1 m), unless --state gives one, which is then kept for every scene.\n"
     "  --size WxH         window size (default 1280x720)\n"
@@ -122,7 +122,8 @@ class Input {
   }
 
   // A drop may hold a .gltf with its .bin and images, in any order: the scene file is the one to load (its side
-  // files are found next to it).
+  // files are found next to it). A .cube dropped alone is the colour grade's LUT (grading.lut, grading on; a
+  // malformed one is refused with its line and the grade stays).
   void loadDropped(const std::vector<std::string>& paths) {
     for (const std::string& path : paths) {
       std::string extension = std::filesystem::path(path).extension().string();
@@ -131,8 +132,19 @@ class Input {
         load(path);
         return;
       }
+      if (extension == ".cube" && paths.size() == 1) {
+        try {
+          viewer_.state().settings.set("grading.lut", path);
+          viewer_.state().settings.set("grading", "on");
+          message_.clear();
+        } catch (const std::exception& e) {
+          std::cerr << "obscura-view: " << e.what() << "\n";
+          message_ = e.what();
+        }
+        return;
+      }
     }
-    message_ = "none of the dropped files is a .gltf or .glb scene";
+    message_ = "none of the dropped files is a .gltf or .glb scene (or a .cube LUT)";
     std::fprintf(stderr, "obscura-view: %s\n", message_.c_str());
   }
 

@@ -594,6 +594,21 @@ EMSCRIPTEN_KEEPALIVE const char* obscura_add_environment(const char* name, const
   return returned(ok ? path : "");
 }
 
+// A 3D LUT (Adobe / Resolve .cube text) from memory, kept in the module's memory file system as /luts/<name>, for
+// grading.lut: setting that parameter to the path returned reads it, and refuses a malformed file there with its line
+// (the grade in use stays). Returns the path, or "" (obscura_error() says why).
+EMSCRIPTEN_KEEPALIVE const char* obscura_add_lut(const char* name, const std::uint8_t* bytes, int size) {
+  std::string base = name;
+  const size_t slash = base.find_last_of("/\\");
+  if (slash != std::string::npos) base = base.substr(slash + 1);
+  const std::string path = "/luts/" + (base.empty() ? std::string("grade.cube") : base);
+  const int ok = attempt([&] {
+    mkdir("/luts", 0777);  // exists already after the first: the error is harmless
+    std::ofstream(path, std::ios::binary).write(reinterpret_cast<const char*>(bytes), size);
+  });
+  return returned(ok ? path : "");
+}
+
 EMSCRIPTEN_KEEPALIVE int obscura_load_builtin_scene() {
   return change([] {
     g_app->viewer().loadBuiltinScene();

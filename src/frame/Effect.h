@@ -121,6 +121,9 @@ struct StageDecl {
   // read at its pixel's uv (the lens light). A stage with any runs in a head that binds them (its own stage pass), and
   // fuses only after the passes that write them.
   std::vector<std::pair<std::string, std::string>> textures;
+  // Textures its own effect holds (grading's LUT), by sampler, asked for when the pass runs: the head binds each to
+  // a texture unit it has spare (StageHead::textureUnits), so such a stage fuses only into a head with units left.
+  std::vector<std::pair<std::string, std::function<GLuint()>>> ownTextures;
   // The fragment uniform vectors its uniforms take, as GLSL ES 1.00 packs them (Appendix A, section 7): a stage
   // fuses into a pass only where they fit beside that pass's own (Shaders.EveryProgramFitsTheGles2UniformVectors
   // holds the figures).
@@ -139,6 +142,8 @@ struct StageHead {
   int uniformVectors = 0;       // fragment uniform vectors left for stages
   bool mayWriteOutput = true;   // false: it cannot draw into the output framebuffer (it depth-tests)
   bool bindsTextures = false;   // it binds the textures a stage reads (StageDecl::textures): a stage pass does
+  int textureUnits = 0;         // units left for the stages' textures (StageDecl::textures and ownTextures)
+  int firstTextureUnit = 0;     // where those units start (a head that binds its stages' own textures itself)
 };
 
 // One pass of this frame: what it reads and writes, and how it draws. Reads of a target bind to its latest earlier

@@ -251,6 +251,7 @@ FramePlan FramePlan::resolve(FramePlanner&& planner, const std::string& result,
     if (!planner.fuseStages_) continue;
     ColorSpace space = offer.space;
     int vectors = offer.uniformVectors;
+    int units = offer.textureUnits;
     for (;;) {
       const auto own = head.writes.find(head.stageOutput);
       if (own == head.writes.end()) break;
@@ -265,6 +266,8 @@ FramePlan FramePlan::resolve(FramePlanner&& planner, const std::string& result,
       if (input == next.reads.end() || input->second != color || stage.inputSpace != space) break;
       if (stage.uniformVectors > vectors) break;
       if (!stage.textures.empty() && !offer.bindsTextures) break;
+      const int stageUnits = static_cast<int>(stage.textures.size() + stage.ownTextures.size());
+      if (stageUnits > 0 && stageUnits > units) break;
       // What else it reads, the head must see as it is: written before the head runs.
       bool readable = true;
       for (const auto& [target, version] : next.reads) {
@@ -282,6 +285,7 @@ FramePlan FramePlan::resolve(FramePlanner&& planner, const std::string& result,
       if (drawnIntoOutput && !offer.mayWriteOutput) break;
       // Fuse: the head writes the stage's output, with its own depth set-up, and reads what the stage reads.
       vectors -= stage.uniformVectors;
+      units -= stageUnits;
       space = stage.outputSpace;
       head.stages.push_back(stage);
       head.absorbed.push_back(next.decl.name);

@@ -14,9 +14,10 @@
 //   4b. Per-pixel stages fuse: a stage pass (PassDecl::stage) whose colour input is written by a stage head
 //      (PassDecl::stageHead: the lighting, or another stage pass), and read by it alone, runs inside the head's
 //      program, which then writes the stage's output, when everything else the stage reads is written before the
-//      head runs, its uniforms fit the head's remaining vectors, and (where the head cannot draw into the output
-//      framebuffer) its output is not the frame's result drawn there. Stage after stage, a chain fuses into one
-//      pass; the stages' passes do not run ("done by" the head: PlannedPass::absorbed).
+//      head runs, its uniforms fit the head's remaining vectors and its textures the head's remaining texture
+//      units, and (where the head cannot draw into the output framebuffer) its output is not the frame's result
+//      drawn there. Stage after stage, a chain fuses into one pass; the stages' passes do not run ("done by" the
+//      head: PlannedPass::absorbed).
 //   5. The result (the frame's final image, or the debug view's output) is written straight into the output
 //      framebuffer by its writer, unless a running pass also reads that version; then a present pass copies it.
 //   6. Every other version gets a pooled slot: slots are keyed by size, filter and own depth, and a slot is free

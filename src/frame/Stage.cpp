@@ -63,6 +63,22 @@ void setStageUniforms(const gl::Program& program, const std::vector<StageDecl>& 
     program.set("u_lumaInAlpha", writesOutput ? 0.0f : 1.0f);
 }
 
+void bindStageTextures(const std::vector<StageDecl>& chain, int firstUnit) {
+  int unit = firstUnit;
+  for (const StageDecl& stage : chain)
+    for (const auto& [sampler, texture] : stage.ownTextures) {
+      glActiveTexture(static_cast<GLenum>(GL_TEXTURE0 + unit++));
+      glBindTexture(GL_TEXTURE_2D, texture());
+    }
+  glActiveTexture(GL_TEXTURE0);
+}
+
+void setStageSamplers(const gl::Program& program, const std::vector<StageDecl>& chain, int firstUnit) {
+  int unit = firstUnit;
+  for (const StageDecl& stage : chain)
+    for (const auto& [sampler, texture] : stage.ownTextures) program.set(sampler, unit++);
+}
+
 PassDecl stagePass(const EffectResources& resources, StageDecl stage, std::string output) {
   PassDecl pass;
   pass.name = stage.name;
@@ -70,9 +86,12 @@ PassDecl stagePass(const EffectResources& resources, StageDecl stage, std::strin
   if (stage.position || stage.normal) pass.reads.push_back("gbuffer");
   for (const auto& [sampler, target] : stage.textures) pass.reads.push_back(target);
   pass.writes = {output};
+  // GLES 2's 8 fragment texture units, less those this stage's pass binds itself: its colour, the G-buffer, its
+  // textures.
+  const int units = 8 - static_cast<int>(pass.reads.size() + stage.ownTextures.size());
   pass.stageHead = StageHead{output, stage.outputSpace,
                              resources.caps.maxFragmentUniformVectors - kStagePassUniformVectors - stage.uniformVectors,
-                             true, true};
+                             true, true, units};
   pass.stage = std::move(stage);
   pass.run = [](PassContext& context) {
     // This stage and those fused after it.
@@ -90,8 +109,10 @@ PassDecl stagePass(const EffectResources& resources, StageDecl stage, std::strin
       draw.read("u_gbuffer", "gbuffer");
       setReconstruction(draw.program(), context.camera().reconstruction);
     }
-    for (const StageDecl& fused : chain)
+    for (const StageDecl& fused : chain) {
       for (const auto& [sampler, read] : fused.textures) draw.read(sampler, read);
+      for (const auto& [sampler, texture] : fused.ownTextures) draw.texture(sampler, texture());
+    }
     setStageUniforms(draw.program(), chain, context, context.writesOutput(target));
     draw.draw();
   };

@@ -6,9 +6,9 @@
 
 namespace obscura::gl {
 namespace {
-// GLES 2's 8 units, and the ninth that the lighting's BRDF table takes where the context has one (gpu/
-// TextureUnits.h).
-constexpr int kTextureUnits = 9;
+// GLES 2's 8 units, the ninth that the lighting's BRDF table takes where the context has one, and the tenth that it
+// leaves to its fused stages' own textures (gpu/TextureUnits.h).
+constexpr int kTextureUnits = 10;
 constexpr GLuint kAttributeSlots = 8;  // the GLES 2 minimum (skinned and morphed draws use them all)
 
 int textureUnitsInUse() {

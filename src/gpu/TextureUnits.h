@@ -32,4 +32,12 @@ inline int environmentFiltered(const gl::GlCaps& caps) {
   return caps.maxCombinedTextureImageUnits > kGles2Units ? kGles2Units : kJoints;
 }
 
+// The unit the lighting leaves to the per-pixel stages fused into it (frame/Stage.h: grading's LUT): the tenth, where
+// the fragment stage has one (GLES 2 guarantees 8; desktop GL, WebGL on SwiftShader and most phones offer 16). Without
+// it such a stage runs in a stage pass of its own.
+inline constexpr int kStages = kGles2Units + 1;
+inline int stageUnits(const gl::GlCaps& caps) {
+  return caps.maxTextureImageUnits > kStages && caps.maxCombinedTextureImageUnits > kStages ? 1 : 0;
+}
+
 }  // namespace obscura::TextureUnits

@@ -6,12 +6,15 @@
 #include "effects/auto_exposure/AutoExposureEffect.h"
 #include "effects/bloom/BloomEffect.h"
 #include "effects/chromatic_aberration/ChromaticAberrationEffect.h"
+#include "effects/dither/Dither.h"
 #include "effects/dof/DepthOfFieldEffect.h"
 #include "effects/edges/EdgesEffect.h"
 #include "effects/fog/FogEffect.h"
 #include "effects/fxaa/FxaaEffect.h"
 #include "effects/gbuffer/GBufferEffect.h"
 #include "effects/glare/GlareEffect.h"
+#include "effects/grading/ColorGrading.h"
+#include "effects/grain/Grain.h"
 #include "effects/lens_flare/LensFlareEffect.h"
 #include "effects/lighting/LightingEffect.h"
 #include "effects/lines/LinesEffect.h"
@@ -21,6 +24,7 @@
 #include "effects/tonemap/TonemapEffect.h"
 #include "effects/transparency/TransparencyEffect.h"
 #include "effects/velocity/VelocityEffect.h"
+#include "effects/vignette/Vignette.h"
 #include "frame/DebugViewPass.h"
 #include "frame/Stage.h"
 
@@ -47,6 +51,12 @@ const std::vector<EffectEntry>& effectTable() {
         EffectEntry::of<DepthOfFieldEffect>(),  // scene-color, gbuffer -> scene-color (HDR: near and far fields)
         EffectEntry::of<AutoExposureEffect>(),  // scene-color, its history -> exposure (1 x 1: the adapted EV)
         EffectEntry::of<TonemapEffect>(),   // scene-color (exposure, lens-light) -> display-color (sRGB, luma in alpha)
+        // The display stages, fused into the tone curve's pass: grade the display-referred picture the curve made,
+        // then the vignette and the grain on it, and the dithering last, before the 8-bit quantisation (Dither.h).
+        EffectEntry::of<GradingEffect>(),   // display-color -> display-color (white balance, CDL, contrast, LUT)
+        EffectEntry::of<VignetteEffect>(),  // display-color -> display-color (darker towards the edges)
+        EffectEntry::of<GrainEffect>(),     // display-color -> display-color (film grain, new each frame)
+        EffectEntry::of<DitherEffect>(),    // display-color -> display-color (triangular noise of one 8-bit step)
         EffectEntry::of<EdgesEffect>(),     // gbuffer, display-color -> display-color (lines; toon bands)
         EffectEntry::of<MotionBlurEffect>(),  // display-color, velocity, gbuffer -> display-color
         EffectEntry::of<ChromaticAberrationEffect>(),  // display-color -> display-color (red and blue fringes)
@@ -116,8 +126,23 @@ std::vector<ProgramSpec> fusedProgramSpecs() {
     for (auto& head : effectTable()[row].stageHeads()) heads.push_back(std::move(head));
   }
   // The chains: each variant alone, and each pair of stages of two rows that follow each other in colour space with
-  // one side at its first variant (every variant of each is then fused beside another stage at least once).
+  // one side at its first variant (every variant of each is then fused beside another stage at least once); and the
+  // whole chain, every stage of the table in order at each row's first variant (fog, the tone curve, grading, the
+  // vignette, the grain and the dithering in one program), and the display colour's at each row's last (the
+  // heaviest) after the tone curve's first.
   std::vector<std::vector<StageDecl>> chains;
+  std::vector<StageDecl> firstOfEach, heaviestDisplay;
+  for (size_t i = 0; i < stages.size(); ++i) {
+    const bool first = i == 0 || stages[i - 1].first != stages[i].first;
+    const bool last = i + 1 == stages.size() || stages[i + 1].first != stages[i].first;
+    const StageDecl& stage = stages[i].second;
+    if (first) firstOfEach.push_back(stage);
+    if (first && stage.inputSpace == ColorSpace::Hdr && stage.outputSpace == ColorSpace::Display)
+      heaviestDisplay = {stage};
+    if (last && stage.inputSpace == ColorSpace::Display && !heaviestDisplay.empty()) heaviestDisplay.push_back(stage);
+  }
+  chains.push_back(firstOfEach);
+  if (heaviestDisplay.size() > 1) chains.push_back(heaviestDisplay);
   for (const auto& [row, stage] : stages) chains.push_back({stage});
   for (size_t a = 0; a < stages.size(); ++a)
     for (size_t b = 0; b < stages.size(); ++b) {

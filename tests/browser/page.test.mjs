@@ -252,7 +252,7 @@ describe('demo page', () => {
       for (const pass of ['gbuffer', 'sao', 'lighting', 'fxaa']) assert.ok(passes[pass] > 0, `${pass}: ${passes[pass]} ms`);
       // Nothing else reads the HDR colour at the defaults: the lighting applies the tone curve, and the page says so.
       assert.equal(passes.tonemap, null);
-      assert.deepEqual(passesDoneBy, { tonemap: 'lighting' });
+      assert.deepEqual(passesDoneBy, { tonemap: 'lighting', dither: 'lighting' });
       await page.waitForFunction(() => /tonemap +- ms \(done by lighting\)/.test(document.querySelector('#stats').textContent));
     } else {
       await page.waitForFunction(() => document.querySelector('#stats').textContent.includes('needs EXT_disjoint'));

@@ -7,7 +7,10 @@
 // of it edited here that put each over most of the frame (every opaque material blended, transmissive, clear-coated
 // or without the material layers: the clear coat's cost is the lighting's difference). The camera's finish adds
 // percentile metering, six streaks, hatching, and the tone mapping with the exposure and the lens light it reads
-// against the tone mapping with bloom alone (what those stages add to the pass they join). Writes a CSV;
+// against the tone mapping with bloom alone (what those stages add to the pass they join). The display colour's
+// stages (grading, with its balance and with a .cube LUT loaded through loadLut, the vignette, the grain, the dithering)
+// run inside the lighting's pass: each is timed as the lighting pass with it on against the lighting without dithering
+// (--effects grading,vignette,grain,dither runs those alone). Writes a CSV;
 // docs/benchmarks.md ("Every effect at two sizes") and docs/transparency.md show the figures.
 //
 // Usage: node tools/browser-bench/effect-costs.mjs [--sizes 640x360,1280x720] [--samples N] [--settle MS] [--csv FILE]
@@ -47,7 +50,9 @@ function casesOf(description) {
   const names = new Set(description.parameters.map((p) => p.name));
   // An effect whose passes do not run in the final frame (the motion vectors, which only the motion effects read;
   // the tone curve, which the lighting applies) is timed again showing its target's view.
-  const cases = description.effects.map((e) => ({
+  // The display colour's stages have no pass of their own to time (below: what they add to the lighting's).
+  const displayStages = ['grading', 'vignette', 'grain', 'dither'];
+  const cases = description.effects.filter((e) => !displayStages.includes(e.name)).map((e) => ({
     label: e.name, effect: e.name, passes: e.passes, state: e.switch ? `${e.name}=on` : '',
     fallbackView: e.targets.flatMap((t) => t.views)[0] }));
   const ao = description.effects.find((e) => e.name === 'ao');
@@ -79,7 +84,33 @@ function casesOf(description) {
       cases.push({ label: 'tonemap, lens light', effect: 'tonemap', passes: tonemap.passes,
                    state: 'bloom=on&lens-flare=on' });
   }
+  // Issue 29's display stages, fused into the lighting: its pass without dithering, with it (the default), and with
+  // each stage on; grading's LUT is the one loaded into the page (lutPath), 33 points a side.
+  if (byName('dither')) {
+    const balance = 'grading=on&grading.temperature=5000&grading.saturation=1.2&grading.contrast=1.1';
+    const lut = `grading=on&grading.lut=${lutPath}`;
+    for (const [label, effect, state] of [
+      ['lighting, dither off', 'dither', 'dither=off'], ['lighting, dither (default)', 'dither', ''],
+      ['lighting, grading balance', 'grading', balance], ['lighting, grading LUT', 'grading', lut],
+      ['lighting, grading both', 'grading', `${balance}&grading.lut=${lutPath}`],
+      ['lighting, vignette', 'vignette', 'vignette=on'], ['lighting, grain', 'grain', 'grain=on'],
+      ['lighting, all four', 'grading', `${balance}&grading.lut=${lutPath}&vignette=on&grain=on`]])
+      cases.push({ label, effect, passes: ['lighting'], state });
+  }
   return options.effects ? cases.filter((c) => options.effects.includes(c.effect)) : cases;
+}
+
+// A warm grade as a 33-point .cube (what a grading tool writes), for the grading LUT's cases.
+const lutPath = '/luts/bench-warm.cube';
+function warmCube() {
+  const n = 33;
+  let text = 'LUT_3D_SIZE 33\n';
+  for (let b = 0; b < n; ++b)
+    for (let g = 0; g < n; ++g)
+      for (let r = 0; r < n; ++r)
+        text += `${Math.min(1, 1.05 * r / (n - 1) + 0.02).toFixed(5)} ${(g / (n - 1)).toFixed(5)} ` +
+                `${(0.85 * b / (n - 1)).toFixed(5)}\n`;
+  return text;
 }
 
 // A .glb's JSON chunk edited by `edit` (the binary chunk kept), as a buffer for the page's file input.
@@ -124,6 +155,8 @@ try {
                renderer: o.context.renderer };
     });
     if (!description.timerQuery) throw new Error('this browser offers no EXT_disjoint_timer_query: no per-pass times');
+    if (description.effects.some((e) => e.name === 'grading'))
+      await page.evaluate((cube) => window.obscura.loadLut(cube, 'bench-warm.cube'), warmCube());
     console.log(`${width}x${height}, ${description.renderer}, the built-in scene playing`);
     const measure = (state, passes) => page.evaluate(async ({ state, passes, samples, settle }) => {
       const o = window.obscura;

@@ -246,6 +246,12 @@ export class Obscura extends EventTarget {
   loadFiles(files: FileList | File[], options?: { onProgress?: (fraction: number) => void }): Promise<SceneInfo>;
   /** An equirectangular .hdr (or a PNG of RGBE bytes) as lighting.environment; resolves to its path in the module. */
   loadEnvironment(bytes: ArrayBuffer | Uint8Array, name: string): Promise<string>;
+  /**
+   * A 3D LUT for colour grading (Adobe / Resolve .cube, as bytes or text) as grading.lut, with grading switched on;
+   * resolves to its path in the module. Rejects with ObscuraError naming the line of a malformed file; the grade in use
+   * stays then.
+   */
+  loadLut(cube: ArrayBuffer | Uint8Array | string, name?: string): Promise<string>;
   loadBuiltinScene(): SceneInfo;
   scene(): SceneInfo;
   readonly defaultRadius: number;

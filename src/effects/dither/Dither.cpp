@@ -1,6 +1,10 @@
 #include "effects/dither/Dither.h"
 
+#include <glm/common.hpp>
+
+#include "frame/FramePlan.h"
 #include "frame/PixelHash.h"
+#include "frame/Stage.h"
 
 namespace obscura {
 
@@ -14,14 +18,31 @@ const std::vector<Parameter<DitherSettings>>& DitherSettings::parameters() {
   return table;
 }
 
-glm::vec2 ditherSeed(std::uint64_t frameIndex) {
-  const float f = static_cast<float>(frameIndex % 65536);
-  return {1000.0f * hash12({f, 0.25f}), 1000.0f * hash12({0.25f, f})};
+float ditherOffset(glm::vec2 pixel) {
+  const float r1 = hash12(pixel), r2 = hash12(pixel + glm::vec2(57.31f, 113.7f));
+  return (r1 + r2 - 1.0f) / 255.0f;
 }
 
-float ditherOffset(glm::vec2 pixel, glm::vec2 seed) {
-  const float r1 = hash12(pixel + seed), r2 = hash12(pixel + seed + glm::vec2(57.31f, 113.7f));
-  return (r1 + r2 - 1.0f) / 255.0f;
+glm::vec3 dithered(const glm::vec3& srgb, glm::vec2 pixel) {
+  const glm::vec3 amplitude = glm::clamp(glm::min(srgb, 1.0f - srgb) * 255.0f, 0.0f, 1.0f);
+  return srgb + amplitude * ditherOffset(pixel);
+}
+
+EffectInfo DitherEffect::info() { return {"dither", "Dithering", true, false, {"dither"}, {}}; }
+
+StageDecl DitherEffect::stage() {
+  StageDecl stage;
+  stage.name = "dither";
+  stage.file = "dither/dither.glsl";
+  stage.function = "ditherStage";
+  stage.input = "display-color";
+  stage.inputSpace = stage.outputSpace = ColorSpace::Display;
+  stage.uniformVectors = 0;  // none: the pattern is the pixel's
+  return stage;
+}
+
+void DitherEffect::plan(FramePlanner& planner) {
+  if (planner.settings().of<DitherSettings>().enabled) planner.add(stagePass(resources_, stage(), "display-color"));
 }
 
 }  // namespace obscura

@@ -10,6 +10,8 @@
 
 #include "encoding/ColorSpaces.h"
 #include "encoding/ToneMapping.h"
+#include "frame/PassContext.h"
+#include "frame/Stage.h"
 
 namespace obscura {
 namespace {
@@ -58,16 +60,21 @@ const std::vector<Parameter<GradingSettings>>& GradingSettings::parameters() {
         numberParameter<S>("temperature", 1667, 25000, "K",
                            "white balance: the light's colour temperature corrected for (6504: none; higher: warmer)",
                            &S::temperature)
-            .primary(),
+            .primary()
+            .shapesPlan(),  // neutral or not: the stage's variant (gradingBalances), as each of steps 1 to 5's
         numberParameter<S>("tint", -100, 100, "", "white balance: positive towards magenta, negative towards green",
                            &S::tint)
-            .primary(),
+            .primary()
+            .shapesPlan(),
         numberParameter<S>("saturation", 0, 4, "", "ASC CDL saturation (0: grey, 1: none)", &S::saturation)
-            .primary(),
-        numberParameter<S>("contrast", 0.25, 4, "", "a power about mid grey (1: none)", &S::contrast).primary(),
-        colorParameter<S>("slope", 0, 16, "ASC CDL slope per channel", &S::slope),
-        colorParameter<S>("offset", -1, 1, "ASC CDL offset per channel", &S::offset),
-        colorParameter<S>("power", 0.1, 10, "ASC CDL power per channel", &S::power)};
+            .primary()
+            .shapesPlan(),
+        numberParameter<S>("contrast", 0.25, 4, "", "a power about mid grey (1: none)", &S::contrast)
+            .primary()
+            .shapesPlan(),
+        colorParameter<S>("slope", 0, 16, "ASC CDL slope per channel", &S::slope).shapesPlan(),
+        colorParameter<S>("offset", -1, 1, "ASC CDL offset per channel", &S::offset).shapesPlan(),
+        colorParameter<S>("power", 0.1, 10, "ASC CDL power per channel", &S::power).shapesPlan()};
   }();
   return table;
 }
@@ -102,16 +109,91 @@ glm::mat3 whiteBalanceMatrix(float temperature, float tint) {
   return glm::mat3(glm::inverse(toLms) * scale * toLms);
 }
 
+glm::mat3 gradingBalance(const GradingSettings& s) {
+  glm::mat3 slope(1.0f);
+  for (int i = 0; i < 3; ++i) slope[i][i] = s.slope[i];
+  return slope * whiteBalanceMatrix(s.temperature, s.tint);
+}
+
+bool gradingBalances(const GradingSettings& s) {
+  return s.temperature != 6504.0f || s.tint != 0.0f || s.slope != glm::vec3(1.0f) || s.offset != glm::vec3(0.0f) ||
+         s.power != glm::vec3(1.0f) || s.saturation != 1.0f || s.contrast != 1.0f;
+}
+
 glm::vec3 gradeDisplay(const glm::vec3& srgb, const GradingSettings& s) {
-  glm::vec3 c = srgbToLinear(srgb);
-  c = whiteBalanceMatrix(s.temperature, s.tint) * c;
-  c = glm::pow(glm::max(c * s.slope + s.offset, glm::vec3(0.0f)), s.power);
+  glm::vec3 c = glm::pow(glm::max(gradingBalance(s) * srgbToLinear(srgb) + s.offset, glm::vec3(0.0f)), s.power);
   const float luma = luma709(c);
   c = glm::vec3(luma) + s.saturation * (c - glm::vec3(luma));
   c = 0.18f * glm::pow(glm::max(c, glm::vec3(0.0f)) / 0.18f, glm::vec3(s.contrast));
   glm::vec3 out = linearToSrgb(glm::clamp(c, 0.0f, 1.0f));
   if (s.lutData) out = glm::mix(out, s.lutData->apply(out), s.lutIntensity);
   return out;
+}
+
+EffectInfo GradingEffect::info() { return {"grading", "Colour grading", true, false, {"grading"}, {}}; }
+
+StageDecl GradingEffect::stage(bool balance, bool lut, const GradingEffect* owner) {
+  StageDecl stage;
+  stage.name = "grading";
+  stage.variant = std::string(balance ? "balance" : "") + (balance && lut ? "," : "") + (lut ? "lut" : "");
+  stage.file = "grading/grading.glsl";
+  stage.function = "gradingStage";
+  stage.defines = {{"GRADING_BALANCE", balance ? "1" : "0"}, {"GRADING_LUT", lut ? "1" : "0"}};
+  stage.input = "display-color";
+  stage.inputSpace = stage.outputSpace = ColorSpace::Display;
+  // The balance: the matrix's three rows, the offset's and the power's, and one for the saturation and contrast;
+  // the LUT: its layout's row, the domain's two vec3 rows, whose spare column takes the intensity.
+  stage.uniformVectors = (balance ? 6 : 0) + (lut ? 3 : 0);
+  if (lut) {
+    stage.ownTextures.push_back({"u_gradingLut", [owner]() -> GLuint { return owner ? owner->lut_.id() : 0; }});
+  }
+  stage.uniforms = [balance, lut, owner](const gl::Program& program, const PassContext& context) {
+    const GradingSettings& s = context.settings().of<GradingSettings>();
+    if (balance) {
+      program.set("u_gradingBalance", gradingBalance(s));  // once a frame, not per pixel
+      program.set("u_gradingOffset", s.offset);
+      program.set("u_gradingPower", s.power);
+      program.set("u_gradingSaturationContrast", glm::vec2(s.saturation, s.contrast));
+    }
+    if (lut && owner && owner->lutData_) {
+      const ColorLut& data = *owner->lutData_;
+      program.set("u_gradingLutLayout",
+                  glm::vec4(static_cast<float>(data.size), static_cast<float>(owner->slicesPerRow_),
+                            static_cast<float>(owner->lut_.width()), static_cast<float>(owner->lut_.height())));
+      program.set("u_gradingLutDomainMin", data.domainMin);
+      program.set("u_gradingLutDomainScale", 1.0f / (data.domainMax - data.domainMin));
+      program.set("u_gradingLutIntensity", s.lutIntensity);
+    }
+  };
+  return stage;
+}
+
+std::vector<StageDecl> GradingEffect::stages() {
+  return {stage(true, false), stage(false, true), stage(true, true)};
+}
+
+void GradingEffect::prepare(const FrameSettings& settings) {
+  // The strip is uploaded when the LUT changes, whether grading is on or not (a LUT set while it is off is ready when
+  // it is switched on), and kept until then.
+  const GradingSettings& s = settings.of<GradingSettings>();
+  if (s.lutData == lutData_) return;
+  lutData_ = s.lutData;
+  if (!lutData_) {
+    lut_ = gl::Texture2D();
+    return;
+  }
+  const LutStrip strip = lutStrip(*lutData_, resources_.caps.maxTextureSize);
+  lut_ = gl::Texture2D(strip.width, strip.height, GL_LINEAR, strip.rgba.data());
+  slicesPerRow_ = strip.slicesPerRow;
+}
+
+void GradingEffect::plan(FramePlanner& planner) {
+  // A per-pixel stage on the display colour, after the tone curve: inside the tone-mapping pass (or the lighting).
+  // A grade with neither part does nothing and plans nothing.
+  const GradingSettings& s = planner.settings().of<GradingSettings>();
+  const bool balance = gradingBalances(s), lut = s.lutData != nullptr;
+  if (!s.enabled || (!balance && !lut)) return;
+  planner.add(stagePass(resources_, stage(balance, lut, this), "display-color"));
 }
 
 }  // namespace obscura

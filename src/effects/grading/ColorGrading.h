@@ -15,7 +15,16 @@
 //   4. contrast: a power about mid grey, 0.18 (c / 0.18)^contrast (a slope of `contrast` in log2 around 0.18);
 //   5. clamp to [0, 1] and encode sRGB;
 //   6. the 3D LUT (encoding/ColorLut.h: a .cube file, trilinear on its RGBA8 strip), mixed in by `lut-intensity`.
-// Each part is skipped where its parameters are neutral (the identity to the byte).
+// Each part is skipped where its parameters are neutral (the identity to the byte): the stage's variants
+// (GRADING_BALANCE for steps 1 to 5, GRADING_LUT for step 6), chosen by the plan.
+//
+// A per-pixel stage (frame/Stage.h) on the display colour, the first after the tone curve: it runs inside the
+// tone-mapping pass, or inside the lighting where that absorbs the tone curve. The grade works on display-referred
+// colour, after the curve, as a colourist grades a finished picture and as .cube files made for video and the web
+// expect; the vignette, the grain and the dithering follow it (their order: effects/dither/Dither.h). The LUT's strip
+// is a texture this effect owns, uploaded when the LUT changes (prepare), not every frame; a head binds it on a unit
+// it has spare (the lighting's tenth, where the context has one: gpu/TextureUnits.h), else the stage runs in a stage
+// pass of its own.
 #include <memory>
 #include <string>
 #include <vector>
@@ -24,7 +33,8 @@
 #include <glm/vec3.hpp>
 
 #include "encoding/ColorLut.h"
-#include "frame/Parameters.h"
+#include "frame/EffectEntry.h"
+#include "gl/RenderTarget.h"
 
 namespace obscura {
 
@@ -45,9 +55,34 @@ struct GradingSettings : ParameterAccess<GradingSettings> {
 
 // The white balance's matrix on display-linear Rec. 709 RGB (the identity at 6504 K and no tint).
 glm::mat3 whiteBalanceMatrix(float temperature, float tint);
+// diag(slope) x the white balance: the one matrix the stage takes (u_gradingBalance), made once a frame.
+glm::mat3 gradingBalance(const GradingSettings& settings);
+// Whether steps 1 to 5 change anything (some parameter of theirs is not neutral): the stage's GRADING_BALANCE.
+bool gradingBalances(const GradingSettings& settings);
 // The CIE 1931 xy chromaticity of the white at `temperature` kelvin (1667 .. 25000).
 glm::vec2 whiteChromaticity(float temperature);
 // The stage on one display colour (sRGB-encoded, [0, 1]): steps 1 to 6 above.
 glm::vec3 gradeDisplay(const glm::vec3& srgb, const GradingSettings& settings);
+
+class GradingEffect : public Effect {
+ public:
+  using Settings = GradingSettings;
+  static constexpr bool kHasSwitch = true;
+  static EffectInfo info();
+  static std::vector<ProgramSpec> programSpecs() { return {}; }  // its programs are the fused ones (stages())
+  // Its stage in a variant (steps 1 to 5; the LUT), for `owner`'s LUT texture (none: the shader checks' stages).
+  static StageDecl stage(bool balance, bool lut, const GradingEffect* owner = nullptr);
+  static std::vector<StageDecl> stages();
+
+  explicit GradingEffect(const EffectResources& resources) : resources_(resources) {}
+  void prepare(const FrameSettings& settings) override;  // the LUT's strip, uploaded when the LUT changes
+  void plan(FramePlanner& planner) override;
+
+ private:
+  const EffectResources& resources_;
+  std::shared_ptr<const ColorLut> lutData_;  // the LUT the texture holds
+  gl::Texture2D lut_;
+  int slicesPerRow_ = 0;
+};
 
 }  // namespace obscura

@@ -4,7 +4,9 @@
 #include <cmath>
 
 #include "encoding/ToneMapping.h"
+#include "frame/PassContext.h"
 #include "frame/PixelHash.h"
+#include "frame/Stage.h"
 
 namespace obscura {
 
@@ -40,6 +42,26 @@ glm::vec3 grained(const glm::vec3& srgb, glm::vec2 pixel, const glm::vec4& u) {
   const float n = grainNoise(pixel * u.y + glm::vec2(u.z, u.w));
   const float response = 1.0f - std::sqrt(std::clamp(fxaaLuma(srgb), 0.0f, 1.0f));
   return srgb + glm::vec3(u.x * response * n);
+}
+
+EffectInfo GrainEffect::info() { return {"grain", "Film grain", true, false, {"grain"}, {}}; }
+
+StageDecl GrainEffect::stage() {
+  StageDecl stage;
+  stage.name = "grain";
+  stage.file = "grain/grain.glsl";
+  stage.function = "grainStage";
+  stage.input = "display-color";
+  stage.inputSpace = stage.outputSpace = ColorSpace::Display;
+  stage.uniformVectors = 1;  // u_grain
+  stage.uniforms = [](const gl::Program& program, const PassContext& context) {
+    program.set("u_grain", grainUniform(context.settings().of<GrainSettings>(), context.frame().index));
+  };
+  return stage;
+}
+
+void GrainEffect::plan(FramePlanner& planner) {
+  if (planner.settings().of<GrainSettings>().enabled) planner.add(stagePass(resources_, stage(), "display-color"));
 }
 
 }  // namespace obscura

@@ -4,6 +4,10 @@
 // itself), added to the display colour with the weight intensity x (1 - sqrt(luma)): more in the shadows and
 // mid-tones than in the highlights (Unity's post-processing stack's luminance response). The noise has mean 0, so it
 // changes no brightness on average.
+//
+// A per-pixel stage (frame/Stage.h) on the display colour, after the grade and the vignette (grain is in the film,
+// not in the light the lens lets through), before the dithering. Its pixel is gl_FragCoord, the frame's pixel in
+// every pass it fuses into.
 #include <cstdint>
 #include <vector>
 
@@ -11,7 +15,7 @@
 #include <glm/vec3.hpp>
 #include <glm/vec4.hpp>
 
-#include "frame/Parameters.h"
+#include "frame/EffectEntry.h"
 
 namespace obscura {
 
@@ -28,5 +32,21 @@ struct GrainSettings : ParameterAccess<GrainSettings> {
 glm::vec4 grainUniform(const GrainSettings& settings, std::uint64_t frameIndex);
 float grainNoise(glm::vec2 p);
 glm::vec3 grained(const glm::vec3& srgb, glm::vec2 pixel, const glm::vec4& uniform);
+
+class GrainEffect : public Effect {
+ public:
+  using Settings = GrainSettings;
+  static constexpr bool kHasSwitch = true;
+  static EffectInfo info();
+  static std::vector<ProgramSpec> programSpecs() { return {}; }  // its programs are the fused ones (stages())
+  static StageDecl stage();
+  static std::vector<StageDecl> stages() { return {stage()}; }
+
+  explicit GrainEffect(const EffectResources& resources) : resources_(resources) {}
+  void plan(FramePlanner& planner) override;
+
+ private:
+  const EffectResources& resources_;
+};
 
 }  // namespace obscura

@@ -389,8 +389,11 @@ void LightingEffect::plan(FramePlanner& planner) {
   const int forwardOwn = std::max(kForwardLightingVectorsWithoutStages + lightsPerDraw_ * kVectorsPerPunctualLight,
                                   kForwardLightingVectorsWithoutStages + kMaterialLayerVectors +
                                       layeredLightsPerDraw_ * kVectorsPerPunctualLight);
-  const StageHead forward{"scene-color", ColorSpace::Hdr, vectors - forwardOwn, false};
-  const StageHead deferred{"scene-color", ColorSpace::Hdr, vectors - kDeferredLightingVectorsWithoutStages, true};
+  const int units = TextureUnits::stageUnits(resources_.caps);
+  const StageHead forward{"scene-color", ColorSpace::Hdr, vectors - forwardOwn, false, false, units,
+                          TextureUnits::kStages};
+  const StageHead deferred{"scene-color", ColorSpace::Hdr, vectors - kDeferredLightingVectorsWithoutStages, true,
+                           false, units, TextureUnits::kStages};
 
   for (const char* output : {"scene-color", "shading-count"}) {
     const bool counting = std::string(output) == "shading-count";
@@ -499,7 +502,9 @@ void LightingEffect::render(const PassContext& context, Form form) const {
       p.set("u_lightSpot", lights.spot, count);
     }
     setStageUniforms(p, stages, context, writesOutput);
+    setStageSamplers(p, stages, TextureUnits::kStages);
   };
+  bindStageTextures(stages, TextureUnits::kStages);  // unbound with the rest by restoreBaselineState
   (context.has("ao") ? context.texture("ao") : white_).bind(TextureUnits::kAo);
   if (!form.counting) {
     glActiveTexture(GL_TEXTURE0 + kEnvironmentFilteredUnit);

@@ -3,7 +3,12 @@
 #include <algorithm>
 #include <cmath>
 
+#include <glm/common.hpp>
 #include <glm/geometric.hpp>
+
+#include "encoding/ToneMapping.h"
+#include "frame/PassContext.h"
+#include "frame/Stage.h"
 
 namespace obscura {
 
@@ -28,6 +33,33 @@ float vignetteFactor(glm::vec2 uv, const glm::vec3& shape) {
   glm::vec2 d = glm::abs(uv - 0.5f) * shape.x;
   d.x *= shape.y;
   return std::pow(std::clamp(1.0f - glm::dot(d, d), 0.0f, 1.0f), shape.z);
+}
+
+glm::vec3 vignetted(const glm::vec3& srgb, glm::vec2 uv, const glm::vec3& shape) {
+  return linearToSrgb(srgbToLinear(glm::clamp(srgb, 0.0f, 1.0f)) * vignetteFactor(uv, shape));
+}
+
+EffectInfo VignetteEffect::info() { return {"vignette", "Vignette", true, false, {"vignette"}, {}}; }
+
+StageDecl VignetteEffect::stage() {
+  StageDecl stage;
+  stage.name = "vignette";
+  stage.file = "vignette/vignette.glsl";
+  stage.function = "vignetteStage";
+  stage.input = "display-color";
+  stage.inputSpace = stage.outputSpace = ColorSpace::Display;
+  stage.uniformVectors = 1;  // u_vignetteShape
+  stage.uniforms = [](const gl::Program& program, const PassContext& context) {
+    const FrameCamera& camera = context.camera();
+    const float aspect = static_cast<float>(camera.width) / static_cast<float>(camera.height);
+    program.set("u_vignetteShape", vignetteShape(context.settings().of<VignetteSettings>(), aspect));
+  };
+  return stage;
+}
+
+void VignetteEffect::plan(FramePlanner& planner) {
+  if (planner.settings().of<VignetteSettings>().enabled)
+    planner.add(stagePass(resources_, stage(), "display-color"));
 }
 
 }  // namespace obscura
