@@ -285,11 +285,11 @@ void TransparencyEffect::renderLayer(const PassContext& context) {
     p.set("u_behindLayout", layout);
     if (fogKey.on) {
       p.set("u_fogColor", fog.color);
-      p.set("u_factor", fog.factor);
+      p.set("u_fogFactor", fog.factor);
       if (fogKey.height) {  // FOG_HEIGHT
-        p.set("u_falloff", fog.falloff);
-        p.set("u_heightScale", fog.heightScale);
-        p.set("u_upInView", fog.upInView);
+        p.set("u_fogFalloff", fog.falloff);
+        p.set("u_fogHeightScale", fog.heightScale);
+        p.set("u_fogUpInView", fog.upInView);
       }
     }
     return p;  // the scene sets its per-draw uniforms
