@@ -314,20 +314,26 @@ function compareLabel(obscura, name) {
   return effect ? effect.title : name;
 }
 
-// --- Camera ------------------------------------------------------------------------------------------------------
-
-// The Camera menu: the free orbit camera, then the scene's own cameras (glTF cameras on nodes) by name; the
-// orthographic box switches the free camera's projection, from the view shown.
-function wireCamera(obscura) {
-  const act = (action) => {
+// A control's action: run it and clear the error line, or show what the core refused and `refresh` the controls from
+// the state the core kept.
+function guarded(refresh) {
+  return (action) => {
     try {
       action();
       showError('');
     } catch (e) {
       showError(e.message);
-      refreshCamera(obscura);
+      refresh();
     }
   };
+}
+
+// --- Camera ------------------------------------------------------------------------------------------------------
+
+// The Camera menu: the free orbit camera, then the scene's own cameras (glTF cameras on nodes) by name; the
+// orthographic box switches the free camera's projection, from the view shown.
+function wireCamera(obscura) {
+  const act = guarded(() => refreshCamera(obscura));
   $('#camera').addEventListener('change', (e) => act(() => obscura.setCamera(e.target.value)));
   $('#orthographic').addEventListener('change', (e) => act(() => obscura.setOrthographic(e.target.checked)));
 }
@@ -357,15 +363,7 @@ function refreshCamera(obscura) {
 const SPEEDS = [0.1, 0.25, 0.5, 1, 2, 4];
 
 function wireTimeline(obscura) {
-  const act = (action) => {
-    try {
-      action();
-      showError('');
-    } catch (e) {
-      showError(e.message);
-      refreshTimeline(obscura);
-    }
-  };
+  const act = guarded(() => refreshTimeline(obscura));
   $('#play').addEventListener('click', () => act(() => (obscura.playing ? obscura.pause() : obscura.play())));
   $('#frame-back').addEventListener('click', () => act(() => obscura.stepFrames(-1)));
   $('#frame-on').addEventListener('click', () => act(() => obscura.stepFrames(1)));

@@ -41,6 +41,8 @@ std::string renderUsage() {
       "  --supersample K   the reference's sub-frames rendered at K times the size, box-downsampled (default 1)\n"
       "  --aperture N      write depth of field's reference instead of the frame: the mean of N pinhole renders\n"
       "                    from points on the lens of the --dof.* parameters, each sheared to keep the focus plane\n"
+      "                    (the tone-mapped light, without the display stages after the curve: compare it with\n"
+      "                    frames rendered --no-dither)\n"
       "  --out FILE        output PNG (default obscura.png)\n"
       "  --bench N         render N frames and print per-pass milliseconds (glFinish-bounded)\n"
       "  --backend B       osmesa (default) or egl (Mesa EGL surfaceless, a true GLES 2 context)\n"

@@ -82,9 +82,10 @@ LinearImage accumulateShutter(Renderer& renderer, const std::function<Camera(dou
 // its sub-frames tilt its parallel rays about the plane in focus over a disc of slopes (FrameOptions::projectionShear;
 // ThinLens::parallelAperture), which spreads a point over the orthographic CoC. Throws InputError for samples < 1.
 // The mean is of the sub-frames' HDR colour as the tone mapping reads it (scene-color), tone-mapped on the CPU with
-// tonemap.* (ToneMapInUse): the reference of what the lens gathers, without what comes after the tone curve (edges,
-// motion blur, FXAA) or what the tone mapping adds (auto exposure, the lens flare's and glare's light), which the
-// sub-frames leave out.
+// tonemap.* (ToneMapInUse): the reference of what the lens gathers, without what comes after the tone curve (the
+// display stages: grading, vignette, grain, dithering; edges, motion blur, FXAA) or what the tone mapping adds (auto
+// exposure, the lens flare's and glare's light), which the sub-frames leave out. Compare it with frames rendered
+// without them (`--no-dither`: dithering is on by default).
 struct ApertureOptions {
   int samples = 64;
   int supersample = 1;
