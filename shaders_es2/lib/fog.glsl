@@ -12,7 +12,7 @@
 #ifndef FOG_GLSL
 #define FOG_GLSL
 
-uniform vec3 u_fogColor;      // c_f, linear HDR
+uniform vec3 u_fogColor;         // c_f, linear HDR
 uniform vec2 u_fogFactor;        // (offset, scale)
 #if FOG_HEIGHT
 uniform float u_fogFalloff;      // b, per metre
