@@ -18,3 +18,16 @@ export function parseOptions(argv, handlers, script) {
     handler(argv[++i]);
   }
 }
+
+// The demo page served at `url` in a fresh context of `width` x `height` CSS pixels (device pixel ratio 1), once it
+// says it is ready, with the controls panel hidden so that the canvas is all there is. Returns the page and the list
+// its uncaught errors are pushed to.
+export async function openDemoPage(browser, url, width, height) {
+  const page = await (await browser.newContext({ viewport: { width, height }, deviceScaleFactor: 1 })).newPage();
+  const errors = [];
+  page.on('pageerror', (e) => errors.push(String(e)));
+  await page.goto(url);
+  await page.waitForFunction(() => document.body.dataset.ready === 'true', null, { timeout: 120000 });
+  await page.addStyleTag({ content: '#panel { display: none !important; }' });
+  return { page, errors };
+}

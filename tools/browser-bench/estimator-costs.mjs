@@ -12,7 +12,7 @@ import path from 'node:path';
 import { fileURLToPath } from 'node:url';
 import { chromium } from 'playwright-core';
 import { startServer } from '../serve-web.mjs';
-import { chromiumLaunchOptions, parseOptions } from '../headless-chromium.mjs';
+import { chromiumLaunchOptions, openDemoPage, parseOptions } from '../headless-chromium.mjs';
 
 const root = path.resolve(path.dirname(fileURLToPath(import.meta.url)), '..', '..');
 const model = '/usr/share/assimp/models/glTF2/2CylinderEngine-glTF-Binary/2CylinderEngine.glb';
@@ -41,12 +41,7 @@ const median = (values) => {
 const server = await startServer(process.env.OBSCURA_WEB_SITE ?? path.join(root, 'build-web', 'site'));
 const browser = await chromium.launch(chromiumLaunchOptions);
 try {
-  const page = await (await browser.newContext({ viewport: { width, height }, deviceScaleFactor: 1 })).newPage();
-  const errors = [];
-  page.on('pageerror', (e) => errors.push(String(e)));
-  await page.goto(`http://127.0.0.1:${server.address().port}/`);
-  await page.waitForFunction(() => document.body.dataset.ready === 'true', null, { timeout: 120000 });
-  await page.addStyleTag({ content: '#panel { display: none !important; }' });
+  const { page, errors } = await openDemoPage(browser, `http://127.0.0.1:${server.address().port}/`, width, height);
   const bytes = [...fs.readFileSync(model)];
   const info = await page.evaluate(async (data) => {
     const o = window.obscura;

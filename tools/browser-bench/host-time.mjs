@@ -12,7 +12,7 @@ import path from 'node:path';
 import { fileURLToPath } from 'node:url';
 import { chromium } from 'playwright-core';
 import { startServer } from '../serve-web.mjs';
-import { chromiumLaunchOptions, parseOptions } from '../headless-chromium.mjs';
+import { chromiumLaunchOptions, openDemoPage, parseOptions } from '../headless-chromium.mjs';
 
 const root = path.resolve(path.dirname(fileURLToPath(import.meta.url)), '..', '..');
 const options = { sizes: '1280x720,640x360', samples: 30, settle: 2500,
@@ -38,12 +38,8 @@ const server = await startServer(process.env.OBSCURA_WEB_SITE ?? path.join(root,
 const browser = await chromium.launch(chromiumLaunchOptions);
 try {
   for (const [width, height] of sizes) {
-    const page = await (await browser.newContext({ viewport: { width, height }, deviceScaleFactor: 1 })).newPage();
-    const errors = [];
-    page.on('pageerror', (e) => errors.push(String(e)));
-    await page.goto(`http://127.0.0.1:${server.address().port}/`);
-    await page.waitForFunction(() => document.body.dataset.ready === 'true', null, { timeout: 120000 });
-    await page.addStyleTag({ content: '#panel { display: none !important; }' });
+    const demo = `http://127.0.0.1:${server.address().port}/`;
+    const { page, errors } = await openDemoPage(browser, demo, width, height);
     const effects = await page.evaluate(() => window.obscura.effects.filter((e) => e.switch).map((e) => e.name));
     const cases = [{ label: 'defaults', state: '' },
                    { label: 'every effect on', state: effects.map((e) => `${e}=on`).join('&') }];
