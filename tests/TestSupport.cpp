@@ -84,6 +84,11 @@ HdrImage retainedHdr(Renderer& renderer, const std::string& target) {
   return image;
 }
 
+glm::dvec3 HdrFrame::at(int x, int row) const {
+  const size_t i = (static_cast<size_t>(row) * width + x) * 4;
+  return glm::dvec3(decodeHdr(HdrTexel{bytes[i], bytes[i + 1], bytes[i + 2], bytes[i + 3]}));
+}
+
 float brightestChannel(const HdrImage& image) {
   float brightest = 0.0f;
   for (const glm::vec3& c : image.pixels) brightest = std::max(brightest, std::max(c.r, std::max(c.g, c.b)));

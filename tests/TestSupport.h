@@ -52,6 +52,12 @@ struct HdrImage {
   const glm::vec3& at(int x, int y) const { return pixels[static_cast<size_t>(y) * size.x + x]; }
 };
 HdrImage retainedHdr(Renderer& renderer, const std::string& target);
+// An RGB9E5 target's bytes as read back (rows top to bottom), decoded texel by texel on demand.
+struct HdrFrame {
+  int width = 0, height = 0;
+  std::vector<std::uint8_t> bytes;
+  glm::dvec3 at(int x, int row) const;
+};
 // The largest colour channel of any pixel.
 float brightestChannel(const HdrImage& image);
 

@@ -31,15 +31,7 @@ namespace {
 constexpr int kSide = 65;  // odd: the middle pixel's centre is the image's centre
 constexpr float kFovy = 50.0f;
 
-// The frame's linear HDR colour (scene-color, decoded), rows top to bottom.
-struct HdrFrame {
-  int width = 0, height = 0;
-  std::vector<std::uint8_t> bytes;
-  glm::dvec3 at(int x, int row) const {
-    const size_t i = (static_cast<size_t>(row) * width + x) * 4;
-    return glm::dvec3(decodeHdr(HdrTexel{bytes[i], bytes[i + 1], bytes[i + 2], bytes[i + 3]}));
-  }
-};
+using test::HdrFrame;
 
 // The uniform environment's radiance in these tests: ambient light comparable to the sun's, as the sky's is.
 constexpr double kAmbientRadiance = 0.5;

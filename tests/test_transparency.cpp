@@ -25,14 +25,7 @@ namespace {
 
 constexpr int kSide = 64;
 
-struct HdrFrame {
-  int width = 0, height = 0;
-  std::vector<std::uint8_t> bytes;
-  glm::dvec3 at(int x, int row) const {
-    const size_t i = (static_cast<size_t>(row) * width + x) * 4;
-    return glm::dvec3(decodeHdr(HdrTexel{bytes[i], bytes[i + 1], bytes[i + 2], bytes[i + 3]}));
-  }
-};
+using test::HdrFrame;
 
 RenderSettings plainSettings() {
   RenderSettings settings;
