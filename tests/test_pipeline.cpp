@@ -642,6 +642,7 @@ TEST(Pipeline, TheForwardLightingDrawsIntoAnOutputWithDepth) {
     test::RenderedImage image;
     int passes = 0;
     std::string intoOutput;  // the pass that writes the output
+    bool deferred = false;   // the lighting took its deferred form (it reads the G-buffer pass's base colour)
   };
   auto draw = [&](const RenderSettings& settings, bool depth) {
     const gl::RenderTarget output("output", camera.width, camera.height, GL_NEAREST,
@@ -654,6 +655,7 @@ TEST(Pipeline, TheForwardLightingDrawsIntoAnOutputWithDepth) {
     for (const PlannedPass& pass : plan.passes()) {
       if (!pass.live) continue;
       ++drawn.passes;
+      if (pass.decl.name == "lighting") drawn.deferred = pass.reads.count("base-color") != 0;
       for (const auto& [target, version] : pass.writes)
         if (plan.versions()[static_cast<size_t>(version)].output) drawn.intoOutput = pass.decl.name;
     }
@@ -684,4 +686,11 @@ TEST(Pipeline, TheForwardLightingDrawsIntoAnOutputWithDepth) {
   RenderSettings defaults;
   defaults.set("ao", "off");
   EXPECT_EQ(draw(defaults, true).intoOutput, "fxaa");
+  // With the AO on the G-buffer pass runs: the forward form keeps its depth (each pixel shaded once, the image of an
+  // output without depth) and a stage pass draws the output; the deferred form draws into the output.
+  RenderSettings ao;
+  ao.set("fxaa", "off");
+  const Drawn withAo = draw(ao, true);
+  EXPECT_EQ(withAo.intoOutput == "lighting", withAo.deferred) << (withAo.deferred ? "deferred" : "forward");
+  EXPECT_EQ(withAo.image.rgba, draw(ao, false).image.rgba);
 }

@@ -144,6 +144,9 @@ struct StageHead {
   bool bindsTextures = false;   // it binds the textures a stage reads (StageDecl::textures): a stage pass does
   int textureUnits = 0;         // units left for the stages' textures (StageDecl::textures and ownTextures)
   int firstTextureUnit = 0;     // where those units start (a head that binds its stages' own textures itself)
+  // It depth-tests against the depth it shares with an earlier pass (the forward lighting over the G-buffer's): where
+  // that pass runs, it keeps that depth rather than draw into the output with the output's own.
+  bool keepsSharedDepth = false;
 };
 
 // One pass of this frame: what it reads and writes, and how it draws. Reads of a target bind to its latest earlier

@@ -148,6 +148,13 @@ FramePlan FramePlan::resolve(FramePlanner&& planner, const std::string& result,
   auto writerLive = [&](int version) {
     return plan.passes_[static_cast<size_t>(plan.versions_[static_cast<size_t>(version)].writer)].live;
   };
+  // Whether a stage head may draw `contents` (what it writes) into the output: where it says it may, and, for one that
+  // keeps the depth it shares, where the pass that depth comes from does not run.
+  auto mayDrawIntoOutput = [&](const StageHead& head, const TargetVersion& contents) {
+    const bool sharesLiveDepth = contents.depth == PassDecl::Write::Depth::Shared && contents.depthVersion >= 0 &&
+                                 writerLive(contents.depthVersion);
+    return head.mayWriteOutput && !(head.keepsSharedDepth && sharesLiveDepth);
+  };
   for (PlannedPass& pass : plan.passes_)
     for (const std::string& read : pass.decl.optionalReads) {
       const auto it = pass.reads.find(read);
@@ -282,7 +289,7 @@ FramePlan FramePlan::resolve(FramePlanner&& planner, const std::string& result,
       const TargetVersion& in = plan.versions_[static_cast<size_t>(color)];
       if (!(out.size == in.size) || out.history || out.external) break;
       const bool drawnIntoOutput = output == resultVersion && readersOf(output).empty() && !retainedVersion(output);
-      if (drawnIntoOutput && !offer.mayWriteOutput) break;
+      if (drawnIntoOutput && !mayDrawIntoOutput(offer, in)) break;
       // Fuse: the head writes the stage's output, with its own depth set-up, and reads what the stage reads.
       vectors -= stage.uniformVectors;
       units -= stageUnits;
@@ -322,7 +329,7 @@ FramePlan FramePlan::resolve(FramePlanner&& planner, const std::string& result,
     const auto& writerHead = resultContents.writer >= 0
                                  ? plan.passes_[static_cast<size_t>(resultContents.writer)].decl.stageHead
                                  : std::optional<StageHead>();
-    const bool writerMay = !writerHead || writerHead->mayWriteOutput;
+    const bool writerMay = !writerHead || mayDrawIntoOutput(*writerHead, resultContents);
     if (!resultRead && !resultContents.external && !resultContents.history && writerMay) {
       resultContents.output = true;
       // The output has no other pass's depth: one that depth-tests there uses the output's own

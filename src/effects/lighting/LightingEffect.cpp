@@ -382,9 +382,10 @@ void LightingEffect::plan(FramePlanner& planner) {
   };
   // What each shading form offers the per-pixel stages after it (fog, the tone curve): the fragment uniform vectors
   // its heaviest program leaves, and whether it may draw into the output framebuffer: the forward form depth-tests,
-  // so only where the output has a depth buffer (then its own, cleared: a pass of the frame's fewer where nothing
-  // reads the lit image, as in `preset low`); the deferred form always (it then shades without the G-buffer's
-  // depth: render()).
+  // so only where the output has a depth buffer, and only where the G-buffer pass does not run (then the output's own
+  // depth, cleared: a pass of the frame's fewer where nothing reads the lit image, as in `preset low` with the AO off;
+  // over the G-buffer's depth it shades each pixel once, and keeps that); the deferred form always (it then shades
+  // without the G-buffer's depth: render()).
   const int vectors = resources_.caps.maxFragmentUniformVectors;
   // The forward form's heaviest program: the most lights, or a layered material's layers and its lights (the layers'
   // kMaterialLayerVectors leave no spare column for a stage's floats, Shaders.EveryProgramFitsTheGles2...).
@@ -393,7 +394,7 @@ void LightingEffect::plan(FramePlanner& planner) {
                                       layeredLightsPerDraw_ * kVectorsPerPunctualLight);
   const int units = TextureUnits::stageUnits(resources_.caps);
   const StageHead forward{"scene-color", ColorSpace::Hdr, vectors - forwardOwn, planner.frame().outputDepth, false,
-                          units, TextureUnits::kStages};
+                          units, TextureUnits::kStages, true};
   const StageHead deferred{"scene-color", ColorSpace::Hdr, vectors - kDeferredLightingVectorsWithoutStages, true,
                            false, units, TextureUnits::kStages};
 
