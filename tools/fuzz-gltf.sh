@@ -42,10 +42,14 @@ for seed in tests/fuzz/seeds/*.gltf tests/fuzz/seeds/*.glb; do cp -n "$seed" "$c
 # uncompressed 2CylinderEngine, is fuzzed in its first MiB (its Draco twin and the .gltf whole).
 fuzzer=$PWD/build-asan/tests/fuzz/obscura-gltf-fuzzer
 cd "$work"
-rm -f fuzz-*.log
+rm -f fuzz-*.log repro-*.log
 status=0
 start=$(date +%s)
-"$fuzzer" "${limits[@]}" -timeout=10 -rss_limit_mb=4096 -print_final_stats=1 -jobs="$workers" -workers="$workers" \
+# While fuzzing, ASan keeps no stack for each allocation and free (malloc_context_size=0): the unwinding and the stack
+# depot cost 5 to 12 % of a run (CPU seconds per execution, alternating runs from the seeds; docs/robustness.md) and
+# serve only the reports. Every finding is replayed below with the full stacks. The user's ASAN_OPTIONS come after.
+user_asan_options="${ASAN_OPTIONS:-}"
+ASAN_OPTIONS="malloc_context_size=0${user_asan_options:+:$user_asan_options}" "$fuzzer" "${limits[@]}" -timeout=10 -rss_limit_mb=4096 -print_final_stats=1 -jobs="$workers" -workers="$workers" \
   corpus >/dev/null 2>&1 || status=$?
 seconds=$(( $(date +%s) - start ))
 for log in fuzz-*.log; do
@@ -56,7 +60,14 @@ awk -F: -v workers="$workers" -v seconds="$seconds" '
   END { printf "fuzz-gltf: %d workers, %d executions in %d s (%d per minute), peak RSS %d MB\n",
         workers, runs, seconds, runs * 60 / (seconds > 0 ? seconds : 1), rss }' fuzz-*.log
 if grep -l -E 'ERROR: (AddressSanitizer|LeakSanitizer|libFuzzer)|runtime error:|SUMMARY: ' fuzz-*.log; then
-  echo "fuzz-gltf: a worker found a bug (its log above, the input in $work/crash-*)"
+  # Replay each saved input with ASan's full allocation and free stacks (the user's ASAN_OPTIONS, else the defaults).
+  for finding in crash-* leak-* timeout-* oom-*; do
+    [ -e "$finding" ] || continue
+    ASAN_OPTIONS="$user_asan_options" "$fuzzer" -timeout=10 -rss_limit_mb=4096 "$finding" >"repro-$finding.log" 2>&1 || true
+    echo "fuzz-gltf: $finding replayed with full stacks:"
+    grep -A 40 -m 1 -E 'ERROR: |runtime error:' "repro-$finding.log" || tail -n 40 "repro-$finding.log"
+  done
+  echo "fuzz-gltf: a worker found a bug (its log above, the input in $work/crash-*, the replays in $work/repro-*.log)"
   exit 1
 fi
 exit "$status"

@@ -19,14 +19,32 @@ export function parseOptions(argv, handlers, script) {
   }
 }
 
+// The demo page's address with its dynamic resolution off. The page turns it on and starts at its smallest scale,
+// so a frame measured there would draw a quarter of the pixels its peers draw: every benchmark and accuracy script
+// opens the page through this (its state keeps the setting; a state may still set resolution.scale).
+export function fixedScaleUrl(url) {
+  const address = new URL(url);
+  address.searchParams.set('resolution.dynamic', 'off');
+  return address.toString();
+}
+
+// Throws unless the page's frame is rendered at the canvas's size (render scale 1): run after the state is applied.
+export async function expectFullScale(page, what) {
+  const render = await page.evaluate(() => window.obscura.stats().render);
+  if (render.dynamic || render.scale !== 1) {
+    throw new Error(`${what}: Obscura renders at scale ${render.scale}${render.dynamic ? ' (dynamic)' : ''}, ` +
+                    `${render.width}x${render.height}; the comparison needs the canvas's full size`);
+  }
+}
+
 // The demo page served at `url` in a fresh context of `width` x `height` CSS pixels (device pixel ratio 1), once it
-// says it is ready, with the controls panel hidden so that the canvas is all there is. Returns the page and the list
-// its uncaught errors are pushed to.
+// says it is ready, with the controls panel hidden so that the canvas is all there is, and its dynamic resolution
+// off (fixedScaleUrl). Returns the page and the list its uncaught errors are pushed to.
 export async function openDemoPage(browser, url, width, height) {
   const page = await (await browser.newContext({ viewport: { width, height }, deviceScaleFactor: 1 })).newPage();
   const errors = [];
   page.on('pageerror', (e) => errors.push(String(e)));
-  await page.goto(url);
+  await page.goto(fixedScaleUrl(url));
   await page.waitForFunction(() => document.body.dataset.ready === 'true', null, { timeout: 120000 });
   await page.addStyleTag({ content: '#panel { display: none !important; }' });
   return { page, errors };

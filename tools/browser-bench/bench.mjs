@@ -29,7 +29,7 @@ import { chromium } from 'playwright-core';
 import { glbBoundingSphere } from './glb-bounds.mjs';
 import { decodePng } from '../../tests/browser/png.mjs';
 import { startServer } from '../serve-web.mjs';
-import { chromiumFlags, chromiumLaunchOptions } from '../headless-chromium.mjs';
+import { chromiumFlags, chromiumLaunchOptions, expectFullScale, fixedScaleUrl } from '../headless-chromium.mjs';
 import { installPassCounter } from './pass-counter.mjs';
 
 const benchDir = path.dirname(fileURLToPath(import.meta.url));
@@ -174,7 +174,7 @@ async function openObscura(browser, base, size, renderer, aoRadius, fogDensity) 
                                              deviceScaleFactor: 1 });
   const page = await context.newPage();
   watchErrors(page, renderer.id);
-  await page.goto(`${base}/site/index.html`);
+  await page.goto(fixedScaleUrl(`${base}/site/index.html`));
   await page.waitForFunction(() => document.body.dataset.ready === 'true', null, { timeout: 120000 });
   await page.addStyleTag({ content: '#panel { display: none !important; }' });
   await page.waitForFunction(() => window.obscura.stats().frames > 0, null, { timeout: 120000, polling: 50 });
@@ -201,6 +201,7 @@ async function openObscura(browser, base, size, renderer, aoRadius, fogDensity) 
              contextAttributes: gl.getContextAttributes() };
   }, { modelUrl: `${base}/model/${modelName}`, name: modelName, radius: aoRadius, state: renderer.state,
        fog: renderer.fog ? fogDensity : 0, fogColor: FOG_COLOR });
+  await expectFullScale(page, renderer.id);
   await page.evaluate(`(${installPassCounter.toString()})(window.benchGl)`);
   return { context, page, info };
 }

@@ -159,6 +159,7 @@ try {
       // From the defaults each time (a setState only changes what it names), playing from 1 s.
       const query = new URLSearchParams();
       for (const p of o.parameters) if (p.name !== 'preset' && !p.name.endsWith('.preset')) query.set(p.name, p.default);
+      query.set('resolution.dynamic', 'off');  // the canvas's full size (fixedScaleUrl)
       for (const [key, value] of new URLSearchParams(state)) query.set(key, value);
       query.set('time', '1');
       query.set('play', 'on');

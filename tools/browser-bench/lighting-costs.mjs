@@ -14,7 +14,7 @@ import path from 'node:path';
 import { fileURLToPath } from 'node:url';
 import { chromium } from 'playwright-core';
 import { startServer } from '../serve-web.mjs';
-import { chromiumLaunchOptions } from '../headless-chromium.mjs';
+import { chromiumLaunchOptions, fixedScaleUrl } from '../headless-chromium.mjs';
 import { installPassCounter } from './pass-counter.mjs';
 
 const root = path.resolve(path.dirname(fileURLToPath(import.meta.url)), '..', '..');
@@ -55,7 +55,7 @@ async function openCase(browser, base, size, scene, text) {
   const page = await context.newPage();
   const errors = [];
   page.on('pageerror', (e) => errors.push(e.message));
-  await page.goto(`${base}/index.html`);
+  await page.goto(fixedScaleUrl(`${base}/index.html`));
   await page.waitForFunction(() => document.body.dataset.ready === 'true', null, { timeout: 120000 });
   await page.addStyleTag({ content: '#panel { display: none !important; }' });
   const bytes = [...fs.readFileSync(SCENES[scene])];

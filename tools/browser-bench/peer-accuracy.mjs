@@ -15,7 +15,7 @@ import { execFileSync } from 'node:child_process';
 import { fileURLToPath } from 'node:url';
 import { chromium } from 'playwright-core';
 import { startServer } from '../serve-web.mjs';
-import { chromiumLaunchOptions, parseOptions } from '../headless-chromium.mjs';
+import { chromiumLaunchOptions, fixedScaleUrl, parseOptions } from '../headless-chromium.mjs';
 
 const here = path.dirname(fileURLToPath(import.meta.url));
 const root = path.resolve(here, '..', '..');
@@ -97,7 +97,7 @@ try {
       await page.route(`${base}/model.glb`, (route) => route.fulfill({ body: modelBytes }));
       let pixels;
       if (renderer.kind === 'obscura') {
-        await page.goto(`${base}/site/index.html`);
+        await page.goto(fixedScaleUrl(`${base}/site/index.html`));
         await page.waitForFunction(() => document.body.dataset.ready === 'true', null, { timeout: 120000 });
         await page.addStyleTag({ content: '#panel { display: none !important; }' });
         const result = await page.evaluate(async ({ estimator, radius, camera, name }) => {

@@ -5,7 +5,7 @@ import path from 'node:path';
 import { fileURLToPath } from 'node:url';
 import { chromium } from 'playwright-core';
 import { startServer } from '../serve-web.mjs';
-import { chromiumLaunchOptions } from '../headless-chromium.mjs';
+import { chromiumLaunchOptions, fixedScaleUrl } from '../headless-chromium.mjs';
 
 const root = path.resolve(path.dirname(fileURLToPath(import.meta.url)), '..', '..');
 const model = '/usr/share/assimp/models/glTF2/2CylinderEngine-glTF-Binary/2CylinderEngine.glb';
@@ -14,7 +14,7 @@ const [width, height] = size.split('x').map(Number);
 const server = await startServer(path.join(root, 'build-web', 'site'));
 const browser = await chromium.launch(chromiumLaunchOptions);
 const page = await (await browser.newContext({ viewport: { width, height }, deviceScaleFactor: 1 })).newPage();
-await page.goto(`http://127.0.0.1:${server.address().port}/`);
+await page.goto(fixedScaleUrl(`http://127.0.0.1:${server.address().port}/`));
 await page.waitForFunction(() => document.body.dataset.ready === 'true', null, { timeout: 120000 });
 await page.addStyleTag({ content: '#panel { display: none !important; }' });
 const bytes = [...fs.readFileSync(model)];
