@@ -628,3 +628,60 @@ TEST(Pipeline, FxaaMaskedByTheStencilGivesTheSameImageAsOneDraw) {
   EXPECT_LT(edges, pixels / 4) << "the classifying draw marked most of the frame";
   EXPECT_EQ(edgePixels(*oneDraw), 0) << "one draw leaves the stencil as it was cleared";
 }
+
+// Where the output has a depth buffer of its own (the CLI's, the window's, the canvas's: FrameContext::outputDepth)
+// and nothing reads the lit image, the forward lighting draws the scene straight into it, the display stages fused
+// into its programs: one full-screen pass fewer than into an output without depth (where a stage pass copies the lit
+// image in), and the same image.
+TEST(Pipeline, TheForwardLightingDrawsIntoAnOutputWithDepth) {
+  Renderer renderer = test::makeRenderer();
+  renderer.setScene(makeBuiltinScene());
+  const Camera camera = builtinSceneCamera(160, 90);
+  const gl::GlCaps& caps = test::context().caps();
+  struct Drawn {
+    test::RenderedImage image;
+    int passes = 0;
+    std::string intoOutput;  // the pass that writes the output
+  };
+  auto draw = [&](const RenderSettings& settings, bool depth) {
+    const gl::RenderTarget output("output", camera.width, camera.height, GL_NEAREST,
+                                  depth ? gl::RenderTarget::Depth::Renderbuffer : gl::RenderTarget::Depth::None,
+                                  caps.depth24, depth && caps.packedDepthStencil);
+    renderer.render(camera, settings, View::Final, OutputTarget{output.framebuffer(), camera.width, camera.height, {}});
+    Drawn drawn;
+    drawn.image = {camera.width, camera.height, output.readRgba()};
+    const FramePlan& plan = renderer.lastPlan();
+    for (const PlannedPass& pass : plan.passes()) {
+      if (!pass.live) continue;
+      ++drawn.passes;
+      for (const auto& [target, version] : pass.writes)
+        if (plan.versions()[static_cast<size_t>(version)].output) drawn.intoOutput = pass.decl.name;
+    }
+    return drawn;
+  };
+  // The low tier shades overdrawn fragments (its own depth test); the medium one, made to take the forward form
+  // (without a depth pre-pass choice, a context with several render targets shades the G-buffer deferred), over a
+  // depth pre-pass.
+  for (const char* preset : {"low", "medium"}) {
+    RenderSettings settings;
+    settings.set("preset", preset);
+    settings.set("ao", "off");
+    settings.set("fxaa", "off");
+    if (std::string(preset) == "medium") settings.set("lighting.depth", "prepass");
+    const Drawn withDepth = draw(settings, true), without = draw(settings, false);
+    EXPECT_EQ(withDepth.intoOutput, "lighting") << preset;
+    EXPECT_NE(without.intoOutput, "lighting") << preset;
+    EXPECT_EQ(withDepth.passes, without.passes - 1) << preset;
+    // Where the lighting's depth pre-pass has no stencil to shade each pixel once (the output's), an edge-on face may
+    // shade a pixel twice, the visible surface last (LightingEffect::render): the images may differ at a few edges.
+    int differing = 0;
+    for (size_t i = 0; i < withDepth.image.rgba.size(); ++i)
+      differing += std::abs(int(withDepth.image.rgba[i]) - int(without.image.rgba[i])) > 1;
+    EXPECT_LE(differing, static_cast<int>(withDepth.image.rgba.size() / 1000))
+        << preset << ": worst byte difference " << test::worstByteDifference(withDepth.image, without.image);
+  }
+  // With FXAA on, FXAA reads the lit image and writes the output: the lighting draws into a texture as before.
+  RenderSettings defaults;
+  defaults.set("ao", "off");
+  EXPECT_EQ(draw(defaults, true).intoOutput, "fxaa");
+}

@@ -321,10 +321,19 @@ TEST(RenderSettings, TheFramePresetSetsEveryEffectsPreset) {
   EXPECT_EQ(settings.of<FxaaSettings>().quality, 29);
   settings.set("fxaa.preset", "low");  // one effect's own preset: the frame's no longer holds
   EXPECT_EQ(settings.get("preset"), "");
+  EXPECT_EQ(settings.get("fxaa"), "on") << "fxaa.preset low alone keeps FXAA on";
+  EXPECT_EQ(settings.get("fxaa.preset"), "low");
   EXPECT_EQ(settings.get("ao.preset"), "high");
   settings.set("ao.samples", "9");
   EXPECT_EQ(settings.get("ao.preset"), "");
   EXPECT_EQ(settings.ao().preset, QualityPreset::High) << "the AO remembers the preset it came from";
+  // `preset low` turns FXAA off (FxaaEffect.cpp: on a weak device its pass costs about as much as the lit frame);
+  // the other presets turn it on.
+  settings.set("preset", "low");
+  EXPECT_EQ(settings.get("fxaa"), "off");
+  EXPECT_EQ(settings.get("preset"), "low");
+  settings.set("preset", "medium");
+  EXPECT_EQ(settings.get("fxaa"), "on");
 }
 
 TEST(RenderSettings, EveryParameterOfEveryEffectDescribesItsValuesAndRoundTrips) {

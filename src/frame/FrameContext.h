@@ -65,6 +65,9 @@ struct FrameContext {
   // The output's size. The frame renders at camera.width x camera.height, which is less where the render scale is
   // below 1 (frame/Resolution.h): then one pass at the end upscales the result into the output.
   int outputWidth = 1, outputHeight = 1;
+  // The output framebuffer has a depth buffer of its own (the CLI's, the window's and the canvas's: platform/): a
+  // pass that depth-tests, the forward lighting, may then draw straight into it when it is the frame's last.
+  bool outputDepth = false;
   bool upscaled() const { return outputWidth != camera.width || outputHeight != camera.height; }
 };
 

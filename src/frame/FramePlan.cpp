@@ -318,8 +318,19 @@ FramePlan FramePlan::resolve(FramePlanner&& planner, const std::string& result,
     for (const auto& [target, version] : pass.reads) resultRead = resultRead || (pass.live && version == resultVersion);
   for (const auto& [target, version] : plan.retained_) resultRead = resultRead || version == resultVersion;
   if (!resultContents.output) {
-    if (!resultRead && !resultContents.external && !resultContents.history) {
+    // A stage head that cannot draw into the output (StageHead::mayWriteOutput) leaves its result to a copy.
+    const auto& writerHead = resultContents.writer >= 0
+                                 ? plan.passes_[static_cast<size_t>(resultContents.writer)].decl.stageHead
+                                 : std::optional<StageHead>();
+    const bool writerMay = !writerHead || writerHead->mayWriteOutput;
+    if (!resultRead && !resultContents.external && !resultContents.history && writerMay) {
       resultContents.output = true;
+      // The output has no other pass's depth: one that depth-tests there uses the output's own
+      // (FrameContext::outputDepth), which it clears.
+      if (resultContents.depth == PassDecl::Write::Depth::Shared) {
+        resultContents.depth = PassDecl::Write::Depth::Own;
+        resultContents.depthVersion = -1;
+      }
     } else {
       FramePlanner::Entry present{"", presentPass(), {}, {}, {}};
       addPass(std::move(present));

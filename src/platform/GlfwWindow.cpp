@@ -27,10 +27,10 @@ GlfwWindow::GlfwWindow(const std::string& title, int width, int height) {
     glfwWindowHint(GLFW_CONTEXT_CREATION_API, api);
     glfwWindowHint(GLFW_CONTEXT_VERSION_MAJOR, 2);
     glfwWindowHint(GLFW_CONTEXT_VERSION_MINOR, 0);
-    // Every pass of the frame draws into textures and the last one is a full-screen triangle into the window: the
-    // window needs neither depth nor multisampling (FXAA antialiases; effects/fxaa/FxaaEffect.h says why not MSAA). Its
-    // stencil lets FXAA run its full shader on edge pixels only (FxaaEffect.h).
-    glfwWindowHint(GLFW_DEPTH_BITS, 0);
+    // Its depth lets the forward lighting draw straight into the window where nothing reads the lit image (`preset
+    // low`: FrameContext::outputDepth); no multisampling (FXAA antialiases; effects/fxaa/FxaaEffect.h says why not
+    // MSAA). Its stencil lets FXAA run its full shader on edge pixels only (FxaaEffect.h).
+    glfwWindowHint(GLFW_DEPTH_BITS, 24);
     glfwWindowHint(GLFW_STENCIL_BITS, 8);
     glfwWindowHint(GLFW_SAMPLES, 0);
     window_ = glfwCreateWindow(width, height, title.c_str(), nullptr, nullptr);

@@ -38,12 +38,13 @@ WebCanvas::WebCanvas(std::function<void()> onLost, std::function<void()> onResto
   attributes.majorVersion = 1;
   attributes.minorVersion = 0;
   attributes.alpha = EM_FALSE;
-  // Every pass draws into textures; the last one is a full-screen triangle into the canvas, which therefore needs
-  // neither a depth buffer nor multisampling (FXAA antialiases: effects/fxaa/FxaaEffect.h says why not MSAA). Measured
-  // on SwiftShader, the multisampled back buffer alone cost a fifth of the old frame (docs/benchmarks.md). No stencil
-  // either: FXAA masked by a stencil (FxaaEffect.h), which more than halves its pass on llvmpipe, made the page's
-  // frame no faster on SwiftShader (AO off, 1280x720: 236 against 219 ms, medians of 24 frames, within the noise).
-  attributes.depth = EM_FALSE;
+  // A depth buffer: where nothing reads the lit image (`preset low`: no FXAA), the forward lighting draws the scene
+  // straight into the canvas, depth-tested there, and the frame saves a full-screen pass (FrameContext::outputDepth;
+  // docs/benchmarks.md). No multisampling (FXAA antialiases: effects/fxaa/FxaaEffect.h says why not MSAA): measured
+  // on SwiftShader, the multisampled back buffer alone cost a fifth of the old frame (docs/benchmarks.md). No stencil:
+  // FXAA masked by a stencil (FxaaEffect.h), which more than halves its pass on llvmpipe, made the page's frame no
+  // faster on SwiftShader (AO off, 1280x720: 236 against 219 ms, medians of 24 frames, within the noise).
+  attributes.depth = EM_TRUE;
   attributes.stencil = EM_FALSE;
   attributes.antialias = EM_FALSE;
   attributes.premultipliedAlpha = EM_TRUE;

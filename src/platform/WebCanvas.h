@@ -3,8 +3,8 @@
 // as Module.canvas, addressed as the "!canvas" target, so a page may use any element (and several pages' worth of
 // modules may coexist).
 //
-// WebGL 1 only (the build links with MIN/MAX_WEBGL_VERSION=1): the back buffer is requested antialiased, with depth
-// (the lighting pass draws the scene into it), opaque and not preserved. Context loss is reported through callbacks:
+// WebGL 1 only (the build links with MIN/MAX_WEBGL_VERSION=1): the back buffer is requested with depth (the forward
+// lighting may draw the scene into it), without multisampling, opaque and not preserved. Context loss is reported through callbacks:
 // on loss the event is accepted (preventDefault) so the browser may restore the context; on restore the extensions
 // are enabled again, since a restored context starts with none.
 #include <functional>

@@ -238,6 +238,20 @@ bool Renderer::jitters(const RenderSettings& settings) {
   return false;
 }
 
+bool Renderer::outputHasDepth(const OutputTarget& output) {
+  const glm::ivec2 size(output.width, output.height);
+  if (!outputDepth_.known || outputDepth_.framebuffer != output.framebuffer || outputDepth_.size != size) {
+    GLint bound = 0;
+    glGetIntegerv(GL_FRAMEBUFFER_BINDING, &bound);
+    glBindFramebuffer(GL_FRAMEBUFFER, output.framebuffer);
+    GLint bits = 0;
+    glGetIntegerv(GL_DEPTH_BITS, &bits);
+    glBindFramebuffer(GL_FRAMEBUFFER, static_cast<GLuint>(bound));
+    outputDepth_ = {output.framebuffer, size, true, bits > 0};
+  }
+  return outputDepth_.depth;
+}
+
 void Renderer::beginFrame(const Camera& camera, const RenderSettings& settings, glm::ivec2 size,
                           const OutputTarget& output, const FrameOptions& options) {
   const double time = options.time;
@@ -281,6 +295,7 @@ void Renderer::beginFrame(const Camera& camera, const RenderSettings& settings, 
   frame.forwardLighting = scene_.needsForwardLighting();
   frame.outputWidth = output.width;
   frame.outputHeight = output.height;
+  frame.outputDepth = outputHasDepth(output);
   frame_ = std::move(frame);
 
   // The scene's pose now and at the previous time (the last frame's pose when that is the one asked for).
@@ -344,6 +359,7 @@ Renderer::PlanKey Renderer::planKey(const RenderSettings& settings, const View& 
   key.forwardLighting = frame_.forwardLighting;
   key.linesOrPoints = frame_.linesOrPoints;
   key.orthographic = frame_.camera.orthographic;
+  key.outputDepth = frame_.outputDepth;
   return key;
 }
 

@@ -204,19 +204,19 @@ class Renderer {
                  const std::vector<std::string>& retain, GLuint externalGBuffer = 0);
   // What a plan depends on: the values of the parameters that shape it (ParameterInfo::shapesPlan), the view, the
   // frame's size and the output's (below it, the frame ends in an upscale), the retained targets, the caller's
-  // G-buffer, what the scene asks of the frame, and the projection.
+  // G-buffer, what the scene asks of the frame, the projection, and whether the output has a depth buffer.
   struct PlanKey {
     std::vector<std::string> settings;
     std::string view;
     glm::ivec2 size{0, 0}, outputSize{0, 0};
     std::vector<std::string> retain;
     GLuint externalGBuffer = 0;
-    bool forwardLighting = false, linesOrPoints = false, orthographic = false;
+    bool forwardLighting = false, linesOrPoints = false, orthographic = false, outputDepth = false;
     bool operator==(const PlanKey& o) const {
       return settings == o.settings && view == o.view && size == o.size && outputSize == o.outputSize &&
              retain == o.retain &&
              externalGBuffer == o.externalGBuffer && forwardLighting == o.forwardLighting &&
-             linesOrPoints == o.linesOrPoints && orthographic == o.orthographic;
+             linesOrPoints == o.linesOrPoints && orthographic == o.orthographic && outputDepth == o.outputDepth;
     }
   };
   PlanKey planKey(const RenderSettings& settings, const View& view, const FrameOptions& options) const;
@@ -261,6 +261,13 @@ class Renderer {
   std::uint64_t plansMade_ = 0;
   std::vector<std::pair<size_t, size_t>> shapingParameters_;  // (row, parameter) of each parameter in PlanKey
   gl::FramebufferHandle externalGBufferSource_;  // reads the caller's G-buffer texture (importGBuffer)
+  // Whether the output framebuffer has a depth buffer (GL_DEPTH_BITS), asked once per framebuffer and size.
+  struct OutputDepth {
+    GLuint framebuffer = 0;
+    glm::ivec2 size{0, 0};
+    bool known = false, depth = false;
+  } outputDepth_;
+  bool outputHasDepth(const OutputTarget& output);
 
   // History: what the next frame's context calls "previous".
   FrameContext frame_;

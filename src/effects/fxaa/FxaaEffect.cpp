@@ -76,12 +76,13 @@ const std::vector<Parameter<FxaaSettings>>& FxaaSettings::parameters() {
     std::vector<std::string> presetNames;
     for (QualityPreset p : allQualityPresets()) presetNames.push_back(presetName(p));
     Parameter<S> presetParameter{{"preset", parse::joinChoices(presetNames, " | "),
-                                  "quality preset: search steps (Lottes' preset 10, 12, 29, 39) and edge thresholds",
+                                  "quality preset: search steps (Lottes' preset 10, 12, 29, 39) and edge thresholds "
+                                  "(the frame's preset low also turns FXAA off)",
                                   ParameterKind::Choice, 0.0, 0.0, presetNames},
                                  {}, {}, {}, {}};
-    presetParameter.set = [](S& s, const std::string& v) { s.applyPreset(parsePreset(v)); };
+    presetParameter.set = [](S& s, const std::string& v) { s.applySettingsOf(parsePreset(v)); };
     presetParameter.get = [](const S& s) {
-      return s.matchesPreset(s.preset) ? std::string(presetName(s.preset)) : "";
+      return s.settingsMatch(s.preset) ? std::string(presetName(s.preset)) : "";
     };
     presetParameter.valid = [](const S&) { return true; };
 
@@ -101,7 +102,15 @@ const std::vector<Parameter<FxaaSettings>>& FxaaSettings::parameters() {
   return table;
 }
 
-void FxaaSettings::applyPreset(QualityPreset which) {
+// The frame's `preset low` turns FXAA off: on the weak devices it is for, FXAA's full-screen pass costs about as much
+// as the lit frame (on SwiftShader, docs/benchmarks.md) for 6 to 15 % of the error against a supersampled frame, and
+// without it the lighting draws straight into the canvas (FrameContext::outputDepth). `fxaa.preset low` alone keeps
+// FXAA on with Lottes' preset 10 (which the frame's low preset also sets, for `fxaa on` after it).
+namespace {
+bool fxaaRunsAt(QualityPreset which) { return which != QualityPreset::Low; }
+}  // namespace
+
+void FxaaSettings::applySettingsOf(QualityPreset which) {
   for (const FxaaPreset& p : kPresets)
     if (p.preset == which) {
       preset = which;
@@ -111,12 +120,21 @@ void FxaaSettings::applyPreset(QualityPreset which) {
     }
 }
 
-bool FxaaSettings::matchesPreset(QualityPreset which) const {
+bool FxaaSettings::settingsMatch(QualityPreset which) const {
   for (const FxaaPreset& p : kPresets)
     if (p.preset == which)
       return preset == which && quality == p.quality && edgeThreshold == p.edgeThreshold &&
              edgeThresholdMin == p.edgeThresholdMin;
   return false;
+}
+
+void FxaaSettings::applyPreset(QualityPreset which) {
+  applySettingsOf(which);
+  enabled = fxaaRunsAt(which);
+}
+
+bool FxaaSettings::matchesPreset(QualityPreset which) const {
+  return settingsMatch(which) && enabled == fxaaRunsAt(which);
 }
 
 EffectInfo FxaaEffect::info() { return {"fxaa", "FXAA", true, false, {"fxaa"}, {}}; }

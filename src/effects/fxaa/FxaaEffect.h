@@ -33,8 +33,12 @@ struct FxaaSettings : ParameterAccess<FxaaSettings> {
   float edgeThresholdMin = 0.0833f;  // Lottes' default: skip darks below this absolute contrast
 
   static const std::vector<Parameter<FxaaSettings>>& parameters();
+  // The frame's preset (RenderSettings::applyPreset): the settings of `fxaa.preset`, and FXAA off at low.
   void applyPreset(QualityPreset which);
   bool matchesPreset(QualityPreset which) const;
+  // `fxaa.preset`: Lottes' steps and thresholds only.
+  void applySettingsOf(QualityPreset which);
+  bool settingsMatch(QualityPreset which) const;
   void validate() const { validateParameters("FXAA"); }
 };
 

@@ -381,8 +381,10 @@ void LightingEffect::plan(FramePlanner& planner) {
     return [this, form](PassContext& context) { render(context, form); };
   };
   // What each shading form offers the per-pixel stages after it (fog, the tone curve): the fragment uniform vectors
-  // its heaviest program leaves, and whether it may draw into the output framebuffer (the forward form depth-tests,
-  // and the output has no depth; the deferred form then shades without the G-buffer's depth: render()).
+  // its heaviest program leaves, and whether it may draw into the output framebuffer: the forward form depth-tests,
+  // so only where the output has a depth buffer (then its own, cleared: a pass of the frame's fewer where nothing
+  // reads the lit image, as in `preset low`); the deferred form always (it then shades without the G-buffer's
+  // depth: render()).
   const int vectors = resources_.caps.maxFragmentUniformVectors;
   // The forward form's heaviest program: the most lights, or a layered material's layers and its lights (the layers'
   // kMaterialLayerVectors leave no spare column for a stage's floats, Shaders.EveryProgramFitsTheGles2...).
@@ -390,8 +392,8 @@ void LightingEffect::plan(FramePlanner& planner) {
                                   kForwardLightingVectorsWithoutStages + kMaterialLayerVectors +
                                       layeredLightsPerDraw_ * kVectorsPerPunctualLight);
   const int units = TextureUnits::stageUnits(resources_.caps);
-  const StageHead forward{"scene-color", ColorSpace::Hdr, vectors - forwardOwn, false, false, units,
-                          TextureUnits::kStages};
+  const StageHead forward{"scene-color", ColorSpace::Hdr, vectors - forwardOwn, planner.frame().outputDepth, false,
+                          units, TextureUnits::kStages};
   const StageHead deferred{"scene-color", ColorSpace::Hdr, vectors - kDeferredLightingVectorsWithoutStages, true,
                            false, units, TextureUnits::kStages};
 
@@ -584,7 +586,7 @@ void LightingEffect::render(const PassContext& context, Form form) const {
     glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
   }
   const bool overDepth = context.sharesDepth(output) || prepass;
-  if (overDepth && stencil_) {
+  if (overDepth && stencil_ && !writesOutput) {  // the output may have no stencil (the canvas has none)
     // The G-buffer's depth holds each pixel's nearest surface: GL_EQUAL lets only that surface's fragments through,
     // and the stencil (0, set to 1 by the first that passes) only the first of them. A coplanar or edge-on face at
     // exactly that depth is not shaded again: GL_EQUAL alone would shade it too (the shading-count test caught it at
