@@ -365,3 +365,34 @@ TEST(Upscale, QuickStartDrawsTheLitSceneFirstThenTheFullFrameAsWithoutIt) {
   test::render(quick, camera, settings, View::Final);
   EXPECT_FALSE(quick.lastFrameCheap());
 }
+
+// The same into an output with a depth buffer of its own (the canvas's, the window's: FrameContext::outputDepth), at
+// scale 1, where the cheap frame's lighting may draw straight into the output: the warm output has one too, and the
+// full frame after quick start is still the one drawn without it.
+TEST(Upscale, QuickStartIntoAnOutputWithDepthEndsInTheFullFrameAsWithoutIt) {
+  const Camera camera = builtinSceneCamera(160, 90);
+  const gl::GlCaps& caps = test::context().caps();
+  const gl::RenderTarget output("output with depth", camera.width, camera.height, GL_NEAREST,
+                                gl::RenderTarget::Depth::Renderbuffer, caps.depth24);
+  auto draw = [&](Renderer& renderer, const RenderSettings& settings) {
+    renderer.render(camera, settings, View::Final, OutputTarget{output.framebuffer(), camera.width, camera.height, {}});
+    return test::RenderedImage{camera.width, camera.height, output.readRgba()};
+  };
+  RenderSettings settings;
+  Renderer plain = test::makeRenderer();
+  plain.setScene(makeBuiltinScene(BuiltinSceneOptions::still()));
+  const test::RenderedImage full = draw(plain, settings);
+  EXPECT_TRUE(plain.lastFrame().outputDepth);
+
+  settings.set("resolution.quick-start", "on");
+  Renderer quick = test::makeRenderer();
+  quick.setScene(makeBuiltinScene(BuiltinSceneOptions::still()));
+  test::RenderedImage last = draw(quick, settings);
+  EXPECT_TRUE(quick.lastFrameCheap());
+  const int frames = quick.quickStart().cheapFrames;
+  for (int frame = 0; frame < Renderer::kMaxCheapFrames && quick.lastFrameCheap(); ++frame)
+    last = draw(quick, settings);
+  EXPECT_FALSE(quick.lastFrameCheap());
+  EXPECT_GE(quick.quickStart().cheapFrames, frames + 1);
+  EXPECT_EQ(test::worstByteDifference(last, full), 0);
+}

@@ -424,8 +424,14 @@ void Renderer::warmPasses(const RenderSettings& settings, bool upscaled) {
   if (!warm_) {
     warm_ = std::make_unique<Warm>();
     warm_->pool = std::make_unique<RenderTargetPool>(caps_);
-    warm_->output = gl::RenderTarget("quick-start warm output", kWarmSize, kWarmSize, GL_NEAREST,
-                                     gl::RenderTarget::Depth::None, caps_.depth24);
+  }
+  // The warm output has a depth buffer where the frame's output has one (FrameContext::outputDepth: the forward
+  // lighting may draw straight into it), so the warm plan's passes draw with the state the full frame's will.
+  if (!warm_->output || warm_->outputDepth != frame_.outputDepth) {
+    warm_->outputDepth = frame_.outputDepth;
+    warm_->output = gl::RenderTarget(
+        "quick-start warm output", kWarmSize, kWarmSize, GL_NEAREST,
+        warm_->outputDepth ? gl::RenderTarget::Depth::Renderbuffer : gl::RenderTarget::Depth::None, caps_.depth24);
   }
   // The warm frame: this frame's context at kWarmSize (half of it where the frame asked for is upscaled, so the plan
   // has the same passes and programs), without history. The AO's depth hierarchy needs 32 pixels for its 5 levels.

@@ -292,7 +292,8 @@ class Renderer {
     std::unique_ptr<FramePlan> plan;
     std::unique_ptr<RenderTargetPool> pool;
     gl::RenderTarget output;
-    size_t next = 0;  // the next pass of the plan to warm
+    bool outputDepth = false;  // whether `output` has a depth buffer (as the frame's output)
+    size_t next = 0;           // the next pass of the plan to warm
   };
   std::unique_ptr<Warm> warm_;
   glm::ivec2 lastSize_{0, 0};        // the last frame's render size
