@@ -305,3 +305,94 @@ TEST(Upscale, DynamicResolutionDrawsTheViewersFramesAtTheScaleItChose) {
   EXPECT_EQ(viewer.renderScale(), 1.0f);
   EXPECT_NE(viewer.state().toQuery().find("resolution.dynamic=off"), std::string::npos);
 }
+
+// Quick start (resolution.quick-start): the Renderer's first frame is the lit scene without the effects that add
+// passes of their own; the next frames warm the full frame's passes, and the full frame that follows by itself is the
+// one a Renderer without quick start draws.
+TEST(Upscale, QuickStartDrawsTheLitSceneFirstThenTheFullFrameAsWithoutIt) {
+  const Camera camera = builtinSceneCamera(320, 180);
+  RenderSettings settings = scaled(0.5f);  // the page's first frames: scale 0.5
+  Renderer plain = test::makeRenderer();
+  plain.setScene(makeBuiltinScene(BuiltinSceneOptions::still()));
+  const test::RenderedImage full = test::render(plain, camera, settings, View::Final);
+  EXPECT_FALSE(plain.lastFrameCheap());
+  EXPECT_EQ(plain.quickStart().firstFullFrame, 0) << "without quick start the first frame is the full one";
+  EXPECT_EQ(plain.quickStart().cheapFrames, 0);
+
+  settings.set("resolution.quick-start", "on");
+  ASSERT_TRUE(Renderer::quickStartSettings(settings).has_value());
+  Renderer quick = test::makeRenderer();
+  quick.setScene(makeBuiltinScene(BuiltinSceneOptions::still()));
+  const test::RenderedImage cheap = test::render(quick, camera, settings, View::Final);
+  EXPECT_TRUE(quick.lastFrameCheap());
+  const std::vector<std::string> cheapPasses = running(quick);
+  for (const char* pass : {"sao", "blur-h", "fxaa"})
+    EXPECT_EQ(std::count(cheapPasses.begin(), cheapPasses.end(), pass), 0) << pass;
+  EXPECT_EQ(cheapPasses.back(), "upscale") << "the bilinear upscale writes the output";
+  EXPECT_TRUE(quick.quickStart().warmed.empty()) << "the first frame warms nothing";
+  // A real, lit image: the same scene as the full frame, a little lighter (no AO) and not antialiased.
+  double sum = 0.0, lighter = 0.0;
+  for (size_t i = 0; i < cheap.rgba.size(); i += 4)
+    for (size_t c = 0; c < 3; ++c) {
+      sum += std::abs(static_cast<int>(cheap.rgba[i + c]) - static_cast<int>(full.rgba[i + c]));
+      lighter += static_cast<int>(cheap.rgba[i + c]) - static_cast<int>(full.rgba[i + c]);
+    }
+  const double pixels = static_cast<double>(cheap.rgba.size() / 4) * 3.0;
+  EXPECT_GT(sum / pixels, 0.1) << "the cheap frame is not the full one";
+  EXPECT_LT(sum / pixels, 12.0) << "the cheap frame shows the scene the full one shows";
+  EXPECT_GT(lighter, 0.0) << "without the AO's darkening";
+
+  int frames = 1;
+  test::RenderedImage last;
+  while (quick.lastFrameCheap() && frames < Renderer::kMaxCheapFrames + 2) {
+    last = test::render(quick, camera, settings, View::Final);
+    ++frames;
+  }
+  const QuickStartReport& report = quick.quickStart();
+  EXPECT_FALSE(quick.lastFrameCheap());
+  EXPECT_GE(report.cheapFrames, 2);
+  EXPECT_LT(report.cheapFrames, Renderer::kMaxCheapFrames) << "every pass warmed before the cap";
+  EXPECT_EQ(report.firstFullFrame, report.cheapFrames);
+  std::vector<std::string> warmed;
+  for (const QuickStartReport::Warmed& w : report.warmed) {
+    warmed.push_back(w.pass);
+    EXPECT_GE(w.frame, 1u);
+  }
+  EXPECT_EQ(warmed, running(quick)) << "each pass of the full frame warmed once, in order";
+  // Warming left nothing behind: the full frame is the one drawn without quick start, to the bit.
+  EXPECT_EQ(test::worstByteDifference(last, full), 0);
+  // Later frames are full ones.
+  test::render(quick, camera, settings, View::Final);
+  EXPECT_FALSE(quick.lastFrameCheap());
+}
+
+// The same into an output with a depth buffer of its own (the canvas's, the window's: FrameContext::outputDepth), at
+// scale 1, where the cheap frame's lighting may draw straight into the output: the warm output has one too, and the
+// full frame after quick start is still the one drawn without it.
+TEST(Upscale, QuickStartIntoAnOutputWithDepthEndsInTheFullFrameAsWithoutIt) {
+  const Camera camera = builtinSceneCamera(160, 90);
+  const gl::GlCaps& caps = test::context().caps();
+  const gl::RenderTarget output("output with depth", camera.width, camera.height, GL_NEAREST,
+                                gl::RenderTarget::Depth::Renderbuffer, caps.depth24);
+  auto draw = [&](Renderer& renderer, const RenderSettings& settings) {
+    renderer.render(camera, settings, View::Final, OutputTarget{output.framebuffer(), camera.width, camera.height, {}});
+    return test::RenderedImage{camera.width, camera.height, output.readRgba()};
+  };
+  RenderSettings settings;
+  Renderer plain = test::makeRenderer();
+  plain.setScene(makeBuiltinScene(BuiltinSceneOptions::still()));
+  const test::RenderedImage full = draw(plain, settings);
+  EXPECT_TRUE(plain.lastFrame().outputDepth);
+
+  settings.set("resolution.quick-start", "on");
+  Renderer quick = test::makeRenderer();
+  quick.setScene(makeBuiltinScene(BuiltinSceneOptions::still()));
+  test::RenderedImage last = draw(quick, settings);
+  EXPECT_TRUE(quick.lastFrameCheap());
+  const int frames = quick.quickStart().cheapFrames;
+  for (int frame = 0; frame < Renderer::kMaxCheapFrames && quick.lastFrameCheap(); ++frame)
+    last = draw(quick, settings);
+  EXPECT_FALSE(quick.lastFrameCheap());
+  EXPECT_GE(quick.quickStart().cheapFrames, frames + 1);
+  EXPECT_EQ(test::worstByteDifference(last, full), 0);
+}

@@ -5,6 +5,7 @@
 // default framebuffer (OSMesa's is 4 x 4: the frame's targets are full size, its last pass is clipped).
 // obscura_web_geometry.cpp (the public C++ API on the page's own context) is not here: natively api::Renderer needs
 // a GetProcAddress the web build does without; the API itself runs natively in api.surface and the examples.
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <fstream>
@@ -22,7 +23,7 @@ using Json = nlohmann::json;
 namespace page = obscura::test::page;
 
 extern "C" {
-int obscura_create(int checkGlErrors, int dynamicResolution);
+int obscura_create(int checkGlErrors, int dynamicResolution, int quickStart);
 const char* obscura_error();
 const char* obscura_describe();
 int obscura_set(const char* name, const char* value);
@@ -74,7 +75,7 @@ Json stats() { return Json::parse(obscura_stats()); }
 // The module with GL error checks after every pass (as the browser tests create it), at the default display size.
 void createModule() {
   page::setDisplaySize(160, 90);
-  ASSERT_EQ(obscura_create(1, 0), 1) << obscura_error();
+  ASSERT_EQ(obscura_create(1, 0, 0), 1) << obscura_error();
   page::loggedErrors();
 }
 
@@ -284,4 +285,67 @@ TEST(WebApi, ALostContextStopsDrawingAndARestoredOneDrawsAgain) {
   EXPECT_EQ(read["height"], 90);
   EXPECT_NE(read["pointer"].get<std::uintptr_t>(), 0u);
   EXPECT_STREQ(obscura_get("ao.radius"), "0.7");
+}
+
+TEST(WebApi, QuickStartDrawsACheapFirstFrameThenWarmsThePassesAndTheFullFrameFollowsByItself) {
+  page::setDisplaySize(160, 90);
+  ASSERT_EQ(obscura_create(1, 0, 1), 1) << obscura_error();  // the page's quick start: on
+  page::loggedErrors();
+  EXPECT_STREQ(obscura_get("resolution.quick-start"), "on");
+  auto ran = [](const Json& s, const std::string& pass) {
+    const Json& passes = s["passesRun"];
+    return std::find(passes.begin(), passes.end(), pass) != passes.end();
+  };
+  // The first frame: the lit scene (without the AO, the lighting draws the scene itself: one geometry pass), not the
+  // AO or FXAA, and it warms nothing.
+  EXPECT_TRUE(frameAt(0.0));
+  Json s = stats();
+  EXPECT_EQ(s["cheapFrame"], true);
+  EXPECT_TRUE(ran(s, "lighting")) << s["passesRun"].dump();
+  EXPECT_FALSE(ran(s, "sao") || ran(s, "blur-h") || ran(s, "fxaa")) << s["passesRun"].dump();
+  EXPECT_TRUE(s["startup"]["quickStart"]["warmed"].empty());
+  EXPECT_EQ(s["startup"]["quickStart"]["firstFullFrame"], nullptr);
+  // With nothing changed, frames follow by themselves, each cheap and warming up to four passes, until the full one.
+  double ms = 0.0;
+  int frames = 1;
+  while (stats()["cheapFrame"] == true && frames < 20) {
+    ASSERT_TRUE(frameAt(ms += 16.0)) << "a cheap frame is followed by another frame without a change";
+    ++frames;
+  }
+  s = stats();
+  EXPECT_EQ(s["cheapFrame"], false);
+  EXPECT_TRUE(ran(s, "sao") && ran(s, "fxaa")) << s["passesRun"].dump();
+  const Json& quick = s["startup"]["quickStart"];
+  EXPECT_EQ(quick["cheapFrames"].get<int>(), frames - 1);
+  EXPECT_GE(quick["cheapFrames"].get<int>(), 2);  // the first, and at least one that warmed
+  EXPECT_LE(quick["cheapFrames"].get<int>(), 4);  // the default frame's passes, four a frame
+  EXPECT_EQ(quick["firstFullFrame"].get<int>(), frames - 1);
+  std::vector<std::string> warmed;
+  for (const Json& w : quick["warmed"]) {
+    warmed.push_back(w["pass"]);
+    EXPECT_GE(w["frame"].get<int>(), 1);  // not by the first frame
+    EXPECT_GE(w["cpuMs"].get<double>(), 0.0);
+  }
+  for (const char* pass : {"gbuffer", "sao", "lighting", "fxaa"})
+    EXPECT_NE(std::find(warmed.begin(), warmed.end(), pass), warmed.end()) << pass;
+  EXPECT_TRUE(s["startup"]["fullFrameMs"].is_null());  // taken at the animation frame after it
+  frameAt(ms += 16.0);
+  EXPECT_FALSE(stats()["startup"]["fullFrameMs"].is_null());
+  // Later changes are full frames at once.
+  ASSERT_EQ(obscura_set("ao.radius", "0.6"), 1);
+  EXPECT_TRUE(frameAt(ms += 16.0));
+  EXPECT_EQ(stats()["cheapFrame"], false);
+}
+
+TEST(WebApi, ASnapshotDuringQuickStartIsTheFullFrame) {
+  page::setDisplaySize(160, 90);
+  ASSERT_EQ(obscura_create(1, 0, 1), 1) << obscura_error();
+  page::loggedErrors();
+  ASSERT_NE(obscura_snapshot(), nullptr) << obscura_error();
+  const Json s = stats();
+  EXPECT_EQ(s["cheapFrame"], false);
+  const Json& passes = s["passesRun"];
+  EXPECT_NE(std::find(passes.begin(), passes.end(), "sao"), passes.end()) << passes.dump();
+  EXPECT_EQ(s["startup"]["quickStart"]["cheapFrames"], 0);
+  EXPECT_EQ(s["startup"]["quickStart"]["firstFullFrame"], 0);
 }

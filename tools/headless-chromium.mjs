@@ -19,12 +19,14 @@ export function parseOptions(argv, handlers, script) {
   }
 }
 
-// The demo page's address with its dynamic resolution off. The page turns it on and starts at its smallest scale,
-// so a frame measured there would draw a quarter of the pixels its peers draw: every benchmark and accuracy script
-// opens the page through this (its state keeps the setting; a state may still set resolution.scale).
+// The demo page's address with its dynamic resolution and quick start off. The page turns them on: it starts at its
+// smallest scale, so a frame measured there would draw a quarter of the pixels its peers draw, and its first frames
+// are quick start's cheap ones (without AO and FXAA): every benchmark and accuracy script opens the page through this
+// (its state keeps the settings; a state may still set resolution.scale).
 export function fixedScaleUrl(url) {
   const address = new URL(url);
   address.searchParams.set('resolution.dynamic', 'off');
+  address.searchParams.set('resolution.quick-start', 'off');
   return address.toString();
 }
 

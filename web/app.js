@@ -424,7 +424,8 @@ function showStats(obscura) {
                                                   : `pixel ratio ${r.pixelRatio}`;
   const dynamic = !r.dynamic ? 'fixed'
     : `dynamic: ${r.meanMs > 0 ? `${r.meanMs.toFixed(1)} ms` : 'measuring'} (${r.measuredBy}), target ${r.targetMs} ms`;
-  const lines = [`${s.width} x ${s.height} px, ${ratio}, ${s.frames} frames drawn`,
+  const cheap = s.cheapFrame ? ' (the last a cheap quick-start frame: the full one follows)' : '';
+  const lines = [`${s.width} x ${s.height} px, ${ratio}, ${s.frames} frames drawn${cheap}`,
                  `render ${r.width} x ${r.height}: scale ${r.scale.toFixed(2)}, ${dynamic}`,
                  `frame  ${frame}`,
                  `host   ${s.frames > 0 ? s.lastHostMs.toFixed(2) : '-'} ms in the renderer, last frame`];
@@ -584,18 +585,25 @@ function startupLine(obscura) {
   const ms = (v) => (v === null || v === undefined ? '-' : `${Math.round(v)}`);
   const parts = Object.entries(s.coreParts).filter(([, v]) => v >= 1).sort((a, b) => b[1] - a[1])
     .map(([name, v]) => `${name} ${ms(v)}`).join(', ');
+  // Quick start: the first frame was a cheap one; the full frame followed after it and the warming frames.
+  const q = s.quickStart;
+  const quick = q && q.cheapFrames > 0
+    ? ` (cheap: the lit scene; the full frame ${ms(s.fullFrameMs)} ms, after ${q.cheapFrames} cheap frames that ` +
+      `warmed ${q.warmed.length} passes)`
+    : '';
   return `start  wasm ${ms(s.wasmMs)} ms, core ${ms(s.coreMs)} ms${parts ? ` (${parts})` : ''}, ` +
-         `first frame ${ms(s.firstFrameMs)} ms; shown ${shownAt === null ? '-' : (shownAt / 1000).toFixed(2)} s ` +
-         'after navigation';
+         `first frame ${ms(s.firstFrameMs)} ms${quick}; shown ` +
+         `${shownAt === null ? '-' : (shownAt / 1000).toFixed(2)} s after navigation`;
 }
 
 async function main() {
   let obscura;
   if (matchMedia(COMPACT_SCREEN).matches) setPanelOpen(false);
   try {
-    // The page's frames follow the frame time (resolution.dynamic on: the API's default is off).
+    // The page's frames follow the frame time (resolution.dynamic on), and its first frame is a cheap one
+    // (resolution.quick-start on): the API's defaults are off.
     obscura = await createObscura($('#view'), { checkGlErrors: new URLSearchParams(location.search).has('debug-gl'),
-                                                dynamicResolution: true });
+                                                dynamicResolution: true, quickStart: true });
   } catch (e) {
     showError(`Obscura cannot start here: ${e.message}`);
     $('#stats').textContent = '';

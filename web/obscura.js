@@ -27,17 +27,21 @@ export class ObscuraError extends Error {
 //   pointerControls (default true): orbit / pan / zoom with mouse, touch and wheel on the canvas.
 //   dynamicResolution (default false): resolution.dynamic's default here: on, the render scale follows the frame time
 //     (resolution.target-ms), the demo page's choice; off, frames are drawn at resolution.scale.
+//   quickStart (default false): resolution.quick-start's default here: on, the first frame is a cheap one (the lit
+//     scene without AO, antialiasing and the lens and camera effects) and the full frame follows by itself within a
+//     few frames, its programs warmed meanwhile (startup().quickStart says what was warmed and when); the demo page's
+//     choice. snapshot() always reads the full frame.
 //   checkGlErrors (default false): glGetError after every pass; a GL error stops drawing and is logged as a console
 //     error naming the pass (for tests and debugging: each check waits for the GPU).
 //   wasmUrl: where obscura-core.wasm is served (default: beside this file, found through import.meta.url; bundlers
 //     that follow `new URL(..., import.meta.url)` copy the file and rewrite the URL).
 export async function createObscura(canvas, { pointerControls = true, checkGlErrors = false, dynamicResolution = false,
-                                             wasmUrl } = {}) {
+                                             quickStart = false, wasmUrl } = {}) {
   const start = performance.now();
   const core = await createObscuraCore(coreOptions(canvas, wasmUrl));
   const wasmMs = performance.now() - start;
   const obscura = new Obscura(core, canvas);
-  if (!core._obscura_create(checkGlErrors ? 1 : 0, dynamicResolution ? 1 : 0)) {
+  if (!core._obscura_create(checkGlErrors ? 1 : 0, dynamicResolution ? 1 : 0, quickStart ? 1 : 0)) {
     throw new ObscuraError(core.UTF8ToString(core._obscura_error()));
   }
   obscura.description = obscura.json('obscura_describe');
@@ -394,7 +398,8 @@ export class Obscura extends EventTarget {
   //  device pixels per CSS pixel (devicePixelRatio up to resolution.max-pixel-ratio), devicePixelRatio, dynamic
   //  (resolution.dynamic), measuredBy ('gpu': timer queries, 'cpu': the interval between frames drawn back to
   //  back), meanMs (dynamic resolution's mean frame time at this scale; 0 while it measures), targetMs, changes (of
-  //  the scale so far)}), startup (the core's start-up figures: see startup())}
+  //  the scale so far)}), cheapFrame (the last frame was quick start's cheap one: the full frame follows), startup
+  //  (the core's start-up figures: see startup())}
   stats() { return this.json('obscura_stats'); }
 
   // Start-up, in ms: {wasmMs (fetching, compiling and instantiating obscura-core.wasm), createMs (all of
@@ -402,12 +407,17 @@ export class Obscura extends EventTarget {
   // compiled, the sky made and prefiltered, the scene uploaded, ...), firstFrameMs (from createObscura's end to the
   // animation frame after the first frame was drawn: the first frame's whole cost, as stats().frameMs measures a
   // steady one; null until then), firstFrameCpuMs (its time in the renderer), firstFrameParts (what the first frame
-  // did besides drawing: programs compiled on first use, ...)}. `firstFrame` is a promise of the same once the first
-  // frame is on screen.
+  // did besides drawing: programs compiled on first use, ...), fullFrameMs (likewise to the animation frame after the
+  // first full frame: firstFrameMs's without quick start), quickStart ({cheapFrames: frames drawn cheap before the
+  // full one, firstFullFrame: its index (frames before it: cheapFrames), fullAtMs: when the renderer drew it, warmed:
+  // [{pass, frame, atMs, cpuMs}]: each pass of the full frame drawn once at a small size by a cheap frame so that its
+  // program and the driver's code for it are ready, in which frame, when (ms since the renderer was made) and its
+  // time on the CPU})}. `firstFrame` is a promise of the same once the first frame is on screen.
   startup() {
     const s = this.stats().startup;
     return { wasmMs: this.wasmMs, createMs: this.createMs, coreMs: s.createMs, coreParts: s.createParts,
-             firstFrameMs: s.firstFrameMs, firstFrameCpuMs: s.firstFrameCpuMs, firstFrameParts: s.firstFrameParts };
+             firstFrameMs: s.firstFrameMs, firstFrameCpuMs: s.firstFrameCpuMs, firstFrameParts: s.firstFrameParts,
+             fullFrameMs: s.fullFrameMs, quickStart: s.quickStart };
   }
 
   // Resolves to startup() once a frame has been drawn and the browser has run the animation frame after it.

@@ -220,6 +220,7 @@ int runRender(const RenderOptions& options) {
     FrameOptions frame;
     frame.animation = input.animation;
     frame.sceneCamera = input.sceneCamera;
+    frame.allowCheapFrame = false;  // the file is the frame asked for, even with resolution.quick-start on
     for (int k = 0; k < options.frames; ++k) {
       frame.time = options.input.time + k * interval;
       frame.previousTime = frame.time - interval;

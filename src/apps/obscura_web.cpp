@@ -56,12 +56,14 @@ Json timesSpent(const std::map<std::string, TimeSpent::Total>& totals) {
 
 class WebApp {
  public:
-  // `dynamicResolution`: this page's default for resolution.dynamic (the demo page's: on).
-  WebApp(const RendererOptions& options, bool dynamicResolution)
+  // `dynamicResolution`, `quickStart`: this page's defaults for resolution.dynamic and resolution.quick-start (the
+  // demo page's: on).
+  WebApp(const RendererOptions& options, bool dynamicResolution, bool quickStart)
       : canvas_([this] { contextLost(); }, [this] { contextRestored(); }),
         viewer_(gl::GlCaps::query(), options),
         timer_(std::make_unique<GpuPassTimer>(viewer_.caps(), &WebCanvas::procAddress)) {
     if (dynamicResolution) viewer_.state().setDefault("resolution.dynamic", "on");
+    if (quickStart) viewer_.state().setDefault("resolution.quick-start", "on");
     emscripten_request_animation_frame_loop(&WebApp::animationFrame, this);
   }
 
@@ -88,13 +90,14 @@ class WebApp {
   }
 
   // Draws one frame at the canvas's display size; returns false (and keeps the message) if the renderer failed.
-  bool draw(GpuPassTimer* timer) {
+  // `allowCheapFrame` false: the full frame even during quick start (a snapshot).
+  bool draw(GpuPassTimer* timer, bool allowCheapFrame = true) {
     if (canvas_.lost() || !renderError_.empty()) return false;
     fit(&width_, &height_);
     try {
       // The host time: the render call alone (the page's canvas work around it is not the renderer's).
       const double start = emscripten_get_now();
-      viewer_.render(0, width_, height_, timer, time_);
+      viewer_.render(0, width_, height_, timer, time_, allowCheapFrame);
       lastHostMs_ = emscripten_get_now() - start;
       return true;
     } catch (const std::exception& e) {
@@ -145,10 +148,26 @@ class WebApp {
       render["width"] = renderer->lastFrame().camera.width;
       render["height"] = renderer->lastFrame().camera.height;
     }
+    // Quick start (resolution.quick-start): the cheap frames, the passes warmed, the first full frame.
+    Json quickStart = nullptr;
+    bool cheapFrame = false;
+    if (const Renderer* renderer = viewer_.renderer()) {
+      const QuickStartReport& report = renderer->quickStart();
+      Json warmed = Json::array();
+      for (const QuickStartReport::Warmed& w : report.warmed)
+        warmed.push_back({{"pass", w.pass}, {"frame", w.frame}, {"atMs", w.atMs}, {"cpuMs", w.cpuMs}});
+      quickStart = {{"cheapFrames", report.cheapFrames},
+                    {"firstFullFrame", report.firstFullFrame >= 0 ? Json(report.firstFullFrame) : Json(nullptr)},
+                    {"fullAtMs", report.fullAtMs >= 0.0 ? Json(report.fullAtMs) : Json(nullptr)},
+                    {"warmed", warmed}};
+      cheapFrame = renderer->lastFrameCheap();
+    }
     Json startup = {{"createMs", createMs_}, {"createParts", createParts_},
                     {"firstFrameMs", firstFrameMs_ > 0.0 ? Json(firstFrameMs_) : Json(nullptr)},
                     {"firstFrameCpuMs", firstFrameCpuMs_ > 0.0 ? Json(firstFrameCpuMs_) : Json(nullptr)},
-                    {"firstFrameParts", firstFrameParts_}};
+                    {"firstFrameParts", firstFrameParts_},
+                    {"fullFrameMs", fullFrameMs_ > 0.0 ? Json(fullFrameMs_) : Json(nullptr)},
+                    {"quickStart", quickStart}};
     return Json{{"width", width_},
                 {"height", height_},
                 {"render", render},
@@ -161,6 +180,7 @@ class WebApp {
                 {"hostMs", hostMs_},
                 {"lastHostMs", lastHostMs_},
                 {"frames", frames_},
+                {"cheapFrame", cheapFrame},
                 {"timerQueries", timer_ && timer_->available()},
                 {"passMs", passes},
                 {"passesRun", ran},
@@ -192,6 +212,8 @@ class WebApp {
       firstFrameMs_ = emscripten_get_now() - createdAt_;
       firstFrameParts_ = timesSpent(TimeSpent::take());
     }
+    // Likewise the first full frame (after quick start's cheap ones; the first frame itself without them).
+    if (fullDrawn_ && fullFrameMs_ == 0.0) fullFrameMs_ = emscripten_get_now() - createdAt_;
     GpuPassTimer* timer = timer_ && timer_->available() ? timer_.get() : nullptr;
     if (timer) {
       timer->collectResults();
@@ -248,6 +270,11 @@ class WebApp {
       return;
     }
     if (settleFrames_ > 0) --settleFrames_;
+    // Quick start: after a cheap frame the next one warms or is the full frame (Renderer::lastFrameCheap).
+    if (const Renderer* renderer = viewer_.renderer()) {
+      if (renderer->lastFrameCheap()) frameWanted_ = true;
+      else fullDrawn_ = true;
+    }
     if (const Renderer* renderer = viewer_.renderer()) adaptationLeft_ -= renderer->lastFrame().frameInterval;
     lastCpuMs_ = emscripten_get_now() - start;
     if (frames_ == 0) firstFrameCpuMs_ = lastCpuMs_;
@@ -306,7 +333,8 @@ class WebApp {
   float lastScale_ = 1.0f;              // the render scale of the last frame drawn
   int refineFrames_ = kRefineFrames;    // frames dynamic resolution may still draw on since the last change
   std::uint64_t timerResults_ = 0;      // the GPU timer's results fed to dynamic resolution
-  double createMs_ = 0.0, createdAt_ = 0.0, firstFrameMs_ = 0.0, firstFrameCpuMs_ = 0.0;
+  double createMs_ = 0.0, createdAt_ = 0.0, firstFrameMs_ = 0.0, firstFrameCpuMs_ = 0.0, fullFrameMs_ = 0.0;
+  bool fullDrawn_ = false;  // a full frame was drawn (fullFrameMs_ is taken at the next animation frame)
   Json createParts_ = Json::object(), firstFrameParts_ = Json::object();
 };
 
@@ -357,9 +385,9 @@ extern "C" {
 
 // checkGlErrors: glGetError after every pass; an error stops the frame and is logged as a console error naming the
 // pass (the browser tests turn it on; it costs a round trip per pass). dynamicResolution: resolution.dynamic's
-// default on this page (the demo page's: on; the API's: off).
-EMSCRIPTEN_KEEPALIVE int obscura_create(int checkGlErrors, int dynamicResolution) {
-  return attempt([checkGlErrors, dynamicResolution] {
+// default on this page (the demo page's: on; the API's: off). quickStart: resolution.quick-start's (the same).
+EMSCRIPTEN_KEEPALIVE int obscura_create(int checkGlErrors, int dynamicResolution, int quickStart) {
+  return attempt([checkGlErrors, dynamicResolution, quickStart] {
     RendererOptions options;
     options.checkGlErrors = checkGlErrors != 0;
     // One app per canvas: the old one lets go of the canvas's context and event handlers before a new one takes
@@ -368,7 +396,7 @@ EMSCRIPTEN_KEEPALIVE int obscura_create(int checkGlErrors, int dynamicResolution
     g_app.reset();
     TimeSpent::take();  // start-up's figures start here
     const double start = emscripten_get_now();
-    g_app = std::make_unique<WebApp>(options, dynamicResolution != 0);
+    g_app = std::make_unique<WebApp>(options, dynamicResolution != 0, quickStart != 0);
     g_app->created(emscripten_get_now() - start);
   });
 }
@@ -703,7 +731,7 @@ EMSCRIPTEN_KEEPALIVE int obscura_draw() {
 // Draws a frame now and reads it back: {"width", "height", "pointer"} to width * height RGBA8 pixels, rows top to
 // bottom, valid until the next snapshot. 0 if no frame could be drawn (context lost, renderer failure).
 EMSCRIPTEN_KEEPALIVE const char* obscura_snapshot() {
-  if (!g_app->draw(nullptr)) {
+  if (!g_app->draw(nullptr, false)) {
     g_error = g_app->canvas().lost() ? "the WebGL context is lost" : g_app->stats()["error"].get<std::string>();
     return nullptr;
   }

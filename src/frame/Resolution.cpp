@@ -38,7 +38,12 @@ const std::vector<Parameter<ResolutionSettings>>& ResolutionSettings::parameters
                          "dynamic resolution: the smallest scale it chooses", &S::minScale),
       numberParameter<S>("max-pixel-ratio", 0.5, 8, "device pixels per CSS pixel",
                          "the page's canvas follows the device pixel ratio up to this (phones at 3 draw 2)",
-                         &S::maxPixelRatio)};
+                         &S::maxPixelRatio),
+      switchParameter<S>("quick-start",
+                         "start-up: the first frame is a cheap one (the lit scene, without AO, antialiasing and the "
+                         "lens and camera effects) while the rest of the frame's programs are warmed over the next "
+                         "frames; then the full frame (the page: on)",
+                         &S::quickStart)};
   return table;
 }
 

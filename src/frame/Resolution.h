@@ -42,6 +42,11 @@ struct ResolutionSettings : ParameterAccess<ResolutionSettings> {
   // The largest device pixel ratio the page's canvas takes (three.js applications usually cap it at 2): a phone at
   // DPR 3 draws 2 x 2 device pixels per CSS pixel, not 3 x 3.
   float maxPixelRatio = 2.0f;
+  // Quick start: a Renderer's first frame is a cheap one (the lit scene without the effects that add passes of their
+  // own: renderer/Renderer.h, quickStartSettings) and the programs of the frame asked for are warmed over the next
+  // frames, each drawing the cheap frame again, until the full frame follows. Off here (the command line, tests:
+  // every frame the one asked for); the page turns it on (web/app.js, createObscura's quickStart).
+  bool quickStart = false;
 
   static const std::vector<Parameter<ResolutionSettings>>& parameters();
   void validate() const { validateParameters("resolution"); }

@@ -260,7 +260,8 @@ bool Viewer::handleKey(const std::string& key) {
   return false;
 }
 
-void Viewer::render(GLuint framebuffer, int width, int height, PassTimer* timer, double clockSeconds) {
+void Viewer::render(GLuint framebuffer, int width, int height, PassTimer* timer, double clockSeconds,
+                    bool allowCheapFrame) {
   // The size is remembered so a scene loaded next is framed for this aspect ratio.
   state_.camera.width = width;
   state_.camera.height = height;
@@ -272,6 +273,7 @@ void Viewer::render(GLuint framebuffer, int width, int height, PassTimer* timer,
   target.height = height;
   FrameOptions options;
   options.timer = timer;
+  options.allowCheapFrame = allowCheapFrame;
   state_.timeline.applyTo(options);  // time, animation, loop
   const ResolutionSettings& resolution = state_.settings.of<ResolutionSettings>();
   renderScale_ = resolution.scale;

@@ -78,8 +78,10 @@ class Viewer {
   // previous frame (Timeline::tick); the frame shows the timeline's time. What adapts over real time (auto exposure)
   // steps by the clock's change since the previous frame, at most kLongestFrameInterval (a frame drawn after an idle
   // spell steps as one frame, not as the whole spell); 1/60 s where the clock does not move. Does nothing while the
-  // context is lost (the timeline still advances).
-  void render(GLuint framebuffer, int width, int height, PassTimer* timer = nullptr, double clockSeconds = 0.0);
+  // context is lost (the timeline still advances). `allowCheapFrame` false: the frame asked for even during
+  // resolution.quick-start (FrameOptions::allowCheapFrame: a snapshot).
+  void render(GLuint framebuffer, int width, int height, PassTimer* timer = nullptr, double clockSeconds = 0.0,
+              bool allowCheapFrame = true);
   // --- Dynamic resolution (resolution.dynamic, frame/Resolution.h): with it on, render() draws at the scale the
   // controller chose (platform/DynamicResolution.h) from the frame times the front end measures: GPU timer queries
   // where the context has them, else the interval between frames drawn back to back. `scale`: the frame's.

@@ -99,6 +99,7 @@ LinearImage meanOfRenders(Renderer& renderer, const std::vector<SubFrame>& subFr
   FrameOptions frame;
   frame.animation = animation;
   frame.loop = loop;
+  frame.allowCheapFrame = false;  // every sub-frame the frame asked for (resolution.quick-start's cheap one is not)
   if (linearLight) frame.retain = {"scene-color"};
   for (const SubFrame& sub : subFrames) {
     Camera camera = sub.camera;
@@ -165,6 +166,7 @@ float autofocusDistance(Renderer& renderer, const Camera& camera, const RenderSe
   FrameOptions frame;
   frame.time = frame.previousTime.emplace(time);
   frame.animation = animation;
+  frame.allowCheapFrame = false;
   frame.retain = {"gbuffer"};
   renderer.render(camera, pinhole, View::Final, OutputTarget{output.framebuffer(), camera.width, camera.height, {}},
                   frame);

@@ -4,6 +4,7 @@
 #include <cstdio>
 
 #include "base/Error.h"
+#include "base/TimeSpent.h"
 #include "effects/ao/AoEffect.h"
 #include "effects/fog/FogEffect.h"
 #include "frame/Resolution.h"
@@ -92,6 +93,7 @@ Renderer::Renderer(const gl::GlCaps& caps, const RendererOptions& options)
       programs_(options.checkGlErrors),
       resources_{caps_, options_, triangle_, programs_, surfaces_},
       pool_(caps_) {
+  createdAtMs_ = TimeSpent::nowMs();
   for (size_t row = 0; row < effectTable().size(); ++row) {
     const EffectEntry& entry = effectTable()[row];
     effects_.push_back(entry.create(resources_));
@@ -385,17 +387,98 @@ void Renderer::run(const RenderSettings& settings, const View& view, const Outpu
   surfaces_.light.published = false;
   surfaces_.fog = surfaceFog(settings.of<FogSettings>(), frame_.camera.view);
   plan_ = &cachedPlan(settings, view, options);
+  for (size_t i = 0; i < plan_->passes().size(); ++i)
+    if (plan_->passes()[i].live) runPass(*plan_, i, pool_, settings, output, options.timer);
+}
 
-  for (size_t i = 0; i < plan_->passes().size(); ++i) {
-    const PlannedPass& pass = plan_->passes()[i];
-    if (!pass.live) continue;
-    PassContext context(*plan_, static_cast<int>(i), pool_, frame_, settings, scene_, output, resources_);
-    if (options.timer) options.timer->begin(pass.decl.name);
-    pass.decl.run(context);
-    context.finish();
-    if (options.timer) options.timer->end(pass.decl.name);
-    checkErrors(pass.decl.name);
+void Renderer::runPass(const FramePlan& plan, size_t index, RenderTargetPool& pool, const RenderSettings& settings,
+                       const OutputTarget& output, PassTimer* timer) {
+  const PlannedPass& pass = plan.passes()[index];
+  PassContext context(plan, static_cast<int>(index), pool, frame_, settings, scene_, output, resources_);
+  if (timer) timer->begin(pass.decl.name);
+  pass.decl.run(context);
+  context.finish();
+  if (timer) timer->end(pass.decl.name);
+  checkErrors(pass.decl.name);
+}
+
+std::optional<RenderSettings> Renderer::quickStartSettings(const RenderSettings& settings) {
+  // The effects that add passes of their own over the frame (or, for FXAA, a pass over the output): each is a
+  // program, and on SwiftShader a pipeline compiled at its first draw, that the first image can do without.
+  static const char* const kOff[] = {"ao",   "taa",   "bloom",       "lens-flare",           "glare",
+                                     "dof",  "edges", "motion-blur", "chromatic-aberration", "fxaa"};
+  RenderSettings cheap = settings;
+  bool changed = false;
+  for (const char* effect : kOff)
+    if (settings.enabled(effect)) {
+      cheap.set(effect, "off");
+      changed = true;
+    }
+  if (!changed) return std::nullopt;
+  // Below scale 1 the cheap frame's own upscale pass (FXAA no longer does it) is the bilinear one, the cheapest.
+  cheap.of<ResolutionSettings>().upscale = UpscaleFilter::Bilinear;
+  return cheap;
+}
+
+void Renderer::warmPasses(const RenderSettings& settings, bool upscaled) {
+  if (!warm_) {
+    warm_ = std::make_unique<Warm>();
+    warm_->pool = std::make_unique<RenderTargetPool>(caps_);
   }
+  // The warm output has a depth buffer where the frame's output has one (FrameContext::outputDepth: the forward
+  // lighting may draw straight into it), so the warm plan's passes draw with the state the full frame's will.
+  if (!warm_->output || warm_->outputDepth != frame_.outputDepth) {
+    warm_->outputDepth = frame_.outputDepth;
+    warm_->output = gl::RenderTarget(
+        "quick-start warm output", kWarmSize, kWarmSize, GL_NEAREST,
+        warm_->outputDepth ? gl::RenderTarget::Depth::Renderbuffer : gl::RenderTarget::Depth::None, caps_.depth24);
+  }
+  // The warm frame: this frame's context at kWarmSize (half of it where the frame asked for is upscaled, so the plan
+  // has the same passes and programs), without history. The AO's depth hierarchy needs 32 pixels for its 5 levels.
+  const glm::ivec2 size = upscaled ? glm::ivec2(kWarmSize / 2) : glm::ivec2(kWarmSize);
+  FrameContext warmFrame = frame_;
+  warmFrame.hasPrevious = false;
+  warmFrame.historyFrames = 0;
+  warmFrame.outputWidth = warmFrame.outputHeight = kWarmSize;
+  warmFrame.camera = FrameCamera::from(frameSource_, size.x, size.y);
+  warmFrame.previousCamera = warmFrame.camera;
+  std::swap(frame_, warmFrame);  // frame_ is the warm frame's while it plans and runs, the cheap frame's after
+  const PlanKey key = planKey(settings, View::Final, FrameOptions{});
+  if (!warm_->plan || !(key == warm_->key)) {
+    // A new plan (the first, or the settings changed since): its passes from the first (those warmed already cost
+    // little the second time).
+    warm_->plan = std::make_unique<FramePlan>(plan(settings, frame_, View::Final, {}));
+    warm_->key = key;
+    warm_->next = 0;
+  }
+  for (const std::unique_ptr<Effect>& effect : effects_) effect->prepare(settings);
+  surfaces_.light.published = false;
+  surfaces_.fog = surfaceFog(settings.of<FogSettings>(), frame_.camera.view);
+  OutputTarget output;
+  output.framebuffer = warm_->output.framebuffer();
+  output.width = output.height = kWarmSize;
+  warm_->pool->beginFrame(size);
+  const std::vector<PlannedPass>& passes = warm_->plan->passes();
+  for (int warmed = 0; warm_->next < passes.size() && warmed < kWarmPassesPerFrame; ++warm_->next) {
+    if (!passes[warm_->next].live) continue;
+    const double start = TimeSpent::nowMs();
+    runPass(*warm_->plan, warm_->next, *warm_->pool, settings, output, nullptr);
+    const double end = TimeSpent::nowMs();
+    quickStart_.warmed.push_back({passes[warm_->next].decl.name, frameIndex_, start - createdAtMs_, end - start});
+    ++warmed;
+  }
+  warm_->pool->endFrame();
+  std::swap(frame_, warmFrame);
+  if (warm_->next >= passes.size()) quickStartOver_ = true;  // every pass warmed: the next frame is the full one
+}
+
+void Renderer::fullFrameDrawn() {
+  lastFrameCheap_ = false;
+  if (quickStart_.firstFullFrame >= 0) return;
+  quickStart_.firstFullFrame = static_cast<std::int64_t>(frameIndex_);
+  quickStart_.fullAtMs = TimeSpent::nowMs() - createdAtMs_;
+  quickStartOver_ = true;
+  warm_.reset();
 }
 
 void Renderer::render(const Camera& camera, const RenderSettings& settings, const View& view,
@@ -413,6 +496,19 @@ void Renderer::render(const Camera& camera, const RenderSettings& settings, cons
   // A G-buffer the caller drew is at the output's size: such a frame renders at it.
   const glm::ivec2 size = options.externalGBuffer != 0 ? glm::ivec2(output.width, output.height)
                                                        : renderSize({output.width, output.height}, scale);
+  // Quick start: the cheap frame, and after the first the next passes of the full one warmed.
+  if (!quickStartOver_ && options.allowCheapFrame && settings.of<ResolutionSettings>().quickStart &&
+      view == View::Final && options.externalGBuffer == 0 && quickStart_.cheapFrames < kMaxCheapFrames) {
+    if (const std::optional<RenderSettings> cheap = quickStartSettings(settings)) {
+      beginFrame(camera, *cheap, size, output, options);
+      run(*cheap, view, output, options);
+      if (quickStart_.cheapFrames > 0) warmPasses(settings, size != glm::ivec2(output.width, output.height));
+      ++quickStart_.cheapFrames;
+      lastFrameCheap_ = true;
+      endFrame();
+      return;
+    }
+  }
   if (view == View::Split) {
     // Two frames of one frame context into one output: the compared switch off, then on over the right half. The
     // frame starts as the right half's (its jitter, when that half has temporal antialiasing); the left half draws
@@ -436,6 +532,7 @@ void Renderer::render(const Camera& camera, const RenderSettings& settings, cons
     parseView(view.name);
     run(settings, view, output, options);
   }
+  fullFrameDrawn();
   endFrame();
 }
 

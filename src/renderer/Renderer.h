@@ -9,6 +9,7 @@
 //   3. resolves the plan (frame/FramePlan.h): order, liveness, the result into the output, pooled targets;
 //   4. runs the passes that are needed, timing each (PassTimer) and, with checkGlErrors, checking glGetError and the
 //      baseline GL state after each one.
+#include <cstdint>
 #include <map>
 #include <memory>
 #include <optional>
@@ -83,6 +84,9 @@ struct FrameOptions {
   std::optional<double> frameInterval;
   AnimationChoice animation;  // which animations drive the pose (default: the first; none: the rest pose)
   bool loop = true;           // the timeline wraps at the chosen animations' duration
+  // Quick start (resolution.quick-start): false draws this frame as asked even while the Renderer would draw a cheap
+  // one (a snapshot, a reference); a full frame drawn ends the quick start.
+  bool allowCheapFrame = true;
   // Targets whose contents stay readable after the frame (retained()): tests and tools read them back. Their
   // writers run and their pooled targets are not reused within the frame.
   std::vector<std::string> retain;
@@ -106,6 +110,24 @@ struct FrameOptions {
   // motion is seen by the velocity pass, motion blur and TAA. Changing cameras (another index, the free camera, or
   // another projection) is a cut: the history is dropped.
   int sceneCamera = -1;
+};
+
+// What a Renderer's start-up did (resolution.quick-start, frame/Resolution.h): the cheap frames it drew, the passes
+// of the full frame it warmed, and its first full frame. With quick start off the first frame is the full one.
+struct QuickStartReport {
+  // A pass of the full frame drawn once at a small size (Renderer::kWarmSize) into targets of its own, so that its
+  // program is compiled and linked and the driver has made its code for the pass's state (SwiftShader compiles its
+  // pipeline routines at a program's first draw) before the full frame first draws it.
+  struct Warmed {
+    std::string pass;
+    std::uint64_t frame = 0;  // the frame (FrameContext::index) that warmed it
+    double atMs = 0.0;        // when: ms since the Renderer was made
+    double cpuMs = 0.0;       // its time in the calling thread (compiling the program, the GL calls)
+  };
+  std::vector<Warmed> warmed;
+  int cheapFrames = 0;               // frames drawn cheap so far (quickStartSettings)
+  std::int64_t firstFullFrame = -1;  // the index (FrameContext::index) of the first full frame; -1 before it
+  double fullAtMs = -1.0;            // when it was drawn: ms since the Renderer was made
 };
 
 class Renderer {
@@ -134,6 +156,23 @@ class Renderer {
 
   // Whether an effect that is on in `settings` asks for the sub-pixel jitter (EffectInfo::jitters).
   static bool jitters(const RenderSettings& settings);
+
+  // Quick start (resolution.quick-start). Until a full frame has been drawn, a frame of the final view is drawn with
+  // quickStartSettings (the lit scene: one geometry pass and the lighting) and, from the second frame on, warms up
+  // to kWarmPassesPerFrame passes of the frame asked for, at kWarmSize, after it; once every pass is warmed the next
+  // frame is the full one. A frame of another view, a split view, a caller's G-buffer or allowCheapFrame false is
+  // drawn as asked, and ends the quick start.
+  static constexpr int kWarmPassesPerFrame = 8;
+  static constexpr int kWarmSize = 128;  // the warm frame's output, square (its render size: half of it, upscaled)
+  static constexpr int kMaxCheapFrames = 12;  // then the full frame, warmed or not (settings changing meanwhile)
+  // The settings of the cheap frame: `settings` with the effects that add passes of their own over the frame off
+  // (AO, TAA, bloom, lens flare, glare, depth of field, edges, motion blur, chromatic aberration, FXAA) and the
+  // bilinear upscale; what shapes the image's light (lighting, fog, transparency, tone mapping, auto exposure, the
+  // fused display stages) stays. Unset where that is `settings` already (nothing to warm).
+  static std::optional<RenderSettings> quickStartSettings(const RenderSettings& settings);
+  // Whether the last frame was a cheap one (a front end drawing on change draws another: the full frame follows).
+  bool lastFrameCheap() const { return lastFrameCheap_; }
+  const QuickStartReport& quickStart() const { return quickStart_; }
 
   // Every program the frame may build, for the shader validation tools and tests.
   static std::vector<ProgramSpec> allProgramSpecs() { return frameProgramSpecs(); }
@@ -188,6 +227,14 @@ class Renderer {
   // Plans and runs one frame's passes for `view` into `output`.
   void run(const RenderSettings& settings, const View& view, const OutputTarget& output, const FrameOptions& options);
   void checkErrors(const std::string& after) const;
+  // Runs pass `index` of `plan` with targets from `pool` into `output`.
+  void runPass(const FramePlan& plan, size_t index, RenderTargetPool& pool, const RenderSettings& settings,
+               const OutputTarget& output, PassTimer* timer);
+  // Quick start: warms the next passes of the frame `settings` asks for (after this frame's cheap one, whose context
+  // frame_ is), at kWarmSize into warm_'s targets; `upscaled`: whether the frame asked for is below its output's size.
+  void warmPasses(const RenderSettings& settings, bool upscaled);
+  // The first full frame drawn: quick start is over and its warm targets go.
+  void fullFrameDrawn();
 
   gl::GlCaps caps_;
   RendererOptions options_;
@@ -235,6 +282,20 @@ class Renderer {
   // The last frame's pose, kept to be the next frame's previous one when it asks for that time.
   ScenePose lastPose_;
   PoseOptions lastPoseOptions_;
+  // Quick start: what it did, whether the last frame was cheap, and the warm frame's own plan, targets and output.
+  QuickStartReport quickStart_;
+  double createdAtMs_ = 0.0;
+  bool quickStartOver_ = false;  // a full frame was drawn, or every pass warmed (the next frame is the full one)
+  bool lastFrameCheap_ = false;
+  struct Warm {
+    PlanKey key;
+    std::unique_ptr<FramePlan> plan;
+    std::unique_ptr<RenderTargetPool> pool;
+    gl::RenderTarget output;
+    bool outputDepth = false;  // whether `output` has a depth buffer (as the frame's output)
+    size_t next = 0;           // the next pass of the plan to warm
+  };
+  std::unique_ptr<Warm> warm_;
   glm::ivec2 lastSize_{0, 0};        // the last frame's render size
   glm::ivec2 lastOutputSize_{0, 0};  // and its output's
 };

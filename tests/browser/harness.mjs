@@ -48,8 +48,9 @@ const glErrorWarning = /GL_INVALID_|GL_OUT_OF_MEMORY|WebGL: INVALID_/;
 
 // Opens the page at `url` and waits until Obscura has drawn its first frame. The page runs with `debug-gl`
 // (glGetError after every pass; an error stops drawing and is logged as a console error naming the pass), and with
-// dynamic resolution off unless the URL says otherwise (resolution.dynamic: the page's default is on, which would
-// change the render scale between the frames a test compares). Console errors, GL errors reported as warnings,
+// dynamic resolution and quick start off unless the URL says otherwise (resolution.dynamic and
+// resolution.quick-start: the page's defaults are on, which would change the render scale between the frames a test
+// compares, and make the first frame a cheap one). Console errors, GL errors reported as warnings,
 // uncaught exceptions and failed requests are collected in page.errors.
 export async function openPage(context, url) {
   const page = await context.newPage();
@@ -66,6 +67,7 @@ export async function openPage(context, url) {
   const checked = new URL(url);
   checked.searchParams.set('debug-gl', '');
   if (!checked.searchParams.has('resolution.dynamic')) checked.searchParams.set('resolution.dynamic', 'off');
+  if (!checked.searchParams.has('resolution.quick-start')) checked.searchParams.set('resolution.quick-start', 'off');
   await page.goto(checked.toString());
   await page.waitForFunction(() => document.body.dataset.ready === 'true', null, { timeout: 60000 });
   await waitForDrawn(page);

@@ -2,7 +2,8 @@
 // mobile viewport): the canvas draws at most 2 device pixels per CSS pixel (resolution.max-pixel-ratio), the panel
 // starts closed and opens as a sheet that leaves the image's upper part in view, numbers are rounded to their
 // parameter's step, one finger orbits and two pinch and pan, and dynamic resolution lowers the render scale while the
-// canvas stays at the display's size. With OBSCURA_UPDATE_SCREENSHOTS=1 it writes the README's phone screenshot
+// canvas stays at the display's size, and quick start draws a cheap first frame that the full one follows by
+// itself. With OBSCURA_UPDATE_SCREENSHOTS=1 it writes the README's phone screenshot
 // (docs/images/web_phone.png).
 import assert from 'node:assert/strict';
 import fs from 'node:fs';
@@ -20,8 +21,9 @@ describe('the page on a phone', () => {
   before(async () => {
     session = await startBrowser();
     context = await session.newContext(phone);
-    // The page as a phone gets it: dynamic resolution on (its default; the tests' harness turns it off elsewhere).
-    page = await openPage(context, `${session.baseUrl}?resolution.dynamic=on`);
+    // The page as a phone gets it: dynamic resolution and quick start on (its defaults; the tests' harness turns them
+    // off elsewhere).
+    page = await openPage(context, `${session.baseUrl}?resolution.dynamic=on&resolution.quick-start=on`);
   });
   after(async () => {
     if (page) assert.deepEqual(page.errors, [], 'console errors during the phone tests');
@@ -45,6 +47,23 @@ describe('the page on a phone', () => {
     await page.evaluate(() => window.obscura.set('resolution.max-pixel-ratio', 2));
     await page.waitForFunction(() => window.obscura.stats().width === 780);
   });
+
+  test('quick start: the first frame was a cheap one, the stats say so, and the full frame followed by itself',
+    { timeout: 120000 }, async () => {
+      // openPage waited until no frame was pending: a cheap frame leaves the next one pending.
+      const { startup, stats } = await page.evaluate(() => ({ startup: window.obscura.startup(),
+                                                             stats: window.obscura.stats() }));
+      const q = startup.quickStart;
+      assert.ok(q.cheapFrames >= 2, `the cheap first frame and one that warmed (${q.cheapFrames})`);
+      assert.equal(q.firstFullFrame, q.cheapFrames, 'the full frame right after the cheap ones');
+      const warmed = q.warmed.map((w) => w.pass);
+      for (const pass of ['sao', 'lighting', 'fxaa']) assert.ok(warmed.includes(pass), `${pass} in ${warmed}`);
+      assert.ok(q.warmed.every((w) => w.frame >= 1 && w.frame < q.cheapFrames), 'warmed after the first frame');
+      assert.ok(startup.fullFrameMs > startup.firstFrameMs, `${startup.fullFrameMs} > ${startup.firstFrameMs}`);
+      assert.equal(stats.cheapFrame, false);
+      for (const pass of ['sao', 'fxaa']) assert.ok(stats.passesRun.includes(pass), `${pass} runs now`);
+      await page.waitForFunction(() => /first frame \d+ ms \(cheap/.test(document.querySelector('#stats').textContent));
+    });
 
   test('the panel starts closed, and opens as a sheet that leaves the image in view', { timeout: 120000 },
     async () => {

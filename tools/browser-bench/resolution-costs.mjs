@@ -51,7 +51,7 @@ try {
     const errors = [];
     page.on('pageerror', (e) => errors.push(String(e)));
     // Dynamic resolution off: each configuration at its own scale.
-    await page.goto(`http://127.0.0.1:${server.address().port}/?resolution.dynamic=off`);
+    await page.goto(`http://127.0.0.1:${server.address().port}/?resolution.dynamic=off&resolution.quick-start=off`);
     await page.waitForFunction(() => document.body.dataset.shown !== undefined, null, { timeout: 180000 });
     await page.addStyleTag({ content: '#panel { display: none !important; }' });
     const renderer = await page.evaluate(() => window.obscura.context.renderer);

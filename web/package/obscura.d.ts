@@ -15,6 +15,12 @@ export interface CreateOptions {
   checkGlErrors?: boolean;
   /** resolution.dynamic's default: the render scale follows the frame time (the demo page's choice; default false). */
   dynamicResolution?: boolean;
+  /**
+   * resolution.quick-start's default: the first frame is a cheap one (the lit scene without AO, antialiasing and the
+   * lens and camera effects) and the full frame follows by itself within a few frames, its passes warmed meanwhile
+   * (the demo page's choice; default false). snapshot() always reads the full frame.
+   */
+  quickStart?: boolean;
   /** Where obscura-core.wasm is served (default: beside obscura.js, through import.meta.url). */
   wasmUrl?: string | URL;
 }
@@ -24,7 +30,7 @@ export function createObscura(canvas: HTMLCanvasElement, options?: CreateOptions
 
 /** Starts Obscura's AO on the page's own WebGL 1 context (the one the page made on `canvas` first). */
 export function createAmbientOcclusion(
-  canvas: HTMLCanvasElement, options?: Omit<CreateOptions, 'pointerControls' | 'dynamicResolution'>,
+  canvas: HTMLCanvasElement, options?: Omit<CreateOptions, 'pointerControls' | 'dynamicResolution' | 'quickStart'>,
 ): Promise<ObscuraAmbientOcclusion>;
 
 export type ParameterKind = 'switch' | 'number' | 'integer' | 'choice' | 'color' | 'text';
@@ -147,6 +153,8 @@ export interface Stats {
   hostMs: number;
   lastHostMs: number;
   frames: number;
+  /** The last frame was quick start's cheap one (resolution.quick-start): the full frame follows by itself. */
+  cheapFrame: boolean;
   timerQueries: boolean;
   /** GPU milliseconds per pass of a recent frame (null: the pass did not run), or null without timer queries. */
   passMs: Record<string, number | null> | null;
@@ -178,6 +186,19 @@ export interface Startup {
   firstFrameMs: number | null;
   firstFrameCpuMs: number | null;
   firstFrameParts: Record<string, number>;
+  /** From createObscura's end to the animation frame after the first full frame (firstFrameMs without quick start). */
+  fullFrameMs: number | null;
+  /** What quick start did (resolution.quick-start); cheapFrames 0 and firstFullFrame 0 without it. */
+  quickStart: {
+    /** Frames drawn cheap before the full one. */
+    cheapFrames: number;
+    /** The index of the first full frame (null before it). */
+    firstFullFrame: number | null;
+    /** When the renderer drew it, ms since the renderer was made (null before it). */
+    fullAtMs: number | null;
+    /** Each pass of the full frame drawn once at a small size by a cheap frame: which frame, when, its CPU time. */
+    warmed: { pass: string; frame: number; atMs: number; cpuMs: number }[];
+  } | null;
 }
 
 export interface Snapshot {
