@@ -1,4 +1,4 @@
-// Obscura's page frame in several states, taking turns frame by frame in one page (draw + gl.finish + a 1-pixel
+// Obscura's page frame in several states, taking turns in one page (each timed frame after two untimed ones in its state) (draw + gl.finish + a 1-pixel
 // readPixels, as bench.mjs times it), on 2CylinderEngine.glb at the canvas's full size: the medians and the passes each
 // state runs. A state changes only what it names (setState), so each should name every parameter another one sets.
 // Usage: node tools/browser-bench/ab-states.mjs [--size WxH] [--frames N] STATE ...
@@ -38,9 +38,11 @@ try {
       const result = await page.evaluate(({ base, state }) => {
         const o = window.obscura;
         o.setState(`${base}&${state}`);
-        o.draw();  // the state's first frame (programs, targets) is not timed
         const gl = o.canvas.getContext('webgl');
-        gl.finish();
+        for (let warm = 0; warm < 2; ++warm) {  // the state's first frames (programs, targets) are not timed
+          o.draw();
+          gl.finish();
+        }
         window.benchPasses.reset();
         const start = performance.now();
         o.draw();
