@@ -5,7 +5,8 @@
 // medians; and each scaled frame's error against the full-size one (snapshots; MAE over the colour channels, 0..255).
 // Prints the issue's targets beside them: scale 0.5 + edge <= 0.35 x the full frame, its MAE <= 0.8 x bilinear's.
 //
-// Usage: node tools/browser-bench/resolution-costs.mjs [--sizes 1280x720] [--rounds N] [--frames N] [--csv FILE]
+// Usage: node tools/browser-bench/resolution-costs.mjs [--sizes 1280x720] [--rounds N] [--frames N] [--state S]
+//                                                     [--csv FILE]   (--state: a state text added to every configuration)
 //   (defaults: 1280x720, 3 rounds, 3 frames timed per configuration and round,
 //   bench-results/browser-resolution.csv)
 import fs from 'node:fs';
@@ -16,12 +17,13 @@ import { startServer } from '../serve-web.mjs';
 import { chromiumLaunchOptions, parseOptions } from '../headless-chromium.mjs';
 
 const root = path.resolve(path.dirname(fileURLToPath(import.meta.url)), '..', '..');
-const options = { sizes: '1280x720', rounds: 3, frames: 3,
+const options = { sizes: '1280x720', rounds: 3, frames: 3, state: '',
                   csv: path.join(root, 'bench-results', 'browser-resolution.csv') };
 parseOptions(process.argv.slice(2), {
   '--sizes': (v) => { options.sizes = v; },
   '--rounds': (v) => { options.rounds = Number(v); },
   '--frames': (v) => { options.frames = Number(v); },
+  '--state': (v) => { options.state = v; },
   '--csv': (v) => { options.csv = path.resolve(v); },
 }, path.basename(import.meta.url));
 const sizes = options.sizes.split(',').map((s) => s.split('x').map(Number));
@@ -56,9 +58,9 @@ try {
     await page.addStyleTag({ content: '#panel { display: none !important; }' });
     const renderer = await page.evaluate(() => window.obscura.context.renderer);
     console.log(`${width}x${height}, ${renderer}, the built-in scene at its defaults, ${options.rounds} rounds`);
-    const measure = (state) => page.evaluate(async ({ state, frames }) => {
+    const measure = (state) => page.evaluate(async ({ state, frames, extra }) => {
       const o = window.obscura;
-      o.setState(`${state}&resolution.dynamic=off`);
+      o.setState(`${state}&resolution.dynamic=off${extra ? `&${extra}` : ''}`);
       o.setContinuous(true);
       const next = async (after) => {
         while (o.stats().frames <= after) await new Promise((r) => setTimeout(r, 20));
@@ -83,7 +85,7 @@ try {
       o.setContinuous(false);
       const shot = o.snapshot();
       return { gpu, interval, passes, pixels: Array.from(shot.pixels), scale: o.stats().render.scale };
-    }, { state, frames: options.frames });
+    }, { state, frames: options.frames, extra: options.state });
     const results = configurations.map(() => ({ gpu: [], interval: [], passes: [], pixels: null }));
     for (let round = 0; round < options.rounds; ++round) {
       for (let c = 0; c < configurations.length; ++c) {
