@@ -79,6 +79,17 @@ void setStageSamplers(const gl::Program& program, const std::vector<StageDecl>& 
     for (const auto& [sampler, texture] : stage.ownTextures) program.set(sampler, unit++);
 }
 
+StageDecl displayStage(const std::string& name, int uniformVectors) {
+  StageDecl stage;
+  stage.name = name;
+  stage.file = name + "/" + name + ".glsl";
+  stage.function = name + "Stage";
+  stage.input = kFinalImageTarget;
+  stage.inputSpace = stage.outputSpace = ColorSpace::Display;
+  stage.uniformVectors = uniformVectors;
+  return stage;
+}
+
 PassDecl stagePass(const EffectResources& resources, StageDecl stage, std::string output) {
   PassDecl pass;
   pass.name = stage.name;

@@ -38,6 +38,11 @@ inline constexpr int kStagePassUniformVectors = 2;
 // and encodes the result. It reads the G-buffer too where the stage needs its pixel's position or normal.
 PassDecl stagePass(const EffectResources& resources, StageDecl stage, std::string output);
 
+// A stage on the frame's display colour (kFinalImageTarget, after the tone curve), reading and writing it: the
+// effect `name`'s function `nameStage` in shaders_es2/name/name.glsl, whose uniforms take `uniformVectors` fragment
+// uniform vectors (grading, the vignette, grain, dithering). The caller adds its variant, defines and uniforms.
+StageDecl displayStage(const std::string& name, int uniformVectors);
+
 // The program of `head` (a vertex file, a fragment file whose main calls finishPixel, its defines) running `chain`
 // after a colour in `space`. Its name lists them: "lighting[deferred,atlas]+fog[exp]+tonemap[neutral]".
 ProgramSpec fusedProgram(const ProgramSpec& head, const std::vector<StageDecl>& chain, ColorSpace space);

@@ -31,14 +31,7 @@ glm::vec3 dithered(const glm::vec3& srgb, glm::vec2 pixel) {
 EffectInfo DitherEffect::info() { return {"dither", "Dithering", true, false, {"dither"}, {}}; }
 
 StageDecl DitherEffect::stage() {
-  StageDecl stage;
-  stage.name = "dither";
-  stage.file = "dither/dither.glsl";
-  stage.function = "ditherStage";
-  stage.input = "display-color";
-  stage.inputSpace = stage.outputSpace = ColorSpace::Display;
-  stage.uniformVectors = 0;  // none: the pattern is the pixel's
-  return stage;
+  return displayStage("dither", 0);  // no uniforms: the pattern is the pixel's
 }
 
 void DitherEffect::plan(FramePlanner& planner) {

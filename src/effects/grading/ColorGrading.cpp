@@ -133,17 +133,11 @@ glm::vec3 gradeDisplay(const glm::vec3& srgb, const GradingSettings& s) {
 EffectInfo GradingEffect::info() { return {"grading", "Colour grading", true, false, {"grading"}, {}}; }
 
 StageDecl GradingEffect::stage(bool balance, bool lut, const GradingEffect* owner) {
-  StageDecl stage;
-  stage.name = "grading";
-  stage.variant = std::string(balance ? "balance" : "") + (balance && lut ? "," : "") + (lut ? "lut" : "");
-  stage.file = "grading/grading.glsl";
-  stage.function = "gradingStage";
-  stage.defines = {{"GRADING_BALANCE", balance ? "1" : "0"}, {"GRADING_LUT", lut ? "1" : "0"}};
-  stage.input = "display-color";
-  stage.inputSpace = stage.outputSpace = ColorSpace::Display;
   // The balance: the matrix's three rows, the offset's and the power's, and one for the saturation and contrast;
   // the LUT: its layout's row, the domain's two vec3 rows, whose spare column takes the intensity.
-  stage.uniformVectors = (balance ? 6 : 0) + (lut ? 3 : 0);
+  StageDecl stage = displayStage("grading", (balance ? 6 : 0) + (lut ? 3 : 0));
+  stage.variant = std::string(balance ? "balance" : "") + (balance && lut ? "," : "") + (lut ? "lut" : "");
+  stage.defines = {{"GRADING_BALANCE", balance ? "1" : "0"}, {"GRADING_LUT", lut ? "1" : "0"}};
   if (lut) {
     stage.ownTextures.push_back({"u_gradingLut", [owner]() -> GLuint { return owner ? owner->lut_.id() : 0; }});
   }

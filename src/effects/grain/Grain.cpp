@@ -47,13 +47,7 @@ glm::vec3 grained(const glm::vec3& srgb, glm::vec2 pixel, const glm::vec4& u) {
 EffectInfo GrainEffect::info() { return {"grain", "Film grain", true, false, {"grain"}, {}}; }
 
 StageDecl GrainEffect::stage() {
-  StageDecl stage;
-  stage.name = "grain";
-  stage.file = "grain/grain.glsl";
-  stage.function = "grainStage";
-  stage.input = "display-color";
-  stage.inputSpace = stage.outputSpace = ColorSpace::Display;
-  stage.uniformVectors = 1;  // u_grain
+  StageDecl stage = displayStage("grain", 1);  // u_grain
   stage.uniforms = [](const gl::Program& program, const PassContext& context) {
     program.set("u_grain", grainUniform(context.settings().of<GrainSettings>(), context.frame().index));
   };

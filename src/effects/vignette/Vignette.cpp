@@ -42,13 +42,7 @@ glm::vec3 vignetted(const glm::vec3& srgb, glm::vec2 uv, const glm::vec3& shape)
 EffectInfo VignetteEffect::info() { return {"vignette", "Vignette", true, false, {"vignette"}, {}}; }
 
 StageDecl VignetteEffect::stage() {
-  StageDecl stage;
-  stage.name = "vignette";
-  stage.file = "vignette/vignette.glsl";
-  stage.function = "vignetteStage";
-  stage.input = "display-color";
-  stage.inputSpace = stage.outputSpace = ColorSpace::Display;
-  stage.uniformVectors = 1;  // u_vignetteShape
+  StageDecl stage = displayStage("vignette", 1);  // u_vignetteShape
   stage.uniforms = [](const gl::Program& program, const PassContext& context) {
     const FrameCamera& camera = context.camera();
     const float aspect = static_cast<float>(camera.width) / static_cast<float>(camera.height);
