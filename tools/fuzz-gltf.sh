@@ -49,7 +49,8 @@ start=$(date +%s)
 # depot cost 5 to 12 % of a run (CPU seconds per execution, alternating runs from the seeds; docs/robustness.md) and
 # serve only the reports. Every finding is replayed below with the full stacks. The user's ASAN_OPTIONS come after.
 user_asan_options="${ASAN_OPTIONS:-}"
-ASAN_OPTIONS="malloc_context_size=0${user_asan_options:+:$user_asan_options}" "$fuzzer" "${limits[@]}" -timeout=10 -rss_limit_mb=4096 -print_final_stats=1 -jobs="$workers" -workers="$workers" \
+ASAN_OPTIONS="malloc_context_size=0${user_asan_options:+:$user_asan_options}" "$fuzzer" "${limits[@]}" -timeout=10 \
+  -rss_limit_mb=4096 -print_final_stats=1 -jobs="$workers" -workers="$workers" \
   corpus >/dev/null 2>&1 || status=$?
 seconds=$(( $(date +%s) - start ))
 for log in fuzz-*.log; do
@@ -63,7 +64,8 @@ if grep -l -E 'ERROR: (AddressSanitizer|LeakSanitizer|libFuzzer)|runtime error:|
   # Replay each saved input with ASan's full allocation and free stacks (the user's ASAN_OPTIONS, else the defaults).
   for finding in crash-* leak-* timeout-* oom-*; do
     [ -e "$finding" ] || continue
-    ASAN_OPTIONS="$user_asan_options" "$fuzzer" -timeout=10 -rss_limit_mb=4096 "$finding" >"repro-$finding.log" 2>&1 || true
+    ASAN_OPTIONS="$user_asan_options" "$fuzzer" -timeout=10 -rss_limit_mb=4096 "$finding" >"repro-$finding.log" 2>&1 ||
+      true
     echo "fuzz-gltf: $finding replayed with full stacks:"
     grep -A 40 -m 1 -E 'ERROR: |runtime error:' "repro-$finding.log" || tail -n 40 "repro-$finding.log"
   done

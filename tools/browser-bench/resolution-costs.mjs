@@ -6,7 +6,7 @@
 // Prints the targets beside them: scale 0.5 + edge <= 0.35 x the full frame, its MAE <= 0.8 x bilinear's.
 //
 // Usage: node tools/browser-bench/resolution-costs.mjs [--sizes 1280x720] [--rounds N] [--frames N] [--state S]
-//                                                     [--csv FILE]   (--state: a state text added to every configuration)
+//          [--csv FILE]   (--state: a state text added to every configuration, e.g. dither=off)
 //   (defaults: 1280x720, 3 rounds, 3 frames timed per configuration and round,
 //   bench-results/browser-resolution.csv)
 import fs from 'node:fs';
