@@ -97,6 +97,10 @@ struct EffectInfo {
   // On: its result depends on earlier frames or on the shutter (motion blur, TAA); references made by brute force
   // switch these off and integrate instead (renderer/AccumulationReference.h). Last, so brace initialisers may omit it.
   bool temporal = false;
+  // On: it adds passes of its own over the frame (or, for FXAA, over the output), each a program that SwiftShader
+  // compiles at its first draw; quick start's cheap first frame leaves it out (resolution.quick-start,
+  // Renderer::quickStartSettings).
+  bool waitsForFullFrame = false;
 };
 
 // The colour a per-pixel stage reads and writes: linear HDR (before the tone curve: "scene-color") or display

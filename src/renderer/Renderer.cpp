@@ -403,15 +403,13 @@ void Renderer::runPass(const FramePlan& plan, size_t index, RenderTargetPool& po
 }
 
 std::optional<RenderSettings> Renderer::quickStartSettings(const RenderSettings& settings) {
-  // The effects that add passes of their own over the frame (or, for FXAA, a pass over the output): each is a
-  // program, and on SwiftShader a pipeline compiled at its first draw, that the first image can do without.
-  static const char* const kOff[] = {"ao",   "taa",   "bloom",       "lens-flare",           "glare",
-                                     "dof",  "edges", "motion-blur", "chromatic-aberration", "fxaa"};
+  // The effects that add passes of their own over the frame (EffectInfo::waitsForFullFrame): each is a program, and
+  // on SwiftShader a pipeline compiled at its first draw, that the first image can do without.
   RenderSettings cheap = settings;
   bool changed = false;
-  for (const char* effect : kOff)
-    if (settings.enabled(effect)) {
-      cheap.set(effect, "off");
+  for (const EffectEntry& row : effectTable())
+    if (row.info.waitsForFullFrame && settings.enabled(row.info.name)) {
+      cheap.set(row.info.name, "off");
       changed = true;
     }
   if (!changed) return std::nullopt;

@@ -166,9 +166,10 @@ class Renderer {
   static constexpr int kWarmSize = 128;  // the warm frame's output, square (its render size: half of it, upscaled)
   static constexpr int kMaxCheapFrames = 12;  // then the full frame, warmed or not (settings changing meanwhile)
   // The settings of the cheap frame: `settings` with the effects that add passes of their own over the frame off
-  // (AO, TAA, bloom, lens flare, glare, depth of field, edges, motion blur, chromatic aberration, FXAA) and the
-  // bilinear upscale; what shapes the image's light (lighting, fog, transparency, tone mapping, auto exposure, the
-  // fused display stages) stays. Unset where that is `settings` already (nothing to warm).
+  // (EffectInfo::waitsForFullFrame: AO, TAA, bloom, lens flare, glare, depth of field, edges, motion blur,
+  // chromatic aberration, FXAA) and the bilinear upscale; what shapes the image's light (lighting, fog, transparency,
+  // tone mapping, auto exposure, the fused display stages) stays. Unset where that is `settings` already (nothing to
+  // warm).
   static std::optional<RenderSettings> quickStartSettings(const RenderSettings& settings);
   // Whether the last frame was a cheap one (a front end drawing on change draws another: the full frame follows).
   bool lastFrameCheap() const { return lastFrameCheap_; }

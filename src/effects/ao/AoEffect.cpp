@@ -12,28 +12,31 @@ constexpr const char* kAoEncoding = "R: ambient visibility (1 open, 0 occluded);
 }  // namespace
 
 EffectInfo AoEffect::info() {
-  return {"ao",
-          "Ambient obscurance",
-          true,
-          false,
-          {"peel", "hierarchy", "sao", "ao-temporal", "blur-h", "blur-v", "upsample"},
-          {{"depth-hierarchy",
-            "SAO's depth levels 1 .. 5 (one picked pixel's depth per 2^m block, and where it lies in the block); kept "
-            "by the effect as an atlas or a mip chain, not pooled",
-            GL_NEAREST,
-            {}},
-           {"second-layer",
-            "BA: the second depth layer's 16-bit linear depth (ao.layers 2: the nearest surface at least the layer "
-            "separation behind the G-buffer's; 65535: none)",
-            GL_NEAREST,
-            {{"second-layer", ViewDecoding::Depth}}},
-           {"ao-raw", kAoEncoding, GL_NEAREST, {{"ao-raw", ViewDecoding::Grey}}},
-           {"ao-temporal",
-            std::string(kAoEncoding) + "; A: the frames its running mean holds (effects/ao/AoTemporal.h)",
-            GL_NEAREST,
-            {{"ao-temporal", ViewDecoding::Grey}}},
-           {"ao-blur-h", kAoEncoding, GL_NEAREST, {{"ao-blur-h", ViewDecoding::Grey}}},
-           {"ao", kAoEncoding, GL_NEAREST, {{"ao", ViewDecoding::Grey}}}}};
+  EffectInfo info{
+      "ao",
+      "Ambient obscurance",
+      true,
+      false,
+      {"peel", "hierarchy", "sao", "ao-temporal", "blur-h", "blur-v", "upsample"},
+      {{"depth-hierarchy",
+        "SAO's depth levels 1 .. 5 (one picked pixel's depth per 2^m block, and where it lies in the block); kept "
+        "by the effect as an atlas or a mip chain, not pooled",
+        GL_NEAREST,
+        {}},
+       {"second-layer",
+        "BA: the second depth layer's 16-bit linear depth (ao.layers 2: the nearest surface at least the layer "
+        "separation behind the G-buffer's; 65535: none)",
+        GL_NEAREST,
+        {{"second-layer", ViewDecoding::Depth}}},
+       {"ao-raw", kAoEncoding, GL_NEAREST, {{"ao-raw", ViewDecoding::Grey}}},
+       {"ao-temporal",
+        std::string(kAoEncoding) + "; A: the frames its running mean holds (effects/ao/AoTemporal.h)",
+        GL_NEAREST,
+        {{"ao-temporal", ViewDecoding::Grey}}},
+       {"ao-blur-h", kAoEncoding, GL_NEAREST, {{"ao-blur-h", ViewDecoding::Grey}}},
+       {"ao", kAoEncoding, GL_NEAREST, {{"ao", ViewDecoding::Grey}}}}};
+  info.waitsForFullFrame = true;
+  return info;
 }
 
 std::vector<ProgramSpec> AoEffect::programSpecs() {

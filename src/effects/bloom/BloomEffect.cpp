@@ -147,6 +147,7 @@ EffectInfo BloomEffect::info() {
     info.targets.push_back({tent(k), std::string("the tent along x towards up ") + std::to_string(k) +
                                          " (level k's width, level k + 1's height): " + kLevelEncoding,
                             GL_NEAREST, {}});
+  info.waitsForFullFrame = true;
   return info;
 }
 

@@ -35,7 +35,9 @@ glm::vec2 aberrationSource(glm::vec2 uv, int channel, float intensity) {
 }
 
 EffectInfo ChromaticAberrationEffect::info() {
-  return {"chromatic-aberration", "Chromatic aberration", true, false, {"chromatic-aberration"}, {}};
+  EffectInfo info{"chromatic-aberration", "Chromatic aberration", true, false, {"chromatic-aberration"}, {}};
+  info.waitsForFullFrame = true;
+  return info;
 }
 
 std::vector<ProgramSpec> ChromaticAberrationEffect::programSpecs() { return {spec()}; }

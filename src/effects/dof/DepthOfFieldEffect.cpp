@@ -142,22 +142,31 @@ float ThinLens::parallelAperture(float focus, float pixelsPerMetre) const {
 }
 
 EffectInfo DepthOfFieldEffect::info() {
-  return {"dof",
-          "Depth of field",
-          true,
-          false,
-          {"dof-coc", "dof-downsample", "dof-tiles-h", "dof-tiles", "dof-neighbors", "dof-near", "dof-far",
-           "dof-composite"},
-          {{"dof-coc", "RG: the signed circle of confusion, 16 bits (encoding/CocPacking.h); BA zero", GL_NEAREST, {}},
-           {"dof-half", "RGB: the 2 x 2 mean HDR colour as sqrt(c / (1 + c)); A: the smallest CoC of the four, 8 bits",
-            GL_NEAREST, {}},
-           {"dof-tile-columns", kTileEncoding, GL_NEAREST, {}},
-           {"dof-tiles", kTileEncoding, GL_NEAREST, {}},
-           {"dof-neighbors", kTileEncoding, GL_NEAREST, {}},
-           {"dof-near", "the near field's HDR colour premultiplied by its coverage (A), as sqrt(c / (1 + c))",
-            GL_LINEAR, {}},
-           {"dof-far", "the far field's HDR colour as sqrt(c / (1 + c)); A 1 where the pixel is far, else all zero",
-            GL_LINEAR, {}}}};
+  EffectInfo info{
+      "dof",
+      "Depth of field",
+      true,
+      false,
+      {"dof-coc", "dof-downsample", "dof-tiles-h", "dof-tiles", "dof-neighbors", "dof-near", "dof-far",
+       "dof-composite"},
+      {{"dof-coc", "RG: the signed circle of confusion, 16 bits (encoding/CocPacking.h); BA zero", GL_NEAREST, {}},
+       {"dof-half",
+        "RGB: the 2 x 2 mean HDR colour as sqrt(c / (1 + c)); A: the smallest CoC of the four, 8 bits",
+        GL_NEAREST,
+        {}},
+       {"dof-tile-columns", kTileEncoding, GL_NEAREST, {}},
+       {"dof-tiles", kTileEncoding, GL_NEAREST, {}},
+       {"dof-neighbors", kTileEncoding, GL_NEAREST, {}},
+       {"dof-near",
+        "the near field's HDR colour premultiplied by its coverage (A), as sqrt(c / (1 + c))",
+        GL_LINEAR,
+        {}},
+       {"dof-far",
+        "the far field's HDR colour as sqrt(c / (1 + c)); A 1 where the pixel is far, else all zero",
+        GL_LINEAR,
+        {}}}};
+  info.waitsForFullFrame = true;
+  return info;
 }
 
 std::vector<ProgramSpec> DepthOfFieldEffect::programSpecs() {

@@ -193,13 +193,15 @@ glm::vec3 toonShade(const glm::vec3& srgb, int bands) {
 }
 
 EffectInfo EdgesEffect::info() {
-  return {"edges",
-          "Edges",
-          true,
-          false,
-          {"edges-detect", "edges-h", "edges"},
-          {{"edges-mask", kMaskEncoding, GL_NEAREST, {{"edges-mask", ViewDecoding::Color}}},
-           {"edges-distance", kDistanceEncoding, GL_NEAREST, {}}}};
+  EffectInfo info{"edges",
+                  "Edges",
+                  true,
+                  false,
+                  {"edges-detect", "edges-h", "edges"},
+                  {{"edges-mask", kMaskEncoding, GL_NEAREST, {{"edges-mask", ViewDecoding::Color}}},
+                   {"edges-distance", kDistanceEncoding, GL_NEAREST, {}}}};
+  info.waitsForFullFrame = true;
+  return info;
 }
 
 std::vector<ProgramSpec> EdgesEffect::programSpecs() {

@@ -137,7 +137,11 @@ bool FxaaSettings::matchesPreset(QualityPreset which) const {
   return settingsMatch(which) && enabled == fxaaRunsAt(which);
 }
 
-EffectInfo FxaaEffect::info() { return {"fxaa", "FXAA", true, false, {"fxaa"}, {}}; }
+EffectInfo FxaaEffect::info() {
+  EffectInfo info{"fxaa", "FXAA", true, false, {"fxaa"}, {}};
+  info.waitsForFullFrame = true;
+  return info;
+}
 
 std::vector<ProgramSpec> FxaaEffect::programSpecs() {
   std::vector<ProgramSpec> specs = {spec(0)};

@@ -73,14 +73,16 @@ std::vector<glm::vec2> glareRays(const GlareSettings& settings) {
 }
 
 EffectInfo GlareEffect::info() {
-  return {"glare",
-          "Glare",
-          true,
-          false,
-          {"glare"},
-          {{kTemporaries[0], "RGB9E5: a streak's passes (1/4 of the frame)", GL_NEAREST, {}},
-           {kTemporaries[1], "as glare-a", GL_NEAREST, {}},
-           {kTemporaries[2], "as glare-a", GL_NEAREST, {}}}};
+  EffectInfo info{"glare",
+                  "Glare",
+                  true,
+                  false,
+                  {"glare"},
+                  {{kTemporaries[0], "RGB9E5: a streak's passes (1/4 of the frame)", GL_NEAREST, {}},
+                   {kTemporaries[1], "as glare-a", GL_NEAREST, {}},
+                   {kTemporaries[2], "as glare-a", GL_NEAREST, {}}}};
+  info.waitsForFullFrame = true;
+  return info;
 }
 
 std::vector<ProgramSpec> GlareEffect::programSpecs() { return {spec(false), spec(true)}; }

@@ -150,13 +150,18 @@ Image builtinLensDirt(int side) {
 }
 
 EffectInfo LensFlareEffect::info() {
-  return {"lens-flare",
-          "Lens flare",
-          true,
-          false,
-          {"lens-flare"},
-          {{"lens-light", "RGB9E5 (as scene-color): the light the lens adds (the flare, the glare's streaks) at 1/4 of "
-            "the frame, added by the tone mapping", GL_NEAREST, {}}}};
+  EffectInfo info{"lens-flare",
+                  "Lens flare",
+                  true,
+                  false,
+                  {"lens-flare"},
+                  {{"lens-light",
+                    "RGB9E5 (as scene-color): the light the lens adds (the flare, the glare's streaks) at 1/4 of "
+                    "the frame, added by the tone mapping",
+                    GL_NEAREST,
+                    {}}}};
+  info.waitsForFullFrame = true;
+  return info;
 }
 
 std::vector<ProgramSpec> LensFlareEffect::programSpecs() { return {spec(false), spec(true)}; }

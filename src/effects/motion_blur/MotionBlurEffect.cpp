@@ -64,6 +64,7 @@ EffectInfo MotionBlurEffect::info() {
                    {"motion-tiles", kTileEncoding, GL_NEAREST, {{"motion-tiles", ViewDecoding::Velocity}}},
                    {"motion-neighbors", kTileEncoding, GL_NEAREST, {{"motion-neighbors", ViewDecoding::Velocity}}}}};
   info.temporal = true;
+  info.waitsForFullFrame = true;
   return info;
 }
 

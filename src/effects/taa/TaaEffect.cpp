@@ -72,6 +72,7 @@ EffectInfo TaaEffect::info() {
                    {"taa-depth", "the G-buffer as this frame saw it (its BA depth code); a history target", GL_NEAREST,
                     {}}}};
   info.temporal = true;
+  info.waitsForFullFrame = true;
   return info;
 }
 
