@@ -105,8 +105,9 @@ TEST(Pipeline, TheLightingPassShadesEachPixelOnce) {
     EXPECT_EQ(counts.size(), 2u) << scale << ": a pixel was shaded " << counts.rbegin()->first << " times";
   }
   // The AO off, nothing else reads the G-buffer: the lighting still shades each pixel once over the G-buffer's depth
-  // (lighting.depth auto at the medium tier, or gbuffer) or over a depth pre-pass of its own (prepass); with its own
-  // depth test alone (overdraw, auto at the low tier) it pays for overdraw, and the same count would fail.
+  // (gbuffer; auto at the medium tier, and at the low one where the deferred form shades the scene) or over a depth
+  // pre-pass of its own (prepass); with its own depth test alone (overdraw, auto at the low tier on the forward form)
+  // it pays for overdraw, and the same count would fail.
   renderer.setScene(overlappingLayers());
   settings.set("ao", "off");
   for (const char* depth : {"auto", "gbuffer", "prepass"}) {
@@ -117,7 +118,7 @@ TEST(Pipeline, TheLightingPassShadesEachPixelOnce) {
   }
   for (const char* quality : {"low", "medium"}) {
     settings.set("lighting.quality", quality);
-    settings.set("lighting.depth", std::string(quality) == "low" ? "auto" : "overdraw");
+    settings.set("lighting.depth", "overdraw");
     counts = shadingCounts(renderer, layersCamera, settings);
     EXPECT_GT(counts.rbegin()->first, 5) << quality << ": back to front, the layers overdraw";
   }
@@ -153,6 +154,16 @@ TEST(Pipeline, TheDepthTheLightingTakesWithTheAoOffDoesNotChangeTheImage) {
       EXPECT_EQ(gbufferRan, std::string(depth) == "gbuffer" || (std::string(depth) == "auto" && deferred)) << depth;
     }
     EXPECT_EQ(deferred, drawBuffers && test::context().caps().drawBuffers);
+    // auto at the low tier: the G-buffer too where the deferred form shades the scene, else its own depth test (no
+    // G-buffer).
+    settings.set("lighting.quality", "low");
+    settings.set("lighting.depth", "auto");
+    test::render(renderer, camera, settings, View::Final);
+    bool lowGBufferRan = false;
+    for (const PlannedPass& pass : renderer.lastPlan().passes())
+      lowGBufferRan = lowGBufferRan || (pass.live && pass.decl.name == "gbuffer");
+    EXPECT_EQ(lowGBufferRan, deferred) << "low tier, auto";
+    settings.set("lighting.quality", "medium");
     const int tolerance = drawBuffers ? 3 : 0;
     for (const char* depth : {"prepass", "overdraw"}) {
       int worst = 0;
@@ -661,15 +672,15 @@ TEST(Pipeline, TheForwardLightingDrawsIntoAnOutputWithDepth) {
     }
     return drawn;
   };
-  // The low tier shades overdrawn fragments (its own depth test); the medium one, made to take the forward form
-  // (without a depth pre-pass choice, a context with several render targets shades the G-buffer deferred), over a
-  // depth pre-pass.
+  // The forward form (where a context has several render targets, auto shades this scene deferred, over the
+  // G-buffer): at the low tier shading overdrawn fragments (its own depth test), at the medium one over a depth
+  // pre-pass.
   for (const char* preset : {"low", "medium"}) {
     RenderSettings settings;
     settings.set("preset", preset);
     settings.set("ao", "off");
     settings.set("fxaa", "off");
-    if (std::string(preset) == "medium") settings.set("lighting.depth", "prepass");
+    settings.set("lighting.depth", std::string(preset) == "low" ? "overdraw" : "prepass");
     const Drawn withDepth = draw(settings, true), without = draw(settings, false);
     EXPECT_EQ(withDepth.intoOutput, "lighting") << preset;
     EXPECT_NE(without.intoOutput, "lighting") << preset;

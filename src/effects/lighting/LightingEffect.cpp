@@ -97,8 +97,8 @@ bool LightingSettings::matchesPreset(QualityPreset which) const { return quality
 
 LightingDepth LightingSettings::depthInUse(bool deferredForm) const {
   if (depth != LightingDepth::Auto) return depth;
-  if (quality == LightingQuality::Low) return LightingDepth::Overdraw;
-  return deferredForm ? LightingDepth::GBuffer : LightingDepth::Prepass;
+  if (deferredForm) return LightingDepth::GBuffer;
+  return quality == LightingQuality::Low ? LightingDepth::Overdraw : LightingDepth::Prepass;
 }
 
 glm::vec3 LightingSettings::directionToSun() const { return sunDirection(sunElevation, sunAzimuth); }

@@ -72,11 +72,14 @@ enum class LightingQuality { Low = 0, Medium = 1, High = 2 };
 //             fragment stage), then shades over it as over the G-buffer's: two geometry draws, one shading per pixel.
 //   overdraw  the forward form tests its own depth, shading every fragment that is nearer than those drawn before it
 //             (front to back: GpuScene's order).
-//   auto      the medium and high tiers shade each pixel once: gbuffer where the deferred form can shade the scene
-//             (one geometry pass and a full-screen one), else prepass (two geometry passes, the first with no colour
-//             to write, where the G-buffer's would write its normals too); the low tier's shading costs about what a
-//             depth test saves, so it takes overdraw (one geometry pass). docs/lighting.md, "AO off", measures all
-//             three on llvmpipe and SwiftShader.
+//   auto      gbuffer where the deferred form can shade the scene (one geometry pass and a full-screen one), in
+//             every tier; else the medium and high tiers take prepass (two geometry passes, the first with no
+//             colour to write, where the G-buffer's would write its normals too) and the low tier, whose shading
+//             costs about what a depth test saves, overdraw (one geometry pass). Measured on 2CylinderEngine with
+//             `preset low` and the AO off (docs/benchmarks.md, issue 26): on SwiftShader, the page's rasteriser,
+//             gbuffer costs 0.67 to 0.70 of overdraw: a dense mesh's small triangles shade whole 2 x 2 quads for a
+//             pixel or two, which the full-screen pass does not; llvmpipe, which shades every pixel of a full-screen
+//             pass at the full cost, measures the opposite (1.2 to 1.4 x); set overdraw there.
 enum class LightingDepth { Auto, GBuffer, Prepass, Overdraw };
 
 // The sun: an overcast key light over a strong sky dome, so that ambient carries most of the light and AO reads
