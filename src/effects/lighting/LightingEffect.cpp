@@ -45,7 +45,7 @@ const std::vector<Parameter<LightingSettings>>& LightingSettings::parameters() {
           "depth",
           "where the lighting finds each pixel's visible surface when nothing else draws the G-buffer (the AO off): "
           "the G-buffer pass, a depth pre-pass, or its own depth test shading overdrawn fragments; auto: the "
-          "cheapest measured for the tier",
+          "G-buffer where the deferred form shades the scene, else the cheapest measured for the tier",
           &S::depth,
           {{"auto", LightingDepth::Auto}, {"gbuffer", LightingDepth::GBuffer}, {"prepass", LightingDepth::Prepass},
            {"overdraw", LightingDepth::Overdraw}}),
