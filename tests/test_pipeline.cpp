@@ -155,8 +155,7 @@ TEST(Pipeline, TheDepthTheLightingTakesWithTheAoOffDoesNotChangeTheImage) {
     }
     EXPECT_EQ(deferred, drawBuffers && test::context().caps().drawBuffers);
     // auto at the low tier: the G-buffer too where the deferred form shades the scene, else its own depth test (no
-    // G-buffer).
-    // The same image as the low tier's overdraw, within the deferred form's 8-bit normal and base colour.
+    // G-buffer); the same image as the low tier's overdraw, within the deferred form's 8-bit normal and base colour.
     const int tolerance = drawBuffers ? 3 : 0;
     settings.set("lighting.quality", "low");
     std::map<std::string, std::vector<std::uint8_t>> lowFrames;
