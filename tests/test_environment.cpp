@@ -134,6 +134,34 @@ TEST(Environment, PrefilteredLevelsMatchTheBruteForceIntegral) {
     EXPECT_LT(relativeError(prefiltered.sample(r, 0.0f), sky.radiance(r)), 2.0f / 512.0f);
 }
 
+// At roughness 1 GGX's D is 1 / pi for every half vector, so the prefiltered radiance (n = v = r) is the
+// cosine-weighted mean of the radiance about r: E(r) / pi, which the nine spherical-harmonic terms give. The deferred
+// lighting, which shades roughness 1 alone, reads it there instead of level 5 (shaders_es2/lighting/lighting.frag):
+// both against the brute-force integral, at directions between texel centres.
+TEST(Environment, AtRoughnessOneThePrefilteredRadianceIsTheIrradiance) {
+  for (double nDotH : {0.0, 0.3, 0.7, 1.0}) EXPECT_NEAR(ggxDistribution(nDotH, 1.0), 1.0 / kPi, 1e-12) << nDotH;
+  const EnvironmentImage sky = builtinSky();
+  const ShIrradiance sh = ShIrradiance::project(sky);
+  const PrefilteredEnvironment prefiltered = PrefilteredEnvironment::of(sky, 1024);
+  float worstSh = 0.0f, worstLevel = 0.0f, sumSh = 0.0f, sumLevel = 0.0f;
+  const std::vector<glm::vec3> directions = testDirections(24);
+  for (const glm::vec3& r : directions) {
+    const glm::vec3 reference = prefilterReference(sky, r, 1.0);
+    const float errorSh = relativeError(sh.reflectedRadiance(r), reference);
+    const float errorLevel = relativeError(prefiltered.sample(r, 1.0f), reference);
+    worstSh = std::max(worstSh, errorSh);
+    worstLevel = std::max(worstLevel, errorLevel);
+    sumSh += errorSh;
+    sumLevel += errorLevel;
+  }
+  const float count = static_cast<float>(directions.size());
+  std::printf("roughness 1 against the integral: nine SH terms worst %.4f, mean %.4f; level 5 worst %.4f, mean %.4f "
+              "(of the reference's brightest channel)\n",
+              worstSh, sumSh / count, worstLevel, sumLevel / count);
+  // ShIrradianceOfTheSkyMatchesTheIntegratedIrradiance's bound: R&H's order-2 error with the sun.
+  EXPECT_LT(worstSh, 0.06f);
+}
+
 // Why the shader filters by hand: the hardware's bilinear filter over RGB9E5 bytes, at the midpoint of two
 // neighbouring texels of the prefiltered sky, against the mean of the decoded texels.
 TEST(Environment, HardwareFilteringOfTheEncodedTexelsWouldBeWrong) {

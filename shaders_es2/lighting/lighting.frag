@@ -121,7 +121,16 @@ vec3 ambientLight(vec3 n, vec3 g, vec3 v, vec3 diffuseColor, vec3 f0, vec3 f90, 
   vec3 r = reflect(-v, n);
   vec3 irradiance = environmentIrradiance(u_viewToEnvironment * n);
   vec3 specularAlbedo = f0 * scaleBias.x + f90 * scaleBias.y;
+#if DEFERRED
+  // The deferred form shades roughness 1 alone (its main), where GGX's D is 1 / pi over the whole hemisphere: the
+  // prefiltered radiance with n = v = r (environment/Environment.h) is then the integral of L (r.l)+ over that of
+  // (r.l)+, E(r) / pi, which the nine terms give without the level's fetch, atan and acos: closer to the integral
+  // than level 5 on the sky (Environment.AtRoughnessOneThePrefilteredRadianceIsTheIrradiance: worst 0.023 against
+  // 0.035), and 121 -> 93 ms of the pass on SwiftShader at 1280x720 (docs/benchmarks.md, issue 26).
+  vec3 specular = specularAlbedo * environmentIrradiance(u_viewToEnvironment * r);
+#else
   vec3 specular = specularAlbedo * environmentSpecular(u_viewToEnvironment * r, roughness);
+#endif
   float specularVisibility = specularOcclusion(nv, occlusion, roughness * roughness);
 #if LIGHTING_QUALITY == 2
   float ess = scaleBias.x + scaleBias.y;

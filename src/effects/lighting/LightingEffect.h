@@ -57,7 +57,9 @@ namespace obscura {
 //   low     the ambient from the spherical harmonics alone: diffuse E(n) / pi, and the specular as the irradiance
 //           towards the reflected direction weighted by Karis's analytic (A, B) fit; no environment or table fetch,
 //           the AO on both alike. The sun and the punctual lights keep their Cook-Torrance lobe.
-//   medium  the split sum: the prefiltered environment and the (A, B) table, Lagarde's specular occlusion.
+//   medium  the split sum: the prefiltered environment and the (A, B) table, Lagarde's specular occlusion. (The
+//           deferred form shades roughness 1 alone, where the prefiltered radiance is the irradiance towards the
+//           reflection: it evaluates that instead of reading level 5.)
 //   high    medium, plus the energy the single-scattering lobe loses: multiple scattering in the ambient
 //           (Fdez-Aguera 2019) and the direct lights' energy compensation (Kulla & Conty 2017, as Filament), and the
 //           reflection's horizon occlusion where a normal texture tilts it below the surface (Russell 2015).
