@@ -10,6 +10,7 @@
 #include "TestSupport.h"
 #include "base/Error.h"
 #include "effects/dither/Dither.h"
+#include "effects/dof/DepthOfFieldEffect.h"
 #include "effects/fog/FogEffect.h"
 #include "effects/grading/ColorGrading.h"
 #include "effects/grain/Grain.h"
@@ -214,6 +215,8 @@ TEST(Shaders, FusedStagesTakeNoMoreUniformVectorsThanTheyDeclare) {
   for (int lights : {0, kMaxPunctualLights})
     for (const LightingEffect::StageHeadSpec& head : LightingEffect::stageHeads(lights))
       heads.emplace_back(head.program, head.vectors);
+  for (const StageHeadProgram& head : DepthOfFieldEffect::stageHeads())
+    heads.emplace_back(head.program, DepthOfFieldEffect::kCompositeUniformVectors);
   int checked = 0;
   for (const std::vector<StageDecl>& chain : chains) {
     int declared = 0;

@@ -8,7 +8,8 @@
 // DOF_PASS 1: the CoC from the G-buffer's depth.        5: the 3 x 3 tiles' largest near |C| (NeighborMax).
 //          2: half-size colour and CoC.                  6: the near field.
 //          3: tile columns' largest near |C|.            7: the far field.
-//          4: tiles' largest near |C| (with 3: K x K).   8: the composite.
+//          4: tiles' largest near |C| (with 3: K x K).   8: the composite (a stage head: its colour goes to
+//                                                           finishPixel, the stages fused after it).
 #include "lib/precision.glsl"
 #include "lib/packing.glsl"
 #include "lib/hdr.glsl"
@@ -262,6 +263,7 @@ void main() {
     background = coc > 0.0 ? mix(small, background, clamp(coc - SMALL_COC, 0.0, 1.0)) : small;
   }
   vec4 nearField = texture2D(u_near, v_uv);
-  gl_FragColor = encodeHdr(background * (1.0 - nearField.a) + fromField(nearField.rgb));
+  // The stages fused after the composite (the tone curve, ...: frame/Stage.h), or the HDR encoding alone.
+  gl_FragColor = finishPixel(background * (1.0 - nearField.a) + fromField(nearField.rgb), stagePixel(v_uv));
 }
 #endif

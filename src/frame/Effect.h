@@ -151,6 +151,9 @@ struct StageHead {
   // It depth-tests against the depth it shares with an earlier pass (the forward lighting over the G-buffer's): where
   // that pass runs, it keeps that depth rather than draw into the output with the output's own.
   bool keepsSharedDepth = false;
+  // It fills StagePixel's view-space position and normal (STAGE_POSITION, STAGE_NORMAL: the lighting, a stage pass);
+  // false: a stage that needs them (fog) does not fuse into it.
+  bool pixelGeometry = true;
 };
 
 // One pass of this frame: what it reads and writes, and how it draws. Reads of a target bind to its latest earlier

@@ -272,6 +272,7 @@ FramePlan FramePlan::resolve(FramePlanner&& planner, const std::string& result,
       const auto input = next.reads.find(stage.input);
       if (input == next.reads.end() || input->second != color || stage.inputSpace != space) break;
       if (stage.uniformVectors > vectors) break;
+      if ((stage.position || stage.normal) && !offer.pixelGeometry) break;
       if (!stage.textures.empty() && !offer.bindsTextures) break;
       const int stageUnits = static_cast<int>(stage.textures.size() + stage.ownTextures.size());
       if (stageUnits > 0 && stageUnits > units) break;

@@ -79,6 +79,43 @@ void setStageSamplers(const gl::Program& program, const std::vector<StageDecl>& 
     for (const auto& [sampler, texture] : stage.ownTextures) program.set(sampler, unit++);
 }
 
+PassDecl fullscreenStageHead(const EffectResources& resources, std::string name, ProgramSpec program,
+                             std::vector<TextureInput> inputs, PassDecl::Write output, ColorSpace space,
+                             int uniformVectors, std::function<void(FullscreenDraw&, const PassContext&)> uniforms) {
+  PassDecl pass;
+  pass.name = std::move(name);
+  for (const TextureInput& input : inputs) pass.reads.push_back(input.target);
+  pass.writes = {output};
+  pass.programs = {program.name};
+  StageHead head;
+  head.color = output.target;
+  head.space = space;
+  head.uniformVectors = resources.caps.maxFragmentUniformVectors - uniformVectors;
+  head.bindsTextures = true;
+  // GLES 2's 8 fragment texture units, less the pass's own inputs.
+  head.textureUnits = 8 - static_cast<int>(inputs.size());
+  head.pixelGeometry = false;
+  pass.stageHead = head;
+  pass.run = [program = std::move(program), inputs = std::move(inputs), space,
+              uniforms = std::move(uniforms)](PassContext& context) {
+    const std::vector<StageDecl>& chain = context.stages();
+    const std::string& target = context.stageOutput();
+    FullscreenDraw draw(context.program(fusedProgramName(program.name, chain),
+                                        [&] { return fusedProgram(program, chain, space); }),
+                        context.resources().triangle, &context);
+    context.bindForWriting(target);
+    for (const TextureInput& input : inputs) draw.read(input.sampler, input.target);
+    for (const StageDecl& fused : chain) {
+      for (const auto& [sampler, read] : fused.textures) draw.read(sampler, read);
+      for (const auto& [sampler, texture] : fused.ownTextures) draw.texture(sampler, texture());
+    }
+    setStageUniforms(draw.program(), chain, context, context.writesOutput(target));
+    if (uniforms) uniforms(draw, context);
+    draw.draw();
+  };
+  return pass;
+}
+
 StageDecl displayStage(const std::string& name, int uniformVectors) {
   StageDecl stage;
   stage.name = name;

@@ -20,10 +20,12 @@
 //
 // Programs: a head's program for each chain that fuses into it, built the first time a plan fuses that chain
 // (docs/architecture.md counts them).
+#include <functional>
 #include <string>
 #include <vector>
 
 #include "frame/EffectEntry.h"
+#include "frame/FullscreenPass.h"
 #include "gl/ShaderLibrary.h"
 
 namespace obscura {
@@ -37,6 +39,21 @@ inline constexpr int kStagePassUniformVectors = 2;
 // (shaders_es2/frame/stage_pass.frag) that decodes its colour, runs the chain (it and the stages fused after it)
 // and encodes the result. It reads the G-buffer too where the stage needs its pixel's position or normal.
 PassDecl stagePass(const EffectResources& resources, StageDecl stage, std::string output);
+
+// A full-screen pass that offers the stages after it (fullscreenPass's arguments, frame/FullscreenPass.h): its
+// fragment file's main hands its colour, in `space`, to finishPixel(color, stagePixel(v_uv)) instead of encoding it,
+// and its program is fusedProgram(program, the fused chain, space), which with no stage encodes the colour as the
+// pass did (stageOutput). `uniformVectors`: the fragment uniform vectors its own program takes; the rest, and the
+// texture units its inputs leave, are the stages'. It gives no position or normal (StageHead::pixelGeometry).
+PassDecl fullscreenStageHead(const EffectResources& resources, std::string name, ProgramSpec program,
+                             std::vector<TextureInput> inputs, PassDecl::Write output, ColorSpace space,
+                             int uniformVectors, std::function<void(FullscreenDraw&, const PassContext&)> uniforms);
+// What an effect's stageHeads() lists for the shader checks (renderer/EffectTable.cpp: fusedProgramSpecs): a head's
+// program without stages, and the space of the colour it hands on.
+struct StageHeadProgram {
+  ProgramSpec program;
+  ColorSpace space = ColorSpace::Hdr;
+};
 
 // A stage on the frame's display colour (kFinalImageTarget, after the tone curve), reading and writing it: the
 // effect `name`'s function `nameStage` in shaders_es2/name/name.glsl, whose uniforms take `uniformVectors` fragment

@@ -171,7 +171,7 @@ EffectInfo DepthOfFieldEffect::info() {
 
 std::vector<ProgramSpec> DepthOfFieldEffect::programSpecs() {
   std::vector<ProgramSpec> specs = {spec(kCoc), spec(kDownsample), spec(kTileColumns), spec(kTiles),
-                                    spec(kNeighbors), spec(kComposite)};
+                                    spec(kNeighbors), fusedProgram(spec(kComposite), {}, ColorSpace::Hdr)};
   for (const DofPreset& p : kPresets) {
     specs.push_back(spec(kNear, p.taps));
     specs.push_back(spec(kFar, p.taps));
@@ -179,7 +179,9 @@ std::vector<ProgramSpec> DepthOfFieldEffect::programSpecs() {
   return specs;
 }
 
-DepthOfFieldEffect::DepthOfFieldEffect(const EffectResources&) {}
+std::vector<StageHeadProgram> DepthOfFieldEffect::stageHeads() { return {{spec(kComposite), ColorSpace::Hdr}}; }
+
+DepthOfFieldEffect::DepthOfFieldEffect(const EffectResources& resources) : resources_(resources) {}
 
 void DepthOfFieldEffect::plan(FramePlanner& planner) {
   const DofSettings& settings = planner.settings().of<DofSettings>();
@@ -237,16 +239,17 @@ void DepthOfFieldEffect::plan(FramePlanner& planner) {
   planner.add(fullscreenPass("dof-far", spec(kFar, taps), {{"u_half", "dof-half"}},
                              {"dof-far", TargetSize::half(), Write::Depth::None, ""}, gather(false)));
 
-  planner.add(fullscreenPass("dof-composite", spec(kComposite),
-                             {{"u_color", "scene-color"},
-                              {"u_coc", "dof-coc"},
-                              {"u_near", "dof-near"},
-                              {"u_far", "dof-far"},
-                              {"u_neighbors", "dof-neighbors"}},
-                             {"scene-color"}, [range](FullscreenDraw& draw, const PassContext& context) {
-                               draw.set("u_range", range);
-                               draw.set("u_fullSize", glm::vec2(context.size("scene-color")));
-                             }));
+  planner.add(fullscreenStageHead(resources_, "dof-composite", spec(kComposite),
+                                  {{"u_color", "scene-color"},
+                                   {"u_coc", "dof-coc"},
+                                   {"u_near", "dof-near"},
+                                   {"u_far", "dof-far"},
+                                   {"u_neighbors", "dof-neighbors"}},
+                                  {"scene-color"}, ColorSpace::Hdr, kCompositeUniformVectors,
+                                  [range](FullscreenDraw& draw, const PassContext& context) {
+                                    draw.set("u_range", range);
+                                    draw.set("u_fullSize", glm::vec2(context.size("dof-coc")));
+                                  }));
 }
 
 }  // namespace obscura

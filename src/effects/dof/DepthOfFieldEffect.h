@@ -53,6 +53,7 @@
 #include <glm/vec3.hpp>
 
 #include "frame/EffectEntry.h"
+#include "frame/Stage.h"
 #include "frame/TileMaxPasses.h"
 
 namespace obscura {
@@ -119,9 +120,17 @@ class DepthOfFieldEffect : public Effect {
   static constexpr int kMaxTile = 128;  // the tile passes' loop bound (MAX_TILE); the largest radius clamps to it
   static EffectInfo info();
   static std::vector<ProgramSpec> programSpecs();
+  // The composite offers the stages after it (frame/Stage.h: fullscreenStageHead): the tone curve and the display
+  // colour's stages run in its program instead of a pass of their own. Its program without stages, and the fragment
+  // uniform vectors it keeps for itself (u_range, u_fullSize).
+  static std::vector<StageHeadProgram> stageHeads();
+  static constexpr int kCompositeUniformVectors = 2;
 
   explicit DepthOfFieldEffect(const EffectResources& resources);
   void plan(FramePlanner& planner) override;
+
+ private:
+  const EffectResources& resources_;
 };
 
 }  // namespace obscura
