@@ -9,6 +9,7 @@
 
 #include "TestSupport.h"
 #include "base/Error.h"
+#include "effects/bloom/BloomEffect.h"
 #include "effects/dither/Dither.h"
 #include "effects/dof/DepthOfFieldEffect.h"
 #include "effects/fog/FogEffect.h"
@@ -217,6 +218,8 @@ TEST(Shaders, FusedStagesTakeNoMoreUniformVectorsThanTheyDeclare) {
       heads.emplace_back(head.program, head.vectors);
   for (const StageHeadProgram& head : DepthOfFieldEffect::stageHeads())
     heads.emplace_back(head.program, DepthOfFieldEffect::kCompositeUniformVectors);
+  for (const StageHeadProgram& head : BloomEffect::stageHeads())
+    heads.emplace_back(head.program, BloomEffect::kCompositeUniformVectors);
   int checked = 0;
   for (const std::vector<StageDecl>& chain : chains) {
     int declared = 0;

@@ -4,7 +4,8 @@
 //               1 downsample: the 13-tap filter, level k-1 -> level k
 //               2 horizontal tent: up_k+1 filtered along x to level k's width (its own height)
 //               3 upsample: up_k = mix(level_k, tent(up_k+1), radius), the tent finished along y from stage 2
-//               4 composite: scene colour + intensity x tent(up_1), the tent finished along y from stage 2
+//               4 composite: scene colour + intensity x tent(up_1), the tent finished along y from stage 2; a stage
+//                 head (its colour goes to finishPixel: the stages fused after it)
 // The tent is separable (its weights are w(i) w(j)), so a 4 x 4 tent takes 4 + 4 fetches in two passes.
 // Every texture is RGB9E5 in RGBA8 (lib/hdr.glsl), fetched NEAREST at texel centres and decoded before filtering:
 // the hardware's bilinear filter would average the encoded bytes.
@@ -89,6 +90,8 @@ void main() {
 #elif BLOOM_STAGE == 3
   gl_FragColor = encodeHdr(mix(decodeHdr(texture2D(u_level, v_uv)), tentAlong(vec2(0.0, 1.0)), u_radius));
 #else
-  gl_FragColor = encodeHdr(decodeHdr(texture2D(u_level, v_uv)) + u_intensity * tentAlong(vec2(0.0, 1.0)));
+  // The stages fused after the composite (the tone curve, ...: frame/Stage.h), or the HDR encoding alone.
+  gl_FragColor = finishPixel(decodeHdr(texture2D(u_level, v_uv)) + u_intensity * tentAlong(vec2(0.0, 1.0)),
+                             stagePixel(v_uv));
 #endif
 }

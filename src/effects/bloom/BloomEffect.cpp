@@ -19,6 +19,9 @@ ProgramSpec spec(int stage) {
                      {{"BLOOM_STAGE", std::to_string(stage)}, {"FAR_RAY", "0"}}};
 }
 
+// The composite's program as it runs: a stage head's, here with no stage fused (its colour HDR-encoded).
+ProgramSpec compositeSpec() { return fusedProgram(spec(4), {}, ColorSpace::Hdr); }
+
 }  // namespace
 
 float bloomThresholdScale(const glm::vec3& color, float threshold, float knee) {
@@ -113,7 +116,7 @@ void tentAlongX(const EffectResources& r, const gl::Texture2D& coarser) {
 // up k = mix(level k, tent(up k+1), radius) (stage 3), or the frame plus intensity x tent(up 1) (stage 4).
 void upOrComposite(const EffectResources& r, bool composite, const gl::Texture2D& half, const gl::Texture2D& level,
                    const BloomSettings& settings) {
-  FullscreenDraw draw(r.program(spec(composite ? 4 : 3)), r.triangle);
+  FullscreenDraw draw(r.program(composite ? compositeSpec() : spec(3)), r.triangle);
   draw.texture("u_source", half).texture("u_level", level);
   draw.set("u_sourceSize", glm::vec2(half.width(), half.height()));
   if (composite) draw.set("u_intensity", settings.intensity);
@@ -151,7 +154,11 @@ EffectInfo BloomEffect::info() {
   return info;
 }
 
-std::vector<ProgramSpec> BloomEffect::programSpecs() { return {spec(0), spec(1), spec(2), spec(3), spec(4)}; }
+std::vector<ProgramSpec> BloomEffect::programSpecs() {
+  return {spec(0), spec(1), spec(2), spec(3), compositeSpec()};
+}
+
+std::vector<StageHeadProgram> BloomEffect::stageHeads() { return {{spec(4), ColorSpace::Hdr}}; }
 
 BloomEffect::BloomEffect(const EffectResources& resources) : resources_(resources) {}
 
@@ -201,12 +208,13 @@ void BloomEffect::plan(FramePlanner& planner) {
         },
         {spec(3).name});
   }
-  // The frame with its glow.
-  add("bloom", {tent(0), "scene-color"}, "scene-color", TargetSize::full(),
-      [this, bloom](PassContext& context) {
-        upOrComposite(resources_, true, context.texture(tent(0)), context.texture("scene-color"), bloom(context));
-      },
-      {spec(4).name});
+  // The frame with its glow, and the stages fused after it (the tone curve, ...).
+  planner.add(fullscreenStageHead(resources_, "bloom", spec(4), {{"u_source", tent(0)}, {"u_level", "scene-color"}},
+                                  {"scene-color"}, ColorSpace::Hdr, kCompositeUniformVectors,
+                                  [bloom](FullscreenDraw& draw, const PassContext& context) {
+                                    draw.set("u_sourceSize", glm::vec2(context.size(tent(0))));
+                                    draw.set("u_intensity", bloom(context).intensity);
+                                  }));
 }
 
 void BloomEffect::render(const BloomSettings& settings, const gl::Texture2D& sceneColor, glm::ivec2 size,

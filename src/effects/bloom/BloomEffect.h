@@ -46,6 +46,7 @@
 #include <glm/vec3.hpp>
 
 #include "frame/EffectEntry.h"
+#include "frame/Stage.h"
 #include "gl/RenderTarget.h"
 
 namespace obscura {
@@ -80,6 +81,11 @@ class BloomEffect : public Effect {
   static constexpr int kMaxLevels = 6;
   static EffectInfo info();
   static std::vector<ProgramSpec> programSpecs();
+  // The composite offers the stages after it (frame/Stage.h: fullscreenStageHead): with bloom on and nothing else
+  // reading its colour first, the tone curve and the display colour's stages run in its program. Its program without
+  // stages, and the fragment uniform vectors it keeps for itself (u_sourceSize, u_intensity).
+  static std::vector<StageHeadProgram> stageHeads();
+  static constexpr int kCompositeUniformVectors = 2;
 
   explicit BloomEffect(const EffectResources& resources);
   void plan(FramePlanner& planner) override;
