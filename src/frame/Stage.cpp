@@ -11,6 +11,14 @@ ColorSpace finalSpace(const std::vector<StageDecl>& chain, ColorSpace space) {
   return chain.empty() ? space : chain.back().outputSpace;
 }
 
+// A full-screen head's draw binds what its chain's stages read: targets of the frame, and textures their effects own.
+void readStageTextures(FullscreenDraw& draw, const std::vector<StageDecl>& chain) {
+  for (const StageDecl& stage : chain) {
+    for (const auto& [sampler, target] : stage.textures) draw.read(sampler, target);
+    for (const auto& [sampler, texture] : stage.ownTextures) draw.texture(sampler, texture());
+  }
+}
+
 }  // namespace
 
 bool chainNeedsPosition(const std::vector<StageDecl>& chain) {
@@ -105,10 +113,7 @@ PassDecl fullscreenStageHead(const EffectResources& resources, std::string name,
                         context.resources().triangle, &context);
     context.bindForWriting(target);
     for (const TextureInput& input : inputs) draw.read(input.sampler, input.target);
-    for (const StageDecl& fused : chain) {
-      for (const auto& [sampler, read] : fused.textures) draw.read(sampler, read);
-      for (const auto& [sampler, texture] : fused.ownTextures) draw.texture(sampler, texture());
-    }
+    readStageTextures(draw, chain);
     setStageUniforms(draw.program(), chain, context, context.writesOutput(target));
     if (uniforms) uniforms(draw, context);
     draw.draw();
@@ -157,10 +162,7 @@ PassDecl stagePass(const EffectResources& resources, StageDecl stage, std::strin
       draw.read("u_gbuffer", "gbuffer");
       setReconstruction(draw.program(), context.camera().reconstruction);
     }
-    for (const StageDecl& fused : chain) {
-      for (const auto& [sampler, read] : fused.textures) draw.read(sampler, read);
-      for (const auto& [sampler, texture] : fused.ownTextures) draw.texture(sampler, texture());
-    }
+    readStageTextures(draw, chain);
     setStageUniforms(draw.program(), chain, context, context.writesOutput(target));
     draw.draw();
   };

@@ -5,7 +5,8 @@
 // pass before it: the plan fuses a stage into the pass that writes the colour it reads when nothing else reads that
 // colour (frame/FramePlan.h, rule 4b), stage after stage, and the fused program skips the HDR encode and decode
 // between them. The lighting takes stages (its forms' programs call finishPixel); so does a stage pass that runs
-// alone, for the stages after it. pmndrs/postprocessing's EffectPass merges its effects' mainImage functions the same
+// alone, for the stages after it, and any full-screen pass declared with fullscreenStageHead (bloom's and depth of
+// field's composites). pmndrs/postprocessing's EffectPass merges its effects' mainImage functions the same
 // way at run time; here the chains come from the table, and each is a program built once, on first use.
 //
 // A stage is a folder's worth of code like any effect: its GLSL file (shaders_es2/NAME/NAME.glsl) defines
