@@ -71,6 +71,22 @@ int worstByteDifference(const RenderedImage& a, const RenderedImage& b) {
   return worst;
 }
 
+ColorDifference colorDifference(const RenderedImage& a, const RenderedImage& b) {
+  EXPECT_EQ(a.rgba.size(), b.rgba.size());
+  ColorDifference d;
+  double sum = 0.0;
+  size_t count = 0;
+  for (size_t i = 0; i < std::min(a.rgba.size(), b.rgba.size()); ++i) {
+    if (i % 4 == 3) continue;
+    const int difference = std::abs(a.rgba[i] - b.rgba[i]);
+    d.worst = std::max(d.worst, difference);
+    sum += difference;
+    ++count;
+  }
+  d.mean = count ? sum / static_cast<double>(count) : 0.0;
+  return d;
+}
+
 HdrImage retainedHdr(Renderer& renderer, const std::string& target) {
   const gl::RenderTarget& t = renderer.retained(target);
   const std::vector<std::uint8_t> bytes = t.readRgba();  // rows top to bottom

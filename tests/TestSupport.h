@@ -43,6 +43,13 @@ RenderedImage render(Renderer& renderer, const Camera& camera, const RenderSetti
 FrameOptions retaining(std::vector<std::string> targets);
 // The largest difference of any byte between two images of one size.
 int worstByteDifference(const RenderedImage& a, const RenderedImage& b);
+// Over the colour channels (alpha left out) of two images of one size: the largest difference and the mean, in
+// levels of 255.
+struct ColorDifference {
+  int worst = 0;
+  double mean = 0.0;
+};
+ColorDifference colorDifference(const RenderedImage& a, const RenderedImage& b);
 
 // A retained RGB9E5 target (scene-color, bloom's and the flare's targets) decoded, rows bottom to top (GL's order,
 // as uv).

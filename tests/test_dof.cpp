@@ -538,23 +538,14 @@ TEST(DepthOfField, TheToneCurveAndTheDisplayStagesRunInTheCompositesPass) {
   int separatePasses = 0;
   for (const PlannedPass& pass : b.lastPlan().passes()) separatePasses += pass.live ? 1 : 0;
   EXPECT_EQ(passes, separatePasses - 2);
-  int worst = 0;
-  double sum = 0.0;
-  size_t count = 0;
-  for (size_t i = 0; i < one.rgba.size(); ++i) {
-    if (i % 4 == 3) continue;
-    const int d = std::abs(int(one.rgba[i]) - int(two.rgba[i]));
-    worst = std::max(worst, d);
-    sum += d;
-    ++count;
-  }
+  const test::ColorDifference d = test::colorDifference(one, two);
   std::printf("[ dof ] the tone curve and the vignette fused into the composite against separate passes: largest "
               "difference %d/255, mean %.4f/255\n",
-              worst, sum / static_cast<double>(count));
+              d.worst, d.mean);
   // Every pixel skips one RGB9E5 quantisation (9 bits of its largest channel): a level in about a fifth of the
   // channels (measured 1/255 at most, 0.19/255 on average).
-  EXPECT_LE(worst, 1);
-  EXPECT_LT(sum / static_cast<double>(count), 0.3);
+  EXPECT_LE(d.worst, 1);
+  EXPECT_LT(d.mean, 0.3);
 }
 
 }  // namespace
