@@ -29,8 +29,9 @@
 //   either, tone-mapped: when the tone-mapping pass is the only reader of the HDR colour (no effect works on it in
 //             between, no view shows it), the lighting applies the tone mapping itself (ToneMapInUse: exposure,
 //             curve, sRGB, luma in alpha) and writes "display-color": a full-screen pass and an HDR encode and
-//             decode fewer. The forward form does so only when something reads the display colour after it (FXAA):
-//             it cannot draw into the output framebuffer, which has no depth buffer.
+//             decode fewer (the per-pixel stages after the lighting fuse into it: frame/Stage.h). The forward form
+//             draws into the output framebuffer only where the output has a depth buffer of its own and the G-buffer
+//             pass does not run (StageHead::mayWriteOutput, keepsSharedDepth); else a pass after it does.
 //
 // Its second target, "shading-count", is a diagnostic: the same pass with the same reads and depth set-up, counting
 // how many fragments each pixel shaded (additive blending of 1/255) instead of shading them; the view
