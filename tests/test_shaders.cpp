@@ -9,9 +9,7 @@
 
 #include "TestSupport.h"
 #include "base/Error.h"
-#include "effects/bloom/BloomEffect.h"
 #include "effects/dither/Dither.h"
-#include "effects/dof/DepthOfFieldEffect.h"
 #include "effects/fog/FogEffect.h"
 #include "effects/grading/ColorGrading.h"
 #include "effects/grain/Grain.h"
@@ -144,7 +142,7 @@ TEST(Shaders, EveryProgramFitsTheGles2UniformVectors) {
   // the tone-mapping stage fused, with 0 .. 4 lights: exactly the figures punctualLightsPerDraw counts with (the
   // layered ones with kMaterialLayerVectors more).
   for (int lights = 0; lights <= kMaxPunctualLights; ++lights) {
-    const std::vector<LightingEffect::StageHeadSpec> heads = LightingEffect::stageHeads(lights);
+    const std::vector<StageHeadSpec> heads = LightingEffect::stageHeads(lights);
     const ProgramSpec& heaviest = heads[heads.size() - 2].program;
     const ProgramSpec& layered = heads.back().program;
     ASSERT_NE(heaviest.name.find("forward,mask,texture,pbr,atlas"), std::string::npos) << heaviest.name;
@@ -212,23 +210,20 @@ TEST(Shaders, FusedStagesTakeNoMoreUniformVectorsThanTheyDeclare) {
   for (const StageDecl& stage : display) chains.push_back({tone, stage});
   chains.push_back({FogEffect::stage(FogMode::Exponential, false), tone, GradingEffect::stage(true, true),
                     VignetteEffect::stage(), GrainEffect::stage(), DitherEffect::stage()});
-  std::vector<std::pair<ProgramSpec, int>> heads;  // with the vectors each keeps
-  for (int lights : {0, kMaxPunctualLights})
-    for (const LightingEffect::StageHeadSpec& head : LightingEffect::stageHeads(lights))
-      heads.emplace_back(head.program, head.vectors);
-  for (const StageHeadProgram& head : DepthOfFieldEffect::stageHeads())
-    heads.emplace_back(head.program, DepthOfFieldEffect::kCompositeUniformVectors);
-  for (const StageHeadProgram& head : BloomEffect::stageHeads())
-    heads.emplace_back(head.program, BloomEffect::kCompositeUniformVectors);
+  // Every head of the table (the lighting's without punctual lights, bloom's and depth of field's composites), and
+  // the lighting's with the most lights.
+  std::vector<StageHeadSpec> heads = LightingEffect::stageHeads(kMaxPunctualLights);
+  for (const EffectEntry& row : effectTable())
+    for (StageHeadSpec& head : row.stageHeads()) heads.push_back(std::move(head));
   int checked = 0;
   for (const std::vector<StageDecl>& chain : chains) {
     int declared = 0;
     for (const StageDecl& stage : chain) declared += stage.uniformVectors;
     std::vector<std::pair<ProgramSpec, int>> programs = {
         {fusedProgram(stagePassHead(chain), chain, chain.front().inputSpace), kStagePassUniformVectors}};
-    if (chain.front().inputSpace == ColorSpace::Hdr)
-      for (const auto& [head, vectors] : heads)
-        programs.emplace_back(fusedProgram(head, chain, ColorSpace::Hdr), vectors);
+    for (const StageHeadSpec& head : heads)
+      if (head.space == chain.front().inputSpace)
+        programs.emplace_back(fusedProgram(head.program, chain, head.space), head.uniformVectors);
     for (const auto& [spec, vectors] : programs) {
       if (!std::all_of(spec.extensions.begin(), spec.extensions.end(),
                        [&](const std::string& e) { return caps.has(e); }))

@@ -70,6 +70,15 @@ template <typename E>
 struct HasStageHeads<E, std::void_t<decltype(E::stageHeads())>> : std::true_type {};
 }  // namespace detail
 
+// A program per-pixel stages fuse into (frame/Stage.h), as fusedProgram takes it, for the shader checks: its fragment
+// file's main calls finishPixel; `space`, the colour it hands on; `uniformVectors`, the fragment uniform vectors the
+// head keeps for itself (the stages take the rest).
+struct StageHeadSpec {
+  ProgramSpec program;
+  ColorSpace space = ColorSpace::Hdr;
+  int uniformVectors = 0;
+};
+
 struct EffectEntry {
   EffectInfo info;
   std::type_index settingsType = typeid(void);
@@ -85,7 +94,7 @@ struct EffectEntry {
   // Per-pixel stages (frame/Stage.h), for the shader checks: every variant of the stage it declares, and the
   // programs stages fuse into that it runs (a fragment file whose main calls finishPixel, and its colour's space).
   std::function<std::vector<StageDecl>()> stages;
-  std::function<std::vector<std::pair<ProgramSpec, ColorSpace>>()> stageHeads;
+  std::function<std::vector<StageHeadSpec>()> stageHeads;
 
   // The row of effect class E: E::info(), E::programSpecs(), E(const EffectResources&), and E::Settings with
   // parameters() (local names), validate(), a bool `enabled` when E::kHasSwitch, and optionally presets:
@@ -115,13 +124,9 @@ struct EffectEntry {
     if constexpr (detail::HasStages<E>::value) entry.stages = [] { return E::stages(); };
     else entry.stages = [] { return std::vector<StageDecl>{}; };
     if constexpr (detail::HasStageHeads<E>::value) {
-      entry.stageHeads = [] {
-        std::vector<std::pair<ProgramSpec, ColorSpace>> heads;
-        for (const auto& head : E::stageHeads()) heads.emplace_back(head.program, head.space);
-        return heads;
-      };
+      entry.stageHeads = [] { return E::stageHeads(); };
     } else {
-      entry.stageHeads = [] { return std::vector<std::pair<ProgramSpec, ColorSpace>>{}; };
+      entry.stageHeads = [] { return std::vector<StageHeadSpec>{}; };
     }
     const std::string& effect = entry.info.name;
     for (const Parameter<S>& p : S::parameters()) {

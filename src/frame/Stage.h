@@ -49,12 +49,6 @@ PassDecl stagePass(const EffectResources& resources, StageDecl stage, std::strin
 PassDecl fullscreenStageHead(const EffectResources& resources, std::string name, ProgramSpec program,
                              std::vector<TextureInput> inputs, PassDecl::Write output, ColorSpace space,
                              int uniformVectors, std::function<void(FullscreenDraw&, const PassContext&)> uniforms);
-// What an effect's stageHeads() lists for the shader checks (renderer/EffectTable.cpp: fusedProgramSpecs): a head's
-// program without stages, and the space of the colour it hands on.
-struct StageHeadProgram {
-  ProgramSpec program;
-  ColorSpace space = ColorSpace::Hdr;
-};
 
 // A stage on the frame's display colour (kFinalImageTarget, after the tone curve), reading and writing it: the
 // effect `name`'s function `nameStage` in shaders_es2/name/name.glsl, whose uniforms take `uniformVectors` fragment

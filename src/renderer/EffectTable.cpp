@@ -120,7 +120,7 @@ const std::vector<std::string>& frameViewNames() {
 std::vector<ProgramSpec> fusedProgramSpecs() {
   // Every stage variant, in table order, each with the index of its row; and every head.
   std::vector<std::pair<size_t, StageDecl>> stages;
-  std::vector<std::pair<ProgramSpec, ColorSpace>> heads;
+  std::vector<StageHeadSpec> heads;
   for (size_t row = 0; row < effectTable().size(); ++row) {
     for (StageDecl& stage : effectTable()[row].stages()) stages.emplace_back(row, std::move(stage));
     for (auto& head : effectTable()[row].stageHeads()) heads.push_back(std::move(head));
@@ -156,8 +156,8 @@ std::vector<ProgramSpec> fusedProgramSpecs() {
   std::vector<ProgramSpec> specs;
   for (const std::vector<StageDecl>& chain : chains) {
     specs.push_back(fusedProgram(stagePassHead(chain), chain, chain.front().inputSpace));
-    for (const auto& [head, space] : heads)
-      if (space == chain.front().inputSpace) specs.push_back(fusedProgram(head, chain, space));
+    for (const StageHeadSpec& head : heads)
+      if (head.space == chain.front().inputSpace) specs.push_back(fusedProgram(head.program, chain, head.space));
   }
   return specs;
 }

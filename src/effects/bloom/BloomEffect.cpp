@@ -158,7 +158,9 @@ std::vector<ProgramSpec> BloomEffect::programSpecs() {
   return {spec(0), spec(1), spec(2), spec(3), compositeSpec()};
 }
 
-std::vector<StageHeadProgram> BloomEffect::stageHeads() { return {{spec(4), ColorSpace::Hdr}}; }
+std::vector<StageHeadSpec> BloomEffect::stageHeads() {
+  return {{spec(4), ColorSpace::Hdr, kCompositeUniformVectors}};
+}
 
 BloomEffect::BloomEffect(const EffectResources& resources) : resources_(resources) {}
 

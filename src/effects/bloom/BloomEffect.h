@@ -83,8 +83,8 @@ class BloomEffect : public Effect {
   static std::vector<ProgramSpec> programSpecs();
   // The composite offers the stages after it (frame/Stage.h: fullscreenStageHead): with bloom on and nothing else
   // reading its colour first, the tone curve and the display colour's stages run in its program. Its program without
-  // stages, and the fragment uniform vectors it keeps for itself (u_sourceSize, u_intensity).
-  static std::vector<StageHeadProgram> stageHeads();
+  // stages and the fragment uniform vectors it keeps for itself (u_sourceSize, u_intensity).
+  static std::vector<StageHeadSpec> stageHeads();
   static constexpr int kCompositeUniformVectors = 2;
 
   explicit BloomEffect(const EffectResources& resources);

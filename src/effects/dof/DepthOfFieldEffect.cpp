@@ -179,7 +179,9 @@ std::vector<ProgramSpec> DepthOfFieldEffect::programSpecs() {
   return specs;
 }
 
-std::vector<StageHeadProgram> DepthOfFieldEffect::stageHeads() { return {{spec(kComposite), ColorSpace::Hdr}}; }
+std::vector<StageHeadSpec> DepthOfFieldEffect::stageHeads() {
+  return {{spec(kComposite), ColorSpace::Hdr, kCompositeUniformVectors}};
+}
 
 DepthOfFieldEffect::DepthOfFieldEffect(const EffectResources& resources) : resources_(resources) {}
 

@@ -121,9 +121,9 @@ class DepthOfFieldEffect : public Effect {
   static EffectInfo info();
   static std::vector<ProgramSpec> programSpecs();
   // The composite offers the stages after it (frame/Stage.h: fullscreenStageHead): the tone curve and the display
-  // colour's stages run in its program instead of a pass of their own. Its program without stages, and the fragment
+  // colour's stages run in its program instead of a pass of their own. Its program without stages and the fragment
   // uniform vectors it keeps for itself (u_range, u_fullSize).
-  static std::vector<StageHeadProgram> stageHeads();
+  static std::vector<StageHeadSpec> stageHeads();
   static constexpr int kCompositeUniformVectors = 2;
 
   explicit DepthOfFieldEffect(const EffectResources& resources);

@@ -251,7 +251,7 @@ ProgramSpec LightingEffect::spec(const Form& shown, MaterialKind kind, VertexKin
   return form.counting ? s : fusedProgram(s, {}, ColorSpace::Hdr);
 }
 
-std::vector<LightingEffect::StageHeadSpec> LightingEffect::stageHeads(int lightsPerDraw) {
+std::vector<StageHeadSpec> LightingEffect::stageHeads(int lightsPerDraw) {
   const MaterialKind heaviest{true, true, true};
   const int forward = kForwardLightingVectorsWithoutStages + lightsPerDraw * kVectorsPerPunctualLight;
   std::vector<StageHeadSpec> heads;

@@ -167,15 +167,9 @@ class LightingEffect : public Effect {
   // by default as many; none where it is negative: their programs do not fit, punctualLightsPerDraw).
   static std::vector<ProgramSpec> programSpecs(int lightsPerDraw = kMaxPunctualLights,
                                                std::optional<int> layeredLightsPerDraw = std::nullopt);
-  // The programs per-pixel stages fuse into (frame/Stage.h), as fusedProgram takes them, for the shader checks: the
+  // The programs per-pixel stages fuse into (frame/EffectEntry.h: StageHeadSpec), for the shader checks: the
   // deferred form, the background, the forward form of the plainest and of the heaviest material, and of the heaviest
-  // layered one (with the atlas, and `lightsPerDraw` punctual lights). `vectors`: the fragment uniform vectors the
-  // head keeps for itself.
-  struct StageHeadSpec {
-    ProgramSpec program;
-    ColorSpace space;
-    int vectors = 0;
-  };
+  // layered one (with the atlas, and `lightsPerDraw` punctual lights).
   static std::vector<StageHeadSpec> stageHeads(int lightsPerDraw = 0);
   // The punctual lights per draw a context of this many fragment uniform vectors holds: 4 from 27 vectors, 0 at
   // GLES 2's minimum of 16 (the sun and the environment still light the scene); for the layered materials' programs
