@@ -87,6 +87,22 @@ ColorDifference colorDifference(const RenderedImage& a, const RenderedImage& b) 
   return d;
 }
 
+namespace {
+RendererOptions separateStages() {
+  RendererOptions options;
+  options.fuseStages = false;
+  return options;
+}
+}  // namespace
+
+FusedAndSeparate::FusedAndSeparate(const Scene& scene, const Camera& camera, const RenderSettings& settings)
+    : fused(makeRenderer()), separate(makeRenderer(separateStages())) {
+  fused.setScene(scene);
+  separate.setScene(scene);
+  difference = colorDifference(render(fused, camera, settings, View::Final),
+                               render(separate, camera, settings, View::Final));
+}
+
 HdrImage retainedHdr(Renderer& renderer, const std::string& target) {
   const gl::RenderTarget& t = renderer.retained(target);
   const std::vector<std::uint8_t> bytes = t.readRgba();  // rows top to bottom

@@ -50,6 +50,13 @@ struct ColorDifference {
   double mean = 0.0;
 };
 ColorDifference colorDifference(const RenderedImage& a, const RenderedImage& b);
+// One frame of `scene` drawn by two Renderers: one fusing the per-pixel stages into the passes before them, one
+// running each as a pass of its own (RendererOptions::fuseStages); their plans stay readable (lastPlan()).
+struct FusedAndSeparate {
+  FusedAndSeparate(const Scene& scene, const Camera& camera, const RenderSettings& settings);
+  Renderer fused, separate;
+  ColorDifference difference;
+};
 
 // A retained RGB9E5 target (scene-color, bloom's and the flare's targets) decoded, rows bottom to top (GL's order,
 // as uv).

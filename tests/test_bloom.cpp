@@ -331,20 +331,14 @@ TEST(Bloom, RunsAfterTaaAndBeforeTheToneMappingWhichTheLightingThenLeavesAlone) 
 // Fused into the composite or run as passes of their own (RendererOptions::fuseStages), the tone curve and the
 // display stages give the same image but for the HDR encoding the fused program skips after the composite.
 TEST(Bloom, TheToneCurveInTheCompositesPassGivesTheImageOfSeparatePasses) {
-  const Camera camera = builtinSceneCamera(160, 90);
-  RendererOptions fused, separate;
-  separate.fuseStages = false;
-  Renderer a = test::makeRenderer(fused), b = test::makeRenderer(separate);
-  a.setScene(makeBuiltinScene());
-  b.setScene(makeBuiltinScene());
   RenderSettings settings;
   settings.set("bloom", "on");
   settings.set("bloom.threshold", "0.5");
   settings.set("vignette", "on");
   settings.set("fxaa", "off");
   settings.set("dither", "off");
-  const test::ColorDifference d = test::colorDifference(test::render(a, camera, settings, View::Final),
-                                                       test::render(b, camera, settings, View::Final));
+  const test::ColorDifference d =
+      test::FusedAndSeparate(makeBuiltinScene(), builtinSceneCamera(160, 90), settings).difference;
   std::printf("bloom with the tone curve and the vignette fused into its composite against separate passes: largest "
               "difference %d/255, mean %.4f/255\n",
               d.worst, d.mean);

@@ -513,32 +513,24 @@ TEST(DepthOfField, SmallBlursMoveHalfWayToTheReference) {
 // run in its program, a pass fewer, and give the image they give as passes of their own (RendererOptions::fuseStages
 // off) but for the HDR encoding the fused program skips between the composite and the tone curve.
 TEST(DepthOfField, TheToneCurveAndTheDisplayStagesRunInTheCompositesPass) {
-  const Camera camera = builtinSceneCamera(160, 90);
-  RendererOptions fused, separate;
-  separate.fuseStages = false;
-  Renderer a = test::makeRenderer(fused), b = test::makeRenderer(separate);
-  a.setScene(makeBuiltinScene());
-  b.setScene(makeBuiltinScene());
   RenderSettings settings;
   settings.set("dof", "on");
   settings.set("dof.max-radius", "6");
   settings.set("vignette", "on");
   settings.set("fxaa", "off");   // the stages' output drawn into the output by the composite
   settings.set("dither", "off");  // a step of noise would add its own differences
-  const test::RenderedImage one = test::render(a, camera, settings, View::Final);
+  const test::FusedAndSeparate frames(makeBuiltinScene(), builtinSceneCamera(160, 90), settings);
+  auto livePasses = [](const Renderer& renderer) {
+    int passes = 0;
+    for (const PlannedPass& pass : renderer.lastPlan().passes()) passes += pass.live ? 1 : 0;
+    return passes;
+  };
   std::vector<std::string> absorbed;
-  int passes = 0;
-  for (const PlannedPass& pass : a.lastPlan().passes()) {
-    if (!pass.live) continue;
-    ++passes;
-    if (pass.decl.name == "dof-composite") absorbed = pass.absorbed;
-  }
+  for (const PlannedPass& pass : frames.fused.lastPlan().passes())
+    if (pass.live && pass.decl.name == "dof-composite") absorbed = pass.absorbed;
   EXPECT_EQ(absorbed, (std::vector<std::string>{"tonemap", "vignette"}));
-  const test::RenderedImage two = test::render(b, camera, settings, View::Final);
-  int separatePasses = 0;
-  for (const PlannedPass& pass : b.lastPlan().passes()) separatePasses += pass.live ? 1 : 0;
-  EXPECT_EQ(passes, separatePasses - 2);
-  const test::ColorDifference d = test::colorDifference(one, two);
+  EXPECT_EQ(livePasses(frames.fused), livePasses(frames.separate) - 2);
+  const test::ColorDifference& d = frames.difference;
   std::printf("[ dof ] the tone curve and the vignette fused into the composite against separate passes: largest "
               "difference %d/255, mean %.4f/255\n",
               d.worst, d.mean);

@@ -168,16 +168,14 @@ TEST(Pipeline, TheDepthTheLightingTakesWithTheAoOffDoesNotChangeTheImage) {
     for (const PlannedPass& pass : renderer.lastPlan().passes())
       lowGBufferRan = lowGBufferRan || (pass.live && pass.decl.name == "gbuffer");
     EXPECT_EQ(lowGBufferRan, deferred) << "low tier, auto";
-    int lowWorst = 0;
-    for (size_t i = 0; i < lowFrames["auto"].size(); ++i)
-      lowWorst = std::max(lowWorst, std::abs(int(lowFrames["auto"][i]) - int(lowFrames["overdraw"][i])));
-    EXPECT_LE(lowWorst, tolerance) << "low tier, auto against overdraw";
+    auto worst = [](const std::vector<std::uint8_t>& a, const std::vector<std::uint8_t>& b) {
+      return test::worstByteDifference({0, 0, a}, {0, 0, b});
+    };
+    EXPECT_LE(worst(lowFrames["auto"], lowFrames["overdraw"]), tolerance) << "low tier, auto against overdraw";
     settings.set("lighting.quality", "medium");
     for (const char* depth : {"prepass", "overdraw"}) {
-      int worst = 0;
-      for (size_t i = 0; i < frames[depth].size(); ++i)
-        worst = std::max(worst, std::abs(int(frames[depth][i]) - int(frames["gbuffer"][i])));
-      EXPECT_LE(worst, tolerance) << depth << " against gbuffer, " << (drawBuffers ? "deferred" : "forward");
+      EXPECT_LE(worst(frames[depth], frames["gbuffer"]), tolerance)
+          << depth << " against gbuffer, " << (drawBuffers ? "deferred" : "forward");
     }
   }
 }

@@ -4,9 +4,9 @@
 // modules may coexist).
 //
 // WebGL 1 only (the build links with MIN/MAX_WEBGL_VERSION=1): the back buffer is requested with depth (the forward
-// lighting may draw the scene into it), without multisampling, opaque and not preserved. Context loss is reported through callbacks:
-// on loss the event is accepted (preventDefault) so the browser may restore the context; on restore the extensions
-// are enabled again, since a restored context starts with none.
+// lighting may draw the scene into it), without multisampling, opaque and not preserved. Context loss is reported
+// through callbacks: on loss the event is accepted (preventDefault) so the browser may restore the context; on
+// restore the extensions are enabled again, since a restored context starts with none.
 #include <functional>
 
 #include <emscripten/html5_webgl.h>

@@ -1,6 +1,7 @@
 // Obscura's page frame in several states, taking turns in one page, each timed frame after two untimed ones in its
-// state (draw + gl.finish + a 1-pixel readPixels, as bench.mjs times it), on 2CylinderEngine.glb at the canvas's full size: the medians and the passes each
-// state runs. A state changes only what it names (setState), so each should name every parameter another one sets.
+// state (draw + gl.finish + a 1-pixel readPixels, as bench.mjs times it), on 2CylinderEngine.glb at the canvas's full
+// size: the medians and the passes each state runs. A state changes only what it names (setState), so each should
+// name every parameter another one sets.
 // Usage: node tools/browser-bench/ab-states.mjs [--size WxH] [--frames N] STATE ...
 //   e.g. ... 'preset=low&ao=off&fxaa=on' 'preset=low&ao=off&fxaa=off'   (docs/benchmarks.md, issue 26)
 import fs from 'node:fs';
