@@ -347,7 +347,7 @@ TEST(GltfCorpus, FuzzerSeedsLoadAsTheFuzzerLoadsThem) {
     expectDrawable(scene, name);
     loaded[name] = scene;
   }
-  EXPECT_EQ(loaded.size(), 9u);
+  EXPECT_EQ(loaded.size(), 10u);
   EXPECT_EQ(refused, 2);
   // What moves.
   for (const char* name : {"skin-animated.gltf", "morph-sparse.glb", "hierarchy-animated.glb", "skin-40-joints.glb"}) {
@@ -360,6 +360,12 @@ TEST(GltfCorpus, FuzzerSeedsLoadAsTheFuzzerLoadsThem) {
   EXPECT_EQ(loaded["meshopt-quantized.glb"].triangleCount(), 128u);
   EXPECT_EQ(loaded["meshopt-quantized.glb"].lineInstances.size(), 1u);
   EXPECT_GT(loaded["draco-engine.glb"].triangleCount(), 1000u);
+  // The small Draco seed: the grid twice (edgebreaker, sequential), each with its normals and texture coordinates,
+  // its positions within the 14-bit quantization's step of the grid's 0..8.
+  const Scene& dracoGrid = loaded["draco-grid.glb"];
+  EXPECT_EQ(dracoGrid.triangleCount(), 256u);
+  for (const Mesh& mesh : dracoGrid.meshes) EXPECT_EQ(mesh.texcoords.size(), mesh.positions.size());
+  EXPECT_NEAR(dracoGrid.worldBounds().max.x, 8.0f, 1e-3f);
   // Materials and textures: every slot, decoded images, cut-out and blended materials.
   const Scene& materials = loaded["materials-textured.glb"];
   EXPECT_EQ(materials.materials.size(), 5u);
