@@ -13,8 +13,8 @@
 // same steady frame (the full frame, drawn back to back). Prints each round, the medians and the issue's targets
 // (the first frame against a steady frame at its own scale); writes a CSV.
 //
-// Usage: node tools/browser-bench/startup.mjs [--rounds N] [--size WxH] [--frames N] [--csv FILE]
-//   (defaults: 3 rounds, 1280x720, 4 steady frames, bench-results/browser-startup.csv)
+// Usage: node tools/browser-bench/startup.mjs [--rounds N] [--size WxH] [--frames N] [--settle MS] [--csv FILE]
+//   (defaults: 3 rounds, 1280x720, 4 steady frames, 2000 ms between loads, bench-results/browser-startup.csv)
 import fs from 'node:fs';
 import path from 'node:path';
 import { fileURLToPath } from 'node:url';
@@ -23,16 +23,17 @@ import { startServer } from '../serve-web.mjs';
 import { chromiumLaunchOptions, parseOptions } from '../headless-chromium.mjs';
 
 const root = path.resolve(path.dirname(fileURLToPath(import.meta.url)), '..', '..');
-const options = { rounds: 3, size: '1280x720', frames: 4,
+const options = { rounds: 3, size: '1280x720', frames: 4, settle: 2000,
                   csv: path.join(root, 'bench-results', 'browser-startup.csv') };
 parseOptions(process.argv.slice(2), {
   '--rounds': (v) => { options.rounds = Number(v); },
   '--size': (v) => { options.size = v; },
   '--frames': (v) => { options.frames = Number(v); },
+  '--settle': (v) => { options.settle = Number(v); },
   '--csv': (v) => { options.csv = path.resolve(v); },
 }, path.basename(import.meta.url));
 const [width, height] = options.size.split('x').map(Number);
-if (!(width > 0 && height > 0 && options.rounds > 0 && options.frames > 0)) {
+if (!(width > 0 && height > 0 && options.rounds > 0 && options.frames > 0 && options.settle >= 0)) {
   throw new Error('--size WxH, --rounds N and --frames N must be positive');
 }
 
@@ -106,6 +107,11 @@ try {
                 `${result.shownMs.toFixed(0)} ms; steady frame ${result.steadyMs.toFixed(0)} ms at that scale, ` +
                 `${result.fullMs.toFixed(0)} ms at 1`);
     await context.close();
+    // The closed page's WebGL context is torn down in the GPU process after close() returns, and a context created
+    // meanwhile waits for it: loads that followed at once took 770 to 900 ms for the WebGL context alone against 17
+    // to 51 ms after a pause (2026-11-27, docs/benchmarks.md). A first visit finds the browser idle, so the next
+    // load waits for the teardown.
+    await new Promise((resolve) => setTimeout(resolve, options.settle));
   }
   for (const quick of [true, false]) {
     const these = rounds.filter((r) => r.quick === quick);
