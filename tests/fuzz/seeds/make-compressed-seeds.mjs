@@ -7,8 +7,8 @@
 // - draco-engine.glb: Debian's Draco 2CylinderEngine (.gltf + .bin) as one .glb.
 // - draco-grid.glb: the 9 x 9 grid (float positions, normals, texture coordinates) Draco-compressed twice, with the
 //   edgebreaker and with the sequential connectivity coder, in two primitives. The engine takes about 130 ms a run in
-//   the sanitized fuzzer and this one under 1 ms: the fuzzer, scheduling by execution time, mutates Draco's stream
-//   here most of the time (tools/fuzz-gltf.sh).
+//   the sanitized fuzzer and this one under 1 ms, so the worker that schedules by execution time mutates Draco's
+//   streams here (tools/fuzz-gltf.sh).
 import fs from 'node:fs';
 import { createRequire } from 'node:module';
 import { MeshoptEncoder } from '../../../web/node_modules/meshoptimizer/meshopt_encoder.module.js';
