@@ -3,6 +3,7 @@
 #include <algorithm>
 
 #include "frame/PassContext.h"
+#include "gl/GlCaps.h"
 
 namespace obscura {
 namespace {
@@ -90,18 +91,15 @@ void setStageSamplers(const gl::Program& program, const std::vector<StageDecl>& 
 PassDecl fullscreenStageHead(const EffectResources& resources, std::string name, ProgramSpec program,
                              std::vector<TextureInput> inputs, PassDecl::Write output, ColorSpace space,
                              int uniformVectors, std::function<void(FullscreenDraw&, const PassContext&)> uniforms) {
-  PassDecl pass;
-  pass.name = std::move(name);
-  for (const TextureInput& input : inputs) pass.reads.push_back(input.target);
-  pass.writes = {output};
-  pass.programs = {program.name};
+  // fullscreenPass's reads, writes and program name; its draw is replaced by one whose program is the fused chain's.
+  PassDecl pass = fullscreenPass(std::move(name), program, inputs, output, nullptr);
   StageHead head;
   head.color = output.target;
   head.space = space;
   head.uniformVectors = resources.caps.maxFragmentUniformVectors - uniformVectors;
   head.bindsTextures = true;
-  // GLES 2's 8 fragment texture units, less the pass's own inputs.
-  head.textureUnits = 8 - static_cast<int>(inputs.size());
+  // GLES 2's fragment texture units, less the pass's own inputs.
+  head.textureUnits = FragmentLimits::gles2Minimum().textureUnits - static_cast<int>(inputs.size());
   head.pixelGeometry = false;
   pass.stageHead = head;
   pass.run = [program = std::move(program), inputs = std::move(inputs), space,
@@ -139,9 +137,10 @@ PassDecl stagePass(const EffectResources& resources, StageDecl stage, std::strin
   if (stage.position || stage.normal) pass.reads.push_back("gbuffer");
   for (const auto& [sampler, target] : stage.textures) pass.reads.push_back(target);
   pass.writes = {output};
-  // GLES 2's 8 fragment texture units, less those this stage's pass binds itself: its colour, the G-buffer, its
+  // GLES 2's fragment texture units, less those this stage's pass binds itself: its colour, the G-buffer, its
   // textures.
-  const int units = 8 - static_cast<int>(pass.reads.size() + stage.ownTextures.size());
+  const int units =
+      FragmentLimits::gles2Minimum().textureUnits - static_cast<int>(pass.reads.size() + stage.ownTextures.size());
   pass.stageHead = StageHead{output, stage.outputSpace,
                              resources.caps.maxFragmentUniformVectors - kStagePassUniformVectors - stage.uniformVectors,
                              true, true, units};
