@@ -87,6 +87,21 @@ ColorDifference colorDifference(const RenderedImage& a, const RenderedImage& b) 
   return d;
 }
 
+std::vector<std::string> livePasses(const Renderer& renderer) {
+  std::vector<std::string> names;
+  for (const PlannedPass& pass : renderer.lastPlan().passes()) {
+    if (!pass.live) continue;
+    names.push_back(pass.decl.name);
+    for (const std::string& absorbed : pass.absorbed) names.push_back(absorbed + " (done by " + pass.decl.name + ")");
+  }
+  return names;
+}
+
+long passCount(const std::vector<std::string>& livePassNames) {
+  return std::count_if(livePassNames.begin(), livePassNames.end(),
+                       [](const std::string& n) { return n.find(" (done by ") == std::string::npos; });
+}
+
 namespace {
 RendererOptions separateStages() {
   RendererOptions options;

@@ -50,6 +50,11 @@ struct ColorDifference {
   double mean = 0.0;
 };
 ColorDifference colorDifference(const RenderedImage& a, const RenderedImage& b);
+// The live passes of the renderer's last plan, by name, each followed by the stages it absorbed as
+// "NAME (done by PASS)".
+std::vector<std::string> livePasses(const Renderer& renderer);
+// The passes among livePasses' names (the absorbed stages left out).
+long passCount(const std::vector<std::string>& livePassNames);
 // One frame of `scene` drawn by two Renderers: one fusing the per-pixel stages into the passes before them, one
 // running each as a pass of its own (RendererOptions::fuseStages); their plans stay readable (lastPlan()).
 struct FusedAndSeparate {

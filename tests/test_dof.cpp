@@ -520,16 +520,11 @@ TEST(DepthOfField, TheToneCurveAndTheDisplayStagesRunInTheCompositesPass) {
   settings.set("fxaa", "off");   // the stages' output drawn into the output by the composite
   settings.set("dither", "off");  // a step of noise would add its own differences
   const test::FusedAndSeparate frames(makeBuiltinScene(), builtinSceneCamera(160, 90), settings);
-  auto livePasses = [](const Renderer& renderer) {
-    int passes = 0;
-    for (const PlannedPass& pass : renderer.lastPlan().passes()) passes += pass.live ? 1 : 0;
-    return passes;
-  };
   std::vector<std::string> absorbed;
   for (const PlannedPass& pass : frames.fused.lastPlan().passes())
     if (pass.live && pass.decl.name == "dof-composite") absorbed = pass.absorbed;
   EXPECT_EQ(absorbed, (std::vector<std::string>{"tonemap", "vignette"}));
-  EXPECT_EQ(livePasses(frames.fused), livePasses(frames.separate) - 2);
+  EXPECT_EQ(test::passCount(test::livePasses(frames.fused)), test::passCount(test::livePasses(frames.separate)) - 2);
   const test::ColorDifference& d = frames.difference;
   std::printf("[ dof ] the tone curve and the vignette fused into the composite against separate passes: largest "
               "difference %d/255, mean %.4f/255\n",

@@ -225,22 +225,6 @@ TEST(ChromaticAberration, RedAndBlueLieOutsideAndInsideGreenByTheStatedShift) {
 
 namespace {
 
-// The live passes of the last plan, by name, with the stages each absorbed as "NAME (done by PASS)".
-std::vector<std::string> livePasses(const Renderer& renderer) {
-  std::vector<std::string> names;
-  for (const PlannedPass& pass : renderer.lastPlan().passes()) {
-    if (!pass.live) continue;
-    names.push_back(pass.decl.name);
-    for (const std::string& absorbed : pass.absorbed) names.push_back(absorbed + " (done by " + pass.decl.name + ")");
-  }
-  return names;
-}
-
-long fullscreenPasses(const std::vector<std::string>& names) {
-  return std::count_if(names.begin(), names.end(),
-                       [](const std::string& n) { return n.find(" (done by ") == std::string::npos; });
-}
-
 std::string joined(const std::vector<std::string>& names) {
   std::string out;
   for (const std::string& n : names) out += (out.empty() ? "" : ", ") + n;
@@ -270,18 +254,18 @@ TEST(FinishStages, EveryStageOnAddsNoFullScreenPassToTheDefaultFrame) {
       RenderSettings base;
       if (taa) base.set("taa", "on");
       test::render(renderer, camera, base, View::Final);
-      const std::vector<std::string> plain = livePasses(renderer);
+      const std::vector<std::string> plain = test::livePasses(renderer);
       RenderSettings every = base;
       for (const char* on : {"fog", "tonemap", "grading", "vignette", "grain", "dither"}) every.set(on, "on");
       every.set("grading.lut", lut);
       every.set("grading.temperature", "5000");
       every.set("grading.saturation", "1.2");
       test::render(renderer, camera, every, View::Final);
-      const std::vector<std::string> all = livePasses(renderer);
+      const std::vector<std::string> all = test::livePasses(renderer);
       const std::string form = std::string(deferred ? "deferred" : "forward") + (taa ? ", taa" : "");
       std::printf("%s: default frame %s\n  every stage on: %s\n", form.c_str(), joined(plain).c_str(),
                   joined(all).c_str());
-      EXPECT_EQ(fullscreenPasses(all), fullscreenPasses(plain)) << form;
+      EXPECT_EQ(test::passCount(all), test::passCount(plain)) << form;
       const std::string head = taa ? "tonemap" : "lighting";
       for (const char* stage : {"grading", "vignette", "grain", "dither"}) {
         EXPECT_EQ(std::count(all.begin(), all.end(), std::string(stage) + " (done by " + head + ")"), 1)
