@@ -217,3 +217,20 @@ TEST(Compression, DracoEngineRendersAsTheUncompressedOne) {
   EXPECT_LT(meanDepth, 0.002);
   EXPECT_LT(meanNormalDegrees, 2.0);
 }
+
+// Renderer::prepare's rehearsal runs the lines' pass with a stand-in program: what the pass keeps of its program (its
+// attributes' locations) is found again for the real one, and the frame is the one drawn without preparing.
+TEST(PointsAndLines, APreparedFrameDrawsThemAsAnUnpreparedOne) {
+  const Camera camera = test::makeCamera({0.0f, 0.0f, 3.0f}, {0.0f, 0.0f, 0.0f}, kWidth, kHeight);
+  const RenderSettings settings;
+  Renderer plain = test::makeRenderer();
+  plain.setScene(wallWithLines());
+  const test::RenderedImage expected = test::render(plain, camera, settings, View::Final);
+  Renderer prepared = test::makeRenderer();
+  prepared.setScene(wallWithLines());
+  const gl::RenderTarget output("prepared output", kWidth, kHeight, GL_NEAREST, gl::RenderTarget::Depth::None, false);
+  EXPECT_GT(prepared.prepare(camera, settings, OutputTarget{output.framebuffer(), kWidth, kHeight, {}}), 0u);
+  const test::RenderedImage drawn = test::render(prepared, camera, settings, View::Final);
+  EXPECT_EQ(prepared.programs().pending(), 0u);
+  EXPECT_EQ(test::worstByteDifference(drawn, expected), 0);
+}

@@ -16,6 +16,7 @@
 #include "effects/lighting/LightingEffect.h"
 #include "effects/tonemap/TonemapEffect.h"
 #include "effects/vignette/Vignette.h"
+#include "frame/ProgramCache.h"
 #include "frame/Stage.h"
 #include "effects/transparency/TransparencyEffect.h"
 
@@ -73,6 +74,47 @@ TEST(Shaders, LinkFailureNamesTheProgramAndQuotesTheLog) {
     EXPECT_GT(message.size(), std::string("shader program 'unlinkable[test]' failed to link: ").size() + 5)
         << "no driver log quoted: " << message;
   }
+}
+
+// A program begun (gl::Program::begin: compiled and linked without waiting) is finished by its first use, and is then
+// the program built at once; one that does not compile fails there with the same message (Renderer::prepare).
+TEST(Shaders, ABegunProgramIsFinishedByItsFirstUseAndABrokenOneFailsThere) {
+  test::context();
+  const ProgramSpec spec{"blit[test]", "lib/fullscreen.vert", "frame/debug_view.frag", {{"VIEW_DECODING", "5"}}};
+  const ProgramSpec broken{"broken[test]", "lib/fullscreen.vert", "", {}, {},
+                           "void main() { gl_FragColor = undefined_symbol; }"};
+  ProgramCache cache(true);
+  ProgramVariants<int> variants(cache);
+  {
+    const ProgramCache::Rehearsal rehearsal(cache);
+    const gl::Program& standIn = cache.get(spec);
+    EXPECT_TRUE(standIn.linked());
+    EXPECT_TRUE(standIn.uniformNames().empty()) << "a stand-in: the uniforms set on it go nowhere";
+    standIn.use();
+    standIn.set("u_source", 0);  // lenient, whatever the cache's programs are
+    glUseProgram(0);
+    EXPECT_EQ(&cache.get(spec), &standIn) << "the stand-in again";
+    EXPECT_EQ(&variants(1, [&] { return spec; }), &standIn);
+    EXPECT_NO_THROW(cache.get(broken)) << "a begun program's errors wait for its first use";
+    EXPECT_EQ(cache.size(), 0u) << "noted, and begun at the rehearsal's end";
+  }
+  EXPECT_EQ(cache.size(), 2u);
+  EXPECT_EQ(cache.pending(), 2u);
+  const gl::Program& program = cache.get(spec);
+  EXPECT_TRUE(program.linked());
+  EXPECT_EQ(cache.pending(), 1u);
+  EXPECT_EQ(program.uniformNames(), spec.build().uniformNames());
+  EXPECT_EQ(&variants(1, [&] { return spec; }), &program) << "the variants kept no stand-in";
+  try {
+    cache.get(broken);
+    FAIL() << "a broken shader compiled";
+  } catch (const GlError& e) {
+    const std::string message = e.what();
+    EXPECT_NE(message.find("broken[test]"), std::string::npos) << message;
+    EXPECT_NE(message.find("fragment"), std::string::npos) << message;
+    EXPECT_NE(message.find("undefined_symbol"), std::string::npos) << message;
+  }
+  EXPECT_EQ(glGetError(), static_cast<GLenum>(GL_NO_ERROR));
 }
 
 TEST(Shaders, SourcesAreGlslEs100WithoutForbiddenFeatures) {

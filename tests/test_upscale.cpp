@@ -396,3 +396,41 @@ TEST(Upscale, QuickStartIntoAnOutputWithDepthEndsInTheFullFrameAsWithoutIt) {
   EXPECT_GE(quick.quickStart().cheapFrames, frames + 1);
   EXPECT_EQ(test::worstByteDifference(last, full), 0);
 }
+
+// Renderer::prepare (what the page does at start-up): the programs of the frame the next render() draws are begun, a
+// rehearsal drawing nothing; that frame then builds no program of its own and is, to the bit, the frame drawn without
+// it. With quick start, the cheap frame's programs; without, the full frame's; the animated built-in scene too (its
+// skinned and CPU-deformed draws rehearsed before any frame posed it).
+TEST(Upscale, PrepareBeginsTheNextFramesProgramsAndChangesNothingElse) {
+  test::context();
+  const Camera camera = builtinSceneCamera(320, 180);
+  const gl::RenderTarget output("prepared output", camera.width, camera.height, GL_NEAREST,
+                                gl::RenderTarget::Depth::None, false);
+  const OutputTarget target{output.framebuffer(), camera.width, camera.height, {}};
+  for (const bool quickStart : {true, false})
+    for (const bool animated : {false, true}) {
+      SCOPED_TRACE(std::string(quickStart ? "quick start" : "no quick start") + (animated ? ", animated" : ""));
+      RenderSettings settings = scaled(0.5f);
+      settings.set("resolution.quick-start", quickStart ? "on" : "off");
+      const Scene scene = makeBuiltinScene(animated ? BuiltinSceneOptions{} : BuiltinSceneOptions::still());
+      FrameOptions options;
+      options.time = 0.25;
+      Renderer plain = test::makeRenderer();
+      plain.setScene(scene);
+      const test::RenderedImage expected = test::render(plain, camera, settings, View::Final, options);
+
+      Renderer prepared = test::makeRenderer();
+      prepared.setScene(scene);
+      const size_t before = prepared.programs().size();  // the Renderer builds one for itself (velocity[camera])
+      const size_t begun = prepared.prepare(camera, settings, target, options);
+      EXPECT_GE(begun, quickStart ? 3u : 6u) << "the G-buffer's, the lighting's and the upscale's at least";
+      EXPECT_EQ(prepared.programs().pending(), begun);
+      EXPECT_EQ(prepared.programs().size(), before + begun) << "a rehearsal builds nothing else";
+      EXPECT_TRUE(prepared.quickStart().warmed.empty());
+      const test::RenderedImage first = test::render(prepared, camera, settings, View::Final, options);
+      EXPECT_EQ(prepared.lastFrameCheap(), quickStart);
+      EXPECT_EQ(prepared.programs().pending(), 0u);
+      EXPECT_EQ(prepared.programs().size(), before + begun) << "the frame drew with the programs begun, no other";
+      EXPECT_EQ(test::worstByteDifference(first, expected), 0);
+    }
+}

@@ -296,10 +296,14 @@ TEST(WebApi, QuickStartDrawsACheapFirstFrameThenWarmsThePassesAndTheFullFrameFol
     const Json& passes = s["passesRun"];
     return std::find(passes.begin(), passes.end(), pass) != passes.end();
   };
+  // Its programs were begun at start-up (Viewer::prepare): the first frame finishes them and builds no other.
+  const int prepared = stats()["startup"]["programsPrepared"].get<int>();
+  EXPECT_GE(prepared, 2);  // the lighting's (it draws the scene, and the background), at least
   // The first frame: the lit scene (without the AO, the lighting draws the scene itself: one geometry pass), not the
   // AO or FXAA, and it warms nothing.
   EXPECT_TRUE(frameAt(0.0));
   Json s = stats();
+  EXPECT_EQ(s["startup"]["programsPrepared"].get<int>(), prepared);
   EXPECT_EQ(s["cheapFrame"], true);
   EXPECT_TRUE(ran(s, "lighting")) << s["passesRun"].dump();
   EXPECT_FALSE(ran(s, "sao") || ran(s, "blur-h") || ran(s, "fxaa")) << s["passesRun"].dump();

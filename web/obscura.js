@@ -404,9 +404,10 @@ export class Obscura extends EventTarget {
 
   // Start-up, in ms: {wasmMs (fetching, compiling and instantiating obscura-core.wasm), createMs (all of
   // createObscura: the wasm, then the core's own start, coreMs, of which coreParts: the WebGL context, the programs
-  // compiled, the sky made and prefiltered, the scene uploaded, ...), firstFrameMs (from createObscura's end to the
-  // animation frame after the first frame was drawn: the first frame's whole cost, as stats().frameMs measures a
-  // steady one; null until then), firstFrameCpuMs (its time in the renderer), firstFrameParts (what the first frame
+  // compiled, the sky made and prefiltered, the scene uploaded, ...), programsPrepared (a count, not ms: the first
+  // frame's programs begun at the core's start, which the browser compiles while the page goes on), firstFrameMs
+  // (from createObscura's end to the animation frame after the first frame was drawn: the first frame's whole cost,
+  // as stats().frameMs measures a steady one; null until then), firstFrameCpuMs (its time in the renderer), firstFrameParts (what the first frame
   // did besides drawing: programs compiled on first use, ...), fullFrameMs (likewise to the animation frame after the
   // first full frame: firstFrameMs's without quick start), quickStart ({cheapFrames: frames drawn cheap before the
   // full one, firstFullFrame: its index (frames before it: cheapFrames), fullAtMs: when the renderer drew it, warmed:
@@ -417,7 +418,7 @@ export class Obscura extends EventTarget {
     const s = this.stats().startup;
     return { wasmMs: this.wasmMs, createMs: this.createMs, coreMs: s.createMs, coreParts: s.createParts,
              firstFrameMs: s.firstFrameMs, firstFrameCpuMs: s.firstFrameCpuMs, firstFrameParts: s.firstFrameParts,
-             fullFrameMs: s.fullFrameMs, quickStart: s.quickStart };
+             fullFrameMs: s.fullFrameMs, quickStart: s.quickStart, programsPrepared: s.programsPrepared };
   }
 
   // Resolves to startup() once a frame has been drawn and the browser has run the animation frame after it.

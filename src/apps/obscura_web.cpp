@@ -64,6 +64,10 @@ class WebApp {
         timer_(std::make_unique<GpuPassTimer>(viewer_.caps(), &WebCanvas::procAddress)) {
     if (dynamicResolution) viewer_.state().setDefault("resolution.dynamic", "on");
     if (quickStart) viewer_.state().setDefault("resolution.quick-start", "on");
+    // The first frame's programs begun now: Chromium's GPU process compiles them while the page builds its controls
+    // and waits for the animation frame that draws (docs/resolution.md, "Start-up").
+    fit(&width_, &height_);
+    programsPrepared_ = viewer_.prepare(0, width_, height_);
     emscripten_request_animation_frame_loop(&WebApp::animationFrame, this);
   }
 
@@ -167,6 +171,7 @@ class WebApp {
                     {"firstFrameCpuMs", firstFrameCpuMs_ > 0.0 ? Json(firstFrameCpuMs_) : Json(nullptr)},
                     {"firstFrameParts", firstFrameParts_},
                     {"fullFrameMs", fullFrameMs_ > 0.0 ? Json(fullFrameMs_) : Json(nullptr)},
+                    {"programsPrepared", programsPrepared_},
                     {"quickStart", quickStart}};
     return Json{{"width", width_},
                 {"height", height_},
@@ -333,6 +338,7 @@ class WebApp {
   float lastScale_ = 1.0f;              // the render scale of the last frame drawn
   int refineFrames_ = kRefineFrames;    // frames dynamic resolution may still draw on since the last change
   std::uint64_t timerResults_ = 0;      // the GPU timer's results fed to dynamic resolution
+  size_t programsPrepared_ = 0;  // the first frame's programs begun at start-up (Viewer::prepare)
   double createMs_ = 0.0, createdAt_ = 0.0, firstFrameMs_ = 0.0, firstFrameCpuMs_ = 0.0, fullFrameMs_ = 0.0;
   bool fullDrawn_ = false;  // a full frame was drawn (fullFrameMs_ is taken at the next animation frame)
   Json createParts_ = Json::object(), firstFrameParts_ = Json::object();

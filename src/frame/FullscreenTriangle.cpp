@@ -12,6 +12,7 @@ FullscreenTriangle::FullscreenTriangle() : vertices_(gl::BufferHandle::create())
 }
 
 void FullscreenTriangle::draw() const {
+  if (withheld_) return;
   glBindBuffer(GL_ARRAY_BUFFER, vertices_.id());
   glEnableVertexAttribArray(gl::kAttribPosition);
   glVertexAttribPointer(gl::kAttribPosition, 2, GL_FLOAT, GL_FALSE, 0, nullptr);

@@ -9,9 +9,13 @@ class FullscreenTriangle {
  public:
   FullscreenTriangle();
   void draw() const;
+  // While withheld, draw() draws nothing: Renderer::prepare runs a frame's passes for the programs they ask for, with
+  // stand-ins in their place (ProgramCache::Rehearsal), and a stand-in's draw would only cost the driver time.
+  void withholdDraws(bool withheld) { withheld_ = withheld; }
 
  private:
   gl::BufferHandle vertices_;
+  bool withheld_ = false;
 };
 
 }  // namespace obscura

@@ -25,18 +25,21 @@ std::string infoLog(GLuint object, bool isProgram) {
   return std::string(log.data());
 }
 
-ShaderHandle compile(const std::string& programName, GLenum stage, const std::string& source) {
+ShaderHandle compile(GLenum stage, const std::string& source) {
   ShaderHandle shader(stage);
   const char* text = source.c_str();
   glShaderSource(shader.id(), 1, &text, nullptr);
   glCompileShader(shader.id());
+  return shader;
+}
+
+void checkCompiled(const std::string& programName, GLenum stage, const ShaderHandle& shader) {
   GLint ok = GL_FALSE;
   glGetShaderiv(shader.id(), GL_COMPILE_STATUS, &ok);
   if (ok != GL_TRUE) {
     throw GlError("shader '" + programName + "' (" + (stage == GL_VERTEX_SHADER ? "vertex" : "fragment") +
                   ") failed to compile: " + infoLog(shader.id(), false));
   }
-  return shader;
 }
 
 // The name without an array's "[0]".
@@ -72,22 +75,43 @@ const char* typeName(GLenum type) {
 
 Program::Program(const std::string& name, const std::string& vertexSource, const std::string& fragmentSource,
                  bool strict)
-    : name_(name), strict_(strict) {
-  ShaderHandle vertex = compile(name, GL_VERTEX_SHADER, vertexSource);
-  ShaderHandle fragment = compile(name, GL_FRAGMENT_SHADER, fragmentSource);
-  program_ = ProgramHandle::create();
-  glAttachShader(program_.id(), vertex.id());
-  glAttachShader(program_.id(), fragment.id());
-  glBindAttribLocation(program_.id(), kAttribPosition, "a_position");
-  glBindAttribLocation(program_.id(), kAttribNormal, "a_normal");
-  glBindAttribLocation(program_.id(), kAttribTexcoord, "a_texcoord");
-  glLinkProgram(program_.id());
+    : Program(begin(name, vertexSource, fragmentSource, strict)) {
+  finishLink();
+}
+
+Program Program::begin(const std::string& name, const std::string& vertexSource, const std::string& fragmentSource,
+                       bool strict) {
+  Program p;
+  p.name_ = name;
+  p.strict_ = strict;
+  p.vertex_ = compile(GL_VERTEX_SHADER, vertexSource);
+  p.fragment_ = compile(GL_FRAGMENT_SHADER, fragmentSource);
+  p.program_ = ProgramHandle::create();
+  glAttachShader(p.program_.id(), p.vertex_.id());
+  glAttachShader(p.program_.id(), p.fragment_.id());
+  glBindAttribLocation(p.program_.id(), kAttribPosition, "a_position");
+  glBindAttribLocation(p.program_.id(), kAttribNormal, "a_normal");
+  glBindAttribLocation(p.program_.id(), kAttribTexcoord, "a_texcoord");
+  glLinkProgram(p.program_.id());
+  return p;
+}
+
+void Program::finishLink() {
+  if (linked_) return;
   GLint ok = GL_FALSE;
   glGetProgramiv(program_.id(), GL_LINK_STATUS, &ok);
-  // The shader objects are released when `vertex` and `fragment` go out of scope; the program keeps them alive.
-  glDetachShader(program_.id(), vertex.id());
-  glDetachShader(program_.id(), fragment.id());
-  if (ok != GL_TRUE) throw GlError("shader program '" + name + "' failed to link: " + infoLog(program_.id(), true));
+  if (ok != GL_TRUE) {
+    // A stage that did not compile is named with its own log; otherwise the link's.
+    checkCompiled(name_, GL_VERTEX_SHADER, vertex_);
+    checkCompiled(name_, GL_FRAGMENT_SHADER, fragment_);
+    throw GlError("shader program '" + name_ + "' failed to link: " + infoLog(program_.id(), true));
+  }
+  // The shader objects go with their handles; the program keeps what it linked.
+  glDetachShader(program_.id(), vertex_.id());
+  glDetachShader(program_.id(), fragment_.id());
+  vertex_ = ShaderHandle();
+  fragment_ = ShaderHandle();
+  linked_ = true;
 
   // The active uniforms, once.
   GLint count = 0, longest = 0;

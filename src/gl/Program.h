@@ -32,9 +32,19 @@ enum AttributeSlot : GLuint { kAttribPosition = 0, kAttribNormal = 1, kAttribTex
 class Program {
  public:
   Program() = default;
-  // `name` is used in error messages only (e.g. "sao[samples=11]").
+  // Compiles and links now. `name` is used in error messages only (e.g. "sao[samples=11]").
   Program(const std::string& name, const std::string& vertexSource, const std::string& fragmentSource,
           bool strict = false);
+
+  // The same in two steps, so that the driver may compile while the caller does other work: begin() issues the
+  // compiles and the link and asks GL nothing; finishLink() checks them (GlError, as the constructor) and reads the
+  // uniforms. A driver that compiles elsewhere (a browser's GPU process; one with KHR_parallel_shader_compile) works
+  // in between, and GL waits only where a status or a uniform is asked for. A program begun has no uniforms and must
+  // not be used until finished (frame/ProgramCache.h's prefetch).
+  static Program begin(const std::string& name, const std::string& vertexSource, const std::string& fragmentSource,
+                       bool strict = false);
+  void finishLink();
+  bool linked() const { return linked_; }
 
   GLuint id() const { return program_.id(); }
   const std::string& name() const { return name_; }
@@ -106,7 +116,9 @@ class Program {
 
   std::string name_;
   bool strict_ = false;
+  bool linked_ = false;
   ProgramHandle program_;
+  ShaderHandle vertex_, fragment_;  // between begin() and finishLink() only: their compile logs, on failure
   std::vector<Uniform> uniforms_;  // sorted by name
 };
 

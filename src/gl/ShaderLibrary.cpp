@@ -69,5 +69,9 @@ gl::Program ProgramSpec::build(bool strict) const {
   const TimedScope timed("programs");
   return gl::Program(name, vertexSource(), fragmentSource(), strict);
 }
+gl::Program ProgramSpec::begin(bool strict) const {
+  const TimedScope timed("programs");
+  return gl::Program::begin(name, vertexSource(), fragmentSource(), strict);
+}
 
 }  // namespace obscura

@@ -34,6 +34,8 @@ struct ProgramSpec {
   std::string fragmentSource() const;
   // Compiles and links; a strict program refuses to resolve uniforms it lacks (gl/Program.h).
   gl::Program build(bool strict = false) const;
+  // Issues the compiles and the link without waiting for them (gl::Program::begin; finishLink before use).
+  gl::Program begin(bool strict = false) const;
 };
 
 namespace ShaderLibrary {

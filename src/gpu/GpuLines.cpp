@@ -39,6 +39,7 @@ void GpuLines::setPose(const ScenePose& pose) {
 
 void GpuLines::draw(const glm::mat4& viewProjection, bool points, GLint modelViewProjection, GLint position,
                     GLint color) const {
+  if (withheld_) return;
   const GLsizei stride = 7 * sizeof(float);
   for (const InstanceGpu& instance : instances_) {
     const MeshGpu& mesh = meshes_[static_cast<size_t>(instance.mesh)];

@@ -26,6 +26,8 @@ class GpuLines {
   // and no buffer bound.
   void draw(const glm::mat4& viewProjection, bool points, GLint modelViewProjection, GLint position,
             GLint color) const;
+  // While withheld, draw() draws nothing (GpuScene::withholdDraws).
+  void withholdDraws(bool withheld) { withheld_ = withheld; }
 
  private:
   struct MeshGpu {
@@ -40,6 +42,7 @@ class GpuLines {
   };
   std::vector<MeshGpu> meshes_;
   std::vector<InstanceGpu> instances_;
+  bool withheld_ = false;
 };
 
 }  // namespace obscura

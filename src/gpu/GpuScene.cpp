@@ -511,7 +511,7 @@ void GpuScene::drawPiece(const InstanceGpu& instance, int p, const MaterialGpu& 
   bindSkin(instance, piece, vertexKind, state);
   bindVertices(instance, p, vertexKind, state);
   glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, piece.indices.id());
-  glDrawElements(GL_TRIANGLES, piece.indexCount, piece.indexType, nullptr);
+  if (!withheld_) glDrawElements(GL_TRIANGLES, piece.indexCount, piece.indexType, nullptr);
   for (GLuint slot : state.extraAttributes) glDisableVertexAttribArray(slot);
   state.extraAttributes.clear();
 }

@@ -119,6 +119,12 @@ class GpuScene {
   // The scene's points and lines (not surfaces: no G-buffer, no AO), posed by setPose; effects/lines/LinesEffect.h
   // draws them.
   const GpuLines& lines() const { return lines_; }
+  // While withheld, the draws choose their programs and set their state but draw nothing, the lines included
+  // (FullscreenTriangle::withholdDraws: Renderer::prepare's rehearsal).
+  void withholdDraws(bool withheld) {
+    withheld_ = withheld;
+    lines_.withholdDraws(withheld);
+  }
   bool usesUint32Indices() const;
   // Something moves between the previous pose and this one (an instance, a joint or a morph weight).
   bool anyMoving() const;
@@ -252,6 +258,7 @@ class GpuScene {
   bool needsForwardLighting_ = false;
   bool hasTransparent_ = false, hasTransmission_ = false;
   GpuLines lines_;
+  bool withheld_ = false;
   SkinningPath skinningPath_ = SkinningPath::Uniforms;
   int paletteSize_ = 0;
   VertexLimits limits_;

@@ -260,20 +260,8 @@ bool Viewer::handleKey(const std::string& key) {
   return false;
 }
 
-void Viewer::render(GLuint framebuffer, int width, int height, PassTimer* timer, double clockSeconds,
-                    bool allowCheapFrame) {
-  // The size is remembered so a scene loaded next is framed for this aspect ratio.
-  state_.camera.width = width;
-  state_.camera.height = height;
-  state_.timeline.tick(clockSeconds);
-  if (!renderer_) return;
-  OutputTarget target;
-  target.framebuffer = framebuffer;
-  target.width = width;
-  target.height = height;
+FrameOptions Viewer::frameOptions(int width, int height) {
   FrameOptions options;
-  options.timer = timer;
-  options.allowCheapFrame = allowCheapFrame;
   state_.timeline.applyTo(options);  // time, animation, loop
   const ResolutionSettings& resolution = state_.settings.of<ResolutionSettings>();
   renderScale_ = resolution.scale;
@@ -285,11 +273,40 @@ void Viewer::render(GLuint framebuffer, int width, int height, PassTimer* timer,
     renderScale_ = dynamic_.scale();
     options.renderScale = renderScale_;
   }
+  options.sceneCamera = state_.sceneCamera;
+  return options;
+}
+
+OutputTarget Viewer::outputTarget(GLuint framebuffer, int width, int height) {
+  OutputTarget target;
+  target.framebuffer = framebuffer;
+  target.width = width;
+  target.height = height;
+  return target;
+}
+
+void Viewer::render(GLuint framebuffer, int width, int height, PassTimer* timer, double clockSeconds,
+                    bool allowCheapFrame) {
+  // The size is remembered so a scene loaded next is framed for this aspect ratio.
+  state_.camera.width = width;
+  state_.camera.height = height;
+  state_.timeline.tick(clockSeconds);
+  if (!renderer_) return;
+  FrameOptions options = frameOptions(width, height);
+  options.timer = timer;
+  options.allowCheapFrame = allowCheapFrame;
   if (lastClock_ >= 0.0 && clockSeconds > lastClock_)
     options.frameInterval = std::min(clockSeconds - lastClock_, kLongestFrameInterval);
   lastClock_ = clockSeconds;
-  options.sceneCamera = state_.sceneCamera;
-  renderer_->render(state_.camera, state_.settings, state_.view, target, options);
+  renderer_->render(state_.camera, state_.settings, state_.view, outputTarget(framebuffer, width, height), options);
+}
+
+size_t Viewer::prepare(GLuint framebuffer, int width, int height) {
+  state_.camera.width = width;
+  state_.camera.height = height;
+  if (!renderer_) return 0;
+  return renderer_->prepare(state_.camera, state_.settings, outputTarget(framebuffer, width, height),
+                            frameOptions(width, height));
 }
 
 double Viewer::adaptationSeconds() const {

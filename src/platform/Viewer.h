@@ -82,6 +82,9 @@ class Viewer {
   // resolution.quick-start (FrameOptions::allowCheapFrame: a snapshot).
   void render(GLuint framebuffer, int width, int height, PassTimer* timer = nullptr, double clockSeconds = 0.0,
               bool allowCheapFrame = true);
+  // Begins compiling the programs of the frame render() would draw next at this size (Renderer::prepare), so that a
+  // driver that compiles elsewhere (a browser's GPU process) does it while the front end goes on; returns how many.
+  size_t prepare(GLuint framebuffer, int width, int height);
   // --- Dynamic resolution (resolution.dynamic, frame/Resolution.h): with it on, render() draws at the scale the
   // controller chose (platform/DynamicResolution.h) from the frame times the front end measures: GPU timer queries
   // where the context has them, else the interval between frames drawn back to back. `scale`: the frame's.
@@ -122,6 +125,9 @@ class Viewer {
   // for a key that plays or steps it (`playable`), where the chosen animation has no length ("none").
   Timeline& requireTimeline(bool playable);
   void showScene(Scene scene, const std::string& name, const Camera& camera);
+  // A frame's options at this size (the timeline's time, the scene camera, dynamic resolution's scale) and output.
+  FrameOptions frameOptions(int width, int height);
+  static OutputTarget outputTarget(GLuint framebuffer, int width, int height);
   // Makes the scene camera looked through (if any) the free camera, at its view.
   void takeOverSceneCamera();
   // Sets a numeric parameter to change(current value), clamped to the parameter's range.

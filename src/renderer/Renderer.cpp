@@ -418,56 +418,115 @@ std::optional<RenderSettings> Renderer::quickStartSettings(const RenderSettings&
   return cheap;
 }
 
-void Renderer::warmPasses(const RenderSettings& settings, bool upscaled) {
+Renderer::Warm& Renderer::smallTargets(bool outputDepth) {
   if (!warm_) {
     warm_ = std::make_unique<Warm>();
     warm_->pool = std::make_unique<RenderTargetPool>(caps_);
   }
-  // The warm output has a depth buffer where the frame's output has one (FrameContext::outputDepth: the forward
-  // lighting may draw straight into it), so the warm plan's passes draw with the state the full frame's will.
-  if (!warm_->output || warm_->outputDepth != frame_.outputDepth) {
-    warm_->outputDepth = frame_.outputDepth;
+  // The small output has a depth buffer where the frame's output has one (FrameContext::outputDepth: the forward
+  // lighting may draw straight into it), so the small plan's passes draw with the state the frame's will.
+  if (!warm_->output || warm_->outputDepth != outputDepth) {
+    warm_->outputDepth = outputDepth;
     warm_->output = gl::RenderTarget(
         "quick-start warm output", kWarmSize, kWarmSize, GL_NEAREST,
-        warm_->outputDepth ? gl::RenderTarget::Depth::Renderbuffer : gl::RenderTarget::Depth::None, caps_.depth24);
+        outputDepth ? gl::RenderTarget::Depth::Renderbuffer : gl::RenderTarget::Depth::None, caps_.depth24);
   }
-  // The warm frame: this frame's context at kWarmSize (half of it where the frame asked for is upscaled, so the plan
-  // has the same passes and programs), without history. The AO's depth hierarchy needs 32 pixels for its 5 levels.
+  return *warm_;
+}
+
+FrameContext Renderer::smallFrame(FrameContext like, const Camera& source, bool upscaled) {
+  // kWarmSize, half of it where the frame is upscaled (so that the plan has the same passes and programs), without
+  // history. The AO's depth hierarchy needs 32 pixels for its 5 levels.
   const glm::ivec2 size = upscaled ? glm::ivec2(kWarmSize / 2) : glm::ivec2(kWarmSize);
-  FrameContext warmFrame = frame_;
-  warmFrame.hasPrevious = false;
-  warmFrame.historyFrames = 0;
-  warmFrame.outputWidth = warmFrame.outputHeight = kWarmSize;
-  warmFrame.camera = FrameCamera::from(frameSource_, size.x, size.y);
-  warmFrame.previousCamera = warmFrame.camera;
-  std::swap(frame_, warmFrame);  // frame_ is the warm frame's while it plans and runs, the cheap frame's after
-  const PlanKey key = planKey(settings, View::Final, FrameOptions{});
-  if (!warm_->plan || !(key == warm_->key)) {
-    // A new plan (the first, or the settings changed since): its passes from the first (those warmed already cost
-    // little the second time).
-    warm_->plan = std::make_unique<FramePlan>(plan(settings, frame_, View::Final, {}));
-    warm_->key = key;
-    warm_->next = 0;
-  }
+  like.hasPrevious = false;
+  like.historyFrames = 0;
+  like.outputWidth = like.outputHeight = kWarmSize;
+  like.camera = FrameCamera::from(source, size.x, size.y);
+  like.previousCamera = like.camera;
+  return like;
+}
+
+void Renderer::runSmall(const RenderSettings& settings, const FramePlan& plan, size_t& next, size_t passes,
+                        bool reportWarmed) {
   for (const std::unique_ptr<Effect>& effect : effects_) effect->prepare(settings);
   surfaces_.light.published = false;
   surfaces_.fog = surfaceFog(settings.of<FogSettings>(), frame_.camera.view);
   OutputTarget output;
   output.framebuffer = warm_->output.framebuffer();
   output.width = output.height = kWarmSize;
-  warm_->pool->beginFrame(size);
-  const std::vector<PlannedPass>& passes = warm_->plan->passes();
-  for (int warmed = 0; warm_->next < passes.size() && warmed < kWarmPassesPerFrame; ++warm_->next) {
-    if (!passes[warm_->next].live) continue;
+  warm_->pool->beginFrame({frame_.camera.width, frame_.camera.height});
+  const std::vector<PlannedPass>& planned = plan.passes();
+  for (size_t ran = 0; next < planned.size() && ran < passes; ++next) {
+    if (!planned[next].live) continue;
     const double start = TimeSpent::nowMs();
-    runPass(*warm_->plan, warm_->next, *warm_->pool, settings, output, nullptr);
+    runPass(plan, next, *warm_->pool, settings, output, nullptr);
     const double end = TimeSpent::nowMs();
-    quickStart_.warmed.push_back({passes[warm_->next].decl.name, frameIndex_, start - createdAtMs_, end - start});
-    ++warmed;
+    if (reportWarmed)
+      quickStart_.warmed.push_back({planned[next].decl.name, frameIndex_, start - createdAtMs_, end - start});
+    ++ran;
   }
   warm_->pool->endFrame();
+}
+
+void Renderer::warmPasses(const RenderSettings& settings, bool upscaled) {
+  Warm& warm = smallTargets(frame_.outputDepth);
+  FrameContext warmFrame = smallFrame(frame_, frameSource_, upscaled);
+  std::swap(frame_, warmFrame);  // frame_ is the warm frame's while it plans and runs, the cheap frame's after
+  const PlanKey key = planKey(settings, View::Final, FrameOptions{});
+  if (!warm.plan || !(key == warm.key)) {
+    // A new plan (the first, or the settings changed since): its passes from the first (those warmed already cost
+    // little the second time).
+    warm.plan = std::make_unique<FramePlan>(plan(settings, frame_, View::Final, {}));
+    warm.key = key;
+    warm.next = 0;
+  }
+  runSmall(settings, *warm.plan, warm.next, kWarmPassesPerFrame, true);
   std::swap(frame_, warmFrame);
-  if (warm_->next >= passes.size()) quickStartOver_ = true;  // every pass warmed: the next frame is the full one
+  if (warm.next >= warm.plan->passes().size()) quickStartOver_ = true;  // every pass warmed: the next frame is full
+}
+
+size_t Renderer::prepare(const Camera& camera, const RenderSettings& settings, const OutputTarget& output,
+                         const FrameOptions& options) {
+  settings.validate();
+  const glm::ivec2 size = frameSize(settings, output, options);
+  const std::optional<RenderSettings> cheap = cheapFrameSettings(settings, View::Final, options);
+  const RenderSettings& drawn = cheap ? *cheap : settings;
+  // The scene posed at the frame's time, as the frame will pose it (its draws bind what the pose uploads).
+  const ScenePose pose = evaluatePose(sceneData_, options.time, PoseOptions{options.animation, options.loop});
+  scene_.setPose(pose, pose);
+  FrameContext like;
+  like.linesOrPoints = !scene_.lines().empty();
+  like.transparent = scene_.hasTransparent();
+  like.transmission = scene_.hasTransmission();
+  like.forwardLighting = scene_.needsForwardLighting();
+  like.outputDepth = outputHasDepth(output);
+  smallTargets(like.outputDepth);
+  FrameContext rehearsed =
+      smallFrame(like, frameCamera(camera, output.width, output.height, options), size != glm::ivec2(output.width,
+                                                                                                      output.height));
+  std::swap(frame_, rehearsed);
+  const size_t pendingBefore = programs_.pending();
+  {
+    // The passes run for the programs they ask for; their draws, with stand-ins, are withheld (a stand-in does not
+    // write what the real program would: the G-buffer's several draw buffers).
+    struct Withheld {
+      Renderer& renderer;
+      explicit Withheld(Renderer& r) : renderer(r) { set(true); }
+      ~Withheld() { set(false); }
+      void set(bool withheld) {
+        renderer.triangle_.withholdDraws(withheld);
+        renderer.scene_.withholdDraws(withheld);
+      }
+    } withheld(*this);
+    const ProgramCache::Rehearsal rehearsal(programs_);
+    const FramePlan rehearsedPlan = plan(drawn, frame_, View::Final, {});
+    size_t next = 0;
+    runSmall(drawn, rehearsedPlan, next, rehearsedPlan.passes().size(), false);
+  }
+  std::swap(frame_, rehearsed);
+  // Sent to the driver now: a browser's command buffer holds them until a flush.
+  glFlush();
+  return programs_.pending() - pendingBefore;
 }
 
 void Renderer::fullFrameDrawn() {
@@ -479,33 +538,42 @@ void Renderer::fullFrameDrawn() {
   warm_.reset();
 }
 
-void Renderer::render(const Camera& camera, const RenderSettings& settings, const View& view,
-                      const OutputTarget& output, const FrameOptions& options) {
-  checkErrors("");  // an error the application left pending is reported as such, not blamed on a pass
-  settings.validate();
+glm::ivec2 Renderer::frameSize(const RenderSettings& settings, const OutputTarget& output,
+                               const FrameOptions& options) const {
   const int limit = caps_.maxRenderSize();
   if (output.width < 1 || output.height < 1 || output.width > limit || output.height > limit)
     throw InputError("output size " + std::to_string(output.width) + "x" + std::to_string(output.height) +
                      " is outside what this context can render (1 .. " + std::to_string(limit) + " per side)");
-
   const float scale = options.renderScale.value_or(settings.of<ResolutionSettings>().scale);
   if (!(scale > 0.0f && scale <= 1.0f))
     throw InputError("render scale " + std::to_string(scale) + " is outside 0 .. 1");
   // A G-buffer the caller drew is at the output's size: such a frame renders at it.
-  const glm::ivec2 size = options.externalGBuffer != 0 ? glm::ivec2(output.width, output.height)
-                                                       : renderSize({output.width, output.height}, scale);
+  return options.externalGBuffer != 0 ? glm::ivec2(output.width, output.height)
+                                      : renderSize({output.width, output.height}, scale);
+}
+
+std::optional<RenderSettings> Renderer::cheapFrameSettings(const RenderSettings& settings, const View& view,
+                                                           const FrameOptions& options) const {
+  if (quickStartOver_ || !options.allowCheapFrame || !settings.of<ResolutionSettings>().quickStart ||
+      !(view == View::Final) || options.externalGBuffer != 0 || quickStart_.cheapFrames >= kMaxCheapFrames)
+    return std::nullopt;
+  return quickStartSettings(settings);
+}
+
+void Renderer::render(const Camera& camera, const RenderSettings& settings, const View& view,
+                      const OutputTarget& output, const FrameOptions& options) {
+  checkErrors("");  // an error the application left pending is reported as such, not blamed on a pass
+  settings.validate();
+  const glm::ivec2 size = frameSize(settings, output, options);
   // Quick start: the cheap frame, and after the first the next passes of the full one warmed.
-  if (!quickStartOver_ && options.allowCheapFrame && settings.of<ResolutionSettings>().quickStart &&
-      view == View::Final && options.externalGBuffer == 0 && quickStart_.cheapFrames < kMaxCheapFrames) {
-    if (const std::optional<RenderSettings> cheap = quickStartSettings(settings)) {
-      beginFrame(camera, *cheap, size, output, options);
-      run(*cheap, view, output, options);
-      if (quickStart_.cheapFrames > 0) warmPasses(settings, size != glm::ivec2(output.width, output.height));
-      ++quickStart_.cheapFrames;
-      lastFrameCheap_ = true;
-      endFrame();
-      return;
-    }
+  if (const std::optional<RenderSettings> cheap = cheapFrameSettings(settings, view, options)) {
+    beginFrame(camera, *cheap, size, output, options);
+    run(*cheap, view, output, options);
+    if (quickStart_.cheapFrames > 0) warmPasses(settings, size != glm::ivec2(output.width, output.height));
+    ++quickStart_.cheapFrames;
+    lastFrameCheap_ = true;
+    endFrame();
+    return;
   }
   if (view == View::Split) {
     // Two frames of one frame context into one output: the compared switch off, then on over the right half. The

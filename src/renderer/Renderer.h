@@ -171,10 +171,20 @@ class Renderer {
   // tone mapping, auto exposure, the fused display stages) stays. Unset where that is `settings` already (nothing to
   // warm).
   static std::optional<RenderSettings> quickStartSettings(const RenderSettings& settings);
+  // Begins compiling the programs of the frame that render() with these arguments would draw next (with quick start,
+  // the cheap one) and returns without drawing it. That frame is rehearsed: its plan run at kWarmSize into the warm
+  // targets, each program it asks for begun instead of built (ProgramCache::Rehearsal: compiled and linked without
+  // waiting, a stand-in that draws nothing in its place), and the commands flushed. A driver that compiles elsewhere
+  // (a browser's GPU process) compiles them while the caller does other work, and the frame finds them linked; where
+  // GL compiles at once it changes nothing but the order. Returns how many programs it began.
+  size_t prepare(const Camera& camera, const RenderSettings& settings, const OutputTarget& output,
+                 const FrameOptions& options = {});
   // Whether the last frame was a cheap one (a front end drawing on change draws another: the full frame follows).
   bool lastFrameCheap() const { return lastFrameCheap_; }
   const QuickStartReport& quickStart() const { return quickStart_; }
 
+  // The programs built so far (and begun: prepare), for tests and stats.
+  const ProgramCache& programs() const { return programs_; }
   // Every program the frame may build, for the shader validation tools and tests.
   static std::vector<ProgramSpec> allProgramSpecs() { return frameProgramSpecs(); }
 
@@ -231,9 +241,24 @@ class Renderer {
   // Runs pass `index` of `plan` with targets from `pool` into `output`.
   void runPass(const FramePlan& plan, size_t index, RenderTargetPool& pool, const RenderSettings& settings,
                const OutputTarget& output, PassTimer* timer);
+  // The size the frame renders at: the output's, or less (frame/Resolution.h); InputError for an output or a scale
+  // out of range.
+  glm::ivec2 frameSize(const RenderSettings& settings, const OutputTarget& output, const FrameOptions& options) const;
+  // The settings of quick start's cheap frame where this frame is one (quickStartSettings), else none.
+  std::optional<RenderSettings> cheapFrameSettings(const RenderSettings& settings, const View& view,
+                                                   const FrameOptions& options) const;
   // Quick start: warms the next passes of the frame `settings` asks for (after this frame's cheap one, whose context
   // frame_ is), at kWarmSize into warm_'s targets; `upscaled`: whether the frame asked for is below its output's size.
   void warmPasses(const RenderSettings& settings, bool upscaled);
+  // The small frames (the warm ones, prepare's rehearsal): their targets, made or remade for an output with depth
+  // where `outputDepth`; their context, `like`'s at kWarmSize (half of it where upscaled) seen from `source`, without
+  // history; and a run of up to `passes` live passes of `plan` from `next` (moved past them) with frame_ theirs,
+  // each added to quickStart_.warmed where `reportWarmed`.
+  struct Warm;
+  Warm& smallTargets(bool outputDepth);
+  static FrameContext smallFrame(FrameContext like, const Camera& source, bool upscaled);
+  void runSmall(const RenderSettings& settings, const FramePlan& plan, size_t& next, size_t passes,
+                bool reportWarmed);
   // The first full frame drawn: quick start is over and its warm targets go.
   void fullFrameDrawn();
 

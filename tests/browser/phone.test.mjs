@@ -54,6 +54,9 @@ describe('the page on a phone', () => {
       const { startup, stats } = await page.evaluate(() => ({ startup: window.obscura.startup(),
                                                              stats: window.obscura.stats() }));
       const q = startup.quickStart;
+      // The cheap frame's programs were begun at start-up (Renderer::prepare): the G-buffer's, the lighting's (the
+      // scene and the background) and the upscale's.
+      assert.ok(startup.programsPrepared >= 3, `programs begun at start-up: ${startup.programsPrepared}`);
       assert.ok(q.cheapFrames >= 2, `the cheap first frame and one that warmed (${q.cheapFrames})`);
       assert.equal(q.firstFullFrame, q.cheapFrames, 'the full frame right after the cheap ones');
       const warmed = q.warmed.map((w) => w.pass);

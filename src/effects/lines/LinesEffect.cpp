@@ -59,8 +59,10 @@ void LinesEffect::run(const PassContext& context) const {
   const float pointSize = std::clamp(std::round(static_cast<float>(context.size("scene-color").y) / 360.0f), 1.0f,
                                      maxPointSize_);
   lines.set("u_pointSize", pointSize);
-  // The per-draw matrix and the attributes by location (GpuLines sets them for every piece).
-  if (position_ < -1) {
+  // The per-draw matrix and the attributes by location (GpuLines sets them for every piece), found again for another
+  // program (a rehearsal's stand-in: ProgramCache::Rehearsal).
+  if (attributesOf_ != lines.id()) {
+    attributesOf_ = lines.id();
     position_ = glGetAttribLocation(lines.id(), "a_position");
     color_ = glGetAttribLocation(lines.id(), "a_color");
   }
