@@ -16,7 +16,9 @@
 #include <gtest/gtest.h>
 
 #include "TestSupport.h"
+#include "effects/fxaa/FxaaEffect.h"
 #include "effects/resolution/ResolutionEffect.h"
+#include "frame/FullscreenPass.h"
 #include "frame/Resolution.h"
 #include "gl/PipelineState.h"
 #include "metrics/UpscaleMetrics.h"
@@ -191,6 +193,83 @@ TEST(Upscale, TheEdgeUpscaleIsCloserToTheLargeRenderingThanBilinear) {
     for (size_t i = 0; i < out.rgba.size(); ++i) {
       if (i % 4 == 3) continue;
       EXPECT_EQ(out.rgba[i], flat.rgba[i % 4]) << "sharpness " << sharpness;
+    }
+  }
+}
+
+// Where FXAA leaves the image alone, its pass with the upscale fused (fxaa.frag, UPSCALE) writes what the upscale's
+// own pass writes: the quad it assembles from the texels FXAA read (and the diagonal one) is the quad the
+// upscale reads. A smooth image whose local contrast stays below FXAA's threshold everywhere but whose quads differ
+// by more than the edge upscale's flat limit (2 levels), so that its kernel runs; at 2x and at a scale that is not.
+TEST(Upscale, FxaasFusedUpscaleIsTheUpscaleWhereFxaaLeavesTheImageAlone) {
+  test::context();
+  Bytes smooth{29, 17, std::vector<std::uint8_t>(29 * 17 * 4)};
+  for (int y = 0; y < smooth.height; ++y)
+    for (int x = 0; x < smooth.width; ++x) {
+      std::uint8_t* p = &smooth.rgba[(static_cast<size_t>(y) * smooth.width + x) * 4];
+      float rgb[3];
+      for (int c = 0; c < 3; ++c) {
+        rgb[c] = std::round(110.0f + 5.0f * std::sin(0.9f * static_cast<float>(x) + static_cast<float>(c)) +
+                            5.0f * std::cos(0.7f * static_cast<float>(y) + 2.0f * static_cast<float>(c)));
+        p[c] = static_cast<std::uint8_t>(rgb[c]);
+      }
+      p[3] = static_cast<std::uint8_t>(std::lround(0.299f * rgb[0] + 0.587f * rgb[1] + 0.114f * rgb[2]));
+    }
+  const FxaaSettings fxaa;
+  for (const auto& [filter, sharpness] : {std::make_pair(UpscaleFilter::Bilinear, 0.0f),
+                                          std::make_pair(UpscaleFilter::Edge, 0.0f),
+                                          std::make_pair(UpscaleFilter::Edge, 1.0f)}) {
+    ResolutionSettings resolution;
+    resolution.upscale = filter;
+    resolution.sharpness = sharpness;
+    const std::string name = "fxaa[quality=" + std::to_string(fxaa.quality) + ",upscale=" +
+                             upscaleVariantName(resolution) + "]";
+    const std::vector<ProgramSpec> specs = FxaaEffect::programSpecs();
+    const auto spec = std::find_if(specs.begin(), specs.end(), [&](const ProgramSpec& s) { return s.name == name; });
+    ASSERT_NE(spec, specs.end()) << name;
+    const gl::Program program = spec->build(true);
+    const gl::Texture2D input(smooth.width, smooth.height, GL_NEAREST, smooth.rgba.data());
+    for (const glm::ivec2 size : {glm::ivec2(58, 34), glm::ivec2(71, 40)}) {
+      SCOPED_TRACE(name + " to " + std::to_string(size.x) + "x" + std::to_string(size.y));
+      const gl::RenderTarget output("fused upscale test", size.x, size.y, GL_NEAREST, gl::RenderTarget::Depth::None,
+                                    false);
+      output.bindForDrawing();
+      {
+        const glm::vec2 source(static_cast<float>(smooth.width), static_cast<float>(smooth.height));
+        FullscreenDraw draw(program, test::effectResources().triangle);
+        draw.texture("u_color", input);
+        draw.set("u_texel", 1.0f / source).set("u_size", source).set("u_subpix", fxaa.subpix);
+        draw.set("u_edgeThreshold", fxaa.edgeThreshold).set("u_edgeThresholdMin", fxaa.edgeThresholdMin);
+        const std::vector<float>& steps = fxaaSearchSteps(fxaa.quality);
+        draw.set("u_searchSteps", steps.data(), static_cast<int>(steps.size()));
+        if (program.has("u_sharpness")) draw.set("u_sharpness", sharpness);
+        draw.draw();
+      }
+      gl::restoreBaselineState();
+      std::vector<std::uint8_t> fused = output.readRgba();
+      const Bytes alone = upscale(smooth, size.x, size.y, filter, sharpness);
+      // readRgba's rows run from the top, upscale()'s from the bottom.
+      int worst = 0, kernelPixels = 0;
+      for (int y = 0; y < size.y; ++y)
+        for (int x = 0; x < size.x; ++x)
+          for (int c = 0; c < 3; ++c)
+            worst = std::max(worst, std::abs(fused[(static_cast<size_t>(size.y - 1 - y) * size.x + x) * 4 + c] -
+                                             alone.at(x, y, c)));
+      for (int y = 0; y + 1 < smooth.height; ++y)
+        for (int x = 0; x + 1 < smooth.width; ++x) {
+          int low = 255, high = 0;
+          for (int q = 0; q < 4; ++q) {
+            const int v = smooth.at(x + q % 2, y + q / 2, 0);
+            low = std::min(low, v);
+            high = std::max(high, v);
+          }
+          kernelPixels += high - low > 2 ? 1 : 0;
+        }
+      EXPECT_GT(kernelPixels, 200) << "most quads take the edge upscale's kernel";
+      // Within a level: the two programs' arithmetic is the same, but a compiler may contract it differently (a
+      // fused multiply-add), which moves a value at a rounding boundary. A texel of the quad taken from the wrong
+      // place is off by several (neighbours here differ by up to 9 levels).
+      EXPECT_LE(worst, 1);
     }
   }
 }

@@ -40,8 +40,10 @@ uniform sampler2D u_color;          // RGB display colour, A its luma; NEAREST
 uniform vec2 u_texel;               // 1 / size
 uniform float u_edgeThreshold;      // 0.063 .. 0.333; default 0.166
 uniform float u_edgeThresholdMin;   // 0.0312 .. 0.0833; default 0.0833
+#if !FXAA_CLASSIFY || UPSCALE
+uniform vec2 u_size;                // pixels (the source's, as the upscale's own pass takes it)
+#endif
 #if !FXAA_CLASSIFY
-uniform vec2 u_size;                // pixels
 uniform float u_subpix;             // 0 (sharp) .. 1 (soft); Lottes' default 0.75
 uniform float u_searchSteps[FXAA_SEARCH_STEPS];  // the preset's step lengths, pixels
 #endif
@@ -50,7 +52,7 @@ varying vec2 v_uv;
 
 #if UPSCALE
 #include "lib/upscale.glsl"
-vec3 upscaled(vec2 offset) { return upscale(v_uv + offset, 1.0 / u_texel, u_texel); }
+vec3 upscaled(vec2 offset) { return upscale(v_uv + offset, u_size, u_texel); }
 #endif
 
 float lumaOff(vec2 uv, float x, float y) { return texture2D(u_color, uv + vec2(x, y) * u_texel).a; }
@@ -87,14 +89,20 @@ void main() {
   float rangeMax = max(max(lumaN, lumaW), max(lumaE, max(lumaS, lumaM)));
   float rangeMin = min(min(lumaN, lumaW), min(lumaE, min(lumaS, lumaM)));
   float range = rangeMax - rangeMin;
-  if (range < max(u_edgeThresholdMin, rangeMax * u_edgeThreshold)) {
+  bool edge = range >= max(u_edgeThresholdMin, rangeMax * u_edgeThreshold);
 #if UPSCALE
-    gl_FragColor = vec4(upscaled(vec2(0.0)), 1.0);
+  // Where the upscale reads: the pixel's own point, moved by step 4's offset on an edge. One upscale at the end,
+  // not one in each branch: SwiftShader runs a branch's code whether or not a pixel takes it (a copy in each branch
+  // cost this pass 76 ms at 1280 x 720, against 56 to 58 for one; docs/resolution.md).
+  vec2 resample = vec2(0.0);
+  if (edge) {
 #else
+  if (!edge) {
     gl_FragColor = vec4(rgbyM.rgb, 1.0);
-#endif
     return;
   }
+  {
+#endif
 #if FXAA_CLASSIFY
   discard;  // an edge: left to the full pass, which the stencil now lets through here
 #else
@@ -168,11 +176,15 @@ void main() {
   float subpixF = (3.0 - 2.0 * subpixC) * subpixC * subpixC;
   float offset = max(goodSpan ? pixelOffset : 0.0, subpixF * subpixF * u_subpix);
 #if UPSCALE
-  gl_FragColor = vec4(upscaled(horzSpan ? vec2(0.0, offset * lengthSign) : vec2(offset * lengthSign, 0.0)), 1.0);
+  resample = horzSpan ? vec2(0.0, offset * lengthSign) : vec2(offset * lengthSign, 0.0);
 #else
   if (horzSpan) posM.y += offset * lengthSign;
   else posM.x += offset * lengthSign;
   gl_FragColor = vec4(bilinear(posM).rgb, 1.0);
 #endif
+#endif
+  }
+#if UPSCALE
+  gl_FragColor = vec4(upscaled(resample), 1.0);
 #endif
 }

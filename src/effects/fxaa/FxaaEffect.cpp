@@ -190,8 +190,9 @@ std::function<void(PassContext&)> FxaaEffect::run(ProgramSpec full, ProgramSpec 
       d.set("u_texel", texel);
       d.set("u_edgeThreshold", fxaa.edgeThreshold);
       d.set("u_edgeThresholdMin", fxaa.edgeThresholdMin);
+      // The full draw's, and an upscaling one's (the size the upscale's own pass takes: the texel's exact inverse).
+      if (d.program().has("u_size")) d.set("u_size", glm::vec2(context.size("display-color")));
       if (&spec == &full) {
-        d.set("u_size", 1.0f / texel);
         d.set("u_subpix", fxaa.subpix);
         // The preset's step table: the program's constant (uploaded when it changes, once).
         const std::vector<float>& steps = fxaaSearchSteps(fxaa.quality);
