@@ -44,6 +44,18 @@ TEST(Shaders, EveryVariantCompilesAndLinks) {
   }
 }
 
+namespace {
+
+// The error of "broken[test]", whose fragment stage reads an undefined_symbol: the program, the stage and the log.
+void expectBrokenShaderNamed(const GlError& e) {
+  const std::string message = e.what();
+  EXPECT_NE(message.find("broken[test]"), std::string::npos) << message;
+  EXPECT_NE(message.find("fragment"), std::string::npos) << message;
+  EXPECT_NE(message.find("undefined_symbol"), std::string::npos) << message;
+}
+
+}  // namespace
+
 TEST(Shaders, CompileFailureNamesTheProgramAndQuotesTheLog) {
   test::context();
   try {
@@ -51,10 +63,7 @@ TEST(Shaders, CompileFailureNamesTheProgramAndQuotesTheLog) {
                 ShaderLibrary::composeText("void main() { gl_FragColor = undefined_symbol; }", {}, {}));
     FAIL() << "a broken shader compiled";
   } catch (const GlError& e) {
-    const std::string message = e.what();
-    EXPECT_NE(message.find("broken[test]"), std::string::npos) << message;
-    EXPECT_NE(message.find("fragment"), std::string::npos) << message;
-    EXPECT_NE(message.find("undefined_symbol"), std::string::npos) << message;
+    expectBrokenShaderNamed(e);
   }
 }
 
@@ -109,10 +118,7 @@ TEST(Shaders, ABegunProgramIsFinishedByItsFirstUseAndABrokenOneFailsThere) {
     cache.get(broken);
     FAIL() << "a broken shader compiled";
   } catch (const GlError& e) {
-    const std::string message = e.what();
-    EXPECT_NE(message.find("broken[test]"), std::string::npos) << message;
-    EXPECT_NE(message.find("fragment"), std::string::npos) << message;
-    EXPECT_NE(message.find("undefined_symbol"), std::string::npos) << message;
+    expectBrokenShaderNamed(e);
   }
   EXPECT_EQ(glGetError(), static_cast<GLenum>(GL_NO_ERROR));
 }

@@ -407,13 +407,13 @@ export class Obscura extends EventTarget {
   // compiled, the sky made and prefiltered, the scene uploaded, ...), programsPrepared (a count, not ms: the first
   // frame's programs begun at the core's start, which the browser compiles while the page goes on), firstFrameMs
   // (from createObscura's end to the animation frame after the first frame was drawn: the first frame's whole cost,
-  // as stats().frameMs measures a steady one; null until then), firstFrameCpuMs (its time in the renderer), firstFrameParts (what the first frame
-  // did besides drawing: programs compiled on first use, ...), fullFrameMs (likewise to the animation frame after the
-  // first full frame: firstFrameMs's without quick start), quickStart ({cheapFrames: frames drawn cheap before the
-  // full one, firstFullFrame: its index (frames before it: cheapFrames), fullAtMs: when the renderer drew it, warmed:
-  // [{pass, frame, atMs, cpuMs}]: each pass of the full frame drawn once at a small size by a cheap frame so that its
-  // program and the driver's code for it are ready, in which frame, when (ms since the renderer was made) and its
-  // time on the CPU})}. `firstFrame` is a promise of the same once the first frame is on screen.
+  // as stats().frameMs measures a steady one; null until then), firstFrameCpuMs (its time in the renderer),
+  // firstFrameParts (what the first frame did besides drawing: programs compiled on first use or finished, ...),
+  // fullFrameMs (likewise to the animation frame after the first full frame: firstFrameMs's without quick start),
+  // quickStart ({cheapFrames: frames drawn cheap before the full one, firstFullFrame: its index (frames before it:
+  // cheapFrames), fullAtMs: when the renderer drew it, warmed: [{pass, frame, atMs, cpuMs}]: each pass of the full
+  // frame drawn once at a small size by a cheap frame so that its program and the driver's code for it are ready, in
+  // which frame, when (ms since the renderer was made) and its time on the CPU})}. `firstFrame` is a promise of the same once the first frame is on screen.
   startup() {
     const s = this.stats().startup;
     return { wasmMs: this.wasmMs, createMs: this.createMs, coreMs: s.createMs, coreParts: s.createParts,

@@ -40,7 +40,7 @@ class Program {
   // compiles and the link and asks GL nothing; finishLink() checks them (GlError, as the constructor) and reads the
   // uniforms. A driver that compiles elsewhere (a browser's GPU process; one with KHR_parallel_shader_compile) works
   // in between, and GL waits only where a status or a uniform is asked for. A program begun has no uniforms and must
-  // not be used until finished (frame/ProgramCache.h's prefetch).
+  // not be used until finished (frame/ProgramCache.h: Rehearsal, and Renderer::prepare).
   static Program begin(const std::string& name, const std::string& vertexSource, const std::string& fragmentSource,
                        bool strict = false);
   void finishLink();
