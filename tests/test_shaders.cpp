@@ -8,6 +8,7 @@
 #include <tuple>
 
 #include "TestSupport.h"
+#include "gl/GlObjects.h"
 #include "base/Error.h"
 #include "effects/dither/Dither.h"
 #include "effects/fog/FogEffect.h"
@@ -94,6 +95,7 @@ TEST(Shaders, ABegunProgramIsFinishedByItsFirstUseAndABrokenOneFailsThere) {
                            "void main() { gl_FragColor = undefined_symbol; }"};
   ProgramCache cache(true);
   ProgramVariants<int> variants(cache);
+  const gl::LiveObjects before = gl::liveObjects();
   {
     const ProgramCache::Rehearsal rehearsal(cache);
     const gl::Program& standIn = cache.get(spec);
@@ -109,6 +111,9 @@ TEST(Shaders, ABegunProgramIsFinishedByItsFirstUseAndABrokenOneFailsThere) {
   }
   EXPECT_EQ(cache.size(), 2u);
   EXPECT_EQ(cache.pending(), 2u);
+  // The two begun (each a program and its two stages, kept until finished); the stand-in is gone.
+  EXPECT_EQ(gl::liveObjects().programs, before.programs + 2);
+  EXPECT_EQ(gl::liveObjects().shaders, before.shaders + 4);
   const gl::Program& program = cache.get(spec);
   EXPECT_TRUE(program.linked());
   EXPECT_EQ(cache.pending(), 1u);
@@ -120,6 +125,14 @@ TEST(Shaders, ABegunProgramIsFinishedByItsFirstUseAndABrokenOneFailsThere) {
   } catch (const GlError& e) {
     expectBrokenShaderNamed(e);
   }
+  EXPECT_EQ(cache.pending(), 1u) << "the broken one is still begun, and fails at each use";
+  EXPECT_THROW(cache.get(broken), GlError);
+  // A program begun and never finished (its frame was not drawn) is dropped, with its stages.
+  EXPECT_EQ(cache.dropPending(), 1u);
+  EXPECT_EQ(cache.size(), 1u);
+  EXPECT_EQ(cache.pending(), 0u);
+  EXPECT_EQ(gl::liveObjects().programs, before.programs + 1);
+  EXPECT_EQ(gl::liveObjects().shaders, before.shaders);
   EXPECT_EQ(glGetError(), static_cast<GLenum>(GL_NO_ERROR));
 }
 

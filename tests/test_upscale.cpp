@@ -16,6 +16,7 @@
 #include <gtest/gtest.h>
 
 #include "TestSupport.h"
+#include "gl/GlObjects.h"
 #include "effects/fxaa/FxaaEffect.h"
 #include "effects/resolution/ResolutionEffect.h"
 #include "frame/FullscreenPass.h"
@@ -512,4 +513,19 @@ TEST(Upscale, PrepareBeginsTheNextFramesProgramsAndChangesNothingElse) {
       EXPECT_EQ(prepared.programs().size(), before + begun) << "the frame drew with the programs begun, no other";
       EXPECT_EQ(test::worstByteDifference(first, expected), 0);
     }
+  // Prepared for one frame, another drawn (another view): what it did not use is dropped after it.
+  RenderSettings settings = scaled(0.5f);
+  Renderer changed = test::makeRenderer();
+  changed.setScene(makeBuiltinScene(BuiltinSceneOptions::still()));
+  const int programsBefore = gl::liveObjects().programs;
+  EXPECT_GT(changed.prepare(camera, settings, target), 0u);
+  test::render(changed, camera, settings, View::Ao);
+  EXPECT_EQ(changed.programs().pending(), 0u);
+  const int programsAfter = gl::liveObjects().programs;
+  Renderer unprepared = test::makeRenderer();
+  unprepared.setScene(makeBuiltinScene(BuiltinSceneOptions::still()));
+  const int programsUnprepared = gl::liveObjects().programs;
+  test::render(unprepared, camera, settings, View::Ao);
+  EXPECT_EQ(programsAfter - programsBefore, gl::liveObjects().programs - programsUnprepared)
+      << "as many programs as a Renderer that was not prepared";
 }

@@ -23,7 +23,8 @@ using Json = nlohmann::json;
 namespace page = obscura::test::page;
 
 extern "C" {
-int obscura_create(int checkGlErrors, int dynamicResolution, int quickStart);
+int obscura_create(int checkGlErrors, int dynamicResolution, int quickStart, int prepare);
+int obscura_prepare();
 const char* obscura_error();
 const char* obscura_describe();
 int obscura_set(const char* name, const char* value);
@@ -75,7 +76,7 @@ Json stats() { return Json::parse(obscura_stats()); }
 // The module with GL error checks after every pass (as the browser tests create it), at the default display size.
 void createModule() {
   page::setDisplaySize(160, 90);
-  ASSERT_EQ(obscura_create(1, 0, 0), 1) << obscura_error();
+  ASSERT_EQ(obscura_create(1, 0, 0, 0), 1) << obscura_error();
   page::loggedErrors();
 }
 
@@ -289,14 +290,16 @@ TEST(WebApi, ALostContextStopsDrawingAndARestoredOneDrawsAgain) {
 
 TEST(WebApi, QuickStartDrawsACheapFirstFrameThenWarmsThePassesAndTheFullFrameFollowsByItself) {
   page::setDisplaySize(160, 90);
-  ASSERT_EQ(obscura_create(1, 0, 1), 1) << obscura_error();  // the page's quick start: on
+  ASSERT_EQ(obscura_create(1, 0, 1, 0), 1) << obscura_error();  // the page's quick start: on
   page::loggedErrors();
   EXPECT_STREQ(obscura_get("resolution.quick-start"), "on");
   auto ran = [](const Json& s, const std::string& pass) {
     const Json& passes = s["passesRun"];
     return std::find(passes.begin(), passes.end(), pass) != passes.end();
   };
-  // Its programs were begun at start-up (Viewer::prepare): the first frame finishes them and builds no other.
+  // Its programs begun before it (createObscura's prepare(), WebApp::prepare): none until asked.
+  EXPECT_EQ(stats()["startup"]["programsPrepared"].get<int>(), 0);
+  ASSERT_EQ(obscura_prepare(), 1) << obscura_error();
   const int prepared = stats()["startup"]["programsPrepared"].get<int>();
   EXPECT_GE(prepared, 2);  // the lighting's (it draws the scene, and the background), at least
   // The first frame: the lit scene (without the AO, the lighting draws the scene itself: one geometry pass), not the
@@ -343,7 +346,7 @@ TEST(WebApi, QuickStartDrawsACheapFirstFrameThenWarmsThePassesAndTheFullFrameFol
 
 TEST(WebApi, ASnapshotDuringQuickStartIsTheFullFrame) {
   page::setDisplaySize(160, 90);
-  ASSERT_EQ(obscura_create(1, 0, 1), 1) << obscura_error();
+  ASSERT_EQ(obscura_create(1, 0, 1, 0), 1) << obscura_error();
   page::loggedErrors();
   ASSERT_NE(obscura_snapshot(), nullptr) << obscura_error();
   const Json s = stats();

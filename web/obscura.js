@@ -31,17 +31,19 @@ export class ObscuraError extends Error {
 //     scene without AO, antialiasing and the lens and camera effects) and the full frame follows by itself within a
 //     few frames, its programs warmed meanwhile (startup().quickStart says what was warmed and when); the demo page's
 //     choice. snapshot() always reads the full frame.
+//   prepare (default true): begin compiling the first frame's programs as part of start-up (prepare()); false for a
+//     caller that changes the state first and then calls prepare() itself.
 //   checkGlErrors (default false): glGetError after every pass; a GL error stops drawing and is logged as a console
 //     error naming the pass (for tests and debugging: each check waits for the GPU).
 //   wasmUrl: where obscura-core.wasm is served (default: beside this file, found through import.meta.url; bundlers
 //     that follow `new URL(..., import.meta.url)` copy the file and rewrite the URL).
 export async function createObscura(canvas, { pointerControls = true, checkGlErrors = false, dynamicResolution = false,
-                                             quickStart = false, wasmUrl } = {}) {
+                                             quickStart = false, prepare = true, wasmUrl } = {}) {
   const start = performance.now();
   const core = await createObscuraCore(coreOptions(canvas, wasmUrl));
   const wasmMs = performance.now() - start;
   const obscura = new Obscura(core, canvas);
-  if (!core._obscura_create(checkGlErrors ? 1 : 0, dynamicResolution ? 1 : 0, quickStart ? 1 : 0)) {
+  if (!core._obscura_create(checkGlErrors ? 1 : 0, dynamicResolution ? 1 : 0, quickStart ? 1 : 0, prepare ? 1 : 0)) {
     throw new ObscuraError(core.UTF8ToString(core._obscura_error()));
   }
   obscura.description = obscura.json('obscura_describe');
@@ -207,6 +209,11 @@ export class Obscura extends EventTarget {
   // radius's default is the scene's (scene().defaultRadius); a radius setState gives is kept when scenes change.
   state() { return this.text('obscura_state', [], []); }
   setState(query) { this.call('obscura_set_state', ['string'], [query]); }
+  // Begins compiling the programs of the next frame of the final view, as the state is now, and returns at once: the
+  // browser compiles them while the page goes on, and the frame finds them ready (docs/resolution.md, "Start-up").
+  // createObscura does it unless told not to; a restored context does it again; programs begun for a frame that is
+  // then not drawn (the state changed) are dropped after the next one. startup().programsPrepared counts them.
+  prepare() { this.call('obscura_prepare', [], []); }
 
   // --- Camera (pixel deltas in the same units as viewportHeight; CSS pixels of the canvas by default) -------------
   orbit(dx, dy, viewportHeight = this.canvas.clientHeight) { this.move('obscura_orbit', dx, dy, viewportHeight); }

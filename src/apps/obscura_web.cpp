@@ -64,11 +64,19 @@ class WebApp {
         timer_(std::make_unique<GpuPassTimer>(viewer_.caps(), &WebCanvas::procAddress)) {
     if (dynamicResolution) viewer_.state().setDefault("resolution.dynamic", "on");
     if (quickStart) viewer_.state().setDefault("resolution.quick-start", "on");
-    // The first frame's programs begun now: Chromium's GPU process compiles them while the page builds its controls
-    // and waits for the animation frame that draws (docs/resolution.md, "Start-up").
-    fit(&width_, &height_);
-    programsPrepared_ = viewer_.prepare(0, width_, height_);
     emscripten_request_animation_frame_loop(&WebApp::animationFrame, this);
+  }
+
+  // The next frame's programs begun (Viewer::prepare), for the state as it is now: Chromium's GPU process compiles
+  // them while the page builds its controls and waits for the animation frame that draws (docs/resolution.md,
+  // "Start-up"). obscura_create calls it where asked (createObscura's default), a restored context again, and
+  // obscura_prepare at a caller's request (after changing the state first).
+  size_t prepare() {
+    if (canvas_.lost()) return 0;
+    fit(&width_, &height_);
+    const size_t begun = viewer_.prepare(0, width_, height_);
+    programsPrepared_ += begun;
+    return begun;
   }
 
   // Start-up: what making the app took (obscura_create: the context, the renderer's programs, the sky, the scene),
@@ -312,6 +320,7 @@ class WebApp {
       viewer_.contextRestored(gl::GlCaps::query());
       timer_ = std::make_unique<GpuPassTimer>(viewer_.caps(), &WebCanvas::procAddress);
       ++restores_;
+      prepare();  // as at start-up: the first frame's programs begun before it
       changed();
     } catch (const std::exception& e) {
       renderError_ = std::string("cannot rebuild after the context was restored: ") + e.what();
@@ -338,7 +347,7 @@ class WebApp {
   float lastScale_ = 1.0f;              // the render scale of the last frame drawn
   int refineFrames_ = kRefineFrames;    // frames dynamic resolution may still draw on since the last change
   std::uint64_t timerResults_ = 0;      // the GPU timer's results fed to dynamic resolution
-  size_t programsPrepared_ = 0;  // the first frame's programs begun at start-up (Viewer::prepare)
+  size_t programsPrepared_ = 0;  // programs begun by prepare() (at start-up, and after a restored context)
   double createMs_ = 0.0, createdAt_ = 0.0, firstFrameMs_ = 0.0, firstFrameCpuMs_ = 0.0, fullFrameMs_ = 0.0;
   bool fullDrawn_ = false;  // a full frame was drawn (fullFrameMs_ is taken at the next animation frame)
   Json createParts_ = Json::object(), firstFrameParts_ = Json::object();
@@ -392,8 +401,9 @@ extern "C" {
 // checkGlErrors: glGetError after every pass; an error stops the frame and is logged as a console error naming the
 // pass (the browser tests turn it on; it costs a round trip per pass). dynamicResolution: resolution.dynamic's
 // default on this page (the demo page's: on; the API's: off). quickStart: resolution.quick-start's (the same).
-EMSCRIPTEN_KEEPALIVE int obscura_create(int checkGlErrors, int dynamicResolution, int quickStart) {
-  return attempt([checkGlErrors, dynamicResolution, quickStart] {
+// prepare: the first frame's programs begun before it returns (WebApp::prepare), as part of start-up.
+EMSCRIPTEN_KEEPALIVE int obscura_create(int checkGlErrors, int dynamicResolution, int quickStart, int prepare) {
+  return attempt([checkGlErrors, dynamicResolution, quickStart, prepare] {
     RendererOptions options;
     options.checkGlErrors = checkGlErrors != 0;
     // One app per canvas: the old one lets go of the canvas's context and event handlers before a new one takes
@@ -403,6 +413,7 @@ EMSCRIPTEN_KEEPALIVE int obscura_create(int checkGlErrors, int dynamicResolution
     TimeSpent::take();  // start-up's figures start here
     const double start = emscripten_get_now();
     g_app = std::make_unique<WebApp>(options, dynamicResolution != 0, quickStart != 0);
+    if (prepare != 0) g_app->prepare();
     g_app->created(emscripten_get_now() - start);
   });
 }
@@ -725,6 +736,12 @@ EMSCRIPTEN_KEEPALIVE const char* obscura_stats() { return returned(g_app->stats(
 
 // Continuous mode draws on every animation frame (for live timings); otherwise only after a change.
 EMSCRIPTEN_KEEPALIVE void obscura_set_continuous(int continuous) { g_app->setContinuous(continuous != 0); }
+
+// Begins compiling the programs of the next frame (WebApp::prepare: stats' startup.programsPrepared counts them);
+// 0 if it failed (obscura_error).
+EMSCRIPTEN_KEEPALIVE int obscura_prepare() {
+  return attempt([] { g_app->prepare(); });
+}
 
 // Draws a frame now into the canvas (for embedders that draw on their own schedule, and for benchmarks that bound a
 // frame with gl.finish); 0 if no frame could be drawn (context lost, renderer failure).

@@ -1,6 +1,7 @@
 #include "frame/ProgramCache.h"
 
 #include <algorithm>
+#include <iterator>
 
 #include "base/TimeSpent.h"
 
@@ -26,13 +27,18 @@ const gl::Program& ProgramCache::finished(gl::Program& program) {
   if (program.linked()) return program;
   if (rehearsing_) return standIn();
   const TimedScope timed("programs");
-  program.finishLink();
+  program.finishLink();  // a failure throws, and again at each use, as a program built at once would
+  --pending_;
   return program;
 }
 
-size_t ProgramCache::pending() const {
-  return static_cast<size_t>(std::count_if(programs_.begin(), programs_.end(),
-                                           [](const auto& entry) { return !entry.second->linked(); }));
+size_t ProgramCache::dropPending() {
+  const size_t dropped = pending_;
+  if (pending_ == 0) return 0;
+  for (auto it = programs_.begin(); it != programs_.end();)
+    it = it->second->linked() ? std::next(it) : programs_.erase(it);
+  pending_ = 0;
+  return dropped;
 }
 
 const gl::Program& ProgramCache::standIn() {
@@ -55,7 +61,10 @@ ProgramCache::Rehearsal::~Rehearsal() {
   // a question waits for every command before it, and these compiles are what the driver should be left with.
   for (const ProgramSpec& spec : cache_.rehearsed_)
     cache_.programs_.emplace(spec.name, std::make_unique<gl::Program>(spec.begin(cache_.strict_)));
+  cache_.pending_ += cache_.rehearsed_.size();
   cache_.rehearsed_.clear();
+  // The stand-in goes after them (so none of them takes its name): what is made later finds no trace of it.
+  cache_.standIn_.reset();
 }
 
 }  // namespace obscura

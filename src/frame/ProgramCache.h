@@ -32,13 +32,17 @@ class ProgramCache {
   bool built(const std::string& name) const { return programs_.count(name) != 0; }
   size_t size() const { return programs_.size(); }
   // Programs begun and not yet finished by a get().
-  size_t pending() const;
+  size_t pending() const { return pending_; }
+  // Deletes the programs begun and never finished (a rehearsed frame that was not drawn: the state changed since);
+  // returns how many.
+  size_t dropPending();
 
   // While a Rehearsal lives, get() notes each program it is asked for that is not built and returns a stand-in, a
   // program that draws nothing, in its place; the Rehearsal's end begins them (gl::Program::begin: compiled and
   // linked without waiting). A frame run so begins every program it draws with and waits for none: the driver
-  // compiles them while the caller goes on, and the next get() of each finishes it (Renderer::prepare). Nothing may
-  // keep the stand-in (ProgramVariants does not).
+  // compiles them while the caller goes on, and the next get() of each finishes it (Renderer::prepare). The stand-in
+  // is deleted at the Rehearsal's end: nothing may keep it, or what it tells (ProgramVariants does not keep it,
+  // GpuScene withholding its draws keeps no locations of it, the lines' pass looks its attributes up again).
   class Rehearsal {
    public:
     explicit Rehearsal(ProgramCache& cache);
@@ -58,6 +62,7 @@ class ProgramCache {
 
   bool strict_;
   bool rehearsing_ = false;
+  size_t pending_ = 0;  // begun, not finished
   std::vector<ProgramSpec> rehearsed_;  // asked for during the rehearsal, to begin at its end
   std::unordered_map<std::string, std::unique_ptr<gl::Program>> programs_;
   std::unique_ptr<gl::Program> standIn_;

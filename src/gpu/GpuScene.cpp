@@ -494,9 +494,14 @@ void GpuScene::drawPiece(const InstanceGpu& instance, int p, const MaterialGpu& 
     // The program's per-draw uniforms, resolved on its first draw (programs outlive the scene's draws: they belong
     // to the Renderer).
     const gl::Program& program = state.choose(materialKind, vertexKind);
-    auto found = geometryUniforms_.find(&program);
-    if (found == geometryUniforms_.end()) found = geometryUniforms_.emplace(&program, GeometryUniforms(program)).first;
-    state.uniforms = &found->second;
+    if (withheld_) {
+      state.uniforms = &state.withheldUniforms.emplace(program);
+    } else {
+      auto found = geometryUniforms_.find(&program);
+      if (found == geometryUniforms_.end())
+        found = geometryUniforms_.emplace(&program, GeometryUniforms(program)).first;
+      state.uniforms = &found->second;
+    }
     state.programMaterial = materialKind;
     state.programVertex = vertexKind;
     Program::set(state.uniforms->baseColorTexture, TextureUnits::kBaseColor);

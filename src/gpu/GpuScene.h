@@ -205,6 +205,7 @@ class GpuScene {
     explicit DrawState(const ProgramChoice& program) : choose(program) {}
     const ProgramChoice& choose;
     const GeometryUniforms* uniforms = nullptr;
+    std::optional<GeometryUniforms> withheldUniforms;  // a withheld draw's, not kept (its program may be a stand-in)
     MaterialKind programMaterial;
     VertexKind programVertex;
     std::vector<GLuint> extraAttributes;  // enabled for the current piece, disabled after it

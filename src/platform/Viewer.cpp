@@ -304,7 +304,7 @@ void Viewer::render(GLuint framebuffer, int width, int height, PassTimer* timer,
 size_t Viewer::prepare(GLuint framebuffer, int width, int height) {
   state_.camera.width = width;
   state_.camera.height = height;
-  if (!renderer_) return 0;
+  if (!renderer_ || !(state_.view == View::Final)) return 0;  // the final view's programs only (Renderer::prepare)
   return renderer_->prepare(state_.camera, state_.settings, outputTarget(framebuffer, width, height),
                             frameOptions(width, height));
 }

@@ -84,6 +84,7 @@ class Viewer {
               bool allowCheapFrame = true);
   // Begins compiling the programs of the frame render() would draw next at this size (Renderer::prepare), so that a
   // driver that compiles elsewhere (a browser's GPU process) does it while the front end goes on; returns how many.
+  // Nothing for a view other than the final image (a debug view, split screen).
   size_t prepare(GLuint framebuffer, int width, int height);
   // --- Dynamic resolution (resolution.dynamic, frame/Resolution.h): with it on, render() draws at the scale the
   // controller chose (platform/DynamicResolution.h) from the frame times the front end measures: GPU timer queries

@@ -343,6 +343,8 @@ void Renderer::endFrame() {
   hasPrevious_ = true;
   ++historyFrames_;
   ++frameIndex_;
+  // Programs prepare() began for a frame that was not drawn (the state changed since) go.
+  programs_.dropPending();
 }
 
 Renderer::PlanKey Renderer::planKey(const RenderSettings& settings, const View& view,
