@@ -218,8 +218,8 @@ TEST(Compression, DracoEngineRendersAsTheUncompressedOne) {
   EXPECT_LT(meanNormalDegrees, 2.0);
 }
 
-// Renderer::prepare's rehearsal runs the lines' pass with a stand-in program: what the pass keeps of its program (its
-// attributes' locations) is found again for the real one, and the frame is the one drawn without preparing.
+// Renderer::prepare's rehearsal runs the lines' pass with a stand-in program: the pass keeps nothing of it (its
+// attributes' locations are looked up each frame), and the frame is the one drawn without preparing.
 TEST(PointsAndLines, APreparedFrameDrawsThemAsAnUnpreparedOne) {
   const Camera camera = test::makeCamera({0.0f, 0.0f, 3.0f}, {0.0f, 0.0f, 0.0f}, kWidth, kHeight);
   const RenderSettings settings;

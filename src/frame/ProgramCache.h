@@ -42,7 +42,7 @@ class ProgramCache {
   // linked without waiting). A frame run so begins every program it draws with and waits for none: the driver
   // compiles them while the caller goes on, and the next get() of each finishes it (Renderer::prepare). The stand-in
   // is deleted at the Rehearsal's end: nothing may keep it, or what it tells (ProgramVariants does not keep it,
-  // GpuScene withholding its draws keeps no locations of it, the lines' pass looks its attributes up again).
+  // GpuScene withholding its draws keeps no locations of it, the lines' pass looks its attributes up each frame).
   class Rehearsal {
    public:
     explicit Rehearsal(ProgramCache& cache);

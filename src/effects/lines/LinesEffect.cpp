@@ -59,17 +59,15 @@ void LinesEffect::run(const PassContext& context) const {
   const float pointSize = std::clamp(std::round(static_cast<float>(context.size("scene-color").y) / 360.0f), 1.0f,
                                      maxPointSize_);
   lines.set("u_pointSize", pointSize);
-  // The per-draw matrix and the attributes by location (GpuLines sets them for every piece), found again for another
-  // program (a rehearsal's stand-in: ProgramCache::Rehearsal).
-  if (attributesOf_ != lines.id()) {
-    attributesOf_ = lines.id();
-    position_ = glGetAttribLocation(lines.id(), "a_position");
-    color_ = glGetAttribLocation(lines.id(), "a_color");
-  }
+  // The per-draw matrix and the attributes by location (GpuLines sets them for every piece). The attributes are
+  // looked up each frame, not kept: the program may be a rehearsal's stand-in (ProgramCache::Rehearsal), whose GL
+  // name a later program may take once it is deleted (a lookup is a name in the program's table: no round trip).
+  const GLint position = glGetAttribLocation(lines.id(), "a_position");
+  const GLint color = glGetAttribLocation(lines.id(), "a_color");
   const GLint modelViewProjection = lines.uniform("u_modelViewProjection");
   const glm::mat4 viewProjection = camera.projection * camera.view;
-  context.scene().lines().draw(viewProjection, false, modelViewProjection, position_, color_);
-  context.scene().lines().draw(viewProjection, true, modelViewProjection, position_, color_);
+  context.scene().lines().draw(viewProjection, false, modelViewProjection, position, color);
+  context.scene().lines().draw(viewProjection, true, modelViewProjection, position, color);
   if (resources_.caps.desktopGl) glDisable(kVertexProgramPointSize);
   gl::restoreBaselineState();
 }

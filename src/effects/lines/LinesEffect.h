@@ -28,8 +28,6 @@ class LinesEffect : public Effect {
   void run(const PassContext& context) const;
 
   const EffectResources& resources_;
-  mutable GLint position_ = -1, color_ = -1;  // the lines program's attributes, found on its first use
-  mutable GLuint attributesOf_ = 0;            // the program they were found in
   float maxPointSize_ = 1.0f;
 };
 
