@@ -8,7 +8,6 @@
 #include <tuple>
 
 #include "TestSupport.h"
-#include "gl/GlObjects.h"
 #include "base/Error.h"
 #include "effects/dither/Dither.h"
 #include "effects/fog/FogEffect.h"
@@ -21,6 +20,7 @@
 #include "frame/Stage.h"
 #include "effects/transparency/TransparencyEffect.h"
 
+#include "gl/GlObjects.h"
 #include "gl/ShaderLibrary.h"
 #include "renderer/EffectTable.h"
 #include "gl/UniformPacking.h"

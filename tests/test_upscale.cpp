@@ -16,11 +16,11 @@
 #include <gtest/gtest.h>
 
 #include "TestSupport.h"
-#include "gl/GlObjects.h"
 #include "effects/fxaa/FxaaEffect.h"
 #include "effects/resolution/ResolutionEffect.h"
 #include "frame/FullscreenPass.h"
 #include "frame/Resolution.h"
+#include "gl/GlObjects.h"
 #include "gl/PipelineState.h"
 #include "metrics/UpscaleMetrics.h"
 #include "platform/Viewer.h"
@@ -199,8 +199,7 @@ TEST(Upscale, TheEdgeUpscaleIsCloserToTheLargeRenderingThanBilinear) {
 }
 
 // Where FXAA leaves the image alone, its pass with the upscale fused (fxaa.frag, UPSCALE) writes what the upscale's
-// own pass writes: the quad it assembles from the texels FXAA read (and the diagonal one) is the quad the
-// upscale reads. A smooth image whose local contrast stays below FXAA's threshold everywhere but whose quads differ
+// own pass writes: one upscale at the pixel's own point, with the same size and texel. A smooth image whose local contrast stays below FXAA's threshold everywhere but whose quads differ
 // by more than the edge upscale's flat limit (2 levels), so that its kernel runs; at 2x and at a scale that is not.
 TEST(Upscale, FxaasFusedUpscaleIsTheUpscaleWhereFxaaLeavesTheImageAlone) {
   test::context();
@@ -268,8 +267,8 @@ TEST(Upscale, FxaasFusedUpscaleIsTheUpscaleWhereFxaaLeavesTheImageAlone) {
         }
       EXPECT_GT(kernelPixels, 200) << "most quads take the edge upscale's kernel";
       // Within a level: the two programs' arithmetic is the same, but a compiler may contract it differently (a
-      // fused multiply-add), which moves a value at a rounding boundary. A texel of the quad taken from the wrong
-      // place is off by several (neighbours here differ by up to 9 levels).
+      // fused multiply-add), which moves a value at a rounding boundary. A texel read from the wrong place is off by
+      // several (neighbours here differ by up to 9 levels).
       EXPECT_LE(worst, 1);
     }
   }
