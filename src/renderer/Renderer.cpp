@@ -252,6 +252,18 @@ bool Renderer::outputHasDepth(const OutputTarget& output) {
   return outputDepth_.depth;
 }
 
+FrameContext Renderer::sceneFrame(const OutputTarget& output) {
+  FrameContext frame;
+  frame.linesOrPoints = !scene_.lines().empty();
+  frame.transparent = scene_.hasTransparent();
+  frame.transmission = scene_.hasTransmission();
+  frame.forwardLighting = scene_.needsForwardLighting();
+  frame.outputWidth = output.width;
+  frame.outputHeight = output.height;
+  frame.outputDepth = outputHasDepth(output);
+  return frame;
+}
+
 void Renderer::beginFrame(const Camera& camera, const RenderSettings& settings, glm::ivec2 size,
                           const OutputTarget& output, const FrameOptions& options) {
   const double time = options.time;
@@ -281,7 +293,7 @@ void Renderer::beginFrame(const Camera& camera, const RenderSettings& settings, 
     const auto index = static_cast<std::uint32_t>(frameIndex_ % 16 + 1);
     jitter = glm::vec2(halton(index, 2), halton(index, 3)) - 0.5f;
   }
-  FrameContext frame;
+  FrameContext frame = sceneFrame(output);
   frame.hasPrevious = hasPrevious_;
   frame.index = frameIndex_;
   frame.historyFrames = historyFrames_;
@@ -289,13 +301,6 @@ void Renderer::beginFrame(const Camera& camera, const RenderSettings& settings, 
   frame.previousTime = options.previousTime.value_or(hasPrevious_ ? previousTime_ : time);
   frame.deltaTime = time - frame.previousTime;
   frame.frameInterval = options.frameInterval.value_or(frame.deltaTime > 0.0 ? frame.deltaTime : 1.0 / 60.0);
-  frame.linesOrPoints = !scene_.lines().empty();
-  frame.transparent = scene_.hasTransparent();
-  frame.transmission = scene_.hasTransmission();
-  frame.forwardLighting = scene_.needsForwardLighting();
-  frame.outputWidth = output.width;
-  frame.outputHeight = output.height;
-  frame.outputDepth = outputHasDepth(output);
   frame_ = std::move(frame);
 
   // The scene's pose now and at the previous time (the last frame's pose when that is the one asked for).
@@ -496,12 +501,7 @@ size_t Renderer::prepare(const Camera& camera, const RenderSettings& settings, c
   // The scene posed at the frame's time, as the frame will pose it (its draws bind what the pose uploads).
   const ScenePose pose = evaluatePose(sceneData_, options.time, PoseOptions{options.animation, options.loop});
   scene_.setPose(pose, pose);
-  FrameContext like;
-  like.linesOrPoints = !scene_.lines().empty();
-  like.transparent = scene_.hasTransparent();
-  like.transmission = scene_.hasTransmission();
-  like.forwardLighting = scene_.needsForwardLighting();
-  like.outputDepth = outputHasDepth(output);
+  const FrameContext like = sceneFrame(output);
   smallTargets(like.outputDepth);
   FrameContext rehearsed =
       smallFrame(like, frameCamera(camera, output.width, output.height, options), size != glm::ivec2(output.width,

@@ -207,6 +207,9 @@ class Renderer {
   // `size`: the size the frame renders at (the output's, or less: frame/Resolution.h).
   void beginFrame(const Camera& camera, const RenderSettings& settings, glm::ivec2 size, const OutputTarget& output,
                   const FrameOptions& options);
+  // A frame context's fields that the scene and the output decide (what the scene draws, the output's size and
+  // depth): beginFrame's, and prepare's rehearsal's.
+  FrameContext sceneFrame(const OutputTarget& output);
   void endFrame();
   void dropHistory();
 

@@ -34,7 +34,7 @@ parseOptions(process.argv.slice(2), {
 }, path.basename(import.meta.url));
 const [width, height] = options.size.split('x').map(Number);
 if (!(width > 0 && height > 0 && options.rounds > 0 && options.frames > 0 && options.settle >= 0)) {
-  throw new Error('--size WxH, --rounds N and --frames N must be positive');
+  throw new Error('--size WxH, --rounds N and --frames N must be positive, --settle MS at least 0');
 }
 
 const median = (values) => {
