@@ -27,8 +27,6 @@
 //   BLENDED 1         the transparent layer's form (effects/transparency): the surface composited over what lies
 //                     behind it (shaders_es2/transparency/composite.glsl), fogged by its own distance; TRANSMISSION 1
 //                     adds KHR_materials_transmission's thin-walled refraction.
-//   OVER_DEPTH 1      (with DEFERRED 1, at the far plane) the deferred shading alone, drawn over the G-buffer's depth
-//                     where something was drawn; the background form draws the rest.
 //   LIGHTING_QUALITY  the tier (LightingEffect.h, LightingQuality): 0 low, 1 medium, 2 high.
 #include "lib/precision.glsl"
 #include "lib/packing.glsl"
@@ -42,9 +40,6 @@
 #endif
 #ifndef BLENDED
 #define BLENDED 0
-#endif
-#ifndef OVER_DEPTH
-#define OVER_DEPTH 0
 #endif
 #include "lib/material.glsl"
 #include "lib/pbr.glsl"
@@ -284,19 +279,14 @@ void main() {
 #if STAGE_POSITION
   if (!pixel.background) pixel.viewPosition = viewPositionOnRay(v_farRay, code * (1.0 / 65535.0));
 #endif
-#if !OVER_DEPTH
-  if (pixel.background) {
-    gl_FragColor = finishPixel(background(v_farRay), pixel);
-    return;
-  }
-#endif
   vec3 base = srgbToLinear(texture2D(u_baseColor, v_uv).rgb);
   // Only the view direction matters to the shading here (no punctual lights take this form): the eye's ray through
   // the far plane's point is the surface's (shade takes it through eyeRayDirection). The G-buffer's normal is the
   // surface's own (no normal texture takes this form).
-  gl_FragColor = finishPixel(shade(base, 0.0, 1.0, v_farRay, pixel.viewNormal, pixel.viewNormal,
-                                   texture2D(u_ao, v_uv).r, vec3(0.0)),
-                             pixel);
+  vec3 color = shade(base, 0.0, 1.0, v_farRay, pixel.viewNormal, pixel.viewNormal, texture2D(u_ao, v_uv).r, vec3(0.0));
+  // One colour through finishPixel: a CPU rasteriser runs both sides of the branch, and would run the stages twice.
+  if (pixel.background) color = background(v_farRay);
+  gl_FragColor = finishPixel(color, pixel);
 }
 #elif UNLIT && !BLENDED
 // KHR_materials_unlit: the base colour (times the vertex colour) as it is; exposure and the tone curve still apply.

@@ -11,7 +11,7 @@ const root = path.resolve(path.dirname(fileURLToPath(import.meta.url)), '..', '.
 const model = '/usr/share/assimp/models/glTF2/2CylinderEngine-glTF-Binary/2CylinderEngine.glb';
 const [size = '1280x720', ...states] = process.argv.slice(2);
 const [width, height] = size.split('x').map(Number);
-const server = await startServer(path.join(root, 'build-web', 'site'));
+const server = await startServer(process.env.OBSCURA_WEB_SITE ?? path.join(root, 'build-web', 'site'));
 const browser = await chromium.launch(chromiumLaunchOptions);
 const page = await (await browser.newContext({ viewport: { width, height }, deviceScaleFactor: 1 })).newPage();
 await page.goto(fixedScaleUrl(`http://127.0.0.1:${server.address().port}/`));

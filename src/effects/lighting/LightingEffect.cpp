@@ -204,7 +204,6 @@ LightingEffect::Form LightingEffect::programForm(Form form) {
     form.quality = LightingQuality::Medium;
     form.filteredFrom = kEnvironmentLevels;
   }
-  if (!form.deferred || form.counting) form.overDepth = false;
   // The low tier reads no prefiltered level.
   if (form.quality == LightingQuality::Low) form.filteredFrom = kEnvironmentLevels;
   return form;
@@ -218,7 +217,7 @@ ProgramSpec LightingEffect::spec(const Form& shown, MaterialKind kind, VertexKin
   const Form form = programForm(shown);
   // The low tier's shading reads no level (only the deferred form's background branch does): one program for both
   // layouts.
-  if (form.quality == LightingQuality::Low && !form.counting && !form.background && form.overDepth == form.deferred)
+  if (form.quality == LightingQuality::Low && !form.counting && !form.background && !form.deferred)
     layout = EnvironmentLayout::Atlas;
   const bool fullscreen = form.deferred || form.background;
   std::string name = "lighting[";
@@ -227,7 +226,6 @@ ProgramSpec LightingEffect::spec(const Form& shown, MaterialKind kind, VertexKin
   else name += "forward" + kind.nameSuffix() + vertex.nameSuffix();
   if (form.counting) name += ",count-shading";
   const bool shading = !form.counting && !form.background;
-  if (form.overDepth) name += ",over-depth";
   if (shading && form.quality != LightingQuality::Medium)
     name += form.quality == LightingQuality::Low ? ",low" : ",high";
   if (shading && form.filteredFrom < kEnvironmentLevels) name += ",filtered";
@@ -235,8 +233,7 @@ ProgramSpec LightingEffect::spec(const Form& shown, MaterialKind kind, VertexKin
   ProgramSpec s{name + "]", fullscreen ? "lib/fullscreen.vert" : "lib/geometry.vert", "lighting/lighting.frag",
                 {{"DEFERRED", fullscreen ? "1" : "0"},
                  {"BACKGROUND", form.background ? "1" : "0"},
-                 {"OVER_DEPTH", form.overDepth ? "1" : "0"},
-                 {"AT_FAR_PLANE", form.background || form.overDepth ? "1" : "0"},
+                 {"AT_FAR_PLANE", form.background ? "1" : "0"},
                  {"COUNT_SHADING", form.counting ? "1" : "0"},
                  {"LIGHTING_QUALITY", std::to_string(static_cast<int>(form.quality))},
                  {"MAX_PUNCTUAL_LIGHTS", std::to_string(fullscreen ? 0 : lightsPerDraw)},
@@ -298,23 +295,19 @@ std::vector<ProgramSpec> LightingEffect::programSpecs(int lightsPerDraw, std::op
     for (bool deferred : {false, true})
       for (bool counting : {true, false}) {
         if (counting && layout == EnvironmentLayout::MipChain) continue;
-        for (const Shading& shading : counting ? std::vector<Shading>{shadings[1]} : shadings)
-          for (bool overDepth : {false, true}) {
-            if (overDepth && (!deferred || counting)) continue;
-            // The low tier's shading reads no level: its forms differ by layout only in the deferred background.
-            if (shading.quality == LightingQuality::Low && layout == EnvironmentLayout::MipChain &&
-                overDepth == deferred)
-              continue;
-            for (MaterialKind kind : MaterialKind::all()) {
-              // The extended kinds (unlit, layered) take the forward forms only (Material::needsForwardLighting),
-              // with the atlas, in every tier: enough for the shader checks to compile every #if of them.
-              if (kind.extended() && (deferred || layout != EnvironmentLayout::Atlas)) continue;
-              if (kind.layered && layeredLightsPerDraw < 0) continue;
-              const Form form{deferred, counting, false, shading.quality, shading.filteredFrom, overDepth};
-              if (readKind(form, kind) == kind)
-                specs.push_back(spec(form, kind, {}, layout, kind.layered ? layeredLightsPerDraw : lightsPerDraw));
-            }
+        for (const Shading& shading : counting ? std::vector<Shading>{shadings[1]} : shadings) {
+          // The low tier's shading reads no level: its forms differ by layout only in the deferred background.
+          if (shading.quality == LightingQuality::Low && layout == EnvironmentLayout::MipChain && !deferred) continue;
+          for (MaterialKind kind : MaterialKind::all()) {
+            // The extended kinds (unlit, layered) take the forward forms only (Material::needsForwardLighting), with
+            // the atlas, in every tier: enough for the shader checks to compile every #if of them.
+            if (kind.extended() && (deferred || layout != EnvironmentLayout::Atlas)) continue;
+            if (kind.layered && layeredLightsPerDraw < 0) continue;
+            const Form form{deferred, counting, false, shading.quality, shading.filteredFrom};
+            if (readKind(form, kind) == kind)
+              specs.push_back(spec(form, kind, {}, layout, kind.layered ? layeredLightsPerDraw : lightsPerDraw));
           }
+        }
         if (!deferred && !counting) specs.push_back(spec({false, false, true}, {}, {}, layout, 0));
       }
   for (VertexKind vertex : VertexKind::validated())
@@ -411,8 +404,9 @@ void LightingEffect::plan(FramePlanner& planner) {
     pass.writes = {{output, TargetSize::full(), Write::Depth::Shared, "gbuffer"}};
     pass.run = runAs({false, counting, false});
     if (!counting) pass.stageHead = forward;
-    // Deferred where the G-buffer pass writes the base colour beside the G-buffer: over the G-buffer's depth (the
-    // shading where something was drawn, the background where not: each pixel runs one program).
+    // Deferred where the G-buffer pass writes the base colour beside the G-buffer: one full-screen program, the
+    // shading or the background at each pixel; the G-buffer's depth stays with the image for the passes after it
+    // (the transparent layer).
     if (counting) {
       pass.alternatives = {Alternative{{"base-color"}, {"gbuffer"},
                                        {{output, TargetSize::full(), Write::Depth::None, ""}},
@@ -420,8 +414,7 @@ void LightingEffect::plan(FramePlanner& planner) {
     } else {
       pass.alternatives = {Alternative{{"base-color"}, with({"gbuffer", "base-color"}),
                                        {{output, TargetSize::full(), Write::Depth::Shared, "gbuffer"}},
-                                       runAs({true, false, false, LightingQuality::Medium, kEnvironmentLevels, true}),
-                                       deferred, "", false}};
+                                       runAs({true, false, false}), deferred, "", false}};
     }
     planner.add(std::move(pass));
   }
@@ -530,11 +523,11 @@ void LightingEffect::render(const PassContext& context, Form form) const {
   };
 
   if (form.deferred) {
-    // Every pixel once, background included. Over the G-buffer's depth (form.overDepth): the shading where the
-    // depth is nearer than the far plane (a triangle on the far plane, tested GL_GREATER), then the background where
-    // it is not; else (the output framebuffer, which has no depth) one program for both, which tells the background
-    // by the G-buffer's depth code.
-    form.overDepth = form.overDepth && !form.counting && context.sharesDepth(output) && !writesOutput;
+    // Every pixel once, background included, by one program that tells the background by the G-buffer's depth
+    // code. Not two draws over the G-buffer's depth (the shading where it is nearer than the far plane, then the
+    // background): on SwiftShader that lighting pass cost 92.5 ms against this one's 85 (the default frame at
+    // 1280x720, profile-passes.mjs), on llvmpipe the same (36 ms); both rasterisers shade the pixels a depth test
+    // fails, and a branch runs both sides there anyway.
     if (form.counting) {
       glClearColor(0.0f, 0.0f, 0.0f, 0.0f);
       glClear(GL_COLOR_BUFFER_BIT);
@@ -552,13 +545,7 @@ void LightingEffect::render(const PassContext& context, Form form) const {
       glEnable(GL_BLEND);
       glBlendFunc(GL_ONE, GL_ONE);
     }
-    if (form.overDepth) {
-      glEnable(GL_DEPTH_TEST);
-      glDepthFunc(GL_GREATER);
-      glDepthMask(GL_FALSE);
-    }
     resources_.triangle.draw();
-    if (form.overDepth) drawBackground();
     gl::restoreBaselineState();
     return;
   }

@@ -194,13 +194,9 @@ class LightingEffect : public Effect {
     bool background = false;
     LightingQuality quality = LightingQuality::Medium;
     int filteredFrom = kEnvironmentLevels;
-    // The deferred form over the G-buffer's depth: its shading drawn where the depth is nearer than the far plane,
-    // the background form where it is not, so that each pixel runs one of the two programs (a CPU rasteriser runs
-    // both sides of a branch).
-    bool overDepth = false;
     bool operator<(const Form& o) const {
-      return std::tie(deferred, counting, background, quality, filteredFrom, overDepth) <
-             std::tie(o.deferred, o.counting, o.background, o.quality, o.filteredFrom, o.overDepth);
+      return std::tie(deferred, counting, background, quality, filteredFrom) <
+             std::tie(o.deferred, o.counting, o.background, o.quality, o.filteredFrom);
     }
   };
   static MaterialKind readKind(const Form& form, MaterialKind kind);

@@ -60,7 +60,6 @@ ProgramSpec TransparencyEffect::spec(MaterialKind kind, VertexKind vertex, FogKe
   ProgramSpec s{name, "lib/geometry.vert", "lighting/lighting.frag",
                 {{"DEFERRED", "0"},
                  {"BACKGROUND", "0"},
-                 {"OVER_DEPTH", "0"},
                  {"AT_FAR_PLANE", "0"},
                  {"LIGHTING_QUALITY", std::to_string(shading.quality)},
                  {"COUNT_SHADING", "0"},
