@@ -2,7 +2,7 @@
 //
 //   obscura-bench [--out DIR] [--frames N] [--backend osmesa|egl] [--quick] [--estimators-only] [--motion-only]
 //                 [--effects-only] [--finish-only] [--transparency-only] [--temporal-ao-only] [--lighting-only]
-//                 [--ao-layers-only] [--startup-only] [--resolution-only] [--host-only]
+//                 [--ao-layers-only] [--startup-only] [--resolution-only] [--host-only] [--scene-bounds-only]
 //
 // Prints tables and writes DIR/bench.csv (every measurement), DIR/ratios.csv, DIR/radius_sweep.csv,
 // DIR/radius_sweep.png (gnuplot) and DIR/estimators.csv. Every pass is bounded by glFinish on both sides and
@@ -57,6 +57,10 @@
 //      thread's CPU clock: planning, GL calls and what the driver does on that thread; llvmpipe rasterises on threads
 //      of its own), median of 4 x N frames of the moving built-in scene, the defaults and every effect on, at
 //      1280x720 and at 160x90 (where the driver's work is least); DIR/host.csv
+//  14. the scene's bounds (--scene-bounds-only: this alone): the frame with the passes limited to the scene's bounds
+//      on screen (PassContext::sceneRect) against the same passes over the whole frame (RendererOptions::limitToScene
+//      off), the defaults, `preset low` and the AO off, taking turns frame by frame on the engine and the still room
+//      at 640x360 and 1280x720 (DIR/scene_bounds.csv)
 #include <time.h>
 
 #include <algorithm>
@@ -129,6 +133,7 @@ struct Options {
   bool lightingOnly = false;    // section 10 alone
   bool aoLayersOnly = false;    // section 12 alone
   bool hostOnly = false;        // section 13 alone
+  bool sceneBoundsOnly = false; // section 14 alone
 };
 
 struct BenchScene {
@@ -352,10 +357,12 @@ Options parseOptions(int argc, char** argv) {
     else if (arg == "--lighting-only") options.lightingOnly = true;
     else if (arg == "--ao-layers-only") options.aoLayersOnly = true;
     else if (arg == "--host-only") options.hostOnly = true;
+    else if (arg == "--scene-bounds-only") options.sceneBoundsOnly = true;
     else throw InputError("unknown option '" + arg + "' (usage: obscura-bench [--out DIR] [--frames N] "
                           "[--backend osmesa|egl] [--quick] [--estimators-only] [--motion-only] [--effects-only] "
                           "[--finish-only] [--stages-only] [--transparency-only] [--temporal-ao-only] "
-                          "[--lighting-only] [--ao-layers-only] [--startup-only] [--resolution-only] [--host-only])");
+                          "[--lighting-only] [--ao-layers-only] [--startup-only] [--resolution-only] [--host-only] "
+                          "[--scene-bounds-only])");
   }
   return options;
 }
@@ -1228,6 +1235,62 @@ void hostSection(const Options& options, HeadlessContext& context) {
   }
 }
 
+// Section 14: what limiting the passes to the scene's bounds on screen saves, each configuration with the limit and
+// without it taking turns frame by frame.
+void sceneBoundsSection(const Options& options, HeadlessContext& context, const std::vector<BenchScene>& scenes) {
+  struct Configuration {
+    std::string name;
+    std::vector<std::pair<std::string, std::string>> set;
+  };
+  const std::vector<Configuration> configurations = {
+      {"defaults", {}}, {"preset low", {{"preset", "low"}}}, {"AO off", {{"ao", "off"}}}};
+  // --quick: the engine alone (the room fills its frame), small.
+  const std::vector<std::pair<int, int>> sizes =
+      options.quick ? std::vector<std::pair<int, int>>{{320, 180}} : std::vector<std::pair<int, int>>{{640, 360}, {1280, 720}};
+  std::ofstream csv(options.outDir + "/scene_bounds.csv");
+  csv << "scene,configuration,width,height,limited_ms,whole_ms,ratio\n";
+  std::printf("\n14. The scene's bounds, %s: frame ms (glFinish-bounded, median of %d frames) with the passes limited "
+              "to the scene's bounds on screen and over the whole frame, taking turns\n",
+              context.caps().renderer.c_str(), options.frames);
+  std::printf("%-16s %-12s %-10s %12s %12s %8s\n", "scene", "frame", "size", "limited ms", "whole ms", "ratio");
+  for (const BenchScene& scene : scenes) {
+    if (options.quick && &scene != &scenes.back()) continue;
+    for (auto [w, h] : sizes) {
+      const gl::RenderTarget output("bench output", w, h, GL_NEAREST, gl::RenderTarget::Depth::Renderbuffer,
+                                    context.caps().depth24, context.caps().packedDepthStencil);
+      const OutputTarget target{output.framebuffer(), w, h, {}};
+      Camera camera = scene.camera;
+      camera.width = w;
+      camera.height = h;
+      for (const Configuration& c : configurations) {
+        RenderSettings settings;
+        for (const auto& [name, value] : c.set) settings.set(name, value);
+        std::vector<std::unique_ptr<Renderer>> renderers;
+        for (const bool limit : {true, false}) {
+          RendererOptions rendererOptions;
+          rendererOptions.limitToScene = limit;
+          renderers.push_back(std::make_unique<Renderer>(context.caps(), rendererOptions));
+          renderers.back()->setScene(scene.scene);
+        }
+        std::vector<std::vector<double>> ms(2);
+        for (int f = -2; f < options.frames; ++f)
+          for (size_t r = 0; r < 2; ++r) {
+            glFinish();
+            const double start = wallMs();
+            renderers[r]->render(camera, settings, View::Final, target);
+            glFinish();
+            if (f >= 0) ms[r].push_back(wallMs() - start);
+          }
+        const double limited = median(ms[0]), whole = median(ms[1]);
+        std::printf("%-16s %-12s %-10s %12.2f %12.2f %8.3f\n", scene.name.c_str(), c.name.c_str(),
+                    (std::to_string(w) + "x" + std::to_string(h)).c_str(), limited, whole, limited / whole);
+        csv << scene.name << ",\"" << c.name << "\"," << w << "," << h << "," << limited << "," << whole << ","
+            << limited / whole << "\n";
+      }
+    }
+  }
+}
+
 // Section 8c: the camera's finish (issue 29), every configuration in the same frames.
 void finishSection(const Options& options, HeadlessContext& context, const std::vector<std::pair<int, int>>& sizes) {
   const Scene scene = makeBuiltinScene(BuiltinSceneOptions::still());
@@ -1395,7 +1458,7 @@ int main(int argc, char** argv) {
                 backendName(options.backend), context.caps().renderer.c_str(), options.frames);
     // Start-up first: nothing has been made in this process yet (the built-in sky is made once per process).
     if (!options.estimatorsOnly && !options.motionOnly && !options.effectsOnly && !options.temporalAoOnly &&
-        !options.finishOnly && !options.resolutionOnly)
+        !options.finishOnly && !options.resolutionOnly && !options.sceneBoundsOnly)
       startupSection(options, context);
     if (options.startupOnly) {
       std::printf("\nobscura-bench: wrote %s/startup.csv\n", options.outDir.c_str());
@@ -1416,6 +1479,11 @@ int main(int argc, char** argv) {
     if (options.motionOnly) {  // before Bench, which starts DIR/bench.csv afresh
       motionSection(options, context, options.quick ? 640 : 1280, options.quick ? 360 : 720);
       std::printf("\nobscura-bench: wrote %s/motion.csv\n", options.outDir.c_str());
+      return 0;
+    }
+    if (options.sceneBoundsOnly) {  // before Bench, which starts DIR/bench.csv afresh
+      sceneBoundsSection(options, context, scenes);
+      std::printf("\nobscura-bench: wrote %s/scene_bounds.csv\n", options.outDir.c_str());
       return 0;
     }
     if (options.hostOnly) {  // before Bench, which starts DIR/bench.csv afresh
@@ -1606,9 +1674,10 @@ int main(int argc, char** argv) {
     temporalAoSection(options, context, builtin);
     resolutionSection(options, context, builtin);
     hostSection(options, context);
+    sceneBoundsSection(options, context, scenes);
     std::printf("\nobscura-bench: wrote %s/startup.csv, bench.csv, ratios.csv, radius_sweep.csv, radius_sweep.png, "
                 "estimators.csv, motion.csv, effects.csv, finish.csv, stages.csv, temporal_ao.csv, resolution.csv, "
-                "host.csv\n",
+                "host.csv, scene_bounds.csv\n",
                 options.outDir.c_str());
     return 0;
   } catch (const InputError& e) {

@@ -25,6 +25,9 @@
 //      or by the subpixel term (the 3x3 average's distance from the pixel, smoothed: (3 - 2c) c^2, squared, times
 //      SUBPIX), whichever is larger.
 //
+// FXAA_PASS_THROUGH 1 (with FXAA_CLASSIFY 1): every pixel as step 1 leaves one below the threshold, the pass's draw
+// around the scene's bounds on screen (src/effects/fxaa/FxaaEffect.cpp).
+//
 // UPSCALE 1 or 2 (frame/Resolution.h: the frame rendered below the output's size, FxaaEffect.h): the pass writes the
 // output at its own size and also upscales (lib/upscale.glsl, UPSCALE 1 bilinear, 2 edge). Each output pixel runs
 // steps 1 to 4 on the source texel under it (u_texel is the source's), then reads the upscale at its own point,
@@ -32,6 +35,9 @@
 // upscale's are done in one pass over the output.
 #ifndef UPSCALE
 #define UPSCALE 0
+#endif
+#ifndef FXAA_PASS_THROUGH
+#define FXAA_PASS_THROUGH 0
 #endif
 
 #include "lib/precision.glsl"
@@ -90,6 +96,9 @@ void main() {
   float rangeMin = min(min(lumaN, lumaW), min(lumaE, min(lumaS, lumaM)));
   float range = rangeMax - rangeMin;
   bool edge = range >= max(u_edgeThresholdMin, rangeMax * u_edgeThreshold);
+#if FXAA_PASS_THROUGH
+  edge = false;  // (the compiler drops the lumas and the rest)
+#endif
 #if UPSCALE
   // Where the upscale reads: the pixel's own point, moved by step 4's offset on an edge. One upscale at the end,
   // not one in each branch: SwiftShader runs a branch's code whether or not a pixel takes it (a copy in each branch

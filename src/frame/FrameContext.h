@@ -62,6 +62,8 @@ struct FrameContext {
   bool transmission = false;
   // The scene needs the forward lighting (GpuScene::needsForwardLighting): the G-buffer writes no base colour.
   bool forwardLighting = false;
+  // The caller drew the G-buffer (FrameOptions::externalGBuffer): the scene's bounds say nothing of where it drew.
+  bool externalGBuffer = false;
   // The output's size. The frame renders at camera.width x camera.height, which is less where the render scale is
   // below 1 (frame/Resolution.h): then one pass at the end upscales the result into the output.
   int outputWidth = 1, outputHeight = 1;

@@ -77,6 +77,61 @@ void PassContext::bindForWriting(const std::string& target) const {
   slot.bindForDrawing();
 }
 
+namespace {
+
+glm::ivec4 intersection(const glm::ivec4& a, const glm::ivec4& b) {
+  const glm::ivec2 from = glm::max(glm::ivec2(a.x, a.y), glm::ivec2(b.x, b.y));
+  const glm::ivec2 to = glm::min(glm::ivec2(a.x + a.z, a.y + a.w), glm::ivec2(b.x + b.z, b.y + b.w));
+  return {from, glm::max(to - from, glm::ivec2(0))};
+}
+
+}  // namespace
+
+glm::ivec4 PassContext::sceneRect(const std::string& target) const {
+  const glm::ivec2 frameSize(frame_.camera.width, frame_.camera.height);
+  const glm::ivec4 rect = frame_.externalGBuffer || !resources_.options.limitToScene
+                              ? glm::ivec4(0, 0, frameSize.x, frameSize.y)
+                              : scene_.coveredRect(frame_.camera.projection * frame_.camera.view, frameSize);
+  const glm::ivec2 targetSize = size(target);
+  // Target pixel p stands for frame pixels from p * frame / target on (a half-size AO pixel p for frame pixel 2p).
+  const glm::vec2 scale = glm::vec2(targetSize) / glm::vec2(frameSize);
+  const glm::ivec2 from = glm::max(glm::ivec2(glm::floor(glm::vec2(rect.x, rect.y) * scale)) - 1, glm::ivec2(0));
+  const glm::ivec2 to =
+      glm::min(glm::ivec2(glm::ceil(glm::vec2(rect.x + rect.z, rect.y + rect.w) * scale)) + 1, targetSize);
+  const glm::ivec4 covered(from, glm::max(to - from, glm::ivec2(0)));
+  const OutputTarget::Region& region = output_.region;
+  if (writesOutput(target) && region.width > 0 && region.height > 0)
+    return intersection(covered, {region.x, region.y, region.width, region.height});
+  return covered;
+}
+
+void PassContext::scissor(const std::string& target, const glm::ivec4& rect) const {
+  glm::ivec4 r = rect;
+  const OutputTarget::Region& region = output_.region;
+  if (writesOutput(target) && region.width > 0 && region.height > 0)
+    r = intersection(r, {region.x, region.y, region.width, region.height});
+  glEnable(GL_SCISSOR_TEST);
+  glScissor(r.x, r.y, r.z, r.w);
+  scissored_ = true;
+}
+
+std::vector<glm::ivec4> PassContext::around(const std::string& target, const glm::ivec4& rect) const {
+  const glm::ivec2 whole = size(target);
+  const int top = rect.y + rect.w, right = rect.x + rect.z;
+  std::vector<glm::ivec4> bands;
+  for (const glm::ivec4& band : {glm::ivec4(0, 0, whole.x, rect.y), glm::ivec4(0, top, whole.x, whole.y - top),
+                                 glm::ivec4(0, rect.y, rect.x, rect.w), glm::ivec4(right, rect.y, whole.x - right, rect.w)})
+    if (band.z > 0 && band.w > 0) bands.push_back(band);
+  return bands;
+}
+
+void PassContext::limitToScene(const std::string& target, const glm::vec4& outside) const {
+  if (writesOutput(target)) throw PipelineError("limitToScene: '" + target + "' is the output framebuffer");
+  glClearColor(outside.r, outside.g, outside.b, outside.a);
+  glClear(GL_COLOR_BUFFER_BIT);
+  scissor(target, sceneRect(target));
+}
+
 void PassContext::bindForWriting(const std::vector<std::string>& targets) const {
   std::vector<SlotKey> slots;
   for (const std::string& target : targets) {

@@ -2,6 +2,7 @@
 // What a pass sees while it draws (PassDecl::run): the frame, the settings, the scene, and its targets by name,
 // bound to the physical targets the frame plan lent it (or the output framebuffer, for the frame's result).
 #include <string>
+#include <vector>
 
 #include "frame/EffectEntry.h"
 #include "frame/FrameContext.h"
@@ -75,7 +76,22 @@ class PassContext {
   FullscreenDraw draw(const ProgramSpec& spec) const {
     return FullscreenDraw(program(spec), resources_.triangle, this);
   }
-  // Restores what the pass context changed (the output region's scissor): called after every pass.
+  // For a pass whose result where nothing was drawn is one known value (the AO's white): clears `target`, bound for
+  // writing, to `outside`, and scissors the pass's draws to the pixels the scene may cover (GpuScene::coveredRect,
+  // mapped to the target's size, widened by a pixel). A CPU rasteriser pays a full-screen pass's arithmetic at every
+  // pixel, the background's too: a branch runs both its sides (docs/benchmarks.md, issue 26).
+  void limitToScene(const std::string& target, const glm::vec4& outside) const;
+  // The pixels of `target` the scene may cover: GpuScene::coveredRect (the whole frame where the caller drew the
+  // G-buffer, or with RendererOptions::limitToScene off) mapped to the target's size and widened by a pixel, within
+  // the output's region where `target` is the output; x, y, width, height in GL window coordinates.
+  glm::ivec4 sceneRect(const std::string& target) const;
+  // Scissors this pass's draws into `target` to `rect` (within the output's region) until finish().
+  void scissor(const std::string& target, const glm::ivec4& rect) const;
+  // The parts of `target` around `rect`: the bands below and above it and to its left and right, the empty ones left
+  // out (a pass that draws its background apart scissors each in turn).
+  std::vector<glm::ivec4> around(const std::string& target, const glm::ivec4& rect) const;
+  // Restores what the pass context changed (the scissor of the output's region or of limitToScene): called after
+  // every pass.
   void finish() const;
   // Whether this pass writes `target` into the output framebuffer.
   bool writesOutput(const std::string& target) const;

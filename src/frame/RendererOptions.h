@@ -22,6 +22,9 @@ struct RendererOptions {
   bool allowDrawBuffers = true;
   // false: FXAA runs in one draw even where its target has a stencil buffer (FxaaEffect.h; tests compare both).
   bool allowFxaaStencil = true;
+  // false: the passes that limit their work to the scene's bounds on screen (PassContext::sceneRect: the AO's, the
+  // deferred lighting's shading, FXAA) run over the whole frame (tests compare both; the benchmark measures both).
+  bool limitToScene = true;
   // false: per-pixel stages run as passes of their own instead of fusing into the pass before them (frame/Stage.h;
   // tests compare both, the benchmark measures what fusing saves).
   bool fuseStages = true;

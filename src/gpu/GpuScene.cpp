@@ -410,6 +410,18 @@ glm::ivec4 GpuScene::screenRect(const InstanceGpu& instance, const glm::mat4& vi
   return {from.x, from.y, std::max(0, to.x - from.x), std::max(0, to.y - from.y)};
 }
 
+glm::ivec4 GpuScene::coveredRect(const glm::mat4& viewProjection, glm::ivec2 size) const {
+  glm::ivec2 from(size), to(0);
+  for (const InstanceGpu& instance : instances_) {
+    const glm::ivec4 rect = screenRect(instance, viewProjection, size);
+    if (rect.z <= 0 || rect.w <= 0) continue;
+    from = glm::min(from, glm::ivec2(rect.x, rect.y));
+    to = glm::max(to, glm::ivec2(rect.x + rect.z, rect.y + rect.w));
+  }
+  if (to.x <= from.x || to.y <= from.y) return glm::ivec4(0);
+  return {from.x, from.y, to.x - from.x, to.y - from.y};
+}
+
 std::vector<GpuScene::TransparentBatch> GpuScene::transparentBatches(const glm::mat4& view,
                                                                      const glm::mat4& projection,
                                                                      glm::ivec2 size) const {

@@ -106,6 +106,10 @@ class GpuScene {
   std::vector<TransparentBatch> transparentBatches(const glm::mat4& view, const glm::mat4& projection,
                                                    glm::ivec2 size) const;
   void drawTransparent(const glm::mat4& view, const ProgramChoice& choose, const TransparentBatch& batch) const;
+  // The pixels the scene's draws may cover, x, y, width, height in a frame of `size` pixels (GL window coordinates):
+  // the union of every instance's projected bounds (the whole frame for a skinned or morphed one, or one reaching
+  // behind the eye); empty for an empty scene.
+  glm::ivec4 coveredRect(const glm::mat4& viewProjection, glm::ivec2 size) const;
   // The scene has transparent instances; some has transmission (effects/transparency reads the blurred levels).
   bool hasTransparent() const { return hasTransparent_; }
   bool hasTransmission() const { return hasTransmission_; }

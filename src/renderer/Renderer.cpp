@@ -301,6 +301,7 @@ void Renderer::beginFrame(const Camera& camera, const RenderSettings& settings, 
   frame.previousTime = options.previousTime.value_or(hasPrevious_ ? previousTime_ : time);
   frame.deltaTime = time - frame.previousTime;
   frame.frameInterval = options.frameInterval.value_or(frame.deltaTime > 0.0 ? frame.deltaTime : 1.0 / 60.0);
+  frame.externalGBuffer = options.externalGBuffer != 0;
   frame_ = std::move(frame);
 
   // The scene's pose now and at the previous time (the last frame's pose when that is the one asked for).

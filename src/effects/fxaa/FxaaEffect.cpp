@@ -49,11 +49,17 @@ constexpr FxaaPreset kPresets[] = {
 };
 
 // quality 0: the classifying draw, which has no search. `upscale`: the upscale the pass does too (null: none).
+// quality 0: the classifying draw; kPassThrough: every pixel as FXAA leaves one below its threshold.
+constexpr int kPassThrough = -1;
+
 ProgramSpec spec(int quality, const ResolutionSettings* upscale = nullptr) {
-  std::vector<std::pair<std::string, std::string>> defines = {{"FXAA_CLASSIFY", quality == 0 ? "1" : "0"},
+  std::vector<std::pair<std::string, std::string>> defines = {{"FXAA_CLASSIFY", quality <= 0 ? "1" : "0"},
+                                                              {"FXAA_PASS_THROUGH", quality < 0 ? "1" : "0"},
                                                               {"FAR_RAY", "0"}};
-  if (quality != 0) defines.emplace_back("FXAA_SEARCH_STEPS", std::to_string(fxaaSearchSteps(quality).size()));
-  std::string name = quality == 0 ? "fxaa[classify" : "fxaa[quality=" + std::to_string(quality);
+  if (quality > 0) defines.emplace_back("FXAA_SEARCH_STEPS", std::to_string(fxaaSearchSteps(quality).size()));
+  std::string name = quality < 0    ? "fxaa[pass-through"
+                     : quality == 0 ? "fxaa[classify"
+                                    : "fxaa[quality=" + std::to_string(quality);
   if (upscale) {
     for (const auto& define : upscaleShaderDefines(*upscale)) defines.push_back(define);
     name += ",upscale=" + upscaleVariantName(*upscale);
@@ -144,10 +150,11 @@ EffectInfo FxaaEffect::info() {
 }
 
 std::vector<ProgramSpec> FxaaEffect::programSpecs() {
-  std::vector<ProgramSpec> specs = {spec(0)};
+  std::vector<ProgramSpec> specs = {spec(0), spec(kPassThrough)};
   for (const auto& [lottes, steps] : searchStepTable()) specs.push_back(spec(lottes));
   for (const ResolutionSettings& upscale : upscaleVariants()) {
     specs.push_back(spec(0, &upscale));
+    specs.push_back(spec(kPassThrough, &upscale));
     for (const auto& [lottes, steps] : searchStepTable()) specs.push_back(spec(lottes, &upscale));
   }
   return specs;
@@ -160,9 +167,9 @@ void FxaaEffect::plan(FramePlanner& planner) {
   pass.name = "fxaa";
   pass.reads = {"display-color"};
   pass.writes = {{"display-color", TargetSize::full(), PassDecl::Write::Depth::None, ""}};
-  const ProgramSpec full = spec(settings.quality), classify = spec(0);
-  pass.programs = {classify.name, full.name};
-  pass.run = run(full, classify, "display-color", false);
+  const ProgramSpec full = spec(settings.quality), classify = spec(0), passThrough = spec(kPassThrough);
+  pass.programs = {passThrough.name, classify.name, full.name};
+  pass.run = run(full, classify, passThrough, "display-color", false);
   if (planner.frame().upscaled()) {
     // The frame renders below the output's size: FXAA and the upscale in one pass over the output, where nothing
     // else reads FXAA's result (a retained display colour keeps the two passes).
@@ -172,24 +179,28 @@ void FxaaEffect::plan(FramePlanner& planner) {
     both.mayWriteOutput = true;
     both.reads = {"display-color"};
     both.writes = {{kOutputTarget, TargetSize::full(), PassDecl::Write::Depth::None, ""}};
-    both.run = run(spec(settings.quality, &upscale), spec(0, &upscale), kOutputTarget, true);
+    both.run = run(spec(settings.quality, &upscale), spec(0, &upscale), spec(kPassThrough, &upscale), kOutputTarget,
+                   true);
     pass.alternatives.push_back(std::move(both));
   }
   planner.add(std::move(pass));
 }
 
-std::function<void(PassContext&)> FxaaEffect::run(ProgramSpec full, ProgramSpec classify, std::string output,
-                                                  bool upscales) const {
-  return [this, full, classify, output, upscales](PassContext& context) {
+std::function<void(PassContext&)> FxaaEffect::run(ProgramSpec full, ProgramSpec classify, ProgramSpec passThrough,
+                                                  std::string output, bool upscales) const {
+  return [this, full, classify, passThrough, output, upscales](PassContext& context) {
     const FxaaSettings& fxaa = context.settings().of<FxaaSettings>();
     // The source's texel (FXAA's steps are in its pixels, also where the pass writes the larger output).
     const glm::vec2 texel = context.texelSize("display-color");
     auto draw = [&](const ProgramSpec& spec) {
       FullscreenDraw d = context.draw(spec);
       d.read("u_color", "display-color");
-      d.set("u_texel", texel);
-      d.set("u_edgeThreshold", fxaa.edgeThreshold);
-      d.set("u_edgeThresholdMin", fxaa.edgeThresholdMin);
+      // The pass-through tests no threshold, and reads the texel's size only to upscale.
+      if (&spec != &passThrough || d.program().has("u_texel")) d.set("u_texel", texel);
+      if (&spec != &passThrough) {
+        d.set("u_edgeThreshold", fxaa.edgeThreshold);
+        d.set("u_edgeThresholdMin", fxaa.edgeThresholdMin);
+      }
       // The full draw's, and an upscaling one's (the size the upscale's own pass takes: the texel's exact inverse).
       if (d.program().has("u_size")) d.set("u_size", glm::vec2(context.size("display-color")));
       if (&spec == &full) {
@@ -204,6 +215,15 @@ std::function<void(PassContext&)> FxaaEffect::run(ProgramSpec full, ProgramSpec 
       d.draw();
     };
     context.bindForWriting(output);
+    // Around the scene's bounds on screen the pixels are the environment's background, a magnified image filtered
+    // bilinearly, with no geometric edge to antialias: they are copied (upscaled) as they are, and FXAA runs within
+    // the bounds, whose margin holds every pixel next to the scene's edges that FXAA moves.
+    const glm::ivec4 covered = context.sceneRect(output);
+    for (const glm::ivec4& band : context.around(output, covered)) {
+      context.scissor(output, band);
+      draw(passThrough);
+    }
+    context.scissor(output, covered);
     GLint stencilBits = 0;
     glGetIntegerv(GL_STENCIL_BITS, &stencilBits);
     if (stencilBits > 0 && resources_.options.allowFxaaStencil) {

@@ -61,10 +61,11 @@ class FxaaEffect : public Effect {
   void plan(FramePlanner& planner) override;
 
  private:
-  // The pass's draws into `output`: the classifying one first where the target written has a stencil buffer, then
-  // `full`; `upscales`: the variants that also upscale into the output (frame/Resolution.h).
-  std::function<void(PassContext&)> run(ProgramSpec full, ProgramSpec classify, std::string output,
-                                        bool upscales) const;
+  // The pass's draws into `output`: `passThrough` around the scene's bounds on screen, then within them the
+  // classifying one first where the target written has a stencil buffer, and `full`; `upscales`: the variants that
+  // also upscale into the output (frame/Resolution.h).
+  std::function<void(PassContext&)> run(ProgramSpec full, ProgramSpec classify, ProgramSpec passThrough,
+                                        std::string output, bool upscales) const;
 
   const EffectResources& resources_;
 };
