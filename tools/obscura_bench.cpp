@@ -1245,8 +1245,8 @@ void sceneBoundsSection(const Options& options, HeadlessContext& context, const 
   const std::vector<Configuration> configurations = {
       {"defaults", {}}, {"preset low", {{"preset", "low"}}}, {"AO off", {{"ao", "off"}}}};
   // --quick: the engine alone (the room fills its frame), small.
-  const std::vector<std::pair<int, int>> sizes =
-      options.quick ? std::vector<std::pair<int, int>>{{320, 180}} : std::vector<std::pair<int, int>>{{640, 360}, {1280, 720}};
+  using Sizes = std::vector<std::pair<int, int>>;
+  const Sizes sizes = options.quick ? Sizes{{320, 180}} : Sizes{{640, 360}, {1280, 720}};
   std::ofstream csv(options.outDir + "/scene_bounds.csv");
   csv << "scene,configuration,width,height,limited_ms,whole_ms,ratio\n";
   std::printf("\n14. The scene's bounds, %s: frame ms (glFinish-bounded, median of %d frames) with the passes limited "

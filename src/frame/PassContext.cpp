@@ -119,8 +119,11 @@ std::vector<glm::ivec4> PassContext::around(const std::string& target, const glm
   const glm::ivec2 whole = size(target);
   const int top = rect.y + rect.w, right = rect.x + rect.z;
   std::vector<glm::ivec4> bands;
-  for (const glm::ivec4& band : {glm::ivec4(0, 0, whole.x, rect.y), glm::ivec4(0, top, whole.x, whole.y - top),
-                                 glm::ivec4(0, rect.y, rect.x, rect.w), glm::ivec4(right, rect.y, whole.x - right, rect.w)})
+  const glm::ivec4 candidates[] = {{0, 0, whole.x, rect.y},
+                                   {0, top, whole.x, whole.y - top},
+                                   {0, rect.y, rect.x, rect.w},
+                                   {right, rect.y, whole.x - right, rect.w}};
+  for (const glm::ivec4& band : candidates)
     if (band.z > 0 && band.w > 0) bands.push_back(band);
   return bands;
 }

@@ -48,8 +48,8 @@ constexpr FxaaPreset kPresets[] = {
     {QualityPreset::Ultra, 39, 0.063f, 0.0312f},
 };
 
-// quality 0: the classifying draw, which has no search. `upscale`: the upscale the pass does too (null: none).
-// quality 0: the classifying draw; kPassThrough: every pixel as FXAA leaves one below its threshold.
+// quality 0: the classifying draw, which has no search; kPassThrough: every pixel as FXAA leaves one below its
+// threshold (the draw around the scene's bounds on screen). `upscale`: the upscale the pass does too (null: none).
 constexpr int kPassThrough = -1;
 
 ProgramSpec spec(int quality, const ResolutionSettings* upscale = nullptr) {

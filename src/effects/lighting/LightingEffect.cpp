@@ -535,8 +535,8 @@ void LightingEffect::render(const PassContext& context, Form form) const {
       glClearColor(0.0f, 0.0f, 0.0f, 0.0f);
       glClear(GL_COLOR_BUFFER_BIT);
     }
-    const glm::ivec4 covered = context.sceneRect(output);
     if (!form.counting) {
+      const glm::ivec4 covered = context.sceneRect(output);
       const Form background{false, false, true};
       const gl::Program& b = program(background, {}, {}, stages, chain);
       b.use();
