@@ -48,6 +48,7 @@ TEST(SceneBounds, TheCoveredRectangleHoldsEveryPixelTheGBufferDrew) {
   EXPECT_EQ(outside, 0) << "G-buffer pixels outside the covered rectangle " << rect.x << "," << rect.y << " "
                         << rect.z << "x" << rect.w;
   EXPECT_LT(rect.z * rect.w, camera.width * camera.height / 2) << "the bounds leave most of the frame to the sky";
+  EXPECT_TRUE(renderer.lastFrame().sceneBounds == rect) << "the frame's bounds are the scene's";
 
   Renderer empty = test::makeRenderer();
   empty.setScene(Scene{});

@@ -62,8 +62,11 @@ struct FrameContext {
   bool transmission = false;
   // The scene needs the forward lighting (GpuScene::needsForwardLighting): the G-buffer writes no base colour.
   bool forwardLighting = false;
-  // The caller drew the G-buffer (FrameOptions::externalGBuffer): the scene's bounds say nothing of where it drew.
-  bool externalGBuffer = false;
+  // The pixels of the frame the scene may cover, x, y, width, height (GL window coordinates): GpuScene::coveredRect
+  // at this frame's camera and size, or the whole frame where the caller drew the G-buffer or
+  // RendererOptions::limitToScene is off. Set once before the passes run (Renderer::boundScene); PassContext::sceneRect
+  // maps it to a target.
+  glm::ivec4 sceneBounds{0};
   // The output's size. The frame renders at camera.width x camera.height, which is less where the render scale is
   // below 1 (frame/Resolution.h): then one pass at the end upscales the result into the output.
   int outputWidth = 1, outputHeight = 1;

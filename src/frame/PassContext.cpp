@@ -89,9 +89,7 @@ glm::ivec4 intersection(const glm::ivec4& a, const glm::ivec4& b) {
 
 glm::ivec4 PassContext::sceneRect(const std::string& target) const {
   const glm::ivec2 frameSize(frame_.camera.width, frame_.camera.height);
-  const glm::ivec4 rect = frame_.externalGBuffer || !resources_.options.limitToScene
-                              ? glm::ivec4(0, 0, frameSize.x, frameSize.y)
-                              : scene_.coveredRect(frame_.camera.projection * frame_.camera.view, frameSize);
+  const glm::ivec4& rect = frame_.sceneBounds;
   const glm::ivec2 targetSize = size(target);
   // Target pixel p stands for frame pixels from p * frame / target on (a half-size AO pixel p for frame pixel 2p).
   const glm::vec2 scale = glm::vec2(targetSize) / glm::vec2(frameSize);

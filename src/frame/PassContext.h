@@ -81,9 +81,8 @@ class PassContext {
   // mapped to the target's size, widened by a pixel). A CPU rasteriser pays a full-screen pass's arithmetic at every
   // pixel, the background's too: a branch runs both its sides (docs/benchmarks.md, issue 26).
   void limitToScene(const std::string& target, const glm::vec4& outside) const;
-  // The pixels of `target` the scene may cover: GpuScene::coveredRect (the whole frame where the caller drew the
-  // G-buffer, or with RendererOptions::limitToScene off) mapped to the target's size and widened by a pixel, within
-  // the output's region where `target` is the output; x, y, width, height in GL window coordinates.
+  // The pixels of `target` the scene may cover: FrameContext::sceneBounds mapped to the target's size and widened by
+  // a pixel, within the output's region where `target` is the output; x, y, width, height in GL window coordinates.
   glm::ivec4 sceneRect(const std::string& target) const;
   // Scissors this pass's draws into `target` to `rect` (within the output's region) until finish().
   void scissor(const std::string& target, const glm::ivec4& rect) const;

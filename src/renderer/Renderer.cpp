@@ -301,7 +301,6 @@ void Renderer::beginFrame(const Camera& camera, const RenderSettings& settings, 
   frame.previousTime = options.previousTime.value_or(hasPrevious_ ? previousTime_ : time);
   frame.deltaTime = time - frame.previousTime;
   frame.frameInterval = options.frameInterval.value_or(frame.deltaTime > 0.0 ? frame.deltaTime : 1.0 / 60.0);
-  frame.externalGBuffer = options.externalGBuffer != 0;
   frame_ = std::move(frame);
 
   // The scene's pose now and at the previous time (the last frame's pose when that is the one asked for).
@@ -387,9 +386,17 @@ const FramePlan& Renderer::cachedPlan(const RenderSettings& settings, const View
   return *plans_.front().plan;
 }
 
+void Renderer::boundScene(bool externalGBuffer) {
+  const glm::ivec2 size(frame_.camera.width, frame_.camera.height);
+  frame_.sceneBounds = externalGBuffer || !options_.limitToScene
+                           ? glm::ivec4(0, 0, size.x, size.y)
+                           : scene_.coveredRect(frame_.camera.projection * frame_.camera.view, size);
+}
+
 void Renderer::run(const RenderSettings& settings, const View& view, const OutputTarget& output,
                    const FrameOptions& options) {
   for (const std::unique_ptr<Effect>& effect : effects_) effect->prepare(settings);
+  boundScene(options.externalGBuffer != 0);
   // What surfaces drawn after the lighting need (frame/SurfaceShading.h): the fog these settings apply; the light
   // comes from the lighting pass as it runs.
   surfaces_.light.published = false;
@@ -462,6 +469,7 @@ void Renderer::runSmall(const RenderSettings& settings, const FramePlan& plan, s
   OutputTarget output;
   output.framebuffer = warm_->output.framebuffer();
   output.width = output.height = kWarmSize;
+  boundScene(false);
   warm_->pool->beginFrame({frame_.camera.width, frame_.camera.height});
   const std::vector<PlannedPass>& planned = plan.passes();
   for (size_t ran = 0; next < planned.size() && ran < passes; ++next) {
@@ -504,9 +512,8 @@ size_t Renderer::prepare(const Camera& camera, const RenderSettings& settings, c
   scene_.setPose(pose, pose);
   const FrameContext like = sceneFrame(output);
   smallTargets(like.outputDepth);
-  FrameContext rehearsed =
-      smallFrame(like, frameCamera(camera, output.width, output.height, options), size != glm::ivec2(output.width,
-                                                                                                      output.height));
+  const bool upscaled = size != glm::ivec2(output.width, output.height);
+  FrameContext rehearsed = smallFrame(like, frameCamera(camera, output.width, output.height, options), upscaled);
   std::swap(frame_, rehearsed);
   const size_t pendingBefore = programs_.pending();
   {

@@ -238,6 +238,8 @@ class Renderer {
   const FramePlan& cachedPlan(const RenderSettings& settings, const View& view, const FrameOptions& options);
   // The `gbuffer` pass of a frame whose G-buffer the caller drew (FrameOptions::externalGBuffer): a copy.
   PassDecl importGBuffer(GLuint texture);
+  // frame_.sceneBounds for frame_'s camera and the scene's pose, before its passes run.
+  void boundScene(bool externalGBuffer);
   // Plans and runs one frame's passes for `view` into `output`.
   void run(const RenderSettings& settings, const View& view, const OutputTarget& output, const FrameOptions& options);
   void checkErrors(const std::string& after) const;
