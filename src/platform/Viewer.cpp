@@ -277,14 +277,6 @@ FrameOptions Viewer::frameOptions(int width, int height) {
   return options;
 }
 
-OutputTarget Viewer::outputTarget(GLuint framebuffer, int width, int height) {
-  OutputTarget target;
-  target.framebuffer = framebuffer;
-  target.width = width;
-  target.height = height;
-  return target;
-}
-
 void Viewer::render(GLuint framebuffer, int width, int height, PassTimer* timer, double clockSeconds,
                     bool allowCheapFrame) {
   // The size is remembered so a scene loaded next is framed for this aspect ratio.
@@ -298,14 +290,15 @@ void Viewer::render(GLuint framebuffer, int width, int height, PassTimer* timer,
   if (lastClock_ >= 0.0 && clockSeconds > lastClock_)
     options.frameInterval = std::min(clockSeconds - lastClock_, kLongestFrameInterval);
   lastClock_ = clockSeconds;
-  renderer_->render(state_.camera, state_.settings, state_.view, outputTarget(framebuffer, width, height), options);
+  renderer_->render(state_.camera, state_.settings, state_.view, OutputTarget{framebuffer, width, height, {}},
+                    options);
 }
 
 size_t Viewer::prepare(GLuint framebuffer, int width, int height) {
   state_.camera.width = width;
   state_.camera.height = height;
   if (!renderer_ || !(state_.view == View::Final)) return 0;  // the final view's programs only (Renderer::prepare)
-  return renderer_->prepare(state_.camera, state_.settings, outputTarget(framebuffer, width, height),
+  return renderer_->prepare(state_.camera, state_.settings, OutputTarget{framebuffer, width, height, {}},
                             frameOptions(width, height));
 }
 

@@ -126,9 +126,8 @@ class Viewer {
   // for a key that plays or steps it (`playable`), where the chosen animation has no length ("none").
   Timeline& requireTimeline(bool playable);
   void showScene(Scene scene, const std::string& name, const Camera& camera);
-  // A frame's options at this size (the timeline's time, the scene camera, dynamic resolution's scale) and output.
+  // A frame's options at this size (the timeline's time, the scene camera, dynamic resolution's scale).
   FrameOptions frameOptions(int width, int height);
-  static OutputTarget outputTarget(GLuint framebuffer, int width, int height);
   // Makes the scene camera looked through (if any) the free camera, at its view.
   void takeOverSceneCamera();
   // Sets a numeric parameter to change(current value), clamped to the parameter's range.
