@@ -199,8 +199,9 @@ TEST(Upscale, TheEdgeUpscaleIsCloserToTheLargeRenderingThanBilinear) {
 }
 
 // Where FXAA leaves the image alone, its pass with the upscale fused (fxaa.frag, UPSCALE) writes what the upscale's
-// own pass writes: one upscale at the pixel's own point, with the same size and texel. A smooth image whose local contrast stays below FXAA's threshold everywhere but whose quads differ
-// by more than the edge upscale's flat limit (2 levels), so that its kernel runs; at 2x and at a scale that is not.
+// own pass writes: one upscale at the pixel's own point, with the same size and texel. A smooth image whose local
+// contrast stays below FXAA's threshold everywhere but whose quads differ by more than the edge upscale's flat limit
+// (2 levels), so that its kernel runs; at 2x and at a scale that is not.
 TEST(Upscale, FxaasFusedUpscaleIsTheUpscaleWhereFxaaLeavesTheImageAlone) {
   test::context();
   Bytes smooth{29, 17, std::vector<std::uint8_t>(29 * 17 * 4)};

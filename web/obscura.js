@@ -420,7 +420,8 @@ export class Obscura extends EventTarget {
   // quickStart ({cheapFrames: frames drawn cheap before the full one, firstFullFrame: its index (frames before it:
   // cheapFrames), fullAtMs: when the renderer drew it, warmed: [{pass, frame, atMs, cpuMs}]: each pass of the full
   // frame drawn once at a small size by a cheap frame so that its program and the driver's code for it are ready, in
-  // which frame, when (ms since the renderer was made) and its time on the CPU})}. `firstFrame` is a promise of the same once the first frame is on screen.
+  // which frame, when (ms since the renderer was made) and its time on the CPU})}. `firstFrame` is a promise of the
+  // same once the first frame is on screen.
   startup() {
     const s = this.stats().startup;
     return { wasmMs: this.wasmMs, createMs: this.createMs, coreMs: s.createMs, coreParts: s.createParts,
