@@ -350,6 +350,44 @@ TEST(Environment, TheShaderMatchesItsMirrorInBothLayouts) {
   }
 }
 
+// The half-float atlas (the default where the context filters half floats) against its mirror, and against the levels
+// filtered by hand in RGB9E5: the same levels, one fetch through the hardware's filter.
+TEST(Environment, TheHalfFloatAtlasMatchesItsMirrorAndTheLevelsFilteredByHand) {
+  const gl::GlCaps& caps = test::context().caps();
+  const EnvironmentLayout layout = GpuEnvironment::layoutFor(caps, std::nullopt);
+  if (!caps.textureHalfFloatLinear) GTEST_SKIP() << "this context does not filter half-float textures";
+  ASSERT_EQ(layout, EnvironmentLayout::HalfFloatAtlas);
+  // Forcing the RGB9E5 layouts takes them (the fallback stays reachable).
+  EXPECT_EQ(GpuEnvironment::layoutFor(caps, EnvironmentLayout::Atlas), EnvironmentLayout::Atlas);
+  const EnvironmentImage sky = builtinSky();
+  const ShIrradiance sh = ShIrradiance::project(sky);
+  std::vector<glm::vec4> queries;
+  for (const glm::vec3& d : testDirections(200))
+    for (float roughness : {0.0f, 0.1f, 0.2f, 0.3f, 0.5f, 0.73f, 1.0f}) queries.emplace_back(d, roughness);
+  const PrefilteredEnvironment prefiltered = PrefilteredEnvironment::of(sky, 256, EnvironmentFiltering::ByHand);
+  const GpuEnvironment half(EnvironmentLayout::HalfFloatAtlas, prefiltered, sh, caps.desktopGl);
+  const GpuEnvironment byHand(EnvironmentLayout::Atlas, prefiltered, sh);
+  EXPECT_EQ(half.filteredFrom(), kEnvironmentLevels);
+  const std::vector<glm::vec3> fromHalf = gpuSpecular(half, queries), fromHand = gpuSpecular(byHand, queries);
+  float worstMirror = 0.0f, worstBetween = 0.0f, worstMirrors = 0.0f;
+  for (size_t i = 0; i < queries.size(); ++i) {
+    const glm::vec3 d(queries[i]);
+    const glm::vec3 expected = prefiltered.sample(d, queries[i].w, EnvironmentLayout::HalfFloatAtlas);
+    worstMirror = std::max(worstMirror, relativeError(fromHalf[i], expected));
+    worstBetween = std::max(worstBetween, relativeError(fromHalf[i], fromHand[i]));
+    worstMirrors = std::max(worstMirrors, relativeError(expected, prefiltered.sample(d, queries[i].w)));
+  }
+  std::printf("environmentSpecular, half-float atlas, %zu queries: %.5f of the mirror's brightest channel; against "
+              "RGB9E5 by hand %.5f (the mirrors %.5f)\n",
+              queries.size(), worstMirror, worstBetween, worstMirrors);
+  // The result's RGB9E5 half step (1/1024), the GPU's atan and acos placing the weights differently, and the
+  // filter's own weights (8 fractional bits on llvmpipe, where the mirror's are exact).
+  EXPECT_LT(worstMirror, 4.0f / 512.0f);
+  // Against RGB9E5: both roundings (1/1024 and 1/4096 of the value) and both filters.
+  EXPECT_LT(worstBetween, 6.0f / 512.0f);
+  EXPECT_LT(worstMirrors, 2.0f / 512.0f);
+}
+
 namespace {
 
 // One pixel of a frame in the white furnace: its HDR colour, and whether the G-buffer holds the far depth there.
@@ -394,13 +432,14 @@ float furnaceError(const RendererOptions& options, int& lit, int& background, co
 
 }  // namespace
 
-// The white furnace through the frame: deferred and forward, mip chain and atlas, and every tier (each keeps the
-// energy its specular lobe takes from the diffuse: the low tier's irradiance towards r, the high tier's multiple
-// scattering).
+// The white furnace through the frame: deferred and forward, the half-float atlas, the mip chain and the atlas, and
+// every tier (each keeps the energy its specular lobe takes from the diffuse: the low tier's irradiance towards r, the
+// high tier's multiple scattering).
 TEST(Environment, TheWhiteFurnaceGivesOneThroughTheFrame) {
   for (const char* quality : {"medium", "low", "high"})
     for (bool drawBuffers : {true, false})
-      for (EnvironmentLayout layout : {EnvironmentLayout::MipChain, EnvironmentLayout::Atlas}) {
+      for (EnvironmentLayout layout :
+           {EnvironmentLayout::HalfFloatAtlas, EnvironmentLayout::MipChain, EnvironmentLayout::Atlas}) {
         if (std::string(quality) != "medium" && layout == EnvironmentLayout::MipChain) continue;
         RendererOptions options;
         options.allowDrawBuffers = drawBuffers;
@@ -413,7 +452,7 @@ TEST(Environment, TheWhiteFurnaceGivesOneThroughTheFrame) {
                     background);
         EXPECT_GT(lit, 1000);
         EXPECT_GT(background, 200);
-        // The G-buffer's 8-bit octahedral normal (0.5 x 1 % at most) and RGB9E5.
+        // The G-buffer's 8-bit octahedral normal (0.5 x 1 % at most) and RGB9E5 (or half floats).
         EXPECT_LT(worst, 0.01f) << quality << ", " << (drawBuffers ? "deferred" : "forward") << " "
                                 << environmentLayoutName(layout);
       }

@@ -255,7 +255,7 @@ TEST(WebApi, TheDepthHierarchyStorageAndTheEnvironmentLayoutCanBeForced) {
     EXPECT_TRUE(frameAt(ms += 16.0)) << storage;
   }
   EXPECT_EQ(obscura_set_hierarchy_storage("somewhere"), nullptr);
-  for (const char* layout : {"atlas", "mipchain", "auto"}) {
+  for (const char* layout : {"atlas", "mipchain", "halffloat", "auto"}) {
     const char* used = obscura_set_environment_layout(layout);
     ASSERT_NE(used, nullptr) << layout << ": " << obscura_error();
     EXPECT_TRUE(frameAt(ms += 16.0)) << layout;

@@ -192,8 +192,10 @@ export class Obscura extends EventTarget {
     this.changed();
     return used;
   }
-  // Forces where the prefiltered environment's roughness levels live: 'mipchain' (read with EXT_shader_texture_lod),
-  // 'atlas' (the fallback without it) or 'auto' (the default). Returns the layout now in use; both give the same image.
+  // Forces where the prefiltered environment's roughness levels live: 'halffloat' (half floats the hardware filters:
+  // OES_texture_half_float_linear), 'mipchain' (RGB9E5 filtered by hand, read with EXT_shader_texture_lod), 'atlas'
+  // (RGB9E5 without the extension) or 'auto' (the default: the first the context can take). Returns the layout now in
+  // use; all give the same image within a level of 255.
   setEnvironmentLayout(name) {
     const used = this.text('obscura_set_environment_layout', ['string'], [name]);
     this.changed();

@@ -6,7 +6,8 @@
 //                                           2001, eq. 13): the radiance a white Lambertian surface reflects.
 //   vec3 environmentSpecular(vec3 r, float roughness)
 //                                           the prefiltered radiance (GGX, split sum: Karis 2013) towards r, levels
-//                                           for roughness 0, 0.2, .., 1: RGB9E5 texels filtered by hand, or from
+//                                           for roughness 0, 0.2, .., 1: half floats through the hardware's filter
+//                                           (ENVIRONMENT_HALF_FLOAT), or RGB9E5 texels filtered by hand, or from
 //                                           ENVIRONMENT_FILTERED_FROM on RGBM texels through the hardware's filter.
 //   vec2 environmentBrdf(float roughness, float nDotV)
 //                                           the split sum's (A, B) from a 32 x 32 table integrated on the CPU
@@ -14,13 +15,21 @@
 //                                           (in the filtered texture, below its levels).
 // lighting.frag's ambientLight combines them into the ambient term, with the material and the occlusion.
 //
+// ENVIRONMENT_HALF_FLOAT 1 (OES_texture_half_float_linear): u_environment holds every level as half floats, LINEAR,
+// stacked in an atlas of ENVIRONMENT_HALF_FLOAT_SIZE texels, each inside a border that wraps in u and clamps in v
+// (environmentHalfFloatOrigin): one fetch per level, nothing to decode. It is highp: a lowp sampler may clamp what
+// it returns to 2, and the sky's sun is 40. Otherwise u_environment holds RGB9E5 texels, NEAREST, filtered by hand:
 // ENVIRONMENT_LOD 1: the levels are mip levels of u_environment (EXT_shader_texture_lod's texture2DLodEXT at integer
 // levels); 0: they lie side by side in one atlas (level 0 left, 1 .. 5 stacked to its right), read with texture2D.
 // Both fetch the same texel centres, NEAREST, so both give the same values (tests/test_environment.cpp).
 // ENVIRONMENT_FILTERED_FROM: the first level read from u_environmentFiltered (GpuEnvironment::filteredFrom: 2, or
 // ENVIRONMENT_LEVELS for none, where the environment's range makes RGBM under the filter too coarse).
 
+#if ENVIRONMENT_HALF_FLOAT
+uniform highp sampler2D u_environment;  // LINEAR; half floats
+#else
 uniform sampler2D u_environment;     // NEAREST; RGB9E5 texels (lib/hdr.glsl)
+#endif
 // LINEAR: levels ENVIRONMENT_FILTERED_LEVEL .. 5 as RGBM texels (encoding/EnvironmentEncoding.h) inside borders that
 // wrap in u and clamp in v, and the (A, B) table; ENVIRONMENT_FILTERED_SIZE texels (environmentFilteredOrigin).
 uniform sampler2D u_environmentFiltered;
@@ -53,6 +62,7 @@ vec2 environmentLevelSize(float level) {
   return floor(vec2(ENVIRONMENT_WIDTH, ENVIRONMENT_HEIGHT) * exp2(-level) + 0.5);
 }
 
+#if !ENVIRONMENT_HALF_FLOAT
 // Texel (x, y) of a level, both whole numbers inside it, decoded.
 vec3 environmentTexel(vec2 texel, float level, vec2 size) {
 #if ENVIRONMENT_LOD
@@ -80,6 +90,7 @@ vec3 environmentLevelByHand(vec2 uv, float level) {
   vec3 bottom = mix(environmentTexel(vec2(x0, y1), level, size), environmentTexel(vec2(x1, y1), level, size), f.x);
   return mix(top, bottom, f.y) * u_environmentIntensity;
 }
+#endif
 
 // A level of the filtered texture: one fetch through the hardware's bilinear filter, inside the level's border, and
 // RGBM's decoding. Level k >= 2 begins at y = 1 + the bordered heights of levels 2 .. k - 1: 128 - 2^(9 - k) + 2 (k - 2).
@@ -90,11 +101,25 @@ vec3 environmentLevelFiltered(vec2 uv, float level) {
   return t.rgb * (t.a * u_environmentFilteredScale);
 }
 
+#if ENVIRONMENT_HALF_FLOAT
+// A level of the half-float atlas: one fetch through the hardware's filter, inside the level's border. Level k
+// begins at y = 513 - 2^(9 - k) + 2 k.
+vec3 environmentLevelHalfFloat(vec2 uv, float level) {
+  vec2 size = environmentLevelSize(level);
+  vec2 origin = vec2(1.0, 513.0 - floor(exp2(9.0 - level) + 0.5) + 2.0 * level);
+  return texture2D(u_environment, (origin + uv * size) / ENVIRONMENT_HALF_FLOAT_SIZE).rgb * u_environmentIntensity;
+}
+#endif
+
 vec3 environmentLevel(vec2 uv, float level) {
+#if ENVIRONMENT_HALF_FLOAT
+  return environmentLevelHalfFloat(uv, level);
+#else
 #if ENVIRONMENT_FILTERED_FROM < ENVIRONMENT_LEVELS
   if (level >= float(ENVIRONMENT_FILTERED_FROM)) return environmentLevelFiltered(uv, level);
 #endif
   return environmentLevelByHand(uv, level);
+#endif
 }
 
 vec3 environmentSpecular(vec3 r, float roughness) {

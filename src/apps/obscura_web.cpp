@@ -507,9 +507,9 @@ EMSCRIPTEN_KEEPALIVE const char* obscura_set_hierarchy_storage(const char* name)
   return returned(used);
 }
 
-// Forces where the prefiltered environment's levels live ("mipchain", read with EXT_shader_texture_lod; "atlas";
-// "auto": the mip chain where the context has the extension) and returns the layout now in use; the page's tests
-// compare them on WebGL 1.
+// Forces where the prefiltered environment's levels live ("halffloat", half floats the hardware filters; "mipchain",
+// read with EXT_shader_texture_lod; "atlas"; "auto": the first of these the context can take) and returns the layout
+// now in use; the page's tests compare them on WebGL 1.
 EMSCRIPTEN_KEEPALIVE const char* obscura_set_environment_layout(const char* name) {
   std::string used;
   if (!attempt([&] {
@@ -518,8 +518,9 @@ EMSCRIPTEN_KEEPALIVE const char* obscura_set_environment_layout(const char* name
         const std::string wanted = name;
         if (wanted == "atlas") options.environmentLayout = EnvironmentLayout::Atlas;
         else if (wanted == "mipchain") options.environmentLayout = EnvironmentLayout::MipChain;
+        else if (wanted == "halffloat") options.environmentLayout = EnvironmentLayout::HalfFloatAtlas;
         else if (wanted != "auto")
-          throw InputError("environment layout: expected auto, atlas or mipchain, got '" + wanted + "'");
+          throw InputError("environment layout: expected auto, halffloat, atlas or mipchain, got '" + wanted + "'");
         g_app->viewer().setRendererOptions(options);
         used = environmentLayoutName(GpuEnvironment::layoutFor(g_app->viewer().caps(), options.environmentLayout));
       }))

@@ -6,6 +6,7 @@
 #include <random>
 
 #include <glm/geometric.hpp>
+#include <glm/gtc/packing.hpp>
 #include <glm/trigonometric.hpp>
 #include <stb_image.h>
 
@@ -44,15 +45,20 @@ void frameAround(const glm::dvec3& n, glm::dvec3& t, glm::dvec3& b) {
 // Bilinear between texel centres of a w x h equirectangular grid (wrap in u, clamp in v): the addressing of
 // environmentLevel() in lib/environment.glsl, and what the hardware's filter does inside the filtered texture's
 // borders.
-template <typename T>
-T bilinear(const std::vector<T>& texels, int w, int h, const glm::vec2& uv) {
+// `read` maps a stored texel to what the texture holds (the half-float atlas's rounding).
+struct AsStored {
+  template <typename T>
+  const T& operator()(const T& texel) const { return texel; }
+};
+template <typename T, typename Read = AsStored>
+T bilinear(const std::vector<T>& texels, int w, int h, const glm::vec2& uv, Read read = {}) {
   const float px = uv.x * static_cast<float>(w) - 0.5f, py = uv.y * static_cast<float>(h) - 0.5f;
   const float fx0 = std::floor(px), fy0 = std::floor(py);
   const float fx = px - fx0, fy = py - fy0;
   auto wrap = [w](int x) { return ((x % w) + w) % w; };
   const int x0 = wrap(static_cast<int>(fx0)), x1 = wrap(static_cast<int>(fx0) + 1);
   const int y0 = std::clamp(static_cast<int>(fy0), 0, h - 1), y1 = std::clamp(static_cast<int>(fy0) + 1, 0, h - 1);
-  auto at = [&](int x, int y) { return texels[static_cast<size_t>(y) * w + x]; };
+  auto at = [&](int x, int y) -> T { return read(texels[static_cast<size_t>(y) * w + x]); };
   const T top = at(x0, y0) + (at(x1, y0) - at(x0, y0)) * fx;
   const T bottom = at(x0, y1) + (at(x1, y1) - at(x0, y1)) * fx;
   return top + (bottom - top) * fy;
@@ -411,13 +417,21 @@ void PrefilteredEnvironment::encodeLevels(EnvironmentFiltering filtering) {
     filtered_[level] = level >= filteredFrom_ ? normalisedChannels(filteredLevel(level)) : std::vector<glm::vec4>();
 }
 
-glm::vec3 PrefilteredEnvironment::sample(const glm::vec3& direction, float roughness) const {
+float roundedToHalfFloat(float value) {
+  return glm::unpackHalf1x16(glm::packHalf1x16(std::min(value, 65504.0f)));
+}
+
+glm::vec3 PrefilteredEnvironment::sample(const glm::vec3& direction, float roughness, EnvironmentLayout layout) const {
   const glm::vec2 uv = equirectUv(glm::normalize(direction));
   const float lod = std::clamp(roughness, 0.0f, 1.0f) * static_cast<float>(kEnvironmentLevels - 1);
   const float base = std::floor(lod);
   const float f = lod - base;
   const int k = static_cast<int>(base);
   auto level = [&](int i) {
+    if (layout == EnvironmentLayout::HalfFloatAtlas)
+      return bilinear(levels[i].texels, levels[i].width, levels[i].height, uv, [](const glm::vec3& c) {
+        return glm::vec3(roundedToHalfFloat(c.r), roundedToHalfFloat(c.g), roundedToHalfFloat(c.b));
+      });
     if (i < filteredFrom_) return bilinear(decoded_[i], levels[i].width, levels[i].height, uv);
     return decodeEnvironmentChannels(kEnvironmentEncoding,
                                      bilinear(filtered_[i], levels[i].width, levels[i].height, uv), filteredScale_);
@@ -524,19 +538,28 @@ glm::vec3 ambientLightMirror(const ShIrradiance& sh, const PrefilteredEnvironmen
 }
 
 const char* environmentLayoutName(EnvironmentLayout layout) {
-  return layout == EnvironmentLayout::MipChain ? "mipchain" : "atlas";
+  switch (layout) {
+    case EnvironmentLayout::MipChain: return "mipchain";
+    case EnvironmentLayout::Atlas: return "atlas";
+    case EnvironmentLayout::HalfFloatAtlas: return "halffloat";
+  }
+  return "atlas";
 }
 
 EnvironmentLayout GpuEnvironment::layoutFor(const gl::GlCaps& caps, std::optional<EnvironmentLayout> forced) {
-  const EnvironmentLayout best = caps.shaderTextureLod ? EnvironmentLayout::MipChain : EnvironmentLayout::Atlas;
-  if (!forced) return best;
-  return *forced == EnvironmentLayout::MipChain ? best : EnvironmentLayout::Atlas;
+  const EnvironmentLayout wanted = forced.value_or(EnvironmentLayout::HalfFloatAtlas);
+  if (wanted == EnvironmentLayout::HalfFloatAtlas && caps.textureHalfFloatLinear) return wanted;
+  if (wanted != EnvironmentLayout::Atlas && caps.shaderTextureLod) return EnvironmentLayout::MipChain;
+  return EnvironmentLayout::Atlas;
 }
 
 std::vector<std::pair<std::string, std::string>> GpuEnvironment::shaderDefines(EnvironmentLayout layout,
                                                                               int filteredFrom) {
   const glm::ivec2 brdf = environmentFilteredOrigin(-1);
   return {{"ENVIRONMENT_LOD", layout == EnvironmentLayout::MipChain ? "1" : "0"},
+          {"ENVIRONMENT_HALF_FLOAT", layout == EnvironmentLayout::HalfFloatAtlas ? "1" : "0"},
+          {"ENVIRONMENT_HALF_FLOAT_SIZE", "vec2(" + std::to_string(kEnvironmentHalfFloatWidth) + ".0, " +
+                                              std::to_string(kEnvironmentHalfFloatHeight) + ".0)"},
           {"ENVIRONMENT_LEVELS", std::to_string(kEnvironmentLevels)},
           {"ENVIRONMENT_FILTERED_FROM", std::to_string(filteredFrom)},
           {"ENVIRONMENT_FILTERED_LEVEL", std::to_string(kEnvironmentFilteredLevel)},
@@ -558,12 +581,39 @@ glm::ivec2 environmentFilteredOrigin(int level) {
   return {1, y + 1};
 }
 
+glm::ivec2 environmentHalfFloatOrigin(int level) {
+  int y = 0;
+  for (int j = 0; j < level; ++j) y += (kEnvironmentHeight >> j) + 2;
+  return {1, y + 1};
+}
+
+namespace {
+
+// Texels inside a one-texel border, which repeats the far column (u wraps) and the edge rows (v clamps), or clamps
+// both ways (wrap false), into an atlas `atlasWidth` wide: the hardware's bilinear filter then reads each block as
+// the shader's addressing would.
+template <typename T>
+void placeBordered(std::vector<T>& atlas, int atlasWidth, const std::vector<T>& texels, int w, int h,
+                   glm::ivec2 origin, bool wrap) {
+  for (int y = -1; y <= h; ++y)
+    for (int x = -1; x <= w; ++x) {
+      const int sx = wrap ? (x + w) % w : std::clamp(x, 0, w - 1), sy = std::clamp(y, 0, h - 1);
+      atlas[static_cast<size_t>(origin.y + y) * static_cast<size_t>(atlasWidth) + static_cast<size_t>(origin.x + x)] =
+          texels[static_cast<size_t>(sy) * static_cast<size_t>(w) + static_cast<size_t>(sx)];
+    }
+}
+
+using HalfTexel = std::array<std::uint16_t, 4>;
+constexpr GLenum kRgba16f = 0x881A, kHalfFloat = 0x140B;  // desktop GL 3.0's sized format and type
+
+}  // namespace
+
 GpuEnvironment::GpuEnvironment(EnvironmentLayout layout, const PrefilteredEnvironment& specular,
-                               const ShIrradiance& sh)
+                               const ShIrradiance& sh, bool desktopGl)
     : layout_(layout),
       texture_(gl::TextureHandle::create()),
       filtered_(gl::TextureHandle::create()),
-      filteredFrom_(specular.filteredFrom()),
+      filteredFrom_(layout == EnvironmentLayout::HalfFloatAtlas ? kEnvironmentLevels : specular.filteredFrom()),
       filteredScale_(specular.filteredScale()),
       polynomial_(sh.polynomial()) {
   const TimedScope timed("environment upload");
@@ -576,12 +626,7 @@ GpuEnvironment::GpuEnvironment(EnvironmentLayout layout, const PrefilteredEnviro
     std::vector<EnvironmentTexel> atlas(static_cast<size_t>(kEnvironmentFilteredWidth) * kEnvironmentFilteredHeight,
                                         EnvironmentTexel{0, 0, 0, 0});
     auto place = [&](const std::vector<EnvironmentTexel>& texels, int w, int h, glm::ivec2 origin, bool wrap) {
-      for (int y = -1; y <= h; ++y)
-        for (int x = -1; x <= w; ++x) {
-          const int sx = wrap ? (x + w) % w : std::clamp(x, 0, w - 1), sy = std::clamp(y, 0, h - 1);
-          atlas[static_cast<size_t>(origin.y + y) * kEnvironmentFilteredWidth + static_cast<size_t>(origin.x + x)] =
-              texels[static_cast<size_t>(sy) * static_cast<size_t>(w) + static_cast<size_t>(sx)];
-        }
+      placeBordered(atlas, kEnvironmentFilteredWidth, texels, w, h, origin, wrap);
     };
     for (int level = filteredFrom_; level < kEnvironmentLevels; ++level)
       place(specular.filteredLevel(level), kEnvironmentWidth >> level, kEnvironmentHeight >> level,
@@ -604,8 +649,25 @@ GpuEnvironment::GpuEnvironment(EnvironmentLayout layout, const PrefilteredEnviro
   glPixelStorei(GL_UNPACK_ALIGNMENT, 4);
   glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
   glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
-  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
-  if (layout == EnvironmentLayout::MipChain) {
+  const bool halfFloat = layout == EnvironmentLayout::HalfFloatAtlas;
+  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, halfFloat ? GL_LINEAR : GL_NEAREST);
+  if (halfFloat) {
+    std::vector<HalfTexel> atlas(static_cast<size_t>(kEnvironmentHalfFloatWidth) * kEnvironmentHalfFloatHeight,
+                                 HalfTexel{0, 0, 0, 0});
+    const std::uint16_t one = glm::packHalf1x16(1.0f);
+    for (int level = 0; level < kEnvironmentLevels; ++level) {
+      std::vector<HalfTexel> texels;
+      texels.reserve(specular.levels[level].texels.size());
+      for (const glm::vec3& c : specular.levels[level].texels)
+        texels.push_back({glm::packHalf1x16(std::min(c.r, 65504.0f)), glm::packHalf1x16(std::min(c.g, 65504.0f)),
+                          glm::packHalf1x16(std::min(c.b, 65504.0f)), one});
+      placeBordered(atlas, kEnvironmentHalfFloatWidth, texels, kEnvironmentWidth >> level,
+                    kEnvironmentHeight >> level, environmentHalfFloatOrigin(level), true);
+    }
+    glTexImage2D(GL_TEXTURE_2D, 0, desktopGl ? kRgba16f : GL_RGBA, kEnvironmentHalfFloatWidth,
+                 kEnvironmentHalfFloatHeight, 0, GL_RGBA, desktopGl ? kHalfFloat : GL_HALF_FLOAT_OES, atlas.data());
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_LINEAR);
+  } else if (layout == EnvironmentLayout::MipChain) {
     // Levels 0 .. 5 the roughness levels; the rest, down to 1 x 1, hold level 5's mean (never read: the shader's
     // level stops at 5; GLES 2 samples only a complete chain).
     glm::vec3 mean(0.0f);

@@ -23,6 +23,13 @@
 //   (tests/test_environment.cpp prints both against the integral).
 //
 // Storage (GpuEnvironment): two textures.
+//   half floats  where the context filters half-float textures (OES_texture_half_float_linear; desktop GL 3.0), the
+//             first texture holds every level as RGBA half floats, LINEAR, stacked from the top of a 514 x 516 atlas,
+//             each inside a one-texel border that wraps in u and clamps in v (environmentHalfFloatOrigin): one fetch
+//             per level, no decode. Half floats keep 11 significant bits, RGB9E5 9, so this is the most exact storage
+//             as well as the cheapest: on SwiftShader it took the page's deferred lighting from about 56 to 39 ms at
+//             1280 x 720 (docs/lighting.md). The filtered texture then holds the (A, B) table alone.
+//             Otherwise:
 //   by hand   every level in scene-color's RGB9E5 encoding (encoding/HdrEncoding.h), NEAREST. An encoded texel cannot
 //             be filtered by the hardware, so the shader filters by hand: four texel centres of a level, each
 //             decoded, weighted bilinearly (wrapping in u, clamped in v). Two layouts give the same texel centres:
@@ -156,10 +163,12 @@ struct PrefilteredEnvironment {
   // P(r, roughness) for one texel direction by the importance-sampled estimator above.
   static glm::vec3 prefilter(const std::vector<EnvironmentImage>& sourceLevels, const glm::vec3& r, double roughness,
                              int samples);
-  // The mirror of environmentSpecular() in lib/environment.glsl over these levels as the textures hold them: in the
-  // two levels around roughness * 5, bilinear over the decoded RGB9E5 texels, or (from filteredFrom() on) the decoded
-  // bilinear blend of the RGBM bytes, as the hardware's filter reads them; blended.
-  glm::vec3 sample(const glm::vec3& direction, float roughness) const;
+  // The mirror of environmentSpecular() in lib/environment.glsl over these levels as `layout`'s textures hold them:
+  // in the two levels around roughness * 5, bilinear over the decoded RGB9E5 texels, or (from filteredFrom() on) the
+  // decoded bilinear blend of the RGBM bytes, as the hardware's filter reads them, or (HalfFloatAtlas) bilinear over
+  // the texels rounded to half floats; blended.
+  glm::vec3 sample(const glm::vec3& direction, float roughness,
+                   EnvironmentLayout layout = EnvironmentLayout::Atlas) const;
   // Each level's texels in the RGB9E5 encoding, rows in the image's order.
   std::vector<HdrTexel> encodedLevel(int level) const;
   // A level from kEnvironmentFilteredLevel on in kEnvironmentEncoding with filteredScale().
@@ -208,16 +217,21 @@ glm::vec3 ambientLightMirror(const ShIrradiance& sh, const PrefilteredEnvironmen
 // One environment on the GPU: the specular texture and the irradiance polynomial. Owns its texture.
 class GpuEnvironment {
  public:
-  // The mip chain where the context has EXT_shader_texture_lod, unless `forced` says otherwise (a forced mip chain
-  // the context lacks falls back to the atlas).
+  // The half-float atlas where the context filters half floats, else the mip chain where it has
+  // EXT_shader_texture_lod, else the atlas; `forced` picks one (a forced layout the context lacks falls back the
+  // same way).
   static EnvironmentLayout layoutFor(const gl::GlCaps& caps, std::optional<EnvironmentLayout> forced);
-  // Uploads `specular`'s encoded levels and keeps `sh`'s polynomial.
-  GpuEnvironment(EnvironmentLayout layout, const PrefilteredEnvironment& specular, const ShIrradiance& sh);
+  // Uploads `specular`'s levels as `layout` keeps them and keeps `sh`'s polynomial. `desktopGl`: the context takes
+  // the sized half-float format (GL_RGBA16F) where GLES 2 takes GL_RGBA with HALF_FLOAT_OES.
+  GpuEnvironment(EnvironmentLayout layout, const PrefilteredEnvironment& specular, const ShIrradiance& sh,
+                 bool desktopGl = false);
 
   EnvironmentLayout layout() const { return layout_; }
-  GLuint texture() const { return texture_.id(); }  // the levels by hand (RGB9E5, NEAREST)
-  // LINEAR: the filtered levels (from filteredFrom(); none when it is kEnvironmentLevels) and environmentBrdfTable().
+  // The levels: RGB9E5, NEAREST, filtered by hand (MipChain, Atlas), or half floats, LINEAR (HalfFloatAtlas).
+  GLuint texture() const { return texture_.id(); }
+  // LINEAR: the RGBM levels (from filteredFrom(); none when it is kEnvironmentLevels) and environmentBrdfTable().
   GLuint filteredTexture() const { return filtered_.id(); }
+  // kEnvironmentLevels in the half-float atlas: its own levels are exact under the filter.
   int filteredFrom() const { return filteredFrom_; }
   float filteredScale() const { return filteredScale_; }
   const std::array<glm::vec3, 9>& irradiancePolynomial() const { return polynomial_; }
@@ -243,5 +257,12 @@ class GpuEnvironment {
 constexpr int kEnvironmentFilteredWidth = (kEnvironmentWidth >> kEnvironmentFilteredLevel) + 2;  // 130
 constexpr int kEnvironmentFilteredHeight = 162;  // 66 + 34 + 18 + 10 + the table's 34
 glm::ivec2 environmentFilteredOrigin(int level);
+// The half-float atlas's size, and where level k's texels begin in it, inside their border: levels 0 .. 5 stacked
+// from the top, at y = 1 + sum over j < k of (256 / 2^j + 2) = 513 - 2^(9 - k) + 2 k (lib/environment.glsl).
+constexpr int kEnvironmentHalfFloatWidth = kEnvironmentWidth + 2;  // 514
+constexpr int kEnvironmentHalfFloatHeight = 516;                   // 258 + 130 + 66 + 34 + 18 + 10
+glm::ivec2 environmentHalfFloatOrigin(int level);
+// A value as the half-float texture holds it: rounded to the nearest half float (IEEE 754 binary16), at most 65504.
+float roundedToHalfFloat(float value);
 
 }  // namespace obscura

@@ -78,7 +78,7 @@ void EnvironmentCache::use(const std::string& name, const glm::vec3& skySunDirec
   if (sky || name == "uniform") {
     const std::shared_ptr<const Prepared> prepared =
         BuiltinEnvironments::instance().get(name, skySunDirection, filtering_);
-    current_ = std::make_unique<GpuEnvironment>(layout_, prepared->specular, prepared->sh);
+    current_ = std::make_unique<GpuEnvironment>(layout_, prepared->specular, prepared->sh, desktopGl_);
     return;
   }
   EnvironmentImage image;
@@ -89,12 +89,12 @@ void EnvironmentCache::use(const std::string& name, const glm::vec3& skySunDirec
     if (!current_) {
       const std::shared_ptr<const Prepared> fallback =
           BuiltinEnvironments::instance().get("sky", skySunDirection, filtering_);
-      current_ = std::make_unique<GpuEnvironment>(layout_, fallback->specular, fallback->sh);
+      current_ = std::make_unique<GpuEnvironment>(layout_, fallback->specular, fallback->sh, desktopGl_);
     }
     throw;
   }
   const Prepared prepared(image, filtering_);
-  current_ = std::make_unique<GpuEnvironment>(layout_, prepared.specular, prepared.sh);
+  current_ = std::make_unique<GpuEnvironment>(layout_, prepared.specular, prepared.sh, desktopGl_);
 }
 
 const GpuEnvironment& EnvironmentCache::current() const {

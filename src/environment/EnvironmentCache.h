@@ -19,9 +19,10 @@ namespace obscura {
 class EnvironmentCache {
  public:
   // `layout`: where the GPU copies keep their levels (GpuEnvironment::layoutFor); `filtering`: which levels the
-  // hardware's filter reads (PrefilteredEnvironment::of). Prepares nothing yet.
-  EnvironmentCache(EnvironmentLayout layout, EnvironmentFiltering filtering)
-      : layout_(layout), filtering_(filtering) {}
+  // hardware's filter reads (PrefilteredEnvironment::of); `desktopGl`: the context's half-float format
+  // (GpuEnvironment). Prepares nothing yet.
+  EnvironmentCache(EnvironmentLayout layout, EnvironmentFiltering filtering, bool desktopGl)
+      : layout_(layout), filtering_(filtering), desktopGl_(desktopGl) {}
 
   // Makes `name` the environment in use: "sky" (ProceduralSky with its sun towards `skySunDirection`, world space,
   // unit), "uniform" (radiance 1 everywhere) or the path of an equirectangular .hdr or RGBE .png. Does nothing when
@@ -37,6 +38,7 @@ class EnvironmentCache {
  private:
   EnvironmentLayout layout_;
   EnvironmentFiltering filtering_;
+  bool desktopGl_;
   std::string name_;       // the name the environment in use was asked for by
   glm::vec3 skySun_{0.0f};  // the sky's sun direction, when name_ is "sky"
   std::unique_ptr<GpuEnvironment> current_;

@@ -34,8 +34,9 @@ struct RendererOptions {
   // How the depth hierarchy is stored; unset: the extension mip chain where available, else the atlas
   // (DepthHierarchyPass.h). Tests and benchmarks force each storage to compare them.
   std::optional<HierarchyStorage> hierarchyStorage;
-  // Where the prefiltered environment's roughness levels live; unset: the mip chain read with texture2DLodEXT where
-  // EXT_shader_texture_lod exists, else the atlas (environment/Environment.h). Tests force the atlas to compare both.
+  // Where the prefiltered environment's roughness levels live; unset: half floats the hardware filters where the
+  // context has OES_texture_half_float_linear, else the mip chain read with texture2DLodEXT where
+  // EXT_shader_texture_lod exists, else the atlas (environment/Environment.h). Tests force each to compare them.
   std::optional<EnvironmentLayout> environmentLayout;
   // Which of the environment's levels the hardware's filter reads; unset (EnvironmentFiltering::Measured): levels
   // 2 .. 5 where they keep kEnvironmentFilterBound, else none (environment/Environment.h). Benchmarks and tests

@@ -59,6 +59,8 @@ GlCaps GlCaps::query() {
 
   caps.desktopGl = desktopGl;
   caps.textureFloat = desktopGl || caps.has("GL_OES_texture_float");
+  caps.textureHalfFloatLinear =
+      desktopGl || (caps.has("GL_OES_texture_half_float") && caps.has("GL_OES_texture_half_float_linear"));
   glGetIntegerv(GL_MAX_VERTEX_UNIFORM_VECTORS, &caps.maxVertexUniformVectors);
   glGetIntegerv(GL_MAX_VERTEX_ATTRIBS, &caps.maxVertexAttribs);
   glGetIntegerv(GL_MAX_VERTEX_TEXTURE_IMAGE_UNITS, &caps.maxVertexTextureImageUnits);

@@ -43,6 +43,9 @@ struct GlCaps {
   GLint maxDrawBuffers = 1;
   bool desktopGl = false;               // a desktop GL context running GLSL ES (OSMesa): sized float formats
   bool textureFloat = false;            // OES_texture_float (core in desktop GL 3.0): RGBA float textures to sample
+  // OES_texture_half_float and OES_texture_half_float_linear (core in desktop GL 3.0): half-float textures the
+  // hardware's bilinear filter reads (the environment's levels: environment/Environment.h).
+  bool textureHalfFloatLinear = false;
   // The vertex stage's limits, which size skinning and morphing (gpu/GpuScene.h). GLES 2 guarantees 128 uniform
   // vectors, 8 attributes and no texture units.
   GLint maxVertexUniformVectors = 128, maxVertexAttribs = 8, maxVertexTextureImageUnits = 0;

@@ -333,11 +333,32 @@ describe('demo page', () => {
       assert.equal(await page.evaluate(() => window.obscura.setEnvironmentLayout('atlas')), 'atlas');
       await waitForDrawn(page);
       const fromAtlas = await snapshot(page);
-      await page.evaluate(() => window.obscura.setEnvironmentLayout('auto'));
+      // Half floats the hardware filters (the default where OES_texture_half_float_linear exists): the same levels,
+      // rounded to 11 significant bits where RGB9E5 keeps 9.
+      const half = await page.evaluate(() => window.obscura.setEnvironmentLayout('halffloat'));
+      await waitForDrawn(page);
+      const fromHalf = await snapshot(page);
+      const auto = await page.evaluate(() => window.obscura.setEnvironmentLayout('auto'));
       const between = compareImages(fromMips, fromAtlas);
+      const halfAgainstAtlas = compareImages(fromHalf, fromAtlas);
+      let overOne = 0;
+      for (let i = 0; i < fromHalf.pixels.length; i += 4) {
+        if ([0, 1, 2].some((c) => Math.abs(fromHalf.pixels[i + c] - fromAtlas.pixels[i + c]) > 1)) overOne += 1;
+      }
+      const overOneFraction = overOne / (fromHalf.width * fromHalf.height);
       console.log(`environment layouts on WebGL 1: ${layout} against atlas, largest difference ${between.r.max}, ` +
-                  `${between.g.max}, ${between.b.max} of 255`);
+                  `${between.g.max}, ${between.b.max} of 255; ${half} against atlas ${halfAgainstAtlas.r.max}, ` +
+                  `${halfAgainstAtlas.g.max}, ${halfAgainstAtlas.b.max}, ${overOne} pixels ` +
+                  `(${(100 * overOneFraction).toFixed(3)} %) more than 1 apart; auto is ${auto}`);
       assert.ok(Math.max(between.r.max, between.g.max, between.b.max) <= 1, 'the same texels, filtered alike');
+      assert.equal(half, 'halffloat', 'SwiftShader filters half floats');
+      assert.equal(auto, 'halffloat', 'the half-float atlas is the default where the context has it');
+      // Within a level of 255 but at the sun's rim, where the hardware's filter weights (fewer fractional bits than
+      // the hand filter's floats) blend the disc's 40 with the sky's 1: 4 pixels (0.007 %), up to 6 levels, here.
+      assert.ok(overOneFraction <= 0.0005, 'half floats filtered by the hardware give the image RGB9E5 filtered by ' +
+                `hand gives: ${overOne} pixels more than a level apart`);
+      assert.ok(Math.max(halfAgainstAtlas.r.max, halfAgainstAtlas.g.max, halfAgainstAtlas.b.max) <= 12,
+                'and nowhere far apart');
     });
 
   test('loading 2CylinderEngine.glb with the file picker shows it, with a progress bar meanwhile',

@@ -276,9 +276,9 @@ ProgramSpec LightingEffect::withoutStages(ProgramSpec head) {
   return head;
 }
 
-// Every form with the atlas (any GLES 2 context), and the shading forms again with the mip chain; the shading forms
-// in each tier, the medium and high ones with and without the filtered levels; no stage fused (frameProgramSpecs adds
-// the chains).
+// Every form with the atlas (any GLES 2 context), and the shading forms again with the mip chain and with the
+// half-float atlas; the shading forms in each tier, the medium and high ones with and without the filtered RGBM
+// levels (which the half-float atlas never reads); no stage fused (frameProgramSpecs adds the chains).
 std::vector<ProgramSpec> LightingEffect::programSpecs(int lightsPerDraw, std::optional<int> layeredLights) {
   const int layeredLightsPerDraw = layeredLights.value_or(lightsPerDraw);
   std::vector<ProgramSpec> specs;
@@ -291,13 +291,15 @@ std::vector<ProgramSpec> LightingEffect::programSpecs(int lightsPerDraw, std::op
                                          {LightingQuality::Medium, kEnvironmentFilteredLevel},
                                          {LightingQuality::High, kEnvironmentLevels},
                                          {LightingQuality::High, kEnvironmentFilteredLevel}};
-  for (EnvironmentLayout layout : {EnvironmentLayout::Atlas, EnvironmentLayout::MipChain})
+  for (EnvironmentLayout layout :
+       {EnvironmentLayout::Atlas, EnvironmentLayout::MipChain, EnvironmentLayout::HalfFloatAtlas})
     for (bool deferred : {false, true})
       for (bool counting : {true, false}) {
-        if (counting && layout == EnvironmentLayout::MipChain) continue;
+        if (counting && layout != EnvironmentLayout::Atlas) continue;
         for (const Shading& shading : counting ? std::vector<Shading>{shadings[1]} : shadings) {
           // The low tier's shading reads no level: its forms differ by layout only in the deferred background.
-          if (shading.quality == LightingQuality::Low && layout == EnvironmentLayout::MipChain && !deferred) continue;
+          if (shading.quality == LightingQuality::Low && layout != EnvironmentLayout::Atlas && !deferred) continue;
+          if (layout == EnvironmentLayout::HalfFloatAtlas && shading.filteredFrom < kEnvironmentLevels) continue;
           for (MaterialKind kind : MaterialKind::all()) {
             // The extended kinds (unlit, layered) take the forward forms only (Material::needsForwardLighting), with
             // the atlas, in every tier: enough for the shader checks to compile every #if of them.
@@ -349,7 +351,7 @@ LightingEffect::LightingEffect(const EffectResources& resources)
       layeredLightsPerDraw_(punctualLightsPerDraw(resources.caps.maxFragmentUniformVectors, true)),
       environmentFilteredUnit_(TextureUnits::environmentFiltered(resources.caps)),
       drawBuffers_(resources.caps.drawBuffers && resources.options.allowDrawBuffers),
-      environments_(layout_, resources.options.environmentFiltering) {
+      environments_(layout_, resources.options.environmentFiltering, resources.caps.desktopGl) {
   // The variants are built on first use, as the G-buffer's are (GBufferEffect.cpp): building every material's here
   // cost the page's start-up a program each (docs/resolution.md, "Start-up").
   environments_.use("sky", LightingSettings{}.directionToSun());

@@ -101,11 +101,15 @@ std::vector<ProgramSpec> TransparencyEffect::programSpecs(int fragmentVectors) {
       for (bool height : {false, true})
         specs.push_back(
             spec(heaviest, {}, {true, mode, height}, {1, filteredFrom}, EnvironmentLayout::Atlas, b.lights));
-  // The other tiers, and the filtered levels, for the heaviest material in either layout.
+  // The other tiers, and the filtered levels, for the heaviest material in either layout; the half-float atlas
+  // reads no RGBM level.
   for (EnvironmentLayout layout : {EnvironmentLayout::Atlas, EnvironmentLayout::MipChain})
     for (ShadingKey shading : {ShadingKey{0, kEnvironmentLevels}, ShadingKey{1, filteredFrom},
                                ShadingKey{2, kEnvironmentLevels}, ShadingKey{2, filteredFrom}})
       specs.push_back(spec(heaviest, {}, {}, shading, layout, b.lights));
+  for (int quality = 0; quality < 3; ++quality)
+    specs.push_back(
+        spec(heaviest, {}, {}, {quality, kEnvironmentLevels}, EnvironmentLayout::HalfFloatAtlas, b.lights));
   for (VertexKind vertex : VertexKind::validated())
     specs.push_back(
         spec({false, true, true}, vertex.forCurrentFrame(), {}, medium, EnvironmentLayout::Atlas, b.lights));
