@@ -35,6 +35,10 @@ glm::dvec3 sampleGgx(double u1, double u2, double alpha) {
   return {sinTheta * std::cos(phi), sinTheta * std::sin(phi), cosTheta};
 }
 
+// A value's half float (IEEE 754 binary16) bits, rounded to the nearest, at most the largest finite half: what the
+// half-float atlas holds.
+std::uint16_t halfFloatBits(float value) { return glm::packHalf1x16(std::min(value, 65504.0f)); }
+
 // An orthonormal frame around n (tangent, bitangent).
 void frameAround(const glm::dvec3& n, glm::dvec3& t, glm::dvec3& b) {
   const glm::dvec3 up = std::abs(n.y) < 0.999 ? glm::dvec3(0, 1, 0) : glm::dvec3(1, 0, 0);
@@ -418,7 +422,7 @@ void PrefilteredEnvironment::encodeLevels(EnvironmentFiltering filtering) {
 }
 
 float roundedToHalfFloat(float value) {
-  return glm::unpackHalf1x16(glm::packHalf1x16(std::min(value, 65504.0f)));
+  return glm::unpackHalf1x16(halfFloatBits(value));
 }
 
 glm::vec3 PrefilteredEnvironment::sample(const glm::vec3& direction, float roughness, EnvironmentLayout layout) const {
@@ -654,13 +658,12 @@ GpuEnvironment::GpuEnvironment(EnvironmentLayout layout, const PrefilteredEnviro
   if (halfFloat) {
     std::vector<HalfTexel> atlas(static_cast<size_t>(kEnvironmentHalfFloatWidth) * kEnvironmentHalfFloatHeight,
                                  HalfTexel{0, 0, 0, 0});
-    const std::uint16_t one = glm::packHalf1x16(1.0f);
+    const std::uint16_t one = halfFloatBits(1.0f);
     for (int level = 0; level < kEnvironmentLevels; ++level) {
       std::vector<HalfTexel> texels;
       texels.reserve(specular.levels[level].texels.size());
       for (const glm::vec3& c : specular.levels[level].texels)
-        texels.push_back({glm::packHalf1x16(std::min(c.r, 65504.0f)), glm::packHalf1x16(std::min(c.g, 65504.0f)),
-                          glm::packHalf1x16(std::min(c.b, 65504.0f)), one});
+        texels.push_back({halfFloatBits(c.r), halfFloatBits(c.g), halfFloatBits(c.b), one});
       placeBordered(atlas, kEnvironmentHalfFloatWidth, texels, kEnvironmentWidth >> level,
                     kEnvironmentHeight >> level, environmentHalfFloatOrigin(level), true);
     }
