@@ -237,7 +237,10 @@ export class Obscura extends EventTarget {
   setCompare(name: string): void;
   /** 'separate' | 'atlas' | 'mipchain' | 'auto'; returns the storage now in use. */
   setHierarchyStorage(name: string): string;
-  /** 'mipchain' | 'atlas' | 'auto': where the prefiltered environment's levels live; returns the layout now in use. */
+  /**
+   * 'halffloat' | 'mipchain' | 'atlas' | 'auto': where the prefiltered environment's levels live (half floats the
+   * hardware filters, or RGB9E5 filtered by hand); returns the layout now in use.
+   */
   setEnvironmentLayout(name: string): string;
   /** The view, the parameters that differ from their defaults, the timeline and the camera, as query-string text. */
   state(): string;
