@@ -87,6 +87,13 @@ glm::ivec4 intersection(const glm::ivec4& a, const glm::ivec4& b) {
 
 }  // namespace
 
+glm::ivec4 PassContext::withinOutputRegion(const std::string& target, const glm::ivec4& rect) const {
+  const OutputTarget::Region& region = output_.region;
+  if (writesOutput(target) && region.width > 0 && region.height > 0)
+    return intersection(rect, {region.x, region.y, region.width, region.height});
+  return rect;
+}
+
 glm::ivec4 PassContext::sceneRect(const std::string& target) const {
   const glm::ivec2 frameSize(frame_.camera.width, frame_.camera.height);
   const glm::ivec4& rect = frame_.sceneBounds;
@@ -96,34 +103,31 @@ glm::ivec4 PassContext::sceneRect(const std::string& target) const {
   const glm::ivec2 from = glm::max(glm::ivec2(glm::floor(glm::vec2(rect.x, rect.y) * scale)) - 1, glm::ivec2(0));
   const glm::ivec2 to =
       glm::min(glm::ivec2(glm::ceil(glm::vec2(rect.x + rect.z, rect.y + rect.w) * scale)) + 1, targetSize);
-  const glm::ivec4 covered(from, glm::max(to - from, glm::ivec2(0)));
-  const OutputTarget::Region& region = output_.region;
-  if (writesOutput(target) && region.width > 0 && region.height > 0)
-    return intersection(covered, {region.x, region.y, region.width, region.height});
-  return covered;
+  return withinOutputRegion(target, glm::ivec4(from, glm::max(to - from, glm::ivec2(0))));
 }
 
 void PassContext::scissor(const std::string& target, const glm::ivec4& rect) const {
-  glm::ivec4 r = rect;
-  const OutputTarget::Region& region = output_.region;
-  if (writesOutput(target) && region.width > 0 && region.height > 0)
-    r = intersection(r, {region.x, region.y, region.width, region.height});
+  const glm::ivec4 r = withinOutputRegion(target, rect);
   glEnable(GL_SCISSOR_TEST);
   glScissor(r.x, r.y, r.z, r.w);
   scissored_ = true;
 }
 
-std::vector<glm::ivec4> PassContext::around(const std::string& target, const glm::ivec4& rect) const {
+void PassContext::drawAroundScene(const std::string& target, const std::function<void()>& drawBand) const {
+  const glm::ivec4 covered = sceneRect(target);
   const glm::ivec2 whole = size(target);
-  const int top = rect.y + rect.w, right = rect.x + rect.z;
-  std::vector<glm::ivec4> bands;
-  const glm::ivec4 candidates[] = {{0, 0, whole.x, rect.y},
-                                   {0, top, whole.x, whole.y - top},
-                                   {0, rect.y, rect.x, rect.w},
-                                   {right, rect.y, whole.x - right, rect.w}};
-  for (const glm::ivec4& band : candidates)
-    if (band.z > 0 && band.w > 0) bands.push_back(band);
-  return bands;
+  const int top = covered.y + covered.w, right = covered.x + covered.z;
+  // Below and above the bounds, then to their left and right; the empty ones left out.
+  const glm::ivec4 bands[] = {{0, 0, whole.x, covered.y},
+                              {0, top, whole.x, whole.y - top},
+                              {0, covered.y, covered.x, covered.w},
+                              {right, covered.y, whole.x - right, covered.w}};
+  for (const glm::ivec4& band : bands) {
+    if (band.z <= 0 || band.w <= 0) continue;
+    scissor(target, band);
+    drawBand();
+  }
+  scissor(target, covered);
 }
 
 void PassContext::limitToScene(const std::string& target, const glm::vec4& outside) const {

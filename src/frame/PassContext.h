@@ -1,6 +1,7 @@
 #pragma once
 // What a pass sees while it draws (PassDecl::run): the frame, the settings, the scene, and its targets by name,
 // bound to the physical targets the frame plan lent it (or the output framebuffer, for the frame's result).
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -84,11 +85,10 @@ class PassContext {
   // The pixels of `target` the scene may cover: FrameContext::sceneBounds mapped to the target's size and widened by
   // a pixel, within the output's region where `target` is the output; x, y, width, height in GL window coordinates.
   glm::ivec4 sceneRect(const std::string& target) const;
-  // Scissors this pass's draws into `target` to `rect` (within the output's region) until finish().
-  void scissor(const std::string& target, const glm::ivec4& rect) const;
-  // The parts of `target` around `rect`: the bands below and above it and to its left and right, the empty ones left
-  // out (a pass that draws its background apart scissors each in turn).
-  std::vector<glm::ivec4> around(const std::string& target, const glm::ivec4& rect) const;
+  // For a pass that draws the pixels around the scene's bounds with a program of their own (nothing was drawn there:
+  // the lighting's background, FXAA's copy): calls `drawBand` scissored to each band around sceneRect(target) (below,
+  // above, left, right; the empty ones left out), then scissors the pass's next draws to the bounds until finish().
+  void drawAroundScene(const std::string& target, const std::function<void()>& drawBand) const;
   // Restores what the pass context changed (the scissor of the output's region or of limitToScene): called after
   // every pass.
   void finish() const;
@@ -104,6 +104,10 @@ class PassContext {
  private:
   const TargetVersion& readVersion(const std::string& target) const;
   const TargetVersion& writeVersion(const std::string& target) const;
+  // `rect` clipped to the output's region where `target` is the output.
+  glm::ivec4 withinOutputRegion(const std::string& target, const glm::ivec4& rect) const;
+  // Scissors this pass's draws into `target` to `rect` (within the output's region) until finish().
+  void scissor(const std::string& target, const glm::ivec4& rect) const;
 
   const FramePlan& plan_;
   int pass_;

@@ -218,12 +218,7 @@ std::function<void(PassContext&)> FxaaEffect::run(ProgramSpec full, ProgramSpec 
     // Around the scene's bounds on screen the pixels are the environment's background, a magnified image filtered
     // bilinearly, with no geometric edge to antialias: they are copied (upscaled) as they are, and FXAA runs within
     // the bounds, whose margin holds every pixel next to the scene's edges that FXAA moves.
-    const glm::ivec4 covered = context.sceneRect(output);
-    for (const glm::ivec4& band : context.around(output, covered)) {
-      context.scissor(output, band);
-      draw(passThrough);
-    }
-    context.scissor(output, covered);
+    context.drawAroundScene(output, [&] { draw(passThrough); });
     GLint stencilBits = 0;
     glGetIntegerv(GL_STENCIL_BITS, &stencilBits);
     if (stencilBits > 0 && resources_.options.allowFxaaStencil) {

@@ -538,16 +538,11 @@ void LightingEffect::render(const PassContext& context, Form form) const {
       glClear(GL_COLOR_BUFFER_BIT);
     }
     if (!form.counting) {
-      const glm::ivec4 covered = context.sceneRect(output);
       const Form background{false, false, true};
       const gl::Program& b = program(background, {}, {}, stages, chain);
       b.use();
       setShading(b, background);
-      for (const glm::ivec4& band : context.around(output, covered)) {
-        context.scissor(output, band);
-        resources_.triangle.draw();
-      }
-      context.scissor(output, covered);
+      context.drawAroundScene(output, [&] { resources_.triangle.draw(); });
     }
     const gl::Program& p = program(form, {}, {}, stages, chain);
     p.use();
