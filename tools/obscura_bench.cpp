@@ -469,6 +469,13 @@ void aoLayersSection(Bench& bench, const std::vector<BenchScene>& scenes,
   }
 }
 
+// Settings with each (parameter, value) of `set` applied over the defaults.
+RenderSettings settingsFrom(const std::vector<std::pair<std::string, std::string>>& set) {
+  RenderSettings settings;
+  for (const auto& [name, value] : set) settings.set(name, value);
+  return settings;
+}
+
 // Section 9: what ao.temporal saves, on the still room. The default AO (GTAO, medium: 2 slices x 2 sides x 3 steps, a
 // 9-tap blur each way) in one frame; 4 taps a pixel (one side x 4 steps) accumulated by ao.temporal with the default
 // blur, a 5-tap and a 3-tap one (blur-radius 2 and 1: the accumulated AO needs less); and the same 4 taps in one
@@ -1265,8 +1272,7 @@ void sceneBoundsSection(const Options& options, HeadlessContext& context, const 
       camera.width = w;
       camera.height = h;
       for (const Configuration& c : configurations) {
-        RenderSettings settings;
-        for (const auto& [name, value] : c.set) settings.set(name, value);
+        const RenderSettings settings = settingsFrom(c.set);
         std::vector<std::unique_ptr<Renderer>> renderers;
         for (const bool limit : {true, false}) {
           RendererOptions rendererOptions;
@@ -1313,11 +1319,7 @@ void finishSection(const Options& options, HeadlessContext& context, const std::
       {"edges", {{"edges", "on"}}},
       {"edges, hatching", {{"edges", "on"}, {"edges.style", "hatching"}}}};
   std::vector<RenderSettings> settings;
-  for (const Configuration& c : configurations) {
-    RenderSettings s;
-    for (const auto& [name, value] : c.set) s.set(name, value);
-    settings.push_back(s);
-  }
+  for (const Configuration& c : configurations) settings.push_back(settingsFrom(c.set));
   const std::vector<std::string> columns = {"lighting", "bloom", "bloom-bright", "lens-flare", "glare", "exposure",
                                             "tonemap", "edges"};
   // exposure and bloom: their passes together; bloom-bright: bloom's first two passes where they ran alone (bloom
@@ -1411,11 +1413,7 @@ void stagesSection(const Options& options, HeadlessContext& context, const std::
       {"taa, dither off", {{"taa", "on"}, {"dither", "off"}}},
       {"taa, all four", with(every, {{"taa", "on"}})}};
   std::vector<RenderSettings> settings;
-  for (const Configuration& c : configurations) {
-    RenderSettings s;
-    for (const auto& [name, value] : c.set) s.set(name, value);
-    settings.push_back(s);
-  }
+  for (const Configuration& c : configurations) settings.push_back(settingsFrom(c.set));
   std::ofstream csv(options.outDir + "/stages.csv");
   csv << "configuration,width,height,pass,median_ms\n";
   std::printf("\n8e. The display colour's stages, the still built-in scene, %s; median ms of %d frames, all "
