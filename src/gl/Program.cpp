@@ -224,7 +224,11 @@ std::vector<std::string> Program::uniformNames() const {
   return names;
 }
 
-void Program::set(GLint location, const glm::mat3& m) { glUniformMatrix3fv(location, 1, GL_FALSE, glm::value_ptr(m)); }
-void Program::set(GLint location, const glm::mat4& m) { glUniformMatrix4fv(location, 1, GL_FALSE, glm::value_ptr(m)); }
+void Program::set(GLint location, const glm::mat3& m) {
+  if (location >= 0) glUniformMatrix3fv(location, 1, GL_FALSE, glm::value_ptr(m));
+}
+void Program::set(GLint location, const glm::mat4& m) {
+  if (location >= 0) glUniformMatrix4fv(location, 1, GL_FALSE, glm::value_ptr(m));
+}
 
 }  // namespace obscura::gl

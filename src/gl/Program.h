@@ -83,14 +83,30 @@ class Program {
   GLint optionalUniform(const char* name) const;
 
   // Set by location on the program in use (use() first).
-  static void set(GLint location, int value) { glUniform1i(location, value); }
-  static void set(GLint location, float value) { glUniform1f(location, value); }
-  static void set(GLint location, const glm::vec2& v) { glUniform2f(location, v.x, v.y); }
-  static void set(GLint location, const glm::vec3& v) { glUniform3f(location, v.x, v.y, v.z); }
-  static void set(GLint location, const glm::vec4& v) { glUniform4f(location, v.x, v.y, v.z, v.w); }
+  // A location of -1 (a uniform the program does not have) makes no GL call: GL would ignore it, but a browser still
+  // pays for the call.
+  static void set(GLint location, int value) {
+    if (location >= 0) glUniform1i(location, value);
+  }
+  static void set(GLint location, float value) {
+    if (location >= 0) glUniform1f(location, value);
+  }
+  static void set(GLint location, const glm::vec2& v) {
+    if (location >= 0) glUniform2f(location, v.x, v.y);
+  }
+  static void set(GLint location, const glm::vec3& v) {
+    if (location >= 0) glUniform3f(location, v.x, v.y, v.z);
+  }
+  static void set(GLint location, const glm::vec4& v) {
+    if (location >= 0) glUniform4f(location, v.x, v.y, v.z, v.w);
+  }
   // A uniform array of vec3 or vec4 (location of its element 0).
-  static void set(GLint location, const glm::vec3* v, int count) { glUniform3fv(location, count, &v[0].x); }
-  static void set(GLint location, const glm::vec4* v, int count) { glUniform4fv(location, count, &v[0].x); }
+  static void set(GLint location, const glm::vec3* v, int count) {
+    if (location >= 0) glUniform3fv(location, count, &v[0].x);
+  }
+  static void set(GLint location, const glm::vec4* v, int count) {
+    if (location >= 0) glUniform4fv(location, count, &v[0].x);
+  }
   static void set(GLint location, const glm::mat3& m);
   static void set(GLint location, const glm::mat4& m);
 

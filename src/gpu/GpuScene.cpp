@@ -367,8 +367,12 @@ void GpuScene::draw(const glm::mat4& view, const ProgramChoice& choose, const Dr
   glActiveTexture(GL_TEXTURE0);
   for (const InstanceGpu* instance : drawOrder(view, options)) {
     const MaterialGpu& material = materials_[static_cast<size_t>(instance->material)];
-    if (material.doubleSided || options.bothFaces) glDisable(GL_CULL_FACE);
-    else glEnable(GL_CULL_FACE);
+    const int culling = material.doubleSided || options.bothFaces ? 0 : 1;
+    if (culling != state.culling) {
+      if (culling) glEnable(GL_CULL_FACE);
+      else glDisable(GL_CULL_FACE);
+      state.culling = culling;
+    }
     drawInstance(*instance, view, state);
   }
   restoreAfterDraw(state);
@@ -376,14 +380,21 @@ void GpuScene::draw(const glm::mat4& view, const ProgramChoice& choose, const Dr
 
 void GpuScene::drawInstance(const InstanceGpu& instance, const glm::mat4& view, DrawState& state) const {
   const MaterialGpu& material = materials_[static_cast<size_t>(instance.material)];
-  bindMaterialTextures(material, state);
+  if (state.texturesOf != instance.material) {
+    bindMaterialTextures(material, state);
+    state.texturesOf = instance.material;
+  }
   const glm::mat4 modelView = view * instance.world;
   // A mirroring transform flips the winding; keep "front" meaning the outside. A skinned vertex's transform is its
   // joints' (the instance's is the view alone): a skin whose joints mostly mirror flips it. (One that mirrors some
   // joints and not others shows the other part's faces from inside: glTF leaves that winding undefined.)
   const bool mirrored = glm::determinant(glm::mat3(modelView)) < 0.0f;
   const bool skinMirrored = instance.skin >= 0 && skins_[static_cast<size_t>(instance.skin)].mirrored;
-  glFrontFace(mirrored != skinMirrored ? GL_CW : GL_CCW);
+  const GLenum frontFace = mirrored != skinMirrored ? GL_CW : GL_CCW;
+  if (frontFace != state.frontFace) {
+    glFrontFace(frontFace);
+    state.frontFace = frontFace;
+  }
   for (int p = instance.firstPiece; p < instance.firstPiece + instance.pieceCount; ++p)
     drawPiece(instance, p, material, modelView, state);
 }
@@ -516,6 +527,7 @@ void GpuScene::drawPiece(const InstanceGpu& instance, int p, const MaterialGpu& 
     }
     state.programMaterial = materialKind;
     state.programVertex = vertexKind;
+    state.texturesOf = state.uniformsOf = -1;
     Program::set(state.uniforms->baseColorTexture, TextureUnits::kBaseColor);
     Program::set(state.uniforms->jointTexture, TextureUnits::kJoints);
     for (size_t slot = 0; slot < 4; ++slot) Program::set(state.uniforms->pbrTextures[slot], TextureUnits::kPbr[slot]);
@@ -535,12 +547,24 @@ void GpuScene::drawPiece(const InstanceGpu& instance, int p, const MaterialGpu& 
 
 void GpuScene::setInstanceUniforms(const InstanceGpu& instance, const MaterialGpu& material,
                                    const glm::mat4& modelView, const VertexKind& vertexKind,
-                                   const DrawState& state) const {
+                                   DrawState& state) const {
   using gl::Program;
   const GeometryUniforms& uniforms = *state.uniforms;
   Program::set(uniforms.modelView, modelView);
-  Program::set(uniforms.normalMatrix, glm::inverseTranspose(glm::mat3(modelView)));
+  if (uniforms.normalMatrix >= 0) Program::set(uniforms.normalMatrix, glm::inverseTranspose(glm::mat3(modelView)));
   Program::set(uniforms.previousModel, instance.previousWorld);
+  if (vertexKind.morphTargets > 0) {
+    glm::vec4 now(0.0f), before(0.0f);
+    for (size_t k = 0; k < instance.gpuTargets.size(); ++k) {
+      const auto t = static_cast<size_t>(instance.gpuTargets[k]);
+      now[static_cast<glm::length_t>(k)] = instance.weights[t];
+      before[static_cast<glm::length_t>(k)] = instance.previousWeights[t];
+    }
+    Program::set(uniforms.morphWeights, now);
+    Program::set(uniforms.previousMorphWeights, before);
+  }
+  if (state.uniformsOf == instance.material) return;  // the program holds this material's values already
+  state.uniformsOf = instance.material;
   Program::set(uniforms.baseColorFactor, material.baseColorFactor);
   Program::set(uniforms.alphaCutoff, material.alphaCutoff);
   Program::set(uniforms.metallicRoughness, material.metallicRoughness);
@@ -552,16 +576,6 @@ void GpuScene::setInstanceUniforms(const InstanceGpu& instance, const MaterialGp
   Program::set(uniforms.clearcoatRoughness, material.clearcoatRoughness);
   Program::set(uniforms.transmission, material.transmissionFactor);
   Program::set(uniforms.transmissionIor, material.transmissionIor);
-  if (vertexKind.morphTargets > 0) {
-    glm::vec4 now(0.0f), before(0.0f);
-    for (size_t k = 0; k < instance.gpuTargets.size(); ++k) {
-      const auto t = static_cast<size_t>(instance.gpuTargets[k]);
-      now[static_cast<glm::length_t>(k)] = instance.weights[t];
-      before[static_cast<glm::length_t>(k)] = instance.previousWeights[t];
-    }
-    Program::set(uniforms.morphWeights, now);
-    Program::set(uniforms.previousMorphWeights, before);
-  }
 }
 
 // The piece's vertex streams: its own buffers, or the CPU-deformed ones (with the previous positions beside them);

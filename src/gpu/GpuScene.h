@@ -215,6 +215,14 @@ class GpuScene {
     std::vector<GLuint> extraAttributes;  // enabled for the current piece, disabled after it
     bool jointTextureBound = false;
     bool pbrTexturesBound = false;
+    // What this draw call has set already, so that a run of instances sharing it sets it once (each call costs a
+    // browser more than the driver's work): face culling (-1 not yet), the winding (0 not yet), the material whose
+    // textures are bound and the material whose uniforms the current program holds (-1: none; a program chosen
+    // since, which may bind textures of its own, resets both).
+    int culling = -1;
+    GLenum frontFace = 0;
+    int texturesOf = -1;
+    int uniformsOf = -1;
     // Points an attribute the program has (location >= 0) at a buffer.
     void attribute(GLint location, GLuint buffer, GLint size, GLsizei stride, size_t offset);
   };
@@ -247,7 +255,7 @@ class GpuScene {
   void drawPiece(const InstanceGpu& instance, int p, const MaterialGpu& material, const glm::mat4& modelView,
                  DrawState& state) const;
   void setInstanceUniforms(const InstanceGpu& instance, const MaterialGpu& material, const glm::mat4& modelView,
-                           const VertexKind& vertexKind, const DrawState& state) const;
+                           const VertexKind& vertexKind, DrawState& state) const;
   void bindSkin(const InstanceGpu& instance, const Piece& piece, const VertexKind& vertexKind,
                 DrawState& state) const;  // GpuSkinning.cpp
   void bindVertices(const InstanceGpu& instance, int p, const VertexKind& vertexKind, DrawState& state) const;
