@@ -1,0 +1,62 @@
+// WebGL calls per frame on the demo page, by method: every method of WebGLRenderingContext counted while the page draws
+// the built-in scene, playing, for four seconds (tests/browser/calls.test.mjs holds the default frame to a bound).
+// Usage: node tools/browser-bench/gl-calls.mjs [WxH] [state | every]   ('every': every effect with a switch on)
+import path from 'node:path';
+import { fileURLToPath } from 'node:url';
+import { chromium } from 'playwright-core';
+import { startServer } from '../serve-web.mjs';
+import { chromiumLaunchOptions, openDemoPage } from '../headless-chromium.mjs';
+
+const root = path.resolve(path.dirname(fileURLToPath(import.meta.url)), '..', '..');
+const [size = '640x360', state = ''] = process.argv.slice(2);
+const [width, height] = size.split('x').map(Number);
+const server = await startServer(process.env.OBSCURA_WEB_SITE ?? path.join(root, 'build-web', 'site'));
+const browser = await chromium.launch(chromiumLaunchOptions);
+try {
+  const context = await browser.newContext({ viewport: { width, height }, deviceScaleFactor: 1 });
+  await context.addInitScript(() => {
+    window.__glCounts = {};
+    const proto = WebGLRenderingContext.prototype;
+    for (const name of Object.getOwnPropertyNames(proto)) {
+      const d = Object.getOwnPropertyDescriptor(proto, name);
+      if (typeof d.value !== 'function') continue;
+      const f = d.value;
+      proto[name] = function (...args) {
+        const queried = name === 'getParameter' || name === 'getExtension';
+        const key = queried ? `${name}(0x${Number(args[0]).toString(16)})` : name;
+        window.__glCounts[key] = (window.__glCounts[key] ?? 0) + 1;
+        return f.apply(this, args);
+      };
+    }
+  });
+  const page = await context.newPage();
+  await page.goto(`http://127.0.0.1:${server.address().port}/?resolution.dynamic=off&resolution.quick-start=off`);
+  await page.waitForFunction(() => document.body.dataset.ready === 'true', null, { timeout: 120000 });
+  const result = await page.evaluate(async (state) => {
+    const o = window.obscura;
+    const query = new URLSearchParams();
+    for (const p of o.parameters) if (p.name !== 'preset' && !p.name.endsWith('.preset')) query.set(p.name, p.default);
+    if (o.parameters.some((p) => p.name === 'resolution.dynamic')) query.set('resolution.dynamic', 'off');
+    // 'every': every effect that has a switch on.
+    const asked = state === 'every' ? o.effects.filter((e) => e.switch).map((e) => `${e.name}=on`).join('&') : state;
+    for (const [key, value] of new URLSearchParams(asked)) query.set(key, value);
+    query.set('time', '1'); query.set('play', 'on'); query.set('view', 'final');
+    o.setState(query.toString());
+    o.setContinuous(true);
+    await new Promise((r) => setTimeout(r, 3000));
+    const f0 = o.stats().frames;
+    window.__glCounts = {};
+    await new Promise((r) => setTimeout(r, 4000));
+    const frames = o.stats().frames - f0;
+    o.setContinuous(false);
+    return { frames, counts: window.__glCounts };
+  }, state);
+  const entries = Object.entries(result.counts).sort((a, b) => b[1] - a[1]);
+  const total = entries.reduce((s, [, n]) => s + n, 0);
+  const perFrame = (total / result.frames).toFixed(1);
+  console.log(`${size} '${state}': ${result.frames} frames, ${perFrame} WebGL calls per frame`);
+  for (const [k, n] of entries) console.log(`  ${(n / result.frames).toFixed(1).padStart(7)}  ${k}`);
+} finally {
+  await browser.close();
+  server.stop();
+}
