@@ -51,3 +51,21 @@ export async function openDemoPage(browser, url, width, height) {
   await page.addStyleTag({ content: '#panel { display: none !important; }' });
   return { page, errors };
 }
+
+// An init script (browserContext.addInitScript(countWebGlCalls)) that counts every call of a WebGL 1 context's
+// methods by name into window.glCalls, which the page's code may reset; getParameter and getExtension by their
+// argument too ("getParameter(0x8fbb)"). tests/browser/calls.test.mjs and tools/browser-bench/gl-calls.mjs use it.
+export function countWebGlCalls() {
+  window.glCalls = {};
+  const proto = WebGLRenderingContext.prototype;
+  for (const name of Object.getOwnPropertyNames(proto)) {
+    const method = Object.getOwnPropertyDescriptor(proto, name).value;
+    if (typeof method !== 'function' || name === 'constructor') continue;
+    const queried = name === 'getParameter' || name === 'getExtension';
+    proto[name] = function (...args) {
+      const key = queried ? `${name}(0x${Number(args[0]).toString(16)})` : name;
+      window.glCalls[key] = (window.glCalls[key] ?? 0) + 1;
+      return method.apply(this, args);
+    };
+  }
+}

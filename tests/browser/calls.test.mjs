@@ -5,6 +5,7 @@
 // (gl::Program::set). The bound holds the default frame to that: it made 1006 calls before, 583 after.
 import assert from 'node:assert/strict';
 import { after, before, describe, test } from 'node:test';
+import { countWebGlCalls } from '../../tools/headless-chromium.mjs';
 import { startBrowser, waitForDrawn } from './harness.mjs';
 
 let session;
@@ -14,19 +15,7 @@ describe('WebGL calls per frame', () => {
   before(async () => {
     session = await startBrowser();
     const context = await session.newContext();
-    // Counts every call of a WebGL 1 context's methods, by name.
-    await context.addInitScript(() => {
-      window.glCalls = {};
-      const proto = WebGLRenderingContext.prototype;
-      for (const name of Object.getOwnPropertyNames(proto)) {
-        const method = Object.getOwnPropertyDescriptor(proto, name).value;
-        if (typeof method !== 'function' || name === 'constructor') continue;
-        proto[name] = function (...args) {
-          window.glCalls[name] = (window.glCalls[name] ?? 0) + 1;
-          return method.apply(this, args);
-        };
-      }
-    });
+    await context.addInitScript(countWebGlCalls);
     page = await context.newPage();
     page.errors = [];
     page.on('pageerror', (error) => page.errors.push(`uncaught: ${error.message}`));

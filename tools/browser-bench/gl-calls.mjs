@@ -5,7 +5,7 @@ import path from 'node:path';
 import { fileURLToPath } from 'node:url';
 import { chromium } from 'playwright-core';
 import { startServer } from '../serve-web.mjs';
-import { chromiumLaunchOptions, openDemoPage } from '../headless-chromium.mjs';
+import { chromiumLaunchOptions, countWebGlCalls } from '../headless-chromium.mjs';
 
 const root = path.resolve(path.dirname(fileURLToPath(import.meta.url)), '..', '..');
 const [size = '640x360', state = ''] = process.argv.slice(2);
@@ -14,21 +14,7 @@ const server = await startServer(process.env.OBSCURA_WEB_SITE ?? path.join(root,
 const browser = await chromium.launch(chromiumLaunchOptions);
 try {
   const context = await browser.newContext({ viewport: { width, height }, deviceScaleFactor: 1 });
-  await context.addInitScript(() => {
-    window.__glCounts = {};
-    const proto = WebGLRenderingContext.prototype;
-    for (const name of Object.getOwnPropertyNames(proto)) {
-      const d = Object.getOwnPropertyDescriptor(proto, name);
-      if (typeof d.value !== 'function') continue;
-      const f = d.value;
-      proto[name] = function (...args) {
-        const queried = name === 'getParameter' || name === 'getExtension';
-        const key = queried ? `${name}(0x${Number(args[0]).toString(16)})` : name;
-        window.__glCounts[key] = (window.__glCounts[key] ?? 0) + 1;
-        return f.apply(this, args);
-      };
-    }
-  });
+  await context.addInitScript(countWebGlCalls);
   const page = await context.newPage();
   await page.goto(`http://127.0.0.1:${server.address().port}/?resolution.dynamic=off&resolution.quick-start=off`);
   await page.waitForFunction(() => document.body.dataset.ready === 'true', null, { timeout: 120000 });
@@ -45,11 +31,11 @@ try {
     o.setContinuous(true);
     await new Promise((r) => setTimeout(r, 3000));
     const f0 = o.stats().frames;
-    window.__glCounts = {};
+    window.glCalls = {};
     await new Promise((r) => setTimeout(r, 4000));
     const frames = o.stats().frames - f0;
     o.setContinuous(false);
-    return { frames, counts: window.__glCounts };
+    return { frames, counts: window.glCalls };
   }, state);
   const entries = Object.entries(result.counts).sort((a, b) => b[1] - a[1]);
   const total = entries.reduce((s, [, n]) => s + n, 0);
