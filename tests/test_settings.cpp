@@ -424,3 +424,36 @@ TEST(RenderSettings, CopiesAreIndependent) {
   EXPECT_EQ(fromAo.get("ao.radius"), "3");
   EXPECT_EQ(fromAo.get("tonemap.exposure"), "0") << "the other effects at their defaults";
 }
+
+// The cached plan's key compares the shaping parameters by value each frame (ParameterBinding::same), and by their
+// text only when they differ: for every parameter, `same` must agree with the text.
+TEST(RenderSettings, EveryParameterComparesByValueAsItsTextDoes) {
+  int compared = 0;
+  const RenderSettings defaults;
+  for (size_t row = 0; row < effectTable().size(); ++row) {
+    for (const ParameterBinding& p : effectTable()[row].parameters) {
+      const EffectSettingsBase& before = defaults.rowAt(row);
+      EXPECT_TRUE(p.same(before, before)) << p.info.name;
+      // Another value in range: the other switch position or choice, the far end of a number's range, a colour.
+      std::vector<std::string> others;
+      if (p.info.kind == ParameterKind::Switch || p.info.kind == ParameterKind::Choice ||
+          p.info.kind == ParameterKind::Text)
+        others = p.info.choices;
+      if (p.info.kind == ParameterKind::Number || p.info.kind == ParameterKind::Integer)
+        others = {formatShortest(static_cast<float>(p.info.min)), formatShortest(static_cast<float>(p.info.max))};
+      if (p.info.kind == ParameterKind::Color) others = {"0.2,0.35,0.6"};
+      for (const std::string& value : others) {
+        std::unique_ptr<EffectSettingsBase> after = before.clone();
+        try {
+          p.set(*after, value);
+        } catch (const InputError&) {
+          continue;  // a value this parameter refuses with the others at their defaults
+        }
+        EXPECT_EQ(p.same(before, *after), p.get(before) == p.get(*after)) << p.info.name << " = " << value;
+        if (p.get(before) != p.get(*after)) ++compared;
+      }
+    }
+  }
+  std::printf("%d changed values compared\n", compared);
+  EXPECT_GT(compared, 100);
+}

@@ -53,6 +53,7 @@ struct ParameterBinding {
   std::function<void(EffectSettingsBase&, const std::string&)> set;
   std::function<std::string(const EffectSettingsBase&)> get;
   std::function<std::string(const EffectSettingsBase&)> effective;
+  std::function<bool(const EffectSettingsBase&, const EffectSettingsBase&)> same;  // Parameter::same, or the texts
 };
 
 namespace detail {
@@ -138,6 +139,9 @@ struct EffectEntry {
       binding.get = [p](const EffectSettingsBase& s) { return p.get(cast<S>(s)); };
       binding.effective = [p](const EffectSettingsBase& s) {
         return p.effective ? p.effective(cast<S>(s)) : p.get(cast<S>(s));
+      };
+      binding.same = [p](const EffectSettingsBase& a, const EffectSettingsBase& b) {
+        return p.same ? p.same(cast<S>(a), cast<S>(b)) : p.get(cast<S>(a)) == p.get(cast<S>(b));
       };
       entry.parameters.push_back(std::move(binding));
     }

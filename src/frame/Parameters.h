@@ -73,6 +73,9 @@ struct Parameter {
   std::function<std::string(const S&)> get;
   std::function<bool(const S&)> valid;
   std::function<std::string(const S&)> effective;  // empty: get
+  // Whether two settings hold the same value (the cached plan's key compares by it each frame, not by the text);
+  // empty: compare get()'s text.
+  std::function<bool(const S&, const S&)> same;
 
   // Marks it as shown up front by user interfaces.
   Parameter primary() && {
@@ -92,6 +95,12 @@ struct Parameter {
   }
 };
 
+// Parameter::same for a parameter that is one field of its settings.
+template <typename S, typename T>
+std::function<bool(const S&, const S&)> sameField(T S::*field) {
+  return [field](const S& a, const S& b) { return a.*field == b.*field; };
+}
+
 namespace parse {
 float number(const std::string& name, const std::string& text, double min, double max, const char* unit);
 int integer(const std::string& name, const std::string& text, double min, double max, const char* unit);
@@ -106,9 +115,10 @@ std::string oneOf(const std::vector<std::string>& choices);  // "a, b or c"
 
 template <typename S>
 Parameter<S> switchParameter(const char* name, const char* help, bool S::*field) {
-  Parameter<S> p{{name, "on | off", help, ParameterKind::Switch, 0.0, 0.0, {"on", "off"}}, {}, {}, {}, {}};
+  Parameter<S> p{{name, "on | off", help, ParameterKind::Switch, 0.0, 0.0, {"on", "off"}}, {}, {}, {}, {}, {}};
   p.set = [name, field](S& s, const std::string& v) { s.*field = parse::onOff(name, v); };
   p.get = [field](const S& s) { return std::string(s.*field ? "on" : "off"); };
+  p.same = sameField(field);
   p.valid = [](const S&) { return true; };
   return p;
 }
@@ -117,10 +127,11 @@ template <typename S>
 Parameter<S> numberParameter(const char* name, double min, double max, const char* unit, const char* help,
                              float S::*field) {
   Parameter<S> p{{name, parse::numericRange(min, max, unit, ""), help, ParameterKind::Number, min, max, {}},
-                 {}, {}, {}, {}};
+                 {}, {}, {}, {}, {}};
   p.info.shapesPlan = false;  // a value the passes read each frame, unless marked
   p.set = [=](S& s, const std::string& v) { s.*field = parse::number(name, v, min, max, unit); };
   p.get = [field](const S& s) { return formatShortest(s.*field); };
+  p.same = sameField(field);
   p.valid = [=](const S& s) { return s.*field >= static_cast<float>(min) && s.*field <= static_cast<float>(max); };
   return p;
 }
@@ -131,13 +142,14 @@ Parameter<S> autoNumberParameter(const char* name, double min, double max, const
                                  std::optional<float> S::*field, std::function<float(const S&)> resolved) {
   Parameter<S> p{{name, parse::numericRange(min, max, unit, "or auto"), help, ParameterKind::Number, min, max,
                   {"auto"}},
-                 {}, {}, {}, {}};
+                 {}, {}, {}, {}, {}};
   p.info.shapesPlan = false;  // a value the passes read each frame, unless marked
   p.set = [=](S& s, const std::string& v) {
     if (v == "auto") s.*field = std::nullopt;
     else s.*field = parse::number(name, v, min, max, unit);
   };
   p.get = [field](const S& s) { return (s.*field) ? formatShortest(*(s.*field)) : std::string("auto"); };
+  p.same = sameField(field);
   p.valid = [=](const S& s) {
     return !(s.*field) || (*(s.*field) >= static_cast<float>(min) && *(s.*field) <= static_cast<float>(max));
   };
@@ -152,7 +164,7 @@ Parameter<S> integerParameter(const char* name, int min, int max, const char* un
                               std::function<void(S&, const std::string& value)> also = {}) {
   Parameter<S> p{{name, parse::numericRange(min, max, unit, constraint), help, ParameterKind::Integer, double(min),
                   double(max), {}},
-                 {}, {}, {}, {}};
+                 {}, {}, {}, {}, {}};
   p.set = [=](S& s, const std::string& v) {
     S changed = s;
     changed.*field = parse::integer(name, v, min, max, unit);
@@ -160,6 +172,7 @@ Parameter<S> integerParameter(const char* name, int min, int max, const char* un
     s = changed;
   };
   p.get = [field](const S& s) { return std::to_string(s.*field); };
+  p.same = sameField(field);
   p.valid = [=](const S& s) { return s.*field >= min && s.*field <= max; };
   return p;
 }
@@ -169,10 +182,11 @@ template <typename S>
 Parameter<S> colorParameter(const char* name, double min, double max, const char* help, glm::vec3 S::*field) {
   Parameter<S> p{{name, "r,g,b (linear, each " + parse::numericRange(min, max, "", "") + ") or #rrggbb (sRGB)", help,
                   ParameterKind::Color, min, max, {}},
-                 {}, {}, {}, {}};
+                 {}, {}, {}, {}, {}};
   p.info.shapesPlan = false;  // a value the passes read each frame
   p.set = [=](S& s, const std::string& v) { s.*field = parse::color(name, v, min, max); };
   p.get = [field](const S& s) { return parse::formatColor(s.*field); };
+  p.same = sameField(field);
   p.valid = [=](const S& s) {
     for (int c = 0; c < 3; ++c)
       if (!((s.*field)[c] >= static_cast<float>(min) && (s.*field)[c] <= static_cast<float>(max))) return false;
@@ -185,12 +199,13 @@ Parameter<S> colorParameter(const char* name, double min, double max, const char
 template <typename S>
 Parameter<S> textParameter(const char* name, const char* range, const char* help, std::string S::*field,
                            std::vector<std::string> builtIns) {
-  Parameter<S> p{{name, range, help, ParameterKind::Text, 0.0, 0.0, std::move(builtIns)}, {}, {}, {}, {}};
+  Parameter<S> p{{name, range, help, ParameterKind::Text, 0.0, 0.0, std::move(builtIns)}, {}, {}, {}, {}, {}};
   p.set = [name, field](S& s, const std::string& v) {
     if (v.empty()) throw InputError(std::string(name) + ": expected a name, got nothing");
     s.*field = v;
   };
   p.get = [field](const S& s) { return s.*field; };
+  p.same = sameField(field);
   p.valid = [field](const S& s) { return !(s.*field).empty(); };
   return p;
 }
@@ -202,7 +217,7 @@ Parameter<S> choiceParameter(const char* name, const char* help, E S::*field,
   std::vector<std::string> names;
   for (const auto& value : values) names.push_back(value.first);
   Parameter<S> p{{name, parse::joinChoices(names, " | "), help, ParameterKind::Choice, 0.0, 0.0, names},
-                 {}, {}, {}, {}};
+                 {}, {}, {}, {}, {}};
   p.set = [=](S& s, const std::string& v) {
     for (const auto& [text, value] : values)
       if (v == text) {
@@ -216,6 +231,7 @@ Parameter<S> choiceParameter(const char* name, const char* help, E S::*field,
       if (s.*field == value) return text;
     return std::string("?");
   };
+  p.same = sameField(field);
   p.valid = [=](const S& s) {
     for (const auto& value : values)
       if (s.*field == value.second) return true;

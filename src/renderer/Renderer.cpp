@@ -352,12 +352,30 @@ void Renderer::endFrame() {
   programs_.dropPending();
 }
 
-Renderer::PlanKey Renderer::planKey(const RenderSettings& settings, const View& view,
-                                    const FrameOptions& options) const {
-  PlanKey key;
-  key.settings.reserve(shapingParameters_.size());
+std::uint64_t Renderer::shapingId(const RenderSettings& settings) {
+  const bool unchanged = keyedSettings_ && std::all_of(shapingParameters_.begin(), shapingParameters_.end(),
+                                                       [&](const std::pair<size_t, size_t>& shaping) {
+    const auto& [row, parameter] = shaping;
+    return effectTable()[row].parameters[parameter].same(settings.rowAt(row), keyedSettings_->rowAt(row));
+  });
+  if (unchanged) return keyedId_;
+  std::vector<std::string> values;
+  values.reserve(shapingParameters_.size());
   for (const auto& [row, parameter] : shapingParameters_)
-    key.settings.push_back(effectTable()[row].parameters[parameter].get(settings.rowAt(row)));
+    values.push_back(effectTable()[row].parameters[parameter].get(settings.rowAt(row)));
+  // Each combination seen keeps its id; a page whose user tries very many starts the table again (ids are never
+  // reused, so a plan cached under a forgotten id is only made again).
+  if (shapingIds_.size() >= kShapingIds) shapingIds_.clear();
+  keyedId_ = shapingIds_.emplace(std::move(values), lastShapingId_ + 1).first->second;
+  lastShapingId_ = std::max(lastShapingId_, keyedId_);
+  keyedSettings_ = settings;
+  return keyedId_;
+}
+
+Renderer::PlanKey Renderer::planKey(const RenderSettings& settings, const View& view,
+                                    const FrameOptions& options) {
+  PlanKey key;
+  key.settings = shapingId(settings);
   key.view = view.name;
   key.size = {frame_.camera.width, frame_.camera.height};
   key.outputSize = {frame_.outputWidth, frame_.outputHeight};

@@ -220,7 +220,7 @@ class Renderer {
   // frame's size and the output's (below it, the frame ends in an upscale), the retained targets, the caller's
   // G-buffer, what the scene asks of the frame, the projection, and whether the output has a depth buffer.
   struct PlanKey {
-    std::vector<std::string> settings;
+    std::uint64_t settings = 0;  // the shaping parameters' values (shapingId)
     std::string view;
     glm::ivec2 size{0, 0}, outputSize{0, 0};
     std::vector<std::string> retain;
@@ -233,7 +233,11 @@ class Renderer {
              linesOrPoints == o.linesOrPoints && orthographic == o.orthographic && outputDepth == o.outputDepth;
     }
   };
-  PlanKey planKey(const RenderSettings& settings, const View& view, const FrameOptions& options) const;
+  PlanKey planKey(const RenderSettings& settings, const View& view, const FrameOptions& options);
+  // The id of the shaping parameters' values in `settings`: the last settings' id while every shaping parameter
+  // holds the same value (compared by value each frame: no text), else the id of their values as text, the same for
+  // equal values whenever they come back (so that settings changed back find their cached plan).
+  std::uint64_t shapingId(const RenderSettings& settings);
   // This frame's plan: a cached one with this key, or a new one (which replaces the least recently used).
   const FramePlan& cachedPlan(const RenderSettings& settings, const View& view, const FrameOptions& options);
   // The `gbuffer` pass of a frame whose G-buffer the caller drew (FrameOptions::externalGBuffer): a copy.
@@ -291,6 +295,10 @@ class Renderer {
   const FramePlan* plan_ = nullptr;  // the last frame's
   std::uint64_t plansMade_ = 0;
   std::vector<std::pair<size_t, size_t>> shapingParameters_;  // (row, parameter) of each parameter in PlanKey
+  std::optional<RenderSettings> keyedSettings_;  // the settings shapingId last read as text, and their id
+  std::uint64_t keyedId_ = 0, lastShapingId_ = 0;
+  static constexpr size_t kShapingIds = 1024;
+  std::map<std::vector<std::string>, std::uint64_t> shapingIds_;
   gl::FramebufferHandle externalGBufferSource_;  // reads the caller's G-buffer texture (importGBuffer)
   // Whether the output framebuffer has a depth buffer (GL_DEPTH_BITS), asked once per framebuffer and size.
   struct OutputDepth {

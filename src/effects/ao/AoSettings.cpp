@@ -19,7 +19,7 @@ const std::vector<Parameter<AoSettings>>& AoSettings::parameters() {
     Parameter<S> presetParameter{{"preset", parse::joinChoices(presetNames, " | "),
                                   "quality preset: samples, spiral turns, blur, resolution", ParameterKind::Choice, 0.0,
                                   0.0, presetNames},
-                                 {}, {}, {}, {}};
+                                 {}, {}, {}, {}, {}};
     presetParameter.set = [](S& s, const std::string& v) { s.applyPreset(parsePreset(v)); };
     // The preset the settings came from, while they still hold its values ("" once they differ).
     presetParameter.get = [](const S& s) {

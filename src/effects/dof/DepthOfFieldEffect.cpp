@@ -61,7 +61,7 @@ const std::vector<Parameter<DofSettings>>& DofSettings::parameters() {
     Parameter<S> quality{{"preset", parse::joinChoices(presetNames, " | "),
                           "quality preset: taps of each gather (12, 24, 40, 64)", ParameterKind::Choice, 0.0, 0.0,
                           presetNames},
-                         {}, {}, {}, {}};
+                         {}, {}, {}, {}, {}};
     quality.set = [](S& s, const std::string& v) { s.applyPreset(parsePreset(v)); };
     quality.get = [](const S& s) { return std::string(presetName(s.preset)); };
     quality.valid = [](const S&) { return true; };

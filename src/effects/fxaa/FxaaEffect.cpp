@@ -85,7 +85,7 @@ const std::vector<Parameter<FxaaSettings>>& FxaaSettings::parameters() {
                                   "quality preset: search steps (Lottes' preset 10, 12, 29, 39) and edge thresholds "
                                   "(the frame's preset low also turns FXAA off)",
                                   ParameterKind::Choice, 0.0, 0.0, presetNames},
-                                 {}, {}, {}, {}};
+                                 {}, {}, {}, {}, {}};
     presetParameter.set = [](S& s, const std::string& v) { s.applySettingsOf(parsePreset(v)); };
     presetParameter.get = [](const S& s) {
       return s.settingsMatch(s.preset) ? std::string(presetName(s.preset)) : "";

@@ -26,7 +26,7 @@ const std::vector<Parameter<LightingSettings>>& LightingSettings::parameters() {
     Parameter<S> presetParameter{{"preset", parse::joinChoices(presetNames, " | "),
                                   "quality preset: the shading tier (low: low, medium: medium, high and ultra: high)",
                                   ParameterKind::Choice, 0.0, 0.0, presetNames},
-                                 {}, {}, {}, {}};
+                                 {}, {}, {}, {}, {}};
     presetParameter.set = [](S& s, const std::string& v) { s.applyPreset(parsePreset(v)); };
     presetParameter.get = [](const S& s) {
       return s.matchesPreset(s.preset) ? std::string(presetName(s.preset)) : "";
