@@ -49,7 +49,7 @@ class EffectSettingsOf : public EffectSettingsBase {
 // A parameter of the frame: its documentation under its full name ("ao.radius") and access to its row's settings.
 struct ParameterBinding {
   ParameterInfo info;
-  size_t row = 0;  // index in effectTable()
+  size_t row = 0;  // index in effectTable(): set in RenderSettings::parameters() (0 in the table's own entries)
   std::function<void(EffectSettingsBase&, const std::string&)> set;
   std::function<std::string(const EffectSettingsBase&)> get;
   std::function<std::string(const EffectSettingsBase&)> effective;
