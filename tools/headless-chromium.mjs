@@ -69,3 +69,19 @@ export function countWebGlCalls() {
     };
   }
 }
+
+// Runs in the page (page.evaluate(applyBenchmarkState, state)): every parameter at its default (the presets follow
+// their parameters), dynamic resolution off where the build has it, then `state` (query text, or 'every': every
+// effect with a switch on), at 1 s on the clock and playing, the final image. The host-time scripts use it.
+export function applyBenchmarkState(state) {
+  const o = window.obscura;
+  const query = new URLSearchParams();
+  for (const p of o.parameters) if (p.name !== 'preset' && !p.name.endsWith('.preset')) query.set(p.name, p.default);
+  if (o.parameters.some((p) => p.name === 'resolution.dynamic')) query.set('resolution.dynamic', 'off');
+  const asked = state === 'every' ? o.effects.filter((e) => e.switch).map((e) => `${e.name}=on`).join('&') : state;
+  for (const [key, value] of new URLSearchParams(asked)) query.set(key, value);
+  query.set('time', '1');
+  query.set('play', 'on');
+  query.set('view', 'final');
+  o.setState(query.toString());
+}

@@ -5,7 +5,7 @@ import path from 'node:path';
 import { fileURLToPath } from 'node:url';
 import { chromium } from 'playwright-core';
 import { startServer } from '../serve-web.mjs';
-import { chromiumLaunchOptions, countWebGlCalls } from '../headless-chromium.mjs';
+import { applyBenchmarkState, chromiumLaunchOptions, countWebGlCalls } from '../headless-chromium.mjs';
 
 const root = path.resolve(path.dirname(fileURLToPath(import.meta.url)), '..', '..');
 const [size = '640x360', state = ''] = process.argv.slice(2);
@@ -18,16 +18,9 @@ try {
   const page = await context.newPage();
   await page.goto(`http://127.0.0.1:${server.address().port}/?resolution.dynamic=off&resolution.quick-start=off`);
   await page.waitForFunction(() => document.body.dataset.ready === 'true', null, { timeout: 120000 });
-  const result = await page.evaluate(async (state) => {
+  await page.evaluate(applyBenchmarkState, state);
+  const result = await page.evaluate(async () => {
     const o = window.obscura;
-    const query = new URLSearchParams();
-    for (const p of o.parameters) if (p.name !== 'preset' && !p.name.endsWith('.preset')) query.set(p.name, p.default);
-    if (o.parameters.some((p) => p.name === 'resolution.dynamic')) query.set('resolution.dynamic', 'off');
-    // 'every': every effect that has a switch on.
-    const asked = state === 'every' ? o.effects.filter((e) => e.switch).map((e) => `${e.name}=on`).join('&') : state;
-    for (const [key, value] of new URLSearchParams(asked)) query.set(key, value);
-    query.set('time', '1'); query.set('play', 'on'); query.set('view', 'final');
-    o.setState(query.toString());
     o.setContinuous(true);
     await new Promise((r) => setTimeout(r, 3000));
     const f0 = o.stats().frames;
@@ -36,7 +29,7 @@ try {
     const frames = o.stats().frames - f0;
     o.setContinuous(false);
     return { frames, counts: window.glCalls };
-  }, state);
+  });
   const entries = Object.entries(result.counts).sort((a, b) => b[1] - a[1]);
   const total = entries.reduce((s, [, n]) => s + n, 0);
   const perFrame = (total / result.frames).toFixed(1);

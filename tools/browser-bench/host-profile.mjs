@@ -12,7 +12,7 @@ import path from 'node:path';
 import { fileURLToPath } from 'node:url';
 import { chromium } from 'playwright-core';
 import { startServer } from '../serve-web.mjs';
-import { chromiumLaunchOptions, openDemoPage } from '../headless-chromium.mjs';
+import { applyBenchmarkState, chromiumLaunchOptions, openDemoPage } from '../headless-chromium.mjs';
 
 const root = path.resolve(path.dirname(fileURLToPath(import.meta.url)), '..', '..');
 const [size = '1280x720', state = '', seconds = '5'] = process.argv.slice(2);
@@ -22,17 +22,12 @@ const server = await startServer(process.env.OBSCURA_WEB_SITE ?? path.join(root,
 const browser = await chromium.launch(chromiumLaunchOptions);
 try {
   const { page } = await openDemoPage(browser, `http://127.0.0.1:${server.address().port}/`, width, height);
-  await page.evaluate(async (state) => {
+  await page.evaluate(applyBenchmarkState, state);
+  await page.evaluate(async () => {
     const o = window.obscura;
-    const query = new URLSearchParams();
-    for (const p of o.parameters) if (p.name !== 'preset' && !p.name.endsWith('.preset')) query.set(p.name, p.default);
-    query.set('resolution.dynamic', 'off');
-    for (const [key, value] of new URLSearchParams(state)) query.set(key, value);
-    query.set('time', '1'); query.set('play', 'on'); query.set('view', 'final');
-    o.setState(query.toString());
     o.setContinuous(true);
     await new Promise((r) => setTimeout(r, 2500));
-  }, state);
+  });
   const cdp = await page.context().newCDPSession(page);
   await cdp.send('Profiler.enable');
   await cdp.send('Profiler.setSamplingInterval', { interval: 50 });

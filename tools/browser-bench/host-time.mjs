@@ -13,7 +13,7 @@ import path from 'node:path';
 import { fileURLToPath } from 'node:url';
 import { chromium } from 'playwright-core';
 import { startServer } from '../serve-web.mjs';
-import { chromiumLaunchOptions, openDemoPage, parseOptions } from '../headless-chromium.mjs';
+import { applyBenchmarkState, chromiumLaunchOptions, openDemoPage, parseOptions } from '../headless-chromium.mjs';
 
 const root = path.resolve(path.dirname(fileURLToPath(import.meta.url)), '..', '..');
 const options = { sizes: '1280x720,640x360', samples: 30, settle: 2500,
@@ -47,17 +47,9 @@ try {
                    { label: 'every effect on', state: effects.map((e) => `${e}=on`).join('&') }];
     console.log(`${width}x${height}, ${await page.evaluate(() => window.obscura.context.renderer)}`);
     for (const c of cases) {
-      const result = await page.evaluate(async ({ state, samples, settle }) => {
+      await page.evaluate(applyBenchmarkState, c.state);
+      const result = await page.evaluate(async ({ samples, settle }) => {
         const o = window.obscura;
-        const query = new URLSearchParams();
-        for (const p of o.parameters) if (p.name !== 'preset' && !p.name.endsWith('.preset')) query.set(p.name, p.default);
-        // The canvas's full size (fixedScaleUrl); builds before dynamic resolution have no such parameter.
-        if (o.parameters.some((p) => p.name === 'resolution.dynamic')) query.set('resolution.dynamic', 'off');
-        for (const [key, value] of new URLSearchParams(state)) query.set(key, value);
-        query.set('time', '1');
-        query.set('play', 'on');
-        query.set('view', 'final');
-        o.setState(query.toString());
         // The shaders compile and the first frames settle in the page's own loop.
         o.setContinuous(true);
         await new Promise((r) => setTimeout(r, settle));
@@ -73,12 +65,13 @@ try {
         for (let i = 0; i < samples; ++i) {
           o.stepFrames(1);
           o.draw();
-          host.push(o.stats().lastHostMs ?? o.stats().lastCpuMs);
+          const stats = o.stats();
+          host.push(stats.lastHostMs ?? stats.lastCpuMs);
           gl.finish();
           await new Promise((r) => setTimeout(r, 0));
         }
         return { host, passes: o.stats().passesRun };
-      }, { state: c.state, samples: options.samples, settle: options.settle });
+      }, { samples: options.samples, settle: options.settle });
       const sorted = [...result.host].sort((a, b) => a - b);
       const row = { label: c.label, width, height, hostMs: median(result.host), frames: result.host.length,
                     passes: result.passes.length, low: sorted[0], high: sorted[sorted.length - 1],
