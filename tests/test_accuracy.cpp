@@ -46,7 +46,7 @@ const ReferenceFrame& traced(const std::string& sceneName, const Scene& scene, c
 }
 
 // The default settings with `estimator` on `scene` at `radius`, against the reference; and with the SAO paper's
-// sigma, beta and k.
+// sigma, beta and k (and GTAO's untuned thickness, half the radius).
 Measured measure(const std::string& sceneName, const Scene& scene, const Camera& camera, AoEstimator estimator,
                  float radius) {
   const ReferenceFrame& reference = traced(sceneName, scene, camera, radius);
@@ -67,6 +67,7 @@ Measured measure(const std::string& sceneName, const Scene& scene, const Camera&
   paper.intensity = kPaperEstimatorParameters.intensity;
   paper.bias = kPaperEstimatorParameters.bias;
   paper.contrast = kPaperEstimatorParameters.contrast;
+  paper.thickness = kPaperEstimatorParameters.thickness;
   return {compare(fitted), compare(paper)};
 }
 

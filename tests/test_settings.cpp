@@ -116,6 +116,7 @@ TEST(AoSettings, EstimatorParametersAreTunedUnlessSetExplicitly) {
     EXPECT_FLOAT_EQ(settings.estimatorKnots().at[j].intensity, tuned.at[j].intensity);
     EXPECT_FLOAT_EQ(settings.estimatorKnots().at[j].bias, tuned.at[j].bias);
     EXPECT_FLOAT_EQ(settings.estimatorKnots().at[j].contrast, tuned.at[j].contrast);
+    EXPECT_FLOAT_EQ(settings.estimatorKnots().at[j].thickness, tuned.at[j].thickness);
   }
   // Keyed by the radius in pixels and the preset, not by the radius: another radius in scene units, the same knots.
   settings.set("radius", "200");
@@ -124,11 +125,16 @@ TEST(AoSettings, EstimatorParametersAreTunedUnlessSetExplicitly) {
   settings.set("intensity", "2.5");
   settings.set("bias", "0.03");
   settings.set("contrast", "1.5");
+  settings.set("thickness", "2");
   for (float pixels : {1.0f, 4.0f, 23.0f, 500.0f}) {  // an explicit value holds at every radius in pixels
     EXPECT_FLOAT_EQ(settings.estimatorAt(pixels).intensity, 2.5f);
     EXPECT_FLOAT_EQ(settings.estimatorAt(pixels).bias, 0.03f);
     EXPECT_FLOAT_EQ(settings.estimatorAt(pixels).contrast, 1.5f);
+    EXPECT_FLOAT_EQ(settings.estimatorAt(pixels).thickness, 2.0f);
   }
+  settings.set("thickness", "auto");
+  EXPECT_FLOAT_EQ(settings.estimatorAt().thickness, tuned.interpolate(kShownKnotPixels).thickness);
+  EXPECT_EQ(settings.get("thickness"), "auto");
 
   settings.set("intensity", "auto");
   EXPECT_FLOAT_EQ(settings.estimatorAt().intensity, tuned.interpolate(kShownKnotPixels).intensity);
@@ -157,6 +163,8 @@ TEST(AoSettings, TunedKnotsInterpolateInLogRadiusAndHoldAtTheEnds) {
       if (j + 1 < kEstimatorKnots) {
         EXPECT_NEAR(knots.interpolate(estimatorKnotPixels(j) * std::sqrt(2.0f)).bias,
                     0.5f * (knots.at[j].bias + knots.at[j + 1].bias), 1e-5f);
+        EXPECT_NEAR(knots.interpolate(estimatorKnotPixels(j) * std::sqrt(2.0f)).thickness,
+                    0.5f * (knots.at[j].thickness + knots.at[j + 1].thickness), 1e-5f);
       }
     }
     EXPECT_FLOAT_EQ(knots.interpolate(0.5f).contrast, knots.at[0].contrast);

@@ -27,6 +27,7 @@
 #include <iostream>
 #include <map>
 #include <memory>
+#include <numeric>
 #include <optional>
 #include <sstream>
 #include <thread>
@@ -337,67 +338,74 @@ struct Score {
 // max(0, 1 - sigma O)^k for its obscurance O; for large k it tends to exp(-sigma k O), so sigma and k trade against
 // each other along sigma k = const. Searching ln(sigma k) and ln k separately keeps that valley axis-aligned, where
 // Nelder-Mead walks it quickly.
-using Point = std::array<double, 3>;
+// With --fit-thickness, GTAO with one layer also fits its occluders' thickness t (a fraction of r, the 4th
+// coordinate, ln t): the assumed depth behind a tap's front, which trades halos around thin objects against open
+// creases behind thick ones. Otherwise, and for the other rows, the search runs over the first three and t stays at
+// 0.5 (the measured trade-off: docs/accuracy.md, "Thickness").
+using Point = std::array<double, 4>;
 
 // The box the search stays in: inside AoSettings' ranges (intensity 0 .. 20, contrast 0.1 .. 10, bias 0 .. 1 m), and
 // narrower where that costs nothing: a bias beyond half the radius ignores nearly every occluder, and contrast stops
 // at 5 because the fit runs up the sigma k = const valley towards exp(-sigma k S), where the error is flat (at
 // r = 1 m, k = 10 instead of 5 lowered the mean MAE by 0.0001) while the default would pin the contrast control to
-// the top of its range.
+// the top of its range. The thickness stays within 0.05 .. 8 r: thinner is a hair, thicker a height field.
 Point clampToBox(const Point& p) {
   const double lnK = std::clamp(p[2], std::log(0.2), std::log(5.0));
   const double lnSigmaK = std::clamp(p[0], std::log(0.05) + lnK, std::log(20.0) + lnK);
-  return {lnSigmaK, std::clamp(p[1], 0.0, 0.5), lnK};
+  return {lnSigmaK, std::clamp(p[1], 0.0, 0.5), lnK, std::clamp(p[3], std::log(0.05), std::log(8.0))};
 }
 
 EstimatorParameters toParameters(const Point& p) {
   const Point q = clampToBox(p);
   // Rounded to what the table stores, so the fitted figures are those of the written values.
   auto round4 = [](double v) { return static_cast<float>(std::round(v * 1e4) / 1e4); };
-  return {round4(std::exp(q[0] - q[2])), round4(q[1]), round4(std::exp(q[2]))};
+  return {round4(std::exp(q[0] - q[2])), round4(q[1]), round4(std::exp(q[2])), round4(std::exp(q[3]))};
 }
 
 Point fromParameters(const EstimatorParameters& e) {
-  return clampToBox({std::log(e.intensity * e.contrast), e.bias, std::log(e.contrast)});
+  return clampToBox({std::log(e.intensity * e.contrast), e.bias, std::log(e.contrast), std::log(e.thickness)});
 }
 
+// Nelder-Mead over the first `dimensions` coordinates of Point (3 or 4); the others keep the start's values.
 Point nelderMead(const std::function<double(const Point&)>& f, const Point& start, const Point& step,
-                 int maxEvaluations) {
-  std::array<Point, 4> simplex;
-  std::array<double, 4> value;
+                 int maxEvaluations, size_t dimensions) {
+  const size_t n = dimensions;
+  std::vector<Point> simplex(n + 1);
+  std::vector<double> value(n + 1);
   int evaluations = 0;
   auto eval = [&](const Point& p) {
     ++evaluations;
     return f(clampToBox(p));
   };
   simplex[0] = clampToBox(start);
-  for (int i = 0; i < 3; ++i) {
-    simplex[static_cast<size_t>(i + 1)] = simplex[0];
-    Point& vertex = simplex[static_cast<size_t>(i + 1)];
-    vertex[static_cast<size_t>(i)] += step[static_cast<size_t>(i)];
+  for (size_t i = 0; i < n; ++i) {
+    simplex[i + 1] = simplex[0];
+    Point& vertex = simplex[i + 1];
+    vertex[i] += step[i];
     // A vertex clamped back onto the start would make the simplex degenerate: step the other way instead.
-    if (clampToBox(vertex) == simplex[0]) vertex[static_cast<size_t>(i)] -= 2 * step[static_cast<size_t>(i)];
+    if (clampToBox(vertex) == simplex[0]) vertex[i] -= 2 * step[i];
     vertex = clampToBox(vertex);
   }
-  for (size_t i = 0; i < 4; ++i) value[i] = eval(simplex[i]);
+  for (size_t i = 0; i <= n; ++i) value[i] = eval(simplex[i]);
   while (evaluations < maxEvaluations) {
-    std::array<size_t, 4> order{0, 1, 2, 3};
+    std::vector<size_t> order(n + 1);
+    std::iota(order.begin(), order.end(), size_t{0});
     std::sort(order.begin(), order.end(), [&](size_t a, size_t b) { return value[a] < value[b]; });
-    std::array<Point, 4> s;
-    std::array<double, 4> v;
-    for (size_t i = 0; i < 4; ++i) {
-      s[i] = simplex[order[i]];
-      v[i] = value[order[i]];
+    const std::vector<Point> s = simplex;
+    const std::vector<double> v = value;
+    for (size_t i = 0; i <= n; ++i) {
+      simplex[i] = s[order[i]];
+      value[i] = v[order[i]];
     }
-    simplex = s;
-    value = v;
-    if (value[3] - value[0] < 2e-5) break;  // spread below a tenth of a grey level of MAE: converged
-    Point centroid{0, 0, 0};
-    for (size_t i = 0; i < 3; ++i)
-      for (size_t d = 0; d < 3; ++d) centroid[d] += simplex[i][d] / 3.0;
+    if (value[n] - value[0] < 2e-5) break;  // spread below a tenth of a grey level of MAE: converged
+    Point centroid = simplex[0];
+    for (size_t d = 0; d < n; ++d) {
+      centroid[d] = 0.0;
+      for (size_t i = 0; i < n; ++i) centroid[d] += simplex[i][d] / static_cast<double>(n);
+    }
     auto along = [&](double t) {
-      Point p;
-      for (size_t d = 0; d < 3; ++d) p[d] = centroid[d] + t * (simplex[3][d] - centroid[d]);
+      Point p = centroid;
+      for (size_t d = 0; d < n; ++d) p[d] = centroid[d] + t * (simplex[n][d] - centroid[d]);
       return clampToBox(p);
     };
     const Point reflected = along(-1.0);
@@ -406,25 +414,25 @@ Point nelderMead(const std::function<double(const Point&)>& f, const Point& star
       const Point expanded = along(-2.0);
       const double fe = eval(expanded);
       if (fe < fr) {
-        simplex[3] = expanded;
-        value[3] = fe;
+        simplex[n] = expanded;
+        value[n] = fe;
       } else {
-        simplex[3] = reflected;
-        value[3] = fr;
+        simplex[n] = reflected;
+        value[n] = fr;
       }
-    } else if (fr < value[2]) {
-      simplex[3] = reflected;
-      value[3] = fr;
+    } else if (fr < value[n - 1]) {
+      simplex[n] = reflected;
+      value[n] = fr;
     } else {
-      const bool outside = fr < value[3];
+      const bool outside = fr < value[n];
       const Point contracted = along(outside ? -0.5 : 0.5);
       const double fc = eval(contracted);
-      if (fc < std::min(fr, value[3])) {
-        simplex[3] = contracted;
-        value[3] = fc;
+      if (fc < std::min(fr, value[n])) {
+        simplex[n] = contracted;
+        value[n] = fc;
       } else {
-        for (size_t i = 1; i < 4; ++i) {
-          for (size_t d = 0; d < 3; ++d) simplex[i][d] = simplex[0][d] + 0.5 * (simplex[i][d] - simplex[0][d]);
+        for (size_t i = 1; i <= n; ++i) {
+          for (size_t d = 0; d < n; ++d) simplex[i][d] = simplex[0][d] + 0.5 * (simplex[i][d] - simplex[0][d]);
           value[i] = eval(simplex[i]);
         }
       }
@@ -444,6 +452,7 @@ AoSettings withParameters(AoSettings settings, const EstimatorParameters& e) {
   settings.intensity = e.intensity;
   settings.bias = e.bias;
   settings.contrast = e.contrast;
+  settings.thickness = e.thickness;
   return settings;
 }
 
@@ -492,8 +501,9 @@ struct Selection {
 
 // `layers`: the rows fitted are those for that many depth layers (ao.layers), of the estimators that read them; every
 // other row of the table is kept.
+// `fitThickness` (--fit-thickness): GTAO's one-layer rows fit their thickness too (see Point).
 void fit(std::vector<TuningCase>& cases, const TuningConfig& config, const Selection& selection, int layers,
-         const std::string& tablePath) {
+         bool fitThickness, const std::string& tablePath) {
   constexpr size_t kMinCasePixels = 200, kMinKnotPixels = 2000;
   struct Row {
     AoEstimator estimator;
@@ -581,20 +591,23 @@ void fit(std::vector<TuningCase>& cases, const TuningConfig& config, const Selec
           return knotMae(knot, withParameters(base, toParameters(p)));
         };
         const auto begin = std::chrono::steady_clock::now();
-        const Point step = first ? Point{0.4, 0.05, 0.4} : Point{0.15, 0.02, 0.15};
-        const Point best =
-            nelderMead(objective, fromParameters(start), step, first ? config.evaluations : config.followEvaluations);
+        const Point step = first ? Point{0.4, 0.05, 0.4, 0.5} : Point{0.15, 0.02, 0.15, 0.2};
+        // A fourth coordinate needs about a third more evaluations to converge as far.
+        const size_t dimensions = fitThickness && estimator == AoEstimator::Gtao && layers == 1 ? 4 : 3;
+        const int budget = (first ? config.evaluations : config.followEvaluations) * static_cast<int>(dimensions) / 3;
+        const Point best = nelderMead(objective, fromParameters(start), step, budget, dimensions);
         Row row{estimator, preset, layers, knot, toParameters(best)};
         row.mae = knotMae(knot, withParameters(base, row.fitted));
         row.paperMae = knotMae(knot, withParameters(base, kPaperEstimatorParameters));
         row.pixels = knotPixels[static_cast<size_t>(knot)];
         std::printf(
-            "  %-4s %-6s %d layer%s h = %3.0f px sigma %.3f beta %.4f k %.3f | MAE %.4f | paper MAE %.4f | %zu px in "
-            "%zu cases, %d renders each, %.0f s\n",
+            "  %-4s %-6s %d layer%s h = %3.0f px sigma %.3f beta %.4f k %.3f t %.3f | MAE %.4f | paper MAE %.4f | "
+            "%zu px in %zu cases, %d renders each, %.0f s\n",
             estimatorName(estimator), preset->name, layers, layers == 1 ? "" : "s",
             static_cast<double>(estimatorKnotPixels(knot)),
             static_cast<double>(row.fitted.intensity), static_cast<double>(row.fitted.bias),
-            static_cast<double>(row.fitted.contrast), row.mae, row.paperMae, row.pixels,
+            static_cast<double>(row.fitted.contrast), static_cast<double>(row.fitted.thickness), row.mae,
+            row.paperMae, row.pixels,
             members[static_cast<size_t>(knot)].size(), evaluations,
             std::chrono::duration<double>(std::chrono::steady_clock::now() - begin).count());
         std::fflush(stdout);
@@ -634,7 +647,9 @@ void fit(std::vector<TuningCase>& cases, const TuningConfig& config, const Selec
       << "// docs/accuracy.md explains the procedure.\n"
       << "// The rows for ao.layers 2 (estimators that read a second depth layer) are fitted with it.\n"
       << "// {estimator, preset, depth layers, radius in pixels (knot), {intensity sigma, bias beta (fraction of r), "
-         "contrast k}},\n"
+         "contrast k,\n"
+      << "// thickness t (fraction of r; fitted for GTAO with one layer by --fit-thickness, else 0.5; unused "
+         "elsewhere)}},\n"
       << "//   fitted | SAO paper's values\n";
   for (AoEstimator estimator : allAoEstimators()) {
     for (const PresetInfo& preset : presets) {
@@ -652,7 +667,8 @@ void fit(std::vector<TuningCase>& cases, const TuningConfig& config, const Selec
         out << "{" << enumeratorName("AoEstimator", estimatorName(estimator)) << ", "
             << enumeratorName("QualityPreset", preset.name) << ", " << row.layers << ", "
             << floatLiteral(estimatorKnotPixels(row.knot)) << ", {" << floatLiteral(row.fitted.intensity) << ", "
-            << floatLiteral(row.fitted.bias) << ", " << floatLiteral(row.fitted.contrast) << "}}," << comment << "\n";
+            << floatLiteral(row.fitted.bias) << ", " << floatLiteral(row.fitted.contrast) << ", "
+            << floatLiteral(row.fitted.thickness) << "}}," << comment << "\n";
       }
       }
     }
@@ -785,9 +801,10 @@ void evaluate(std::vector<TuningCase>& cases, const Selection& selection, bool p
           worstIncrease = std::max(worstIncrease, increase);
         }
         if (perCase)
-          std::printf("  %-16s r %-4sx MAE %.4f halo %.4f interior %.4f bias %+.4f Pearson %.3f skill %.2f%s\n",
-                      c.view->spec.name.c_str(), radiusText(c.factor).c_str(), m.mae, m.haloMae, m.interiorMae,
-                      m.bias, m.pearson, 1.0 - m.mae / std::max(c.whiteMae, 1e-9),
+          std::printf("  %-16s r %-4sx MAE %.4f halo %.4f (bias %+.4f) interior %.4f bias %+.4f Pearson %.3f "
+                      "skill %.2f%s\n",
+                      c.view->spec.name.c_str(), radiusText(c.factor).c_str(), m.mae, m.haloMae, m.haloBias,
+                      m.interiorMae, m.bias, m.pearson, 1.0 - m.mae / std::max(c.whiteMae, 1e-9),
                       compared ? format(" | against one layer %+.4f", increase).c_str() : "");
       }
       const Score s = score.mean();
@@ -1032,7 +1049,8 @@ void report(std::vector<TuningCase>& cases, std::vector<TuningView>& views, cons
 }
 
 std::string usage() {
-  return "usage: obscura-tune [--views FILE] [--cache DIR] [--fit TABLE.inc | --report DOC.md --images DIR\n"
+  return "usage: obscura-tune [--views FILE] [--cache DIR] [--fit TABLE.inc [--fit-thickness] |\n"
+         "                    --report DOC.md --images DIR\n"
          "                    [--browser-ms CSV] | --evaluate [--cases] | --guard-band F] [--estimators LIST]\n"
          "                    [--presets LIST] [--layers N] [--set NAME=VALUE ...]\n"
          "                    [--threads N] [--backend osmesa|egl]\n"
@@ -1043,6 +1061,8 @@ std::string usage() {
          "  --views FILE   the views, radii and sizes (default tools/tuning-views.json)\n"
          "  --cache DIR    where reference images are kept between runs (default build/tuning-cache)\n"
          "  --fit FILE     write the fitted table (src/effects/ao/TunedDefaults.inc)\n"
+         "  --fit-thickness  with --fit: GTAO's one-layer rows fit ao.thickness too (else 0.5; docs/accuracy.md,\n"
+         "                 \"Thickness\", says why it is not fitted by default)\n"
          "  --report FILE  rewrite the generated part of FILE (docs/accuracy.md)\n"
          "  --images DIR   where the report's pictures go (default docs/images)\n"
          "  --browser-ms F the browser's AO milliseconds for the report's estimator table (the CSV of\n"
@@ -1067,7 +1087,7 @@ int main(int argc, char** argv) {
                 imageDir = "docs/images", browserCostsPath;
     int threads = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
     HeadlessBackend backend = HeadlessBackend::OSMesa;
-    bool evaluateOnly = false, perCase = false;
+    bool evaluateOnly = false, perCase = false, fitThickness = false;
     int layers = 1;
     float guardBand = 0.0f;
     Selection selection;
@@ -1091,6 +1111,7 @@ int main(int argc, char** argv) {
       else if (arg == "--backend") backend = parseBackend(value());
       else if (arg == "--evaluate") evaluateOnly = true;
       else if (arg == "--cases") perCase = true;
+      else if (arg == "--fit-thickness") fitThickness = true;
       else if (arg == "--layers") layers = parseCount(arg, value(), 2);
       else if (arg == "--set") {
         const std::string& assignment = value();
@@ -1147,7 +1168,7 @@ int main(int argc, char** argv) {
     }
     if (guardBand > 0.0f) guardBandStudy(cases, context, guardBand);
     else if (evaluateOnly) evaluate(cases, selection, perCase, layers);
-    else if (!tablePath.empty()) fit(cases, config, selection, layers, tablePath);
+    else if (!tablePath.empty()) fit(cases, config, selection, layers, fitThickness, tablePath);
     else report(cases, views, config, docPath, imageDir, context, browserCosts);
     std::printf("obscura-tune: done in %.0f s\n",
                 std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());

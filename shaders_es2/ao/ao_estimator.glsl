@@ -29,8 +29,9 @@ uniform vec2 u_projScale;
 uniform float u_radius;         // r, scene units
 uniform float u_invRadius;      // 1 / r
 // The estimator's parameters at the knots h_j = FIRST_KNOT_PIXELS * 2^j pixels of projected radius (AoSettings.h):
-// x = sigma * 5 / s (SAO 2012) or sigma * 2 / s (Alchemy 2011), y = beta as a fraction of r, z = contrast k.
-uniform vec3 u_estimatorKnots[ESTIMATOR_KNOTS];
+// x = sigma * 5 / s (SAO 2012) or sigma * 2 / s (Alchemy 2011), y = beta as a fraction of r, z = contrast k,
+// w = GTAO's one-layer occluder thickness as a fraction of r (the other estimators ignore it).
+uniform vec4 u_estimatorKnots[ESTIMATOR_KNOTS];
 uniform float u_maxRadiusPixels;
 // Temporal AO's per-frame offsets (effects/ao/AoTemporal.h: frameOffset), as fractions: x of the taps' rotation (a
 // turn), y of their distance jitter. (0, 0) without ao.temporal.
@@ -178,18 +179,18 @@ bool aoCentre(out AoCentre c) {
   return true;
 }
 
-// This pixel's parameters (x: intensity scale, y: bias as a fraction of r, z: contrast): the knots' tent weights at
-// t = log2(h / h_0), held at the ends (EstimatorKnots::interpolate).
-vec3 estimatorAt(float log2DiskRadius) {
+// This pixel's parameters (x: intensity scale, y: bias as a fraction of r, z: contrast, w: thickness): the knots'
+// tent weights at t = log2(h / h_0), held at the ends (EstimatorKnots::interpolate).
+vec4 estimatorAt(float log2DiskRadius) {
   float knot = clamp(log2DiskRadius - log2(float(FIRST_KNOT_PIXELS)), 0.0, float(ESTIMATOR_KNOTS - 1));
-  vec3 estimator = vec3(0.0);
+  vec4 estimator = vec4(0.0);
   for (int j = 0; j < ESTIMATOR_KNOTS; j++)
     estimator += u_estimatorKnots[j] * max(0.0, 1.0 - abs(knot - float(j)));
   return estimator;
 }
 
 // A = max(0, 1 - sigma' O)^k for the estimator's obscurance O (sigma' = the knot's intensity scale).
-vec4 aoOutput(AoCentre c, float obscurance, vec3 estimator) {
+vec4 aoOutput(AoCentre c, float obscurance, vec4 estimator) {
   float visibility = pow(max(0.0, 1.0 - obscurance * estimator.x), estimator.z);
   return vec4(visibility, bytesToChannels(channelsToBytes(c.depthBytes)), 1.0);
 }

@@ -77,7 +77,7 @@ void main() {
     return;
   }
   float log2DiskRadius = log2(max(c.diskRadius, 1e-3));
-  vec3 estimator = estimatorAt(log2DiskRadius);
+  vec4 estimator = estimatorAt(log2DiskRadius);
   // r', the sphere's radius: r, or less where the projected radius was clamped.
   float shrink = min(c.diskRadius / (u_radius * (u_projScale.x / -c.position.z + u_projScale.y)), 1.0);
   float radius = u_radius * shrink;

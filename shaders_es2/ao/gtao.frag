@@ -22,10 +22,11 @@
 // whole slice: the halo. Here a tap occludes only the directions to the segment of its pixel's ray between its front
 // point and its back point, clipped to the ball of radius r about the centre (the reference's cut at r): the back
 // point is the second depth layer's (ao.layers 2, effects/ao/DepthPeelPass.h: for a closed occluder its back face),
-// or, with one layer, the point ao.thickness r behind the front (the heuristic, fitted: docs/accuracy.md). Two
-// consecutive taps whose depth ranges overlap, within ao.surface-gap r, are one occluder: the quadrilateral between
-// their segments is solid too (the first tap joins the centre's own surface this way), so a continuous surface
-// occludes as the height field's horizon does, and only a gap in depth lets the sky through. The union of the
+// or, with one layer, the point ao.thickness r behind the front (a heuristic; per radius in pixels, the knots' w;
+// docs/accuracy.md, "Thickness"). Two consecutive taps whose depth ranges overlap, within
+// ao.surface-gap r, are one occluder: the quadrilateral between their segments is solid too (the first tap joins the
+// centre's own surface this way), so a continuous surface occludes as the height field's horizon does, and only a gap
+// in depth lets the sky through. The union of the
 // occluded directions is kept per side as 8 sectors of u = a(direction) / a(hemisphere edge), the cosine-weighted
 // share of the side's open arc between V and the direction (eq. 10's half: sideArc), so every sector weighs the same;
 // each tap's interval covers sectors by fraction, and the side's visibility is the mean uncovered fraction. This is
@@ -80,13 +81,13 @@ float sideArc(float c, float sideSign, float gamma, float cosGamma, float sinGam
   return 0.25 * (-cosTwiceHMinusGamma + cosGamma + 2.0 * (clamped ? limit : h) * sinGamma);
 }
 
-uniform float u_thickness;   // one layer: an occluder's assumed thickness behind its front face, in units of r
 uniform float u_surfaceGap;  // the depth gap two taps' segments may leave and still be one occluder, units of r
 
 // The visible fraction of one side of a slice (direction `side` in pixels, unit length; `sideSign` +1 or -1; its open
-// arc `openSide`): the mean uncovered fraction of its 8 sectors of u (see the top of the file).
+// arc `openSide`): the mean uncovered fraction of its 8 sectors of u (see the top of the file). `thickness`: with one
+// layer, how far behind each tap's front its occluder reaches, in scene units.
 float sideVisibleFraction(AoCentre c, float centreBackDepth, vec3 V, vec2 side, float sideSign, float jitter,
-                          float bias, float gamma, float cosGamma, float sinGamma, float openSide) {
+                          float bias, float thickness, float gamma, float cosGamma, float sinGamma, float openSide) {
   vec4 occupiedLow = vec4(0.0), occupiedHigh = vec4(0.0);
   const vec4 kSectorLow = vec4(0.0, 0.125, 0.25, 0.375);
   float inverseOpen = 1.0 / max(openSide, 1e-4);
@@ -103,7 +104,7 @@ float sideVisibleFraction(AoCentre c, float centreBackDepth, vec3 V, vec2 side, 
     tapLayers(tapPixel, log2(tapDistance), point, backPoint);
 #else
     vec3 point = tapPoint(tapPixel, log2(tapDistance));
-    vec3 backPoint = point + (u_thickness * u_radius) * eyeRayDirection(point);  // along the pixel's ray
+    vec3 backPoint = point + thickness * eyeRayDirection(point);  // along the pixel's ray
 #endif
     // The occluder along the tap's ray is the segment from its front point to its back point; what occludes is the
     // part of it within r of the centre: w + s (b - w), s in [s0, s1], inside the unit ball (units of r).
@@ -153,7 +154,8 @@ void main() {
     return;
   }
   float log2DiskRadius = log2(max(c.diskRadius, 1e-3));
-  vec3 estimator = estimatorAt(log2DiskRadius);
+  vec4 estimator = estimatorAt(log2DiskRadius);
+  float thickness = estimator.w * u_radius;  // one layer: the knots' thickness at this radius in pixels
   vec3 V = -eyeRayDirection(c.position);
   // The slices' rotation: a 4x4 ordered (Bayer) pattern, so every 4x4 block holds 16 evenly spaced angles and the
   // bilateral blur (9 taps a direction at the medium preset) averages them all on a flat surface; the interleaved
@@ -173,7 +175,7 @@ void main() {
   tapLayers(c.pixel, 0.0, centreFront, centreBack);
   float centreBackDepth = -centreBack.z;
 #else
-  float centreBackDepth = -(c.position + (u_thickness * u_radius) * eyeRayDirection(c.position)).z;
+  float centreBackDepth = -(c.position + thickness * eyeRayDirection(c.position)).z;
 #endif
   float visible = 0.0, open = 0.0;
   for (int slice = 0; slice < GTAO_SLICES; slice++) {
@@ -199,14 +201,14 @@ void main() {
     float sideSign = sideChoice * openSky < openPlus ? 1.0 : -1.0;
     float openSide = sideSign > 0.0 ? openPlus : openSky - openPlus;
     visible += projectedLength * openSky *
-               sideVisibleFraction(c, centreBackDepth, V, sideSign * d, sideSign, jitter, estimator.y, gamma,
-                                   cosGamma, sinGamma, openSide);
+               sideVisibleFraction(c, centreBackDepth, V, sideSign * d, sideSign, jitter, estimator.y, thickness,
+                                   gamma, cosGamma, sinGamma, openSide);
 #else
     visible += projectedLength *
-               (openPlus * sideVisibleFraction(c, centreBackDepth, V, d, 1.0, jitter, estimator.y, gamma, cosGamma,
-                                               sinGamma, openPlus) +
+               (openPlus * sideVisibleFraction(c, centreBackDepth, V, d, 1.0, jitter, estimator.y, thickness, gamma,
+                                               cosGamma, sinGamma, openPlus) +
                 (openSky - openPlus) * sideVisibleFraction(c, centreBackDepth, V, -d, -1.0, jitter, estimator.y,
-                                                           gamma, cosGamma, sinGamma, openSky - openPlus));
+                                                           thickness, gamma, cosGamma, sinGamma, openSky - openPlus));
 #endif
     open += projectedLength * openSky;
   }

@@ -87,7 +87,7 @@ void main() {
     return;
   }
   float log2DiskRadius = log2(max(c.diskRadius, 1e-3));
-  vec3 estimator = estimatorAt(log2DiskRadius);
+  vec4 estimator = estimatorAt(log2DiskRadius);
   vec3 V = -eyeRayDirection(c.position);
   // Per-pixel rotation (interleaved gradient noise) and a decorrelated step jitter: the same hash at a transposed,
   // shifted pixel.

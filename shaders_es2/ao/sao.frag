@@ -31,7 +31,7 @@ void main() {
   }
   float log2DiskRadius = log2(max(c.diskRadius, 1e-3));
   float spin = rotationAngle(c.aoPixel);
-  vec3 estimator = estimatorAt(log2DiskRadius);
+  vec4 estimator = estimatorAt(log2DiskRadius);
 
   float sum = 0.0;
   for (int i = 0; i < NUM_SAMPLES; i++) {

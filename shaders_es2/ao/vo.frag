@@ -73,7 +73,7 @@ void main() {
     return;
   }
   float log2DiskRadius = log2(max(c.diskRadius, 1e-3));
-  vec3 estimator = estimatorAt(log2DiskRadius);
+  vec4 estimator = estimatorAt(log2DiskRadius);
   float spin = rotationAngle(c.aoPixel);
 
   float total = 0.0, free = 0.0;

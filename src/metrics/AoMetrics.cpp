@@ -124,7 +124,7 @@ AoComparison compareAo(const GreyImage& a, const GreyImage& b, const std::vector
 
   const std::vector<float> ssim = computeSsim ? ssimMap(a, b) : std::vector<float>(n, 0.0f);
   AoComparison result;
-  double sumAbs = 0, sumSq = 0, sumSigned = 0, sumSsim = 0, haloAbs = 0;
+  double sumAbs = 0, sumSq = 0, sumSigned = 0, sumSsim = 0, haloAbs = 0, haloSigned = 0;
   double sumA = 0, sumB = 0;
   for (size_t i = 0; i < n; ++i) {
     if (!mask.empty() && !mask[i]) continue;
@@ -139,6 +139,7 @@ AoComparison compareAo(const GreyImage& a, const GreyImage& b, const std::vector
     if (!haloBand.empty() && haloBand[i]) {
       ++result.haloPixels;
       haloAbs += std::abs(d);
+      haloSigned += d;
     }
   }
   if (result.pixels == 0) throw InputError("mask: selects no pixel (no geometry in view?)");
@@ -159,6 +160,7 @@ AoComparison compareAo(const GreyImage& a, const GreyImage& b, const std::vector
   }
   result.pearson = varA > 0 && varB > 0 ? covAB / std::sqrt(varA * varB) : 0.0;
   result.haloMae = result.haloPixels ? haloAbs / static_cast<double>(result.haloPixels) : 0.0;
+  result.haloBias = result.haloPixels ? haloSigned / static_cast<double>(result.haloPixels) : 0.0;
   const size_t interior = result.pixels - result.haloPixels;
   result.interiorMae = interior ? (sumAbs - haloAbs) / static_cast<double>(interior) : 0.0;
   return result;

@@ -54,6 +54,7 @@ struct AoComparison {
   double mae = 0, rmse = 0, bias = 0, ssim = 0;
   double pearson = 0;
   double haloMae = 0, interiorMae = 0;  // MAE inside / outside the band
+  double haloBias = 0;                  // mean B - A inside the band (negative: B darker there, a halo)
 };
 
 // Compares B against A over mask pixels (mask: 1 geometry; empty: every pixel). `haloBand` (discontinuityBand of

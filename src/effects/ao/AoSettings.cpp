@@ -87,8 +87,10 @@ const std::vector<Parameter<AoSettings>>& AoSettings::parameters() {
                     .primary());
     t.push_back(numberParameter<S>("layer-separation", 0, 10, "fraction of radius",
                                    "the second layer's least distance behind the first", &S::layerSeparation));
-    t.push_back(numberParameter<S>("thickness", 0.01, 1000, "fraction of radius",
-                                   "one layer: the thickness GTAO assumes behind an occluder's front", &S::thickness));
+    t.push_back(autoNumberParameter<S>("thickness", 0.01, 1000, "fraction of radius",
+                                       "one layer: the thickness GTAO assumes behind an occluder's front (auto: "
+                                       "fitted to the reference)",
+                                       &S::thickness, [](const S& s) { return s.estimatorAt().thickness; }));
     t.push_back(numberParameter<S>("surface-gap", 0, 1000, "fraction of radius",
                                    "depth gap between taps that GTAO still takes for one occluder", &S::surfaceGap));
     t.push_back(switchParameter<S>("temporal", "accumulate the AO over frames through the motion vectors",
@@ -167,7 +169,7 @@ void AoSettings::validate() const {
   // The estimator parameters are also checked as resolved, so a tuned table entry out of range is caught too.
   for (const EstimatorParameters& e : estimatorKnots().at)
     if (!(e.bias >= 0.0f && e.bias <= 1.0f && e.intensity >= 0.0f && e.intensity <= 20.0f && e.contrast >= 0.1f &&
-          e.contrast <= 10.0f))
+          e.contrast <= 10.0f && e.thickness >= 0.01f && e.thickness <= 1000.0f))
       throw InputError("invalid AO settings: the tuned estimator parameters for this preset are out of range");
 }
 
@@ -194,12 +196,13 @@ EstimatorParameters EstimatorKnots::interpolate(float radiusPixels) const {
   // The shader's form (sao.frag): tent weights max(0, 1 - |t - j|) at t = clamp(log2(h / h_0), 0, knots - 1).
   const float t = std::clamp(std::log2(std::max(radiusPixels, 1e-3f) / kFirstKnotPixels), 0.0f,
                              static_cast<float>(kEstimatorKnots - 1));
-  EstimatorParameters e{0.0f, 0.0f, 0.0f};
+  EstimatorParameters e{0.0f, 0.0f, 0.0f, 0.0f};
   for (int j = 0; j < kEstimatorKnots; ++j) {
     const float w = std::max(0.0f, 1.0f - std::abs(t - static_cast<float>(j)));
     e.intensity += w * at[j].intensity;
     e.bias += w * at[j].bias;
     e.contrast += w * at[j].contrast;
+    e.thickness += w * at[j].thickness;
   }
   return e;
 }
@@ -230,6 +233,7 @@ EstimatorKnots AoSettings::estimatorKnots() const {
     if (intensity) e.intensity = *intensity;
     if (bias) e.bias = *bias;
     if (contrast) e.contrast = *contrast;
+    if (thickness) e.thickness = *thickness;
   }
   return knots;
 }

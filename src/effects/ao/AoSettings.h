@@ -37,6 +37,9 @@ struct EstimatorParameters {
   float intensity = 1.0f;  // sigma
   float bias = 0.012f;     // beta, as a fraction of the radius
   float contrast = 1.0f;   // k
+  // t: GTAO with one layer, an occluder's assumed depth behind its front face, a fraction of r (unused by the other
+  // estimators and with two layers, where the second layer bounds it)
+  float thickness = 0.5f;
 };
 // The SAO paper's and reference code's values (sigma 1, beta 0.012 m at r = 1 m, k 1): what obscura used before
 // tuning, and the fallback for a preset the tuned table does not cover.
@@ -103,9 +106,11 @@ struct AoSettings : ParameterAccess<AoSettings> {
   // --- Occluders' thickness (GTAO: shaders_es2/ao/gtao.frag) ---
   // An occluder occludes only between its front face and a back point on the same pixel ray: with one layer the
   // point `thickness` r behind the front (a heuristic: a height field, infinitely thick, puts halos around thin
-  // objects in front of far surfaces), with two layers the second layer's. Measured against the reference
-  // (docs/accuracy.md, "Thickness").
-  float thickness = 0.5f;
+  // objects in front of far surfaces), with two layers the second layer's. Unset, the knots' value per radius in
+  // pixels (estimatorKnots): 0.5 r in the shipped table, as a thickness fitted per radius in pixels (obscura-tune
+  // --fit-thickness) wins on average but loses on the built-in scene (docs/accuracy.md, "Thickness"); set, it holds
+  // at every radius.
+  std::optional<float> thickness;
   // Two consecutive taps whose depth ranges (front to back) overlap within this gap, a fraction of r, are one
   // occluder, solid between them; a larger step lets the sky through between them (docs/accuracy.md).
   float surfaceGap = 0.5f;

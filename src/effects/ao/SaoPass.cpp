@@ -144,15 +144,14 @@ void SaoPass::render(const gl::Texture2D& gbuffer, const DepthHierarchyPass* hie
   draw.set("u_radius", settings.radius);
   draw.set("u_invRadius", 1.0f / settings.radius);
   const EstimatorKnots knots = settings.estimatorKnots();
-  std::array<glm::vec3, kEstimatorKnots> packed;
+  std::array<glm::vec4, kEstimatorKnots> packed;
   for (int j = 0; j < kEstimatorKnots; ++j)
     packed[static_cast<size_t>(j)] = {intensityScale(settings, knots.at[j].intensity), knots.at[j].bias,
-                                      knots.at[j].contrast};
+                                      knots.at[j].contrast, knots.at[j].thickness};
   draw.set("u_estimatorKnots", packed.data(), kEstimatorKnots);
   draw.set("u_maxRadiusPixels", settings.maxScreenRadius * static_cast<float>(gbuffer.height()));
   draw.set("u_frameOffset", frameOffset);
-  // GTAO's occluder thickness (its variants alone).
-  if (draw.program().has("u_thickness")) draw.set("u_thickness", settings.thickness);
+  // GTAO's joining of taps into one occluder (its variants alone; its thickness is the knots' w).
   if (draw.program().has("u_surfaceGap")) draw.set("u_surfaceGap", settings.surfaceGap);
   draw.draw();
 }
