@@ -125,8 +125,9 @@ TEST(Metrics, DiscontinuityBandFollowsDepthStepsNotSlopes) {
   options.haloWidth = 3;
   const std::vector<std::uint8_t> band = discontinuityBand(depth, options);
   for (int x = 0; x < w; ++x) {
-    // The step lies between columns 29 and 30; both are marked, then widened by 3 either side: columns 26 .. 33.
-    const bool expected = x >= 26 && x <= 33;
+    // The step lies between columns 29 and 30; both are marked, then widened by 3 either side: columns 26 .. 33,
+    // the near surface's (26 .. 29) and the far one's (30 .. 33).
+    const std::uint8_t expected = x >= 26 && x <= 29 ? kNearSide : x >= 30 && x <= 33 ? kFarSide : 0;
     for (int y = 0; y < h; ++y) EXPECT_EQ(band[static_cast<size_t>(y) * w + x], expected) << x << "," << y;
   }
   // The halo figures count exactly those pixels.
@@ -136,6 +137,9 @@ TEST(Metrics, DiscontinuityBandFollowsDepthStepsNotSlopes) {
   EXPECT_EQ(c.haloPixels, static_cast<size_t>(8 * h));
   EXPECT_NEAR(c.haloMae, 0.4 / 8.0, 1e-6);
   EXPECT_NEAR(c.interiorMae, 0.0, 1e-9);
+  EXPECT_EQ(c.farSidePixels, static_cast<size_t>(4 * h));
+  EXPECT_NEAR(c.nearSideMae, 0.4 / 4.0, 1e-6);  // column 28 lies on the near side
+  EXPECT_NEAR(c.farSideMae, 0.0, 1e-9);
 }
 
 TEST(Metrics, RefusesMismatchedSizesAndEmptyMasks) {

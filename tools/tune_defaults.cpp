@@ -308,7 +308,8 @@ int knotOf(float radiusPixels) {
 
 // Means over cases, each case weighted alike.
 struct Score {
-  double mae = 0, ssim = 0, pearson = 0, haloMae = 0, interiorMae = 0, paperMae = 0, minSkill = 1;
+  double mae = 0, ssim = 0, pearson = 0, haloMae = 0, interiorMae = 0, nearSideMae = 0, farSideMae = 0, paperMae = 0,
+         minSkill = 1;
   int cases = 0;
   void add(const AoComparison& c, double whiteMae) {
     mae += c.mae;
@@ -316,6 +317,8 @@ struct Score {
     pearson += c.pearson;
     haloMae += c.haloMae;
     interiorMae += c.interiorMae;
+    nearSideMae += c.nearSideMae;
+    farSideMae += c.farSideMae;
     minSkill = std::min(minSkill, whiteMae > 0 ? 1.0 - c.mae / whiteMae : 0.0);
     ++cases;
   }
@@ -327,6 +330,8 @@ struct Score {
     s.pearson /= n;
     s.haloMae /= n;
     s.interiorMae /= n;
+    s.nearSideMae /= n;
+    s.farSideMae /= n;
     s.paperMae /= n;
     return s;
   }
@@ -801,16 +806,19 @@ void evaluate(std::vector<TuningCase>& cases, const Selection& selection, bool p
           worstIncrease = std::max(worstIncrease, increase);
         }
         if (perCase)
-          std::printf("  %-16s r %-4sx MAE %.4f halo %.4f (bias %+.4f) interior %.4f bias %+.4f Pearson %.3f "
-                      "skill %.2f%s\n",
-                      c.view->spec.name.c_str(), radiusText(c.factor).c_str(), m.mae, m.haloMae, m.haloBias,
-                      m.interiorMae, m.bias, m.pearson, 1.0 - m.mae / std::max(c.whiteMae, 1e-9),
+          std::printf("  %-16s r %-4sx MAE %.4f halo %.4f (near %.4f far %.4f bias %+.4f) interior %.4f bias %+.4f "
+                      "Pearson %.3f skill %.2f%s\n",
+                      c.view->spec.name.c_str(), radiusText(c.factor).c_str(), m.mae, m.haloMae, m.nearSideMae,
+                      m.farSideMae, m.haloBias, m.interiorMae, m.bias, m.pearson, 1.0 - m.mae / std::max(c.whiteMae, 1e-9),
                       compared ? format(" | against one layer %+.4f", increase).c_str() : "");
       }
       const Score s = score.mean();
-      std::printf("%-5s %-6s %d layer%s MAE %.4f Pearson %.3f halo/interior %.2f lowest skill %.2f |",
+      std::printf("%-5s %-6s %d layer%s MAE %.4f Pearson %.3f halo/interior %.2f (near side %.2f, far side %.2f) "
+                  "lowest skill %.2f |",
                   estimatorName(estimator), preset.name, settings.layersRead(), settings.layersRead() == 1 ? "" : "s",
-                  s.mae, s.pearson, s.haloMae / std::max(s.interiorMae, 1e-9), s.minSkill);
+                  s.mae, s.pearson, s.haloMae / std::max(s.interiorMae, 1e-9),
+                  s.nearSideMae / std::max(s.interiorMae, 1e-9), s.farSideMae / std::max(s.interiorMae, 1e-9),
+                  s.minSkill);
       for (const auto& [factor, f] : byFactor)
         std::printf(" r %sx: %.4f/%.3f", radiusText(factor).c_str(), f.mean().mae, f.mean().pearson);
       std::printf("\n");

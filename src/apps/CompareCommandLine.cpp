@@ -96,8 +96,9 @@ int runCompare(const CompareOptions& options) {
       std::printf("{\"pixels\": %zu, \"mae\": %.6f, \"rmse\": %.6f, \"bias\": %.6f, \"ssim\": %.6f, \"pearson\": %.6f",
                   c.pixels, c.mae, c.rmse, c.bias, c.ssim, c.pearson);
       if (halo)
-        std::printf(", \"halo_pixels\": %zu, \"halo_mae\": %.6f, \"interior_mae\": %.6f", c.haloPixels, c.haloMae,
-                    c.interiorMae);
+        std::printf(", \"halo_pixels\": %zu, \"halo_mae\": %.6f, \"interior_mae\": %.6f, \"halo_bias\": %.6f, "
+                    "\"near_side_mae\": %.6f, \"far_side_mae\": %.6f, \"far_side_pixels\": %zu",
+                    c.haloPixels, c.haloMae, c.interiorMae, c.haloBias, c.nearSideMae, c.farSideMae, c.farSidePixels);
       std::printf("}\n");
     } else {
       std::printf("pixels   %zu (%.1f%% of the image)\n", c.pixels, share);
@@ -107,6 +108,8 @@ int runCompare(const CompareOptions& options) {
         std::printf("halo     MAE %.4f over %zu pixels (%.1f%%) within %d px of depth jumps > %g relative\n",
                     c.haloMae, c.haloPixels, 100.0 * static_cast<double>(c.haloPixels) / static_cast<double>(c.pixels),
                     options.discontinuities.haloWidth, static_cast<double>(options.discontinuities.relativeJump));
+        std::printf("         near side MAE %.4f, far side MAE %.4f over %zu pixels; bias %+.4f\n", c.nearSideMae,
+                    c.farSideMae, c.farSidePixels, c.haloBias);
         std::printf("interior MAE %.4f\n", c.interiorMae);
       }
     }

@@ -61,29 +61,41 @@ std::vector<std::uint8_t> maskFromImage(const Image& image) {
 std::vector<std::uint8_t> discontinuityBand(const GreyImage& depth, const DiscontinuityOptions& options) {
   const int w = depth.width, h = depth.height;
   auto at = [w](int x, int y) { return static_cast<size_t>(y) * static_cast<size_t>(w) + static_cast<size_t>(x); };
+  // Both pixels of a jumping pair are marked, by side: the halo lives on the far side, the missed occlusion on the
+  // near side.
+  enum : std::uint8_t { kNearEdge = 1, kFarEdge = 2 };
   std::vector<std::uint8_t> edge(static_cast<size_t>(w) * h, 0);
-  auto jump = [&](float d1, float d2) {
-    return std::abs(d1 - d2) > options.relativeJump * std::min(d1, d2) + options.quantisationSlack;
+  auto mark = [&](size_t i, size_t j) {
+    if (!(std::abs(depth.values[i] - depth.values[j]) >
+          options.relativeJump * std::min(depth.values[i], depth.values[j]) + options.quantisationSlack))
+      return;
+    const bool iNearer = depth.values[i] < depth.values[j];
+    edge[i] |= iNearer ? kNearEdge : kFarEdge;
+    edge[j] |= iNearer ? kFarEdge : kNearEdge;
   };
-  // Both pixels of a jumping pair are marked: the halo lives on the far side, the missed occlusion on the near side.
-  for (int y = 0; y < h; ++y) {
+  for (int y = 0; y < h; ++y)
     for (int x = 0; x < w; ++x) {
-      const float d = depth.at(x, y);
-      if (x + 1 < w && jump(d, depth.at(x + 1, y))) edge[at(x, y)] = edge[at(x + 1, y)] = 1;
-      if (y + 1 < h && jump(d, depth.at(x, y + 1))) edge[at(x, y)] = edge[at(x, y + 1)] = 1;
+      if (x + 1 < w) mark(at(x, y), at(x + 1, y));
+      if (y + 1 < h) mark(at(x, y), at(x, y + 1));
     }
-  }
-  // Square dilation, separably: first along rows, then along columns.
+  // Within haloWidth (a square neighbourhood) of an edge pixel; the side is that of the nearest edge pixel (the far
+  // side where a far-side edge pixel is at least as near as any near-side one).
   const int k = std::max(0, options.haloWidth);
-  std::vector<std::uint8_t> rows(edge.size(), 0), band(edge.size(), 0);
+  std::vector<std::uint8_t> band(edge.size(), 0);
   for (int y = 0; y < h; ++y)
-    for (int x = 0; x < w; ++x)
-      for (int sx = std::max(0, x - k); sx <= std::min(w - 1, x + k) && !rows[at(x, y)]; ++sx)
-        rows[at(x, y)] = edge[at(sx, y)];
-  for (int y = 0; y < h; ++y)
-    for (int x = 0; x < w; ++x)
-      for (int sy = std::max(0, y - k); sy <= std::min(h - 1, y + k) && !band[at(x, y)]; ++sy)
-        band[at(x, y)] = rows[at(x, sy)];
+    for (int x = 0; x < w; ++x) {
+      int nearestNear = k + 1, nearestFar = k + 1;
+      for (int sy = std::max(0, y - k); sy <= std::min(h - 1, y + k); ++sy)
+        for (int sx = std::max(0, x - k); sx <= std::min(w - 1, x + k); ++sx) {
+          const std::uint8_t e = edge[at(sx, sy)];
+          if (!e) continue;
+          const int distance = std::max(std::abs(sx - x), std::abs(sy - y));
+          if (e & kNearEdge) nearestNear = std::min(nearestNear, distance);
+          if (e & kFarEdge) nearestFar = std::min(nearestFar, distance);
+        }
+      if (nearestFar <= k && nearestFar <= nearestNear) band[at(x, y)] = kFarSide;
+      else if (nearestNear <= k) band[at(x, y)] = kNearSide;
+    }
   return band;
 }
 
@@ -124,7 +136,7 @@ AoComparison compareAo(const GreyImage& a, const GreyImage& b, const std::vector
 
   const std::vector<float> ssim = computeSsim ? ssimMap(a, b) : std::vector<float>(n, 0.0f);
   AoComparison result;
-  double sumAbs = 0, sumSq = 0, sumSigned = 0, sumSsim = 0, haloAbs = 0, haloSigned = 0;
+  double sumAbs = 0, sumSq = 0, sumSigned = 0, sumSsim = 0, haloAbs = 0, haloSigned = 0, farAbs = 0;
   double sumA = 0, sumB = 0;
   for (size_t i = 0; i < n; ++i) {
     if (!mask.empty() && !mask[i]) continue;
@@ -140,6 +152,10 @@ AoComparison compareAo(const GreyImage& a, const GreyImage& b, const std::vector
       ++result.haloPixels;
       haloAbs += std::abs(d);
       haloSigned += d;
+      if (haloBand[i] == kFarSide) {
+        ++result.farSidePixels;
+        farAbs += std::abs(d);
+      }
     }
   }
   if (result.pixels == 0) throw InputError("mask: selects no pixel (no geometry in view?)");
@@ -161,6 +177,9 @@ AoComparison compareAo(const GreyImage& a, const GreyImage& b, const std::vector
   result.pearson = varA > 0 && varB > 0 ? covAB / std::sqrt(varA * varB) : 0.0;
   result.haloMae = result.haloPixels ? haloAbs / static_cast<double>(result.haloPixels) : 0.0;
   result.haloBias = result.haloPixels ? haloSigned / static_cast<double>(result.haloPixels) : 0.0;
+  result.farSideMae = result.farSidePixels ? farAbs / static_cast<double>(result.farSidePixels) : 0.0;
+  const size_t nearSide = result.haloPixels - result.farSidePixels;
+  result.nearSideMae = nearSide ? (haloAbs - farAbs) / static_cast<double>(nearSide) : 0.0;
   const size_t interior = result.pixels - result.haloPixels;
   result.interiorMae = interior ? (sumAbs - haloAbs) / static_cast<double>(interior) : 0.0;
   return result;

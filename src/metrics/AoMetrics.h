@@ -42,7 +42,10 @@ struct DiscontinuityOptions {
   float quantisationSlack = 2.0f / 255.0f;
 };
 
-// Pixels (1) next to a depth discontinuity of `depth`, dilated by options.haloWidth (a square neighbourhood).
+// Pixels next to a depth discontinuity of `depth`, dilated by options.haloWidth (a square neighbourhood), by side:
+// kNearSide on the nearer surface (where occlusion from behind the silhouette is missed), kFarSide on the farther one
+// (where the nearer object's halo falls); 0 elsewhere.
+constexpr std::uint8_t kNearSide = 1, kFarSide = 2;
 std::vector<std::uint8_t> discontinuityBand(const GreyImage& depth, const DiscontinuityOptions& options);
 
 // The SSIM map of two same-sized images (Wang et al. 2004), one value per pixel.
@@ -55,6 +58,8 @@ struct AoComparison {
   double pearson = 0;
   double haloMae = 0, interiorMae = 0;  // MAE inside / outside the band
   double haloBias = 0;                  // mean B - A inside the band (negative: B darker there, a halo)
+  std::size_t farSidePixels = 0;        // of the band's, those on the far side (kFarSide)
+  double nearSideMae = 0, farSideMae = 0;
 };
 
 // Compares B against A over mask pixels (mask: 1 geometry; empty: every pixel). `haloBand` (discontinuityBand of
