@@ -809,7 +809,8 @@ void evaluate(std::vector<TuningCase>& cases, const Selection& selection, bool p
           std::printf("  %-16s r %-4sx MAE %.4f halo %.4f (near %.4f far %.4f bias %+.4f) interior %.4f bias %+.4f "
                       "Pearson %.3f skill %.2f%s\n",
                       c.view->spec.name.c_str(), radiusText(c.factor).c_str(), m.mae, m.haloMae, m.nearSideMae,
-                      m.farSideMae, m.haloBias, m.interiorMae, m.bias, m.pearson, 1.0 - m.mae / std::max(c.whiteMae, 1e-9),
+                      m.farSideMae, m.haloBias, m.interiorMae, m.bias, m.pearson,
+                      1.0 - m.mae / std::max(c.whiteMae, 1e-9),
                       compared ? format(" | against one layer %+.4f", increase).c_str() : "");
       }
       const Score s = score.mean();
