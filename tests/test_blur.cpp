@@ -129,3 +129,28 @@ TEST(BilateralBlur, NoiseVarianceOnAFlatPlaneDropsFourfold) {
     EXPECT_LE(after * 4.0, before) << "normal-aware " << normals << ": " << before << " -> " << after;
   }
 }
+
+// The blur's width follows the AO radius projected at the pixel (at most a quarter of it, blur.frag): a one-pixel
+// dark line (a contact the reference draws that thin) stays dark where the radius covers a pixel or two, and spreads
+// over the preset's width where it covers many.
+TEST(BilateralBlur, AThinLineStaysSharpWhereTheRadiusProjectsToAFewPixels) {
+  SyntheticFrame frame;
+  for (int y = 0; y < kHeight; ++y)
+    for (int x = 0; x < kWidth; ++x) frame.set(x, y, 4.0f, x == kWidth / 2 ? 0.2f : 1.0f);
+  const FrameCamera camera = FrameCamera::from(frame.camera, kWidth, kHeight);
+  for (bool normals : {true, false}) {
+    AoSettings settings;
+    settings.blurNormalAware = normals;
+    auto lineValue = [&](float radius) {
+      settings.radius = radius;
+      return blur(frame, settings)[static_cast<size_t>(kHeight / 2) * kWidth + kWidth / 2];
+    };
+    const glm::vec2 projScale = camera.projScale(kHeight);
+    const float pixelsPerMetre = projScale.x / 4.0f + projScale.y;
+    // r = 0.1 m projects to about 1.4 px: s = half a tap, the line keeps (0.2 + 2 e^-2) / (1 + 2 e^-2) = 0.37.
+    EXPECT_LT(0.1f * pixelsPerMetre, 2.0f);
+    EXPECT_LT(lineValue(0.1f), 0.42f) << "normal-aware " << normals;
+    // r = 2 m projects to about 28 px: the preset's s = 2.5 taps spreads it to about 0.86.
+    EXPECT_GT(lineValue(2.0f), 0.8f) << "normal-aware " << normals;
+  }
+}

@@ -4,7 +4,10 @@
 // Output: the same layout, so the second pass reads the first one's output the same way.
 //
 // Weights, per tap i in [-BLUR_RADIUS, BLUR_RADIUS] at a stride of u_stepPixels:
-//   spatial  exp(-i^2 / (2 s^2)), s = (BLUR_RADIUS + 1) / 2 taps
+//   spatial  exp(-i^2 / (2 s^2)), s = (BLUR_RADIUS + 1) / 2 taps, or a quarter of the AO radius projected at the
+//            centre's depth (h, as the estimator's disk) where that is less (at least half a tap): the AO varies on
+//            the scale of h, and a wider blur smears the contact lines of small radii (docs/accuracy.md, "Blur
+//            width")
 //   range    exp(-(delta / sigma)^2), delta in view-space units, so the result does not depend on near / far,
 //            and sigma a fraction of the AO radius, so it does not depend on the scene's units either:
 //              NORMAL_AWARE 0: delta = |z_tap - z_centre|
@@ -20,7 +23,10 @@
 uniform sampler2D u_ao;
 uniform vec2 u_aoSize;        // pixels
 uniform vec2 u_stepPixels;    // blur direction times stride, in AO pixels
-uniform float u_gaussianK;    // 1 / (2 s^2)
+uniform float u_gaussianK;    // 1 / (2 s^2), s the preset's width in taps
+// A quarter of the projected radius in taps at view depth z: u_widthScale.x / z + u_widthScale.y (the estimator's
+// pixels-per-unit form, FrameCamera::projScale, times r / 4 and divided by the AO scale and the stride).
+uniform vec2 u_widthScale;
 uniform float u_invSigma2;    // 1 / sigma^2, scene units^-2 (sigma is a fraction of the AO radius)
 #if NORMAL_AWARE
 uniform sampler2D u_gbuffer;  // normals in RG
@@ -30,6 +36,12 @@ uniform float u_depthRange;   // far - near
 #endif
 
 varying vec2 v_uv;
+
+// 1 / (2 s^2) for the centre at view depth z (positive).
+float gaussianKAt(float z) {
+  float width = max(u_widthScale.x / max(z, 1e-6) + u_widthScale.y, 0.5);
+  return max(u_gaussianK, 0.5 / (width * width));
+}
 
 #if NORMAL_AWARE
 // View position and normal of the surface AO pixel `aoPixel` stands for, given its depth code.
@@ -52,8 +64,10 @@ void main() {
 #if NORMAL_AWARE
   vec3 n;
   vec3 P = surfacePoint(aoPixel, code, n);
+  float gaussianK = gaussianKAt(-P.z);
 #else
   float z = u_near + code * (1.0 / 65535.0) * u_depthRange;
+  float gaussianK = gaussianKAt(z);
 #endif
 
   float sum = centre.r;
@@ -72,7 +86,7 @@ void main() {
     float delta = u_near + tapCode * (1.0 / 65535.0) * u_depthRange - z;
     float normalWeight = 1.0;
 #endif
-    float weight = exp(-float(i * i) * u_gaussianK - delta * delta * u_invSigma2) * normalWeight;
+    float weight = exp(-float(i * i) * gaussianK - delta * delta * u_invSigma2) * normalWeight;
     // Taps on the background or outside the image contribute nothing.
     bool outside = tapPixel.x < 0.0 || tapPixel.y < 0.0 || tapPixel.x >= u_aoSize.x || tapPixel.y >= u_aoSize.y;
     if (isBackgroundCode(tapCode) || outside) weight = 0.0;
