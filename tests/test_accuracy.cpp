@@ -103,15 +103,15 @@ TEST(Accuracy, BuiltinSceneDefaultsStayCloseToTheReference) {
 TEST(Accuracy, BuiltinSceneSaoStaysCloseToTheReference) {
   const Scene scene = makeBuiltinScene(BuiltinSceneOptions::still());
   expectReached(measure("built-in", scene, builtinSceneCamera(320, 180), AoEstimator::Sao, 1.0f),
-                {0.0357, 0.0496, 0.881, 0.834}, "built-in, SAO");
+                {0.0349, 0.0486, 0.883, 0.838}, "built-in, SAO");
 }
 
 // The other estimators, each with its own fitted row set, at the figures they reached.
 TEST(Accuracy, BuiltinSceneOtherEstimatorsStayCloseToTheReference) {
   const Scene scene = makeBuiltinScene(BuiltinSceneOptions::still());
-  const std::pair<AoEstimator, Reached> estimators[] = {{AoEstimator::Hbao, {0.0328, 0.0488, 0.889, 0.863}},
-                                                        {AoEstimator::Vo, {0.0308, 0.0441, 0.870, 0.879}},
-                                                        {AoEstimator::Crytek, {0.0562, 0.0786, 0.787, 0.681}}};
+  const std::pair<AoEstimator, Reached> estimators[] = {{AoEstimator::Hbao, {0.0335, 0.0496, 0.888, 0.861}},
+                                                        {AoEstimator::Vo, {0.0308, 0.0443, 0.870, 0.879}},
+                                                        {AoEstimator::Crytek, {0.0507, 0.0721, 0.800, 0.727}}};
   for (const auto& [estimator, reached] : estimators)
     expectReached(measure("built-in", scene, builtinSceneCamera(320, 180), estimator, 1.0f), reached,
                   (std::string("built-in, ") + estimatorName(estimator)).c_str());

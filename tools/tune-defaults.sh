@@ -8,14 +8,15 @@
 #   tests/golden/*.png           the golden images, which show the default (tuned) AO
 #   docs/images/builtin_*.png    the README's pictures (tools/render-docs-images.sh), likewise
 # Reference images are cached in build/tuning-cache (traced once per view and radius, about a second each). About
-# 75 minutes on two cores (the fit: about 38 for one layer, 30 for GTAO medium with two; the report: 15). Usage:
+# 35 minutes on two cores (2026-11-28: the fit 27 for one layer, 2.5 for GTAO medium with two; the rest 5). Usage:
 # tools/tune-defaults.sh
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
 tools/build.sh
 # GTAO's rows for ao.layers 2 (medium; the other presets fall back to one layer's rows) first, then every row for one
-# layer: the second run keeps the first's rows (commented "kept"; their MAE is in the first run's output).
+# layer: the second run keeps the first's rows as the file has them (obscura-tune reads the table it rewrites, so
+# the rows fitted a moment ago survive though the binary was built with the older table).
 build/obscura-tune --views tools/tuning-views.json --fit src/effects/ao/TunedDefaults.inc --estimators gtao \
   --presets medium --layers 2
 build/obscura-tune --views tools/tuning-views.json --fit src/effects/ao/TunedDefaults.inc

@@ -23,17 +23,16 @@
 // point and its back point, clipped to the ball of radius r about the centre (the reference's cut at r): the back
 // point is the second depth layer's (ao.layers 2, effects/ao/DepthPeelPass.h: for a closed occluder its back face),
 // or, with one layer, the point ao.thickness r behind the front (a heuristic; per radius in pixels, the knots' w;
-// docs/accuracy.md, "Thickness"). Two consecutive taps whose depth ranges overlap, within
-// ao.surface-gap r, are one occluder: the quadrilateral between their segments is solid too (the first tap joins the
-// centre's own surface this way), so a continuous surface occludes as the height field's horizon does, and only a gap
-// in depth lets the sky through. The union of the
-// occluded directions is kept per side as 8 sectors of u = a(direction) / a(hemisphere edge), the cosine-weighted
-// share of the side's open arc between V and the direction (eq. 10's half: sideArc), so every sector weighs the same;
-// each tap's interval covers sectors by fraction, and the side's visibility is the mean uncovered fraction. This is
-// the visibility bitmask of Therrien, Levesque, Gilet ("Screen Space Indirect Lighting with Visibility Bitmasks",
-// 2023) in GLSL ES 1.00's arithmetic (two vec4 of coverage, no bitwise operators), cosine-weighted, with the
-// segments' connectivity for a pixel's few taps. With an unbounded thickness and every tap connected it is exactly
-// the horizon integral above.
+// docs/accuracy.md, "Thickness"). Two consecutive taps whose depth ranges overlap, within ao.surface-gap r, are one
+// occluder: the quadrilateral between their segments is solid too (the first tap joins the centre's own surface this
+// way), so a continuous surface occludes as the height field's horizon does, and only a gap in depth lets the sky
+// through. The union of the occluded directions is kept per side as 8 sectors of u = a(direction) / a(hemisphere
+// edge), the cosine-weighted share of the side's open arc between V and the direction (eq. 10's half: sideArc), so
+// every sector weighs the same; each tap's interval covers sectors by fraction, and the side's visibility is the mean
+// uncovered fraction. This is the visibility bitmask of Therrien, Levesque, Gilet ("Screen Space Indirect Lighting
+// with Visibility Bitmasks", 2023) in GLSL ES 1.00's arithmetic (two vec4 of coverage, no bitwise operators),
+// cosine-weighted, with the segments' connectivity for a pixel's few taps. With an unbounded thickness and every tap
+// connected it is exactly the horizon integral above.
 //
 // Fitted parameters (ao/ao_estimator.glsl): the obscurance O = 1 - V goes through the shared
 // A = max(0, 1 - sigma O)^k; beta (a fraction of r) fades out taps whose nearest occluding point lies within beta r
