@@ -110,10 +110,10 @@ TEST(Sao, PlaneAtAGrazingAngleIsUnoccluded) {
         // and on a plane this far from face-on the depth changes across one pixel (or across a hierarchy block, for
         // far taps) by more than the bias, so some points just above the plane test as behind it: the original's
         // self-occlusion at grazing angles, a sprinkle of pixels (measured 360 of 16000 below 0.98 with the
-        // intensity fitted on 2026-11-28, 213 with the paper's; 64 with the fit before): at most 3 %. HBAO's fitted angle bias is 0 at the largest radii in
-        // pixels, where it lowered the error against the reference, so a near tap whose quantised depth lifts its
-        // elevation counts, and the fitted contrast (k up to 5) darkens it: 5 pixels of 16000 (0.03 %): at most
-        // 0.1 %.
+        // intensity fitted on 2026-11-28, 213 with the paper's; 64 with the fit before): at most 3 %. HBAO's fitted
+        // angle bias is 0 at the largest radii in pixels, where it lowered the error against the reference, so a
+        // near tap whose quantised depth lifts its elevation counts, and the fitted contrast (k up to 5) darkens it:
+        // 5 pixels of 16000 (0.03 %): at most 0.1 %.
         size_t geometry = 0, darker = 0;
         for (int y = 0; y < ao.height; ++y)
           for (int x = 0; x < ao.width; ++x)
