@@ -6,7 +6,7 @@
 import assert from 'node:assert/strict';
 import { after, before, describe, test } from 'node:test';
 import { countWebGlCalls } from '../../tools/headless-chromium.mjs';
-import { startBrowser, waitForDrawn } from './harness.mjs';
+import { openPage, startBrowser } from './harness.mjs';
 
 let session;
 let page;
@@ -16,13 +16,8 @@ describe('WebGL calls per frame', () => {
     session = await startBrowser();
     const context = await session.newContext();
     await context.addInitScript(countWebGlCalls);
-    page = await context.newPage();
-    page.errors = [];
-    page.on('pageerror', (error) => page.errors.push(`uncaught: ${error.message}`));
     // Without the harness's debug-gl: its glGetError and state checks after every pass are calls of their own.
-    await page.goto(`${session.baseUrl}?resolution.dynamic=off&resolution.quick-start=off`);
-    await page.waitForFunction(() => document.body.dataset.ready === 'true', null, { timeout: 60000 });
-    await waitForDrawn(page);
+    page = await openPage(context, session.baseUrl, { debugGl: false });
   });
   after(async () => {
     if (page) assert.deepEqual(page.errors, []);

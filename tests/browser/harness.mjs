@@ -51,8 +51,9 @@ const glErrorWarning = /GL_INVALID_|GL_OUT_OF_MEMORY|WebGL: INVALID_/;
 // dynamic resolution and quick start off unless the URL says otherwise (resolution.dynamic and
 // resolution.quick-start: the page's defaults are on, which would change the render scale between the frames a test
 // compares, and make the first frame a cheap one). Console errors, GL errors reported as warnings,
-// uncaught exceptions and failed requests are collected in page.errors.
-export async function openPage(context, url) {
+// uncaught exceptions and failed requests are collected in page.errors. `{ debugGl: false }` leaves debug-gl off,
+// for a test that counts the page's WebGL calls (its checks are calls of their own).
+export async function openPage(context, url, { debugGl = true } = {}) {
   const page = await context.newPage();
   page.errors = [];
   page.on('console', (message) => {
@@ -65,7 +66,7 @@ export async function openPage(context, url) {
     if (response.status() >= 400) page.errors.push(`HTTP ${response.status()} for ${response.url()}`);
   });
   const checked = new URL(url);
-  checked.searchParams.set('debug-gl', '');
+  if (debugGl) checked.searchParams.set('debug-gl', '');
   if (!checked.searchParams.has('resolution.dynamic')) checked.searchParams.set('resolution.dynamic', 'off');
   if (!checked.searchParams.has('resolution.quick-start')) checked.searchParams.set('resolution.quick-start', 'off');
   await page.goto(checked.toString());
