@@ -7,6 +7,7 @@
 
 #include "base/Error.h"
 #include "base/TimeSpent.h"
+#include "encoding/ToneMapping.h"
 #include "gpu/TextureUnits.h"
 #include "scene/MeshProcessing.h"
 #include "scene/TexturePreparation.h"
@@ -105,6 +106,7 @@ void GpuScene::uploadMaterials(const Scene& scene) {
   for (const Material& m : scene.materials) {
     MaterialGpu gpu;
     gpu.baseColorFactor = m.baseColorFactor;
+    gpu.baseColorSrgb = linearToSrgb(glm::vec3(m.baseColorFactor));
     gpu.texture = usable(m.baseColorTexture);
     gpu.doubleSided = m.doubleSided;
     gpu.pbrTextures = {usable(m.metallicRoughnessTexture), usable(m.normalTexture), usable(m.occlusionTexture),
@@ -249,6 +251,7 @@ GeometryUniforms::GeometryUniforms(const gl::Program& program)
     : modelView(program.uniform("u_modelView")),
       normalMatrix(program.optionalUniform("u_normalMatrix")),
       baseColorFactor(program.optionalUniform("u_baseColorFactor")),
+      baseColorSrgb(program.optionalUniform("u_baseColorSrgb")),
       baseColorTexture(program.optionalUniform("u_baseColorTexture")),
       alphaCutoff(program.optionalUniform("u_alphaCutoff")),
       metallicRoughness(program.optionalUniform("u_metallicRoughness")),
@@ -566,6 +569,7 @@ void GpuScene::setInstanceUniforms(const InstanceGpu& instance, const MaterialGp
   if (state.uniformsOf == instance.material) return;  // the program holds this material's values already
   state.uniformsOf = instance.material;
   Program::set(uniforms.baseColorFactor, material.baseColorFactor);
+  Program::set(uniforms.baseColorSrgb, material.baseColorSrgb);
   Program::set(uniforms.alphaCutoff, material.alphaCutoff);
   Program::set(uniforms.metallicRoughness, material.metallicRoughness);
   Program::set(uniforms.emissive, material.emissive);

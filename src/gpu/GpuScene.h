@@ -44,6 +44,7 @@ struct GeometryUniforms {
   GeometryUniforms() = default;
   explicit GeometryUniforms(const gl::Program& program);
   GLint modelView = -1, normalMatrix = -1, baseColorFactor = -1, baseColorTexture = -1, alphaCutoff = -1;
+  GLint baseColorSrgb = -1;  // the G-buffer's base colour output for a factor-only material
   GLint metallicRoughness = -1, emissive = -1, uvTransforms = -1, uvSets = -1;
   GLint specular = -1, clearcoat = -1, clearcoatRoughness = -1;  // MATERIAL_LAYERS
   GLint transmission = -1, transmissionIor = -1;                   // TRANSMISSION
@@ -158,6 +159,7 @@ class GpuScene {
   };
   struct MaterialGpu {
     glm::vec4 baseColorFactor{1.0f};
+    glm::vec3 baseColorSrgb{1.0f};  // the factor's rgb, sRGB-encoded: what the G-buffer stores where no texture is
     int texture = -1;  // index into textures_, -1: none (the factor alone)
     float alphaCutoff = -2.0f;  // the MASK cutoff; -1 BLEND, -2 OPAQUE
     bool doubleSided = false;
