@@ -262,6 +262,64 @@ TEST(Bloom, ASingleBrightPixelSpreadsIntoASymmetricFallingGlowCarryingTheStatedE
   EXPECT_GT(ring[100] / count[100], 0.0) << "the glow reaches 100 pixels";
 }
 
+// The chain against its CPU mirror on a random HDR frame (the filters reaching past its edges clamp there): with radius 0 the glow is level 1 alone, so the frame plus the tent of the 13-tap filter of the thresholded frame
+// (bloomDownsampleWeight, bloomThresholdScale, bloomUpsampleWeight, texels clamped to the edges). The prefilter runs
+// in two passes (2 x 2 blocks on two grids, then 13 of them: bloom.frag) and must give the 13 taps' result. (An even
+// size: on an odd one the blocks leave the frame's last column and row to the clamp at the edge, where the 13 taps
+// read texel by texel spread level 1 over the whole frame: up to a frame pixel apart, at its far edge: BloomEffect.h.)
+TEST(Bloom, TheChainWithRadiusZeroIsTheTentOfTheThirteenTapsOfTheThresholdedFrame) {
+  BloomEffect bloom(test::effectResources());
+  const int width = 62, height = 46;
+  std::mt19937 random(7);
+  std::uniform_real_distribution<float> exponent(-4.0f, 3.0f);
+  Frame input = blank(width, height);
+  for (glm::vec3& c : input.pixels) {
+    c = glm::vec3(std::exp2(exponent(random)), std::exp2(exponent(random)), std::exp2(exponent(random)));
+    c = decodeHdr(encodeHdr(c));  // what the GPU reads
+  }
+  BloomSettings settings;
+  settings.radius = 0.0f;
+  settings.intensity = 1.0f;
+  const Frame out = bloomed(bloom, settings, input);
+
+  auto clampTo = [](int v, int n) { return std::clamp(v, 0, n - 1); };
+  auto thresholded = [&](int x, int y) {
+    const glm::vec3 c = input.at(clampTo(x, width), clampTo(y, height));
+    return c * bloomThresholdScale(c, settings.threshold, settings.knee);
+  };
+  const int w1 = width / 2, h1 = height / 2;
+  Frame level1 = blank(w1, h1);
+  for (int p = 0; p < h1; ++p)
+    for (int o = 0; o < w1; ++o)
+      for (int j = 0; j < 6; ++j)
+        for (int i = 0; i < 6; ++i)
+          level1.at(o, p) += bloomDownsampleWeight(i, j) * thresholded(2 * o - 2 + i, 2 * p - 2 + j);
+  double worst = 0.0, largestGlow = 0.0;
+  for (int y = 0; y < height; ++y)
+    for (int x = 0; x < width; ++x) {
+      const float px = (x + 0.5f) * w1 / width - 0.5f, py = (y + 0.5f) * h1 / height - 0.5f;
+      const int ix = static_cast<int>(std::floor(px)), iy = static_cast<int>(std::floor(py));
+      glm::vec3 glow(0.0f);
+      for (int l = 0; l < 4; ++l)
+        for (int k = 0; k < 4; ++k)
+          glow += bloomUpsampleWeight(k, px - ix) * bloomUpsampleWeight(l, py - iy) *
+                  level1.at(clampTo(ix - 1 + k, w1), clampTo(iy - 1 + l, h1));
+      // RGB9E5 shares one exponent between the channels: each is as exact as a step of the largest.
+      const glm::vec3 expected = input.at(x, y) + glow;
+      const float largest = std::max(expected.r, std::max(expected.g, expected.b));
+      for (int ch = 0; ch < 3; ++ch) {
+        worst = std::max(worst, double(std::abs(out.at(x, y)[ch] - expected[ch]) / largest));
+        largestGlow = std::max(largestGlow, double(glow[ch]));
+      }
+    }
+  std::printf("%d x %d, radius 0: largest glow %.3f; the chain against its mirror: worst %.5f of the pixel's largest channel\n", width,
+              height, largestGlow, worst);
+  EXPECT_GT(largestGlow, 1.0) << "the glow is large enough to show an error";
+  // Five RGB9E5 roundings (half a step of a 9-bit mantissa, at most 1/512 of the largest channel, each) between the
+  // input and the output.
+  EXPECT_LT(worst, 0.006);
+}
+
 // A smooth HDR gradient (2^-4 .. 2^6 along x, the same on every row) with everything blooming (threshold 0): every
 // row of the result is monotonic (no band where it steps back), and close to the gradient's own glow.
 TEST(Bloom, ASmoothHdrGradientStaysMonotonic) {

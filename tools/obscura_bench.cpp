@@ -1322,12 +1322,14 @@ void finishSection(const Options& options, HeadlessContext& context, const std::
   for (const Configuration& c : configurations) settings.push_back(settingsFrom(c.set));
   const std::vector<std::string> columns = {"lighting", "bloom", "bloom-bright", "lens-flare", "glare", "exposure",
                                             "tonemap", "edges"};
-  // exposure and bloom: their passes together; bloom-bright: bloom's first two passes where they ran alone (bloom
+  // exposure and bloom: their passes together; bloom-bright: bloom's first three passes where they ran alone (bloom
   // off, read by the lens flare or the glare).
   auto ms = [](const FinishPassTimer& t, const std::string& column) {
     double sum = 0.0;
     if (column == "bloom-bright")
-      return t.medianMs("bloom") > 0.0 ? 0.0 : t.medianMs("bloom-prefilter") + t.medianMs("bloom-down-2");
+      return t.medianMs("bloom") > 0.0 ? 0.0
+                                       : t.medianMs("bloom-prefilter-blocks") + t.medianMs("bloom-prefilter") +
+                                             t.medianMs("bloom-down-2");
     if (column != "exposure" && column != "bloom") return t.medianMs(column);
     for (const std::string& pass : effectEntry(column == "bloom" ? "bloom" : "auto-exposure").info.passes)
       sum += t.medianMs(pass);

@@ -13,7 +13,8 @@ glm::ivec2 TargetSize::of(glm::ivec2 frame) const {
     case Kind::Quarter: return glm::max(frame / 4, glm::ivec2(1));
     case Kind::Tiles: return (frame + glm::ivec2(tile - 1)) / std::max(tile, 1);
     case Kind::TileColumns: return {(frame.x + tile - 1) / std::max(tile, 1), frame.y};
-    case Kind::Scaled: return glm::max(glm::ivec2(frame.x >> shiftX, frame.y >> shiftY), glm::ivec2(1));
+    case Kind::Scaled:
+      return glm::max(glm::ivec2((frame.x >> shiftX) * timesX + plusX, (frame.y >> shiftY) + plusY), glm::ivec2(1));
     case Kind::Fixed: return {tile, height};
   }
   return frame;
@@ -26,7 +27,12 @@ std::string TargetSize::name() const {
     case Kind::Quarter: return "quarter";
     case Kind::Tiles: return "tiles of " + std::to_string(tile);
     case Kind::TileColumns: return "tile columns of " + std::to_string(tile);
-    case Kind::Scaled: return "1/" + std::to_string(1 << shiftX) + " x 1/" + std::to_string(1 << shiftY);
+    case Kind::Scaled: {
+      const std::string width = (timesX == 1 ? "" : std::to_string(timesX) + " x ") + "1/" +
+                                std::to_string(1 << shiftX) + (plusX ? " + " + std::to_string(plusX) : "");
+      const std::string height = "1/" + std::to_string(1 << shiftY) + (plusY ? " + " + std::to_string(plusY) : "");
+      return (timesX == 1 && !plusX ? width : "(" + width + ")") + " x " + (plusY ? "(" + height + ")" : height);
+    }
     case Kind::Fixed: return std::to_string(tile) + "x" + std::to_string(height);
   }
   return "?";

@@ -42,6 +42,7 @@ struct TargetSize {
   int tile = 0;                // Tiles and TileColumns; Fixed: the width
   int height = 0;              // Fixed only
   int shiftX = 0, shiftY = 0;  // Scaled only: floor(width / 2^shiftX) x floor(height / 2^shiftY)
+  int timesX = 1, plusX = 0, plusY = 0;  // Scaled only: that width times timesX plus plusX, that height plus plusY
 
   static TargetSize full() { return {Kind::Full, 0}; }
   static TargetSize half() { return {Kind::Half, 0}; }
@@ -50,10 +51,20 @@ struct TargetSize {
   static TargetSize tileColumns(int tile) { return {Kind::TileColumns, tile}; }
   static TargetSize scaled(int shiftX, int shiftY) { return {Kind::Scaled, 0, 0, shiftX, shiftY}; }
   static TargetSize fixed(int width, int height) { return {Kind::Fixed, width, height}; }
+  // A Scaled size side by side `times` times, with `plusX` more columns and `plusY` more rows (blocks of a grid that
+  // reach past the frame's edges: bloom's prefilter).
+  TargetSize widened(int times, int moreX, int moreY) const {
+    TargetSize s = *this;
+    s.timesX = times;
+    s.plusX = moreX;
+    s.plusY = moreY;
+    return s;
+  }
   glm::ivec2 of(glm::ivec2 frame) const;
   std::string name() const;  // "full", "half", "quarter", "tiles of 16", "1/4 x 1/8", "128x64"
   bool operator==(const TargetSize& o) const {
-    return kind == o.kind && tile == o.tile && height == o.height && shiftX == o.shiftX && shiftY == o.shiftY;
+    return kind == o.kind && tile == o.tile && height == o.height && shiftX == o.shiftX && shiftY == o.shiftY &&
+           timesX == o.timesX && plusX == o.plusX && plusY == o.plusY;
   }
 };
 

@@ -10,7 +10,8 @@
 namespace obscura {
 namespace {
 
-const char* const kStageNames[] = {"prefilter", "down", "tent-x", "up", "composite"};
+const char* const kStageNames[] = {"prefilter-blocks", "prefilter", "down", "tent-x", "up", "composite"};
+constexpr int kBlocks = 0, kPrefilter = 1, kDown = 2, kTentX = 3, kUp = 4, kComposite = 5;
 
 ProgramSpec spec(int stage) {
   return ProgramSpec{std::string("bloom[") + kStageNames[stage] + "]",
@@ -20,7 +21,7 @@ ProgramSpec spec(int stage) {
 }
 
 // The composite's program as it runs: a stage head's, here with no stage fused (its colour HDR-encoded).
-ProgramSpec compositeSpec() { return fusedProgram(spec(4), {}, ColorSpace::Hdr); }
+ProgramSpec compositeSpec() { return fusedProgram(spec(kComposite), {}, ColorSpace::Hdr); }
 
 }  // namespace
 
@@ -92,31 +93,46 @@ std::string tent(int k) { return "bloom-tent-" + std::to_string(k); }
 // k's width, level k + 1's height.
 TargetSize levelSize(int k) { return TargetSize::scaled(k, k); }
 TargetSize tentSize(int k) { return TargetSize::scaled(k, k + 1); }
+// The prefilter's 2 x 2 blocks (bloom.frag, stage 0): the even grid's floor(w / 2) + 2 columns (blocks -1 ..
+// floor(w / 2)) beside the odd grid's floor(w / 2) + 1 (blocks 0 .. floor(w / 2)), floor(h / 2) + 2 rows.
+const std::string kBlocksTarget = "bloom-blocks";
+TargetSize blocksSize() { return TargetSize::scaled(1, 1).widened(2, 3, 2); }
+float evenColumns(glm::ivec2 level1) { return static_cast<float>(level1.x + 2); }
 
 // The chain's draws, into the framebuffer bound, from the textures given: the passes run them on pooled targets,
 // BloomEffect::render on targets of its own.
-void prefilter(const EffectResources& r, const gl::Texture2D& scene, const BloomSettings& settings) {
-  FullscreenDraw draw(r.program(spec(0)), r.triangle);
+// The prefilter in two draws: the thresholded frame's 2 x 2 blocks into the bound target (blocksSize), then, from
+// them, level 1 (of size `level1`).
+void prefilterBlocks(const EffectResources& r, const gl::Texture2D& scene, glm::ivec2 level1,
+                     const BloomSettings& settings) {
+  FullscreenDraw draw(r.program(spec(kBlocks)), r.triangle);
   draw.texture("u_source", scene);
   draw.set("u_sourceSize", glm::vec2(scene.width(), scene.height()));
+  draw.set("u_evenColumns", evenColumns(level1));
   const float knee = settings.knee * settings.threshold;
   draw.set("u_threshold", glm::vec3(settings.threshold, knee, knee > 0.0f ? 0.25f / knee : 0.0f));
   draw.draw();
 }
+void prefilter(const EffectResources& r, const gl::Texture2D& blocks, glm::ivec2 level1) {
+  FullscreenDraw draw(r.program(spec(kPrefilter)), r.triangle);
+  draw.texture("u_source", blocks).set("u_sourceSize", glm::vec2(blocks.width(), blocks.height()));
+  draw.set("u_evenColumns", evenColumns(level1));
+  draw.draw();
+}
 void down(const EffectResources& r, const gl::Texture2D& finer) {
-  FullscreenDraw draw(r.program(spec(1)), r.triangle);
+  FullscreenDraw draw(r.program(spec(kDown)), r.triangle);
   draw.texture("u_source", finer).set("u_sourceSize", glm::vec2(finer.width(), finer.height()));
   draw.draw();
 }
 void tentAlongX(const EffectResources& r, const gl::Texture2D& coarser) {
-  FullscreenDraw draw(r.program(spec(2)), r.triangle);
+  FullscreenDraw draw(r.program(spec(kTentX)), r.triangle);
   draw.texture("u_source", coarser).set("u_sourceSize", glm::vec2(coarser.width(), coarser.height()));
   draw.draw();
 }
 // up k = mix(level k, tent(up k+1), radius) (stage 3), or the frame plus intensity x tent(up 1) (stage 4).
 void upOrComposite(const EffectResources& r, bool composite, const gl::Texture2D& half, const gl::Texture2D& level,
                    const BloomSettings& settings) {
-  FullscreenDraw draw(r.program(composite ? compositeSpec() : spec(3)), r.triangle);
+  FullscreenDraw draw(r.program(composite ? compositeSpec() : spec(kUp)), r.triangle);
   draw.texture("u_source", half).texture("u_level", level);
   draw.set("u_sourceSize", glm::vec2(half.width(), half.height()));
   if (composite) draw.set("u_intensity", settings.intensity);
@@ -127,7 +143,7 @@ void upOrComposite(const EffectResources& r, bool composite, const gl::Texture2D
 }  // namespace
 
 EffectInfo BloomEffect::info() {
-  EffectInfo info{"bloom", "Bloom", true, false, {"bloom-prefilter"}, {}};
+  EffectInfo info{"bloom", "Bloom", true, false, {"bloom-prefilter-blocks", "bloom-prefilter"}, {}};
   for (int k = 2; k <= kMaxLevels; ++k) info.passes.push_back("bloom-down-" + std::to_string(k));
   for (int k = kMaxLevels - 1; k >= 1; --k) {
     info.passes.push_back(tent(k));
@@ -135,6 +151,9 @@ EffectInfo BloomEffect::info() {
   }
   info.passes.push_back(tent(0));
   info.passes.push_back("bloom");
+  info.targets.push_back({kBlocksTarget, std::string("the thresholded frame's 2 x 2 blocks on the even grid beside those "
+                                                    "on the odd grid (the prefilter's first half): ") + kLevelEncoding,
+                          GL_NEAREST, {}});
   for (int k = 1; k <= kMaxLevels; ++k) {
     info.targets.push_back({level(k),
                             k == 2 ? std::string("level 2 (1/4): the light above bloom's threshold, for the lens flare "
@@ -155,11 +174,11 @@ EffectInfo BloomEffect::info() {
 }
 
 std::vector<ProgramSpec> BloomEffect::programSpecs() {
-  return {spec(0), spec(1), spec(2), spec(3), compositeSpec()};
+  return {spec(kBlocks), spec(kPrefilter), spec(kDown), spec(kTentX), spec(kUp), compositeSpec()};
 }
 
 std::vector<StageHeadSpec> BloomEffect::stageHeads() {
-  return {{spec(4), ColorSpace::Hdr, kCompositeUniformVectors}};
+  return {{spec(kComposite), ColorSpace::Hdr, kCompositeUniformVectors}};
 }
 
 BloomEffect::BloomEffect(const EffectResources& resources) : resources_(resources) {}
@@ -187,31 +206,39 @@ void BloomEffect::plan(FramePlanner& planner) {
     planner.add(std::move(pass));
   };
 
-  // The thresholded frame into level 1, then down the chain.
-  add("bloom-prefilter", {"scene-color"}, level(1), levelSize(1),
-      [this, bloom](PassContext& context) { prefilter(resources_, context.texture("scene-color"), bloom(context)); },
-      {spec(0).name});
+  // The thresholded frame into level 1 (its 2 x 2 blocks, then the 13 taps from them), then down the chain.
+  add("bloom-prefilter-blocks", {"scene-color"}, kBlocksTarget, blocksSize(),
+      [this, bloom](PassContext& context) {
+        prefilterBlocks(resources_, context.texture("scene-color"), levelSize(1).of(context.size("scene-color")),
+                        bloom(context));
+      },
+      {spec(kBlocks).name});
+  add("bloom-prefilter", {kBlocksTarget}, level(1), levelSize(1),
+      [this](PassContext& context) {
+        prefilter(resources_, context.texture(kBlocksTarget), context.size(level(1)));
+      },
+      {spec(kPrefilter).name});
   // Level 2 even where the chain stops at level 1 (frames under 8 pixels): it is `bloom-bright`.
   for (int k = 2; k <= std::max(levels, 2); ++k)
     add("bloom-down-" + std::to_string(k), {level(k - 1)}, level(k), levelSize(k),
         [this, finer = level(k - 1)](PassContext& context) { down(resources_, context.texture(finer)); },
-        {spec(1).name});
+        {spec(kDown).name});
   if (!enabled) return;
   // Up again from the coarsest level: each up k mixes level k with the tent of the coarser up (level L itself at
   // the bottom), the tent taken in two passes (along x, then along y in the up's own draw).
   for (int k = levels - 1; k >= 0; --k) {
     const std::string coarser = k + 1 == levels ? level(levels) : up(k + 1);
     add(tent(k), {coarser}, tent(k), tentSize(k),
-        [this, coarser](PassContext& context) { tentAlongX(resources_, context.texture(coarser)); }, {spec(2).name});
+        [this, coarser](PassContext& context) { tentAlongX(resources_, context.texture(coarser)); }, {spec(kTentX).name});
     if (k == 0) break;
     add(up(k), {tent(k), level(k)}, up(k), levelSize(k),
         [this, bloom, k](PassContext& context) {
           upOrComposite(resources_, false, context.texture(tent(k)), context.texture(level(k)), bloom(context));
         },
-        {spec(3).name});
+        {spec(kUp).name});
   }
   // The frame with its glow, and the stages fused after it (the tone curve, ...).
-  planner.add(fullscreenStageHead(resources_, "bloom", spec(4), {{"u_source", tent(0)}, {"u_level", "scene-color"}},
+  planner.add(fullscreenStageHead(resources_, "bloom", spec(kComposite), {{"u_source", tent(0)}, {"u_level", "scene-color"}},
                                   {"scene-color"}, ColorSpace::Hdr, kCompositeUniformVectors,
                                   [bloom](FullscreenDraw& draw, const PassContext& context) {
                                     draw.set("u_sourceSize", glm::vec2(context.size(tent(0))));
@@ -227,10 +254,14 @@ void BloomEffect::render(const BloomSettings& settings, const gl::Texture2D& sce
     return gl::RenderTarget("bloom " + name, pixels.x, pixels.y, GL_NEAREST, gl::RenderTarget::Depth::None, false);
   };
   std::vector<gl::RenderTarget> levelTargets, ups(static_cast<size_t>(levels));
+  const glm::ivec2 level1 = levelSize(1).of(size);
+  const gl::RenderTarget blocks = target(kBlocksTarget, blocksSize());
+  blocks.bindForDrawing();
+  prefilterBlocks(resources_, sceneColor, level1, settings);
   for (int k = 1; k <= levels; ++k) {
     levelTargets.push_back(target(level(k), levelSize(k)));
     levelTargets.back().bindForDrawing();
-    if (k == 1) prefilter(resources_, sceneColor, settings);
+    if (k == 1) prefilter(resources_, blocks.color(), level1);
     else down(resources_, levelTargets[static_cast<size_t>(k - 2)].color());
   }
   for (int k = levels - 1; k >= 0; --k) {

@@ -5,8 +5,11 @@
 // back with a 3x3 tent, each level blended with the one below, and added to the frame. The lecture deck's glow
 // (Samuelcik, "Post-processing", "Glow": threshold, blur downsampled, add back) with the modern filters.
 //
-//   bloom-prefilter  scene-color (full) -> bloom-1 (1/2): the 13-tap filter over 6 x 6 texels, each texel's colour
-//                    first scaled by the soft threshold below (per texel, so a single bright pixel keeps its energy)
+//   bloom-prefilter-blocks  scene-color (full) -> bloom-blocks: each texel's colour scaled by the soft threshold
+//                    below (per texel, so a single bright pixel keeps its energy), and averaged in 2 x 2 blocks on the
+//                    even grid (texels 2k, 2k + 1 per axis) and on the odd grid (2k - 1, 2k), side by side
+//   bloom-prefilter  bloom-blocks -> bloom-1 (1/2): the 13-tap filter of the thresholded frame from 9 even blocks
+//                    and 4 odd ones (below): each frame texel is read and thresholded twice, not 9 times
 //   bloom-down-k     bloom-(k-1) -> bloom-k (1/2^k), k = 2 .. 6: the 13-tap filter
 //   bloom-up-k       bloom-k (its own size) + up k+1 (tent-filtered, 4 x 4 texels by hand) -> bloom-up-k, k = 5 .. 1:
 //                    up_k = (1 - radius) level_k + radius tent(up_k+1)  (up_6 is level 6)
@@ -22,6 +25,15 @@
 // 13-tap downsample (Jimenez 2014, slide 150): 13 bilinear taps on texel corners, the centre 2 x 2 boxes at
 // (+-1, +-1) weighing 0.5 and the nine boxes at (0, +-2) x (0, +-2) with (1, 2, 1) x (1, 2, 1) / 32. By hand over the
 // 6 x 6 texels it covers: w(i, j) = a_i a_j / 2 + b_i b_j / 2, a = (1, 1, 2, 2, 1, 1) / 8, b = (0, 1, 1, 1, 1, 0) / 4.
+// Both parts are made of 2 x 2 blocks: a is (1, 2, 1) / 4 over the three blocks of texel pairs (2o - 2, 2o - 1),
+// (2o, 2o + 1), (2o + 2, 2o + 3) (the even grid), b the mean of the two pairs (2o - 1, 2o), (2o + 1, 2o + 2) (the
+// odd grid). The prefilter uses it: the blocks first (4 thresholded texels each, each texel in one block per grid),
+// then level 1 from 9 + 4 blocks, 2 + 3.25 decoded texels per frame pixel instead of 9 (and 2 thresholds instead of
+// 9): on SwiftShader at 1280 x 720, 68.5 ms -> 14.7 + 18.1 (docs/bloom-and-fog.md). One more RGB9E5 rounding. The
+// blocks are aligned on the frame's texels, so on a frame of odd width (or height) level 1 lies on the frame's first
+// 2 floor(w / 2) texels, the last one reached at the edge's clamp; the 13 taps texel by texel spread it over all w
+// (its centres up to a frame pixel apart, at the far edge). The other levels keep the 13 taps texel by texel: below
+// 1/2 they cost a sixth of the frame's pixels together.
 //
 // Soft threshold (per texel, on its largest channel m; T threshold, K = knee x T): the colour is scaled by
 // c(m) / m with c(m) = 0 for m <= T, (m - T)^2 / (4K) up to T + 2K, m - T - K above: continuous with its slope, and
