@@ -22,6 +22,8 @@
 // ENVIRONMENT_LOD 1: the levels are mip levels of u_environment (EXT_shader_texture_lod's texture2DLodEXT at integer
 // levels); 0: they lie side by side in one atlas (level 0 left, 1 .. 5 stacked to its right), read with texture2D.
 // Both fetch the same texel centres, NEAREST, so both give the same values (tests/test_environment.cpp).
+// ENVIRONMENT_SKY_CUBE 1 (with ENVIRONMENT_HALF_FLOAT): environmentSky(ray), the background, reads u_sky, a cube map
+// of level 0; otherwise it is environmentSpecular(ray, 0).
 // ENVIRONMENT_FILTERED_FROM: the first level read from u_environmentFiltered (GpuEnvironment::filteredFrom: 2, or
 // ENVIRONMENT_LEVELS for none, where the environment's range makes RGBM under the filter too coarse).
 
@@ -132,6 +134,15 @@ vec3 environmentSpecular(vec3 r, float roughness) {
   if (f > 0.0) c = mix(c, environmentLevel(uv, level + 1.0), f);
   return c;
 }
+
+#if ENVIRONMENT_SKY_CUBE
+// The background's cube map (environment/Environment.h: skyCubeFaces): level 0 resampled onto six faces of half
+// floats, LINEAR. `ray`: any length, in the environment's frame.
+uniform highp samplerCube u_sky;
+vec3 environmentSky(vec3 ray) { return textureCube(u_sky, ray).rgb * u_environmentIntensity; }
+#else
+vec3 environmentSky(vec3 ray) { return environmentSpecular(ray, 0.0); }
+#endif
 
 // The split sum's BRDF term: specular reflectance = F0 A + B. The table's texel centres span (0.5 .. 31.5) / 32 of
 // its 32 x 32; its border clamps beyond them.

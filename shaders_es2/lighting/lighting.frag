@@ -50,6 +50,7 @@ uniform sampler2D u_gbuffer;    // RG normal, BA depth code
 varying vec2 v_uv;
 #if !COUNT_SHADING
 varying vec3 v_farRay;          // view space: the direction towards the pixel
+varying vec3 v_environmentRay;  // the eye's ray in the environment's frame (fullscreen.vert, ENVIRONMENT_RAY)
 #endif
 #else
 varying vec3 v_viewPosition;
@@ -255,16 +256,18 @@ vec3 shade(vec3 base, float metallic, float roughness, vec3 p, vec3 n, vec3 g, f
   return color;
 }
 
-// What the eye sees where no geometry is, along the eye's ray through far-plane point `farRay`: the environment
-// itself (one colour for an orthographic camera, whose rays are parallel).
-vec3 background(vec3 farRay) { return environmentSpecular(u_viewToEnvironment * eyeRay(farRay), 0.0); }
+#if DEFERRED && !COUNT_SHADING
+// What the eye sees where no geometry is: the environment itself along the eye's ray (one colour for an orthographic
+// camera, whose rays are parallel), interpolated in the environment's frame by the vertex stage.
+vec3 background() { return environmentSky(v_environmentRay); }
+#endif
 
 #if DEFERRED && BACKGROUND
 void main() {
   StagePixel pixel = stagePixel(v_uv);
   pixel.viewPosition = v_farRay;
   pixel.background = true;
-  gl_FragColor = finishPixel(background(v_farRay), pixel);
+  gl_FragColor = finishPixel(background(), pixel);
 }
 #elif DEFERRED
 uniform sampler2D u_baseColor;   // sRGB-encoded base colour
@@ -285,7 +288,7 @@ void main() {
   // surface's own (no normal texture takes this form).
   vec3 color = shade(base, 0.0, 1.0, v_farRay, pixel.viewNormal, pixel.viewNormal, texture2D(u_ao, v_uv).r, vec3(0.0));
   // One colour through finishPixel: a CPU rasteriser runs both sides of the branch, and would run the stages twice.
-  if (pixel.background) color = background(v_farRay);
+  if (pixel.background) color = background();
   gl_FragColor = finishPixel(color, pixel);
 }
 #elif UNLIT && !BLENDED

@@ -562,6 +562,7 @@ std::vector<std::pair<std::string, std::string>> GpuEnvironment::shaderDefines(E
   const glm::ivec2 brdf = environmentFilteredOrigin(-1);
   return {{"ENVIRONMENT_LOD", layout == EnvironmentLayout::MipChain ? "1" : "0"},
           {"ENVIRONMENT_HALF_FLOAT", layout == EnvironmentLayout::HalfFloatAtlas ? "1" : "0"},
+          {"ENVIRONMENT_SKY_CUBE", layout == EnvironmentLayout::HalfFloatAtlas ? "1" : "0"},
           {"ENVIRONMENT_HALF_FLOAT_SIZE", "vec2(" + std::to_string(kEnvironmentHalfFloatWidth) + ".0, " +
                                               std::to_string(kEnvironmentHalfFloatHeight) + ".0)"},
           {"ENVIRONMENT_LEVELS", std::to_string(kEnvironmentLevels)},
@@ -575,6 +576,67 @@ std::vector<std::pair<std::string, std::string>> GpuEnvironment::shaderDefines(E
           {"ENVIRONMENT_BRDF_ORIGIN",
            "vec2(" + std::to_string(brdf.x) + ".0, " + std::to_string(brdf.y) + ".0)"},
           {"ENVIRONMENT_BRDF_SIZE", std::to_string(kEnvironmentBrdfSize) + ".0"}};
+}
+
+glm::vec3 cubeFaceDirection(int face, const glm::vec2& st) {
+  const float sc = 2.0f * st.x - 1.0f, tc = 2.0f * st.y - 1.0f;
+  switch (face) {
+    case 0: return {1.0f, -tc, -sc};
+    case 1: return {-1.0f, -tc, sc};
+    case 2: return {sc, 1.0f, tc};
+    case 3: return {sc, -1.0f, -tc};
+    case 4: return {sc, -tc, 1.0f};
+    default: return {-sc, -tc, -1.0f};
+  }
+}
+
+std::array<std::vector<glm::vec3>, 6> skyCubeFaces(const PrefilteredEnvironment& specular) {
+  const TimedScope timed("sky cube faces");
+  constexpr int n = kEnvironmentSkyFace;
+  // sample(d, 0, HalfFloatAtlas) per texel, with level 0 rounded to half floats once, not at each of the 393,216
+  // lookups (natively 56 -> 32 ms; the page's start-up: docs/benchmarks.md).
+  const EnvironmentImage& level = specular.levels[0];
+  std::vector<glm::vec3> rounded;
+  rounded.reserve(level.texels.size());
+  for (const glm::vec3& c : level.texels)
+    rounded.emplace_back(roundedToHalfFloat(c.r), roundedToHalfFloat(c.g), roundedToHalfFloat(c.b));
+  std::array<std::vector<glm::vec3>, 6> faces;
+  for (int face = 0; face < 6; ++face) {
+    faces[static_cast<size_t>(face)].reserve(static_cast<size_t>(n) * n);
+    for (int y = 0; y < n; ++y)
+      for (int x = 0; x < n; ++x) {
+        const glm::vec3 d = cubeFaceDirection(face, (glm::vec2(x, y) + 0.5f) / static_cast<float>(n));
+        const glm::vec3 c = bilinear(rounded, level.width, level.height, equirectUv(glm::normalize(d)));
+        faces[static_cast<size_t>(face)].emplace_back(roundedToHalfFloat(c.r), roundedToHalfFloat(c.g),
+                                                      roundedToHalfFloat(c.b));
+      }
+  }
+  return faces;
+}
+
+glm::vec3 skyCubeSample(const std::array<std::vector<glm::vec3>, 6>& faces, const glm::vec3& d) {
+  // GL's table (OpenGL ES 2.0, table 3.21): the major axis picks the face, (sc, tc) / |ma| the place on it.
+  const glm::vec3 a = glm::abs(d);
+  int face;
+  float sc, tc, ma;
+  if (a.x >= a.y && a.x >= a.z) {
+    face = d.x >= 0.0f ? 0 : 1, sc = d.x >= 0.0f ? -d.z : d.z, tc = -d.y, ma = a.x;
+  } else if (a.y >= a.z) {
+    face = d.y >= 0.0f ? 2 : 3, sc = d.x, tc = d.y >= 0.0f ? d.z : -d.z, ma = a.y;
+  } else {
+    face = d.z >= 0.0f ? 4 : 5, sc = d.z >= 0.0f ? d.x : -d.x, tc = -d.y, ma = a.z;
+  }
+  constexpr int n = kEnvironmentSkyFace;
+  const glm::vec2 p = (glm::vec2(sc, tc) / ma + 1.0f) * 0.5f * static_cast<float>(n) - 0.5f;
+  const glm::vec2 p0 = glm::floor(p), f = p - p0;
+  const std::vector<glm::vec3>& texels = faces[static_cast<size_t>(face)];
+  auto at = [&](float x, float y) {
+    const int ix = std::clamp(static_cast<int>(x), 0, n - 1), iy = std::clamp(static_cast<int>(y), 0, n - 1);
+    return texels[static_cast<size_t>(iy) * n + static_cast<size_t>(ix)];
+  };
+  const glm::vec3 top = glm::mix(at(p0.x, p0.y), at(p0.x + 1.0f, p0.y), f.x);
+  const glm::vec3 bottom = glm::mix(at(p0.x, p0.y + 1.0f), at(p0.x + 1.0f, p0.y + 1.0f), f.x);
+  return glm::mix(top, bottom, f.y);
 }
 
 glm::ivec2 environmentFilteredOrigin(int level) {
@@ -670,6 +732,26 @@ GpuEnvironment::GpuEnvironment(EnvironmentLayout layout, const PrefilteredEnviro
     glTexImage2D(GL_TEXTURE_2D, 0, desktopGl ? kRgba16f : GL_RGBA, kEnvironmentHalfFloatWidth,
                  kEnvironmentHalfFloatHeight, 0, GL_RGBA, desktopGl ? kHalfFloat : GL_HALF_FLOAT_OES, atlas.data());
     glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_LINEAR);
+    // The background's cube (skyCubeFaces).
+    sky_ = gl::TextureHandle::create();
+    glBindTexture(GL_TEXTURE_CUBE_MAP, sky_.id());
+    const std::array<std::vector<glm::vec3>, 6> faces = skyCubeFaces(specular);
+    std::vector<HalfTexel> texels(faces[0].size());
+    for (int face = 0; face < 6; ++face) {
+      for (size_t i = 0; i < texels.size(); ++i) {
+        const glm::vec3& c = faces[static_cast<size_t>(face)][i];
+        texels[i] = {halfFloatBits(c.r), halfFloatBits(c.g), halfFloatBits(c.b), one};
+      }
+      glTexImage2D(static_cast<GLenum>(GL_TEXTURE_CUBE_MAP_POSITIVE_X + face), 0, desktopGl ? kRgba16f : GL_RGBA,
+                   kEnvironmentSkyFace, kEnvironmentSkyFace, 0, GL_RGBA, desktopGl ? kHalfFloat : GL_HALF_FLOAT_OES,
+                   texels.data());
+    }
+    glTexParameteri(GL_TEXTURE_CUBE_MAP, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
+    glTexParameteri(GL_TEXTURE_CUBE_MAP, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+    glTexParameteri(GL_TEXTURE_CUBE_MAP, GL_TEXTURE_MIN_FILTER, GL_LINEAR);
+    glTexParameteri(GL_TEXTURE_CUBE_MAP, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+    glBindTexture(GL_TEXTURE_CUBE_MAP, 0);
+    glBindTexture(GL_TEXTURE_2D, texture_.id());
   } else if (layout == EnvironmentLayout::MipChain) {
     // Levels 0 .. 5 the roughness levels; the rest, down to 1 x 1, hold level 5's mean (never read: the shader's
     // level stops at 5; GLES 2 samples only a complete chain).

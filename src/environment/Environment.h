@@ -214,6 +214,22 @@ glm::vec2 environmentBrdf(float roughness, float nDotV);
 glm::vec3 ambientLightMirror(const ShIrradiance& sh, const PrefilteredEnvironment& specular, const glm::vec3& n,
                              const glm::vec3& v, const glm::vec3& diffuseColor, const glm::vec3& f0, float roughness);
 
+// The background's cube map (GpuEnvironment::skyTexture, where the levels are half floats): level 0 resampled onto
+// six faces of kEnvironmentSkyFace texels, half floats the hardware filters (LINEAR, clamped at each face's edge).
+// The background is the one place the environment is read at roughness 0 over most of the frame: a cube is read
+// along the eye's ray as the rasteriser interpolates it, with no normalisation, atan, acos or atlas addressing at
+// each pixel (docs/benchmarks.md: the sky in the bands). Faces in GL's order (+x, -x, +y, -y, +z, -z), rows from
+// t = 0; each texel the equirectangular level 0 as the half-float atlas filters it (PrefilteredEnvironment::sample),
+// at the texel centre's direction, rounded to half floats. 256 texels to a face: 0.0078 rad at a face's centre, finer
+// than level 0's 0.0123, so the resampling blurs the sky by less than a texel of level 0.
+constexpr int kEnvironmentSkyFace = 256;
+// The direction of GL's cube-map coordinates (s, t) in [0, 1]^2 on `face` (OpenGL ES 2.0, sec. 3.7.5), not unit.
+glm::vec3 cubeFaceDirection(int face, const glm::vec2& st);
+// The faces' texels, kEnvironmentSkyFace^2 each.
+std::array<std::vector<glm::vec3>, 6> skyCubeFaces(const PrefilteredEnvironment& specular);
+// The mirror of textureCube on those faces: the face of the largest component, bilinear, clamped at its edges.
+glm::vec3 skyCubeSample(const std::array<std::vector<glm::vec3>, 6>& faces, const glm::vec3& direction);
+
 // One environment on the GPU: the specular texture and the irradiance polynomial. Owns its texture.
 class GpuEnvironment {
  public:
@@ -231,6 +247,8 @@ class GpuEnvironment {
   GLuint texture() const { return texture_.id(); }
   // LINEAR: the RGBM levels (from filteredFrom(); none when it is kEnvironmentLevels) and environmentBrdfTable().
   GLuint filteredTexture() const { return filtered_.id(); }
+  // The background's cube map (skyCubeFaces) in the half-float layout; 0 in the others, which read level 0 by hand.
+  GLuint skyTexture() const { return sky_.id(); }
   // kEnvironmentLevels in the half-float atlas: its own levels are exact under the filter.
   int filteredFrom() const { return filteredFrom_; }
   float filteredScale() const { return filteredScale_; }
@@ -240,12 +258,12 @@ class GpuEnvironment {
   // the forward lighting must fit GLES 2's 16 (LightingEffect.h).
   const std::array<glm::vec4, 7>& irradianceUniform() const { return packedPolynomial_; }
   // The shader's defines: ENVIRONMENT_LOD 1 (mip chain) or 0 (atlas), ENVIRONMENT_FILTERED_FROM (filteredFrom()),
-  // the level count and the textures' sizes.
+  // ENVIRONMENT_SKY_CUBE (skyTexture() exists), the level count and the textures' sizes.
   static std::vector<std::pair<std::string, std::string>> shaderDefines(EnvironmentLayout layout, int filteredFrom);
 
  private:
   EnvironmentLayout layout_;
-  gl::TextureHandle texture_, filtered_;
+  gl::TextureHandle texture_, filtered_, sky_;
   int filteredFrom_;
   float filteredScale_;
   std::array<glm::vec3, 9> polynomial_{};

@@ -71,6 +71,8 @@ std::string baselineStateDifferences() {
     glActiveTexture(static_cast<GLenum>(GL_TEXTURE0 + unit));
     glGetIntegerv(GL_TEXTURE_BINDING_2D, &value);
     expect(value == 0, "a texture is bound");
+    glGetIntegerv(GL_TEXTURE_BINDING_CUBE_MAP, &value);
+    expect(value == 0, "a cube map is bound");
   }
   glActiveTexture(GL_TEXTURE0);
   for (GLuint slot = 0; slot < kAttributeSlots; ++slot) {

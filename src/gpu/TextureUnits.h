@@ -19,6 +19,10 @@ inline constexpr int kPeeledGBuffer = kAo;
 inline constexpr int kPbr[4] = {2, 3, 5, 6};
 inline constexpr int kJoints = 4;  // the vertex stage's joint texture (GpuScene)
 inline constexpr int kEnvironment = 7;
+// The background's cube map (environment/Environment.h: skyCubeFaces), in the lighting's full-screen forms alone
+// (deferred, and the forward forms' background draw), which read no material texture: a PBR unit is free there. The
+// lighting unbinds it after its pass (the baseline state holds no cube map).
+inline constexpr int kSky = kPbr[1];
 // Units 0 .. 7 are GLES 2's; a ninth exists where the combined limit is larger.
 inline constexpr int kGles2Units = 8;
 

@@ -79,6 +79,29 @@ const std::vector<Parameter<LightingSettings>>& LightingSettings::parameters() {
 }
 
 namespace {
+
+// The background's cube map on its unit (gpu/TextureUnits.h: kSky) for the pass, unbound when the pass returns: the
+// baseline state holds no cube map, and restoreBaselineState unbinds 2D textures only. Leaves unit 0 active.
+class SkyCubeBinding {
+ public:
+  explicit SkyCubeBinding(GLuint cube) : bound_(cube != 0) {
+    if (bound_) bind(cube);
+  }
+  ~SkyCubeBinding() {
+    if (bound_) bind(0);
+  }
+  SkyCubeBinding(const SkyCubeBinding&) = delete;
+  SkyCubeBinding& operator=(const SkyCubeBinding&) = delete;
+
+ private:
+  static void bind(GLuint cube) {
+    glActiveTexture(GL_TEXTURE0 + TextureUnits::kSky);
+    glBindTexture(GL_TEXTURE_CUBE_MAP, cube);
+    glActiveTexture(GL_TEXTURE0);
+  }
+  bool bound_;
+};
+
 LightingQuality qualityOf(QualityPreset preset) {
   switch (preset) {
     case QualityPreset::Low: return LightingQuality::Low;
@@ -238,7 +261,8 @@ ProgramSpec LightingEffect::spec(const Form& shown, MaterialKind kind, VertexKin
                  {"LIGHTING_QUALITY", std::to_string(static_cast<int>(form.quality))},
                  {"MAX_PUNCTUAL_LIGHTS", std::to_string(fullscreen ? 0 : lightsPerDraw)},
                  // The deferred forms' view direction is the far-plane ray's.
-                 {"FAR_RAY", fullscreen && !form.counting ? "1" : "0"}}};
+                 {"FAR_RAY", fullscreen && !form.counting ? "1" : "0"},
+                 {"ENVIRONMENT_RAY", fullscreen && !form.counting ? "1" : "0"}}};
   for (auto& define : GpuEnvironment::shaderDefines(layout, form.filteredFrom)) s.defines.push_back(define);
   if (layout == EnvironmentLayout::MipChain && !form.counting) s.extensions.push_back("GL_EXT_shader_texture_lod");
   for (auto& define : kind.defines()) s.defines.push_back(define);
@@ -478,6 +502,8 @@ void LightingEffect::render(const PassContext& context, Form form) const {
     };
     const bool fullscreen = f.deferred || f.background;
     optional("u_viewToEnvironment", viewToEnvironment);  // an unlit material reads no light (KHR_materials_unlit)
+    optional("u_rayToEnvironment", viewToEnvironment);   // the full-screen forms' vertex stage (ENVIRONMENT_RAY)
+    optional("u_sky", TextureUnits::kSky);
     optional("u_environmentIntensity", settings.environmentIntensity);
     optional("u_environment", kEnvironmentUnit);
     optional("u_environmentFiltered", kEnvironmentFilteredUnit);
@@ -510,6 +536,7 @@ void LightingEffect::render(const PassContext& context, Form form) const {
     glActiveTexture(GL_TEXTURE0 + kEnvironmentUnit);
     glBindTexture(GL_TEXTURE_2D, environment.texture());
   }
+  const SkyCubeBinding sky(form.counting ? 0 : environment.skyTexture());
   // The background: the environment where the depth is still 1 (nothing drawn), a full-screen triangle on the far
   // plane tested LEQUAL against it, writing no depth.
   auto drawBackground = [&] {
