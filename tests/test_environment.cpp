@@ -404,7 +404,9 @@ TEST(Environment, TheSkyCubeMatchesItsMirrorAndLevelZero) {
   ASSERT_NE(half.skyTexture(), 0u);
   // Each texel centre's direction finds that texel (the mirror's face table is GL's, as the faces were made).
   for (int face = 0; face < 6; ++face)
-    for (glm::ivec2 texel : {glm::ivec2(0, 0), glm::ivec2(17, 200), glm::ivec2(255, 3), glm::ivec2(128, 255)}) {
+    for (glm::ivec2 texel : {glm::ivec2(0, 0), glm::ivec2(17, kEnvironmentSkyFace - 50),
+                             glm::ivec2(kEnvironmentSkyFace - 1, 3),
+                             glm::ivec2(kEnvironmentSkyFace / 2, kEnvironmentSkyFace - 1)}) {
       const glm::vec3 d = cubeFaceDirection(face, (glm::vec2(texel) + 0.5f) / float(kEnvironmentSkyFace));
       EXPECT_EQ(skyCubeSample(faces, d),
                 faces[size_t(face)][size_t(texel.y) * kEnvironmentSkyFace + size_t(texel.x)]) << face;

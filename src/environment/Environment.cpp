@@ -593,8 +593,8 @@ glm::vec3 cubeFaceDirection(int face, const glm::vec2& st) {
 std::array<std::vector<glm::vec3>, 6> skyCubeFaces(const PrefilteredEnvironment& specular) {
   const TimedScope timed("sky cube faces");
   constexpr int n = kEnvironmentSkyFace;
-  // sample(d, 0, HalfFloatAtlas) per texel, with level 0 rounded to half floats once, not at each of the 393,216
-  // lookups (natively 56 -> 32 ms; the page's start-up: docs/benchmarks.md).
+  // sample(d, 0, HalfFloatAtlas) per texel, with level 0 rounded to half floats once, not at each of the 221,184
+  // lookups (natively 31 -> 18 ms; the page's start-up: docs/lighting.md).
   const EnvironmentImage& level = specular.levels[0];
   std::vector<glm::vec3> rounded;
   rounded.reserve(level.texels.size());

@@ -220,9 +220,9 @@ glm::vec3 ambientLightMirror(const ShIrradiance& sh, const PrefilteredEnvironmen
 // along the eye's ray as the rasteriser interpolates it, with no normalisation, atan, acos or atlas addressing at
 // each pixel (docs/benchmarks.md: the sky in the bands). Faces in GL's order (+x, -x, +y, -y, +z, -z), rows from
 // t = 0; each texel the equirectangular level 0 as the half-float atlas filters it (PrefilteredEnvironment::sample),
-// at the texel centre's direction, rounded to half floats. 256 texels to a face: 0.0078 rad at a face's centre, finer
-// than level 0's 0.0123, so the resampling blurs the sky by less than a texel of level 0.
-constexpr int kEnvironmentSkyFace = 256;
+// at the texel centre's direction, rounded to half floats (RGBA, 1.8 MB). 192 texels to a face: 0.0104 rad at a
+// face's centre, finer than level 0's 0.0123, so the resampling blurs the sky by less than a texel of level 0.
+constexpr int kEnvironmentSkyFace = 192;
 // The direction of GL's cube-map coordinates (s, t) in [0, 1]^2 on `face` (OpenGL ES 2.0, sec. 3.7.5), not unit.
 glm::vec3 cubeFaceDirection(int face, const glm::vec2& st);
 // The faces' texels, kEnvironmentSkyFace^2 each.
