@@ -262,7 +262,8 @@ TEST(Bloom, ASingleBrightPixelSpreadsIntoASymmetricFallingGlowCarryingTheStatedE
   EXPECT_GT(ring[100] / count[100], 0.0) << "the glow reaches 100 pixels";
 }
 
-// The chain against its CPU mirror on a random HDR frame (the filters reaching past its edges clamp there): with radius 0 the glow is level 1 alone, so the frame plus the tent of the 13-tap filter of the thresholded frame
+// The chain against its CPU mirror on a random HDR frame (the filters reaching past its edges clamp there): with
+// radius 0 the glow is level 1 alone, so the frame plus the tent of the 13-tap filter of the thresholded frame
 // (bloomDownsampleWeight, bloomThresholdScale, bloomUpsampleWeight, texels clamped to the edges). The prefilter runs
 // in two passes (2 x 2 blocks on two grids, then 13 of them: bloom.frag) and must give the 13 taps' result. (An even
 // size: on an odd one the blocks leave the frame's last column and row to the clamp at the edge, where the 13 taps
@@ -312,8 +313,9 @@ TEST(Bloom, TheChainWithRadiusZeroIsTheTentOfTheThirteenTapsOfTheThresholdedFram
         largestGlow = std::max(largestGlow, double(glow[ch]));
       }
     }
-  std::printf("%d x %d, radius 0: largest glow %.3f; the chain against its mirror: worst %.5f of the pixel's largest channel\n", width,
-              height, largestGlow, worst);
+  std::printf("%d x %d, radius 0: largest glow %.3f; the chain against its mirror: worst %.5f of the pixel's largest "
+              "channel\n",
+              width, height, largestGlow, worst);
   EXPECT_GT(largestGlow, 1.0) << "the glow is large enough to show an error";
   // Five RGB9E5 roundings (half a step of a 9-bit mantissa, at most 1/512 of the largest channel, each) between the
   // input and the output.

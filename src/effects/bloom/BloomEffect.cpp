@@ -151,8 +151,9 @@ EffectInfo BloomEffect::info() {
   }
   info.passes.push_back(tent(0));
   info.passes.push_back("bloom");
-  info.targets.push_back({kBlocksTarget, std::string("the thresholded frame's 2 x 2 blocks on the even grid beside those "
-                                                    "on the odd grid (the prefilter's first half): ") + kLevelEncoding,
+  info.targets.push_back({kBlocksTarget,
+                          std::string("the thresholded frame's 2 x 2 blocks on the even grid beside those on the odd "
+                                      "grid (the prefilter's first half): ") + kLevelEncoding,
                           GL_NEAREST, {}});
   for (int k = 1; k <= kMaxLevels; ++k) {
     info.targets.push_back({level(k),
@@ -229,7 +230,8 @@ void BloomEffect::plan(FramePlanner& planner) {
   for (int k = levels - 1; k >= 0; --k) {
     const std::string coarser = k + 1 == levels ? level(levels) : up(k + 1);
     add(tent(k), {coarser}, tent(k), tentSize(k),
-        [this, coarser](PassContext& context) { tentAlongX(resources_, context.texture(coarser)); }, {spec(kTentX).name});
+        [this, coarser](PassContext& context) { tentAlongX(resources_, context.texture(coarser)); },
+        {spec(kTentX).name});
     if (k == 0) break;
     add(up(k), {tent(k), level(k)}, up(k), levelSize(k),
         [this, bloom, k](PassContext& context) {
@@ -238,8 +240,9 @@ void BloomEffect::plan(FramePlanner& planner) {
         {spec(kUp).name});
   }
   // The frame with its glow, and the stages fused after it (the tone curve, ...).
-  planner.add(fullscreenStageHead(resources_, "bloom", spec(kComposite), {{"u_source", tent(0)}, {"u_level", "scene-color"}},
-                                  {"scene-color"}, ColorSpace::Hdr, kCompositeUniformVectors,
+  planner.add(fullscreenStageHead(resources_, "bloom", spec(kComposite),
+                                  {{"u_source", tent(0)}, {"u_level", "scene-color"}}, {"scene-color"},
+                                  ColorSpace::Hdr, kCompositeUniformVectors,
                                   [bloom](FullscreenDraw& draw, const PassContext& context) {
                                     draw.set("u_sourceSize", glm::vec2(context.size(tent(0))));
                                     draw.set("u_intensity", bloom(context).intensity);
