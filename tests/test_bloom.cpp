@@ -298,12 +298,14 @@ TEST(Bloom, TheChainWithRadiusZeroIsTheTentOfTheThirteenTapsOfTheThresholdedFram
   double worst = 0.0, largestGlow = 0.0;
   for (int y = 0; y < height; ++y)
     for (int x = 0; x < width; ++x) {
-      const float px = (x + 0.5f) * w1 / width - 0.5f, py = (y + 0.5f) * h1 / height - 0.5f;
-      const int ix = static_cast<int>(std::floor(px)), iy = static_cast<int>(std::floor(py));
+      const float px = (float(x) + 0.5f) * float(w1) / float(width) - 0.5f;
+      const float py = (float(y) + 0.5f) * float(h1) / float(height) - 0.5f;
+      const float fx = std::floor(px), fy = std::floor(py);
+      const int ix = static_cast<int>(fx), iy = static_cast<int>(fy);
       glm::vec3 glow(0.0f);
       for (int l = 0; l < 4; ++l)
         for (int k = 0; k < 4; ++k)
-          glow += bloomUpsampleWeight(k, px - ix) * bloomUpsampleWeight(l, py - iy) *
+          glow += bloomUpsampleWeight(k, px - fx) * bloomUpsampleWeight(l, py - fy) *
                   level1.at(clampTo(ix - 1 + k, w1), clampTo(iy - 1 + l, h1));
       // RGB9E5 shares one exponent between the channels: each is as exact as a step of the largest.
       const glm::vec3 expected = input.at(x, y) + glow;

@@ -28,10 +28,10 @@ std::string TargetSize::name() const {
     case Kind::Tiles: return "tiles of " + std::to_string(tile);
     case Kind::TileColumns: return "tile columns of " + std::to_string(tile);
     case Kind::Scaled: {
-      const std::string width = (timesX == 1 ? "" : std::to_string(timesX) + " x ") + "1/" +
-                                std::to_string(1 << shiftX) + (plusX ? " + " + std::to_string(plusX) : "");
-      const std::string height = "1/" + std::to_string(1 << shiftY) + (plusY ? " + " + std::to_string(plusY) : "");
-      return (timesX == 1 && !plusX ? width : "(" + width + ")") + " x " + (plusY ? "(" + height + ")" : height);
+      const std::string across = (timesX == 1 ? "" : std::to_string(timesX) + " x ") + "1/" +
+                                 std::to_string(1 << shiftX) + (plusX ? " + " + std::to_string(plusX) : "");
+      const std::string down = "1/" + std::to_string(1 << shiftY) + (plusY ? " + " + std::to_string(plusY) : "");
+      return (timesX == 1 && !plusX ? across : "(" + across + ")") + " x " + (plusY ? "(" + down + ")" : down);
     }
     case Kind::Fixed: return std::to_string(tile) + "x" + std::to_string(height);
   }

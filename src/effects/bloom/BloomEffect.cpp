@@ -129,7 +129,7 @@ void tentAlongX(const EffectResources& r, const gl::Texture2D& coarser) {
   draw.texture("u_source", coarser).set("u_sourceSize", glm::vec2(coarser.width(), coarser.height()));
   draw.draw();
 }
-// up k = mix(level k, tent(up k+1), radius) (stage 3), or the frame plus intensity x tent(up 1) (stage 4).
+// up k = mix(level k, tent(up k+1), radius) (stage 4), or the frame plus intensity x tent(up 1) (stage 5).
 void upOrComposite(const EffectResources& r, bool composite, const gl::Texture2D& half, const gl::Texture2D& level,
                    const BloomSettings& settings) {
   FullscreenDraw draw(r.program(composite ? compositeSpec() : spec(kUp)), r.triangle);
