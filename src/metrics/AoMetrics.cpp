@@ -79,23 +79,28 @@ std::vector<std::uint8_t> discontinuityBand(const GreyImage& depth, const Discon
       if (y + 1 < h) mark(at(x, y), at(x, y + 1));
     }
   // Within haloWidth (a square neighbourhood) of an edge pixel; the side is that of the nearest edge pixel (the far
-  // side where a far-side edge pixel is at least as near as any near-side one).
+  // side where a far-side edge pixel is at least as near as any near-side one). The distance is the square
+  // neighbourhood's (Chebyshev), k + 1 for none, found separably per side: the nearest edge pixel along each row,
+  // then over the rows within k, max(that, the rows' distance).
   const int k = std::max(0, options.haloWidth);
+  auto nearest = [&](std::uint8_t side) {
+    std::vector<int> rows(edge.size(), k + 1), distance(edge.size(), k + 1);
+    for (int y = 0; y < h; ++y)
+      for (int x = 0; x < w; ++x)
+        for (int sx = std::max(0, x - k); sx <= std::min(w - 1, x + k); ++sx)
+          if (edge[at(sx, y)] & side) rows[at(x, y)] = std::min(rows[at(x, y)], std::abs(sx - x));
+    for (int y = 0; y < h; ++y)
+      for (int x = 0; x < w; ++x)
+        for (int sy = std::max(0, y - k); sy <= std::min(h - 1, y + k); ++sy)
+          distance[at(x, y)] = std::min(distance[at(x, y)], std::max(rows[at(x, sy)], std::abs(sy - y)));
+    return distance;
+  };
+  const std::vector<int> nearestNear = nearest(kNearEdge), nearestFar = nearest(kFarEdge);
   std::vector<std::uint8_t> band(edge.size(), 0);
-  for (int y = 0; y < h; ++y)
-    for (int x = 0; x < w; ++x) {
-      int nearestNear = k + 1, nearestFar = k + 1;
-      for (int sy = std::max(0, y - k); sy <= std::min(h - 1, y + k); ++sy)
-        for (int sx = std::max(0, x - k); sx <= std::min(w - 1, x + k); ++sx) {
-          const std::uint8_t e = edge[at(sx, sy)];
-          if (!e) continue;
-          const int distance = std::max(std::abs(sx - x), std::abs(sy - y));
-          if (e & kNearEdge) nearestNear = std::min(nearestNear, distance);
-          if (e & kFarEdge) nearestFar = std::min(nearestFar, distance);
-        }
-      if (nearestFar <= k && nearestFar <= nearestNear) band[at(x, y)] = kFarSide;
-      else if (nearestNear <= k) band[at(x, y)] = kNearSide;
-    }
+  for (size_t i = 0; i < band.size(); ++i) {
+    if (nearestFar[i] <= k && nearestFar[i] <= nearestNear[i]) band[i] = kFarSide;
+    else if (nearestNear[i] <= k) band[i] = kNearSide;
+  }
   return band;
 }
 
