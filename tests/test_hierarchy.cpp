@@ -102,7 +102,8 @@ TEST(DepthHierarchy, ChangesTheBlurredAoLittle) {
   for (const Case& c : cases) {
     AoSettings with, without;
     with.estimator = without.estimator = c.estimator;
-    without.depthHierarchy = false;
+    with.depthHierarchy = DepthHierarchy::On;
+    without.depthHierarchy = DepthHierarchy::Off;
     with.radius = without.radius = c.radius;
     const Difference d =
         aoDifference(test::render(renderer, camera, with, View::Ao), test::render(renderer, camera, without, View::Ao));
@@ -118,6 +119,7 @@ TEST(DepthHierarchy, ChangesTheBlurredAoLittle) {
 TEST(DepthHierarchy, EveryStorageGivesTheSameAo) {
   const Camera camera = builtinSceneCamera(320, 180);
   AoSettings settings;
+  settings.depthHierarchy = DepthHierarchy::On;
   settings.radius = 3.0f;  // far taps reach levels 3 to 5
   std::vector<std::pair<DepthHierarchyPass::Storage, test::RenderedImage>> images;
   for (DepthHierarchyPass::Storage storage : availableStorages()) {

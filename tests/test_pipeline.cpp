@@ -483,7 +483,7 @@ TEST(Pipeline, DebugViewsShowTheirTargetsAsTheyAre) {
   std::vector<std::string> ran;
   for (const PlannedPass& pass : renderer.lastPlan().passes())
     if (pass.live) ran.push_back(pass.decl.name);
-  EXPECT_EQ(ran, (std::vector<std::string>{"gbuffer", "hierarchy", "sao", "blur-h", "blur-v", "view"}));
+  EXPECT_EQ(ran, (std::vector<std::string>{"gbuffer", "sao", "blur-h", "blur-v", "view"}));
   // The HDR colour's view is its decoded value, clamped.
   const test::RenderedImage hdr =
       test::render(renderer, camera, settings, View{"scene-color"}, test::retaining({"scene-color"}));

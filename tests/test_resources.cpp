@@ -114,6 +114,7 @@ TEST(Resources, AGlErrorRaisedInAPassNamesThatPass) {
     AoSettings settings;
     settings.halfResolution = pass == "upsample";  // the upsampler runs only for half-resolution AO
     settings.temporal = pass == "ao-temporal";
+    if (pass == "hierarchy") settings.depthHierarchy = DepthHierarchy::On;  // auto builds none with one layer
     // The frame's own passes run for a debug view, the shading count's and the base colour's for theirs, the present
     // pass when the final image is also kept after the frame, the tone-mapping pass when something else reads the
     // HDR colour (otherwise the lighting does its work).

@@ -313,7 +313,7 @@ TEST(Sao, ShaderMatchesTheCpuMirror) {
       settings.falloff = falloff;
       settings.samples = 16;
       settings.spiralTurns = SaoKernel::bestSpiralTurns(16);
-      settings.depthHierarchy = hierarchy;
+      settings.depthHierarchy = hierarchy ? DepthHierarchy::On : DepthHierarchy::Off;
       settings.radius = 2.0f;  // far taps reach hierarchy levels 1 and 2 at this size
       const EstimatorKnots knots = settings.estimatorKnots();
       const auto gpu = test::render(renderer, camera, settings, View::AoRaw, test::retaining({"gbuffer"}));

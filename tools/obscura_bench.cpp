@@ -229,7 +229,7 @@ class Bench {
         const std::string presetName = configurations[c].get("preset");
         csv_ << section << "," << scene.name << "," << width << "," << height << ","
              << (presetName.empty() ? "custom" : presetName) << ","
-             << settings.samples << "," << settings.radius << "," << (settings.depthHierarchy ? 1 : 0) << ","
+             << settings.samples << "," << settings.radius << "," << (settings.usesDepthHierarchy() ? 1 : 0) << ","
              << (settings.halfResolution ? 1 : 0) << "," << pass << "," << times[pass] << "\n";
       }
       results.push_back(times);
@@ -267,7 +267,7 @@ class Bench {
     }
     const double sao = saoTimer.medianMs("sao"), floorMs = floorTimer.medianMs("sao");
     csv_ << "floor," << scene.name << "," << width << "," << height << ",medium," << settings.samples << ","
-         << settings.radius << "," << (settings.depthHierarchy ? 1 : 0) << ",0,sao," << sao << "\n";
+         << settings.radius << "," << (settings.usesDepthHierarchy() ? 1 : 0) << ",0,sao," << sao << "\n";
     csv_ << "floor," << scene.name << "," << width << "," << height << ",medium," << settings.samples << ","
          << settings.radius << ",0,0,fetch-floor," << floorMs << "\n";
     return {sao, floorMs};
@@ -438,7 +438,7 @@ void aoLayersSection(Bench& bench, const std::vector<BenchScene>& scenes,
   for (const Configuration& c : configurations) {
     RenderSettings s;
     s.ao().layers = c.layers;
-    s.ao().depthHierarchy = c.hierarchy;
+    s.ao().depthHierarchy = c.hierarchy ? DepthHierarchy::On : DepthHierarchy::Off;
     s.set("gbuffer.normals", c.normals);
     settings.push_back(s);
   }
@@ -1555,8 +1555,8 @@ int main(int argc, char** argv) {
     for (const BenchScene& scene : scenes)
       sceneRadii += (sceneRadii.empty() ? "" : ", ") + scene.name + " " + formatShortest(defaultAoRadius(scene.scene));
     std::printf("\n1. Per-pass ms, default settings (every effect on; AO %d samples, r = each scene's default: %s; "
-                "hierarchy on)\n",
-                defaults.samples, sceneRadii.c_str());
+                "hierarchy %s)\n",
+                defaults.samples, sceneRadii.c_str(), defaults.usesDepthHierarchy() ? "on" : "off");
     printPassHeader();
     const std::vector<std::pair<int, int>> sizes =
         options.quick ? std::vector<std::pair<int, int>>{{640, 360}}
@@ -1588,7 +1588,7 @@ int main(int argc, char** argv) {
       for (bool hierarchy : {true, false}) {
         AoSettings settings = saoDefaults;
         settings.radius = radius;
-        settings.depthHierarchy = hierarchy;
+        settings.depthHierarchy = hierarchy ? DepthHierarchy::On : DepthHierarchy::Off;
         sweepSettings.push_back(settings);
       }
     }

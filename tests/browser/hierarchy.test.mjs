@@ -11,8 +11,8 @@ let page;
 describe('depth hierarchy storages on WebGL 1', () => {
   before(async () => {
     session = await startBrowser();
-    // A 3 m radius sends far taps to levels 3 to 5.
-    page = await openPage(await session.newContext(), `${session.baseUrl}?view=ao-raw&radius=3`);
+    // A 3 m radius sends far taps to levels 3 to 5; with one layer the hierarchy is built only when asked for.
+    page = await openPage(await session.newContext(), `${session.baseUrl}?view=ao-raw&radius=3&ao.hierarchy=on`);
   });
   after(async () => {
     if (page) assert.deepEqual(page.errors, []);

@@ -177,7 +177,7 @@ describe('the npm package', () => {
     assert.ok(own.isTexture, 'ambientOcclusion returns a WebGLTexture');
     assert.ok(own.glsl);
     assert.equal(own.error, 0, 'no GL error on the shared context');
-    assert.deepEqual(own.stats.passesRun.slice(0, 2), ['gbuffer', 'hierarchy']);
+    assert.deepEqual(own.stats.passesRun.slice(0, 2), ['gbuffer', 'sao']);
     const [contactAo, openAo] = own.withAo, [contactLit, openLit] = own.withoutAo;
     t.diagnostic(`own geometry (R+G+B): contact ${contactAo} with AO, ${contactLit} without; open floor ${openAo}, ` +
                  `${openLit}; passes ${own.stats.passesRun.join(' ')}`);

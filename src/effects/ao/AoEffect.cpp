@@ -73,7 +73,7 @@ void AoEffect::plan(FramePlanner& planner) {
   const int aoScale = half ? 2 : 1;
   auto ao = [](const PassContext& context) -> const AoSettings& { return context.settings().of<AoSettings>(); };
 
-  const bool depthHierarchy = settings.depthHierarchy;
+  const bool depthHierarchy = settings.usesDepthHierarchy();
   // ao.layers 2: the second depth layer, for an estimator that reads it (or its view).
   const bool twoLayers = settings.layersRead() == 2 || planner.viewTarget() == "second-layer";
   if (twoLayers) {

@@ -65,7 +65,11 @@ const std::vector<Parameter<AoSettings>>& AoSettings::parameters() {
                                             {{"sao2012", Falloff::Sao2012}, {"alchemy2011", Falloff::Alchemy2011}}));
     t.push_back(numberParameter<S>("max-screen-radius", 0.01, 1, "fraction of height", "clamp of the projected radius",
                                    &S::maxScreenRadius));
-    t.push_back(switchParameter<S>("hierarchy", "depth hierarchy for far taps", &S::depthHierarchy));
+    Parameter<S> hierarchy = choiceParameter<S, DepthHierarchy>(
+        "hierarchy", "depth hierarchy for far taps (auto: with two layers, where it folds them into one fetch)",
+        &S::depthHierarchy, {{"auto", DepthHierarchy::Auto}, {"on", DepthHierarchy::On}, {"off", DepthHierarchy::Off}});
+    hierarchy.effective = [](const S& s) { return std::string(s.usesDepthHierarchy() ? "on" : "off"); };
+    t.push_back(std::move(hierarchy));
     t.push_back(switchParameter<S>("half-res", "AO at half resolution, upsampled depth-aware", &S::halfResolution));
     t.push_back(switchParameter<S>("blur", "bilateral blur", &S::blur).primary());
     t.push_back(integerParameter<S>("blur-radius", 0, 8, "taps each side", "", "blur radius; 0 turns the blur off",

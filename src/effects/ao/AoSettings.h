@@ -26,6 +26,9 @@ const char* estimatorName(AoEstimator estimator);  // "sao", "gtao", "hbao", "vo
 AoEstimator parseEstimator(const std::string& name);  // throws InputError
 
 // Per-tap distance falloff of the Alchemy estimator family (see SaoKernel.h for the equations).
+// Whether the AO builds a depth hierarchy (AoSettings::depthHierarchy).
+enum class DepthHierarchy { Auto, On, Off };
+
 enum class Falloff {
   Alchemy2011,  // McGuire et al., HPG 2011: a hard cut at the radius
   Sao2012,      // McGuire, Mara, Luebke, HPG 2012 reference code: smooth (r^2 - v.v)^3 falloff
@@ -125,7 +128,13 @@ struct AoSettings : ParameterAccess<AoSettings> {
   float layerSeparation = 0.01f;
 
   // --- Depth hierarchy and resolution ---
-  bool depthHierarchy = true;  // SAO's depth MIP: far taps read coarser levels (cost independent of radius)
+  // SAO's depth MIP: far taps read coarser levels, so neighbouring pixels' far taps share texels. Auto builds it
+  // only where it pays: with two layers, whose depths its texels fold together (one fetch a tap instead of two). With
+  // one layer it costs more than it saves on every device measured (llvmpipe, SwiftShader, an H100: the estimator's
+  // level arithmetic against a cache that holds the frame; docs/benchmarks.md, sections 2 and "The depth hierarchy
+  // by default"), and the AO is the same within 0.0004 MAE; on a GPU whose caches are small next to the G-buffer
+  // `on` may pay (the SAO paper's case).
+  DepthHierarchy depthHierarchy = DepthHierarchy::Auto;
   bool halfResolution = false; // AO at half size, upsampled depth-aware to full size
 
   // --- Bilateral blur ---
@@ -161,6 +170,10 @@ struct AoSettings : ParameterAccess<AoSettings> {
   float blurDepthSigmaDistance() const { return blurDepthSigma * radius; }
   // The depth layers the estimator reads: `layers`, or 1 for an estimator that reads one alone.
   int layersRead() const { return estimatorReadsSecondLayer(estimator) ? layers : 1; }
+  // Whether the passes build and read the depth hierarchy (depthHierarchy, auto resolved).
+  bool usesDepthHierarchy() const {
+    return depthHierarchy == DepthHierarchy::On || (depthHierarchy == DepthHierarchy::Auto && layersRead() == 2);
+  }
   // Throws InputError if a field is out of range (for settings built in code).
   void validate() const;
 };
