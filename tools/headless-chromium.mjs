@@ -59,21 +59,28 @@ export async function openDemoPage(browser, url, width, height) {
 // tools/browser-bench/gl-calls.mjs use it.
 export function countWebGlCalls() {
   window.glCalls = {};
-  const prototypes = [WebGLRenderingContext.prototype];
-  // Not the timer queries' extension: the page's stats, not the renderer's, and left out of the figures before.
-  if (typeof window.OES_vertex_array_object === 'function') prototypes.push(window.OES_vertex_array_object.prototype);
-  for (const proto of prototypes) {
+  const count = (proto, queried) => {
     for (const name of Object.getOwnPropertyNames(proto)) {
       const method = Object.getOwnPropertyDescriptor(proto, name).value;
       if (typeof method !== 'function' || name === 'constructor') continue;
-      const queried = name === 'getParameter' || name === 'getExtension';
+      const byArgument = queried.includes(name);
       proto[name] = function (...args) {
-        const key = queried ? `${name}(0x${Number(args[0]).toString(16)})` : name;
+        const key = byArgument ? `${name}(0x${Number(args[0]).toString(16)})` : name;
         window.glCalls[key] = (window.glCalls[key] ?? 0) + 1;
-        return method.apply(this, args);
+        const result = method.apply(this, args);
+        // The extension objects have no interface object of their own to patch up front: their prototype is
+        // patched when the page first asks for them. Not the timer queries' extension: the page's stats, not the
+        // renderer's, and left out of the figures before.
+        if (name === 'getExtension' && args[0] === 'OES_vertex_array_object' && result &&
+            !Object.getPrototypeOf(result).counted) {
+          count(Object.getPrototypeOf(result), []);
+          Object.getPrototypeOf(result).counted = true;
+        }
+        return result;
       };
     }
-  }
+  };
+  count(WebGLRenderingContext.prototype, ['getParameter', 'getExtension']);
 }
 
 // Runs in the page (page.evaluate(applyBenchmarkState, state)): every parameter at its default (the presets follow

@@ -143,7 +143,7 @@ class WebApp {
         }
     }
     const gl::LiveObjects& live = gl::liveObjects();
-    const ResolutionSettings& resolution = std::as_const(viewer_.state().settings).of<ResolutionSettings>();
+    const ResolutionSettings& resolution = settings().of<ResolutionSettings>();
     const DynamicResolution& dynamic = viewer_.dynamicResolution();
     Json render = {{"scale", viewer_.renderScale()},
                    {"pixelRatio", canvas_.pixelRatio()},
@@ -246,12 +246,12 @@ class WebApp {
     if (viewer_.playing()) frameWanted_ = true;  // a playing timeline changes every frame by itself
     // The temporal AO accumulates over frames: a still view keeps drawing until its history holds
     // ao.temporal-frames frames (the last drawn frame's history held historyFrames + 1).
-    const AoSettings& ao = std::as_const(viewer_.state().settings).ao();
+    const AoSettings& ao = settings().ao();
     if (const Renderer* renderer = viewer_.renderer())
       if (ao.enabled && ao.temporal && renderer->lastFrame().historyFrames + 1 < ao.temporalFrames) frameWanted_ = true;
     // Dynamic resolution starts at its smallest scale and climbs while frames show room (DynamicResolution::refining):
     // a still view draws on until it is there, within a budget of frames per change (timer results may never come).
-    if (std::as_const(viewer_.state().settings).of<ResolutionSettings>().dynamic) {
+    if (settings().of<ResolutionSettings>().dynamic) {
       if (viewer_.dynamicResolution().scale() != lastScale_) frameWanted_ = true;  // it chose another scale
       if (viewer_.dynamicResolution().refining() && refineFrames_ > 0) {
         frameWanted_ = true;
@@ -273,7 +273,7 @@ class WebApp {
     // Without timer queries, dynamic resolution measures the interval from the last frame to this one, when the two
     // were drawn back to back (the last frame's cost, drawing and presenting).
     if (!timer && lastFrameTime_ > 0.0) viewer_.frameMeasured(timeMs - lastFrameTime_, lastScale_);
-    if (timer) timer->beginFrame(std::as_const(viewer_.state().settings).of<ResolutionSettings>().dynamic ? nextScale() : 1.0);
+    if (timer) timer->beginFrame(settings().of<ResolutionSettings>().dynamic ? nextScale() : 1.0);
     const double start = emscripten_get_now();
     const bool drawn = draw(timer);
     lastScale_ = viewer_.renderScale();
@@ -302,10 +302,14 @@ class WebApp {
     ++frames_;
   }
 
+  // The settings, read through a const view: a non-const access counts as a change (FrameSettings::revision), after
+  // which the Renderer validates and keys them again.
+  const RenderSettings& settings() const { return std::as_const(viewer_).state().settings; }
+
   // The drawing buffer fitted to the canvas's CSS size, at the pixel ratio resolution.max-pixel-ratio allows.
   bool fit(int* width, int* height) {
     return canvas_.fitToDisplay(viewer_.caps().maxRenderSize(),
-                                std::as_const(viewer_.state().settings).of<ResolutionSettings>().maxPixelRatio, width, height);
+                                settings().of<ResolutionSettings>().maxPixelRatio, width, height);
   }
   // The scale the next frame draws at, with dynamic resolution on.
   double nextScale() const { return viewer_.dynamicResolution().scale(); }

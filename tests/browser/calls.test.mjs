@@ -2,7 +2,8 @@
 // JavaScript and through WebGL's validation, whatever the driver then does with it: the host time of a frame is
 // largely its calls. The G-buffer pass sets face culling, the winding, a material's textures and its uniforms only
 // where they differ from the draw before (gpu/GpuScene.cpp), and a uniform the program does not have costs no call
-// (gl::Program::set). The bound holds the default frame to that: it made 1006 calls before, 583 after.
+// (gl::Program::set), and where OES_vertex_array_object exists a piece's streams are bound with its object. The bound
+// holds the default frame to that: it made 1006 calls before, 583 after, 450 with the objects (589 without).
 import assert from 'node:assert/strict';
 import { after, before, describe, test } from 'node:test';
 import { countWebGlCalls } from '../../tools/headless-chromium.mjs';
@@ -24,7 +25,7 @@ describe('WebGL calls per frame', () => {
     await session?.close();
   });
 
-  test('the default frame makes at most 640 calls', { timeout: 120000 }, async () => {
+  test('the default frame makes at most 500 calls', { timeout: 120000 }, async () => {
     const { frames, calls } = await page.evaluate(() => {
       const o = window.obscura;
       o.pause();
@@ -39,7 +40,7 @@ describe('WebGL calls per frame', () => {
     console.log(`${total} WebGL calls per frame: ` + perFrame.map(([name, n]) => `${name} ${n}`).join(', '));
     const draws = (calls.drawElements ?? 0) / frames;
     assert.ok(draws >= 20, `the built-in scene's G-buffer pass should draw its pieces, drew ${draws}`);
-    assert.ok(total <= 640, `${total} WebGL calls per frame (at most 640)`);
+    assert.ok(total <= 500, `${total} WebGL calls per frame (at most 500)`);
     // State the draws share is set once per run of draws that share it, not once per draw.
     const shared = ['frontFace', 'enable', 'disable'].reduce((sum, name) => sum + (calls[name] ?? 0) / frames, 0);
     assert.ok(shared <= draws, `${shared} frontFace/enable/disable calls for ${draws} draws`);
