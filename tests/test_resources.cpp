@@ -1,6 +1,10 @@
 // Resources and limits: GL objects return to their baseline after scene reloads, every pass leaves the baseline GL
 // state, a GL error is caught and named, sizes from 1x1 to the context's limit, 16-bit index splitting, and a
 // context without fragment highp.
+#include <cstdio>
+#include <utility>
+#include <vector>
+
 #include <gtest/gtest.h>
 
 #include "TestSupport.h"
@@ -8,6 +12,7 @@
 #include "gl/GlObjects.h"
 #include "gl/PipelineState.h"
 #include "gl/RenderTarget.h"
+#include "renderer/EffectTable.h"
 #include "scene/BuiltinScene.h"
 #include "scene/GltfLoader.h"
 #include "scene/Primitives.h"
@@ -267,5 +272,63 @@ TEST(Limits, AContextWithoutFragmentHighpIsRefusedClearly) {
     FAIL() << "accepted a context without fragment highp";
   } catch (const GlError& e) {
     EXPECT_NE(std::string(e.what()).find("no highp float in fragment shaders"), std::string::npos) << e.what();
+  }
+}
+
+// Vertex array objects (OES_vertex_array_object; core on OSMesa's desktop context) are an extension: the draws
+// without them stay, and both draw the same image, bit for bit, on scenes that take each of the draw's paths (rigid
+// pieces, the joint texture's skinning, GPU morph targets, which set their streams per draw beside pieces bound by
+// their objects, tangents and PBR textures), with every effect on too (the velocity pass, the AO's depth peel and the
+// forward lighting draw the scene as well). The Renderer checks after every pass that no object stays bound.
+TEST(Resources, VertexArrayObjectsDrawTheSameImageAsStreamsSetPerDraw) {
+  const bool available = test::context().caps().vertexArrayObject;
+  if (!available) std::printf("this context has no vertex array objects: both renderers set streams per draw\n");
+  struct Case {
+    const char* name;
+    Scene scene;
+    Camera camera;
+  };
+  std::vector<Case> cases;
+  cases.push_back({"builtin", makeBuiltinScene(), builtinSceneCamera(96, 64)});
+  const std::pair<const char*, std::string> files[] = {
+      {"pbr-samples", test::sourceDir() + "/assets/scenes/pbr-samples.glb"},
+      {"simple_skin", test::assimpModels() + "/simple_skin/simple_skin.gltf"},
+      {"AnimatedMorphCube",
+       test::assimpModels() + "/glTF-Sample-Models/AnimatedMorphCube-glTF/AnimatedMorphCube.gltf"}};
+  for (const auto& [name, file] : files) {
+    Scene scene = loadGltfFile(file);
+    const Camera camera = Camera::fit(scene.worldBounds(), 96, 64);
+    cases.push_back({name, std::move(scene), camera});
+  }
+  RendererOptions without;
+  without.allowVertexArrays = false;
+  for (const Case& c : cases) {
+    Renderer withObjects = test::makeRenderer(), withStreams = test::makeRenderer(without);
+    withObjects.setScene(c.scene);
+    withStreams.setScene(c.scene);
+    EXPECT_EQ(withObjects.gpuScene().usesVertexArrays(), available) << c.name;
+    EXPECT_FALSE(withStreams.gpuScene().usesVertexArrays()) << c.name;
+    RenderSettings every;
+    for (const EffectEntry& row : effectTable())
+      if (row.info.hasSwitch) every.set(row.info.name, "on");
+    for (const RenderSettings& settings : {RenderSettings{}, every}) {
+      for (double time : {0.25, 0.5}) {  // two frames: the second has a previous pose (motion, history)
+        FrameOptions options;
+        options.time = time;
+        const test::RenderedImage a = test::render(withObjects, c.camera, settings, View::Final, options);
+        const test::RenderedImage b = test::render(withStreams, c.camera, settings, View::Final, options);
+        EXPECT_EQ(test::worstByteDifference(a, b), 0) << c.name << " at " << time;
+        EXPECT_EQ(gl::baselineStateDifferences(), "") << c.name;
+        EXPECT_EQ(withStreams.gpuScene().lastDrawCounts().vertexArrays, 0) << c.name;
+      }
+    }
+    if (available) {
+      // The last draw call (the last geometry pass of the frame) bound objects for every piece but those morphed on
+      // the GPU or deformed on the CPU (the morphed cube's only piece).
+      test::render(withObjects, c.camera, RenderSettings{}, View::Final);
+      const GpuScene::Counts counts = withObjects.gpuScene().lastDrawCounts();
+      EXPECT_GT(counts.draws, 0) << c.name;
+      EXPECT_EQ(counts.vertexArrays, counts.draws - counts.gpuMorphed - counts.cpuDeformed) << c.name;
+    }
   }
 }

@@ -54,20 +54,33 @@ export async function openDemoPage(browser, url, width, height) {
 
 // An init script (browserContext.addInitScript(countWebGlCalls)) that counts every call of a WebGL 1 context's
 // methods by name into window.glCalls, which the page's code may reset; getParameter and getExtension by their
-// argument too ("getParameter(0x8fbb)"). tests/browser/calls.test.mjs and tools/browser-bench/gl-calls.mjs use it.
+// argument too ("getParameter(0x8fbb)"); and the calls of the extension objects whose methods the renderer calls
+// per frame (OES_vertex_array_object's bindVertexArrayOES, ...). tests/browser/calls.test.mjs and
+// tools/browser-bench/gl-calls.mjs use it.
 export function countWebGlCalls() {
   window.glCalls = {};
-  const proto = WebGLRenderingContext.prototype;
-  for (const name of Object.getOwnPropertyNames(proto)) {
-    const method = Object.getOwnPropertyDescriptor(proto, name).value;
-    if (typeof method !== 'function' || name === 'constructor') continue;
-    const queried = name === 'getParameter' || name === 'getExtension';
-    proto[name] = function (...args) {
-      const key = queried ? `${name}(0x${Number(args[0]).toString(16)})` : name;
-      window.glCalls[key] = (window.glCalls[key] ?? 0) + 1;
-      return method.apply(this, args);
-    };
-  }
+  const count = (proto, queried) => {
+    for (const name of Object.getOwnPropertyNames(proto)) {
+      const method = Object.getOwnPropertyDescriptor(proto, name).value;
+      if (typeof method !== 'function' || name === 'constructor') continue;
+      const byArgument = queried.includes(name);
+      proto[name] = function (...args) {
+        const key = byArgument ? `${name}(0x${Number(args[0]).toString(16)})` : name;
+        window.glCalls[key] = (window.glCalls[key] ?? 0) + 1;
+        const result = method.apply(this, args);
+        // The extension objects have no interface object of their own to patch up front: their prototype is
+        // patched when the page first asks for them. Not the timer queries' extension: the page's stats, not the
+        // renderer's, and left out of the figures before.
+        if (name === 'getExtension' && args[0] === 'OES_vertex_array_object' && result &&
+            !Object.getPrototypeOf(result).counted) {
+          count(Object.getPrototypeOf(result), []);
+          Object.getPrototypeOf(result).counted = true;
+        }
+        return result;
+      };
+    }
+  };
+  count(WebGLRenderingContext.prototype, ['getParameter', 'getExtension']);
 }
 
 // Runs in the page (page.evaluate(applyBenchmarkState, state)): every parameter at its default (the presets follow

@@ -192,6 +192,13 @@ export class Obscura extends EventTarget {
     this.changed();
     return used;
   }
+  // Allows (true, the default) or refuses vertex array objects for the scene's draws (OES_vertex_array_object: one
+  // call binds a piece's vertex streams). Returns whether the scene now draws with them; the image is the same.
+  setVertexArrays(allow) {
+    const used = this.text('obscura_set_vertex_arrays', ['number'], [allow ? 1 : 0]) === 'on';
+    this.changed();
+    return used;
+  }
   // Forces where the prefiltered environment's roughness levels live: 'halffloat' (half floats the hardware filters:
   // OES_texture_half_float_linear), 'mipchain' (RGB9E5 filtered by hand, read with EXT_shader_texture_lod), 'atlas'
   // (RGB9E5 without the extension) or 'auto' (the default: the first the context can take). Returns the layout now in

@@ -143,7 +143,7 @@ class WebApp {
         }
     }
     const gl::LiveObjects& live = gl::liveObjects();
-    const ResolutionSettings& resolution = viewer_.state().settings.of<ResolutionSettings>();
+    const ResolutionSettings& resolution = settings().of<ResolutionSettings>();
     const DynamicResolution& dynamic = viewer_.dynamicResolution();
     Json render = {{"scale", viewer_.renderScale()},
                    {"pixelRatio", canvas_.pixelRatio()},
@@ -246,12 +246,12 @@ class WebApp {
     if (viewer_.playing()) frameWanted_ = true;  // a playing timeline changes every frame by itself
     // The temporal AO accumulates over frames: a still view keeps drawing until its history holds
     // ao.temporal-frames frames (the last drawn frame's history held historyFrames + 1).
-    const AoSettings& ao = viewer_.state().settings.ao();
+    const AoSettings& ao = settings().ao();
     if (const Renderer* renderer = viewer_.renderer())
       if (ao.enabled && ao.temporal && renderer->lastFrame().historyFrames + 1 < ao.temporalFrames) frameWanted_ = true;
     // Dynamic resolution starts at its smallest scale and climbs while frames show room (DynamicResolution::refining):
     // a still view draws on until it is there, within a budget of frames per change (timer results may never come).
-    if (viewer_.state().settings.of<ResolutionSettings>().dynamic) {
+    if (settings().of<ResolutionSettings>().dynamic) {
       if (viewer_.dynamicResolution().scale() != lastScale_) frameWanted_ = true;  // it chose another scale
       if (viewer_.dynamicResolution().refining() && refineFrames_ > 0) {
         frameWanted_ = true;
@@ -273,7 +273,7 @@ class WebApp {
     // Without timer queries, dynamic resolution measures the interval from the last frame to this one, when the two
     // were drawn back to back (the last frame's cost, drawing and presenting).
     if (!timer && lastFrameTime_ > 0.0) viewer_.frameMeasured(timeMs - lastFrameTime_, lastScale_);
-    if (timer) timer->beginFrame(viewer_.state().settings.of<ResolutionSettings>().dynamic ? nextScale() : 1.0);
+    if (timer) timer->beginFrame(settings().of<ResolutionSettings>().dynamic ? nextScale() : 1.0);
     const double start = emscripten_get_now();
     const bool drawn = draw(timer);
     lastScale_ = viewer_.renderScale();
@@ -302,10 +302,14 @@ class WebApp {
     ++frames_;
   }
 
+  // The settings, read through a const view: a non-const access counts as a change (FrameSettings::revision), after
+  // which the Renderer validates and keys them again.
+  const RenderSettings& settings() const { return std::as_const(viewer_).state().settings; }
+
   // The drawing buffer fitted to the canvas's CSS size, at the pixel ratio resolution.max-pixel-ratio allows.
   bool fit(int* width, int* height) {
     return canvas_.fitToDisplay(viewer_.caps().maxRenderSize(),
-                                viewer_.state().settings.of<ResolutionSettings>().maxPixelRatio, width, height);
+                                settings().of<ResolutionSettings>().maxPixelRatio, width, height);
   }
   // The scale the next frame draws at, with dynamic resolution on.
   double nextScale() const { return viewer_.dynamicResolution().scale(); }
@@ -523,6 +527,23 @@ EMSCRIPTEN_KEEPALIVE const char* obscura_set_environment_layout(const char* name
           throw InputError("environment layout: expected auto, halffloat, atlas or mipchain, got '" + wanted + "'");
         g_app->viewer().setRendererOptions(options);
         used = environmentLayoutName(GpuEnvironment::layoutFor(g_app->viewer().caps(), options.environmentLayout));
+      }))
+    return nullptr;
+  g_app->changed();
+  return returned(used);
+}
+
+// Allows or refuses vertex array objects (OES_vertex_array_object) for the scene's draws, and returns "on" where the
+// scene now draws with them, "off" where not (refused, or the context lacks the extension); the page's tests compare
+// the images and count the calls both ways.
+EMSCRIPTEN_KEEPALIVE const char* obscura_set_vertex_arrays(int allow) {
+  std::string used;
+  if (!attempt([&] {
+        RendererOptions options = g_app->viewer().rendererOptions();
+        options.allowVertexArrays = allow != 0;
+        g_app->viewer().setRendererOptions(options);
+        const Renderer* renderer = g_app->viewer().renderer();
+        used = renderer && renderer->gpuScene().usesVertexArrays() ? "on" : "off";
       }))
     return nullptr;
   g_app->changed();

@@ -5,6 +5,7 @@
 #include <tuple>
 
 #include "base/Error.h"
+#include "frame/Stage.h"
 
 namespace obscura {
 namespace {
@@ -308,6 +309,8 @@ FramePlan FramePlan::resolve(FramePlanner&& planner, const std::string& result,
         if (target != stage.input) head.reads[target] = version;
     }
   }
+
+  for (PlannedPass& pass : plan.passes_) pass.stagesName = fusedProgramName("", pass.stages);
 
   for (PlannedPass& pass : plan.passes_) {
     for (const auto& [target, version] : pass.writes) {

@@ -69,6 +69,9 @@ struct PlannedPass {
                                       // pass an alternative absorbed (PassDecl::Alternative::absorbing)
   std::vector<StageDecl> stages;      // those stages
   std::string stageOutput;            // a stage head's colour target: its own, or its last fused stage's output
+  // fusedProgramName("", stages) (frame/Stage.h), made with the plan: the passes name their fused program by it
+  // every frame, and a cached plan need not format it again.
+  std::string stagesName;
 };
 
 // Collects one frame's passes. Effects add theirs in FramePlanner's hands (Effect::plan).

@@ -68,6 +68,7 @@ class PassContext {
   // colour into: its own, or the last fused stage's output.
   const std::vector<StageDecl>& stages() const { return pass().stages; }
   const std::string& stageOutput() const { return pass().stageOutput; }
+  const std::string& stagesName() const { return pass().stagesName; }  // fusedProgramName("", stages())
   // A full-screen draw of `spec`'s program into `target`, which it binds for writing (frame/FullscreenPass.h).
   FullscreenDraw draw(const ProgramSpec& spec, const std::string& target) const {
     bindForWriting(target);

@@ -17,6 +17,9 @@ struct RendererOptions {
   // program does not have is an error (gl/Program.h). The tests and the page's debug-gl turn it on.
   bool checkGlErrors = false;
   bool allowUint32Indices = true;  // false simulates a context without OES_element_index_uint
+  // false simulates a context without OES_vertex_array_object: the scene's draws set their vertex streams per draw
+  // (gpu/GpuScene.h; tests compare both images, the page's `vertex-arrays=0` and the benchmarks measure both).
+  bool allowVertexArrays = true;
   // false simulates a context without EXT_draw_buffers / WEBGL_draw_buffers: the lighting draws the scene a second
   // time instead of reading the base colour the G-buffer pass writes beside it (tests compare both).
   bool allowDrawBuffers = true;

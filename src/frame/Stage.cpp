@@ -106,7 +106,7 @@ PassDecl fullscreenStageHead(const EffectResources& resources, std::string name,
               uniforms = std::move(uniforms)](PassContext& context) {
     const std::vector<StageDecl>& chain = context.stages();
     const std::string& target = context.stageOutput();
-    FullscreenDraw draw(context.program(fusedProgramName(program.name, chain),
+    FullscreenDraw draw(context.program(program.name + context.stagesName(),
                                         [&] { return fusedProgram(program, chain, space); }),
                         context.resources().triangle, &context);
     context.bindForWriting(target);

@@ -6,7 +6,21 @@ namespace obscura::gles {
 #include "gl/GlFunctionList.inl"
 #undef OBSCURA_GL_FN
 PFNGLDRAWBUFFERSEXTPROC glDrawBuffersEXT = nullptr;
+PFNGLGENVERTEXARRAYSOESPROC glGenVertexArraysOES = nullptr;
+PFNGLDELETEVERTEXARRAYSOESPROC glDeleteVertexArraysOES = nullptr;
+PFNGLBINDVERTEXARRAYOESPROC glBindVertexArrayOES = nullptr;
 }  // namespace obscura::gles
+
+namespace {
+// Both spellings of the vertex array entry points, as loaded; selectVertexArrayEntryPoints picks one set.
+struct VertexArrayEntryPoints {
+  PFNGLGENVERTEXARRAYSOESPROC gen = nullptr;
+  PFNGLDELETEVERTEXARRAYSOESPROC del = nullptr;
+  PFNGLBINDVERTEXARRAYOESPROC bind = nullptr;
+  bool complete() const { return gen && del && bind; }
+};
+VertexArrayEntryPoints g_oesVertexArrays, g_coreVertexArrays;
+}  // namespace
 #endif
 
 namespace obscura::gl {
@@ -24,7 +38,26 @@ bool loadGles2([[maybe_unused]] ProcLoader loader, [[maybe_unused]] std::string*
 #include "gl/GlFunctionList.inl"
 #undef OBSCURA_GL_FN
   gles::glDrawBuffersEXT = reinterpret_cast<PFNGLDRAWBUFFERSEXTPROC>(loader("glDrawBuffersEXT"));
+  g_oesVertexArrays = {reinterpret_cast<PFNGLGENVERTEXARRAYSOESPROC>(loader("glGenVertexArraysOES")),
+                       reinterpret_cast<PFNGLDELETEVERTEXARRAYSOESPROC>(loader("glDeleteVertexArraysOES")),
+                       reinterpret_cast<PFNGLBINDVERTEXARRAYOESPROC>(loader("glBindVertexArrayOES"))};
+  g_coreVertexArrays = {reinterpret_cast<PFNGLGENVERTEXARRAYSOESPROC>(loader("glGenVertexArrays")),
+                        reinterpret_cast<PFNGLDELETEVERTEXARRAYSOESPROC>(loader("glDeleteVertexArrays")),
+                        reinterpret_cast<PFNGLBINDVERTEXARRAYOESPROC>(loader("glBindVertexArray"))};
+  selectVertexArrayEntryPoints(false);
   return true;
+#endif
+}
+
+bool selectVertexArrayEntryPoints([[maybe_unused]] bool desktopGl) {
+#if OBSCURA_GL_DIRECT
+  return true;
+#else
+  const VertexArrayEntryPoints& chosen = desktopGl ? g_coreVertexArrays : g_oesVertexArrays;
+  gles::glGenVertexArraysOES = chosen.gen;
+  gles::glDeleteVertexArraysOES = chosen.del;
+  gles::glBindVertexArrayOES = chosen.bind;
+  return chosen.complete();
 #endif
 }
 

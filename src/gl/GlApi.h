@@ -14,6 +14,11 @@
 #include <GLES2/gl2ext.h>
 // Emscripten's GL library maps glDrawBuffersEXT onto WEBGL_draw_buffers (it enables the extension itself).
 extern "C" void glDrawBuffersEXT(GLsizei n, const GLenum* buffers);
+// And the OES_vertex_array_object entry points onto the extension (WebGLVertexArrayObjectOES), which it enables on
+// contexts made with enableExtensionsByDefault (platform/WebCanvas.cpp, apps/obscura_web_geometry.cpp).
+extern "C" void glGenVertexArraysOES(GLsizei n, GLuint* arrays);
+extern "C" void glDeleteVertexArraysOES(GLsizei n, const GLuint* arrays);
+extern "C" void glBindVertexArrayOES(GLuint array);
 namespace obscura::gles {}
 #else
 #define OBSCURA_GL_DIRECT 0
@@ -26,6 +31,11 @@ namespace obscura::gles {
 #undef OBSCURA_GL_FN
 // Extension entry points: loaded when the context has them, null otherwise (GlCaps says which are usable).
 extern PFNGLDRAWBUFFERSEXTPROC glDrawBuffersEXT;
+// OES_vertex_array_object on a GLES 2 context; on a desktop context (OSMesa) the same names point at the core
+// (GL 3.0, ARB_vertex_array_object) functions, which GlCaps::query chooses (selectVertexArrayEntryPoints).
+extern PFNGLGENVERTEXARRAYSOESPROC glGenVertexArraysOES;
+extern PFNGLDELETEVERTEXARRAYSOESPROC glDeleteVertexArraysOES;
+extern PFNGLBINDVERTEXARRAYOESPROC glBindVertexArrayOES;
 }  // namespace obscura::gles
 #endif
 

@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <sstream>
 
+#include "gl/PipelineState.h"
+
 namespace obscura::gl {
 namespace {
 std::string glString(GLenum name) {
@@ -56,6 +58,15 @@ GlCaps GlCaps::query() {
 #endif
   caps.drawBuffers = (caps.has("GL_EXT_draw_buffers") || caps.has("GL_WEBGL_draw_buffers")) && entryPoint;
   if (caps.drawBuffers) glGetIntegerv(GL_MAX_DRAW_BUFFERS_EXT, &caps.maxDrawBuffers);
+
+  // Vertex array objects: OES_vertex_array_object on GLES 2 / WebGL 1, core since desktop GL 3.0 (or
+  // ARB_vertex_array_object), each only where its entry points loaded.
+  const bool vertexArrayEntryPoints = selectVertexArrayEntryPoints(desktopGl);
+  const bool desktopVertexArrays =
+      caps.has("GL_ARB_vertex_array_object") || (!caps.version.empty() && caps.version[0] >= '3');
+  caps.vertexArrayObject =
+      vertexArrayEntryPoints && (desktopGl ? desktopVertexArrays : caps.has("GL_OES_vertex_array_object"));
+  setVertexArraysInBaseline(caps.vertexArrayObject);
 
   caps.desktopGl = desktopGl;
   caps.textureFloat = desktopGl || caps.has("GL_OES_texture_float");

@@ -41,6 +41,9 @@ struct GlCaps {
   bool timerQuery = false;              // EXT_disjoint_timer_query
   bool drawBuffers = false;             // EXT_draw_buffers / WEBGL_draw_buffers: several colour targets per pass
   GLint maxDrawBuffers = 1;
+  // OES_vertex_array_object (core in desktop GL 3.0): the scene's pieces keep their vertex streams in one object
+  // each, bound with one call per draw (gpu/GpuScene.h).
+  bool vertexArrayObject = false;
   bool desktopGl = false;               // a desktop GL context running GLSL ES (OSMesa): sized float formats
   bool textureFloat = false;            // OES_texture_float (core in desktop GL 3.0): RGBA float textures to sample
   // OES_texture_half_float and OES_texture_half_float_linear (core in desktop GL 3.0): half-float textures the

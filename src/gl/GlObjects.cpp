@@ -52,6 +52,16 @@ void RenderbufferKind::destroy(GLuint id, bool deleteName) {
   if (deleteName) glDeleteRenderbuffers(1, &id);
   --g_live.renderbuffers;
 }
+GLuint VertexArrayKind::create() {
+  GLuint id = 0;
+  glGenVertexArraysOES(1, &id);
+  ++g_live.vertexArrays;
+  return id;
+}
+void VertexArrayKind::destroy(GLuint id, bool deleteName) {
+  if (deleteName) glDeleteVertexArraysOES(1, &id);
+  --g_live.vertexArrays;
+}
 }  // namespace detail
 
 ShaderHandle::ShaderHandle(GLenum stage) : id_(glCreateShader(stage)) {

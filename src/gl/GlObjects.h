@@ -10,8 +10,8 @@ namespace obscura::gl {
 // Number of GL objects currently owned by these wrappers, per kind. Tests use it to check that a scene reload or a
 // context loss returns to the same baseline (nothing leaks, nothing is freed twice).
 struct LiveObjects {
-  int textures = 0, buffers = 0, framebuffers = 0, renderbuffers = 0, shaders = 0, programs = 0;
-  int total() const { return textures + buffers + framebuffers + renderbuffers + shaders + programs; }
+  int textures = 0, buffers = 0, framebuffers = 0, renderbuffers = 0, shaders = 0, programs = 0, vertexArrays = 0;
+  int total() const { return textures + buffers + framebuffers + renderbuffers + shaders + programs + vertexArrays; }
 };
 const LiveObjects& liveObjects();
 
@@ -30,6 +30,8 @@ struct TextureKind { static GLuint create(); static void destroy(GLuint, bool de
 struct BufferKind { static GLuint create(); static void destroy(GLuint, bool deleteName); };
 struct FramebufferKind { static GLuint create(); static void destroy(GLuint, bool deleteName); };
 struct RenderbufferKind { static GLuint create(); static void destroy(GLuint, bool deleteName); };
+// OES_vertex_array_object: only where GlCaps::vertexArrayObject says the context has it.
+struct VertexArrayKind { static GLuint create(); static void destroy(GLuint, bool deleteName); };
 }  // namespace detail
 
 // A move-only owner of one GL name created by Kind::create() and deleted by Kind::destroy().
@@ -67,6 +69,7 @@ using TextureHandle = Handle<detail::TextureKind>;
 using BufferHandle = Handle<detail::BufferKind>;
 using FramebufferHandle = Handle<detail::FramebufferKind>;
 using RenderbufferHandle = Handle<detail::RenderbufferKind>;
+using VertexArrayHandle = Handle<detail::VertexArrayKind>;
 
 // Shader and program objects are created with arguments, so they get their own small owners.
 class ShaderHandle {

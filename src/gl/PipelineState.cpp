@@ -11,6 +11,8 @@ namespace {
 constexpr int kTextureUnits = 10;
 constexpr GLuint kAttributeSlots = 8;  // the GLES 2 minimum (skinned and morphed draws use them all)
 
+bool g_vertexArrays = false;
+
 int textureUnitsInUse() {
   GLint combined = 8;
   glGetIntegerv(GL_MAX_COMBINED_TEXTURE_IMAGE_UNITS, &combined);
@@ -33,6 +35,7 @@ void restoreBaselineState() {
   glStencilOp(GL_KEEP, GL_KEEP, GL_KEEP);
   glClearStencil(0);
   glUseProgram(0);
+  if (g_vertexArrays) glBindVertexArrayOES(0);
   glBindBuffer(GL_ARRAY_BUFFER, 0);
   glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, 0);
   for (int unit = textureUnitsInUse() - 1; unit >= 0; --unit) {
@@ -41,6 +44,8 @@ void restoreBaselineState() {
   }
   for (GLuint slot = 0; slot < kAttributeSlots; ++slot) glDisableVertexAttribArray(slot);
 }
+
+void setVertexArraysInBaseline(bool present) { g_vertexArrays = present; }
 
 std::string baselineStateDifferences() {
   std::string out;
@@ -61,6 +66,11 @@ std::string baselineStateDifferences() {
   expect(value == GL_CCW, "front face not CCW");
   glGetIntegerv(GL_CURRENT_PROGRAM, &value);
   expect(value == 0, "a program is bound");
+  if (g_vertexArrays) {
+    // First: the element buffer and the attribute arrays below are the bound object's.
+    glGetIntegerv(GL_VERTEX_ARRAY_BINDING_OES, &value);
+    expect(value == 0, "a vertex array object is bound");
+  }
   glGetIntegerv(GL_ARRAY_BUFFER_BINDING, &value);
   expect(value == 0, "an array buffer is bound");
   glGetIntegerv(GL_ELEMENT_ARRAY_BUFFER_BINDING, &value);

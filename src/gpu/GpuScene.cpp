@@ -61,6 +61,7 @@ gl::BufferHandle vec3Buffer(const std::vector<glm::vec3>& values) {
 GpuScene::GpuScene(const Scene& scene, const gl::GlCaps& caps, const Options& options) {
   const TimedScope timed("scene upload");
   desktopGl_ = caps.desktopGl;
+  vertexArrays_ = caps.vertexArrayObject && options.allowVertexArrays;
   // The caps carry the limits a test simulates (RendererOptions::simulateVertexLimits, applied by the Renderer).
   limits_ = {caps.maxVertexUniformVectors, caps.maxVertexAttribs, caps.maxVertexTextureImageUnits};
   chooseSkinningPath(caps, options);
@@ -366,7 +367,6 @@ std::vector<const GpuScene::InstanceGpu*> GpuScene::drawOrder(const glm::mat4& v
 void GpuScene::draw(const glm::mat4& view, const ProgramChoice& choose, const DrawOptions& options) const {
   counts_ = {};
   DrawState state(choose);
-  for (GLuint slot : {gl::kAttribPosition, gl::kAttribNormal, gl::kAttribTexcoord}) glEnableVertexAttribArray(slot);
   glActiveTexture(GL_TEXTURE0);
   for (const InstanceGpu* instance : drawOrder(view, options)) {
     const MaterialGpu& material = materials_[static_cast<size_t>(instance->material)];
@@ -408,11 +408,16 @@ glm::ivec4 GpuScene::screenRect(const InstanceGpu& instance, const glm::mat4& vi
   const glm::ivec4 frame(0, 0, size.x, size.y);
   if (instance.skin >= 0 || instance.morphed) return frame;
   glm::vec2 low(1e30f), high(-1e30f);
+  // The corners in clip space from one matrix: the minimum corner's image plus, per axis, the matrix's column times
+  // the box's extent along it (two matrix products per corner before; the render's host time, docs/benchmarks.md).
+  const glm::mat4 toClip = viewProjection * instance.world;
+  const glm::vec4 origin = toClip * glm::vec4(instance.localMin, 1.0f);
+  const glm::vec3 extent = instance.localMax - instance.localMin;
+  const glm::vec4 steps[3] = {toClip[0] * extent.x, toClip[1] * extent.y, toClip[2] * extent.z};
   for (int corner = 0; corner < 8; ++corner) {
-    const glm::vec3 p((corner & 1) ? instance.localMax.x : instance.localMin.x,
-                      (corner & 2) ? instance.localMax.y : instance.localMin.y,
-                      (corner & 4) ? instance.localMax.z : instance.localMin.z);
-    const glm::vec4 clip = viewProjection * (instance.world * glm::vec4(p, 1.0f));
+    glm::vec4 clip = origin;
+    for (int axis = 0; axis < 3; ++axis)
+      if (corner & (1 << axis)) clip += steps[axis];
     if (clip.w <= 1e-6f) return frame;
     const glm::vec2 ndc = glm::vec2(clip) / clip.w;
     low = glm::min(low, ndc);
@@ -483,7 +488,6 @@ void GpuScene::drawTransparent(const glm::mat4& view, const ProgramChoice& choos
                                const TransparentBatch& batch) const {
   counts_ = {};
   DrawState state(choose);
-  for (GLuint slot : {gl::kAttribPosition, gl::kAttribNormal, gl::kAttribTexcoord}) glEnableVertexAttribArray(slot);
   glActiveTexture(GL_TEXTURE0);
   glEnable(GL_CULL_FACE);
   for (const TransparentDraw& draw : batch.draws) {
@@ -541,11 +545,88 @@ void GpuScene::drawPiece(const InstanceGpu& instance, int p, const MaterialGpu& 
   if (vertexKind.morphTargets > 0) ++counts_.gpuMorphed;
   if (vertexKind.skinning != VertexKind::None) ++counts_.skinned;
   bindSkin(instance, piece, vertexKind, state);
+  if (const GLuint vertexArray = pieceVertexArray(p, vertexKind, state)) {
+    bindVertexArray(vertexArray, state);
+    ++counts_.vertexArrays;
+    glDrawElements(GL_TRIANGLES, piece.indexCount, piece.indexType, nullptr);
+    return;
+  }
+  bindVertexArray(0, state);
+  if (!state.defaultStreams) {
+    for (GLuint slot : {gl::kAttribPosition, gl::kAttribNormal, gl::kAttribTexcoord}) glEnableVertexAttribArray(slot);
+    state.defaultStreams = true;
+  }
   bindVertices(instance, p, vertexKind, state);
   glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, piece.indices.id());
   if (!withheld_) glDrawElements(GL_TRIANGLES, piece.indexCount, piece.indexType, nullptr);
   for (GLuint slot : state.extraAttributes) glDisableVertexAttribArray(slot);
   state.extraAttributes.clear();
+}
+
+namespace {
+// The attribute locations a piece's object depends on beyond slots 0..2 (fixed by gl::Program), each + 1 in a byte
+// (0: not bound): tangents, colours, joints, weights.
+std::uint32_t vertexArrayKey(GLint tangent, GLint color, GLint joints, GLint weights) {
+  auto byte = [](GLint location) { return static_cast<std::uint32_t>(location + 1) & 0xFFu; };
+  return byte(tangent) | byte(color) << 8 | byte(joints) << 16 | byte(weights) << 24;
+}
+}  // namespace
+
+GLuint GpuScene::pieceVertexArray(int p, const VertexKind& vertexKind, const DrawState& state) const {
+  // A withheld draw's program may be a stand-in with other attribute locations, and GPU-morphed or CPU-deformed
+  // streams change per frame: those set their streams per draw.
+  if (!vertexArrays_ || withheld_ || vertexKind.cpuDeformed || vertexKind.morphTargets > 0) return 0;
+  const Piece& piece = pieces_[static_cast<size_t>(p)];
+  const GeometryUniforms& uniforms = *state.uniforms;
+  const bool skinned = vertexKind.skinning != VertexKind::None;
+  const GLint tangent = piece.tangents ? uniforms.tangentAttribute : -1;
+  const GLint color = piece.colors ? uniforms.colorAttribute : -1;
+  const GLint joints = skinned ? uniforms.jointsAttribute : -1, weights = skinned ? uniforms.weightsAttribute : -1;
+  // Locations past a byte do not occur (GL_MAX_VERTEX_ATTRIBS is 16 on the devices seen); such a draw sets its
+  // streams itself.
+  for (GLint location : {tangent, color, joints, weights})
+    if (location > 254) return 0;
+  const std::uint32_t key = vertexArrayKey(tangent, color, joints, weights);
+  if (pieceVertexArrays_.size() != pieces_.size()) pieceVertexArrays_.resize(pieces_.size());
+  auto& made = pieceVertexArrays_[static_cast<size_t>(p)];
+  for (const auto& [k, vertexArray] : made)
+    if (k == key) return vertexArray.id();
+  // The object records what bindVertices and the element buffer's binding would set for this draw (the attribute
+  // arrays enabled, their pointers into the piece's buffers, the element buffer); the context's default object is
+  // left as it was.
+  gl::VertexArrayHandle vertexArray = gl::VertexArrayHandle::create();
+  glBindVertexArrayOES(vertexArray.id());
+  const GLsizei stride = GpuScene::kVertexFloats * static_cast<GLsizei>(sizeof(float));
+  glBindBuffer(GL_ARRAY_BUFFER, piece.vertices.id());
+  for (GLuint slot : {gl::kAttribPosition, gl::kAttribNormal, gl::kAttribTexcoord}) glEnableVertexAttribArray(slot);
+  glVertexAttribPointer(gl::kAttribPosition, 3, GL_FLOAT, GL_FALSE, stride, nullptr);
+  glVertexAttribPointer(gl::kAttribNormal, 3, GL_FLOAT, GL_FALSE, stride,
+                        reinterpret_cast<const void*>(3 * sizeof(float)));
+  glVertexAttribPointer(gl::kAttribTexcoord, 4, GL_FLOAT, GL_FALSE, stride,
+                        reinterpret_cast<const void*>(6 * sizeof(float)));
+  auto stream = [](GLint location, GLuint buffer, GLint size, GLsizei streamStride, size_t offset) {
+    if (location < 0) return;
+    glBindBuffer(GL_ARRAY_BUFFER, buffer);
+    glEnableVertexAttribArray(static_cast<GLuint>(location));
+    glVertexAttribPointer(static_cast<GLuint>(location), size, GL_FLOAT, GL_FALSE, streamStride,
+                          reinterpret_cast<const void*>(offset));
+  };
+  stream(tangent, piece.tangents.id(), 4, 0, 0);
+  stream(color, piece.colors.id(), 4, 0, 0);
+  const GLsizei skinStride = 8 * sizeof(float);
+  stream(joints, piece.skinAttributes.id(), 4, skinStride, 0);
+  stream(weights, piece.skinAttributes.id(), 4, skinStride, 4 * sizeof(float));
+  glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, piece.indices.id());
+  // The object stays bound: the caller binds it next (bindVertexArray sees a change and binds it again; harmless).
+  glBindVertexArrayOES(state.vertexArray);
+  made.emplace_back(key, std::move(vertexArray));
+  return made.back().second.id();
+}
+
+void GpuScene::bindVertexArray(GLuint vertexArray, DrawState& state) const {
+  if (vertexArray == state.vertexArray) return;
+  glBindVertexArrayOES(vertexArray);
+  state.vertexArray = vertexArray;
 }
 
 void GpuScene::setInstanceUniforms(const InstanceGpu& instance, const MaterialGpu& material,
@@ -629,7 +710,11 @@ void GpuScene::bindVertices(const InstanceGpu& instance, int p, const VertexKind
 }
 
 void GpuScene::restoreAfterDraw(const DrawState& state) const {
-  for (GLuint slot : {gl::kAttribPosition, gl::kAttribNormal, gl::kAttribTexcoord}) glDisableVertexAttribArray(slot);
+  // The default object again before the default streams' state is reset: a bound object must not leak into the
+  // next pass (the fullscreen triangle and the lines set their streams on the default object).
+  if (state.vertexArray != 0) glBindVertexArrayOES(0);
+  if (state.defaultStreams)
+    for (GLuint slot : {gl::kAttribPosition, gl::kAttribNormal, gl::kAttribTexcoord}) glDisableVertexAttribArray(slot);
   glBindBuffer(GL_ARRAY_BUFFER, 0);
   glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, 0);
   if (state.jointTextureBound) {

@@ -63,6 +63,8 @@ class GpuScene {
   struct Options {
     bool allowUint32Indices = true;  // false simulates a context without OES_element_index_uint
     std::optional<SkinningPath> skinning;  // RendererOptions::skinning
+    // false draws without vertex array objects where the context has them (RendererOptions::allowVertexArrays)
+    bool allowVertexArrays = true;
   };
 
   GpuScene() = default;
@@ -131,6 +133,11 @@ class GpuScene {
     lines_.withholdDraws(withheld);
   }
   bool usesUint32Indices() const;
+  // The pieces' vertex streams are kept in vertex array objects (OES_vertex_array_object, not refused by
+  // Options::allowVertexArrays): a draw that neither morphs on the GPU nor is deformed on the CPU binds its piece's
+  // object instead of setting each stream, about ten calls fewer per draw (a browser's WebGL calls each cost the page
+  // host time). The object is made on the piece's first draw with a program, per set of attribute locations.
+  bool usesVertexArrays() const { return vertexArrays_; }
   // Something moves between the previous pose and this one (an instance, a joint or a morph weight).
   bool anyMoving() const;
   // How skinned meshes are drawn, and the uniform palette's size in joints (0 where the path is not Uniforms).
@@ -141,6 +148,7 @@ class GpuScene {
   // Draws of the last draw() call that were deformed on the CPU (tests, benchmarks).
   struct Counts {
     int draws = 0, cpuDeformed = 0, gpuMorphed = 0, skinned = 0;
+    int vertexArrays = 0;  // draws that bound a vertex array object instead of setting their streams
   };
   Counts lastDrawCounts() const { return counts_; }
 
@@ -225,6 +233,8 @@ class GpuScene {
     GLenum frontFace = 0;
     int texturesOf = -1;
     int uniformsOf = -1;
+    GLuint vertexArray = 0;  // bound now (0: the context's default, where the streams are set per draw)
+    bool defaultStreams = false;  // slots 0..2 enabled on the default object (by the first draw that sets them)
     // Points an attribute the program has (location >= 0) at a buffer.
     void attribute(GLint location, GLuint buffer, GLint size, GLsizei stride, size_t offset);
   };
@@ -261,6 +271,11 @@ class GpuScene {
   void bindSkin(const InstanceGpu& instance, const Piece& piece, const VertexKind& vertexKind,
                 DrawState& state) const;  // GpuSkinning.cpp
   void bindVertices(const InstanceGpu& instance, int p, const VertexKind& vertexKind, DrawState& state) const;
+  // The piece's vertex array object for the current program's attribute locations (made and filled on first use),
+  // or 0 where this draw sets its streams itself (no objects, a withheld draw, GPU morphing or CPU deformation,
+  // whose streams change from frame to frame).
+  GLuint pieceVertexArray(int p, const VertexKind& vertexKind, const DrawState& state) const;
+  void bindVertexArray(GLuint vertexArray, DrawState& state) const;
   void restoreAfterDraw(const DrawState& state) const;
 
   std::vector<Piece> pieces_;
@@ -278,7 +293,12 @@ class GpuScene {
   int paletteSize_ = 0;
   VertexLimits limits_;
   bool desktopGl_ = false;
+  bool vertexArrays_ = false;
   mutable Counts counts_;
+  // Per piece, its vertex array objects, keyed by the attribute locations beside the three fixed ones that the
+  // piece's streams need (vertexArrayKey): one entry in the common case of one set of programs. Made while drawing
+  // (a const draw), hence mutable; they go with the scene.
+  mutable std::vector<std::vector<std::pair<std::uint32_t, gl::VertexArrayHandle>>> pieceVertexArrays_;
   // The per-draw uniforms of each program drawn with, resolved on its first draw (programs outlive the scene's
   // draws: they belong to the Renderer).
   mutable std::unordered_map<const gl::Program*, GeometryUniforms> geometryUniforms_;

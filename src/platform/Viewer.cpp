@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdlib>
+#include <utility>
 
 #include "base/Error.h"
 #include "base/TimeSpent.h"
@@ -61,7 +62,7 @@ const std::vector<Viewer::KeyAction>& Viewer::keyActions() {
          const std::vector<QualityPreset>& presets = allQualityPresets();
          size_t next = 0;
          for (size_t i = 0; i < presets.size(); ++i)
-           if (v.state_.settings.ao().preset == presets[i]) next = (i + 1) % presets.size();
+           if (std::as_const(v.state_.settings).ao().preset == presets[i]) next = (i + 1) % presets.size();
          v.state_.settings.set("preset", presetName(presets[next]));
        }},
       {"[", "AO radius / 1.25", scale("ao.radius", 1.0 / 1.25)},
@@ -263,7 +264,9 @@ bool Viewer::handleKey(const std::string& key) {
 FrameOptions Viewer::frameOptions(int width, int height) {
   FrameOptions options;
   state_.timeline.applyTo(options);  // time, animation, loop
-  const ResolutionSettings& resolution = state_.settings.of<ResolutionSettings>();
+  // Read through a const view: a non-const access counts as a change of the settings (FrameSettings::revision), which
+  // would have the Renderer validate and key them again every frame.
+  const ResolutionSettings& resolution = std::as_const(state_.settings).of<ResolutionSettings>();
   renderScale_ = resolution.scale;
   if (width != lastWidth_ || height != lastHeight_) dynamic_.forget();
   lastWidth_ = width;

@@ -177,6 +177,7 @@ HierarchyStorage Renderer::hierarchyStorage() const { return ao_->hierarchyStora
 void Renderer::setScene(const Scene& scene) {
   GpuScene::Options options;
   options.allowUint32Indices = options_.allowUint32Indices;
+  options.allowVertexArrays = options_.allowVertexArrays;
   options.skinning = options_.skinning;
   scene_ = GpuScene(scene, caps_, options);
   // What posing needs (the hierarchy, skins, animations, and the instances and meshes they deform), not the images,
@@ -353,12 +354,17 @@ void Renderer::endFrame() {
 }
 
 std::uint64_t Renderer::shapingId(const RenderSettings& settings) {
+  // The very settings (by revision: FrameSettings::revision) keyed last: nothing to compare.
+  if (keyedSettings_ && keyedSettings_->revision() == settings.revision()) return keyedId_;
   const bool unchanged = keyedSettings_ && std::all_of(shapingParameters_.begin(), shapingParameters_.end(),
                                                        [&](const std::pair<size_t, size_t>& shaping) {
     const auto& [row, parameter] = shaping;
     return effectTable()[row].parameters[parameter].same(settings.rowAt(row), keyedSettings_->rowAt(row));
   });
-  if (unchanged) return keyedId_;
+  if (unchanged) {
+    keyedSettings_ = settings;  // so that the next frame of these settings finds them by revision
+    return keyedId_;
+  }
   std::vector<std::string> values;
   values.reserve(shapingParameters_.size());
   for (const auto& [row, parameter] : shapingParameters_)

@@ -242,6 +242,11 @@ export class Obscura extends EventTarget {
    * hardware filters, or RGB9E5 filtered by hand); returns the layout now in use.
    */
   setEnvironmentLayout(name: string): string;
+  /**
+   * Allows (the default) or refuses vertex array objects for the scene's draws (OES_vertex_array_object); returns
+   * whether the scene now draws with them. The image is the same either way.
+   */
+  setVertexArrays(allow: boolean): boolean;
   /** The view, the parameters that differ from their defaults, the timeline and the camera, as query-string text. */
   state(): string;
   setState(query: string): void;

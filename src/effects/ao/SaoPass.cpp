@@ -127,10 +127,10 @@ void SaoPass::render(const gl::Texture2D& gbuffer, const DepthHierarchyPass* hie
   const std::optional<Storage> storage = hierarchy ? std::optional<Storage>(hierarchy->storage()) : std::nullopt;
   // Only SAO's programs depend on the spiral and the falloff.
   const bool sao = settings.estimator == AoEstimator::Sao;
-  FullscreenDraw draw(resources_.program(programSpec(settings.estimator, settings.samples,
+  FullscreenDraw draw(resources_.program(cachedSpec({settings.estimator, settings.samples,
                                                      sao ? settings.spiralTurns : 1,
                                                      sao ? settings.falloff : Falloff::Sao2012, storage,
-                                                     secondLayer ? 2 : 1, normalsFromDepth)),
+                                                     secondLayer ? 2 : 1, normalsFromDepth})),
                       resources_.triangle);
   draw.texture("u_gbuffer", gbuffer);
   if (hierarchy) hierarchy->bindForSampling(draw);
@@ -143,17 +143,34 @@ void SaoPass::render(const gl::Texture2D& gbuffer, const DepthHierarchyPass* hie
   draw.set("u_projScale", camera.projScale(gbuffer.height()));
   draw.set("u_radius", settings.radius);
   draw.set("u_invRadius", 1.0f / settings.radius);
-  const EstimatorKnots knots = settings.estimatorKnots();
-  std::array<glm::vec4, kEstimatorKnots> packed;
-  for (int j = 0; j < kEstimatorKnots; ++j)
-    packed[static_cast<size_t>(j)] = {intensityScale(settings, knots.at[j].intensity), knots.at[j].bias,
-                                      knots.at[j].contrast, knots.at[j].thickness};
-  draw.set("u_estimatorKnots", packed.data(), kEstimatorKnots);
+  draw.set("u_estimatorKnots", packedKnots(settings).data(), kEstimatorKnots);
   draw.set("u_maxRadiusPixels", settings.maxScreenRadius * static_cast<float>(gbuffer.height()));
   draw.set("u_frameOffset", frameOffset);
   // GTAO's joining of taps into one occluder (its variants alone; its thickness is the knots' w).
   if (draw.program().has("u_surfaceGap")) draw.set("u_surfaceGap", settings.surfaceGap);
   draw.draw();
+}
+
+const ProgramSpec& SaoPass::cachedSpec(const SpecInputs& inputs) const {
+  if (specInputs_ != inputs) {
+    spec_ = std::apply([](auto... a) { return programSpec(a...); }, inputs);
+    specInputs_ = inputs;
+  }
+  return spec_;
+}
+
+const std::array<glm::vec4, kEstimatorKnots>& SaoPass::packedKnots(const AoSettings& settings) const {
+  // Every field estimatorKnots() and intensityScale() read.
+  const KnotInputs inputs{settings.estimator, settings.preset,   settings.layersRead(), settings.samples,
+                          settings.falloff,   settings.bias,     settings.intensity,    settings.contrast,
+                          settings.thickness};
+  if (knotInputs_ == inputs) return knots_;
+  const EstimatorKnots knots = settings.estimatorKnots();
+  for (int j = 0; j < kEstimatorKnots; ++j)
+    knots_[static_cast<size_t>(j)] = {intensityScale(settings, knots.at[j].intensity), knots.at[j].bias,
+                                      knots.at[j].contrast, knots.at[j].thickness};
+  knotInputs_ = inputs;
+  return knots_;
 }
 
 }  // namespace obscura

@@ -3,7 +3,9 @@
 // R = ambient visibility, GB = the centre's 16-bit depth code (the blur's key, so the blur reads a single texture).
 // Shaders: shaders_es2/ao/gtao.frag, sao.frag (CPU mirror and equations: effects/ao/SaoKernel.h), hbao.frag, vo.frag or
 // crytek.frag; all share ao/ao_estimator.glsl. Far taps read the depth hierarchy when one is given.
+#include <array>
 #include <optional>
+#include <tuple>
 #include <vector>
 
 #include "effects/ao/AoSettings.h"
@@ -54,7 +56,30 @@ class SaoPass {
               glm::ivec2 aoSize, glm::vec2 frameOffset = glm::vec2(0.0f)) const;
 
  private:
+  // What render() derives from the settings, kept from the last frame and derived again only when its inputs change:
+  // the program's spec (its name is text, formatted from every define) and the estimator's packed knots (a lookup in
+  // the tuned table). Building both every frame was about 0.05 ms of the page's host time (docs/benchmarks.md).
+  using SpecInputs = std::tuple<AoEstimator, int, int, Falloff, std::optional<Storage>, int, bool>;
+  struct KnotInputs {
+    AoEstimator estimator;
+    QualityPreset preset;
+    int layers, samples;
+    Falloff falloff;
+    std::optional<float> bias, intensity, contrast, thickness;
+    bool operator==(const KnotInputs& o) const {
+      return estimator == o.estimator && preset == o.preset && layers == o.layers && samples == o.samples &&
+             falloff == o.falloff && bias == o.bias && intensity == o.intensity && contrast == o.contrast &&
+             thickness == o.thickness;
+    }
+  };
+  const ProgramSpec& cachedSpec(const SpecInputs& inputs) const;
+  const std::array<glm::vec4, kEstimatorKnots>& packedKnots(const AoSettings& settings) const;
+
   const EffectResources& resources_;
+  mutable std::optional<SpecInputs> specInputs_;
+  mutable ProgramSpec spec_;
+  mutable std::optional<KnotInputs> knotInputs_;
+  mutable std::array<glm::vec4, kEstimatorKnots> knots_{};
 };
 
 }  // namespace obscura

@@ -477,7 +477,8 @@ void LightingEffect::render(const PassContext& context, Form form) const {
   static const std::vector<StageDecl> none;
   const std::string output = form.counting ? std::string("shading-count") : context.stageOutput();
   const std::vector<StageDecl>& stages = form.counting ? none : context.stages();
-  const std::string chain = fusedProgramName("", stages);
+  static const std::string noChain;
+  const std::string& chain = form.counting ? noChain : context.stagesName();
   context.bindForWriting(output);
   const bool writesOutput = context.writesOutput(output);
 
