@@ -81,7 +81,6 @@ float sideArc(float c, float sideSign, float gamma, float cosGamma, float sinGam
 }
 
 uniform float u_surfaceGap;  // the depth gap two taps' segments may leave and still be one occluder, units of r
-uniform float u_thicknessPerWidth;  // one layer: 0, the knots' thickness; > 0, per occluder width (see below)
 
 // The visible fraction of one side of a slice (direction `side` in pixels, unit length; `sideSign` +1 or -1; its open
 // arc `openSide`): the mean uncovered fraction of its 8 sectors of u (see the top of the file). `thickness`: with one
@@ -95,51 +94,16 @@ float sideVisibleFraction(AoCentre c, float centreBackDepth, vec3 V, vec2 side, 
   // the centre's, whose surface lies along the tangent plane (u = 1).
   float previousLo = 1.0, previousHi = 1.0, previousFrontDepth = -c.position.z, previousBackDepth = centreBackDepth;
   float previousInside = 1.0;
-#if AO_LAYERS == 1
-  // ao.thickness-per-width > 0: each tap's thickness follows its occluder's width along the slice (wide objects are
-  // deep). The side's taps are fetched first; a run of consecutive taps whose fronts lie within ao.surface-gap r of
-  // each other (the centre's surface starting the first) is one occluder, and its width on screen, from the midpoint
-  // before its first tap to the midpoint after its last (or the last tap), converted to scene units at the tap's
-  // depth, times the factor, is the tap's thickness. No extra fetch: two passes of arithmetic over the taps.
-  vec3 points[GTAO_STEPS];
-  float distances[GTAO_STEPS];
-  float runEnds[GTAO_STEPS];
   for (int s = 0; s < GTAO_STEPS; s++) {
     float fraction = (float(s) + jitter) * (1.0 / float(GTAO_STEPS));
     float tapDistance = max(fraction * fraction * c.diskRadius, 1.0);
     vec2 tapPixel = clamp(floor(c.pixel + 0.5 + tapDistance * side), vec2(0.0), u_gbufferSize - 1.0);
-    points[s] = tapPoint(tapPixel, log2(tapDistance));
-    distances[s] = tapDistance;
-  }
-  float runGap = u_surfaceGap * u_radius;
-  float runEnd = distances[GTAO_STEPS - 1], nextDepth = points[GTAO_STEPS - 1].z;
-  float nextDistance = runEnd;
-  for (int s = GTAO_STEPS - 1; s >= 0; s--) {
-    runEnd = abs(points[s].z - nextDepth) <= runGap ? runEnd : 0.5 * (distances[s] + nextDistance);
-    runEnds[s] = runEnd;
-    nextDepth = points[s].z;
-    nextDistance = distances[s];
-  }
-  float runStart = 0.0, previousDistance = 0.0;
-#endif
-  for (int s = 0; s < GTAO_STEPS; s++) {
-    float fraction = (float(s) + jitter) * (1.0 / float(GTAO_STEPS));
-    float tapDistance = max(fraction * fraction * c.diskRadius, 1.0);
 #if AO_LAYERS == 2
-    vec2 tapPixel = clamp(floor(c.pixel + 0.5 + tapDistance * side), vec2(0.0), u_gbufferSize - 1.0);
     vec3 point, backPoint;
     tapLayers(tapPixel, log2(tapDistance), point, backPoint);
 #else
-    vec3 point = points[s];
-    runStart = abs(-point.z - previousFrontDepth) <= runGap ? runStart : 0.5 * (previousDistance + tapDistance);
-    previousDistance = tapDistance;
-    // Scene units per pixel at the tap's depth (the inverse of the projected radius' scale, ao_estimator.glsl).
-    float widthScale = 1.0 / (u_projScale.x / -point.z + u_projScale.y);
-    float tapThickness = u_thicknessPerWidth > 0.0
-                             ? clamp(u_thicknessPerWidth * (runEnds[s] - runStart) * widthScale, 0.02 * u_radius,
-                                     2.0 * u_radius)
-                             : thickness;
-    vec3 backPoint = point + tapThickness * eyeRayDirection(point);  // along the pixel's ray
+    vec3 point = tapPoint(tapPixel, log2(tapDistance));
+    vec3 backPoint = point + thickness * eyeRayDirection(point);  // along the pixel's ray
 #endif
     // The occluder along the tap's ray is the segment from its front point to its back point; what occludes is the
     // part of it within r of the centre: w + s (b - w), s in [s0, s1], inside the unit ball (units of r).

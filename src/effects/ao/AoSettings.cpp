@@ -97,9 +97,6 @@ const std::vector<Parameter<AoSettings>>& AoSettings::parameters() {
                                        &S::thickness, [](const S& s) { return s.estimatorAt().thickness; }));
     t.push_back(numberParameter<S>("surface-gap", 0, 1000, "fraction of radius",
                                    "depth gap between taps that GTAO still takes for one occluder", &S::surfaceGap));
-    t.push_back(numberParameter<S>("thickness-per-width", 0, 100, "",
-                                   "one layer: GTAO's thickness per occluder width along the slice (0: ao.thickness)",
-                                   &S::thicknessPerWidth));
     t.push_back(switchParameter<S>("temporal", "accumulate the AO over frames through the motion vectors",
                                    &S::temporal)
                     .primary());

@@ -117,10 +117,6 @@ struct AoSettings : ParameterAccess<AoSettings> {
   // Two consecutive taps whose depth ranges (front to back) overlap within this gap, a fraction of r, are one
   // occluder, solid between them; a larger step lets the sky through between them (docs/accuracy.md).
   float surfaceGap = 0.5f;
-  // One layer, when positive: instead of `thickness`, each occluder is assumed as deep as this times its width along
-  // the slice (the run of taps joined by depth within surfaceGap, in scene units at its depth): wide objects are
-  // deep, thin ones thin (docs/accuracy.md, "Thickness from the occluder's width"). 0: `thickness`.
-  float thicknessPerWidth = 0.0f;
 
   // --- Depth layers ---
   // 1: the G-buffer's depth alone. 2: a second geometry pass peels the nearest surface at least layerSeparation r

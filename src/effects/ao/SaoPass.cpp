@@ -153,7 +153,6 @@ void SaoPass::render(const gl::Texture2D& gbuffer, const DepthHierarchyPass* hie
   draw.set("u_frameOffset", frameOffset);
   // GTAO's joining of taps into one occluder (its variants alone; its thickness is the knots' w).
   if (draw.program().has("u_surfaceGap")) draw.set("u_surfaceGap", settings.surfaceGap);
-  if (draw.program().has("u_thicknessPerWidth")) draw.set("u_thicknessPerWidth", settings.thicknessPerWidth);
   draw.draw();
 }
 
