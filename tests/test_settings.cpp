@@ -6,8 +6,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstdint>
-#include <utility>
 
 #include "base/Error.h"
 #include "effects/ao/AoSettings.h"
@@ -274,35 +272,6 @@ TEST(AoSettings, ValidateNamesTheParameterOutOfRange) {
 }
 
 // --- The frame's settings: every effect's parameters under "effect.name", the switches, the aliases, the presets.
-
-// validate() skips settings of a revision it passed (the Renderer calls it every frame): every way of changing them
-// must give a new revision, and a copy, holding the same values, keeps it.
-TEST(RenderSettings, EveryChangeGivesANewRevisionThatValidationSees) {
-  RenderSettings settings;
-  const std::uint64_t first = settings.revision();
-  EXPECT_NO_THROW(settings.validate());
-  EXPECT_EQ(settings.revision(), first);
-  EXPECT_EQ(std::as_const(settings).ao().radius, 1.0f);
-  EXPECT_EQ(settings.revision(), first) << "a const access is no change";
-  const RenderSettings copy = settings;
-  EXPECT_EQ(copy.revision(), first);
-
-  settings.ao().radius = -1.0f;  // out of range, written through a non-const access after a validation
-  EXPECT_NE(settings.revision(), first);
-  EXPECT_THROW(settings.validate(), InputError);
-  settings.set("ao.radius", "2");
-  EXPECT_NO_THROW(settings.validate());
-  const std::uint64_t afterSet = settings.revision();
-  settings.of<AoSettings>().samples = 0;
-  EXPECT_NE(settings.revision(), afterSet);
-  EXPECT_THROW(settings.validate(), InputError);
-  settings.applyPreset(QualityPreset::Low);
-  EXPECT_NO_THROW(settings.validate());
-  EXPECT_NE(settings.revision(), copy.revision()) << "revisions are never shared by different values";
-  RenderSettings assigned;
-  assigned = copy;
-  EXPECT_EQ(assigned.revision(), copy.revision());
-}
 
 TEST(RenderSettings, NamesAreEffectDotParameterAndTheOldAoNamesAreAliases) {
   RenderSettings settings;

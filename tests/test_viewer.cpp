@@ -3,7 +3,6 @@
 // CPU scene to the same image).
 #include <fstream>
 #include <set>
-#include <utility>
 #include <iterator>
 
 #include <glm/geometric.hpp>
@@ -86,18 +85,6 @@ TEST(Viewer, ContextLossRebuildsEveryObjectAndTheSameImage) {
   const test::RenderedImage after = renderViewer(viewer);
   EXPECT_TRUE(sameLiveObjects(gl::liveObjects(), running)) << "the rebuild holds as many objects as before";
   EXPECT_EQ(after.rgba, before.rgba) << "the restored context renders the same image";
-}
-
-// The Renderer validates and keys settings only at a revision it has not seen (FrameSettings::revision): a frame of
-// the viewer must read its settings without a non-const access, which would count as a change every frame.
-TEST(Viewer, AFrameLeavesTheSettingsRevisionAsItWas) {
-  Viewer viewer(test::context().caps());
-  viewer.state().applyQuery("resolution.dynamic=on");
-  renderViewer(viewer);
-  const std::uint64_t revision = std::as_const(viewer).state().settings.revision();
-  renderViewer(viewer, 1.0 / 60.0);
-  renderViewer(viewer, 2.0 / 60.0);
-  EXPECT_EQ(std::as_const(viewer).state().settings.revision(), revision);
 }
 
 TEST(Viewer, SplitScreenShowsAoOffLeftAndOnRight) {

@@ -302,8 +302,7 @@ class WebApp {
     ++frames_;
   }
 
-  // The settings, read through a const view: a non-const access counts as a change (FrameSettings::revision), after
-  // which the Renderer validates and keys them again.
+  // The settings, read only.
   const RenderSettings& settings() const { return std::as_const(viewer_).state().settings; }
 
   // The drawing buffer fitted to the canvas's CSS size, at the pixel ratio resolution.max-pixel-ratio allows.

@@ -2,8 +2,6 @@
 // Every effect's settings for one frame, found by the type of their struct: what effects read while they plan
 // (`planner.settings().of<FogSettings>()`). renderer/RenderSettings fills one row per row of the effect table and
 // adds access by name (parameters, presets, validation), which needs the table; the frame needs only this.
-#include <atomic>
-#include <cstdint>
 #include <memory>
 #include <string>
 #include <typeindex>
@@ -16,12 +14,9 @@ namespace obscura {
 
 class FrameSettings {
  public:
-  // One effect's settings struct, by type (the type of its table row's settings). The non-const access counts as a
-  // change (revision()): write through the reference it returns before the settings next go to a frame, and take a
-  // fresh one for a later change, since the Renderer does not look at settings again whose revision it has seen.
+  // One effect's settings struct, by type (the type of its table row's settings).
   template <typename S>
   S& of() {
-    changed();
     return EffectEntry::cast<S>(*rows_[rowOf(typeid(S))]);
   }
   template <typename S>
@@ -30,14 +25,10 @@ class FrameSettings {
   }
   // The settings of the table's row `index`, type-erased (EffectEntry's functions take them).
   const EffectSettingsBase& rowAt(size_t index) const { return *rows_[index]; }
-  // A number no other settings' contents have had: new at every change (every non-const access), kept by a copy. Two
-  // settings with the same revision hold the same values, so the Renderer validates and keys a frame's settings only
-  // when their revision is one it has not seen (renderer/Renderer.h), instead of reading every parameter each frame.
-  std::uint64_t revision() const { return revision_; }
 
  protected:
   FrameSettings() = default;
-  FrameSettings(const FrameSettings& other) : types_(other.types_), revision_(other.revision_) {
+  FrameSettings(const FrameSettings& other) : types_(other.types_) {
     for (const auto& row : other.rows_) rows_.push_back(row->clone());
   }
   FrameSettings& operator=(const FrameSettings& other) {
@@ -52,12 +43,9 @@ class FrameSettings {
   ~FrameSettings() = default;
 
   void addRow(std::type_index type, std::unique_ptr<EffectSettingsBase> settings) {
-    changed();
     types_.push_back(type);
     rows_.push_back(std::move(settings));
   }
-  // Every change to the rows calls this (the derived class's set, applyPreset and the like too).
-  void changed() { revision_ = nextRevision(); }
   size_t rowOf(std::type_index type) const {
     for (size_t row = 0; row < types_.size(); ++row)
       if (types_[row] == type) return row;
@@ -66,13 +54,6 @@ class FrameSettings {
 
   std::vector<std::type_index> types_;                      // one per table row
   std::vector<std::unique_ptr<EffectSettingsBase>> rows_;  // one per table row
-
- private:
-  static std::uint64_t nextRevision() {
-    static std::atomic<std::uint64_t> next{0};
-    return ++next;
-  }
-  std::uint64_t revision_ = nextRevision();
 };
 
 }  // namespace obscura

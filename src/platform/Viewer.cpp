@@ -264,8 +264,6 @@ bool Viewer::handleKey(const std::string& key) {
 FrameOptions Viewer::frameOptions(int width, int height) {
   FrameOptions options;
   state_.timeline.applyTo(options);  // time, animation, loop
-  // Read through a const view: a non-const access counts as a change of the settings (FrameSettings::revision), which
-  // would have the Renderer validate and key them again every frame.
   const ResolutionSettings& resolution = std::as_const(state_.settings).of<ResolutionSettings>();
   renderScale_ = resolution.scale;
   if (width != lastWidth_ || height != lastHeight_) dynamic_.forget();

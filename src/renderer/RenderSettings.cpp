@@ -94,7 +94,6 @@ void RenderSettings::set(const std::string& name, const std::string& value) {
     std::unique_ptr<EffectSettingsBase> changed = rows_[b.row]->clone();
     b.set(*changed, value);
     rows_[b.row] = std::move(changed);
-    this->changed();
   });
 }
 
@@ -114,16 +113,11 @@ std::string RenderSettings::effective(const std::string& name) const {
 }
 
 void RenderSettings::validate() const {
-  // Settings of a revision found valid are still valid (FrameSettings::revision): the page hands the same settings
-  // to every frame, and reading each of their parameters through its std::function cost 0.02 ms a frame.
-  if (validRevision_ == revision()) return;
   const std::vector<EffectEntry>& rows = effectTable();
   for (size_t row = 0; row < rows.size(); ++row) rows[row].validate(*rows_[row]);
-  validRevision_ = revision();
 }
 
 void RenderSettings::applyPreset(QualityPreset preset) {
-  changed();
   const std::vector<EffectEntry>& rows = effectTable();
   for (size_t row = 0; row < rows.size(); ++row)
     if (rows[row].applyPreset) rows[row].applyPreset(*rows_[row], preset);

@@ -60,8 +60,6 @@ class RenderSettings : public FrameSettings {
   // The parameter of that name or alias, or null.
   static const ParameterInfo* find(const std::string& name);
 
- private:
-  mutable std::uint64_t validRevision_ = 0;  // the revision validate() last passed (0: none)
 };
 
 }  // namespace obscura

@@ -354,17 +354,12 @@ void Renderer::endFrame() {
 }
 
 std::uint64_t Renderer::shapingId(const RenderSettings& settings) {
-  // The very settings (by revision: FrameSettings::revision) keyed last: nothing to compare.
-  if (keyedSettings_ && keyedSettings_->revision() == settings.revision()) return keyedId_;
   const bool unchanged = keyedSettings_ && std::all_of(shapingParameters_.begin(), shapingParameters_.end(),
                                                        [&](const std::pair<size_t, size_t>& shaping) {
     const auto& [row, parameter] = shaping;
     return effectTable()[row].parameters[parameter].same(settings.rowAt(row), keyedSettings_->rowAt(row));
   });
-  if (unchanged) {
-    keyedSettings_ = settings;  // so that the next frame of these settings finds them by revision
-    return keyedId_;
-  }
+  if (unchanged) return keyedId_;
   std::vector<std::string> values;
   values.reserve(shapingParameters_.size());
   for (const auto& [row, parameter] : shapingParameters_)
