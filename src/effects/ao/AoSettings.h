@@ -132,8 +132,8 @@ struct AoSettings : ParameterAccess<AoSettings> {
   // only where it pays: with two layers, whose depths its texels fold together (one fetch a tap instead of two). With
   // one layer it costs more than it saves on every device measured (llvmpipe, SwiftShader, an H100: the estimator's
   // level arithmetic against a cache that holds the frame; docs/benchmarks.md, sections 2 and "The depth hierarchy
-  // by default"), and the AO is the same within 0.0004 MAE; on a GPU whose caches are small next to the G-buffer
-  // `on` may pay (the SAO paper's case).
+  // only where it pays"), and the AO is the same within 0.0004 MAE; on a GPU whose caches are small next to the
+  // G-buffer `on` may pay (the SAO paper's case).
   DepthHierarchy depthHierarchy = DepthHierarchy::Auto;
   bool halfResolution = false; // AO at half size, upsampled depth-aware to full size
 
