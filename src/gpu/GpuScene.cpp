@@ -545,7 +545,7 @@ void GpuScene::drawPiece(const InstanceGpu& instance, int p, const MaterialGpu& 
   if (vertexKind.morphTargets > 0) ++counts_.gpuMorphed;
   if (vertexKind.skinning != VertexKind::None) ++counts_.skinned;
   bindSkin(instance, piece, vertexKind, state);
-  if (const GLuint vertexArray = pieceVertexArray(p, vertexKind, state)) {
+  if (const GLuint vertexArray = pieceVertexArray(instance, p, vertexKind, state)) {
     bindVertexArray(vertexArray, state);
     ++counts_.vertexArrays;
     glDrawElements(GL_TRIANGLES, piece.indexCount, piece.indexType, nullptr);
@@ -572,7 +572,8 @@ std::uint32_t vertexArrayKey(GLint tangent, GLint color, GLint joints, GLint wei
 }
 }  // namespace
 
-GLuint GpuScene::pieceVertexArray(int p, const VertexKind& vertexKind, const DrawState& state) const {
+GLuint GpuScene::pieceVertexArray(const InstanceGpu& instance, int p, const VertexKind& vertexKind,
+                                  DrawState& state) const {
   // A withheld draw's program may be a stand-in with other attribute locations, and GPU-morphed or CPU-deformed
   // streams change per frame: those set their streams per draw.
   if (!vertexArrays_ || withheld_ || vertexKind.cpuDeformed || vertexKind.morphTargets > 0) return 0;
@@ -591,33 +592,15 @@ GLuint GpuScene::pieceVertexArray(int p, const VertexKind& vertexKind, const Dra
   auto& made = pieceVertexArrays_[static_cast<size_t>(p)];
   for (const auto& [k, vertexArray] : made)
     if (k == key) return vertexArray.id();
-  // The object records what bindVertices and the element buffer's binding would set for this draw (the attribute
-  // arrays enabled, their pointers into the piece's buffers, the element buffer); the context's default object is
-  // left as it was.
+  // The object records what bindVertices and the element buffer's binding set for this draw (the attribute arrays
+  // enabled, their pointers into the piece's buffers, the element buffer); the context's default object is left as
+  // it was, and the arrays bindVertices enabled are the object's to keep, not the default object's to disable.
   gl::VertexArrayHandle vertexArray = gl::VertexArrayHandle::create();
   glBindVertexArrayOES(vertexArray.id());
-  const GLsizei stride = GpuScene::kVertexFloats * static_cast<GLsizei>(sizeof(float));
-  glBindBuffer(GL_ARRAY_BUFFER, piece.vertices.id());
   for (GLuint slot : {gl::kAttribPosition, gl::kAttribNormal, gl::kAttribTexcoord}) glEnableVertexAttribArray(slot);
-  glVertexAttribPointer(gl::kAttribPosition, 3, GL_FLOAT, GL_FALSE, stride, nullptr);
-  glVertexAttribPointer(gl::kAttribNormal, 3, GL_FLOAT, GL_FALSE, stride,
-                        reinterpret_cast<const void*>(3 * sizeof(float)));
-  glVertexAttribPointer(gl::kAttribTexcoord, 4, GL_FLOAT, GL_FALSE, stride,
-                        reinterpret_cast<const void*>(6 * sizeof(float)));
-  auto stream = [](GLint location, GLuint buffer, GLint size, GLsizei streamStride, size_t offset) {
-    if (location < 0) return;
-    glBindBuffer(GL_ARRAY_BUFFER, buffer);
-    glEnableVertexAttribArray(static_cast<GLuint>(location));
-    glVertexAttribPointer(static_cast<GLuint>(location), size, GL_FLOAT, GL_FALSE, streamStride,
-                          reinterpret_cast<const void*>(offset));
-  };
-  stream(tangent, piece.tangents.id(), 4, 0, 0);
-  stream(color, piece.colors.id(), 4, 0, 0);
-  const GLsizei skinStride = 8 * sizeof(float);
-  stream(joints, piece.skinAttributes.id(), 4, skinStride, 0);
-  stream(weights, piece.skinAttributes.id(), 4, skinStride, 4 * sizeof(float));
+  bindVertices(instance, p, vertexKind, state);
+  state.extraAttributes.clear();
   glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, piece.indices.id());
-  // The object stays bound: the caller binds it next (bindVertexArray sees a change and binds it again; harmless).
   glBindVertexArrayOES(state.vertexArray);
   made.emplace_back(key, std::move(vertexArray));
   return made.back().second.id();

@@ -274,7 +274,7 @@ class GpuScene {
   // The piece's vertex array object for the current program's attribute locations (made and filled on first use),
   // or 0 where this draw sets its streams itself (no objects, a withheld draw, GPU morphing or CPU deformation,
   // whose streams change from frame to frame).
-  GLuint pieceVertexArray(int p, const VertexKind& vertexKind, const DrawState& state) const;
+  GLuint pieceVertexArray(const InstanceGpu& instance, int p, const VertexKind& vertexKind, DrawState& state) const;
   void bindVertexArray(GLuint vertexArray, DrawState& state) const;
   void restoreAfterDraw(const DrawState& state) const;
 

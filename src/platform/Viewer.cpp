@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdlib>
-#include <utility>
 
 #include "base/Error.h"
 #include "base/TimeSpent.h"
@@ -62,7 +61,7 @@ const std::vector<Viewer::KeyAction>& Viewer::keyActions() {
          const std::vector<QualityPreset>& presets = allQualityPresets();
          size_t next = 0;
          for (size_t i = 0; i < presets.size(); ++i)
-           if (std::as_const(v.state_.settings).ao().preset == presets[i]) next = (i + 1) % presets.size();
+           if (v.state_.settings.ao().preset == presets[i]) next = (i + 1) % presets.size();
          v.state_.settings.set("preset", presetName(presets[next]));
        }},
       {"[", "AO radius / 1.25", scale("ao.radius", 1.0 / 1.25)},
@@ -264,7 +263,7 @@ bool Viewer::handleKey(const std::string& key) {
 FrameOptions Viewer::frameOptions(int width, int height) {
   FrameOptions options;
   state_.timeline.applyTo(options);  // time, animation, loop
-  const ResolutionSettings& resolution = std::as_const(state_.settings).of<ResolutionSettings>();
+  const ResolutionSettings& resolution = state_.settings.of<ResolutionSettings>();
   renderScale_ = resolution.scale;
   if (width != lastWidth_ || height != lastHeight_) dynamic_.forget();
   lastWidth_ = width;

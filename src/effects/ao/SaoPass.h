@@ -60,18 +60,9 @@ class SaoPass {
   // the program's spec (its name is text, formatted from every define) and the estimator's packed knots (a lookup in
   // the tuned table). Building both every frame was about 0.05 ms of the page's host time (docs/benchmarks.md).
   using SpecInputs = std::tuple<AoEstimator, int, int, Falloff, std::optional<Storage>, int, bool>;
-  struct KnotInputs {
-    AoEstimator estimator;
-    QualityPreset preset;
-    int layers, samples;
-    Falloff falloff;
-    std::optional<float> bias, intensity, contrast, thickness;
-    bool operator==(const KnotInputs& o) const {
-      return estimator == o.estimator && preset == o.preset && layers == o.layers && samples == o.samples &&
-             falloff == o.falloff && bias == o.bias && intensity == o.intensity && contrast == o.contrast &&
-             thickness == o.thickness;
-    }
-  };
+  // estimator, preset, layers read, samples, falloff, and the bias, intensity, contrast and thickness set by hand.
+  using KnotInputs = std::tuple<AoEstimator, QualityPreset, int, int, Falloff, std::optional<float>,
+                                std::optional<float>, std::optional<float>, std::optional<float>>;
   const ProgramSpec& cachedSpec(const SpecInputs& inputs) const;
   const std::array<glm::vec4, kEstimatorKnots>& packedKnots(const AoSettings& settings) const;
 
