@@ -434,10 +434,15 @@ TEST(Plan, ACachedPlanDrawsWhatAFreshOneDraws) {
   int checked = 0;
   for (const ParameterInfo& p : RenderSettings::parameters()) {
     if (p.shapesPlan) continue;
-    ASSERT_TRUE(p.kind == ParameterKind::Number || p.kind == ParameterKind::Color) << p.name;
-    // Another value in range: a colour unlike the defaults, a number a quarter of the way towards its far end.
+    ASSERT_TRUE(p.kind == ParameterKind::Number || p.kind == ParameterKind::Color || p.kind == ParameterKind::Choice)
+        << p.name;
+    // Another value in range: a colour unlike the defaults, a number a quarter of the way towards its far end, the
+    // first other choice (a preset of numbers: gbuffer.preset).
     std::string value = "0.2,0.35,0.6";
-    if (p.kind == ParameterKind::Number) {
+    if (p.kind == ParameterKind::Choice) {
+      value = *std::find_if(p.choices.begin(), p.choices.end(),
+                            [&](const std::string& choice) { return choice != everything.get(p.name); });
+    } else if (p.kind == ParameterKind::Number) {
       const std::string current = everything.effective(p.name);
       if (current == "auto") {  // resolved on the GPU (dof.focus): a number well inside the range instead
         value = formatShortest(static_cast<float>(p.min > 0.0 ? std::sqrt(p.min * p.max) : 0.5 * (p.min + p.max)));

@@ -254,14 +254,61 @@ TEST(Limits, MeshesOverSixteenBitsAreSplitWithoutOesElementIndexUint) {
   Renderer without = test::makeRenderer(webgl1);
   withUint.setScene(scene);
   without.setScene(scene);
+  // A mesh split into pieces has no levels of detail (they index the whole mesh's vertices): both in full.
+  RenderSettings settings;
+  settings.set("gbuffer.lod", "0");
   EXPECT_FALSE(without.gpuScene().usesUint32Indices());
   EXPECT_GT(without.gpuScene().pieceCount(), 1u);
   // The same triangles are drawn either way: the images agree exactly.
   for (const View& view : {View::Normals, View::Final}) {
-    const test::RenderedImage a = test::render(withUint, camera, AoSettings{}, view);
-    const test::RenderedImage b = test::render(without, camera, AoSettings{}, view);
+    const test::RenderedImage a = test::render(withUint, camera, settings, view);
+    const test::RenderedImage b = test::render(without, camera, settings, view);
     EXPECT_EQ(a.rgba, b.rgba) << view.name;
   }
+}
+
+// Levels of detail (gbuffer.lod, scene/MeshDetail.h): a dense sphere far away draws a coarser level in every
+// geometry pass, and the image stays within a fraction of a level of the full one; near, it draws more triangles;
+// at 0 it draws them all. In an orthographic view the level follows the view's size alone.
+TEST(Lod, DistantMeshesDrawCoarserLevelsThatLeaveTheImageAsItWas) {
+  const Mesh sphere = makeSphere(1.0f, 200, 100);
+  const long full = static_cast<long>(sphere.indices.size() / 3);
+  Renderer renderer = test::makeRenderer();
+  renderer.setScene(test::sceneOf({sphere}));
+  RenderSettings lod, fullDetail;  // fullDetail: the default
+  lod.set("gbuffer.lod", "0.5");
+  auto drawn = [&](const Camera& camera, const RenderSettings& settings) {
+    test::render(renderer, camera, settings, View::Final);
+    return renderer.gpuScene().lastDrawCounts();
+  };
+  const Camera far = test::makeCamera({0, 0.5f, 12.0f}, {0, 0, 0}, 160, 120);
+  const Camera near = test::makeCamera({0, 0.5f, 2.5f}, {0, 0, 0}, 160, 120);
+  const GpuScene::Counts farCounts = drawn(far, lod);
+  EXPECT_EQ(farCounts.coarser, farCounts.draws);
+  EXPECT_LT(farCounts.triangles * 4, full) << "a sphere 20 pixels across needs under a quarter of 40k triangles";
+  const GpuScene::Counts nearCounts = drawn(near, lod);
+  EXPECT_GT(nearCounts.triangles, farCounts.triangles);
+  EXPECT_EQ(drawn(far, fullDetail).triangles, full);
+  EXPECT_EQ(drawn(far, fullDetail).coarser, 0);
+  for (const Camera& camera : {far, near}) {
+    const test::ColorDifference difference = test::colorDifference(
+        test::render(renderer, camera, lod, View::Final), test::render(renderer, camera, fullDetail, View::Final));
+    EXPECT_LT(difference.mean, 0.25) << "levels of 255, over the whole frame";
+  }
+  Camera orthographic = far;
+  orthographic.orthographic = true;
+  orthographic.ymag = 20.0f;  // the sphere 6 pixels across: the coarsest level, as far away
+  EXPECT_LE(drawn(orthographic, lod).triangles, farCounts.triangles);
+  EXPECT_EQ(drawn(orthographic, lod).coarser, 1);
+  orthographic.ymag = 1.2f;  // filling the frame
+  EXPECT_GT(drawn(orthographic, lod).triangles, farCounts.triangles);
+  // The frame's preset low takes half a pixel; the others full detail.
+  RenderSettings low;
+  low.set("preset", "low");
+  EXPECT_EQ(low.get("gbuffer.lod"), "0.5");
+  EXPECT_EQ(low.get("gbuffer.preset"), "low");
+  low.set("preset", "medium");
+  EXPECT_EQ(low.get("gbuffer.lod"), "0");
 }
 
 TEST(Limits, AContextWithoutFragmentHighpIsRefusedClearly) {

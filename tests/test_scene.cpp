@@ -10,6 +10,7 @@
 #include "scene/BuiltinScene.h"
 #include "scene/Camera.h"
 #include "scene/GltfLoader.h"
+#include "scene/MeshDetail.h"
 #include "scene/MeshProcessing.h"
 #include "scene/Primitives.h"
 
@@ -127,6 +128,53 @@ TEST(MeshProcessing, SplitsLargeMeshesIntoSixteenBitPieces) {
   }
   EXPECT_EQ(triangles, big.indices.size() / 3);
   EXPECT_TRUE(original == split) << "the pieces must draw exactly the original triangles";
+}
+
+// Levels of detail (scene/MeshDetail.h): coarser lists over the mesh's own vertices, each at most 80 % of the finer
+// one's triangles, at a larger error within the coarsest bound (1/64 of the extent); a flat grid collapses at no
+// error at all; small and deforming meshes get none.
+TEST(MeshDetail, CoarserLevelsOverTheSameVerticesWithGrowingBoundedError) {
+  const Mesh sphere = makeSphere(1.0f, 128, 64);
+  const std::vector<DetailLevel> levels = detailLevels(sphere);
+  ASSERT_GE(levels.size(), 3u);
+  size_t finer = sphere.indices.size();
+  float finerError = 0.0f;
+  for (const DetailLevel& level : levels) {
+    ASSERT_FALSE(level.indices.empty());
+    EXPECT_EQ(level.indices.size() % 3, 0u);
+    EXPECT_LE(level.indices.size() * 5, finer * 4);
+    EXPECT_GT(level.error, finerError);
+    EXPECT_LE(level.error, 2.0f / 64.0f * 1.001f);  // the sphere's extent is its diameter
+    for (std::uint32_t index : level.indices) ASSERT_LT(index, sphere.positions.size());
+    finer = level.indices.size();
+    finerError = level.error;
+  }
+
+  Mesh grid;  // 64 x 64 quads in the plane z = 0
+  const int n = 64;
+  for (int y = 0; y <= n; ++y)
+    for (int x = 0; x <= n; ++x) {
+      grid.positions.push_back({static_cast<float>(x), static_cast<float>(y), 0.0f});
+      grid.normals.push_back({0, 0, 1});
+    }
+  for (int y = 0; y < n; ++y)
+    for (int x = 0; x < n; ++x) {
+      const auto v = static_cast<std::uint32_t>(y * (n + 1) + x), up = v + n + 1;
+      grid.indices.insert(grid.indices.end(), {v, v + 1, up, up, v + 1, up + 1});
+    }
+  const std::vector<DetailLevel> flat = detailLevels(grid);
+  ASSERT_EQ(flat.size(), 1u) << "a plane is as coarse as it gets at the first level";
+  EXPECT_LT(flat[0].error, 1e-4f);
+  EXPECT_LT(flat[0].indices.size(), grid.indices.size() / 10);
+
+  EXPECT_TRUE(detailLevels(makeSphere(1.0f, 16, 8)).empty()) << "under kDetailMinTriangles";
+  Mesh skinned = sphere;
+  skinned.joints.assign(skinned.positions.size(), glm::u16vec4(0));
+  skinned.weights.assign(skinned.positions.size(), glm::vec4(1, 0, 0, 0));
+  EXPECT_TRUE(detailLevels(skinned).empty());
+  Mesh morphed = sphere;
+  morphed.morphTargets.push_back({std::vector<glm::vec3>(sphere.positions.size(), glm::vec3(0.1f)), {}, {}});
+  EXPECT_TRUE(detailLevels(morphed).empty());
 }
 
 TEST(BuiltinScene, IsRichAndSitsOnTheFloor) {

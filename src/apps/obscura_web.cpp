@@ -200,6 +200,8 @@ class WebApp {
                 {"passesDoneBy", doneBy},
                 {"history", history},
                 {"pooledTargets", viewer_.renderer() ? Json(viewer_.renderer()->pooledTargets()) : Json(nullptr)},
+                {"triangles", viewer_.renderer() ? Json(viewer_.renderer()->gpuScene().lastDrawCounts().triangles)
+                                                 : Json(nullptr)},
                 {"contextLost", canvas_.lost()},
                 {"contextRestores", restores_},
                 {"glObjects", {{"textures", live.textures},

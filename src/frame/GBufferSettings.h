@@ -16,8 +16,18 @@ enum class GBufferNormals {
 
 struct GBufferSettings : ParameterAccess<GBufferSettings> {
   GBufferNormals normals = GBufferNormals::Stored;
+  // Level of detail (scene/MeshDetail.h): the largest error, in pixels of the frame, of the simplified meshes every
+  // geometry pass draws; 0 draws each mesh in full. Full detail by default: half a pixel leaves the image within
+  // 0.1 % (MAE) of the full one, but moves thin features' edges enough to cost the AO accuracy against the ray-traced
+  // reference (docs/benchmarks.md, "Levels of detail"); `preset low` takes it.
+  float lod = 0.0f;
+  QualityPreset preset = QualityPreset::Medium;  // the frame preset `lod` came from (applyPreset)
 
   static const std::vector<Parameter<GBufferSettings>>& parameters();
+  // The frame's preset: low draws the levels within half a pixel (kLowPresetLod), the others full detail.
+  static constexpr float kLowPresetLod = 0.5f;
+  void applyPreset(QualityPreset which);
+  bool matchesPreset(QualityPreset which) const;
   void validate() const { validateParameters("G-buffer"); }
 };
 

@@ -177,6 +177,22 @@ Parameter<S> integerParameter(const char* name, int min, int max, const char* un
   return p;
 }
 
+// An effect's `preset` (EFFECT.preset), for settings with applyPreset(QualityPreset), matchesPreset(QualityPreset)
+// and the QualityPreset `preset` they came from: one of the presets' names, read back as "" once the settings no
+// longer hold its values. `shapesPlan`: whether the values it sets shape the plan (ParameterInfo::shapesPlan).
+template <typename S>
+Parameter<S> presetParameter(const char* help, bool shapesPlan = true) {
+  std::vector<std::string> names;
+  for (QualityPreset preset : allQualityPresets()) names.push_back(presetName(preset));
+  Parameter<S> p{{"preset", parse::joinChoices(names, " | "), help, ParameterKind::Choice, 0.0, 0.0, names},
+                 {}, {}, {}, {}, {}};
+  p.set = [](S& s, const std::string& v) { s.applyPreset(parsePreset(v)); };
+  p.get = [](const S& s) { return s.matchesPreset(s.preset) ? std::string(presetName(s.preset)) : ""; };
+  p.valid = [](const S&) { return true; };
+  p.info.shapesPlan = shapesPlan;
+  return p;
+}
+
 // A linear RGB colour (parse::color's forms; get() gives "r,g,b").
 template <typename S>
 Parameter<S> colorParameter(const char* name, double min, double max, const char* help, glm::vec3 S::*field) {

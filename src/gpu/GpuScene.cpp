@@ -163,9 +163,13 @@ std::vector<GpuScene::MeshPieces> GpuScene::uploadMeshes(const Scene& scene, boo
     if (mesh.skinned() && skinningPath_ == SkinningPath::Uniforms) parts = splitForJointPalette(mesh, paletteSize_);
     if (parts.empty()) parts.push_back({mesh, {}});
     placed.cpuSkinned = mesh.skinned() && skinningPath_ == SkinningPath::Cpu;
-    for (const PalettePiece& part : parts)
-      for (Mesh& piece16 : uint32 ? std::vector<Mesh>{part.mesh} : splitForShortIndices(part.mesh))
-        pieces_.push_back(uploadPiece(std::move(piece16), part.palette, pbr));
+    for (const PalettePiece& part : parts) {
+      std::vector<Mesh> pieces = uint32 ? std::vector<Mesh>{part.mesh} : splitForShortIndices(part.mesh);
+      // Levels of detail only for a mesh drawn whole: they index its own vertices.
+      const std::vector<DetailLevel> levels =
+          parts.size() == 1 && pieces.size() == 1 ? detailLevels(mesh) : std::vector<DetailLevel>{};
+      for (Mesh& piece : pieces) pieces_.push_back(uploadPiece(std::move(piece), part.palette, pbr, levels));
+    }
     placed.count = static_cast<int>(pieces_.size()) - placed.first;
     meshPieces.push_back(placed);
   }
@@ -174,22 +178,30 @@ std::vector<GpuScene::MeshPieces> GpuScene::uploadMeshes(const Scene& scene, boo
   return meshPieces;
 }
 
-GpuScene::Piece GpuScene::uploadPiece(Mesh mesh, const std::vector<int>& palette, bool tangents) {
+GpuScene::Piece GpuScene::uploadPiece(Mesh mesh, const std::vector<int>& palette, bool tangents,
+                                     const std::vector<DetailLevel>& levels) {
   Piece piece;
   const std::vector<float> interleaved = interleave(mesh);
   piece.vertices = arrayBuffer(interleaved.data(), interleaved.size() * sizeof(float));
+  // The full index list, then each coarser level's, in one buffer.
+  std::vector<std::uint32_t> indices = mesh.indices;
+  piece.indexCount = static_cast<GLsizei>(mesh.indices.size());
+  const size_t indexBytes = mesh.positions.size() <= 65536 ? 2 : 4;
+  for (const DetailLevel& level : levels) {
+    piece.levels.push_back({static_cast<GLsizei>(level.indices.size()), indices.size() * indexBytes, level.error});
+    indices.insert(indices.end(), level.indices.begin(), level.indices.end());
+  }
   piece.indices = gl::BufferHandle::create();
   glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, piece.indices.id());
-  if (mesh.positions.size() <= 65536) {
-    const std::vector<std::uint16_t> shorts(mesh.indices.begin(), mesh.indices.end());
+  if (indexBytes == 2) {
+    const std::vector<std::uint16_t> shorts(indices.begin(), indices.end());
     glBufferData(GL_ELEMENT_ARRAY_BUFFER, static_cast<GLsizeiptr>(shorts.size() * 2), shorts.data(), GL_STATIC_DRAW);
     piece.indexType = GL_UNSIGNED_SHORT;
   } else {
-    glBufferData(GL_ELEMENT_ARRAY_BUFFER, static_cast<GLsizeiptr>(mesh.indices.size() * 4), mesh.indices.data(),
+    glBufferData(GL_ELEMENT_ARRAY_BUFFER, static_cast<GLsizeiptr>(indices.size() * 4), indices.data(),
                  GL_STATIC_DRAW);
     piece.indexType = GL_UNSIGNED_INT;
   }
-  piece.indexCount = static_cast<GLsizei>(mesh.indices.size());
   if (mesh.skinned()) {
     std::vector<float> skin;
     skin.reserve(mesh.joints.size() * 8);
@@ -224,6 +236,7 @@ void GpuScene::placeInstances(const Scene& scene, const std::vector<MeshPieces>&
     gpu.localCentre = local.empty() ? glm::vec3(0.0f) : local.center();
     gpu.localMin = local.empty() ? glm::vec3(0.0f) : local.min;
     gpu.localMax = local.empty() ? glm::vec3(0.0f) : local.max;
+    gpu.localRadius = 0.5f * glm::length(gpu.localMax - gpu.localMin);
     gpu.restCentre = gpu.centre = glm::vec3(instance.world * glm::vec4(gpu.localCentre, 1.0f));
     gpu.material = mesh.material >= 0 ? mesh.material : static_cast<int>(materials_.size()) - 1;
     gpu.firstPiece = placed.first;
@@ -233,6 +246,28 @@ void GpuScene::placeInstances(const Scene& scene, const std::vector<MeshPieces>&
     gpu.morphed = !mesh.morphTargets.empty();
     gpu.transparent = materials_[static_cast<size_t>(gpu.material)].transparent;
     instances_.push_back(std::move(gpu));
+  }
+}
+
+void GpuScene::chooseDetail(const glm::mat4& view, const glm::mat4& projection, int heightPixels,
+                            float maxPixelError) {
+  // Pixels per unit of length at clip w = 1: the projection's vertical scale times half the frame's height.
+  const float pixelsPerUnit = std::abs(projection[1][1]) * 0.5f * static_cast<float>(heightPixels);
+  for (InstanceGpu& instance : instances_) {
+    instance.detail = 0;
+    if (!(maxPixelError > 0.0f) || instance.pieceCount != 1) continue;
+    const Piece& piece = pieces_[static_cast<size_t>(instance.firstPiece)];
+    if (piece.levels.empty()) continue;
+    const glm::mat3 linear(instance.world);
+    const float scale = std::max({glm::length(linear[0]), glm::length(linear[1]), glm::length(linear[2])});
+    const glm::vec4 centre = view * instance.world * glm::vec4(instance.localCentre, 1.0f);
+    // Clip w at the bounds' nearest point along the view axis: its distance in front of the eye (w = -z) in a
+    // perspective projection, 1 in an orthographic one (glm is column-major: projection[column][row]).
+    const float w = projection[2][3] * (centre.z + scale * instance.localRadius) + projection[3][3];
+    if (!(w > 0.0f)) continue;
+    const float pixelsPerMeshUnit = scale * pixelsPerUnit / w;
+    for (size_t level = 0; level < piece.levels.size(); ++level)
+      if (piece.levels[level].error * pixelsPerMeshUnit <= maxPixelError) instance.detail = static_cast<int>(level) + 1;
   }
 }
 
@@ -512,6 +547,14 @@ void GpuScene::bindMaterialTextures(const MaterialGpu& material, DrawState& stat
   state.pbrTexturesBound = true;
 }
 
+void GpuScene::drawIndices(const Piece& piece, int detail) const {
+  const Piece::Level full{piece.indexCount, 0, 0.0f};
+  const Piece::Level& level = detail > 0 ? piece.levels[static_cast<size_t>(detail - 1)] : full;
+  glDrawElements(GL_TRIANGLES, level.indexCount, piece.indexType, reinterpret_cast<const void*>(level.offset));
+  counts_.triangles += level.indexCount / 3;
+  if (detail > 0) ++counts_.coarser;
+}
+
 void GpuScene::drawPiece(const InstanceGpu& instance, int p, const MaterialGpu& material, const glm::mat4& modelView,
                          DrawState& state) const {
   using gl::Program;
@@ -548,7 +591,7 @@ void GpuScene::drawPiece(const InstanceGpu& instance, int p, const MaterialGpu& 
   if (const GLuint vertexArray = pieceVertexArray(instance, p, vertexKind, state)) {
     bindVertexArray(vertexArray, state);
     ++counts_.vertexArrays;
-    glDrawElements(GL_TRIANGLES, piece.indexCount, piece.indexType, nullptr);
+    drawIndices(piece, instance.detail);
     return;
   }
   bindVertexArray(0, state);
@@ -558,7 +601,7 @@ void GpuScene::drawPiece(const InstanceGpu& instance, int p, const MaterialGpu& 
   }
   bindVertices(instance, p, vertexKind, state);
   glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, piece.indices.id());
-  if (!withheld_) glDrawElements(GL_TRIANGLES, piece.indexCount, piece.indexType, nullptr);
+  if (!withheld_) drawIndices(piece, instance.detail);
   for (GLuint slot : state.extraAttributes) glDisableVertexAttribArray(slot);
   state.extraAttributes.clear();
 }

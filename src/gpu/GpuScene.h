@@ -32,6 +32,7 @@
 #include "gpu/MaterialKind.h"
 #include "gpu/VertexKind.h"
 #include "scene/Animation.h"
+#include "scene/MeshDetail.h"
 #include "scene/Scene.h"
 
 namespace obscura {
@@ -85,6 +86,12 @@ class GpuScene {
     // back faces bound its thickness (effects/ao/DepthPeelPass.h).
     bool bothFaces = false;
   };
+  // Chooses each instance's level of detail for this frame's draws (scene/MeshDetail.h): the coarsest whose error,
+  // projected at the nearest point of the instance's bounds, is at most `maxPixelError` pixels of a frame
+  // `heightPixels` high; full detail where none is that fine, where the bounds reach the eye, and everywhere for 0.
+  // Every draw until the next call draws the same triangles (the G-buffer, the lighting and the velocity agree).
+  void chooseDetail(const glm::mat4& view, const glm::mat4& projection, int heightPixels, float maxPixelError);
+
   // Draws every instance of the opaque layer (every material but the transparent ones, Material::transparent, which
   // drawTransparent draws): opaque materials first, then masked ones, each group front to back (by the distance of
   // its bounds' centre from the eye), so early depth tests reject what a nearer surface hides. Sets u_modelView,
@@ -149,6 +156,8 @@ class GpuScene {
   struct Counts {
     int draws = 0, cpuDeformed = 0, gpuMorphed = 0, skinned = 0;
     int vertexArrays = 0;  // draws that bound a vertex array object instead of setting their streams
+    long triangles = 0;    // drawn, at the levels of detail chosen
+    int coarser = 0;       // draws at a level of detail below the full one
   };
   Counts lastDrawCounts() const { return counts_; }
 
@@ -157,6 +166,14 @@ class GpuScene {
     gl::BufferHandle vertices, indices;
     GLsizei indexCount = 0;
     GLenum indexType = GL_UNSIGNED_SHORT;
+    // The coarser levels of detail (scene/MeshDetail.h), finest first, after the full list in `indices`; none for a
+    // mesh drawn in several pieces (the levels index the whole mesh's vertices).
+    struct Level {
+      GLsizei indexCount = 0;
+      size_t offset = 0;  // bytes into `indices`
+      float error = 0.0f;  // in the mesh's units
+    };
+    std::vector<Level> levels;
     gl::BufferHandle skinAttributes;  // joints (4 floats) then weights (4 floats) per vertex; none if rigid
     // Per target (normals, tangents: none where the target has none).
     std::vector<gl::BufferHandle> morphPositions, morphNormals, morphTangents;
@@ -191,6 +208,8 @@ class GpuScene {
     glm::vec3 centre{0.0f};      // of its posed bounds (approximately), for the drawing order
     int material = 0;
     int firstPiece = 0, pieceCount = 0;
+    float localRadius = 0.0f;    // half its mesh's bounds' diagonal
+    int detail = 0;              // this frame's level of detail: 0 the full one, k its piece's levels[k - 1]
     int skin = -1;               // index into skins_ where drawn skinned
     bool cpuSkinned = false;     // skinned on the CPU (SkinningPath::Cpu)
     bool morphed = false;        // its mesh has morph targets
@@ -248,7 +267,8 @@ class GpuScene {
   void uploadTextures(const Scene& scene, const gl::GlCaps& caps);
   void uploadMaterials(const Scene& scene);
   std::vector<MeshPieces> uploadMeshes(const Scene& scene, bool uint32);
-  Piece uploadPiece(Mesh mesh, const std::vector<int>& palette, bool tangents);
+  Piece uploadPiece(Mesh mesh, const std::vector<int>& palette, bool tangents,
+                    const std::vector<DetailLevel>& levels);
   void createSkins(const Scene& scene, const gl::GlCaps& caps);  // GpuSkinning.cpp
   void placeInstances(const Scene& scene, const std::vector<MeshPieces>& meshPieces);
 
@@ -276,6 +296,8 @@ class GpuScene {
   // whose streams change from frame to frame).
   GLuint pieceVertexArray(const InstanceGpu& instance, int p, const VertexKind& vertexKind, DrawState& state) const;
   void bindVertexArray(GLuint vertexArray, DrawState& state) const;
+  // glDrawElements of the piece's indices at level of detail `detail` (InstanceGpu::detail), counted.
+  void drawIndices(const Piece& piece, int detail) const;
   void restoreAfterDraw(const DrawState& state) const;
 
   std::vector<Piece> pieces_;

@@ -7,6 +7,7 @@
 #include "base/TimeSpent.h"
 #include "effects/ao/AoEffect.h"
 #include "effects/fog/FogEffect.h"
+#include "frame/GBufferSettings.h"
 #include "frame/Resolution.h"
 #include "gl/PipelineState.h"
 
@@ -415,6 +416,8 @@ void Renderer::boundScene(bool externalGBuffer) {
 void Renderer::run(const RenderSettings& settings, const View& view, const OutputTarget& output,
                    const FrameOptions& options) {
   for (const std::unique_ptr<Effect>& effect : effects_) effect->prepare(settings);
+  scene_.chooseDetail(frame_.camera.view, frame_.camera.projection, frame_.camera.height,
+                      settings.of<GBufferSettings>().lod);
   boundScene(options.externalGBuffer != 0);
   // What surfaces drawn after the lighting need (frame/SurfaceShading.h): the fog these settings apply; the light
   // comes from the lighting pass as it runs.

@@ -108,6 +108,28 @@ describe('demo page', () => {
     await page.locator('#view-final').check();
   });
 
+  test('gbuffer.lod through the page and the JS API: fewer triangles, the image within a level',
+    { timeout: 120000 },
+    async () => {
+      // A snapshot draws a frame; the stats then count its geometry pass's triangles.
+      const triangles = () => page.evaluate(() => window.obscura.stats().triangles);
+      await page.evaluate(() => window.obscura.set('gbuffer.lod', '0'));
+      const fullImage = await snapshot(page);
+      const full = await triangles();
+      // The box beside the slider, under the G-buffer's "more".
+      const more = page.locator('#effect-gbuffer details.more');
+      if (!(await more.evaluate((details) => details.open))) await more.locator('summary').click();
+      const number = page.locator('#effect-gbuffer #param-gbuffer-lod + input');
+      await number.fill('2');
+      await number.dispatchEvent('change');
+      assert.equal(await page.evaluate(() => window.obscura.get('gbuffer.lod')), '2');
+      const difference = compareImages(fullImage, await snapshot(page));
+      const coarse = await triangles();
+      assert.ok(coarse < full, `${coarse} triangles at 2 pixels, ${full} in full detail`);
+      assert.ok(difference.mean < 1, `the image moves by ${difference.mean} levels of 255 on average`);
+      await page.evaluate(() => window.obscura.set('gbuffer.lod', '0'));
+    });
+
   test('the panel groups the controls by effect, from the effect table', { timeout: 120000 }, async () => {
     const table = await page.evaluate(() => window.obscura.effects.map((e) => ({
       name: e.name, title: e.title, parameters: e.parameters })));

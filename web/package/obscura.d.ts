@@ -163,6 +163,8 @@ export interface Stats {
   passesDoneBy: Record<string, string>;
   history: { frames: number; drops: number; frameIndex: number };
   pooledTargets: number;
+  /** Triangles the last geometry pass drew, at the levels of detail `gbuffer.lod` chose. */
+  triangles: number | null;
   contextLost: boolean;
   contextRestores: number;
   glObjects: Record<string, number>;

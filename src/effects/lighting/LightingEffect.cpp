@@ -21,19 +21,8 @@ namespace obscura {
 const std::vector<Parameter<LightingSettings>>& LightingSettings::parameters() {
   using S = LightingSettings;
   static const std::vector<Parameter<S>> table = [] {
-    std::vector<std::string> presetNames;
-    for (QualityPreset p : allQualityPresets()) presetNames.push_back(presetName(p));
-    Parameter<S> presetParameter{{"preset", parse::joinChoices(presetNames, " | "),
-                                  "quality preset: the shading tier (low: low, medium: medium, high and ultra: high)",
-                                  ParameterKind::Choice, 0.0, 0.0, presetNames},
-                                 {}, {}, {}, {}, {}};
-    presetParameter.set = [](S& s, const std::string& v) { s.applyPreset(parsePreset(v)); };
-    presetParameter.get = [](const S& s) {
-      return s.matchesPreset(s.preset) ? std::string(presetName(s.preset)) : "";
-    };
-    presetParameter.valid = [](const S&) { return true; };
     return std::vector<Parameter<S>>{
-      std::move(presetParameter),
+      presetParameter<S>("quality preset: the shading tier (low: low, medium: medium, high and ultra: high)"),
       choiceParameter<S, LightingQuality>(
           "quality",
           "shading tier: low (the ambient from spherical harmonics alone, no environment fetch), medium (the "
