@@ -7,10 +7,14 @@
 # Build with tools/build-web.sh.
 
 # The core reports bad input with exceptions (InputError): catching them needs exception support on every object
-# file and at link time (Emscripten's default only lets them propagate to an abort).
-foreach(library obscura_base obscura_encoding obscura_gl obscura_scene obscura_gpu obscura_environment obscura_frame
-                obscura_effects obscura_renderer obscura_viewer)
-  target_compile_options(${library} PUBLIC -fexceptions)
+# file and at link time (Emscripten's default only lets them propagate to an abort). WebAssembly's own exception
+# handling (-fwasm-exceptions), not Emscripten's JavaScript one (-fexceptions), which wraps every call that may throw
+# from a frame with destructors in a JavaScript trampoline (invoke_*): about a fifth of the render call's time on the
+# page (docs/benchmarks.md, "Host time"). It needs Chrome 95, Firefox 100, Safari 15.2 or newer; Debian's emscripten
+# ships the libraries it links (libc++-except, libc++abi-except, libunwind-except), nothing is built into its cache.
+foreach(library obscura_base obscura_encoding obscura_gl obscura_meshopt_simplifier obscura_scene obscura_gpu
+                obscura_environment obscura_frame obscura_effects obscura_renderer obscura_viewer)
+  target_compile_options(${library} PUBLIC -fwasm-exceptions)
 endforeach()
 
 set(OBSCURA_SITE_DIR "${CMAKE_BINARY_DIR}/site")
@@ -24,7 +28,7 @@ target_link_libraries(obscura-web PRIVATE obscura_viewer obscura_warnings)
 set_target_properties(obscura-web PROPERTIES OUTPUT_NAME obscura-core SUFFIX ".js"
                                              RUNTIME_OUTPUT_DIRECTORY "${OBSCURA_SITE_DIR}")
 target_link_options(obscura-web PRIVATE
-  -fexceptions
+  -fwasm-exceptions
   # WebGL 1 and nothing newer: no WebGL 2 entry point is even linked.
   -sMIN_WEBGL_VERSION=1 -sMAX_WEBGL_VERSION=1
   -sENVIRONMENT=web
