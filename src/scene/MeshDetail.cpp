@@ -8,7 +8,9 @@ namespace obscura {
 
 std::vector<DetailLevel> detailLevels(const Mesh& mesh) {
   std::vector<DetailLevel> levels;
-  if (mesh.indices.size() < 3 * kDetailMinTriangles || mesh.skinned() || !mesh.morphTargets.empty()) return levels;
+  if (mesh.indices.size() < 3 * kDetailMinTriangles || mesh.skinned() || !mesh.morphTargets.empty() ||
+      mesh.normals.size() != mesh.positions.size())  // the simplifier weighs one normal per vertex
+    return levels;
   const TimedScope timed("levels of detail");  // start-up's breakdown (base/TimeSpent.h)
   const float* positions = &mesh.positions.front().x;
   const size_t vertexCount = mesh.positions.size();
