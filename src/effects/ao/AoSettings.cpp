@@ -14,19 +14,7 @@ const std::vector<Parameter<AoSettings>>& AoSettings::parameters() {
     std::vector<Parameter<S>> t;
     t.push_back(switchParameter<S>("ao", "ambient obscurance on or off", &S::enabled).primary());
 
-    std::vector<std::string> presetNames;
-    for (const PresetInfo& info : qualityPresets()) presetNames.push_back(info.name);
-    Parameter<S> presetParameter{{"preset", parse::joinChoices(presetNames, " | "),
-                                  "quality preset: samples, spiral turns, blur, resolution", ParameterKind::Choice, 0.0,
-                                  0.0, presetNames},
-                                 {}, {}, {}, {}, {}};
-    presetParameter.set = [](S& s, const std::string& v) { s.applyPreset(parsePreset(v)); };
-    // The preset the settings came from, while they still hold its values ("" once they differ).
-    presetParameter.get = [](const S& s) {
-      return s.matchesPreset(s.preset) ? std::string(presetName(s.preset)) : "";
-    };
-    presetParameter.valid = [](const S&) { return true; };
-    t.push_back(std::move(presetParameter).primary());
+    t.push_back(presetParameter<S>("quality preset: samples, spiral turns, blur, resolution").primary());
 
     std::vector<std::pair<std::string, AoEstimator>> estimators;
     for (AoEstimator choice : allAoEstimators()) estimators.emplace_back(estimatorName(choice), choice);
