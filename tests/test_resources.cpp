@@ -15,6 +15,7 @@
 #include "renderer/EffectTable.h"
 #include "scene/BuiltinScene.h"
 #include "scene/GltfLoader.h"
+#include "scene/MeshDetail.h"
 #include "scene/Primitives.h"
 
 using namespace obscura;
@@ -274,7 +275,10 @@ TEST(Lod, DistantMeshesDrawCoarserLevelsThatLeaveTheImageAsItWas) {
   const Mesh sphere = makeSphere(1.0f, 200, 100);
   const long full = static_cast<long>(sphere.indices.size() / 3);
   Renderer renderer = test::makeRenderer();
-  renderer.setScene(test::sceneOf({sphere}));
+  Scene scene = test::sceneOf({sphere});
+  addDetailLevels(scene);  // as the loaders do
+  ASSERT_FALSE(scene.meshes[0].levels.empty());
+  renderer.setScene(scene);
   RenderSettings lod, fullDetail;  // fullDetail: the default
   lod.set("gbuffer.lod", "0.5");
   auto drawn = [&](const Camera& camera, const RenderSettings& settings) {
@@ -302,6 +306,18 @@ TEST(Lod, DistantMeshesDrawCoarserLevelsThatLeaveTheImageAsItWas) {
   EXPECT_EQ(drawn(orthographic, lod).coarser, 1);
   orthographic.ymag = 1.2f;  // filling the frame
   EXPECT_GT(drawn(orthographic, lod).triangles, farCounts.triangles);
+  // The renderer draws the levels the scene carries and makes none of its own: a hand-made level (every other
+  // triangle, with no error) is what a distant sphere draws, and without levels it draws them all.
+  Mesh handMade = sphere;
+  DetailLevel everyOther;
+  for (size_t t = 0; t + 2 < sphere.indices.size(); t += 6)
+    everyOther.indices.insert(everyOther.indices.end(), sphere.indices.begin() + static_cast<long>(t),
+                              sphere.indices.begin() + static_cast<long>(t) + 3);
+  handMade.levels = {everyOther};
+  renderer.setScene(test::sceneOf({handMade}));
+  EXPECT_EQ(drawn(far, lod).triangles, static_cast<long>(everyOther.indices.size() / 3));
+  renderer.setScene(test::sceneOf({sphere}));
+  EXPECT_EQ(drawn(far, lod).triangles, full);
   // The frame's preset low takes half a pixel; the others full detail.
   RenderSettings low;
   low.set("preset", "low");

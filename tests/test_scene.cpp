@@ -2,6 +2,7 @@
 // and camera files.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <fstream>
 #include <set>
 
@@ -175,6 +176,28 @@ TEST(MeshDetail, CoarserLevelsOverTheSameVerticesWithGrowingBoundedError) {
   Mesh morphed = sphere;
   morphed.morphTargets.push_back({std::vector<glm::vec3>(sphere.positions.size(), glm::vec3(0.1f)), {}, {}});
   EXPECT_TRUE(detailLevels(morphed).empty());
+}
+
+// The levels are made once, where a scene is loaded: a loaded file's meshes carry exactly what detailLevels makes of
+// them, and adding levels again keeps those a mesh has.
+TEST(MeshDetail, LoadedScenesCarryTheirLevels) {
+  Scene scene = loadGltfFile(test::assimpModels() + "/2CylinderEngine-glTF-Binary/2CylinderEngine.glb");
+  size_t withLevels = 0;
+  for (const Mesh& mesh : scene.meshes) {
+    const std::vector<DetailLevel> made = detailLevels(mesh);
+    ASSERT_EQ(mesh.levels.size(), made.size());
+    for (size_t k = 0; k < made.size(); ++k) {
+      EXPECT_EQ(mesh.levels[k].indices, made[k].indices);
+      EXPECT_EQ(mesh.levels[k].error, made[k].error);
+    }
+    withLevels += made.empty() ? 0 : 1;
+  }
+  EXPECT_GE(withLevels, 10u) << "the engine's larger parts";
+  Mesh& first =
+      *std::find_if(scene.meshes.begin(), scene.meshes.end(), [](const Mesh& m) { return !m.levels.empty(); });
+  first.levels.resize(1);
+  addDetailLevels(scene);
+  EXPECT_EQ(first.levels.size(), 1u) << "a mesh's own levels are kept";
 }
 
 TEST(BuiltinScene, IsRichAndSitsOnTheFloor) {

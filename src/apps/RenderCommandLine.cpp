@@ -260,6 +260,8 @@ int runRender(const RenderOptions& options) {
       }
       std::printf("%-10s %10.3f   (sum of pass means; wall clock per frame %.3f ms)\n", "total", sumOfMeans,
                   total / options.benchFrames);
+      std::printf("triangles  %ld   (drawn by the last geometry pass; gbuffer.lod draws coarser levels)\n",
+                  renderer.gpuScene().lastDrawCounts().triangles);
     }
 
     Image image;

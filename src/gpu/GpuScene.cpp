@@ -165,9 +165,10 @@ std::vector<GpuScene::MeshPieces> GpuScene::uploadMeshes(const Scene& scene, boo
     placed.cpuSkinned = mesh.skinned() && skinningPath_ == SkinningPath::Cpu;
     for (const PalettePiece& part : parts) {
       std::vector<Mesh> pieces = uint32 ? std::vector<Mesh>{part.mesh} : splitForShortIndices(part.mesh);
-      // Levels of detail only for a mesh drawn whole: they index its own vertices.
-      const std::vector<DetailLevel> levels =
-          parts.size() == 1 && pieces.size() == 1 ? detailLevels(mesh) : std::vector<DetailLevel>{};
+      // The scene's levels of detail (made once, at its load: scene/MeshDetail.h), only for a mesh drawn whole:
+      // they index its own vertices.
+      static const std::vector<DetailLevel> kNone;
+      const std::vector<DetailLevel>& levels = parts.size() == 1 && pieces.size() == 1 ? mesh.levels : kNone;
       for (Mesh& piece : pieces) pieces_.push_back(uploadPiece(std::move(piece), part.palette, pbr, levels));
     }
     placed.count = static_cast<int>(pieces_.size()) - placed.first;

@@ -32,7 +32,6 @@
 #include "gpu/MaterialKind.h"
 #include "gpu/VertexKind.h"
 #include "scene/Animation.h"
-#include "scene/MeshDetail.h"
 #include "scene/Scene.h"
 
 namespace obscura {

@@ -9,6 +9,7 @@
 #include <glm/gtc/quaternion.hpp>
 #include <glm/matrix.hpp>
 
+#include "scene/MeshDetail.h"
 #include "scene/Primitives.h"
 
 namespace obscura {
@@ -299,6 +300,7 @@ Scene makeBuiltinScene(const BuiltinSceneOptions& options) {
     addLimb(scene, motion);
     scene.animations.push_back(std::move(motion));
   }
+  addDetailLevels(scene);
   return scene;
 }
 

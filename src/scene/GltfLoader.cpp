@@ -15,6 +15,7 @@
 #include "scene/GltfCompression.h"
 #include "scene/GltfReading.h"
 #include "scene/GltfSchema.h"
+#include "scene/MeshDetail.h"
 
 namespace obscura {
 namespace {
@@ -315,6 +316,7 @@ Scene loadWithResolver(const std::vector<std::uint8_t>& bytes, const std::string
   const Bounds bounds = scene.worldBounds();
   const glm::vec3 extent = bounds.max - bounds.min;
   if (!std::isfinite(extent.x + extent.y + extent.z)) refuse("scene bounds are not finite after node transforms");
+  addDetailLevels(scene);
   return scene;
 }
 

@@ -36,4 +36,9 @@ std::vector<DetailLevel> detailLevels(const Mesh& mesh) {
   return levels;
 }
 
+void addDetailLevels(Scene& scene) {
+  for (Mesh& mesh : scene.meshes)
+    if (mesh.levels.empty()) mesh.levels = detailLevels(mesh);
+}
+
 }  // namespace obscura

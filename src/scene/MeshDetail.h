@@ -15,13 +15,6 @@
 
 namespace obscura {
 
-struct DetailLevel {
-  std::vector<std::uint32_t> indices;  // a triangle list over the mesh's own vertices
-  // The simplifier's error, in the mesh's units: the distance of the simplified surface from the mesh's, with a
-  // change of unit normal counted as kDetailNormalWeight times the mesh's extent.
-  float error = 0.0f;
-};
-
 // The coarser levels worth drawing, finest first, each with at most 80 % of the previous one's triangles and a
 // larger error; empty for a mesh too small to gain from them (under kDetailMinTriangles), or one that deforms
 // (skinned or morphed: the simplifier's error holds for the rest pose alone).
@@ -34,5 +27,9 @@ inline constexpr std::size_t kDetailMinTriangles = 1024;
 // 51 % of its triangles, against 42 % without). docs/benchmarks.md, "Levels of detail".
 inline constexpr float kDetailNormalWeight = 1.0f;
 std::vector<DetailLevel> detailLevels(const Mesh& mesh);
+// Gives each mesh of the scene that has none its detailLevels: once per scene, where it is loaded (the glTF loader,
+// the built-in scene, the API's setScene of a scene built by hand), so that every renderer made on it (a new
+// option, a lost context, the page's vertex arrays) uploads the same levels without making them again.
+void addDetailLevels(Scene& scene);
 
 }  // namespace obscura

@@ -147,6 +147,15 @@ struct MorphTarget {
   std::vector<glm::vec3> tangents;   // empty, or one per vertex: the tangent's xyz (Mesh::tangents; w stays)
 };
 
+// A coarser triangle list over a mesh's own vertices (scene/MeshDetail.h makes them), with the geometric error it
+// makes.
+struct DetailLevel {
+  std::vector<std::uint32_t> indices;  // a triangle list over the mesh's own vertices
+  // The simplifier's error, in the mesh's units: the distance of the simplified surface from the mesh's, with a
+  // change of unit normal counted as kDetailNormalWeight times the mesh's extent (scene/MeshDetail.h).
+  float error = 0.0f;
+};
+
 struct Mesh {
   std::vector<glm::vec3> positions;
   std::vector<glm::vec3> normals;    // one per position, unit length
@@ -163,6 +172,9 @@ struct Mesh {
   std::vector<glm::u16vec4> joints;
   std::vector<glm::vec4> weights;
   std::vector<MorphTarget> morphTargets;  // the node's morph weights scale them (Node::weights)
+  // Levels of detail, finest first: made once, where a scene is loaded (scene/MeshDetail.h: addDetailLevels), and
+  // drawn at gbuffer.lod. They index `positions`: whatever changes the vertices or the indices clears them.
+  std::vector<DetailLevel> levels;
   bool skinned() const { return !joints.empty(); }
 };
 
