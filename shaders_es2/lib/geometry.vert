@@ -9,7 +9,7 @@
 //   SKINNING 1: linear blend skinning from a uniform palette of SKIN_PALETTE joints (3 rows of each joint's affine
 //     matrix world(joint) * inverseBind(joint)); a mesh with more joints is drawn in pieces that each fit.
 //   SKINNING 2: the same matrices read from a float texture (vertex texture fetch), any number of joints.
-// Skinned vertices come out in world space, so a skinned draw's u_modelView is the view matrix alone.
+// Skinned vertices come out in world space, so a skinned draw's model-view is the view matrix alone.
 //   PREVIOUS 1 (the velocity pass): also the vertex where the previous frame had it, through the previous frame's
 //     pose (u_previousModel, previous palette or weights) and camera (u_previousViewProjection), both unjittered.
 //   CPU_DEFORMED 1: the CPU has skinned and morphed the vertex (the fallback); a_previousPosition is its previous
@@ -49,9 +49,11 @@ attribute vec4 a_color;
 varying vec4 v_color;
 #endif
 
-uniform mat4 u_modelView;
+// The instance's transforms, one array set by one call per draw (gpu/GpuScene.cpp: on the page each WebGL call costs
+// about a microsecond of host time, and two matrices made two): [0..3] the model-view's columns, [4..6].xyz the
+// normal matrix's (the inverse transpose of the model-view's upper 3x3).
+uniform vec4 u_instanceTransforms[7];
 uniform mat4 u_projection;
-uniform mat3 u_normalMatrix;  // inverse transpose of the model-view's upper 3x3
 
 varying vec3 v_viewPosition;
 varying vec3 v_viewNormal;
@@ -278,9 +280,12 @@ void main() {
   if (dot(skin.r0.xyz, cross(skin.r1.xyz, skin.r2.xyz)) < 0.0) handedness = -handedness;
 #endif
 #endif
-  vec4 viewPosition = u_modelView * vec4(position, 1.0);
+  mat4 modelView =
+      mat4(u_instanceTransforms[0], u_instanceTransforms[1], u_instanceTransforms[2], u_instanceTransforms[3]);
+  vec4 viewPosition = modelView * vec4(position, 1.0);
   v_viewPosition = viewPosition.xyz;
-  v_viewNormal = u_normalMatrix * normal;
+  v_viewNormal =
+      mat3(u_instanceTransforms[4].xyz, u_instanceTransforms[5].xyz, u_instanceTransforms[6].xyz) * normal;
 #if VERTEX_COLORS
   v_color = a_color;
 #endif
@@ -292,7 +297,7 @@ void main() {
   // mirroring transform (a negative determinant: a node scaled by -1 along an axis) reverses the cross product the
   // fragment stage makes the bitangent from (glTF 2.0: bitangent = cross(normal, tangent.xyz) * w), so w turns with
   // it and the normal texture's green still follows the texture's v.
-  mat3 linear = mat3(u_modelView[0].xyz, u_modelView[1].xyz, u_modelView[2].xyz);
+  mat3 linear = mat3(modelView[0].xyz, modelView[1].xyz, modelView[2].xyz);
   if (dot(linear[0], cross(linear[1], linear[2])) < 0.0) handedness = -handedness;
   v_viewTangent = vec4(linear * tangent, handedness);
 #else

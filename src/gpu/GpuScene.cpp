@@ -285,8 +285,7 @@ int GpuScene::morphTargetSlots(int perTarget, int otherAttributes) const {
 }
 
 GeometryUniforms::GeometryUniforms(const gl::Program& program)
-    : modelView(program.uniform("u_modelView")),
-      normalMatrix(program.optionalUniform("u_normalMatrix")),
+    : instanceTransforms(program.uniform("u_instanceTransforms[0]")),
       baseColorFactor(program.optionalUniform("u_baseColorFactor")),
       baseColorTexture(program.optionalUniform("u_baseColorTexture")),
       alphaCutoff(program.optionalUniform("u_alphaCutoff")),
@@ -661,8 +660,17 @@ void GpuScene::setInstanceUniforms(const InstanceGpu& instance, const MaterialGp
                                    DrawState& state) const {
   using gl::Program;
   const GeometryUniforms& uniforms = *state.uniforms;
-  Program::set(uniforms.modelView, modelView);
-  if (uniforms.normalMatrix >= 0) Program::set(uniforms.normalMatrix, glm::inverseTranspose(glm::mat3(modelView)));
+  // One call for both (geometry.vert): a program whose fragment stage reads no normal has a shorter active array,
+  // and GL ignores the values past its end.
+  const glm::mat3 normalMatrix = glm::inverseTranspose(glm::mat3(modelView));
+  const glm::vec4 transforms[7] = {modelView[0],
+                                   modelView[1],
+                                   modelView[2],
+                                   modelView[3],
+                                   glm::vec4(normalMatrix[0], 0.0f),
+                                   glm::vec4(normalMatrix[1], 0.0f),
+                                   glm::vec4(normalMatrix[2], 0.0f)};
+  glUniform4fv(uniforms.instanceTransforms, 7, &transforms[0].x);
   Program::set(uniforms.previousModel, instance.previousWorld);
   if (vertexKind.morphTargets > 0) {
     glm::vec4 now(0.0f), before(0.0f);

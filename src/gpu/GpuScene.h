@@ -37,13 +37,14 @@
 namespace obscura {
 
 // The uniforms and attributes of geometry.vert and lib/material.glsl that draw() sets per instance, resolved once
-// per program. Only u_modelView is required: a fragment stage that reads no normal or no base colour (the G-buffer
-// pass of opaque materials) lets the compiler drop the others, and a variant without deformation has none of the
-// skinning or morphing ones.
+// per program. Only u_instanceTransforms is required: a fragment stage that reads no normal or no base colour (the
+// G-buffer pass of opaque materials) lets the compiler drop the others, and a variant without deformation has none of
+// the skinning or morphing ones.
 struct GeometryUniforms {
   GeometryUniforms() = default;
   explicit GeometryUniforms(const gl::Program& program);
-  GLint modelView = -1, normalMatrix = -1, baseColorFactor = -1, baseColorTexture = -1, alphaCutoff = -1;
+  GLint instanceTransforms = -1;  // the model-view and the normal matrix, columns of one vec4 array
+  GLint baseColorFactor = -1, baseColorTexture = -1, alphaCutoff = -1;
   GLint baseColorSrgb = -1;  // the G-buffer's base colour output for a factor-only material
   GLint metallicRoughness = -1, emissive = -1, uvTransforms = -1, uvSets = -1;
   GLint specular = -1, clearcoat = -1, clearcoatRoughness = -1;  // MATERIAL_LAYERS
@@ -93,8 +94,8 @@ class GpuScene {
 
   // Draws every instance of the opaque layer (every material but the transparent ones, Material::transparent, which
   // drawTransparent draws): opaque materials first, then masked ones, each group front to back (by the distance of
-  // its bounds' centre from the eye), so early depth tests reject what a nearer surface hides. Sets u_modelView,
-  // u_normalMatrix, the material uniforms of lib/material.glsl, the deformation's uniforms and attributes (this
+  // its bounds' centre from the eye), so early depth tests reject what a nearer surface hides. Sets
+  // u_instanceTransforms, the material uniforms of lib/material.glsl, the deformation's uniforms and attributes (this
   // frame's and, where the program has them, the previous frame's), face culling per material and winding per
   // instance. Leaves the baseline pipeline state except for the program, depth and framebuffer state it was given.
   void draw(const glm::mat4& view, const ProgramChoice& choose, const DrawOptions& options) const;
