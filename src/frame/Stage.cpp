@@ -82,6 +82,16 @@ void bindStageTextures(const std::vector<StageDecl>& chain, int firstUnit) {
   glActiveTexture(GL_TEXTURE0);
 }
 
+void unbindStageTextures(const std::vector<StageDecl>& chain, int firstUnit) {
+  int unit = firstUnit;
+  for (const StageDecl& stage : chain)
+    for (size_t k = 0; k < stage.ownTextures.size(); ++k) {
+      glActiveTexture(static_cast<GLenum>(GL_TEXTURE0 + unit++));
+      glBindTexture(GL_TEXTURE_2D, 0);
+    }
+  glActiveTexture(GL_TEXTURE0);
+}
+
 void setStageSamplers(const gl::Program& program, const std::vector<StageDecl>& chain, int firstUnit) {
   int unit = firstUnit;
   for (const StageDecl& stage : chain)

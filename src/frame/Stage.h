@@ -68,8 +68,9 @@ void setStageUniforms(const gl::Program& program, const std::vector<StageDecl>& 
                       bool writesOutput);
 // For a head that binds its stages' own textures itself (StageDecl::ownTextures; the lighting): binds them to units
 // firstUnit, firstUnit + 1, ... (unit 0 active again after), and sets their samplers on a program in use. The head
-// unbinds them with the rest of its textures (gl::restoreBaselineState).
+// unbinds them with the rest of its textures (unbindStageTextures, or gl::restoreBaselineState).
 void bindStageTextures(const std::vector<StageDecl>& chain, int firstUnit);
+void unbindStageTextures(const std::vector<StageDecl>& chain, int firstUnit);
 void setStageSamplers(const gl::Program& program, const std::vector<StageDecl>& chain, int firstUnit);
 // Whether some stage of the chain needs its pixel's position, or its normal.
 bool chainNeedsPosition(const std::vector<StageDecl>& chain);

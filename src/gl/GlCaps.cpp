@@ -66,7 +66,6 @@ GlCaps GlCaps::query() {
       caps.has("GL_ARB_vertex_array_object") || (!caps.version.empty() && caps.version[0] >= '3');
   caps.vertexArrayObject =
       vertexArrayEntryPoints && (desktopGl ? desktopVertexArrays : caps.has("GL_OES_vertex_array_object"));
-  setVertexArraysInBaseline(caps.vertexArrayObject);
 
   caps.desktopGl = desktopGl;
   caps.textureFloat = desktopGl || caps.has("GL_OES_texture_float");
@@ -78,6 +77,7 @@ GlCaps GlCaps::query() {
   glGetIntegerv(GL_MAX_FRAGMENT_UNIFORM_VECTORS, &caps.maxFragmentUniformVectors);
   glGetIntegerv(GL_MAX_TEXTURE_IMAGE_UNITS, &caps.maxTextureImageUnits);
   glGetIntegerv(GL_MAX_COMBINED_TEXTURE_IMAGE_UNITS, &caps.maxCombinedTextureImageUnits);
+  setBaselineContext(caps.vertexArrayObject, caps.maxCombinedTextureImageUnits);
   glGetIntegerv(GL_MAX_TEXTURE_SIZE, &caps.maxTextureSize);
   glGetIntegerv(GL_MAX_RENDERBUFFER_SIZE, &caps.maxRenderbufferSize);
   GLint viewport[2] = {0, 0};

@@ -12,12 +12,9 @@ constexpr int kTextureUnits = 10;
 constexpr GLuint kAttributeSlots = 8;  // the GLES 2 minimum (skinned and morphed draws use them all)
 
 bool g_vertexArrays = false;
+int g_combinedTextureUnits = 8;  // the GLES 2 minimum until GlCaps::query says more (asked once, not per restore)
 
-int textureUnitsInUse() {
-  GLint combined = 8;
-  glGetIntegerv(GL_MAX_COMBINED_TEXTURE_IMAGE_UNITS, &combined);
-  return std::min(kTextureUnits, static_cast<int>(combined));
-}
+int textureUnitsInUse() { return std::min(kTextureUnits, g_combinedTextureUnits); }
 }  // namespace
 
 void restoreBaselineState() {
@@ -45,7 +42,18 @@ void restoreBaselineState() {
   for (GLuint slot = 0; slot < kAttributeSlots; ++slot) glDisableVertexAttribArray(slot);
 }
 
-void setVertexArraysInBaseline(bool present) { g_vertexArrays = present; }
+void unbindTextureUnits(std::initializer_list<int> units) {
+  for (int unit : units) {
+    glActiveTexture(static_cast<GLenum>(GL_TEXTURE0 + unit));
+    glBindTexture(GL_TEXTURE_2D, 0);
+  }
+  glActiveTexture(GL_TEXTURE0);
+}
+
+void setBaselineContext(bool vertexArrays, int combinedTextureUnits) {
+  g_vertexArrays = vertexArrays;
+  g_combinedTextureUnits = combinedTextureUnits;
+}
 
 std::string baselineStateDifferences() {
   std::string out;

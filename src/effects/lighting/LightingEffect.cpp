@@ -518,7 +518,7 @@ void LightingEffect::render(const PassContext& context, Form form) const {
     setStageUniforms(p, stages, context, writesOutput);
     setStageSamplers(p, stages, TextureUnits::kStages);
   };
-  bindStageTextures(stages, TextureUnits::kStages);  // unbound with the rest by restoreBaselineState
+  bindStageTextures(stages, TextureUnits::kStages);
   (context.has("ao") ? context.texture("ao") : white_).bind(TextureUnits::kAo);
   if (!form.counting) {
     glActiveTexture(GL_TEXTURE0 + kEnvironmentFilteredUnit);
@@ -575,7 +575,17 @@ void LightingEffect::render(const PassContext& context, Form form) const {
       glBlendFunc(GL_ONE, GL_ONE);
     }
     resources_.triangle.draw();
-    gl::restoreBaselineState();
+    // What this form set, put back; not the whole baseline (gl::restoreBaselineState: about 45 WebGL calls, a
+    // microsecond each on the page: docs/benchmarks.md). The sky's cube goes with its binding's scope.
+    if (form.counting) {
+      glDisable(GL_BLEND);
+      glBlendFunc(GL_ONE, GL_ZERO);
+    }
+    glDisable(GL_SCISSOR_TEST);  // the scene's rectangle (drawAroundScene)
+    glUseProgram(0);
+    unbindStageTextures(stages, TextureUnits::kStages);
+    gl::unbindTextureUnits({TextureUnits::kBaseColor, TextureUnits::kAo, TextureUnits::kPbr[0], kEnvironmentUnit,
+                            kEnvironmentFilteredUnit});
     return;
   }
 
