@@ -27,8 +27,8 @@ inline constexpr std::size_t kDetailMinTriangles = 1024;
 // 51 % of its triangles, against 42 % without). docs/benchmarks.md, "Levels of detail".
 inline constexpr float kDetailNormalWeight = 1.0f;
 std::vector<DetailLevel> detailLevels(const Mesh& mesh);
-// Gives each mesh of the scene that has none its detailLevels: once per scene, where it is loaded (the glTF loader,
-// the built-in scene, the API's setScene of a scene built by hand), so that every renderer made on it (a new
+// Gives each mesh of the scene that has none its detailLevels: once per scene, where it is loaded (the glTF loader
+// and the built-in scene call it; a scene built by hand calls it itself), so that every renderer made on it (a new
 // option, a lost context, the page's vertex arrays) uploads the same levels without making them again.
 void addDetailLevels(Scene& scene);
 
