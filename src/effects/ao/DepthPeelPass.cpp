@@ -71,7 +71,10 @@ void DepthPeelPass::render(const PassContext& context, const gl::Texture2D& gbuf
         return program;
       },
       options);
-  gl::restoreBaselineState();
+  // What this pass set, its draws having put back their own (as the G-buffer pass does).
+  glDisable(GL_DEPTH_TEST);
+  glUseProgram(0);
+  gl::unbindTextureUnits({kGBufferUnit});
 }
 
 }  // namespace obscura

@@ -2,7 +2,6 @@
 
 #include "frame/FramePlan.h"
 #include "frame/PassContext.h"
-#include "gl/PipelineState.h"
 
 namespace obscura {
 
@@ -98,7 +97,10 @@ void VelocityEffect::render(const PassContext& context) {
           return program;
         },
         options);
-    gl::restoreBaselineState();
+    // What this pass set, its draws having put back their own (as the G-buffer pass does).
+    glDisable(GL_DEPTH_TEST);
+    glDepthMask(GL_TRUE);
+    glUseProgram(0);
   }
 }
 
