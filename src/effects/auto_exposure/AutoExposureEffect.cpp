@@ -6,7 +6,6 @@
 
 #include "frame/FullscreenPass.h"
 #include "frame/PassContext.h"
-#include "gl/PipelineState.h"
 
 namespace obscura {
 namespace {
@@ -200,7 +199,9 @@ void AutoExposureEffect::histogram(const PassContext& context) {
     glDisableVertexAttribArray(gl::kAttribPosition);
     glBindBuffer(GL_ARRAY_BUFFER, 0);
   }
-  gl::restoreBaselineState();  // the blending and the clear colour
+  // The blending this pass set (the draw has put back its program and texture, and the block above its stream).
+  glDisable(GL_BLEND);
+  glBlendFunc(GL_ONE, GL_ZERO);
 }
 
 void AutoExposureEffect::adapt(const PassContext& context, const AutoExposureSettings& settings, bool percentile,

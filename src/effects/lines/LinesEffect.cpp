@@ -4,7 +4,6 @@
 #include <cmath>
 
 #include "frame/PassContext.h"
-#include "gl/PipelineState.h"
 
 namespace obscura {
 namespace {
@@ -69,7 +68,10 @@ void LinesEffect::run(const PassContext& context) const {
   context.scene().lines().draw(viewProjection, false, modelViewProjection, position, color);
   context.scene().lines().draw(viewProjection, true, modelViewProjection, position, color);
   if (resources_.caps.desktopGl) glDisable(kVertexProgramPointSize);
-  gl::restoreBaselineState();
+  // What this pass set, its draws having put back their streams (GpuLines::draw).
+  glDisable(GL_DEPTH_TEST);
+  glDepthMask(GL_TRUE);
+  glUseProgram(0);
 }
 
 }  // namespace obscura
