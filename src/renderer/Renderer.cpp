@@ -181,10 +181,11 @@ void Renderer::setScene(const Scene& scene) {
   options.allowVertexArrays = options_.allowVertexArrays;
   options.skinning = options_.skinning;
   scene_ = GpuScene(scene, caps_, options);
-  // What posing needs (the hierarchy, skins, animations, and the instances and meshes they deform), not the images,
-  // which the GPU holds now.
+  // What posing needs (the hierarchy, skins, animations, and the instances and meshes they deform), not the images
+  // nor the meshes' levels of detail, which the GPU holds now.
   sceneData_ = Scene();
   sceneData_.meshes = scene.meshes;
+  for (Mesh& mesh : sceneData_.meshes) mesh.levels = {};
   sceneData_.instances = scene.instances;
   sceneData_.nodes = scene.nodes;
   sceneData_.skins = scene.skins;
