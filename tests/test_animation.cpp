@@ -207,6 +207,34 @@ TEST(AnimationPose, AParentsMotionMovesItsChildAndTheTimelineLoops) {
   EXPECT_EQ(pose.nodeWorld[static_cast<size_t>(child)], pose.instanceWorld[0]);
 }
 
+// What may move (static batches keep the rest): a node some channel translates, turns or scales, and its
+// descendants; not its parent, a sibling, nor a node whose morph weights alone are animated.
+TEST(AnimationPose, MovingNodesAreTheAnimatedAndTheirDescendants) {
+  Scene scene;
+  const int root = addNode(scene, "root", -1);
+  const int animated = addNode(scene, "animated", root);
+  const int child = addNode(scene, "child", animated);
+  const int grandchild = addNode(scene, "grandchild", child);
+  const int sibling = addNode(scene, "sibling", root);
+  const int morphed = addNode(scene, "morphed", root);
+  Animation animation;
+  animation.samplers.push_back(makeSampler({0, 1}, concat({aboutZ(0), aboutZ(90)}), 4));
+  animation.samplers.push_back(makeSampler({0, 1}, {0, 1}, 1));
+  animation.channels.push_back({0, animated, AnimationPath::Rotation});
+  animation.channels.push_back({1, morphed, AnimationPath::Weights});
+  scene.animations.push_back(animation);
+  const std::vector<bool> moving = movingNodes(scene);
+  ASSERT_EQ(moving.size(), scene.nodes.size());
+  EXPECT_FALSE(moving[static_cast<size_t>(root)]);
+  EXPECT_TRUE(moving[static_cast<size_t>(animated)]);
+  EXPECT_TRUE(moving[static_cast<size_t>(child)]);
+  EXPECT_TRUE(moving[static_cast<size_t>(grandchild)]);
+  EXPECT_FALSE(moving[static_cast<size_t>(sibling)]);
+  EXPECT_FALSE(moving[static_cast<size_t>(morphed)]);
+  scene.animations.clear();
+  EXPECT_EQ(movingNodes(scene), std::vector<bool>(scene.nodes.size(), false));
+}
+
 // Linear blend skinning of a two-bone chain: the hip at the origin, the knee one up; the knee turns 90 degrees about
 // z over one second. Inverse bind matrices undo the joints' rest placement, so at rest nothing moves.
 TEST(AnimationPose, SkinsATwoBoneChainAsComputedByHand) {

@@ -199,6 +199,14 @@ export class Obscura extends EventTarget {
     this.changed();
     return used;
   }
+  // Allows (true, the default) or refuses static batches: the still, rigid, opaque instances that share a material
+  // drawn as one piece placed in world space (fewer WebGL calls a frame). Returns how many batches the scene now
+  // draws; the image is the same.
+  setStaticBatches(allow) {
+    const batches = Number(this.text('obscura_set_static_batches', ['number'], [allow ? 1 : 0]));
+    this.changed();
+    return batches;
+  }
   // Forces where the prefiltered environment's roughness levels live: 'halffloat' (half floats the hardware filters:
   // OES_texture_half_float_linear), 'mipchain' (RGB9E5 filtered by hand, read with EXT_shader_texture_lod), 'atlas'
   // (RGB9E5 without the extension) or 'auto' (the default: the first the context can take). Returns the layout now in

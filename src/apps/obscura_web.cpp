@@ -551,6 +551,22 @@ EMSCRIPTEN_KEEPALIVE const char* obscura_set_vertex_arrays(int allow) {
   return returned(used);
 }
 
+// Allows or refuses static batches (the still instances that share a material drawn as one piece: gpu/GpuScene.h),
+// and returns how many the scene now draws; the page's tests compare the images and count the calls both ways.
+EMSCRIPTEN_KEEPALIVE const char* obscura_set_static_batches(int allow) {
+  int batches = 0;
+  if (!attempt([&] {
+        RendererOptions options = g_app->viewer().rendererOptions();
+        options.batchStaticInstances = allow != 0;
+        g_app->viewer().setRendererOptions(options);
+        const Renderer* renderer = g_app->viewer().renderer();
+        batches = renderer ? renderer->gpuScene().staticBatchCount() : 0;
+      }))
+    return nullptr;
+  g_app->changed();
+  return returned(std::to_string(batches));
+}
+
 EMSCRIPTEN_KEEPALIVE int obscura_set_view(const char* mode) {
   return change([&] { g_app->viewer().state().setViewMode(mode); });
 }

@@ -20,6 +20,9 @@ struct RendererOptions {
   // false simulates a context without OES_vertex_array_object: the scene's draws set their vertex streams per draw
   // (gpu/GpuScene.h; tests compare both images, the page's `vertex-arrays=0` and the benchmarks measure both).
   bool allowVertexArrays = true;
+  // false: every instance is drawn by itself, none in a static batch (gpu/GpuScene.h, staticBatchCount; tests compare
+  // both, the page's setStaticBatches(false) and the benchmarks measure both).
+  bool batchStaticInstances = true;
   // false simulates a context without EXT_draw_buffers / WEBGL_draw_buffers: the lighting draws the scene a second
   // time instead of reading the base colour the G-buffer pass writes beside it (tests compare both).
   bool allowDrawBuffers = true;

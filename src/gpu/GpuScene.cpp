@@ -85,6 +85,7 @@ GpuScene::GpuScene(const Scene& scene, const gl::GlCaps& caps, const Options& op
   }
   // The rest pose, until the first setPose.
   const ScenePose rest = evaluatePose(scene, 0.0, PoseOptions{AnimationChoice::none(), false});
+  if (options.batchStaticInstances) batchStaticInstances(scene, rest);
   setPose(rest, rest);
 }
 
@@ -147,16 +148,9 @@ void GpuScene::uploadMaterials(const Scene& scene) {
 std::vector<GpuScene::MeshPieces> GpuScene::uploadMeshes(const Scene& scene, bool uint32) {
   std::vector<MeshPieces> meshPieces;
   for (const Mesh& source : scene.meshes) {
-    // A mesh drawn with PBR textures needs tangents (the vertex stage's a_tangent): the file's, else generated.
     const bool pbr = source.material >= 0 && materials_[static_cast<size_t>(source.material)].pbr;
     Mesh withTangents;
-    if (pbr && source.tangents.size() != source.positions.size()) {
-      withTangents = source;
-      const int normalSet = scene.materials[static_cast<size_t>(source.material)]
-                                .texCoords[static_cast<size_t>(TextureSlot::Normal)];
-      generateTangents(withTangents, normalSet);
-    }
-    const Mesh& mesh = withTangents.positions.empty() ? source : withTangents;
+    const Mesh& mesh = meshToUpload(scene, source, withTangents);
     MeshPieces placed;
     placed.first = static_cast<int>(pieces_.size());
     std::vector<PalettePiece> parts;
@@ -177,6 +171,17 @@ std::vector<GpuScene::MeshPieces> GpuScene::uploadMeshes(const Scene& scene, boo
   glBindBuffer(GL_ARRAY_BUFFER, 0);
   glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, 0);
   return meshPieces;
+}
+
+const Mesh& GpuScene::meshToUpload(const Scene& scene, const Mesh& source, Mesh& storage) const {
+  // A mesh drawn with PBR textures needs tangents (the vertex stage's a_tangent): the file's, else generated.
+  const bool pbr = source.material >= 0 && materials_[static_cast<size_t>(source.material)].pbr;
+  if (!pbr || source.tangents.size() == source.positions.size()) return source;
+  storage = source;
+  const int normalSet =
+      scene.materials[static_cast<size_t>(source.material)].texCoords[static_cast<size_t>(TextureSlot::Normal)];
+  generateTangents(storage, normalSet);
+  return storage;
 }
 
 GpuScene::Piece GpuScene::uploadPiece(Mesh mesh, const std::vector<int>& palette, bool tangents,
@@ -343,6 +348,13 @@ void GpuScene::setPose(const ScenePose& current, const ScenePose& previous) {
     if (instance.cpuDeformed) uploadCpuDeformed(instance, current, previous, i);
     else instance.deformed.clear();
   }
+  for (StaticBatch& batch : batches_) {
+    const Piece& piece = pieces_[static_cast<size_t>(batch.drawn.firstPiece)];
+    batch.intact = std::all_of(piece.members.begin(), piece.members.end(), [&](const Piece::Member& member) {
+      const InstanceGpu& instance = instances_[static_cast<size_t>(member.instance)];
+      return instance.world == member.world && instance.previousWorld == member.world;
+    });
+  }
 }
 
 // Morph targets on the GPU: those with a weight now or in the previous frame, heaviest first, if they fit the
@@ -386,12 +398,16 @@ void GpuScene::DrawState::attribute(GLint location, GLuint buffer, GLint size, G
 // (largest) first.
 std::vector<const GpuScene::InstanceGpu*> GpuScene::drawOrder(const glm::mat4& view, const DrawOptions& options) const {
   std::vector<std::pair<float, const InstanceGpu*>> keyed;
-  keyed.reserve(instances_.size());
-  for (const InstanceGpu& instance : instances_) {
-    if (instance.transparent || (options.onlyMoving && !instance.moving)) continue;
+  keyed.reserve(instances_.size() + batches_.size());
+  auto add = [&](const InstanceGpu& instance) {
+    if (instance.transparent || (options.onlyMoving && !instance.moving)) return;
     const bool masked = materials_[static_cast<size_t>(instance.material)].alphaCutoff >= 0.0f;
     keyed.emplace_back((masked ? 1e30f : 0.0f) - (view * glm::vec4(instance.centre, 1.0f)).z, &instance);
-  }
+  };
+  for (const InstanceGpu& instance : instances_)
+    if (instance.batch < 0 || !batches_[static_cast<size_t>(instance.batch)].intact) add(instance);
+  for (const StaticBatch& batch : batches_)
+    if (batch.intact) add(batch.drawn);
   std::stable_sort(keyed.begin(), keyed.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
   std::vector<const InstanceGpu*> order;
   order.reserve(keyed.size());
@@ -548,9 +564,14 @@ void GpuScene::bindMaterialTextures(const MaterialGpu& material, DrawState& stat
 }
 
 void GpuScene::drawIndices(const Piece& piece, int detail) const {
+  if (!piece.members.empty()) {
+    drawBatchMembers(piece);
+    return;
+  }
   const Piece::Level full{piece.indexCount, 0, 0.0f};
   const Piece::Level& level = detail > 0 ? piece.levels[static_cast<size_t>(detail - 1)] : full;
   glDrawElements(GL_TRIANGLES, level.indexCount, piece.indexType, reinterpret_cast<const void*>(level.offset));
+  ++counts_.drawCalls;
   counts_.triangles += level.indexCount / 3;
   if (detail > 0) ++counts_.coarser;
 }
@@ -584,6 +605,7 @@ void GpuScene::drawPiece(const InstanceGpu& instance, int p, const MaterialGpu& 
   }
   if (newProgram || p == instance.firstPiece) setInstanceUniforms(instance, material, modelView, vertexKind, state);
   ++counts_.draws;
+  counts_.batchedInstances += static_cast<int>(piece.members.size());
   if (vertexKind.cpuDeformed) ++counts_.cpuDeformed;
   if (vertexKind.morphTargets > 0) ++counts_.gpuMorphed;
   if (vertexKind.skinning != VertexKind::None) ++counts_.skinned;

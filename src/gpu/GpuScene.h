@@ -66,6 +66,8 @@ class GpuScene {
     std::optional<SkinningPath> skinning;  // RendererOptions::skinning
     // false draws without vertex array objects where the context has them (RendererOptions::allowVertexArrays)
     bool allowVertexArrays = true;
+    // false draws every instance by itself (RendererOptions::batchStaticInstances; see staticBatchCount)
+    bool batchStaticInstances = true;
   };
 
   GpuScene() = default;
@@ -145,6 +147,16 @@ class GpuScene {
   // object instead of setting each stream, about ten calls fewer per draw (a browser's WebGL calls each cost the page
   // host time). The object is made on the piece's first draw with a program, per set of attribute locations.
   bool usesVertexArrays() const { return vertexArrays_; }
+  // Static batches: the rigid, opaque instances that no animation moves, sharing a material (and the vertex streams
+  // its program reads), are uploaded once more, placed in world space, as one piece per batch of up to 65536
+  // vertices; each frame's draws draw the batch, one draw where its members all take their full detail (a member at
+  // a coarser level breaks the batch's index range into runs). A browser pays about a microsecond of host time for
+  // each WebGL call, and a draw of a built-in scene's box is three of them (docs/benchmarks.md, "Static batches").
+  // Only meshes of at most kBatchMemberVertices vertices join one: a larger one's draw costs more than its calls,
+  // and its copy would cost memory. A batch whose member's pose differs from the one it was placed at (a pose not
+  // made by this scene's animations) draws its members by themselves until the pose returns.
+  static constexpr int kBatchMemberVertices = 16384;
+  int staticBatchCount() const { return static_cast<int>(batches_.size()); }
   // Something moves between the previous pose and this one (an instance, a joint or a morph weight).
   bool anyMoving() const;
   // How skinned meshes are drawn, and the uniform palette's size in joints (0 where the path is not Uniforms).
@@ -157,7 +169,9 @@ class GpuScene {
     int draws = 0, cpuDeformed = 0, gpuMorphed = 0, skinned = 0;
     int vertexArrays = 0;  // draws that bound a vertex array object instead of setting their streams
     long triangles = 0;    // drawn, at the levels of detail chosen
-    int coarser = 0;       // draws at a level of detail below the full one
+    int coarser = 0;       // draws (a static batch's: members) at a level of detail below the full one
+    int batchedInstances = 0;  // instances drawn within a static batch's draw (one draw, however many members)
+    int drawCalls = 0;  // glDrawElements calls: one a draw, a static batch's one per run of members (drawIndices)
   };
   Counts lastDrawCounts() const { return counts_; }
 
@@ -181,6 +195,15 @@ class GpuScene {
     gl::BufferHandle colors;    // COLOR_0, vec4 per vertex; none where the mesh has none
     std::vector<int> palette;  // the uniform path: the skin joint of each palette entry
     Mesh source;               // kept for CPU deformation (skinned on the CPU path, or morphed): the piece's mesh
+    // A static batch's piece: its members in the order of its full index list, each with its own ranges of the
+    // indices (its levels after every member's full list; `levels` above stays empty).
+    struct Member {
+      int instance = 0;  // into instances_
+      glm::mat4 world{1.0f};  // the world matrix its vertices were placed with
+      Level full;
+      std::vector<Level> levels;
+    };
+    std::vector<Member> members;
   };
   struct MaterialGpu {
     glm::vec4 baseColorFactor{1.0f};
@@ -210,6 +233,7 @@ class GpuScene {
     int firstPiece = 0, pieceCount = 0;
     float localRadius = 0.0f;    // half its mesh's bounds' diagonal
     int detail = 0;              // this frame's level of detail: 0 the full one, k its piece's levels[k - 1]
+    int batch = -1;              // the static batch (into batches_) that draws it while the batch is intact
     int skin = -1;               // index into skins_ where drawn skinned
     bool cpuSkinned = false;     // skinned on the CPU (SkinningPath::Cpu)
     bool morphed = false;        // its mesh has morph targets
@@ -227,6 +251,12 @@ class GpuScene {
     bool mirrored = false;
     gl::TextureHandle texture;                      // the joint texture path
     glm::vec3 textureSize{0.0f};                    // width, height, texels per palette
+  };
+
+  // A static batch as drawn: an instance at the identity whose one piece holds its members in world space.
+  struct StaticBatch {
+    InstanceGpu drawn;
+    bool intact = true;  // every member's pose, this frame's and the previous one's, is the one it was placed at
   };
 
   struct MeshPieces {  // a Scene mesh's pieces
@@ -271,6 +301,13 @@ class GpuScene {
                     const std::vector<DetailLevel>& levels);
   void createSkins(const Scene& scene, const gl::GlCaps& caps);  // GpuSkinning.cpp
   void placeInstances(const Scene& scene, const std::vector<MeshPieces>& meshPieces);
+  // The mesh as uploaded: `source`, or a copy in `storage` with tangents generated where its material's normal
+  // texture needs them and the file has none.
+  const Mesh& meshToUpload(const Scene& scene, const Mesh& source, Mesh& storage) const;
+  // StaticBatches.cpp: the batches of the still instances, placed at `rest`; one batch of `memberInstances`.
+  void batchStaticInstances(const Scene& scene, const ScenePose& rest);
+  StaticBatch makeBatch(const Scene& scene, const ScenePose& rest, const std::vector<size_t>& memberInstances,
+                        int material, bool tangents);
 
   // Pose.
   std::vector<bool> poseSkins(const ScenePose& current, const ScenePose& previous);  // GpuSkinning.cpp
@@ -296,13 +333,16 @@ class GpuScene {
   // whose streams change from frame to frame).
   GLuint pieceVertexArray(const InstanceGpu& instance, int p, const VertexKind& vertexKind, DrawState& state) const;
   void bindVertexArray(GLuint vertexArray, DrawState& state) const;
-  // glDrawElements of the piece's indices at level of detail `detail` (InstanceGpu::detail), counted.
+  // glDrawElements of the piece's indices at level of detail `detail` (InstanceGpu::detail), counted; a static
+  // batch's at each member's level.
   void drawIndices(const Piece& piece, int detail) const;
+  void drawBatchMembers(const Piece& batch) const;  // StaticBatches.cpp
   void restoreAfterDraw(const DrawState& state) const;
 
   std::vector<Piece> pieces_;
   std::vector<MaterialGpu> materials_;  // last entry: the default material
   std::vector<InstanceGpu> instances_;
+  std::vector<StaticBatch> batches_;
   std::vector<SkinGpu> skins_;
   std::vector<gl::TextureHandle> textures_;
   gl::Texture2D neutralWhite_, neutralNormal_;

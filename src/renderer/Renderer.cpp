@@ -179,6 +179,7 @@ void Renderer::setScene(const Scene& scene) {
   GpuScene::Options options;
   options.allowUint32Indices = options_.allowUint32Indices;
   options.allowVertexArrays = options_.allowVertexArrays;
+  options.batchStaticInstances = options_.batchStaticInstances;
   options.skinning = options_.skinning;
   scene_ = GpuScene(scene, caps_, options);
   // What posing needs (the hierarchy, skins, animations, and the instances and meshes they deform), not the images

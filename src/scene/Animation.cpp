@@ -133,6 +133,17 @@ std::vector<float> sampleAnimation(const AnimationSampler& s, float t, bool rota
   return out;
 }
 
+std::vector<bool> movingNodes(const Scene& scene) {
+  std::vector<bool> moving(scene.nodes.size(), false);
+  for (const Animation& animation : scene.animations)
+    for (const AnimationChannel& channel : animation.channels)
+      if (channel.path != AnimationPath::Weights) moving[static_cast<size_t>(channel.node)] = true;
+  // Parents precede their children in Scene::nodes.
+  for (size_t n = 0; n < scene.nodes.size(); ++n)
+    if (const int parent = scene.nodes[n].parent; parent >= 0 && moving[static_cast<size_t>(parent)]) moving[n] = true;
+  return moving;
+}
+
 ScenePose evaluatePose(const Scene& scene, double time, const PoseOptions& options) {
   ScenePose pose;
   const size_t nodeCount = scene.nodes.size();

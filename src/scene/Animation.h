@@ -57,6 +57,10 @@ struct PoseOptions {
 // The pose at `time` seconds. A scene without nodes gives each instance its fixed world matrix.
 ScenePose evaluatePose(const Scene& scene, double time, const PoseOptions& options = {});
 
+// Per node: whether some animation's translation, rotation or scale channel moves it or one of its ancestors (its
+// world matrix may then differ from its rest one in some pose; morph weights do not move a node).
+std::vector<bool> movingNodes(const Scene& scene);
+
 // The CPU mirror of the vertex stage's skinning and morphing: a mesh's positions and normals (normals renormalised)
 // in its instance's posed space, i.e. world space for a skinned mesh (then apply no instance matrix) and the mesh's
 // local space otherwise. `joints` is the skin's ScenePose::skinJoints entry (ignored for an unskinned mesh).

@@ -1,9 +1,10 @@
 // The renderer's host time per frame in the browser: stats().lastHostMs (the page's "host" line: the wall time of
 // the renderer's render call on the page's thread, WebGL calls included, the GPU's own work not; builds before it had
 // only lastCpuMs, which also holds the page's canvas work) over frames of the demo page's built-in scene, each drawn
-// alone (a step of the animation, obscura.draw(), gl.finish()), at each size asked: the defaults and every effect
-// on. The page is served cross-origin isolated, so its clock has microseconds. Prints the median and the tenth
-// percentile, writes a CSV; docs/benchmarks.md ("Host time per frame") shows the figures.
+// alone (a step of the animation, obscura.draw(), gl.finish()), at each size asked: the defaults (with and without
+// static batches) and every effect on. The page is served cross-origin isolated, so its clock has microseconds.
+// Prints the median and the tenth percentile, writes a CSV; docs/benchmarks.md ("Host time per frame") shows the
+// figures.
 //
 // Usage: node tools/browser-bench/host-time.mjs [--sizes 1280x720,640x360] [--samples N] [--settle MS] [--csv FILE]
 //   (defaults: both sizes, 30 frames per case, 2500 ms for each case's shaders to compile, bench-results/
@@ -43,10 +44,14 @@ try {
     const demo = `http://127.0.0.1:${server.address().port}/`;
     const { page, errors } = await openDemoPage(browser, demo, width, height);
     const effects = await page.evaluate(() => window.obscura.effects.filter((e) => e.switch).map((e) => e.name));
+    // The defaults also with every instance drawn alone (no static batches: gpu/GpuScene.h), before and after.
     const cases = [{ label: 'defaults', state: '' },
+                   { label: 'defaults, unbatched', state: '', batches: false },
+                   { label: 'defaults (again)', state: '' },
                    { label: 'every effect on', state: effects.map((e) => `${e}=on`).join('&') }];
     console.log(`${width}x${height}, ${await page.evaluate(() => window.obscura.context.renderer)}`);
     for (const c of cases) {
+      await page.evaluate((batches) => window.obscura.setStaticBatches(batches), c.batches ?? true);
       await page.evaluate(applyBenchmarkState, c.state);
       const result = await page.evaluate(async ({ samples, settle }) => {
         const o = window.obscura;

@@ -1,5 +1,6 @@
 // Per-pass GPU milliseconds of Obscura's page frame on 2CylinderEngine.glb, from EXT_disjoint_timer_query (SwiftShader
 // offers it): where the frame's time goes. Usage: node tools/browser-bench/profile-passes.mjs [WxH] [state ...]
+// A state `@unbatched` draws every instance alone from then on, `@batched` in static batches again (gpu/GpuScene.h).
 import fs from 'node:fs';
 import path from 'node:path';
 import { fileURLToPath } from 'node:url';
@@ -22,8 +23,9 @@ await page.evaluate(async (data) => { await window.obscura.loadScene(new Uint8Ar
 for (const state of states.length ? states : ['']) {
   const result = await page.evaluate(async (s) => {
     const o = window.obscura;
+    if (s.startsWith('@')) o.setStaticBatches(s === '@batched');
     o.setState("ao=on&tonemap=on&fxaa=on&radius=41.8");
-    if (s) o.setState(s);
+    if (s && !s.startsWith('@')) o.setState(s);
     const sums = {};
     let n = 0;
     o.setContinuous(true);

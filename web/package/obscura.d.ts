@@ -249,6 +249,11 @@ export class Obscura extends EventTarget {
    * whether the scene now draws with them. The image is the same either way.
    */
   setVertexArrays(allow: boolean): boolean;
+  /**
+   * Allows (the default) or refuses static batches: the still, rigid, opaque instances that share a material drawn
+   * as one piece. Returns how many batches the scene now draws. The image is the same either way.
+   */
+  setStaticBatches(allow: boolean): number;
   /** The view, the parameters that differ from their defaults, the timeline and the camera, as query-string text. */
   state(): string;
   setState(query: string): void;
