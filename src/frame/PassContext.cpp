@@ -130,6 +130,17 @@ void PassContext::drawAroundScene(const std::string& target, const std::function
   scissor(target, covered);
 }
 
+void PassContext::drawScene(GLenum depthFunc, bool writeDepth, const GpuScene::ProgramChoice& choose,
+                            const GpuScene::DrawOptions& options) const {
+  glEnable(GL_DEPTH_TEST);
+  glDepthFunc(depthFunc);
+  if (!writeDepth) glDepthMask(GL_FALSE);
+  scene_.draw(frame_.camera.view, choose, options);
+  glDisable(GL_DEPTH_TEST);
+  if (!writeDepth) glDepthMask(GL_TRUE);
+  glUseProgram(0);
+}
+
 void PassContext::limitToScene(const std::string& target, const glm::vec4& outside) const {
   if (writesOutput(target)) throw PipelineError("limitToScene: '" + target + "' is the output framebuffer");
   glClearColor(outside.r, outside.g, outside.b, outside.a);

@@ -49,16 +49,14 @@ void DepthPeelPass::render(const PassContext& context, const gl::Texture2D& gbuf
   glClearColor(1.0f, 1.0f, 1.0f, 1.0f);
   glClearDepthf(1.0f);
   glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
-  glEnable(GL_DEPTH_TEST);
-  glDepthFunc(GL_LESS);
   const float minSeparation = separation(settings, camera);
   // The G-buffer on a unit the scene's textures leave alone (the base colour, for the alpha test, is on 0).
   constexpr int kGBufferUnit = TextureUnits::kPeeledGBuffer;
   gbuffer.bind(kGBufferUnit);
   GpuScene::DrawOptions options;
   options.bothFaces = true;
-  context.scene().draw(
-      camera.view,
+  context.drawScene(
+      GL_LESS, true,
       [&](MaterialKind kind, VertexKind vertex) -> const gl::Program& {
         const gl::Program& program =
             programs_({kind.forAlphaOnly(), vertex}, [&] { return peelSpec(kind, vertex); });
@@ -71,9 +69,6 @@ void DepthPeelPass::render(const PassContext& context, const gl::Texture2D& gbuf
         return program;
       },
       options);
-  // What this pass set, its draws having put back their own (as the G-buffer pass does).
-  glDisable(GL_DEPTH_TEST);
-  glUseProgram(0);
   gl::unbindTextureUnits({kGBufferUnit});
 }
 

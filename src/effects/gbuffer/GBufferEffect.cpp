@@ -113,10 +113,7 @@ void GBufferEffect::render(const PassContext& context, Output output) const {
                     1.0f, 1.0f);
   glClearDepthf(1.0f);
   glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
-  glEnable(GL_DEPTH_TEST);
-  glDepthFunc(GL_LESS);
-
-  context.scene().draw(camera.view, [&](MaterialKind kind, VertexKind vertex) -> const gl::Program& {
+  context.drawScene(GL_LESS, true, [&](MaterialKind kind, VertexKind vertex) -> const gl::Program& {
     const gl::Program& p = program(output, kind, vertex);
     p.use();
     p.set("u_projection", camera.projection);
@@ -126,10 +123,6 @@ void GBufferEffect::render(const PassContext& context, Output output) const {
     }
     return p;
   });
-  // The draws have put back what they set (GpuScene::restoreAfterDraw); the pass puts back its own. Not the whole
-  // baseline (gl::restoreBaselineState): about 45 WebGL calls, a microsecond each on the page (docs/benchmarks.md).
-  glDisable(GL_DEPTH_TEST);
-  glUseProgram(0);
 }
 
 }  // namespace obscura

@@ -82,11 +82,8 @@ void VelocityEffect::render(const PassContext& context) {
   GpuScene::DrawOptions options;
   options.onlyMoving = !resources_.options.velocityDrawsEverything;
   if (context.sharesDepth("velocity") && (!options.onlyMoving || context.scene().anyMoving())) {
-    glEnable(GL_DEPTH_TEST);
-    glDepthFunc(GL_LEQUAL);
-    glDepthMask(GL_FALSE);
-    context.scene().draw(
-        camera.view,
+    context.drawScene(
+        GL_LEQUAL, false,
         [&](MaterialKind kind, VertexKind vertex) -> const gl::Program& {
           const gl::Program& program =
               geometry_({kind.forAlphaOnly(), vertex}, [&] { return geometrySpec(kind, vertex); });
@@ -97,10 +94,6 @@ void VelocityEffect::render(const PassContext& context) {
           return program;
         },
         options);
-    // What this pass set, its draws having put back their own (as the G-buffer pass does).
-    glDisable(GL_DEPTH_TEST);
-    glDepthMask(GL_TRUE);
-    glUseProgram(0);
   }
 }
 
