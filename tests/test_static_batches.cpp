@@ -134,8 +134,8 @@ TEST(StaticBatches, TheBuiltinRoomDrawsOnePieceAMaterial) {
 TEST(StaticBatches, MembersKeepTheirLevelsOfDetail) {
   Scene scene;
   const int material = test::addMaterial(scene, {0.8f, 0.5f, 0.3f});
-  // 25.6k triangles and 13k vertices: five fill a batch, and the nearest fills the frame.
-  Mesh sphere = makeSphere(0.5f, 160, 80);
+  // 4096 vertices (GpuScene::kBatchMemberVertices), 7.9k triangles; the nearest fills the frame.
+  Mesh sphere = makeSphere(0.5f, 63, 63);
   sphere.material = material;
   scene.meshes.push_back(sphere);
   for (int k = 0; k < 5; ++k) {
@@ -170,6 +170,35 @@ TEST(StaticBatches, MembersKeepTheirLevelsOfDetail) {
   EXPECT_GT(inBatch.drawCalls, 1);
   EXPECT_LT(inBatch.drawCalls, each.drawCalls) << "two far spheres at one level draw in one call";
   EXPECT_LT(test::colorDifference(a, b).mean, 0.01);
+}
+
+// A mesh instanced many times is not copied as many times: the copies hold at most as many vertices as the scene's
+// meshes, or one batch's worth (65536) where those are fewer. Of 200 instances of one 1089-vertex mesh (a forest of
+// one tree), 60 join one batch and the rest draw alone; a second, smaller mesh joins first.
+TEST(StaticBatches, TheCopiesStayWithinTheirBudget) {
+  Scene scene;
+  const int material = test::addMaterial(scene, {0.5f, 0.7f, 0.4f});
+  Mesh tree = makeSphere(0.3f, 32, 32);  // 33 x 33 = 1089 vertices
+  tree.material = material;
+  Mesh stone = makeBox({-0.1f, 0.0f, -0.1f}, {0.1f, 0.1f, 0.1f});  // 24 vertices
+  stone.material = material;
+  scene.meshes = {tree, stone};
+  for (int k = 0; k < 200; ++k) {
+    const glm::vec3 at(static_cast<float>(k % 20), 0.0f, -static_cast<float>(k / 20));
+    scene.instances.push_back({0, glm::translate(glm::mat4(1.0f), at)});
+  }
+  for (int k = 0; k < 3; ++k)
+    scene.instances.push_back({1, glm::translate(glm::mat4(1.0f), glm::vec3(static_cast<float>(k), 0.0f, 1.0f))});
+  ASSERT_EQ(scene.meshes[0].positions.size(), 1089u);
+  Renderer renderer = test::makeRenderer();
+  renderer.setScene(scene);
+  const GpuScene& gpu = renderer.gpuScene();
+  EXPECT_EQ(gpu.staticBatchCount(), 1);
+  // 65536 vertices' budget: the three stones (72), then 60 trees (65340); the 61st would pass it.
+  EXPECT_EQ(gpu.staticBatchVertices(), 3u * 24u + 60u * 1089u);
+  test::render(renderer, Camera::fit(scene.worldBounds(), 96, 64), RenderSettings{}, View::Final);
+  EXPECT_EQ(gpu.lastDrawCounts().batchedInstances, 63);
+  EXPECT_EQ(gpu.lastDrawCounts().draws, 1 + 140);
 }
 
 // A pose that moves a member away from where its batch placed it (not one this scene's animations make: they move

@@ -152,11 +152,15 @@ class GpuScene {
   // vertices; each frame's draws draw the batch, one draw where its members all take their full detail (a member at
   // a coarser level breaks the batch's index range into runs). A browser pays about a microsecond of host time for
   // each WebGL call, and a draw of a built-in scene's box is three of them (docs/benchmarks.md, "Static batches").
-  // Only meshes of at most kBatchMemberVertices vertices join one: a larger one's draw costs more than its calls,
-  // and its copy would cost memory. A batch whose member's pose differs from the one it was placed at (a pose not
-  // made by this scene's animations) draws its members by themselves until the pose returns.
-  static constexpr int kBatchMemberVertices = 16384;
+  // Only meshes of at most kBatchMemberVertices vertices join one (a larger one's draw costs more than its calls), and
+  // the copies hold at most as many vertices as the scene's meshes, or one batch's worth where those are fewer: a
+  // mesh instanced many times would otherwise be copied as many times (a forest of one tree). The smallest meshes
+  // join first: their draws cost the most for what they draw. A batch whose member's pose differs from the one it
+  // was placed at (a pose not made by this scene's animations) draws its members by themselves until the pose
+  // returns.
+  static constexpr int kBatchMemberVertices = 4096;
   int staticBatchCount() const { return static_cast<int>(batches_.size()); }
+  std::size_t staticBatchVertices() const;  // the copies' vertices, over every batch
   // Something moves between the previous pose and this one (an instance, a joint or a morph weight).
   bool anyMoving() const;
   // How skinned meshes are drawn, and the uniform palette's size in joints (0 where the path is not Uniforms).
@@ -256,6 +260,7 @@ class GpuScene {
   // A static batch as drawn: an instance at the identity whose one piece holds its members in world space.
   struct StaticBatch {
     InstanceGpu drawn;
+    std::size_t vertices = 0;  // the copy's
     bool intact = true;  // every member's pose, this frame's and the previous one's, is the one it was placed at
   };
 

@@ -21,10 +21,8 @@ void GpuScene::batchStaticInstances(const Scene& scene, const ScenePose& rest) {
   auto meshOf = [&](size_t instance) -> const Mesh& {
     return scene.meshes[static_cast<size_t>(scene.instances[instance].mesh)];
   };
-  // The candidates, grouped by what one draw shares: the material (its program, uniforms and textures; tangents come
-  // with a material whose normal texture needs them) and whether the meshes carry colours (a vertex stream of the
-  // program). In instance order.
-  std::map<std::pair<int, bool>, std::vector<size_t>> groups;
+  // The candidates: still, rigid, opaque, single-piece, not mirrored, small.
+  std::vector<size_t> candidates;
   for (size_t i = 0; i < instances_.size(); ++i) {
     const InstanceGpu& instance = instances_[i];
     const Mesh& mesh = meshOf(i);
@@ -35,21 +33,41 @@ void GpuScene::batchStaticInstances(const Scene& scene, const ScenePose& rest) {
       continue;
     // A mirroring world matrix turns the winding, which drawInstance sets per instance: a batch has one.
     if (!(glm::determinant(glm::mat3(rest.instanceWorld[i])) > 0.0f)) continue;
-    groups[{instance.material, !mesh.colors.empty()}].push_back(i);
+    candidates.push_back(i);
   }
+  // Grouped by what one draw shares: the material (its program, uniforms and textures; tangents come with a
+  // material whose normal texture needs them) and whether the meshes carry colours (a vertex stream of the program).
+  // Then, of the groups of two or more, within the copies' budget (GpuScene.h), the smallest meshes first.
+  auto keyOf = [&](size_t i) { return std::make_pair(instances_[i].material, !meshOf(i).colors.empty()); };
+  std::map<std::pair<int, bool>, int> groupSizes;
+  for (size_t i : candidates) ++groupSizes[keyOf(i)];
+  size_t budget = 0;
+  for (const Mesh& mesh : scene.meshes) budget += mesh.positions.size();
+  budget = std::max(budget, kBatchVertices);
+  std::stable_sort(candidates.begin(), candidates.end(),
+                   [&](size_t a, size_t b) { return meshOf(a).positions.size() < meshOf(b).positions.size(); });
+  std::map<std::pair<int, bool>, std::vector<size_t>> groups;
+  for (size_t i : candidates) {
+    const size_t vertices = meshOf(i).positions.size();
+    if (groupSizes[keyOf(i)] < 2) continue;
+    if (vertices > budget) break;
+    budget -= vertices;
+    groups[keyOf(i)].push_back(i);
+  }
+  for (auto& [key, members] : groups) std::sort(members.begin(), members.end());  // instance order
 
-  for (const auto& [key, candidates] : groups) {
+  for (const auto& [key, members] : groups) {
     const bool tangents = materials_[static_cast<size_t>(key.first)].pbr;
-    for (size_t begin = 0, end = 0; begin < candidates.size(); begin = end) {
+    for (size_t begin = 0, end = 0; begin < members.size(); begin = end) {
       size_t vertices = 0;
-      for (end = begin; end < candidates.size(); ++end) {
-        const size_t count = meshOf(candidates[end]).positions.size();
+      for (end = begin; end < members.size(); ++end) {
+        const size_t count = meshOf(members[end]).positions.size();
         if (vertices + count > kBatchVertices) break;
         vertices += count;
       }
       if (end - begin < 2) continue;  // a batch of one saves nothing
-      batches_.push_back(makeBatch(scene, rest, {candidates.begin() + static_cast<long>(begin),
-                                                 candidates.begin() + static_cast<long>(end)},
+      batches_.push_back(makeBatch(scene, rest,
+                                   {members.begin() + static_cast<long>(begin), members.begin() + static_cast<long>(end)},
                                    key.first, tangents));
     }
   }
@@ -109,6 +127,7 @@ GpuScene::StaticBatch GpuScene::makeBatch(const Scene& scene, const ScenePose& r
       levelOwners.emplace_back(m, level);
     }
   }
+  const size_t vertexCount = merged.positions.size();
   Piece piece = uploadPiece(std::move(merged), {}, tangents, levels);
   const size_t indexBytes = piece.indexType == GL_UNSIGNED_INT ? 4 : 2;
   for (size_t m = 0, offset = 0; m < members.size(); ++m) {
@@ -122,6 +141,7 @@ GpuScene::StaticBatch GpuScene::makeBatch(const Scene& scene, const ScenePose& r
   piece.members = std::move(members);
 
   StaticBatch batch;
+  batch.vertices = vertexCount;
   InstanceGpu& drawn = batch.drawn;  // at the identity: its piece is in world space already
   drawn.material = material;
   drawn.firstPiece = static_cast<int>(pieces_.size());
@@ -132,6 +152,12 @@ GpuScene::StaticBatch GpuScene::makeBatch(const Scene& scene, const ScenePose& r
   drawn.localRadius = 0.5f * glm::length(bounds.max - bounds.min);
   pieces_.push_back(std::move(piece));
   return batch;
+}
+
+std::size_t GpuScene::staticBatchVertices() const {
+  std::size_t vertices = 0;
+  for (const StaticBatch& batch : batches_) vertices += batch.vertices;
+  return vertices;
 }
 
 // The members' ranges at their levels this frame: adjacent ranges join, so that all at full detail are one draw.
