@@ -91,6 +91,7 @@ std::string parseCompare(const std::string& name) {
 Renderer::Renderer(const gl::GlCaps& caps, const RendererOptions& options)
     : caps_(withSimulatedLimits(requireUsable(caps), options)),
       options_(options),
+      triangle_(caps_.vertexArrayObject && options.allowVertexArrays),
       programs_(options.checkGlErrors),
       resources_{caps_, options_, triangle_, programs_, surfaces_},
       pool_(caps_) {
