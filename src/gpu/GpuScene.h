@@ -200,7 +200,8 @@ class GpuScene {
     std::vector<int> palette;  // the uniform path: the skin joint of each palette entry
     Mesh source;               // kept for CPU deformation (skinned on the CPU path, or morphed): the piece's mesh
     // A static batch's piece: its members in the order of its full index list, each with its own ranges of the
-    // indices (its levels after every member's full list; `levels` above stays empty).
+    // indices (after every member's full list, level by level each member's list at that level: makeBatch;
+    // `levels` above stays empty).
     struct Member {
       int instance = 0;  // into instances_
       glm::mat4 world{1.0f};  // the world matrix its vertices were placed with
