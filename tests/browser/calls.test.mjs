@@ -14,6 +14,23 @@ import { compareImages, openPage, snapshot, startBrowser, waitForDrawn } from '.
 let session;
 let page;
 
+// After `change(argument)` in the page (what it returns: `used`), the image drawn and the WebGL calls of the next
+// frame, counted by method.
+async function frameWith(change, argument) {
+  const used = await page.evaluate(change, argument);
+  await waitForDrawn(page);
+  const image = await snapshot(page);
+  const calls = await page.evaluate(() => {
+    const o = window.obscura;
+    o.pause();
+    o.draw();
+    window.glCalls = {};
+    o.draw();
+    return window.glCalls;
+  });
+  return { used, image, calls };
+}
+
 describe('WebGL calls per frame', () => {
   before(async () => {
     session = await startBrowser();
@@ -49,20 +66,7 @@ describe('WebGL calls per frame', () => {
   // OES_vertex_array_object is an extension: the draws without it (each piece's streams set per draw) stay, and
   // give the same image; with it, a draw binds its piece's object (one call) instead.
   test('vertex array objects: the same image, fewer calls', { timeout: 120000 }, async () => {
-    const frame = async (allow) => {
-      const used = await page.evaluate((a) => window.obscura.setVertexArrays(a), allow);
-      await waitForDrawn(page);
-      const image = await snapshot(page);
-      const calls = await page.evaluate(() => {
-        const o = window.obscura;
-        o.pause();
-        o.draw();
-        window.glCalls = {};
-        o.draw();
-        return window.glCalls;
-      });
-      return { used, image, calls };
-    };
+    const frame = (allow) => frameWith((a) => window.obscura.setVertexArrays(a), allow);
     const without = await frame(false);
     const withObjects = await frame(true);
     assert.equal(without.used, false);
@@ -80,24 +84,11 @@ describe('WebGL calls per frame', () => {
   // Static batches: the still room's instances that share a material drawn as one piece in world space. The image is
   // the same (the vertex stage places the batch's vertices with the view alone); the calls are fewer.
   test('static batches: the same image, fewer calls', { timeout: 120000 }, async () => {
-    const frame = async (allow) => {
-      const batches = await page.evaluate((a) => window.obscura.setStaticBatches(a), allow);
-      await waitForDrawn(page);
-      const image = await snapshot(page);
-      const calls = await page.evaluate(() => {
-        const o = window.obscura;
-        o.pause();
-        o.draw();
-        window.glCalls = {};
-        o.draw();
-        return window.glCalls;
-      });
-      return { batches, image, calls };
-    };
+    const frame = (allow) => frameWith((a) => window.obscura.setStaticBatches(a), allow);
     const alone = await frame(false);
     const batched = await frame(true);
-    assert.equal(alone.batches, 0);
-    assert.equal(batched.batches, 4, 'the walls, the stone, the blue spheres and the wooden boxes');
+    assert.equal(alone.used, 0);
+    assert.equal(batched.used, 4, 'the walls, the stone, the blue spheres and the wooden boxes');
     const difference = compareImages(alone.image, batched.image);
     assert.ok(difference.max <= 4, `the images differ by up to ${difference.max}/255`);
     const total = (calls) => Object.values(calls).reduce((sum, n) => sum + n, 0);
