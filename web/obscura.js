@@ -417,7 +417,8 @@ export class Obscura extends EventTarget {
   //  another pass did in the last frame, so they did not run and have no time of their own), history ({frames:
   //  consecutive frames the history survived, drops: how often it was dropped (resize, scene change, a new render
   //  scale), frameIndex}: starts afresh after a context loss), pooledTargets (render targets the frame keeps),
-  //  triangles (what the last geometry pass drew, at the levels of detail gbuffer.lod chose),
+  //  triangles (what the last geometry pass drew, at the levels of detail gbuffer.lod chose), drawCalls (its draw
+  //  calls: a static batch's members at one level in one),
   //  contextLost, contextRestores, glObjects: {textures, buffers, ...} (live GL objects), error (why frames stopped,
   //  or ''), render ({width, height: the size the effects ran at, scale: the render scale, pixelRatio: the canvas's
   //  device pixels per CSS pixel (devicePixelRatio up to resolution.max-pixel-ratio), devicePixelRatio, dynamic

@@ -260,8 +260,11 @@ int runRender(const RenderOptions& options) {
       }
       std::printf("%-10s %10.3f   (sum of pass means; wall clock per frame %.3f ms)\n", "total", sumOfMeans,
                   total / options.benchFrames);
+      const GpuScene::Counts counts = renderer.gpuScene().lastDrawCounts();
       std::printf("triangles  %ld   (drawn by the last geometry pass; gbuffer.lod draws coarser levels)\n",
-                  renderer.gpuScene().lastDrawCounts().triangles);
+                  counts.triangles);
+      std::printf("draws      %d   (its draw calls; %d instances in static batches)\n", counts.drawCalls,
+                  counts.batchedInstances);
     }
 
     Image image;

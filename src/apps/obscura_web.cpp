@@ -202,6 +202,8 @@ class WebApp {
                 {"pooledTargets", viewer_.renderer() ? Json(viewer_.renderer()->pooledTargets()) : Json(nullptr)},
                 {"triangles", viewer_.renderer() ? Json(viewer_.renderer()->gpuScene().lastDrawCounts().triangles)
                                                  : Json(nullptr)},
+                {"drawCalls", viewer_.renderer() ? Json(viewer_.renderer()->gpuScene().lastDrawCounts().drawCalls)
+                                                 : Json(nullptr)},
                 {"contextLost", canvas_.lost()},
                 {"contextRestores", restores_},
                 {"glObjects", {{"textures", live.textures},

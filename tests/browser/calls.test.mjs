@@ -14,21 +14,22 @@ import { compareImages, openPage, snapshot, startBrowser, waitForDrawn } from '.
 let session;
 let page;
 
-// After `change(argument)` in the page (what it returns: `used`), the image drawn and the WebGL calls of the next
-// frame, counted by method.
+// After `change(argument)` in the page (what it returns: `used`), the image drawn, the WebGL calls of the next
+// frame, counted by method, and its stats.
 async function frameWith(change, argument) {
   const used = await page.evaluate(change, argument);
   await waitForDrawn(page);
   const image = await snapshot(page);
-  const calls = await page.evaluate(() => {
+  const frame = await page.evaluate(() => {
     const o = window.obscura;
     o.pause();
     o.draw();
     window.glCalls = {};
     o.draw();
-    return window.glCalls;
+    const calls = { ...window.glCalls };  // before stats(), which may make calls of its own
+    return { calls, stats: o.stats() };
   });
-  return { used, image, calls };
+  return { used, image, ...frame };
 }
 
 describe('WebGL calls per frame', () => {
@@ -95,6 +96,9 @@ describe('WebGL calls per frame', () => {
     console.log(`calls per frame: ${total(alone.calls)} with every instance drawn alone, ${total(batched.calls)} ` +
                 `batched (drawElements ${alone.calls.drawElements} -> ${batched.calls.drawElements})`);
     assert.ok(batched.calls.drawElements <= alone.calls.drawElements - 21);
+    // The stats count the geometry pass's draw calls (the default frame has one such pass).
+    assert.equal(batched.stats.drawCalls, batched.calls.drawElements);
+    assert.equal(alone.stats.drawCalls, alone.calls.drawElements);
     assert.ok(total(batched.calls) < total(alone.calls));
     // State the draws share is set once per run of draws that share it, not once per draw (the frame drawn alone
     // has a draw per instance).

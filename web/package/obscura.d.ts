@@ -165,6 +165,8 @@ export interface Stats {
   pooledTargets: number;
   /** Triangles the last geometry pass drew, at the levels of detail `gbuffer.lod` chose. */
   triangles: number | null;
+  /** The last geometry pass's draw calls (a static batch's members at one level of detail in one). */
+  drawCalls: number | null;
   contextLost: boolean;
   contextRestores: number;
   glObjects: Record<string, number>;
