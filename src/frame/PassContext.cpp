@@ -130,12 +130,11 @@ void PassContext::drawAroundScene(const std::string& target, const std::function
   scissor(target, covered);
 }
 
-void PassContext::drawScene(GLenum depthFunc, bool writeDepth, const GpuScene::ProgramChoice& choose,
-                            const GpuScene::DrawOptions& options) const {
+void PassContext::drawDepthTested(GLenum depthFunc, bool writeDepth, const std::function<void()>& draw) const {
   glEnable(GL_DEPTH_TEST);
   glDepthFunc(depthFunc);
   if (!writeDepth) glDepthMask(GL_FALSE);
-  scene_.draw(frame_.camera.view, choose, options);
+  draw();
   glDisable(GL_DEPTH_TEST);
   if (!writeDepth) glDepthMask(GL_TRUE);
   glUseProgram(0);

@@ -90,11 +90,16 @@ class PassContext {
   // the lighting's background, FXAA's copy): calls `drawBand` scissored to each band around sceneRect(target) (below,
   // above, left, right; the empty ones left out), then scissors the pass's next draws to the bounds until finish().
   void drawAroundScene(const std::string& target, const std::function<void()>& drawBand) const;
-  // Draws the scene through this frame's view (GpuScene::draw), depth-tested with `depthFunc` and writing depth
-  // where `writeDepth`, then puts back what it set: the depth test off, depth writes on, no program (the draws put
-  // back their own: GpuScene::restoreAfterDraw). The geometry passes' draw of the scene.
+  // Calls `draw` depth-tested with `depthFunc`, writing depth where `writeDepth`, then puts back what it set: the
+  // depth test off, depth writes on, no program (the draws put back their own streams and textures). The geometry
+  // passes' draws: the scene's (drawScene) and the lines'.
+  void drawDepthTested(GLenum depthFunc, bool writeDepth, const std::function<void()>& draw) const;
+  // The scene through this frame's view (GpuScene::draw, which puts back its own state: restoreAfterDraw),
+  // depth-tested as drawDepthTested.
   void drawScene(GLenum depthFunc, bool writeDepth, const GpuScene::ProgramChoice& choose,
-                 const GpuScene::DrawOptions& options = {}) const;
+                 const GpuScene::DrawOptions& options = {}) const {
+    drawDepthTested(depthFunc, writeDepth, [&] { scene_.draw(frame_.camera.view, choose, options); });
+  }
   // Restores what the pass context changed (the scissor of the output's region or of limitToScene): called after
   // every pass.
   void finish() const;

@@ -48,9 +48,10 @@ void LinesEffect::run(const PassContext& context) const {
 
   // Without the G-buffer's depth (the plan's fallback), nothing hides them: the target's own depth starts clear.
   if (!context.sharesDepth("scene-color")) glClear(GL_DEPTH_BUFFER_BIT);
-  glEnable(GL_DEPTH_TEST);
-  glDepthFunc(GL_LEQUAL);
-  glDepthMask(GL_FALSE);
+  context.drawDepthTested(GL_LEQUAL, false, [&] { drawLines(context); });
+}
+
+void LinesEffect::drawLines(const PassContext& context) const {
   if (resources_.caps.desktopGl) glEnable(kVertexProgramPointSize);
   const gl::Program& lines = context.program(linesSpec());
   lines.use();
@@ -68,10 +69,6 @@ void LinesEffect::run(const PassContext& context) const {
   context.scene().lines().draw(viewProjection, false, modelViewProjection, position, color);
   context.scene().lines().draw(viewProjection, true, modelViewProjection, position, color);
   if (resources_.caps.desktopGl) glDisable(kVertexProgramPointSize);
-  // What this pass set, its draws having put back their streams (GpuLines::draw).
-  glDisable(GL_DEPTH_TEST);
-  glDepthMask(GL_TRUE);
-  glUseProgram(0);
 }
 
 }  // namespace obscura

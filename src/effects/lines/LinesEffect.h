@@ -26,6 +26,8 @@ class LinesEffect : public Effect {
 
  private:
   void run(const PassContext& context) const;
+  // The points and the lines over the copied colour, depth-tested against the G-buffer's depth (run).
+  void drawLines(const PassContext& context) const;
 
   const EffectResources& resources_;
   float maxPointSize_ = 1.0f;
