@@ -18,6 +18,7 @@
 #include <fstream>
 #include <map>
 #include <memory>
+#include <optional>
 #include <string>
 #include <utility>
 #include <vector>
@@ -401,6 +402,22 @@ const char* returned(std::string text) {
   return g_returned.c_str();
 }
 
+// The renderer made again with its options (checkGlErrors among them) changed by `change`; returns what `report`
+// reads from the new renderer, or null where the change is refused (obscura_error says why).
+template <typename Change, typename Report>
+const char* changeRendererOptions(Change&& change, Report&& report) {
+  std::string used;
+  if (!attempt([&] {
+        RendererOptions options = g_app->viewer().rendererOptions();
+        change(options);
+        g_app->viewer().setRendererOptions(options);
+        used = report(*g_app->viewer().renderer());
+      }))
+    return nullptr;
+  g_app->changed();
+  return returned(used);
+}
+
 }  // namespace
 
 extern "C" {
@@ -497,76 +514,56 @@ EMSCRIPTEN_KEEPALIVE const char* obscura_get_effective(const char* name) {
 // Forces how the depth hierarchy is stored ("separate", "atlas", "mipchain"; "auto": the best this context offers)
 // and returns the storage now in use; the page's tests compare the storages' AO on WebGL 1.
 EMSCRIPTEN_KEEPALIVE const char* obscura_set_hierarchy_storage(const char* name) {
-  std::string used;
-  if (!attempt([&] {
-        RendererOptions options = g_app->viewer().rendererOptions();  // keeps checkGlErrors
-        options.hierarchyStorage.reset();                              // "auto"
+  return changeRendererOptions(
+      [&](RendererOptions& options) {
+        options.hierarchyStorage.reset();  // "auto"
         const std::string wanted = name;
         if (wanted == "separate") options.hierarchyStorage = HierarchyStorage::SeparateTextures;
         else if (wanted == "atlas") options.hierarchyStorage = HierarchyStorage::Atlas;
         else if (wanted == "mipchain") options.hierarchyStorage = HierarchyStorage::MipChain;
         else if (wanted != "auto")
           throw InputError("hierarchy storage: expected auto, separate, atlas or mipchain, got '" + wanted + "'");
-        used = DepthHierarchyPass::storageName(g_app->viewer().setRendererOptions(options));
-      }))
-    return nullptr;
-  g_app->changed();
-  return returned(used);
+      },
+      [](const Renderer& renderer) { return DepthHierarchyPass::storageName(renderer.hierarchyStorage()); });
 }
 
 // Forces where the prefiltered environment's levels live ("halffloat", half floats the hardware filters; "mipchain",
 // read with EXT_shader_texture_lod; "atlas"; "auto": the first of these the context can take) and returns the layout
 // now in use; the page's tests compare them on WebGL 1.
 EMSCRIPTEN_KEEPALIVE const char* obscura_set_environment_layout(const char* name) {
-  std::string used;
-  if (!attempt([&] {
-        RendererOptions options = g_app->viewer().rendererOptions();
-        options.environmentLayout.reset();  // "auto"
+  std::optional<EnvironmentLayout> layout;
+  return changeRendererOptions(
+      [&](RendererOptions& options) {
         const std::string wanted = name;
-        if (wanted == "atlas") options.environmentLayout = EnvironmentLayout::Atlas;
-        else if (wanted == "mipchain") options.environmentLayout = EnvironmentLayout::MipChain;
-        else if (wanted == "halffloat") options.environmentLayout = EnvironmentLayout::HalfFloatAtlas;
+        if (wanted == "atlas") layout = EnvironmentLayout::Atlas;
+        else if (wanted == "mipchain") layout = EnvironmentLayout::MipChain;
+        else if (wanted == "halffloat") layout = EnvironmentLayout::HalfFloatAtlas;
         else if (wanted != "auto")
           throw InputError("environment layout: expected auto, halffloat, atlas or mipchain, got '" + wanted + "'");
-        g_app->viewer().setRendererOptions(options);
-        used = environmentLayoutName(GpuEnvironment::layoutFor(g_app->viewer().caps(), options.environmentLayout));
-      }))
-    return nullptr;
-  g_app->changed();
-  return returned(used);
+        options.environmentLayout = layout;  // none: "auto"
+      },
+      [&](const Renderer&) {
+        return std::string(environmentLayoutName(GpuEnvironment::layoutFor(g_app->viewer().caps(), layout)));
+      });
 }
 
 // Allows or refuses vertex array objects (OES_vertex_array_object) for the scene's draws, and returns "on" where the
 // scene now draws with them, "off" where not (refused, or the context lacks the extension); the page's tests compare
 // the images and count the calls both ways.
 EMSCRIPTEN_KEEPALIVE const char* obscura_set_vertex_arrays(int allow) {
-  std::string used;
-  if (!attempt([&] {
-        RendererOptions options = g_app->viewer().rendererOptions();
-        options.allowVertexArrays = allow != 0;
-        g_app->viewer().setRendererOptions(options);
-        const Renderer* renderer = g_app->viewer().renderer();
-        used = renderer && renderer->gpuScene().usesVertexArrays() ? "on" : "off";
-      }))
-    return nullptr;
-  g_app->changed();
-  return returned(used);
+  return changeRendererOptions([&](RendererOptions& options) { options.allowVertexArrays = allow != 0; },
+                               [](const Renderer& renderer) {
+                                 return std::string(renderer.gpuScene().usesVertexArrays() ? "on" : "off");
+                               });
 }
 
 // Allows or refuses static batches (the still instances that share a material drawn as one piece: gpu/GpuScene.h),
 // and returns how many the scene now draws; the page's tests compare the images and count the calls both ways.
 EMSCRIPTEN_KEEPALIVE const char* obscura_set_static_batches(int allow) {
-  int batches = 0;
-  if (!attempt([&] {
-        RendererOptions options = g_app->viewer().rendererOptions();
-        options.batchStaticInstances = allow != 0;
-        g_app->viewer().setRendererOptions(options);
-        const Renderer* renderer = g_app->viewer().renderer();
-        batches = renderer ? renderer->gpuScene().staticBatchCount() : 0;
-      }))
-    return nullptr;
-  g_app->changed();
-  return returned(std::to_string(batches));
+  return changeRendererOptions([&](RendererOptions& options) { options.batchStaticInstances = allow != 0; },
+                               [](const Renderer& renderer) {
+                                 return std::to_string(renderer.gpuScene().staticBatchCount());
+                               });
 }
 
 EMSCRIPTEN_KEEPALIVE int obscura_set_view(const char* mode) {
