@@ -142,14 +142,13 @@ GpuScene::StaticBatch GpuScene::makeBatch(const Scene& scene, const ScenePose& r
 
   StaticBatch batch;
   batch.vertices = vertexCount;
-  InstanceGpu& drawn = batch.drawn;  // at the identity: its piece is in world space already
+  // At the identity (its piece is in world space already); what the draws read of it: the material, the piece, and
+  // the centre for the drawing order. Its bounds, level of detail and pose are its members' (chooseDetail, setPose).
+  InstanceGpu& drawn = batch.drawn;
   drawn.material = material;
   drawn.firstPiece = static_cast<int>(pieces_.size());
   drawn.pieceCount = 1;
-  drawn.localMin = bounds.min;
-  drawn.localMax = bounds.max;
-  drawn.localCentre = drawn.restCentre = drawn.centre = bounds.center();
-  drawn.localRadius = 0.5f * glm::length(bounds.max - bounds.min);
+  drawn.centre = bounds.center();
   pieces_.push_back(std::move(piece));
   return batch;
 }
