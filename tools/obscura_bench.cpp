@@ -7,7 +7,8 @@
 // Prints tables and writes DIR/bench.csv (every measurement), DIR/ratios.csv, DIR/radius_sweep.csv,
 // DIR/radius_sweep.png (gnuplot) and DIR/estimators.csv. Every pass is bounded by glFinish on both sides and
 // reported as the median over N frames. The passes and effects are the effect table's (renderer/EffectTable.h): a new
-// effect shows up by itself.
+// effect shows up by itself. --quick (the suite's smoke run) measures every section at 320x180 alone (the host time
+// at 160x90): it checks that the benchmark runs, not its figures.
 // Sections:
 //   1. per-pass and per-effect ms at 640x360, 1280x720 and 1920x1080 on the built-in scene and on
 //      2CylinderEngine.glb, at the defaults (every effect on; each scene at its default AO radius, scene/SceneScale.h)
@@ -134,6 +135,11 @@ struct Options {
   bool aoLayersOnly = false;    // section 12 alone
   bool hostOnly = false;        // section 13 alone
   bool sceneBoundsOnly = false; // section 14 alone
+  using Sizes = std::vector<std::pair<int, int>>;
+  // The sizes a section measures: the given ones, or with --quick (the smoke run, tools.bench_smoke) the smallest
+  // size the smoke run takes, 320x180, whatever the section measures at full.
+  Sizes sizes(Sizes full) const { return quick ? Sizes{{320, 180}} : full; }
+  std::pair<int, int> size(int w, int h) const { return sizes({{w, h}}).front(); }
 };
 
 struct BenchScene {
@@ -548,7 +554,7 @@ void temporalAoSection(const Options& options, HeadlessContext& context, const B
               "ao-temporal", "blur-h", "blur-v", "velocity", "/ default");
   std::ofstream csv(options.outDir + "/temporal_ao.csv");
   csv << "width,height,configuration,ao_effect_ms,sao_ms,ao_temporal_ms,blur_ms,velocity_ms\n";
-  for (auto [w, h] : {std::pair<int, int>{640, 360}, std::pair<int, int>{1280, 720}}) {
+  for (auto [w, h] : options.sizes({{640, 360}, {1280, 720}})) {
     Camera camera = scene.camera;
     camera.width = w;
     camera.height = h;
@@ -576,7 +582,7 @@ void temporalAoSection(const Options& options, HeadlessContext& context, const B
 // glFinish; and the parts base/TimeSpent.h counted in each. The start-up target for the page, the first frame
 // at most 1.3 x a steady one, is printed beside their ratio.
 void startupSection(const Options& options, HeadlessContext& context) {
-  const int w = options.quick ? 640 : 1280, h = options.quick ? 360 : 720;
+  const auto [w, h] = options.size(1280, 720);
   const gl::RenderTarget output("bench output", w, h, GL_NEAREST, gl::RenderTarget::Depth::Renderbuffer,
                                 context.caps().depth24, context.caps().packedDepthStencil);
   const OutputTarget target{output.framebuffer(), w, h, {}};
@@ -658,10 +664,7 @@ void resolutionSection(const Options& options, HeadlessContext& context, const B
   std::ofstream csv(options.outDir + "/resolution.csv");
   csv << "width,height,configuration,frame_ms,ratio_to_full,output_pass_ms,mae,edge_mae\n";
   std::vector<std::string> targets;
-  const std::vector<std::pair<int, int>> sizes =
-      options.quick ? std::vector<std::pair<int, int>>{{640, 360}}
-                    : std::vector<std::pair<int, int>>{{640, 360}, {1280, 720}};
-  for (auto [w, h] : sizes) {
+  for (auto [w, h] : options.sizes({{640, 360}, {1280, 720}})) {
     Camera camera = scene.camera;
     camera.width = w;
     camera.height = h;
@@ -755,8 +758,7 @@ void lightingSection(const Options& options, HeadlessContext& context) {
               "passes\n", context.caps().renderer.c_str(), options.frames);
   std::printf("%-16s %-10s %-24s %9s %9s %9s\n", "scene", "size", "configuration", "frame", "G-buffer", "lighting");
   const std::vector<std::pair<int, int>> sizes =
-      options.quick ? std::vector<std::pair<int, int>>{{320, 180}} : std::vector<std::pair<int, int>>{{640, 360},
-                                                                                                       {1280, 720}};
+      options.sizes({{640, 360}, {1280, 720}});
   for (Subject& subject : subjects) {
     scaleScene(subject.scene, subject.scale);
     for (auto [w, h] : sizes) {
@@ -1197,7 +1199,8 @@ void hostSection(const Options& options, HeadlessContext& context) {
                                                      {"defaults, plan each frame", RenderSettings(), false},
                                                      {"every effect on", everything},
                                                      {"every effect, plan each", everything, false}};
-  const std::vector<std::pair<int, int>> sizes = {{1280, 720}, {160, 90}};
+  const std::vector<std::pair<int, int>> sizes =
+      options.quick ? Options::Sizes{{160, 90}} : Options::Sizes{{1280, 720}, {160, 90}};
   const int frames = 4 * options.frames;
   std::ofstream csv(options.outDir + "/host.csv");
   csv << "configuration,width,height,host_cpu_ms,host_wall_ms\n";
@@ -1254,8 +1257,7 @@ void sceneBoundsSection(const Options& options, HeadlessContext& context, const 
   const std::vector<Configuration> configurations = {
       {"defaults", {}}, {"preset low", {{"preset", "low"}}}, {"AO off", {{"ao", "off"}}}};
   // --quick: the engine alone (the room fills its frame), small.
-  using Sizes = std::vector<std::pair<int, int>>;
-  const Sizes sizes = options.quick ? Sizes{{320, 180}} : Sizes{{640, 360}, {1280, 720}};
+  const Options::Sizes sizes = options.sizes({{640, 360}, {1280, 720}});
   std::ofstream csv(options.outDir + "/scene_bounds.csv");
   csv << "scene,configuration,width,height,limited_ms,whole_ms,ratio\n";
   std::printf("\n14. The scene's bounds, %s: frame ms (glFinish-bounded, median of %d frames) with the passes limited "
@@ -1479,7 +1481,8 @@ int main(int argc, char** argv) {
     const Camera engineCamera = Camera::fit(engine.worldBounds(), 1280, 720);
     scenes.push_back({"2CylinderEngine", std::move(engine), engineCamera});
     if (options.motionOnly) {  // before Bench, which starts DIR/bench.csv afresh
-      motionSection(options, context, options.quick ? 640 : 1280, options.quick ? 360 : 720);
+      const auto [w, h] = options.size(1280, 720);
+      motionSection(options, context, w, h);
       std::printf("\nobscura-bench: wrote %s/motion.csv\n", options.outDir.c_str());
       return 0;
     }
@@ -1503,13 +1506,9 @@ int main(int argc, char** argv) {
       std::printf("\nobscura-bench: wrote %s/temporal_ao.csv\n", options.outDir.c_str());
       return 0;
     }
-    const std::vector<std::pair<int, int>> effectSizes =
-        options.quick ? std::vector<std::pair<int, int>>{{320, 180}}
-                      : std::vector<std::pair<int, int>>{{640, 360}, {1280, 720}};
+    const Options::Sizes effectSizes = options.sizes({{640, 360}, {1280, 720}});
     if (options.finishOnly) {  // before Bench, which starts DIR/bench.csv afresh
-      finishSection(options, context,
-                    options.quick ? std::vector<std::pair<int, int>>{{320, 180}}
-                                  : std::vector<std::pair<int, int>>{{640, 360}, {1280, 720}});
+      finishSection(options, context, effectSizes);
       std::printf("\nobscura-bench: wrote %s/finish.csv\n", options.outDir.c_str());
       return 0;
     }
@@ -1538,7 +1537,7 @@ int main(int argc, char** argv) {
       return 0;
     }
     if (options.estimatorsOnly) {
-      const int w = options.quick ? 640 : 1280, h = options.quick ? 360 : 720;
+      const auto [w, h] = options.size(1280, 720);
       estimatorSection(bench, builtin, w, h, options.outDir);
       std::printf("\nobscura-bench: wrote %s/bench.csv, estimators.csv\n", options.outDir.c_str());
       return 0;
@@ -1558,9 +1557,7 @@ int main(int argc, char** argv) {
                 "hierarchy %s)\n",
                 defaults.samples, sceneRadii.c_str(), defaults.usesDepthHierarchy() ? "on" : "off");
     printPassHeader();
-    const std::vector<std::pair<int, int>> sizes =
-        options.quick ? std::vector<std::pair<int, int>>{{640, 360}}
-                      : std::vector<std::pair<int, int>>{{640, 360}, {1280, 720}, {1920, 1080}};
+    const Options::Sizes sizes = options.sizes({{640, 360}, {1280, 720}, {1920, 1080}});
     std::vector<std::tuple<std::string, int, int, PassTimes>> perPass;
     for (const BenchScene& scene : scenes)
       for (auto [w, h] : sizes) {
@@ -1576,7 +1573,7 @@ int main(int argc, char** argv) {
       std::printf("(%s: 0 ms where the %s pass did its work, with nothing else reading what it reads)\n",
                   absorbed.c_str(), doer.c_str());
 
-    const int w = options.quick ? 640 : 1280, h = options.quick ? 360 : 720;
+    const auto [w, h] = options.size(1280, 720);
     std::printf("\n2. Radius sweep, built-in scene %dx%d: SAO pass ms (hierarchy pass ms)\n", w, h);
     std::printf("%10s %18s %18s\n", "radius m", "hierarchy on", "hierarchy off");
     std::ofstream sweep(options.outDir + "/radius_sweep.csv");
