@@ -12,6 +12,8 @@
 #include "encoding/HdrEncoding.h"
 #include "gl/GlObjects.h"
 #include "gl/PipelineState.h"
+#include "scene/BuiltinScene.h"
+#include "scene/GltfLoader.h"
 
 namespace obscura::test {
 
@@ -258,6 +260,19 @@ Scene cutOutQuadOnAFloor(AlphaMode mode) {
   scene.materials.push_back(material);
   scene.meshes[1].material = 0;
   return scene;
+}
+
+FramedScene framedBuiltinScene(int width, int height) {
+  return {"builtin", makeBuiltinScene(), builtinSceneCamera(width, height)};
+}
+
+FramedScene framedScene(std::string name, Scene scene, int width, int height) {
+  const Camera camera = Camera::fit(scene.worldBounds(), width, height);
+  return {std::move(name), std::move(scene), camera};
+}
+
+FramedScene framedFile(std::string name, const std::string& path, int width, int height) {
+  return framedScene(std::move(name), loadGltfFile(path), width, height);
 }
 
 Camera makeCamera(const glm::vec3& eye, const glm::vec3& target, int width, int height, float near, float far,

@@ -110,6 +110,17 @@ int addSlidingInstance(Scene& scene, int mesh, const glm::vec3& from, const glm:
 // (x < 0) and above it on the right, with alphaMode `mode`.
 Scene cutOutQuadOnAFloor(AlphaMode mode);
 
+// A scene and a camera at a size that frames it: the cases of tests that draw several scenes the same two ways.
+struct FramedScene {
+  std::string name;
+  Scene scene;
+  Camera camera;
+};
+// The built-in scene with its own camera, and a scene (or a glTF file's) with Camera::fit's.
+FramedScene framedBuiltinScene(int width, int height);
+FramedScene framedScene(std::string name, Scene scene, int width, int height);
+FramedScene framedFile(std::string name, const std::string& path, int width, int height);
+
 // Camera looking from eye to target, with explicit size and planes.
 Camera makeCamera(const glm::vec3& eye, const glm::vec3& target, int width, int height, float near = 0.1f,
                   float far = 100.0f, float fovyDegrees = 50.0f);

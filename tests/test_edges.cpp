@@ -469,8 +469,7 @@ TEST(Edges, KeepTheToneMappingAbsorbedAndLeaveTheBaselineState) {
   for (const char* expected : {"edges-detect", "edges-h", "edges", "tonemap (done by lighting)"})
     EXPECT_EQ(std::count(names.begin(), names.end(), expected), 1) << expected;
 
-  for (const EffectEntry& row : effectTable())
-    if (row.info.hasSwitch) settings.set(row.info.name, "on");
+  settings = RenderSettings::everyEffectOn();
   settings.set("edges.style", "toon");
   settings.set("edges.color-threshold", "0.1");
   View split = View::Split;

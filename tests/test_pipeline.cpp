@@ -428,9 +428,7 @@ TEST(Plan, ACachedPlanDrawsWhatAFreshOneDraws) {
   cached.setScene(makeBuiltinScene());
   making.setScene(makeBuiltinScene());
   const Camera camera = builtinSceneCamera(128, 72);
-  RenderSettings everything;
-  for (const EffectEntry& row : effectTable())
-    if (row.info.hasSwitch) everything.set(row.info.name, "on");
+  const RenderSettings everything = RenderSettings::everyEffectOn();
   int checked = 0;
   for (const ParameterInfo& p : RenderSettings::parameters()) {
     if (p.shapesPlan) continue;

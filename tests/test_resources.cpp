@@ -346,35 +346,22 @@ TEST(Limits, AContextWithoutFragmentHighpIsRefusedClearly) {
 TEST(Resources, VertexArrayObjectsDrawTheSameImageAsStreamsSetPerDraw) {
   const bool available = test::context().caps().vertexArrayObject;
   if (!available) std::printf("this context has no vertex array objects: both renderers set streams per draw\n");
-  struct Case {
-    const char* name;
-    Scene scene;
-    Camera camera;
-  };
-  std::vector<Case> cases;
-  cases.push_back({"builtin", makeBuiltinScene(), builtinSceneCamera(96, 64)});
-  const std::pair<const char*, std::string> files[] = {
-      {"pbr-samples", test::sourceDir() + "/assets/scenes/pbr-samples.glb"},
-      {"simple_skin", test::assimpModels() + "/simple_skin/simple_skin.gltf"},
-      {"AnimatedMorphCube",
-       test::assimpModels() + "/glTF-Sample-Models/AnimatedMorphCube-glTF/AnimatedMorphCube.gltf"}};
-  for (const auto& [name, file] : files) {
-    Scene scene = loadGltfFile(file);
-    const Camera camera = Camera::fit(scene.worldBounds(), 96, 64);
-    cases.push_back({name, std::move(scene), camera});
-  }
+  std::vector<test::FramedScene> cases;
+  cases.push_back(test::framedBuiltinScene(96, 64));
+  cases.push_back(test::framedFile("pbr-samples", test::sourceDir() + "/assets/scenes/pbr-samples.glb", 96, 64));
+  cases.push_back(test::framedFile("simple_skin", test::assimpModels() + "/simple_skin/simple_skin.gltf", 96, 64));
+  cases.push_back(test::framedFile(
+      "AnimatedMorphCube",
+      test::assimpModels() + "/glTF-Sample-Models/AnimatedMorphCube-glTF/AnimatedMorphCube.gltf", 96, 64));
   RendererOptions without;
   without.allowVertexArrays = false;
-  for (const Case& c : cases) {
+  for (const test::FramedScene& c : cases) {
     Renderer withObjects = test::makeRenderer(), withStreams = test::makeRenderer(without);
     withObjects.setScene(c.scene);
     withStreams.setScene(c.scene);
     EXPECT_EQ(withObjects.gpuScene().usesVertexArrays(), available) << c.name;
     EXPECT_FALSE(withStreams.gpuScene().usesVertexArrays()) << c.name;
-    RenderSettings every;
-    for (const EffectEntry& row : effectTable())
-      if (row.info.hasSwitch) every.set(row.info.name, "on");
-    for (const RenderSettings& settings : {RenderSettings{}, every}) {
+    for (const RenderSettings& settings : {RenderSettings{}, RenderSettings::everyEffectOn()}) {
       for (double time : {0.25, 0.5}) {  // two frames: the second has a previous pose (motion, history)
         FrameOptions options;
         options.time = time;

@@ -48,29 +48,14 @@ Scene boxesWithColours() {
 // llvmpipe the images are the same, bit for bit). Every effect on too: the velocity pass, the AO's depth peel and the
 // forward lighting draw the scene as well; and at two times of an animated scene, whose moving parts join no batch.
 TEST(StaticBatches, DrawTheImageOfTheInstancesDrawnAlone) {
-  struct Case {
-    const char* name;
-    Scene scene;
-    Camera camera;
-  };
-  std::vector<Case> cases;
-  cases.push_back({"builtin", makeBuiltinScene(), builtinSceneCamera(160, 96)});
-  {
-    Scene scene = boxesWithColours();
-    const Camera camera = Camera::fit(scene.worldBounds(), 160, 96);
-    cases.push_back({"coloured boxes", std::move(scene), camera});
-  }
-  {
-    Scene scene = loadGltfFile(test::sourceDir() + "/assets/scenes/pbr-samples.glb");
-    const Camera camera = Camera::fit(scene.worldBounds(), 160, 96);
-    cases.push_back({"pbr-samples", std::move(scene), camera});
-  }
+  std::vector<test::FramedScene> cases;
+  cases.push_back(test::framedBuiltinScene(160, 96));
+  cases.push_back(test::framedScene("coloured boxes", boxesWithColours(), 160, 96));
+  cases.push_back(test::framedFile("pbr-samples", test::sourceDir() + "/assets/scenes/pbr-samples.glb", 160, 96));
   RendererOptions alone;
   alone.batchStaticInstances = false;
-  RenderSettings every;
-  for (const EffectEntry& row : effectTable())
-    if (row.info.hasSwitch) every.set(row.info.name, "on");
-  for (const Case& c : cases) {
+  const RenderSettings every = RenderSettings::everyEffectOn();
+  for (const test::FramedScene& c : cases) {
     Renderer batched = test::makeRenderer(), unbatched = test::makeRenderer(alone);
     batched.setScene(c.scene);
     unbatched.setScene(c.scene);
@@ -82,7 +67,7 @@ TEST(StaticBatches, DrawTheImageOfTheInstancesDrawnAlone) {
         const test::RenderedImage a = test::render(batched, c.camera, settings, View::Final, options);
         const test::RenderedImage b = test::render(unbatched, c.camera, settings, View::Final, options);
         const test::ColorDifference difference = test::colorDifference(a, b);
-        std::printf("%s, %s, t %.2f: %d batches; mean %.4f, worst %d levels\n", c.name,
+        std::printf("%s, %s, t %.2f: %d batches; mean %.4f, worst %d levels\n", c.name.c_str(),
                     settings.enabled("bloom") ? "every effect" : "defaults", time,
                     batched.gpuScene().staticBatchCount(), difference.mean, difference.worst);
         EXPECT_LT(difference.mean, 0.01) << c.name << " at " << time;

@@ -1030,11 +1030,8 @@ void effectsSection(const Options& options, HeadlessContext& context, const std:
     std::string name;
     RenderSettings settings;
   };
-  std::vector<Configuration> configurations = {{"defaults", RenderSettings()}};
-  RenderSettings everything;
-  for (const EffectEntry& row : effectTable())
-    if (row.info.hasSwitch) everything.set(row.info.name, "on");
-  configurations.push_back({"every effect on", everything});
+  std::vector<Configuration> configurations = {{"defaults", RenderSettings()},
+                                               {"every effect on", RenderSettings::everyEffectOn()}};
   // The AO's temporal accumulation (where the table has it) at 4 taps a frame, beside 4 taps in a single frame.
   if (RenderSettings::find("ao.temporal")) {
     RenderSettings four;
@@ -1190,9 +1187,7 @@ void hostSection(const Options& options, HeadlessContext& context) {
     RenderSettings settings;
     bool cachePlans = true;
   };
-  RenderSettings everything;
-  for (const EffectEntry& row : effectTable())
-    if (row.info.hasSwitch) everything.set(row.info.name, "on");
+  const RenderSettings everything = RenderSettings::everyEffectOn();
   // Each also with its plan made every frame (RendererOptions::cachePlans off), in the same frames: what the cache
   // saves.
   const std::vector<Configuration> configurations = {{"defaults", RenderSettings()},

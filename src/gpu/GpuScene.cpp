@@ -272,8 +272,11 @@ void GpuScene::chooseDetail(const glm::mat4& view, const glm::mat4& projection, 
     const float w = projection[2][3] * (centre.z + scale * instance.localRadius) + projection[3][3];
     if (!(w > 0.0f)) continue;
     const float pixelsPerMeshUnit = scale * pixelsPerUnit / w;
-    for (size_t level = 0; level < piece.levels.size(); ++level)
-      if (piece.levels[level].error * pixelsPerMeshUnit <= maxPixelError) instance.detail = static_cast<int>(level) + 1;
+    // The levels' errors grow level by level (scene/MeshDetail.h): the coarsest within the bound is the last one.
+    for (size_t level = 0; level < piece.levels.size(); ++level) {
+      if (piece.levels[level].error * pixelsPerMeshUnit > maxPixelError) break;
+      instance.detail = static_cast<int>(level) + 1;
+    }
   }
 }
 

@@ -66,6 +66,12 @@ RenderSettings::RenderSettings() {
 
 RenderSettings::RenderSettings(const AoSettings& ao) : RenderSettings() { this->ao() = ao; }
 
+RenderSettings RenderSettings::everyEffectOn() {
+  RenderSettings settings;
+  for (const EffectEntry& row : effectTable())
+    if (row.info.hasSwitch) settings.set(row.info.name, "on");
+  return settings;
+}
 
 bool RenderSettings::enabled(const std::string& effect) const {
   const std::vector<EffectEntry>& rows = effectTable();

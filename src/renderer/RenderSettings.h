@@ -23,6 +23,9 @@ class RenderSettings : public FrameSettings {
   // Every effect at its defaults, with these AO settings (the tests' and tools' common case: an AoSettings converts
   // where RenderSettings are expected).
   RenderSettings(const AoSettings& ao);  // NOLINT(google-explicit-constructor)
+  // Every effect that has a switch turned on, each at its defaults (the frame the table must plan, the tests' and
+  // benchmarks' "every effect on").
+  static RenderSettings everyEffectOn();
   RenderSettings(const RenderSettings&) = default;
   RenderSettings& operator=(const RenderSettings&) = default;
   RenderSettings(RenderSettings&&) noexcept = default;

@@ -109,9 +109,7 @@ Renderer::Renderer(const gl::GlCaps& caps, const RendererOptions& options)
   FrameContext probe;
   probe.linesOrPoints = true;  // so that the points-and-lines pass is checked too
   probe.transparent = probe.transmission = true;  // and the transparent layer's
-  RenderSettings everyEffect;
-  for (size_t row = 0; row < effectTable().size(); ++row)
-    if (effectTable()[row].info.hasSwitch) everyEffect.set(effectTable()[row].info.name, "on");
+  const RenderSettings everyEffect = RenderSettings::everyEffectOn();
   for (bool forwardLighting : {false, true})  // a scene the deferred lighting can shade, and one it cannot
     for (int outputWidth : {1, 2}) {            // rendered at the output's size, and below it (upscaled)
       probe.forwardLighting = forwardLighting;

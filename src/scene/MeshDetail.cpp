@@ -29,8 +29,11 @@ std::vector<DetailLevel> detailLevels(const Mesh& mesh) {
         simplified.data(), mesh.indices.data(), mesh.indices.size(), positions, vertexCount, sizeof(glm::vec3),
         &mesh.normals.front().x, sizeof(glm::vec3), normalWeights, 3, nullptr, 0, bound, 0, &relativeError);
     if (count == 0 || count * 5 > previousCount * 4) continue;  // empty, or under a fifth fewer: not worth a level
+    // Each level's error above the one before (GpuScene::chooseDetail stops at the first level over its bound).
+    const float error = relativeError * extent;
+    if (!levels.empty() && !(error > levels.back().error)) continue;
     levels.push_back({std::vector<std::uint32_t>(simplified.begin(), simplified.begin() + static_cast<long>(count)),
-                      relativeError * extent});
+                      error});
     previousCount = count;
   }
   return levels;
