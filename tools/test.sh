@@ -25,12 +25,9 @@ report() {
   times > "$stages.times"
   echo "  (CPU time of everything run: $(tail -n 1 "$stages.times" | awk '{print "user " $1 ", system " $2}'))"
   rm -f "$stages" "$stages.times"
-  # A sanitized build still running beside a failed stage is stopped (its process group: make and the compilers).
-  if [ -n "${sanitized_build:-}" ]; then kill -- "-$sanitized_build" 2>/dev/null || true; fi
   exit "$status"
 }
 trap report EXIT
-trap 'exit 143' TERM INT  # so that report() runs (and stops the sanitized build) when the run is stopped
 
 # Runs "$@" as the stage $1 (the rest is the command), timing it.
 stage() {
@@ -62,21 +59,8 @@ stage "install-deps" tools/install-deps.sh
 stage "native build" tools/build.sh -DOBSCURA_WERROR=ON
 stage "web build" tools/build-web.sh -DOBSCURA_WERROR=ON
 stage "npm ci" npm_ci
-# One sanitized tree (clang) for the sanitizer leg's tests and the fuzzer. It compiles beside ctest, at low priority:
-# the browser entries run one at a time (one Chromium: SwiftShader is CPU-bound) and leave a core idle for minutes,
-# which the compiler takes; a niced process yields to the tests where both want the cores. Its own process group
-# (setsid), so that report() can stop it whole.
-sanitized_log=build/sanitized-build.log
-setsid nice -n 10 tools/test-sanitizers.sh build > "$sanitized_log" 2>&1 &
-sanitized_build=$!
 stage "ctest (native, web)" native_tests
-finish_sanitized_build() {
-  local status=0
-  wait "$sanitized_build" || status=$?
-  sanitized_build=""
-  cat "$sanitized_log"
-  return "$status"
-}
-stage "sanitized build (after ctest)" finish_sanitized_build
+# One sanitized tree (clang) for the sanitizer leg's tests and the fuzzer.
+stage "sanitized build" tools/test-sanitizers.sh build
 stage "sanitizer tests" tools/test-sanitizers.sh run
 stage "fuzzer" tools/fuzz-gltf.sh 60
