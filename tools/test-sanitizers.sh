@@ -12,9 +12,7 @@
 # Left out: the EGL backend (Mesa's EGL driver leaks from a module LSan cannot name: docs/robustness.md), the browser
 # and install entries (no web build here; an installed sanitized library would need the runtimes in its consumers),
 # the desktop viewer under Xvfb, the largest render size and the benchmark's smoke run (viewer.*, limits.*, label
-# smoke), and the shader suite (gpu.*.Shaders, its own binary: Mesa compiling and linking every program variant, 89 s
-# here against 24 in the plain tree; Obscura's side of it, the sources' expansion and the programs' specs, runs
-# sanitized in every other GPU suite, which builds the programs its frames use).
+# smoke).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 source tools/lib/ccache.sh

@@ -2,7 +2,9 @@
 
 #include <algorithm>
 #include <array>
-#include <regex>
+#include <cctype>
+#include <set>
+#include <sstream>
 
 namespace obscura::gl {
 
@@ -113,6 +115,62 @@ bool uniformsFit(const std::vector<UniformShape>& uniforms, int maxRows) {
   return true;
 }
 
+namespace {
+
+bool isIdentifierCharacter(char c) { return std::isalnum(static_cast<unsigned char>(c)) || c == '_'; }
+
+// The text without its comments (a comment may mention a uniform its stage does not declare).
+std::string withoutComments(const std::string& source) {
+  std::string out;
+  out.reserve(source.size());
+  for (size_t i = 0; i < source.size(); ++i) {
+    if (source.compare(i, 2, "//") == 0) {
+      i = source.find('\n', i);
+      if (i == std::string::npos) break;
+      out += '\n';
+    } else if (source.compare(i, 2, "/*") == 0) {
+      i = source.find("*/", i + 2);
+      if (i == std::string::npos) break;
+      ++i;
+      out += ' ';
+    } else {
+      out += source[i];
+    }
+  }
+  return out;
+}
+
+// The names a stage's text declares as uniforms: "uniform [precision] type name[N], name2;", each name once. One scan
+// of the text (a regular expression per uniform over the composed sources took most of the shader suite's time).
+std::set<std::string> declaredUniforms(const std::string& source) {
+  const std::string text = withoutComments(source);
+  std::set<std::string> names;
+  const std::string keyword = "uniform";
+  for (size_t at = text.find(keyword); at != std::string::npos; at = text.find(keyword, at + keyword.size())) {
+    const size_t after = at + keyword.size();
+    if ((at > 0 && isIdentifierCharacter(text[at - 1])) || (after < text.size() && isIdentifierCharacter(text[after])))
+      continue;
+    const size_t end = text.find(';', after);
+    std::string declaration = text.substr(after, end == std::string::npos ? std::string::npos : end - after);
+    // Array sizes out, commas to spaces: "[precision] type name name2".
+    std::string words;
+    int depth = 0;
+    for (char c : declaration) {
+      if (c == '[') ++depth;
+      if (depth == 0) words += c == ',' ? ' ' : c;
+      if (c == ']') --depth;
+    }
+    std::istringstream tokens(words);
+    std::string word;
+    tokens >> word;
+    if (word == "lowp" || word == "mediump" || word == "highp") tokens >> word;  // then the type
+    while (tokens >> word) names.insert(word);
+  }
+  return names;
+}
+
+}  // namespace
+
 int packedUniformRows(const std::vector<UniformShape>& uniforms) {
   int rows = 0;
   while (!uniformsFit(uniforms, rows)) ++rows;
@@ -126,6 +184,7 @@ StageUniforms activeUniformsByStage(GLuint program, const std::string& vertexSou
   glGetProgramiv(program, GL_ACTIVE_UNIFORMS, &count);
   glGetProgramiv(program, GL_ACTIVE_UNIFORM_MAX_LENGTH, &longest);
   std::vector<char> buffer(static_cast<size_t>(std::max(longest, 1)));
+  const std::set<std::string> inVertex = declaredUniforms(vertexSource), inFragment = declaredUniforms(fragmentSource);
   for (GLint index = 0; index < count; ++index) {
     GLsizei length = 0;
     GLint size = 0;
@@ -133,11 +192,9 @@ StageUniforms activeUniformsByStage(GLuint program, const std::string& vertexSou
     glGetActiveUniform(program, static_cast<GLuint>(index), longest, &length, &size, &type, buffer.data());
     std::string name(buffer.data(), static_cast<size_t>(length));
     if (const size_t bracket = name.find('['); bracket != std::string::npos) name.resize(bracket);
-    // "uniform [precision] type name": the declaration, in either stage's text.
-    const std::regex declaration("uniform\\s+(\\w+\\s+)?\\w+\\s+" + name + "\\b");
     const UniformShape shape{type, size};
-    if (std::regex_search(vertexSource, declaration)) out.vertex.push_back(shape);
-    if (std::regex_search(fragmentSource, declaration)) out.fragment.push_back(shape);
+    if (inVertex.count(name)) out.vertex.push_back(shape);
+    if (inFragment.count(name)) out.fragment.push_back(shape);
   }
   return out;
 }
