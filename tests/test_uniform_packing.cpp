@@ -48,3 +48,21 @@ TEST(UniformPacking, FitIsMonotonicInTheRowCount) {
   // free columns beside them.
   EXPECT_EQ(rows, 4 + 4 + 3);
 }
+
+// The declarations activeUniformsByStage reads each stage's text for: a precision or none, arrays, several names in
+// one declaration, and none of what a comment or a longer identifier mentions.
+TEST(UniformPacking, DeclaredUniformsAreTheNamesOfEachDeclaration) {
+  const std::string source = R"(
+precision highp float;
+uniform sampler2D u_source;
+uniform mediump vec4 u_taps[8], u_weights[2 * 4];
+uniform float u_near,u_far;
+// uniform float u_commented;
+/* uniform vec2 u_blocked; */
+float uniformity;
+varying vec2 v_uv;
+void main() { gl_FragColor = texture2D(u_source, v_uv) * u_taps[0] * uniformity; }
+)";
+  const std::set<std::string> expected = {"u_source", "u_taps", "u_weights", "u_near", "u_far"};
+  EXPECT_EQ(obscura::gl::declaredUniforms(source), expected);
+}

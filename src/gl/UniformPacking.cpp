@@ -140,8 +140,8 @@ std::string withoutComments(const std::string& source) {
   return out;
 }
 
-// The names a stage's text declares as uniforms: "uniform [precision] type name[N], name2;", each name once. One scan
-// of the text (a regular expression per uniform over the composed sources took most of the shader suite's time).
+}  // namespace
+
 std::set<std::string> declaredUniforms(const std::string& source) {
   const std::string text = withoutComments(source);
   std::set<std::string> names;
@@ -168,8 +168,6 @@ std::set<std::string> declaredUniforms(const std::string& source) {
   }
   return names;
 }
-
-}  // namespace
 
 int packedUniformRows(const std::vector<UniformShape>& uniforms) {
   int rows = 0;
