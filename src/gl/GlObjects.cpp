@@ -12,55 +12,38 @@ void abandonContextObjects() { ++g_generation; }
 std::uint32_t contextGeneration() { return g_generation; }
 
 namespace detail {
-GLuint TextureKind::create() {
+namespace {
+// A name from glGen* (`generate`), counted in `live`; and its glDelete* (`remove`) where the name is still the
+// context's. The entry points are passed as called: natively they are pointers the current context filled in.
+template <typename Generate>
+GLuint generated(Generate generate, int& live) {
   GLuint id = 0;
-  glGenTextures(1, &id);
-  ++g_live.textures;
+  generate(1, &id);
+  ++live;
   return id;
 }
-void TextureKind::destroy(GLuint id, bool deleteName) {
-  if (deleteName) glDeleteTextures(1, &id);
-  --g_live.textures;
+template <typename Remove>
+void removed(Remove remove, GLuint id, bool deleteName, int& live) {
+  if (deleteName) remove(1, &id);
+  --live;
 }
-GLuint BufferKind::create() {
-  GLuint id = 0;
-  glGenBuffers(1, &id);
-  ++g_live.buffers;
-  return id;
-}
-void BufferKind::destroy(GLuint id, bool deleteName) {
-  if (deleteName) glDeleteBuffers(1, &id);
-  --g_live.buffers;
-}
-GLuint FramebufferKind::create() {
-  GLuint id = 0;
-  glGenFramebuffers(1, &id);
-  ++g_live.framebuffers;
-  return id;
-}
+}  // namespace
+
+GLuint TextureKind::create() { return generated(glGenTextures, g_live.textures); }
+void TextureKind::destroy(GLuint id, bool deleteName) { removed(glDeleteTextures, id, deleteName, g_live.textures); }
+GLuint BufferKind::create() { return generated(glGenBuffers, g_live.buffers); }
+void BufferKind::destroy(GLuint id, bool deleteName) { removed(glDeleteBuffers, id, deleteName, g_live.buffers); }
+GLuint FramebufferKind::create() { return generated(glGenFramebuffers, g_live.framebuffers); }
 void FramebufferKind::destroy(GLuint id, bool deleteName) {
-  if (deleteName) glDeleteFramebuffers(1, &id);
-  --g_live.framebuffers;
+  removed(glDeleteFramebuffers, id, deleteName, g_live.framebuffers);
 }
-GLuint RenderbufferKind::create() {
-  GLuint id = 0;
-  glGenRenderbuffers(1, &id);
-  ++g_live.renderbuffers;
-  return id;
-}
+GLuint RenderbufferKind::create() { return generated(glGenRenderbuffers, g_live.renderbuffers); }
 void RenderbufferKind::destroy(GLuint id, bool deleteName) {
-  if (deleteName) glDeleteRenderbuffers(1, &id);
-  --g_live.renderbuffers;
+  removed(glDeleteRenderbuffers, id, deleteName, g_live.renderbuffers);
 }
-GLuint VertexArrayKind::create() {
-  GLuint id = 0;
-  glGenVertexArraysOES(1, &id);
-  ++g_live.vertexArrays;
-  return id;
-}
+GLuint VertexArrayKind::create() { return generated(glGenVertexArraysOES, g_live.vertexArrays); }
 void VertexArrayKind::destroy(GLuint id, bool deleteName) {
-  if (deleteName) glDeleteVertexArraysOES(1, &id);
-  --g_live.vertexArrays;
+  removed(glDeleteVertexArraysOES, id, deleteName, g_live.vertexArrays);
 }
 }  // namespace detail
 
