@@ -1,8 +1,7 @@
 // obscura-bench: the performance figures of the AO pipeline, measured in one run (docs/benchmarks.md).
 //
-//   obscura-bench [--out DIR] [--frames N] [--backend osmesa|egl] [--quick] [--estimators-only] [--motion-only]
-//                 [--effects-only] [--finish-only] [--transparency-only] [--temporal-ao-only] [--lighting-only]
-//                 [--ao-layers-only] [--startup-only] [--resolution-only] [--host-only] [--scene-bounds-only]
+//   obscura-bench [--out DIR] [--frames N] [--backend osmesa|egl] [--quick] [--NAME-only]
+//   (--NAME-only: one section alone, NAME one of kAloneSections below; without it every section, start-up first)
 //
 // Prints tables and writes DIR/bench.csv (every measurement), DIR/ratios.csv, DIR/radius_sweep.csv,
 // DIR/radius_sweep.png (gnuplot) and DIR/estimators.csv. Every pass is bounded by glFinish on both sides and
@@ -117,24 +116,20 @@ const std::vector<std::string>& benchPasses() {
   return passes;
 }
 
+// The sections a --NAME-only option runs alone: startup (0), estimators (6), motion (7), effects (8), finish (8c),
+// transparency (8d), stages (8e), temporal-ao (9), lighting (10), resolution (11), ao-layers (12), host (13),
+// scene-bounds (14).
+const char* const kAloneSections[] = {"startup", "estimators", "motion", "effects", "finish", "transparency", "stages",
+                                      "temporal-ao", "lighting", "resolution", "ao-layers", "host", "scene-bounds"};
+
 struct Options {
   std::string outDir = "bench-results";
   int frames = 15;
   HeadlessBackend backend = HeadlessBackend::OSMesa;
   bool quick = false;
-  bool estimatorsOnly = false;  // section 6 alone
-  bool motionOnly = false;      // section 7 alone
-  bool effectsOnly = false;     // section 8 alone
-  bool finishOnly = false;      // section 8c alone
-  bool stagesOnly = false;      // section 8e alone
-  bool transparencyOnly = false;  // section 8d alone
-  bool temporalAoOnly = false;  // section 9 alone
-  bool startupOnly = false;     // section 0 alone
-  bool resolutionOnly = false;  // section 11 alone
-  bool lightingOnly = false;    // section 10 alone
-  bool aoLayersOnly = false;    // section 12 alone
-  bool hostOnly = false;        // section 13 alone
-  bool sceneBoundsOnly = false; // section 14 alone
+  // The section --NAME-only runs alone (kAloneSections), or empty: every section.
+  std::string only;
+  bool alone(const char* section) const { return only == section; }
   using Sizes = std::vector<std::pair<int, int>>;
   // The sizes a section measures: the given ones, or with --quick (the smoke run, tools.bench_smoke) the smallest
   // size the smoke run takes, 320x180, whatever the section measures at full.
@@ -351,24 +346,15 @@ Options parseOptions(int argc, char** argv) {
       options.frames = static_cast<int>(frames);
     } else if (arg == "--backend") options.backend = parseBackend(value());
     else if (arg == "--quick") options.quick = true;
-    else if (arg == "--estimators-only") options.estimatorsOnly = true;
-    else if (arg == "--motion-only") options.motionOnly = true;
-    else if (arg == "--effects-only") options.effectsOnly = true;
-    else if (arg == "--finish-only") options.finishOnly = true;
-    else if (arg == "--stages-only") options.stagesOnly = true;
-    else if (arg == "--transparency-only") options.transparencyOnly = true;
-    else if (arg == "--temporal-ao-only") options.temporalAoOnly = true;
-    else if (arg == "--startup-only") options.startupOnly = true;
-    else if (arg == "--resolution-only") options.resolutionOnly = true;
-    else if (arg == "--lighting-only") options.lightingOnly = true;
-    else if (arg == "--ao-layers-only") options.aoLayersOnly = true;
-    else if (arg == "--host-only") options.hostOnly = true;
-    else if (arg == "--scene-bounds-only") options.sceneBoundsOnly = true;
-    else throw InputError("unknown option '" + arg + "' (usage: obscura-bench [--out DIR] [--frames N] "
-                          "[--backend osmesa|egl] [--quick] [--estimators-only] [--motion-only] [--effects-only] "
-                          "[--finish-only] [--stages-only] [--transparency-only] [--temporal-ao-only] "
-                          "[--lighting-only] [--ao-layers-only] [--startup-only] [--resolution-only] [--host-only] "
-                          "[--scene-bounds-only])");
+    else if (std::find_if(std::begin(kAloneSections), std::end(kAloneSections), [&](const char* section) {
+               return arg == std::string("--") + section + "-only";
+             }) != std::end(kAloneSections))
+      options.only = arg.substr(2, arg.size() - 7);
+    else {
+      std::string usage = "obscura-bench [--out DIR] [--frames N] [--backend osmesa|egl] [--quick]";
+      for (const char* section : kAloneSections) usage += std::string(" [--") + section + "-only]";
+      throw InputError("unknown option '" + arg + "' (usage: " + usage + ")");
+    }
   }
   return options;
 }
@@ -1449,17 +1435,15 @@ int main(int argc, char** argv) {
     if (std::system(("mkdir -p '" + options.outDir + "'").c_str()) != 0)
       throw InputError(options.outDir + ": cannot create");
     HeadlessContext context(options.backend);
-    if (options.lightingOnly) {
+    if (options.alone("lighting")) {
       lightingSection(options, context);
       return 0;
     }
     std::printf("obscura-bench: %s (%s), %d frames per figure (median), passes bounded by glFinish\n",
                 backendName(options.backend), context.caps().renderer.c_str(), options.frames);
     // Start-up first: nothing has been made in this process yet (the built-in sky is made once per process).
-    if (!options.estimatorsOnly && !options.motionOnly && !options.effectsOnly && !options.temporalAoOnly &&
-        !options.finishOnly && !options.resolutionOnly && !options.sceneBoundsOnly)
-      startupSection(options, context);
-    if (options.startupOnly) {
+    if (options.only.empty() || options.alone("startup")) startupSection(options, context);
+    if (options.alone("startup")) {
       std::printf("\nobscura-bench: wrote %s/startup.csv\n", options.outDir.c_str());
       return 0;
     }
@@ -1475,63 +1459,41 @@ int main(int argc, char** argv) {
     scaleScene(engine, kEngineScale);
     const Camera engineCamera = Camera::fit(engine.worldBounds(), 1280, 720);
     scenes.push_back({"2CylinderEngine", std::move(engine), engineCamera});
-    if (options.motionOnly) {  // before Bench, which starts DIR/bench.csv afresh
-      const auto [w, h] = options.size(1280, 720);
-      motionSection(options, context, w, h);
-      std::printf("\nobscura-bench: wrote %s/motion.csv\n", options.outDir.c_str());
-      return 0;
-    }
-    if (options.sceneBoundsOnly) {  // before Bench, which starts DIR/bench.csv afresh
-      sceneBoundsSection(options, context, scenes);
-      std::printf("\nobscura-bench: wrote %s/scene_bounds.csv\n", options.outDir.c_str());
-      return 0;
-    }
-    if (options.hostOnly) {  // before Bench, which starts DIR/bench.csv afresh
-      hostSection(options, context);
-      std::printf("\nobscura-bench: wrote %s/host.csv\n", options.outDir.c_str());
-      return 0;
-    }
-    if (options.resolutionOnly) {  // before Bench, which starts DIR/bench.csv afresh
-      resolutionSection(options, context, scenes[0]);
-      std::printf("\nobscura-bench: wrote %s/resolution.csv\n", options.outDir.c_str());
-      return 0;
-    }
-    if (options.temporalAoOnly) {  // before Bench, which starts DIR/bench.csv afresh
-      temporalAoSection(options, context, scenes[0]);
-      std::printf("\nobscura-bench: wrote %s/temporal_ao.csv\n", options.outDir.c_str());
-      return 0;
-    }
     const Options::Sizes effectSizes = options.sizes({{640, 360}, {1280, 720}});
-    if (options.finishOnly) {  // before Bench, which starts DIR/bench.csv afresh
-      finishSection(options, context, effectSizes);
-      std::printf("\nobscura-bench: wrote %s/finish.csv\n", options.outDir.c_str());
-      return 0;
-    }
-    if (options.stagesOnly) {  // before Bench, which starts DIR/bench.csv afresh
-      stagesSection(options, context, effectSizes);
-      std::printf("\nobscura-bench: wrote %s/stages.csv\n", options.outDir.c_str());
-      return 0;
-    }
-    if (options.effectsOnly) {  // before Bench, which starts DIR/bench.csv afresh
-      effectsSection(options, context, effectSizes);
-      std::printf("\nobscura-bench: wrote %s/effects.csv\n", options.outDir.c_str());
-      return 0;
-    }
-    if (options.transparencyOnly) {
-      std::ofstream csv(options.outDir + "/transparency.csv");
-      csv << "configuration,width,height,effect,median_ms\n";
-      transparencySection(options, context, effectSizes, csv);
-      std::printf("\nobscura-bench: wrote %s/transparency.csv\n", options.outDir.c_str());
-      return 0;
-    }
+    // The sections that run alone before Bench (which starts DIR/bench.csv afresh), each with the file it writes.
+    const std::vector<std::tuple<const char*, const char*, std::function<void()>>> aloneBeforeBench = {
+        {"motion", "motion.csv",
+         [&] {
+           const auto [w, h] = options.size(1280, 720);
+           motionSection(options, context, w, h);
+         }},
+        {"scene-bounds", "scene_bounds.csv", [&] { sceneBoundsSection(options, context, scenes); }},
+        {"host", "host.csv", [&] { hostSection(options, context); }},
+        {"resolution", "resolution.csv", [&] { resolutionSection(options, context, scenes[0]); }},
+        {"temporal-ao", "temporal_ao.csv", [&] { temporalAoSection(options, context, scenes[0]); }},
+        {"finish", "finish.csv", [&] { finishSection(options, context, effectSizes); }},
+        {"stages", "stages.csv", [&] { stagesSection(options, context, effectSizes); }},
+        {"effects", "effects.csv", [&] { effectsSection(options, context, effectSizes); }},
+        {"transparency", "transparency.csv",
+         [&] {
+           std::ofstream csv(options.outDir + "/transparency.csv");
+           csv << "configuration,width,height,effect,median_ms\n";
+           transparencySection(options, context, effectSizes, csv);
+         }}};
+    for (const auto& [section, wrote, run] : aloneBeforeBench)
+      if (options.alone(section)) {
+        run();
+        std::printf("\nobscura-bench: wrote %s/%s\n", options.outDir.c_str(), wrote);
+        return 0;
+      }
     Bench bench(options, context);
     const BenchScene& builtin = scenes[0];
-    if (options.aoLayersOnly) {
+    if (options.alone("ao-layers")) {
       aoLayersSection(bench, scenes, effectSizes, options.outDir);
       std::printf("\nobscura-bench: wrote %s/bench.csv, ao_layers.csv\n", options.outDir.c_str());
       return 0;
     }
-    if (options.estimatorsOnly) {
+    if (options.alone("estimators")) {
       const auto [w, h] = options.size(1280, 720);
       estimatorSection(bench, builtin, w, h, options.outDir);
       std::printf("\nobscura-bench: wrote %s/bench.csv, estimators.csv\n", options.outDir.c_str());
