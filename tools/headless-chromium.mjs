@@ -19,6 +19,16 @@ export function parseOptions(argv, handlers, script) {
   }
 }
 
+// The scripts' figures: the median of the readings, and a --sizes list ("640x360,1280x720") as [width, height] pairs.
+export function median(values) {
+  const sorted = [...values].sort((a, b) => a - b);
+  const mid = sorted.length >> 1;
+  return sorted.length % 2 ? sorted[mid] : 0.5 * (sorted[mid - 1] + sorted[mid]);
+}
+export function parseSizes(text) {
+  return text.split(',').map((s) => s.split('x').map(Number));
+}
+
 // The demo page's address with its dynamic resolution and quick start off. The page turns them on: it starts at its
 // smallest scale, so a frame measured there would draw a quarter of the pixels its peers draw, and its first frames
 // are quick start's cheap ones (without AO and FXAA): every benchmark and accuracy script opens the page through this

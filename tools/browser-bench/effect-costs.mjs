@@ -22,7 +22,7 @@ import path from 'node:path';
 import { fileURLToPath } from 'node:url';
 import { chromium } from 'playwright-core';
 import { startServer } from '../serve-web.mjs';
-import { chromiumLaunchOptions, openDemoPage, parseOptions } from '../headless-chromium.mjs';
+import { chromiumLaunchOptions, median, openDemoPage, parseOptions, parseSizes } from '../headless-chromium.mjs';
 
 const root = path.resolve(path.dirname(fileURLToPath(import.meta.url)), '..', '..');
 const options = { sizes: '640x360,1280x720', samples: 7, settle: 2500,
@@ -34,15 +34,9 @@ parseOptions(process.argv.slice(2), {
   '--csv': (v) => { options.csv = path.resolve(v); },
   '--effects': (v) => { options.effects = v.split(','); },
 }, path.basename(import.meta.url));
-const sizes = options.sizes.split(',').map((s) => s.split('x').map(Number));
+const sizes = parseSizes(options.sizes);
 if (!sizes.every(([w, h]) => w > 0 && h > 0) || !(options.samples > 0 && options.settle >= 0))
   throw new Error('--sizes WxH,... and --samples N must be positive, --settle MS not negative');
-
-const median = (values) => {
-  const sorted = [...values].sort((a, b) => a - b);
-  const mid = sorted.length >> 1;
-  return sorted.length % 2 ? sorted[mid] : 0.5 * (sorted[mid - 1] + sorted[mid]);
-};
 
 // The cases: each effect with its switch on (its own passes timed), and the AO's variants that the issues set
 // targets for (the temporal accumulation at 4 taps against the single frame's default), where the table has them.

@@ -12,7 +12,7 @@ import path from 'node:path';
 import { fileURLToPath } from 'node:url';
 import { chromium } from 'playwright-core';
 import { startServer } from '../serve-web.mjs';
-import { chromiumLaunchOptions, openDemoPage, parseOptions } from '../headless-chromium.mjs';
+import { chromiumLaunchOptions, median, openDemoPage, parseOptions } from '../headless-chromium.mjs';
 
 const root = path.resolve(path.dirname(fileURLToPath(import.meta.url)), '..', '..');
 const model = '/usr/share/assimp/models/glTF2/2CylinderEngine-glTF-Binary/2CylinderEngine.glb';
@@ -30,12 +30,6 @@ parseOptions(process.argv.slice(2), {
 const [width, height] = options.size.split('x').map(Number);
 if (!(width > 0 && height > 0 && options.samples > 0 && options.settle >= 0))
   throw new Error('--size WxH and --samples N must be positive, --settle MS not negative');
-
-const median = (values) => {
-  const sorted = [...values].sort((a, b) => a - b);
-  const mid = sorted.length >> 1;
-  return sorted.length % 2 ? sorted[mid] : 0.5 * (sorted[mid - 1] + sorted[mid]);
-};
 
 // The site tools/build-web.sh builds, or the one the tests name.
 const server = await startServer(process.env.OBSCURA_WEB_SITE ?? path.join(root, 'build-web', 'site'));

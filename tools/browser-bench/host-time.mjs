@@ -14,7 +14,10 @@ import path from 'node:path';
 import { fileURLToPath } from 'node:url';
 import { chromium } from 'playwright-core';
 import { startServer } from '../serve-web.mjs';
-import { applyBenchmarkState, chromiumLaunchOptions, openDemoPage, parseOptions } from '../headless-chromium.mjs';
+import {
+  applyBenchmarkState, chromiumLaunchOptions, median, openDemoPage,
+  parseOptions, parseSizes,
+} from '../headless-chromium.mjs';
 
 const root = path.resolve(path.dirname(fileURLToPath(import.meta.url)), '..', '..');
 const options = { sizes: '1280x720,640x360', samples: 30, settle: 2500,
@@ -25,15 +28,9 @@ parseOptions(process.argv.slice(2), {
   '--settle': (v) => { options.settle = Number(v); },
   '--csv': (v) => { options.csv = path.resolve(v); },
 }, path.basename(import.meta.url));
-const sizes = options.sizes.split(',').map((s) => s.split('x').map(Number));
+const sizes = parseSizes(options.sizes);
 if (!sizes.every(([w, h]) => w > 0 && h > 0) || !(options.samples > 0 && options.settle >= 0))
   throw new Error('--sizes WxH,... and --samples N must be positive, --settle MS not negative');
-
-const median = (values) => {
-  const sorted = [...values].sort((a, b) => a - b);
-  const mid = sorted.length >> 1;
-  return sorted.length % 2 ? sorted[mid] : 0.5 * (sorted[mid - 1] + sorted[mid]);
-};
 
 const rows = [];
 const server = await startServer(process.env.OBSCURA_WEB_SITE ?? path.join(root, 'build-web', 'site'), 0, {},

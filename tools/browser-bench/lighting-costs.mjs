@@ -14,7 +14,7 @@ import path from 'node:path';
 import { fileURLToPath } from 'node:url';
 import { chromium } from 'playwright-core';
 import { startServer } from '../serve-web.mjs';
-import { chromiumLaunchOptions, fixedScaleUrl } from '../headless-chromium.mjs';
+import { chromiumLaunchOptions, fixedScaleUrl, median } from '../headless-chromium.mjs';
 import { installPassCounter } from './pass-counter.mjs';
 
 const root = path.resolve(path.dirname(fileURLToPath(import.meta.url)), '..', '..');
@@ -41,12 +41,6 @@ for (let i = 0; i < argv.length; ++i) {
 }
 if (!options.cases.length) options.cases = ['', 'ao=off'];
 for (const scene of options.scenes) if (!SCENES[scene]) throw new Error(`--scenes: ${scene} is not engine or pbr`);
-
-const median = (values) => {
-  const sorted = [...values].sort((a, b) => a - b);
-  const mid = sorted.length >> 1;
-  return sorted.length % 2 ? sorted[mid] : 0.5 * (sorted[mid - 1] + sorted[mid]);
-};
 
 // One page per case (its own window and context), the scene loaded, the state applied over the page's defaults.
 async function openCase(browser, base, size, scene, text) {

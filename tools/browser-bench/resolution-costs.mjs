@@ -14,7 +14,7 @@ import path from 'node:path';
 import { fileURLToPath } from 'node:url';
 import { chromium } from 'playwright-core';
 import { startServer } from '../serve-web.mjs';
-import { chromiumLaunchOptions, parseOptions } from '../headless-chromium.mjs';
+import { chromiumLaunchOptions, median, parseOptions, parseSizes } from '../headless-chromium.mjs';
 
 const root = path.resolve(path.dirname(fileURLToPath(import.meta.url)), '..', '..');
 const options = { sizes: '1280x720', rounds: 3, frames: 3, state: '',
@@ -26,7 +26,7 @@ parseOptions(process.argv.slice(2), {
   '--state': (v) => { options.state = v; },
   '--csv': (v) => { options.csv = path.resolve(v); },
 }, path.basename(import.meta.url));
-const sizes = options.sizes.split(',').map((s) => s.split('x').map(Number));
+const sizes = parseSizes(options.sizes);
 if (!sizes.every(([w, h]) => w > 0 && h > 0) || !(options.rounds > 0 && options.frames > 0)) {
   throw new Error('--sizes WxH,..., --rounds N and --frames N must be positive');
 }
@@ -36,12 +36,6 @@ const configurations = [
   { name: 'scale 0.5, edge', state: 'resolution.scale=0.5&resolution.upscale=edge' },
   { name: 'scale 0.5, bilinear', state: 'resolution.scale=0.5&resolution.upscale=bilinear' },
 ];
-
-const median = (values) => {
-  const sorted = [...values].sort((a, b) => a - b);
-  const mid = sorted.length >> 1;
-  return sorted.length % 2 ? sorted[mid] : 0.5 * (sorted[mid - 1] + sorted[mid]);
-};
 
 const server = await startServer(process.env.OBSCURA_WEB_SITE ?? path.join(root, 'build-web', 'site'));
 const browser = await chromium.launch(chromiumLaunchOptions);

@@ -20,7 +20,7 @@ import path from 'node:path';
 import { fileURLToPath } from 'node:url';
 import { chromium } from 'playwright-core';
 import { startServer } from '../serve-web.mjs';
-import { chromiumLaunchOptions, parseOptions } from '../headless-chromium.mjs';
+import { chromiumLaunchOptions, median, parseOptions } from '../headless-chromium.mjs';
 
 const root = path.resolve(path.dirname(fileURLToPath(import.meta.url)), '..', '..');
 const options = { rounds: 3, size: '1280x720', frames: 4, settle: 2000,
@@ -36,12 +36,6 @@ const [width, height] = options.size.split('x').map(Number);
 if (!(width > 0 && height > 0 && options.rounds > 0 && options.frames > 0 && options.settle >= 0)) {
   throw new Error('--size WxH, --rounds N and --frames N must be positive, --settle MS at least 0');
 }
-
-const median = (values) => {
-  const sorted = [...values].sort((a, b) => a - b);
-  const mid = sorted.length >> 1;
-  return sorted.length % 2 ? sorted[mid] : 0.5 * (sorted[mid - 1] + sorted[mid]);
-};
 
 const server = await startServer(process.env.OBSCURA_WEB_SITE ?? path.join(root, 'build-web', 'site'));
 const browser = await chromium.launch(chromiumLaunchOptions);
