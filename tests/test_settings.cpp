@@ -200,6 +200,35 @@ TEST(AoSettings, EveryParameterRoundTripsThroughText) {
   EXPECT_THROW(changed.get("colour"), InputError);
 }
 
+namespace {
+
+// A number's largest value is accepted and a value past it refused (settings: AoSettings by local names, or
+// RenderSettings by full ones).
+template <typename Settings>
+void expectTheLargestValueAndNoMore(Settings& settings, const ParameterInfo& p) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%g", p.max);
+  EXPECT_NO_THROW(settings.set(p.name, text)) << p.name;
+  std::snprintf(text, sizeof text, "%g", p.max + std::max(1.0, 0.01 * p.max));
+  EXPECT_THROW(settings.set(p.name, text), InputError) << p.name;
+}
+
+// Every choice is accepted (and reads back, unless `readsBack` is false: a preset reads as what the values match) and
+// an unknown one refused.
+template <typename Settings>
+void expectEveryChoiceAndNoOther(Settings& settings, const ParameterInfo& p, bool readsBack = true) {
+  ASSERT_FALSE(p.choices.empty()) << p.name;
+  for (const std::string& choice : p.choices) {
+    EXPECT_NO_THROW(settings.set(p.name, choice)) << p.name << "=" << choice;
+    if (readsBack) {
+      EXPECT_EQ(settings.get(p.name), choice) << p.name;
+    }
+  }
+  EXPECT_THROW(settings.set(p.name, "no-such-choice"), InputError) << p.name;
+}
+
+}  // namespace
+
 TEST(AoSettings, ParameterMetadataDescribesTheAcceptedValues) {
   for (const ParameterInfo& p : aoParameters()) {
     AoSettings settings;
@@ -211,21 +240,12 @@ TEST(AoSettings, ParameterMetadataDescribesTheAcceptedValues) {
         std::snprintf(bounds, sizeof bounds, "%g .. %g", p.min, p.max);
         EXPECT_EQ(p.range.rfind(bounds, 0), 0u) << p.name << ": " << p.range;
         if (std::string(p.name) == "turns") continue;  // also needs to be coprime with samples
-        char text[32];
-        std::snprintf(text, sizeof text, "%g", p.max);
-        EXPECT_NO_THROW(settings.set(p.name, text)) << p.name;
-        std::snprintf(text, sizeof text, "%g", p.max + std::max(1.0, 0.01 * p.max));
-        EXPECT_THROW(settings.set(p.name, text), InputError) << p.name;
+        expectTheLargestValueAndNoMore(settings, p);
         break;
       }
       case ParameterKind::Switch:
       case ParameterKind::Choice:
-        ASSERT_FALSE(p.choices.empty()) << p.name;
-        for (const std::string& choice : p.choices) {
-          EXPECT_NO_THROW(settings.set(p.name, choice)) << p.name << "=" << choice;
-          EXPECT_EQ(settings.get(p.name), choice) << p.name;
-        }
-        EXPECT_THROW(settings.set(p.name, "no-such-choice"), InputError) << p.name;
+        expectEveryChoiceAndNoOther(settings, p);
         break;
       case ParameterKind::Color:
       case ParameterKind::Text:
@@ -354,23 +374,12 @@ TEST(RenderSettings, EveryParameterOfEveryEffectDescribesItsValuesAndRoundTrips)
       case ParameterKind::Integer: {
         ASSERT_LT(p.min, p.max) << p.name;
         if (p.name == "ao.turns") continue;  // also needs to be coprime with samples
-        char text[32];
-        std::snprintf(text, sizeof text, "%g", p.max);
-        EXPECT_NO_THROW(settings.set(p.name, text)) << p.name;
-        std::snprintf(text, sizeof text, "%g", p.max + std::max(1.0, 0.01 * p.max));
-        EXPECT_THROW(settings.set(p.name, text), InputError) << p.name;
+        expectTheLargestValueAndNoMore(settings, p);
         break;
       }
       case ParameterKind::Switch:
       case ParameterKind::Choice:
-        ASSERT_FALSE(p.choices.empty()) << p.name;
-        for (const std::string& choice : p.choices) {
-          EXPECT_NO_THROW(settings.set(p.name, choice)) << p.name << "=" << choice;
-          if (p.name.find("preset") == std::string::npos) {
-            EXPECT_EQ(settings.get(p.name), choice) << p.name;
-          }
-        }
-        EXPECT_THROW(settings.set(p.name, "no-such-choice"), InputError) << p.name;
+        expectEveryChoiceAndNoOther(settings, p, p.name.find("preset") == std::string::npos);
         break;
       case ParameterKind::Color: {
         ASSERT_LT(p.min, p.max) << p.name;
