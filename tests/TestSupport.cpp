@@ -10,8 +10,10 @@
 #include <sstream>
 
 #include "encoding/HdrEncoding.h"
+#include "frame/FullscreenTriangle.h"
 #include "gl/GlObjects.h"
 #include "gl/PipelineState.h"
+#include "gl/ShaderLibrary.h"
 #include "scene/BuiltinScene.h"
 #include "scene/GltfLoader.h"
 
@@ -144,6 +146,21 @@ float brightestChannel(const HdrImage& image) {
   return brightest;
 }
 
+namespace {
+
+// A kPointSide x kPointSide target's bytes, bottom row first (GL's order), and the default framebuffer bound again.
+std::vector<std::uint8_t> bytesFromTheBottom(const gl::RenderTarget& target) {
+  const std::vector<std::uint8_t> topDown = target.readRgba();
+  glBindFramebuffer(GL_FRAMEBUFFER, 0);
+  std::vector<std::uint8_t> bottomUp(topDown.size());
+  for (int y = 0; y < kPointSide; ++y)
+    std::copy_n(&topDown[static_cast<size_t>(kPointSide - 1 - y) * kPointSide * 4], kPointSide * 4,
+                &bottomUp[static_cast<size_t>(y) * kPointSide * 4]);
+  return bottomUp;
+}
+
+}  // namespace
+
 std::vector<std::uint8_t> drawPoints(const gl::Program& program, const std::vector<glm::vec4>& normal,
                                      const std::vector<glm::vec3>& texcoord) {
   const gl::RenderTarget target("points", kPointSide, kPointSide, GL_NEAREST, gl::RenderTarget::Depth::None, false);
@@ -169,13 +186,33 @@ std::vector<std::uint8_t> drawPoints(const gl::Program& program, const std::vect
   program.use();
   glDrawArrays(GL_POINTS, 0, static_cast<GLsizei>(normal.size()));
   gl::restoreBaselineState();
-  const std::vector<std::uint8_t> topDown = target.readRgba();
-  glBindFramebuffer(GL_FRAMEBUFFER, 0);
-  std::vector<std::uint8_t> bottomUp(topDown.size());
-  for (int y = 0; y < kPointSide; ++y)
-    std::copy_n(&topDown[static_cast<size_t>(kPointSide - 1 - y) * kPointSide * 4], kPointSide * 4,
-                &bottomUp[static_cast<size_t>(y) * kPointSide * 4]);
-  return bottomUp;
+  return bytesFromTheBottom(target);
+}
+
+const char* const kFullscreenVertex = R"(
+attribute vec2 a_position;
+void main() { gl_Position = vec4(a_position, 0.0, 1.0); }
+)";
+
+std::vector<std::uint8_t> drawFullscreen(const gl::Program& program, const gl::Texture2D* input) {
+  const gl::RenderTarget target("full screen", kPointSide, kPointSide, GL_NEAREST, gl::RenderTarget::Depth::None,
+                                false);
+  target.bindForDrawing();
+  const FullscreenTriangle triangle;
+  program.use();
+  if (input) {
+    input->bind(0);
+    program.set(program.uniform("u_input"), 0);
+  }
+  triangle.draw();
+  gl::restoreBaselineState();
+  return bytesFromTheBottom(target);
+}
+
+gl::Program composedProgram(const std::string& name, const std::string& vertex, const std::string& fragment,
+                            const std::vector<std::pair<std::string, std::string>>& defines) {
+  return gl::Program(name, ShaderLibrary::composeText(vertex, defines, {}),
+                     ShaderLibrary::composeText(fragment, defines, {}));
 }
 
 RenderedImage render(Renderer& renderer, const Camera& camera, const RenderSettings& settings, const View& view,

@@ -90,6 +90,14 @@ constexpr int kPointSide = 256;
 extern const char* const kTwoValuePointVertex;
 std::vector<std::uint8_t> drawPoints(const gl::Program& program, const std::vector<glm::vec4>& normal,
                                      const std::vector<glm::vec3>& texcoord = {});
+// The same target drawn whole by `program` with a full-screen triangle (kFullscreenVertex: a_position in clip space),
+// `input`, where given, bound to the program's sampler u_input on unit 0; the bytes in drawPoints' order (pixel (x, y)
+// from the bottom at 4 (y kPointSide + x)).
+extern const char* const kFullscreenVertex;
+std::vector<std::uint8_t> drawFullscreen(const gl::Program& program, const gl::Texture2D* input = nullptr);
+// A program from test shader text that includes the library's files (ShaderLibrary::composeText), with `defines`.
+gl::Program composedProgram(const std::string& name, const std::string& vertex, const std::string& fragment,
+                            const std::vector<std::pair<std::string, std::string>>& defines = {});
 
 // Scenes made of one material-less mesh placed with an identity transform.
 Scene sceneOf(std::vector<Mesh> meshes);

@@ -13,9 +13,6 @@
 #include "encoding/HdrEncoding.h"
 #include "encoding/ToneMapping.h"
 #include "frame/FrameContext.h"
-#include "frame/FullscreenTriangle.h"
-#include "gl/PipelineState.h"
-#include "gl/ShaderLibrary.h"
 
 using namespace obscura;
 
@@ -26,19 +23,6 @@ constexpr int kSide = test::kPointSide;  // up to 65536 values per draw, one poi
 // Two per-point values travel in the attribute slots the programs bind by name: a_normal (vec4) and a_texcoord (vec3).
 const char* const kPointVertex = test::kTwoValuePointVertex;
 
-gl::Program buildProgram(const std::string& name, const std::string& vertex, const std::string& fragment,
-                         const std::vector<std::pair<std::string, std::string>>& defines) {
-  return gl::Program(name, ShaderLibrary::composeText(vertex, defines, {}),
-                     ShaderLibrary::composeText(fragment, defines, {}));
-}
-
-std::vector<std::uint8_t> bottomUp(const std::vector<std::uint8_t>& topDown) {
-  std::vector<std::uint8_t> out(topDown.size());
-  for (int y = 0; y < kSide; ++y)
-    std::copy_n(&topDown[static_cast<size_t>(kSide - 1 - y) * kSide * 4], kSide * 4,
-                &out[static_cast<size_t>(y) * kSide * 4]);
-  return out;
-}
 
 
 // 65536 colours: black, the range ends and beyond, powers of two and their neighbours (exponent boundaries), mantissa
@@ -98,13 +82,13 @@ TEST_P(GpuHdrEncoding, TheShaderWritesTheCpuBytes) {
   const std::vector<glm::vec3> colours = testColours();
   std::vector<glm::vec4> first;
   for (const glm::vec3& c : colours) first.emplace_back(c, 0.0f);
-  const gl::Program program = buildProgram("encode " + e.name(), kPointVertex, R"(
+  const gl::Program program = test::composedProgram("encode " + e.name(), kPointVertex, R"(
 #include "lib/precision.glsl"
 #include "lib/hdr.glsl"
 varying vec4 v_first;
 void main() { gl_FragColor = encodeHdr(v_first.xyz); }
 )",
-                                           hdrShaderDefines(e));
+                                                    hdrShaderDefines(e));
   const std::vector<std::uint8_t> pixels = test::drawPoints(program, first, {});
   int exact = 0, nearBoundary = 0, wrong = 0;
   for (size_t i = 0; i < colours.size(); ++i) {
@@ -146,7 +130,7 @@ TEST_P(GpuHdrEncoding, TheShaderDecodesCpuTexelsToTheCpuColour) {
     texels.emplace_back(t[0], t[1], t[2], t[3]);
     decoded.push_back(decodeHdr(t, e));
   }
-  const gl::Program program = buildProgram("decode " + e.name(), kPointVertex, R"(
+  const gl::Program program = test::composedProgram("decode " + e.name(), kPointVertex, R"(
 #include "lib/precision.glsl"
 #include "lib/hdr.glsl"
 varying vec4 v_first;   // the texel's bytes
@@ -158,7 +142,7 @@ void main() {
   gl_FragColor = hdrBytesToTexel(vec4(clamp(ulps + 128.0, 0.0, 255.0), 255.0));
 }
 )",
-                                           hdrShaderDefines(e));
+                                                    hdrShaderDefines(e));
   const std::vector<std::uint8_t> pixels = test::drawPoints(program, texels, decoded);
   int worst = 0;
   for (size_t i = 0; i < colours.size(); ++i)
@@ -185,27 +169,15 @@ TEST_P(GpuHdrEncoding, CpuMadeTexturesRoundTripThroughTheShader) {
     texels.insert(texels.end(), t.begin(), t.end());
   }
   const gl::Texture2D input(kSide, kSide, GL_NEAREST, texels.data());
-  const gl::Program program = buildProgram("texture round trip " + e.name(), R"(
-attribute vec2 a_position;
-void main() { gl_Position = vec4(a_position, 0.0, 1.0); }
-)",
-                                           R"(
+  const gl::Program program = test::composedProgram("texture round trip " + e.name(), test::kFullscreenVertex,
+                                                    R"(
 #include "lib/precision.glsl"
 #include "lib/hdr.glsl"
 uniform sampler2D u_input;
 void main() { gl_FragColor = encodeHdr(decodeHdr(texture2D(u_input, gl_FragCoord.xy / 256.0))); }
 )",
-                                           hdrShaderDefines(e));
-  const gl::RenderTarget target("round trip", kSide, kSide, GL_NEAREST, gl::RenderTarget::Depth::None, false);
-  target.bindForDrawing();
-  const FullscreenTriangle triangle;
-  program.use();
-  input.bind(0);
-  program.set(program.uniform("u_input"), 0);
-  triangle.draw();
-  gl::restoreBaselineState();
-  const std::vector<std::uint8_t> pixels = bottomUp(target.readRgba());
-  glBindFramebuffer(GL_FRAMEBUFFER, 0);
+                                                    hdrShaderDefines(e));
+  const std::vector<std::uint8_t> pixels = test::drawFullscreen(program, &input);
   int exact = 0, wrong = 0;
   for (size_t i = 0; i < colours.size(); ++i) {
     const HdrTexel t{texels[i * 4], texels[i * 4 + 1], texels[i * 4 + 2], texels[i * 4 + 3]};
@@ -243,7 +215,8 @@ TEST(GpuToneMapping, EveryCurveMatchesTheCpuWithinOneLevel) {
   std::vector<glm::vec4> first;
   for (const glm::vec3& c : inputs) first.emplace_back(c, 0.0f);
   for (ToneMapOperator op : kToneMapOperators) {
-    const gl::Program program = buildProgram(std::string("tone map ") + toneMapOperatorName(op), kPointVertex, R"(
+    const gl::Program program =
+        test::composedProgram(std::string("tone map ") + toneMapOperatorName(op), kPointVertex, R"(
 #include "lib/precision.glsl"
 #include "lib/packing.glsl"
 #include "lib/tonemap.glsl"
@@ -254,7 +227,7 @@ void main() {
   gl_FragColor = vec4(bytesToChannels(bytes.rg), bytesToChannels(bytes.ba));
 }
 )",
-                                             {toneMapShaderDefine(op)});
+                              {toneMapShaderDefine(op)});
     for (float ev : {0.0f, -2.0f, 2.5f}) {
       program.use();
       program.set(program.uniform("u_exposure"), exposureScale(ev));
@@ -288,7 +261,7 @@ TEST(GpuToneMapping, SrgbDecodingMatchesTheCpu) {
   test::context();
   std::vector<glm::vec4> first;
   for (int b = 0; b < 256; ++b) first.emplace_back(static_cast<float>(b) / 255.0f, 0.0f, 0.0f, 0.0f);
-  const gl::Program program = buildProgram("srgb decode", kPointVertex, R"(
+  const gl::Program program = test::composedProgram("srgb decode", kPointVertex, R"(
 #include "lib/precision.glsl"
 #include "lib/packing.glsl"
 #include "lib/tonemap.glsl"

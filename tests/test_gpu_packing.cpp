@@ -7,8 +7,6 @@
 #include "TestSupport.h"
 #include "encoding/LinearDepthPacking.h"
 #include "encoding/NormalEncoding.h"
-#include "gl/PipelineState.h"
-#include "gl/ShaderLibrary.h"
 
 using namespace obscura;
 namespace ldp = obscura::LinearDepthPacking;
@@ -28,9 +26,6 @@ void main() {
 }
 )";
 
-gl::Program buildProgram(const char* name, const std::string& vertex, const std::string& fragment) {
-  return gl::Program(name, ShaderLibrary::composeText(vertex, {}, {}), ShaderLibrary::composeText(fragment, {}, {}));
-}
 
 // One point per value at pixel i (row-major from the bottom), the value in a_normal.
 std::vector<std::uint8_t> drawPoints(const gl::Program& program, const std::vector<glm::vec3>& values) {
@@ -44,10 +39,7 @@ std::vector<std::uint8_t> drawPoints(const gl::Program& program, const std::vect
 
 TEST(GpuPacking, EveryDepthCodeWrittenByTheShaderDecodesExactlyOnTheCpu) {
   test::context();
-  const gl::Program program = buildProgram("pack all codes", R"(
-attribute vec2 a_position;
-void main() { gl_Position = vec4(a_position, 0.0, 1.0); }
-)", R"(
+  const gl::Program program = test::composedProgram("pack all codes", test::kFullscreenVertex, R"(
 #include "lib/precision.glsl"
 #include "lib/packing.glsl"
 void main() {
@@ -58,18 +50,11 @@ void main() {
   gl_FragColor = vec4(0.0, 0.0, packLinearDepth(code / 65535.0));
 }
 )");
-  const gl::RenderTarget target("codes", kSide, kSide, GL_NEAREST, gl::RenderTarget::Depth::None, false);
-  target.bindForDrawing();
-  const FullscreenTriangle triangle;
-  program.use();
-  triangle.draw();
-  gl::restoreBaselineState();
-  const std::vector<std::uint8_t> pixels = target.readRgba();
-  glBindFramebuffer(GL_FRAMEBUFFER, 0);
+  const std::vector<std::uint8_t> pixels = test::drawFullscreen(program);
   int mismatches = 0;
   for (int y = 0; y < kSide; ++y) {
     for (int x = 0; x < kSide; ++x) {
-      const auto code = static_cast<std::uint16_t>((kSide - 1 - y) * kSide + x);
+      const auto code = static_cast<std::uint16_t>(y * kSide + x);
       const std::uint8_t* p = &pixels[(static_cast<size_t>(y) * kSide + x) * 4];
       const auto expected = ldp::bytesFromCode(code);
       if (p[2] != expected[0] || p[3] != expected[1] || ldp::codeFromBytes(p[2], p[3]) != code) {
@@ -95,7 +80,7 @@ TEST(GpuPacking, ArbitraryDepthsPackLikeTheCpuMirror) {
     if (std::abs(scaled - std::floor(scaled) - 0.5f) < 1e-3f) continue;
     values.emplace_back(d, 0, 0);
   }
-  const gl::Program program = buildProgram("pack depths", kPointVertex, R"(
+  const gl::Program program = test::composedProgram("pack depths", kPointVertex, R"(
 #include "lib/precision.glsl"
 #include "lib/packing.glsl"
 varying vec3 v_value;
@@ -118,7 +103,7 @@ TEST(GpuPacking, NormalsEncodedByTheShaderMatchTheCpuMirror) {
   test::context();
   std::vector<glm::vec3> dirs = encodingTestDirections(50000);
   dirs.resize(std::min<size_t>(dirs.size(), kSide * kSide));
-  const gl::Program program = buildProgram("encode normals", kPointVertex, R"(
+  const gl::Program program = test::composedProgram("encode normals", kPointVertex, R"(
 #include "lib/precision.glsl"
 #include "lib/packing.glsl"
 varying vec3 v_value;
@@ -153,7 +138,7 @@ TEST(GpuPacking, NormalsDecodedByTheShaderMatchTheCpuMirror) {
   std::vector<glm::vec3> codes;
   for (int y = 0; y < 255; ++y)
     for (int x = 0; x < 255; ++x) codes.emplace_back(x, y, 0);
-  const gl::Program program = buildProgram("decode normals", kPointVertex, R"(
+  const gl::Program program = test::composedProgram("decode normals", kPointVertex, R"(
 #include "lib/precision.glsl"
 #include "lib/packing.glsl"
 varying vec3 v_value;
@@ -189,10 +174,7 @@ TEST(GpuPacking, CpuPackedTexelsDecodeInTheShader) {
     }
   }
   const gl::Texture2D input(kSide, kSide, GL_NEAREST, texels.data());
-  const gl::Program program = buildProgram("decode", R"(
-attribute vec2 a_position;
-void main() { gl_Position = vec4(a_position, 0.0, 1.0); }
-)", R"(
+  const gl::Program program = test::composedProgram("decode", test::kFullscreenVertex, R"(
 #include "lib/precision.glsl"
 #include "lib/packing.glsl"
 uniform sampler2D u_input;
@@ -208,20 +190,11 @@ void main() {
   gl_FragColor = vec4(exact, normalBytes, 1.0);
 }
 )");
-  const gl::RenderTarget target("decoded", kSide, kSide, GL_NEAREST, gl::RenderTarget::Depth::None, false);
-  target.bindForDrawing();
-  const FullscreenTriangle triangle;
-  program.use();
-  input.bind(0);
-  program.set(program.uniform("u_input"), 0);
-  triangle.draw();
-  gl::restoreBaselineState();
-  const std::vector<std::uint8_t> pixels = target.readRgba();
-  glBindFramebuffer(GL_FRAMEBUFFER, 0);
+  const std::vector<std::uint8_t> pixels = test::drawFullscreen(program, &input);
   int depthFailures = 0, normalMismatches = 0;
   for (int y = 0; y < kSide; ++y) {
     for (int x = 0; x < kSide; ++x) {
-      const std::uint8_t* p = &pixels[(static_cast<size_t>(kSide - 1 - y) * kSide + x) * 4];
+      const std::uint8_t* p = &pixels[(static_cast<size_t>(y) * kSide + x) * 4];
       if (p[0] != 255) ++depthFailures;
       const std::uint8_t* t = &texels[(static_cast<size_t>(y) * kSide + x) * 4];
       const auto cpu = encodeNormal(decodeNormal(t[0], t[1]));
