@@ -272,7 +272,7 @@ void main() {
   gl_FragColor = vec4(bytesToChannels(vec2(high, code - high * 256.0)), 0.0, 0.0);
 }
 )",
-                                           {toneMapShaderDefine(ToneMapOperator::Linear)});
+                                                    {toneMapShaderDefine(ToneMapOperator::Linear)});
   const std::vector<std::uint8_t> pixels = test::drawPoints(program, first, {});
   for (int b = 0; b < 256; ++b) {
     const float gpu = static_cast<float>(pixels[b * 4] * 256 + pixels[b * 4 + 1]) / 65535.0f;
