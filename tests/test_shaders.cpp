@@ -139,15 +139,7 @@ TEST(Shaders, ABegunProgramIsFinishedByItsFirstUseAndABrokenOneFailsThere) {
 TEST(Shaders, SourcesAreGlslEs100WithoutForbiddenFeatures) {
   for (const ProgramSpec& spec : Renderer::allProgramSpecs()) {
     for (std::string source : {spec.vertexSource(), spec.fragmentSource()}) {
-      // Look at code only: drop // comments (the sources use no block comments).
-      std::string code;
-      for (size_t start = 0; start < source.size();) {
-        const size_t end = std::min(source.find('\n', start), source.size());
-        const std::string line = source.substr(start, end - start);
-        code += line.substr(0, line.find("//")) + "\n";
-        start = end + 1;
-      }
-      source = code;
+      source = ShaderLibrary::withoutComments(source);  // the code alone
       EXPECT_EQ(source.rfind("#version 100\n", 0), 0u) << spec.name;
       // No bitwise operators, no texelFetch, no integer textures: GLSL ES 1.00 has none of them.
       for (const char* forbidden : {"texelFetch", "textureSize", "<<", ">>", " ^ ", " | ", " & ", "uint", "flat "})

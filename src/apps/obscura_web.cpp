@@ -182,6 +182,14 @@ class WebApp {
                     {"fullFrameMs", fullFrameMs_ > 0.0 ? Json(fullFrameMs_) : Json(nullptr)},
                     {"programsPrepared", programsPrepared_},
                     {"quickStart", quickStart}};
+    // The frame's pooled targets and what its last geometry pass drew (null before the renderer is made).
+    Json pooledTargets = nullptr, triangles = nullptr, drawCalls = nullptr;
+    if (const Renderer* renderer = viewer_.renderer()) {
+      const GpuScene::Counts counts = renderer->gpuScene().lastDrawCounts();
+      pooledTargets = renderer->pooledTargets();
+      triangles = counts.triangles;
+      drawCalls = counts.drawCalls;
+    }
     return Json{{"width", width_},
                 {"height", height_},
                 {"render", render},
@@ -200,11 +208,9 @@ class WebApp {
                 {"passesRun", ran},
                 {"passesDoneBy", doneBy},
                 {"history", history},
-                {"pooledTargets", viewer_.renderer() ? Json(viewer_.renderer()->pooledTargets()) : Json(nullptr)},
-                {"triangles", viewer_.renderer() ? Json(viewer_.renderer()->gpuScene().lastDrawCounts().triangles)
-                                                 : Json(nullptr)},
-                {"drawCalls", viewer_.renderer() ? Json(viewer_.renderer()->gpuScene().lastDrawCounts().drawCalls)
-                                                 : Json(nullptr)},
+                {"pooledTargets", pooledTargets},
+                {"triangles", triangles},
+                {"drawCalls", drawCalls},
                 {"contextLost", canvas_.lost()},
                 {"contextRestores", restores_},
                 {"glObjects", {{"textures", live.textures},

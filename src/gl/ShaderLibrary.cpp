@@ -9,6 +9,27 @@
 
 namespace obscura {
 namespace ShaderLibrary {
+
+std::string withoutComments(const std::string& source) {
+  std::string out;
+  out.reserve(source.size());
+  for (size_t i = 0; i < source.size(); ++i) {
+    if (source.compare(i, 2, "//") == 0) {
+      i = source.find('\n', i);
+      if (i == std::string::npos) break;
+      out += '\n';
+    } else if (source.compare(i, 2, "/*") == 0) {
+      i = source.find("*/", i + 2);
+      if (i == std::string::npos) break;
+      ++i;
+      out += ' ';
+    } else {
+      out += source[i];
+    }
+  }
+  return out;
+}
+
 namespace {
 
 void expand(const std::string& path, const std::string& text, std::set<std::string>& included, std::string& out,

@@ -44,6 +44,9 @@ std::string_view file(const std::string& path);
 // The full source of one stage: header, defines, then the file with includes expanded.
 std::string compose(const std::string& path, const std::vector<std::pair<std::string, std::string>>& defines,
                     const std::vector<std::string>& extensions);
+// The text with its comments out (a // comment to its line's end, a /* */ block to one space): the code alone, for
+// what reads shader text (gl::declaredUniforms, the shader tests' checks).
+std::string withoutComments(const std::string& source);
 // The same for shader text that is not an embedded file (tests use it to call the library functions).
 std::string composeText(const std::string& text, const std::vector<std::pair<std::string, std::string>>& defines,
                         const std::vector<std::string>& extensions);

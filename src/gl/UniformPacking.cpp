@@ -6,6 +6,8 @@
 #include <set>
 #include <sstream>
 
+#include "gl/ShaderLibrary.h"
+
 namespace obscura::gl {
 
 namespace {
@@ -45,6 +47,8 @@ int sortOrder(GLenum type) {
     default: return 6;
   }
 }
+
+bool isIdentifierCharacter(char c) { return std::isalnum(static_cast<unsigned char>(c)) || c == '_'; }
 
 }  // namespace
 
@@ -115,35 +119,8 @@ bool uniformsFit(const std::vector<UniformShape>& uniforms, int maxRows) {
   return true;
 }
 
-namespace {
-
-bool isIdentifierCharacter(char c) { return std::isalnum(static_cast<unsigned char>(c)) || c == '_'; }
-
-// The text without its comments (a comment may mention a uniform its stage does not declare).
-std::string withoutComments(const std::string& source) {
-  std::string out;
-  out.reserve(source.size());
-  for (size_t i = 0; i < source.size(); ++i) {
-    if (source.compare(i, 2, "//") == 0) {
-      i = source.find('\n', i);
-      if (i == std::string::npos) break;
-      out += '\n';
-    } else if (source.compare(i, 2, "/*") == 0) {
-      i = source.find("*/", i + 2);
-      if (i == std::string::npos) break;
-      ++i;
-      out += ' ';
-    } else {
-      out += source[i];
-    }
-  }
-  return out;
-}
-
-}  // namespace
-
 std::set<std::string> declaredUniforms(const std::string& source) {
-  const std::string text = withoutComments(source);
+  const std::string text = ShaderLibrary::withoutComments(source);
   std::set<std::string> names;
   const std::string keyword = "uniform";
   for (size_t at = text.find(keyword); at != std::string::npos; at = text.find(keyword, at + keyword.size())) {
