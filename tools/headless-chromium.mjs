@@ -9,9 +9,14 @@ export const chromiumFlags = ['--no-sandbox', '--disable-gpu', '--enable-unsafe-
 export const chromiumLaunchOptions = { executablePath: '/usr/bin/chromium', headless: true, args: chromiumFlags };
 
 // Command-line options of the form --name VALUE, for the small scripts: `handlers` maps each option to a function
-// that takes its value. Throws on an unknown option or a missing value, naming `script` for its usage.
-export function parseOptions(argv, handlers, script) {
+// that takes its value. An argument not starting with -- goes to `positional` where the script takes such arguments.
+// Throws on an unknown option, a missing value or an unexpected positional argument, naming `script` for its usage.
+export function parseOptions(argv, handlers, script, positional = null) {
   for (let i = 0; i < argv.length; ++i) {
+    if (positional && !argv[i].startsWith('--')) {
+      positional(argv[i]);
+      continue;
+    }
     const handler = handlers[argv[i]];
     if (!handler) throw new Error(`unknown option ${argv[i]} (see the header of ${script})`);
     if (i + 1 >= argv.length) throw new Error(`${argv[i]} needs a value`);

@@ -14,7 +14,7 @@ import path from 'node:path';
 import { fileURLToPath } from 'node:url';
 import { chromium } from 'playwright-core';
 import { startServer } from '../serve-web.mjs';
-import { chromiumLaunchOptions, fixedScaleUrl, median } from '../headless-chromium.mjs';
+import { chromiumLaunchOptions, fixedScaleUrl, median, parseOptions } from '../headless-chromium.mjs';
 import { installPassCounter } from './pass-counter.mjs';
 
 const root = path.resolve(path.dirname(fileURLToPath(import.meta.url)), '..', '..');
@@ -24,21 +24,14 @@ const SCENES = {
 };
 const options = { sizes: ['640x360', '1280x720'], scenes: ['engine', 'pbr'], rounds: 5, frames: 2, siteB: null,
                   csv: path.join(root, 'bench-results', 'browser-lighting.csv'), cases: [] };
-const argv = process.argv.slice(2);
-for (let i = 0; i < argv.length; ++i) {
-  const value = () => {
-    if (i + 1 >= argv.length) throw new Error(`${argv[i]} needs a value`);
-    return argv[++i];
-  };
-  if (argv[i] === '--sizes') options.sizes = value().split(',');
-  else if (argv[i] === '--scenes') options.scenes = value().split(',');
-  else if (argv[i] === '--rounds') options.rounds = Number(value());
-  else if (argv[i] === '--frames') options.frames = Number(value());
-  else if (argv[i] === '--site-b') options.siteB = path.resolve(value());
-  else if (argv[i] === '--csv') options.csv = path.resolve(value());
-  else if (argv[i].startsWith('--')) throw new Error(`unknown option ${argv[i]} (see the header of this file)`);
-  else options.cases.push(argv[i]);
-}
+parseOptions(process.argv.slice(2), {
+  '--sizes': (v) => { options.sizes = v.split(','); },
+  '--scenes': (v) => { options.scenes = v.split(','); },
+  '--rounds': (v) => { options.rounds = Number(v); },
+  '--frames': (v) => { options.frames = Number(v); },
+  '--site-b': (v) => { options.siteB = path.resolve(v); },
+  '--csv': (v) => { options.csv = path.resolve(v); },
+}, 'tools/browser-bench/lighting-costs.mjs', (state) => options.cases.push(state));
 if (!options.cases.length) options.cases = ['', 'ao=off'];
 for (const scene of options.scenes) if (!SCENES[scene]) throw new Error(`--scenes: ${scene} is not engine or pbr`);
 
