@@ -191,12 +191,13 @@ TEST(DepthLayers, TheWallBesideAThinPoleStaysNearTheReference) {
               "the wall's interior (%d px): MAE %.4f and %.4f\n",
               bandPixels, bandError[0], bandBias[0], bandError[1], bandBias[1], interiorPixels, interiorError[0],
               interiorError[1]);
-  // Measured on llvmpipe: band MAE 0.345 (bias -0.345) with one layer, 0.047 (bias +0.047) with two, interior 0.002
-  // and 0.001. Two layers overshoot a little: a tap's two layers bound the pole along the camera's ray, which from the
-  // wall's point of view covers less of the pole's cross-section than the pole does. The bounds: within 0.06 of the
-  // reference, and less than a quarter of one layer's error.
-  EXPECT_LT(bandError[1], 0.06);
-  EXPECT_LT(bandError[1], 0.25 * bandError[0]);
+  // Measured on llvmpipe: band MAE 0.343 (bias -0.343) with one layer, 0.019 (bias +0.019) with two, interior 0.001
+  // and 0.0005. Two layers leave the band a little bright: a tap's two layers bound the pole along the camera's ray,
+  // which from the wall's point of view covers less of the pole's cross-section than the pole does, and the taps see
+  // the pole's edge only where they land on it (reaching to the midpoint before each tap, gtao.frag: 0.047 without).
+  // The bounds: within 0.03 of the reference, and less than a tenth of one layer's error.
+  EXPECT_LT(bandError[1], 0.03);
+  EXPECT_LT(bandError[1], 0.1 * bandError[0]);
   // One layer told the pole's own thickness: the halo goes (measured: band MAE 0.043, bias +0.043, as close as two
   // layers). The shipped knots hold 0.5 r, so setting that explicitly draws the same image.
   std::printf("one layer, ao.thickness 0.1: band MAE %.4f (bias %+.4f)\n", bandError[2], bandBias[2]);
