@@ -23,8 +23,6 @@ constexpr int kSide = test::kPointSide;  // up to 65536 values per draw, one poi
 // Two per-point values travel in the attribute slots the programs bind by name: a_normal (vec4) and a_texcoord (vec3).
 const char* const kPointVertex = test::kTwoValuePointVertex;
 
-
-
 // 65536 colours: black, the range ends and beyond, powers of two and their neighbours (exponent boundaries), mantissa
 // ties, 64 hues x 5 saturations from 1e-6 to 1e6, and random colours with log-uniform brightness.
 std::vector<glm::vec3> testColours() {

@@ -26,7 +26,6 @@ void main() {
 }
 )";
 
-
 // One point per value at pixel i (row-major from the bottom), the value in a_normal.
 std::vector<std::uint8_t> drawPoints(const gl::Program& program, const std::vector<glm::vec3>& values) {
   std::vector<glm::vec4> normal;

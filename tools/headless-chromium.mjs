@@ -24,14 +24,18 @@ export function parseOptions(argv, handlers, script, positional = null) {
   }
 }
 
-// The scripts' figures: the median of the readings, and a --sizes list ("640x360,1280x720") as [width, height] pairs.
+// The scripts' figures: the median of the readings; a size ("640x360") as [width, height], and a --sizes list
+// ("640x360,1280x720") as such pairs.
 export function median(values) {
   const sorted = [...values].sort((a, b) => a - b);
   const mid = sorted.length >> 1;
   return sorted.length % 2 ? sorted[mid] : 0.5 * (sorted[mid - 1] + sorted[mid]);
 }
+export function parseSize(text) {
+  return text.split('x').map(Number);
+}
 export function parseSizes(text) {
-  return text.split(',').map((s) => s.split('x').map(Number));
+  return text.split(',').map(parseSize);
 }
 
 // The demo page's address with its dynamic resolution and quick start off. The page turns them on: it starts at its

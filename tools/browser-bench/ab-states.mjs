@@ -9,20 +9,20 @@ import path from 'node:path';
 import { fileURLToPath } from 'node:url';
 import { chromium } from 'playwright-core';
 import { startServer } from '../serve-web.mjs';
-import { chromiumLaunchOptions, expectFullScale, openDemoPage } from '../headless-chromium.mjs';
+import {
+  chromiumLaunchOptions, expectFullScale, openDemoPage, parseOptions, parseSize,
+} from '../headless-chromium.mjs';
 import { installPassCounter } from './pass-counter.mjs';
 
 const root = path.resolve(path.dirname(fileURLToPath(import.meta.url)), '..', '..');
 const model = '/usr/share/assimp/models/glTF2/2CylinderEngine-glTF-Binary/2CylinderEngine.glb';
-const args = process.argv.slice(2);
 let size = '1280x720', frames = 12;
 const states = [];
-for (let i = 0; i < args.length; ++i) {
-  if (args[i] === '--size') size = args[++i];
-  else if (args[i] === '--frames') frames = Number(args[++i]);
-  else states.push(args[i]);
-}
-const [width, height] = size.split('x').map(Number);
+parseOptions(process.argv.slice(2), {
+  '--size': (v) => { size = v; },
+  '--frames': (v) => { frames = Number(v); },
+}, path.basename(import.meta.url), (state) => states.push(state));
+const [width, height] = parseSize(size);
 const server = await startServer(path.join(root, 'build-web', 'site'));
 const browser = await chromium.launch(chromiumLaunchOptions);
 try {

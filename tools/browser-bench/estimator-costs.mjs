@@ -12,7 +12,7 @@ import path from 'node:path';
 import { fileURLToPath } from 'node:url';
 import { chromium } from 'playwright-core';
 import { startServer } from '../serve-web.mjs';
-import { chromiumLaunchOptions, median, openDemoPage, parseOptions } from '../headless-chromium.mjs';
+import { chromiumLaunchOptions, median, openDemoPage, parseOptions, parseSize } from '../headless-chromium.mjs';
 
 const root = path.resolve(path.dirname(fileURLToPath(import.meta.url)), '..', '..');
 const model = '/usr/share/assimp/models/glTF2/2CylinderEngine-glTF-Binary/2CylinderEngine.glb';
@@ -27,7 +27,7 @@ parseOptions(process.argv.slice(2), {
   '--settle': (v) => { options.settle = Number(v); },
   '--csv': (v) => { options.csv = path.resolve(v); },
 }, path.basename(import.meta.url));
-const [width, height] = options.size.split('x').map(Number);
+const [width, height] = parseSize(options.size);
 if (!(width > 0 && height > 0 && options.samples > 0 && options.settle >= 0))
   throw new Error('--size WxH and --samples N must be positive, --settle MS not negative');
 

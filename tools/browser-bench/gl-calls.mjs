@@ -5,11 +5,11 @@ import path from 'node:path';
 import { fileURLToPath } from 'node:url';
 import { chromium } from 'playwright-core';
 import { startServer } from '../serve-web.mjs';
-import { applyBenchmarkState, chromiumLaunchOptions, countWebGlCalls } from '../headless-chromium.mjs';
+import { applyBenchmarkState, chromiumLaunchOptions, countWebGlCalls, parseSize } from '../headless-chromium.mjs';
 
 const root = path.resolve(path.dirname(fileURLToPath(import.meta.url)), '..', '..');
 const [size = '640x360', state = ''] = process.argv.slice(2);
-const [width, height] = size.split('x').map(Number);
+const [width, height] = parseSize(size);
 const server = await startServer(process.env.OBSCURA_WEB_SITE ?? path.join(root, 'build-web', 'site'));
 const browser = await chromium.launch(chromiumLaunchOptions);
 try {

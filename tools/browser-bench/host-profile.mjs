@@ -12,11 +12,11 @@ import path from 'node:path';
 import { fileURLToPath } from 'node:url';
 import { chromium } from 'playwright-core';
 import { startServer } from '../serve-web.mjs';
-import { applyBenchmarkState, chromiumLaunchOptions, openDemoPage } from '../headless-chromium.mjs';
+import { applyBenchmarkState, chromiumLaunchOptions, openDemoPage, parseSize } from '../headless-chromium.mjs';
 
 const root = path.resolve(path.dirname(fileURLToPath(import.meta.url)), '..', '..');
 const [size = '1280x720', state = '', seconds = '5'] = process.argv.slice(2);
-const [width, height] = size.split('x').map(Number);
+const [width, height] = parseSize(size);
 const server = await startServer(process.env.OBSCURA_WEB_SITE ?? path.join(root, 'build-web', 'site'), 0, {},
                                  { isolated: true });
 const browser = await chromium.launch(chromiumLaunchOptions);

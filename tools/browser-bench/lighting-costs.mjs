@@ -14,7 +14,7 @@ import path from 'node:path';
 import { fileURLToPath } from 'node:url';
 import { chromium } from 'playwright-core';
 import { startServer } from '../serve-web.mjs';
-import { chromiumLaunchOptions, fixedScaleUrl, median, parseOptions } from '../headless-chromium.mjs';
+import { chromiumLaunchOptions, fixedScaleUrl, median, parseOptions, parseSize } from '../headless-chromium.mjs';
 import { installPassCounter } from './pass-counter.mjs';
 
 const root = path.resolve(path.dirname(fileURLToPath(import.meta.url)), '..', '..');
@@ -31,13 +31,13 @@ parseOptions(process.argv.slice(2), {
   '--frames': (v) => { options.frames = Number(v); },
   '--site-b': (v) => { options.siteB = path.resolve(v); },
   '--csv': (v) => { options.csv = path.resolve(v); },
-}, 'tools/browser-bench/lighting-costs.mjs', (state) => options.cases.push(state));
+}, path.basename(import.meta.url), (state) => options.cases.push(state));
 if (!options.cases.length) options.cases = ['', 'ao=off'];
 for (const scene of options.scenes) if (!SCENES[scene]) throw new Error(`--scenes: ${scene} is not engine or pbr`);
 
 // One page per case (its own window and context), the scene loaded, the state applied over the page's defaults.
 async function openCase(browser, base, size, scene, text) {
-  const [width, height] = size.split('x').map(Number);
+  const [width, height] = parseSize(size);
   const context = await browser.newContext({ viewport: { width, height }, deviceScaleFactor: 1 });
   const page = await context.newPage();
   const errors = [];

@@ -15,7 +15,7 @@ import { execFileSync } from 'node:child_process';
 import { fileURLToPath } from 'node:url';
 import { chromium } from 'playwright-core';
 import { startServer } from '../serve-web.mjs';
-import { chromiumLaunchOptions, fixedScaleUrl, parseOptions } from '../headless-chromium.mjs';
+import { chromiumLaunchOptions, fixedScaleUrl, parseOptions, parseSize } from '../headless-chromium.mjs';
 
 const here = path.dirname(fileURLToPath(import.meta.url));
 const root = path.resolve(here, '..', '..');
@@ -45,7 +45,7 @@ parseOptions(process.argv.slice(2), {
   '--csv': (v) => { options.csv = path.resolve(v); },
   '--build': (v) => { options.build = path.resolve(v); },
 }, path.basename(import.meta.url));
-const [width, height] = options.size.split('x').map(Number);
+const [width, height] = parseSize(options.size);
 if (!(width > 0 && height > 0)) throw new Error('--size WxH');
 fs.mkdirSync(options.out, { recursive: true });
 

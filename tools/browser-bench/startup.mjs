@@ -20,7 +20,7 @@ import path from 'node:path';
 import { fileURLToPath } from 'node:url';
 import { chromium } from 'playwright-core';
 import { startServer } from '../serve-web.mjs';
-import { chromiumLaunchOptions, median, parseOptions } from '../headless-chromium.mjs';
+import { chromiumLaunchOptions, median, parseOptions, parseSize } from '../headless-chromium.mjs';
 
 const root = path.resolve(path.dirname(fileURLToPath(import.meta.url)), '..', '..');
 const options = { rounds: 3, size: '1280x720', frames: 4, settle: 2000,
@@ -32,7 +32,7 @@ parseOptions(process.argv.slice(2), {
   '--settle': (v) => { options.settle = Number(v); },
   '--csv': (v) => { options.csv = path.resolve(v); },
 }, path.basename(import.meta.url));
-const [width, height] = options.size.split('x').map(Number);
+const [width, height] = parseSize(options.size);
 if (!(width > 0 && height > 0 && options.rounds > 0 && options.frames > 0 && options.settle >= 0)) {
   throw new Error('--size WxH, --rounds N and --frames N must be positive, --settle MS at least 0');
 }
