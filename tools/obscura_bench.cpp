@@ -1,7 +1,7 @@
 // obscura-bench: the performance figures of the AO pipeline, measured in one run (docs/benchmarks.md).
 //
 //   obscura-bench [--out DIR] [--frames N] [--backend osmesa|egl] [--quick] [--NAME-only]
-//   (--NAME-only: one section alone, NAME one of kAloneSections below; without it every section, start-up first)
+//   (--NAME-only: one section alone, NAME one in sections() at the end; without it the full run, start-up first)
 //
 // Prints tables and writes DIR/bench.csv (every measurement), DIR/ratios.csv, DIR/radius_sweep.csv,
 // DIR/radius_sweep.png (gnuplot) and DIR/estimators.csv. Every pass is bounded by glFinish on both sides and
@@ -116,18 +116,12 @@ const std::vector<std::string>& benchPasses() {
   return passes;
 }
 
-// The sections a --NAME-only option runs alone: startup (0), estimators (6), motion (7), effects (8), finish (8c),
-// transparency (8d), stages (8e), temporal-ao (9), lighting (10), resolution (11), ao-layers (12), host (13),
-// scene-bounds (14).
-const char* const kAloneSections[] = {"startup", "estimators", "motion", "effects", "finish", "transparency", "stages",
-                                      "temporal-ao", "lighting", "resolution", "ao-layers", "host", "scene-bounds"};
-
 struct Options {
   std::string outDir = "bench-results";
   int frames = 15;
   HeadlessBackend backend = HeadlessBackend::OSMesa;
   bool quick = false;
-  // The section --NAME-only runs alone (kAloneSections), or empty: every section.
+  // The section --NAME-only runs alone (a name in sections(), below main's helpers), or empty: every section.
   std::string only;
   bool alone(const char* section) const { return only == section; }
   using Sizes = std::vector<std::pair<int, int>>;
@@ -329,7 +323,8 @@ void printEffectRow(const std::string& scene, int width, int height, const PassT
   std::printf(" %9.2f\n", total(t));
 }
 
-Options parseOptions(int argc, char** argv) {
+// `alone`: the sections' names, each an option --NAME-only.
+Options parseOptions(int argc, char** argv, const std::vector<std::string>& alone) {
   Options options;
   for (int i = 1; i < argc; ++i) {
     const std::string arg = argv[i];
@@ -346,13 +341,13 @@ Options parseOptions(int argc, char** argv) {
       options.frames = static_cast<int>(frames);
     } else if (arg == "--backend") options.backend = parseBackend(value());
     else if (arg == "--quick") options.quick = true;
-    else if (std::find_if(std::begin(kAloneSections), std::end(kAloneSections), [&](const char* section) {
-               return arg == std::string("--") + section + "-only";
-             }) != std::end(kAloneSections))
+    else if (std::find_if(alone.begin(), alone.end(), [&](const std::string& section) {
+               return arg == "--" + section + "-only";
+             }) != alone.end())
       options.only = arg.substr(2, arg.size() - 7);
     else {
       std::string usage = "obscura-bench [--out DIR] [--frames N] [--backend osmesa|egl] [--quick]";
-      for (const char* section : kAloneSections) usage += std::string(" [--") + section + "-only]";
+      for (const std::string& section : alone) usage += " [--" + section + "-only]";
       throw InputError("unknown option '" + arg + "' (usage: " + usage + ")");
     }
   }
@@ -1431,212 +1426,246 @@ void stagesSection(const Options& options, HeadlessContext& context, const std::
   }
 }
 
+// Sections 1 to 5 (the full run's core; none runs alone): the defaults' passes and effects on both scenes, SAO's
+// radius and sample sweeps and hierarchy storages, the quality presets, and the ratios of this run.
+void coreSections(const Options& options, Bench& bench, const std::vector<BenchScene>& scenes) {
+  const BenchScene& builtin = scenes[0];
+  const AoSettings defaults;
+  // Sections 2, 3 and 5 study SAO's own machinery (the hierarchy against the radius, the spiral's taps, the fetch
+  // floor that copies SAO's spiral): they run SAO whatever the default estimator is. Sections 1 and 4 run the
+  // defaults (the "sao" pass is the estimator pass, whichever estimator); section 6 compares the estimators.
+  AoSettings saoDefaults = defaults;
+  saoDefaults.estimator = AoEstimator::Sao;
+
+  // Each scene at its default radius, as obscura-render and the viewers choose it (scene/SceneScale.h).
+  std::string sceneRadii;
+  for (const BenchScene& scene : scenes)
+    sceneRadii += (sceneRadii.empty() ? "" : ", ") + scene.name + " " + formatShortest(defaultAoRadius(scene.scene));
+  std::printf("\n1. Per-pass ms, default settings (every effect on; AO %d samples, r = each scene's default: %s; "
+              "hierarchy %s)\n",
+              defaults.samples, sceneRadii.c_str(), defaults.usesDepthHierarchy() ? "on" : "off");
+  printPassHeader();
+  const Options::Sizes sizes = options.sizes({{640, 360}, {1280, 720}, {1920, 1080}});
+  std::vector<std::tuple<std::string, int, int, PassTimes>> perPass;
+  for (const BenchScene& scene : scenes)
+    for (auto [w, h] : sizes) {
+      AoSettings settings = defaults;
+      settings.radius = defaultAoRadius(scene.scene);
+      perPass.emplace_back(scene.name, w, h, bench.measure("passes", scene, w, h, settings));
+      printPassRow(scene.name, w, h, std::get<3>(perPass.back()));
+    }
+  std::printf("\n1b. Per-effect ms (the sum of each effect's passes), the same frames\n");
+  printEffectHeader();
+  for (const auto& [name, w, h, times] : perPass) printEffectRow(name, w, h, times);
+  for (const auto& [absorbed, doer] : bench.doneBy())
+    std::printf("(%s: 0 ms where the %s pass did its work, with nothing else reading what it reads)\n",
+                absorbed.c_str(), doer.c_str());
+
+  const auto [w, h] = options.size(1280, 720);
+  std::printf("\n2. Radius sweep, built-in scene %dx%d: SAO pass ms (hierarchy pass ms)\n", w, h);
+  std::printf("%10s %18s %18s\n", "radius m", "hierarchy on", "hierarchy off");
+  std::ofstream sweep(options.outDir + "/radius_sweep.csv");
+  sweep << "radius_m,sao_ms_hierarchy,sao_ms_no_hierarchy\n";
+  // Every radius and both hierarchy settings take turns frame by frame (see Bench::measure).
+  const std::vector<float> radii = {0.25f, 0.5f, 1.0f, 2.0f, 3.0f, 4.0f};
+  std::vector<RenderSettings> sweepSettings;
+  for (float radius : radii) {
+    for (bool hierarchy : {true, false}) {
+      AoSettings settings = saoDefaults;
+      settings.radius = radius;
+      settings.depthHierarchy = hierarchy ? DepthHierarchy::On : DepthHierarchy::Off;
+      sweepSettings.push_back(settings);
+    }
+  }
+  const std::vector<PassTimes> sweepTimes = bench.measure("radius", builtin, w, h, sweepSettings);
+  double saoAt[2][2] = {};  // [hierarchy][r=0.5, r=4]
+  for (size_t r = 0; r < radii.size(); ++r) {
+    const PassTimes& on = sweepTimes[2 * r];
+    const PassTimes& off = sweepTimes[2 * r + 1];
+    const double saoOn = at(on, "sao"), saoOff = at(off, "sao");
+    std::printf("%10.2f %11.2f (%4.2f) %18.2f\n", radii[r], saoOn, at(on, "hierarchy"), saoOff);
+    sweep << radii[r] << "," << saoOn << "," << saoOff << "\n";
+    if (radii[r] == 0.5f) saoAt[1][0] = saoOn, saoAt[0][0] = saoOff;
+    if (radii[r] == 4.0f) saoAt[1][1] = saoOn, saoAt[0][1] = saoOff;
+  }
+  sweep.close();
+  writePlot(options.outDir);
+
+  std::printf("\n2b. Hierarchy storage, built-in scene %dx%d: SAO pass ms\n", w, h);
+  std::printf("%10s %18s %18s\n", "radius m", "separate textures", "atlas");
+  std::pair<double, double> storageAt[2];  // (separate, atlas) at r = 0.5 m and r = 4 m
+  for (int i = 0; i < 2; ++i) {
+    AoSettings settings = saoDefaults;
+    settings.radius = i == 0 ? 0.5f : 4.0f;
+    storageAt[i] = bench.measureStorages(builtin, w, h, settings);
+    std::printf("%10.2f %18.2f %18.2f\n", settings.radius, storageAt[i].first, storageAt[i].second);
+  }
+
+  std::printf("\n3. Sample-count sweep, built-in scene %dx%d: SAO pass ms\n", w, h);
+  const std::vector<int> sampleCounts = {4, 8, 11, 16, 24, 32};
+  std::vector<RenderSettings> sampleSettings;
+  for (int samples : sampleCounts) {
+    AoSettings settings = saoDefaults;
+    settings.samples = samples;
+    settings.spiralTurns = SaoKernel::bestSpiralTurns(samples);
+    sampleSettings.push_back(settings);
+  }
+  const std::vector<PassTimes> sampleTimes = bench.measure("samples", builtin, w, h, sampleSettings);
+  for (size_t i = 0; i < sampleCounts.size(); ++i)
+    std::printf("%10d samples %9.2f ms\n", sampleCounts[i], at(sampleTimes[i], "sao"));
+
+  std::printf("\n4. Quality presets, built-in scene %dx%d\n", w, h);
+  printPassHeader();
+  std::vector<RenderSettings> presetSettings;
+  for (QualityPreset preset : allQualityPresets()) {
+    RenderSettings settings;
+    settings.applyPreset(preset);  // every effect's preset
+    presetSettings.push_back(settings);
+  }
+  const std::vector<PassTimes> presetTimes = bench.measure("presets", builtin, w, h, presetSettings);
+  for (size_t i = 0; i < presetTimes.size(); ++i)
+    printPassRow(presetName(allQualityPresets()[i]), w, h, presetTimes[i]);
+
+  std::printf("\n5. Ratios (this run, built-in scene %dx%d)\n", w, h);
+  const PassTimes base = bench.measure("ratios", builtin, w, h, saoDefaults);
+  const Camera& camera = builtin.camera;
+  const float distance = glm::length(camera.target - camera.eye);
+  const float disk = std::min(static_cast<float>(h) / (2.0f * std::tan(camera.fovyRadians() * 0.5f)) *
+                                  saoDefaults.radius / distance,
+                              saoDefaults.maxScreenRadius * static_cast<float>(h));
+  const auto [sao, floor] = bench.measureAgainstFloor(builtin, w, h, saoDefaults, disk);
+  const double saoMs = at(base, "sao"), gbufferMs = at(base, "gbuffer");
+  // Printed and written to DIR/ratios.csv, each with the two figures it divides.
+  std::ofstream ratios(options.outDir + "/ratios.csv");
+  ratios << "ratio,value,numerator_ms,denominator_ms\n";
+  auto ratio = [&](const char* label, const char* key, double numerator, double denominator, const char* note) {
+    std::printf("  %-48s %6.2f   (%.2f / %.2f ms)%s\n", label, numerator / denominator, numerator, denominator, note);
+    ratios << key << "," << numerator / denominator << "," << numerator << "," << denominator << "\n";
+  };
+  ratio("SAO / G-buffer", "sao_over_gbuffer", saoMs, gbufferMs, "");
+  ratio("SAO(r=4 m) / SAO(r=0.5 m), hierarchy (default)", "sao_r4_over_r05_hierarchy", saoAt[1][1], saoAt[1][0],
+        "   goal <= 1.15");
+  ratio("SAO(r=4 m) / SAO(r=0.5 m), no hierarchy", "sao_r4_over_r05_no_hierarchy", saoAt[0][1], saoAt[0][0], "");
+  ratio("SAO(r=4 m) / SAO(r=0.5 m), separate textures", "sao_r4_over_r05_separate_textures", storageAt[1].first,
+        storageAt[0].first, "");
+  ratio("SAO(r=4 m) / SAO(r=0.5 m), atlas", "sao_r4_over_r05_atlas", storageAt[1].second, storageAt[0].second, "");
+  const std::string floorLabel =
+      "SAO / fetch floor (" + std::to_string(saoDefaults.samples + 1) + " fetches, disk " +
+      std::to_string(static_cast<int>(std::lround(disk))) + " px)";
+  ratio(floorLabel.c_str(), "sao_over_fetch_floor", sao, floor, "");
+}
+
+// What the sections share, made when a section first asks for it: the scenes (the engine loaded once), and the
+// Bench, whose constructor starts DIR/bench.csv afresh: a section run alone that does not write to it leaves the
+// file as the last run wrote it.
+class SectionInputs {
+ public:
+  SectionInputs(const Options& o, HeadlessContext& c) : options(o), context(c) {}
+  const Options& options;
+  HeadlessContext& context;
+
+  const std::vector<BenchScene>& scenes() {
+    if (scenes_.empty()) {
+      // The still room: the scene docs/benchmarks.md's figures were measured on (the pendulum and the limb would add
+      // about 5,800 triangles, and no motion: nothing here advances the time).
+      scenes_.push_back({"builtin", makeBuiltinScene(BuiltinSceneOptions::still()), builtinSceneCamera()});
+      // The engine is modelled in centimetres; scaled to metres (about 5 x 7 x 4 m) as the tuning views do
+      // (tools/tuning-views.json). Its AO radius is its default either way (scene/SceneScale.h: 5 % of the bounding
+      // sphere's diameter, 0.42 m here), so the scale changes no figure.
+      Scene engine = loadGltfFile(kEnginePath);
+      scaleScene(engine, kEngineScale);
+      const Camera engineCamera = Camera::fit(engine.worldBounds(), 1280, 720);
+      scenes_.push_back({"2CylinderEngine", std::move(engine), engineCamera});
+    }
+    return scenes_;
+  }
+  const BenchScene& builtin() { return scenes().front(); }
+  Bench& bench() {
+    if (!bench_) bench_ = std::make_unique<Bench>(options, context);
+    return *bench_;
+  }
+  Options::Sizes effectSizes() const { return options.sizes({{640, 360}, {1280, 720}}); }
+
+ private:
+  std::vector<BenchScene> scenes_;
+  std::unique_ptr<Bench> bench_;
+};
+
+// A section: its name (--NAME-only runs it alone; none for the core, which runs only with the rest), the files it
+// writes in DIR, and whether the full run takes it (in this order; start-up first, in a process that has made
+// nothing yet).
+struct Section {
+  const char* name;
+  std::vector<const char*> writes;
+  bool inFullRun;
+  std::function<void(SectionInputs&)> run;
+};
+
+const std::vector<Section>& sections() {
+  static const std::vector<Section> table = {
+      {"startup", {"startup.csv"}, true, [](SectionInputs& in) { startupSection(in.options, in.context); }},
+      {nullptr, {"bench.csv", "ratios.csv", "radius_sweep.csv", "radius_sweep.png"}, true,
+       [](SectionInputs& in) { coreSections(in.options, in.bench(), in.scenes()); }},
+      {"estimators", {"bench.csv", "estimators.csv"}, true,
+       [](SectionInputs& in) {
+         const auto [w, h] = in.options.size(1280, 720);
+         estimatorSection(in.bench(), in.builtin(), w, h, in.options.outDir);
+       }},
+      {"motion", {"motion.csv"}, true,
+       [](SectionInputs& in) {
+         const auto [w, h] = in.options.size(1280, 720);
+         motionSection(in.options, in.context, w, h);
+       }},
+      // With the transparent pass's section (8d), which also runs alone below.
+      {"effects", {"effects.csv"}, true,
+       [](SectionInputs& in) { effectsSection(in.options, in.context, in.effectSizes()); }},
+      {"finish", {"finish.csv"}, true,
+       [](SectionInputs& in) { finishSection(in.options, in.context, in.effectSizes()); }},
+      {"stages", {"stages.csv"}, true,
+       [](SectionInputs& in) { stagesSection(in.options, in.context, in.effectSizes()); }},
+      {"temporal-ao", {"temporal_ao.csv"}, true,
+       [](SectionInputs& in) { temporalAoSection(in.options, in.context, in.builtin()); }},
+      {"resolution", {"resolution.csv"}, true,
+       [](SectionInputs& in) { resolutionSection(in.options, in.context, in.builtin()); }},
+      {"host", {"host.csv"}, true, [](SectionInputs& in) { hostSection(in.options, in.context); }},
+      {"scene-bounds", {"scene_bounds.csv"}, true,
+       [](SectionInputs& in) { sceneBoundsSection(in.options, in.context, in.scenes()); }},
+      // Alone only: the full run has the transparent pass within section 8, and leaves out the two longest studies.
+      {"transparency", {"transparency.csv"}, false,
+       [](SectionInputs& in) {
+         std::ofstream csv(in.options.outDir + "/transparency.csv");
+         csv << kEffectCostsHeader;
+         transparencySection(in.options, in.context, in.effectSizes(), csv);
+       }},
+      {"lighting", {"lighting.csv"}, false, [](SectionInputs& in) { lightingSection(in.options, in.context); }},
+      {"ao-layers", {"bench.csv", "ao_layers.csv"}, false,
+       [](SectionInputs& in) { aoLayersSection(in.bench(), in.scenes(), in.effectSizes(), in.options.outDir); }},
+  };
+  return table;
+}
+
 int main(int argc, char** argv) {
   try {
-    const Options options = parseOptions(argc, argv);
+    std::vector<std::string> alone;
+    for (const Section& section : sections())
+      if (section.name) alone.emplace_back(section.name);
+    const Options options = parseOptions(argc, argv, alone);
     if (std::system(("mkdir -p '" + options.outDir + "'").c_str()) != 0)
       throw InputError(options.outDir + ": cannot create");
     HeadlessContext context(options.backend);
-    if (options.alone("lighting")) {
-      lightingSection(options, context);
-      return 0;
-    }
     std::printf("obscura-bench: %s (%s), %d frames per figure (median), passes bounded by glFinish\n",
                 backendName(options.backend), context.caps().renderer.c_str(), options.frames);
-    // Start-up first: nothing has been made in this process yet (the built-in sky is made once per process).
-    if (options.only.empty() || options.alone("startup")) startupSection(options, context);
-    if (options.alone("startup")) {
-      std::printf("\nobscura-bench: wrote %s/startup.csv\n", options.outDir.c_str());
-      return 0;
+    SectionInputs inputs(options, context);
+    std::vector<std::string> wrote;
+    for (const Section& section : sections()) {
+      if (options.only.empty() ? !section.inFullRun : !(section.name && options.alone(section.name))) continue;
+      section.run(inputs);
+      for (const char* file : section.writes)
+        if (std::find(wrote.begin(), wrote.end(), file) == wrote.end()) wrote.emplace_back(file);
     }
-
-    std::vector<BenchScene> scenes;
-    // The still room: the scene docs/benchmarks.md's figures were measured on (the pendulum and the limb would add
-    // about 5,800 triangles, and no motion: nothing here advances the time).
-    scenes.push_back({"builtin", makeBuiltinScene(BuiltinSceneOptions::still()), builtinSceneCamera()});
-    // The engine is modelled in centimetres; scaled to metres (about 5 x 7 x 4 m) as the tuning views do
-    // (tools/tuning-views.json). Its AO radius is its default either way (scene/SceneScale.h: 5 % of the bounding
-    // sphere's diameter, 0.42 m here), so the scale changes no figure.
-    Scene engine = loadGltfFile(kEnginePath);
-    scaleScene(engine, kEngineScale);
-    const Camera engineCamera = Camera::fit(engine.worldBounds(), 1280, 720);
-    scenes.push_back({"2CylinderEngine", std::move(engine), engineCamera});
-    const Options::Sizes effectSizes = options.sizes({{640, 360}, {1280, 720}});
-    // The sections that run alone before Bench (which starts DIR/bench.csv afresh), each with the file it writes.
-    const std::vector<std::tuple<const char*, const char*, std::function<void()>>> aloneBeforeBench = {
-        {"motion", "motion.csv",
-         [&] {
-           const auto [w, h] = options.size(1280, 720);
-           motionSection(options, context, w, h);
-         }},
-        {"scene-bounds", "scene_bounds.csv", [&] { sceneBoundsSection(options, context, scenes); }},
-        {"host", "host.csv", [&] { hostSection(options, context); }},
-        {"resolution", "resolution.csv", [&] { resolutionSection(options, context, scenes[0]); }},
-        {"temporal-ao", "temporal_ao.csv", [&] { temporalAoSection(options, context, scenes[0]); }},
-        {"finish", "finish.csv", [&] { finishSection(options, context, effectSizes); }},
-        {"stages", "stages.csv", [&] { stagesSection(options, context, effectSizes); }},
-        {"effects", "effects.csv", [&] { effectsSection(options, context, effectSizes); }},
-        {"transparency", "transparency.csv",
-         [&] {
-           std::ofstream csv(options.outDir + "/transparency.csv");
-           csv << kEffectCostsHeader;
-           transparencySection(options, context, effectSizes, csv);
-         }}};
-    for (const auto& [section, wrote, run] : aloneBeforeBench)
-      if (options.alone(section)) {
-        run();
-        std::printf("\nobscura-bench: wrote %s/%s\n", options.outDir.c_str(), wrote);
-        return 0;
-      }
-    Bench bench(options, context);
-    const BenchScene& builtin = scenes[0];
-    if (options.alone("ao-layers")) {
-      aoLayersSection(bench, scenes, effectSizes, options.outDir);
-      std::printf("\nobscura-bench: wrote %s/bench.csv, ao_layers.csv\n", options.outDir.c_str());
-      return 0;
-    }
-    if (options.alone("estimators")) {
-      const auto [w, h] = options.size(1280, 720);
-      estimatorSection(bench, builtin, w, h, options.outDir);
-      std::printf("\nobscura-bench: wrote %s/bench.csv, estimators.csv\n", options.outDir.c_str());
-      return 0;
-    }
-    const AoSettings defaults;
-    // Sections 2, 3 and 5 study SAO's own machinery (the hierarchy against the radius, the spiral's taps, the fetch
-    // floor that copies SAO's spiral): they run SAO whatever the default estimator is. Sections 1 and 4 run the
-    // defaults (the "sao" pass is the estimator pass, whichever estimator); section 6 compares the estimators.
-    AoSettings saoDefaults = defaults;
-    saoDefaults.estimator = AoEstimator::Sao;
-
-    // Each scene at its default radius, as obscura-render and the viewers choose it (scene/SceneScale.h).
-    std::string sceneRadii;
-    for (const BenchScene& scene : scenes)
-      sceneRadii += (sceneRadii.empty() ? "" : ", ") + scene.name + " " + formatShortest(defaultAoRadius(scene.scene));
-    std::printf("\n1. Per-pass ms, default settings (every effect on; AO %d samples, r = each scene's default: %s; "
-                "hierarchy %s)\n",
-                defaults.samples, sceneRadii.c_str(), defaults.usesDepthHierarchy() ? "on" : "off");
-    printPassHeader();
-    const Options::Sizes sizes = options.sizes({{640, 360}, {1280, 720}, {1920, 1080}});
-    std::vector<std::tuple<std::string, int, int, PassTimes>> perPass;
-    for (const BenchScene& scene : scenes)
-      for (auto [w, h] : sizes) {
-        AoSettings settings = defaults;
-        settings.radius = defaultAoRadius(scene.scene);
-        perPass.emplace_back(scene.name, w, h, bench.measure("passes", scene, w, h, settings));
-        printPassRow(scene.name, w, h, std::get<3>(perPass.back()));
-      }
-    std::printf("\n1b. Per-effect ms (the sum of each effect's passes), the same frames\n");
-    printEffectHeader();
-    for (const auto& [name, w, h, times] : perPass) printEffectRow(name, w, h, times);
-    for (const auto& [absorbed, doer] : bench.doneBy())
-      std::printf("(%s: 0 ms where the %s pass did its work, with nothing else reading what it reads)\n",
-                  absorbed.c_str(), doer.c_str());
-
-    const auto [w, h] = options.size(1280, 720);
-    std::printf("\n2. Radius sweep, built-in scene %dx%d: SAO pass ms (hierarchy pass ms)\n", w, h);
-    std::printf("%10s %18s %18s\n", "radius m", "hierarchy on", "hierarchy off");
-    std::ofstream sweep(options.outDir + "/radius_sweep.csv");
-    sweep << "radius_m,sao_ms_hierarchy,sao_ms_no_hierarchy\n";
-    // Every radius and both hierarchy settings take turns frame by frame (see Bench::measure).
-    const std::vector<float> radii = {0.25f, 0.5f, 1.0f, 2.0f, 3.0f, 4.0f};
-    std::vector<RenderSettings> sweepSettings;
-    for (float radius : radii) {
-      for (bool hierarchy : {true, false}) {
-        AoSettings settings = saoDefaults;
-        settings.radius = radius;
-        settings.depthHierarchy = hierarchy ? DepthHierarchy::On : DepthHierarchy::Off;
-        sweepSettings.push_back(settings);
-      }
-    }
-    const std::vector<PassTimes> sweepTimes = bench.measure("radius", builtin, w, h, sweepSettings);
-    double saoAt[2][2] = {};  // [hierarchy][r=0.5, r=4]
-    for (size_t r = 0; r < radii.size(); ++r) {
-      const PassTimes& on = sweepTimes[2 * r];
-      const PassTimes& off = sweepTimes[2 * r + 1];
-      const double saoOn = at(on, "sao"), saoOff = at(off, "sao");
-      std::printf("%10.2f %11.2f (%4.2f) %18.2f\n", radii[r], saoOn, at(on, "hierarchy"), saoOff);
-      sweep << radii[r] << "," << saoOn << "," << saoOff << "\n";
-      if (radii[r] == 0.5f) saoAt[1][0] = saoOn, saoAt[0][0] = saoOff;
-      if (radii[r] == 4.0f) saoAt[1][1] = saoOn, saoAt[0][1] = saoOff;
-    }
-    sweep.close();
-    writePlot(options.outDir);
-
-    std::printf("\n2b. Hierarchy storage, built-in scene %dx%d: SAO pass ms\n", w, h);
-    std::printf("%10s %18s %18s\n", "radius m", "separate textures", "atlas");
-    std::pair<double, double> storageAt[2];  // (separate, atlas) at r = 0.5 m and r = 4 m
-    for (int i = 0; i < 2; ++i) {
-      AoSettings settings = saoDefaults;
-      settings.radius = i == 0 ? 0.5f : 4.0f;
-      storageAt[i] = bench.measureStorages(builtin, w, h, settings);
-      std::printf("%10.2f %18.2f %18.2f\n", settings.radius, storageAt[i].first, storageAt[i].second);
-    }
-
-    std::printf("\n3. Sample-count sweep, built-in scene %dx%d: SAO pass ms\n", w, h);
-    const std::vector<int> sampleCounts = {4, 8, 11, 16, 24, 32};
-    std::vector<RenderSettings> sampleSettings;
-    for (int samples : sampleCounts) {
-      AoSettings settings = saoDefaults;
-      settings.samples = samples;
-      settings.spiralTurns = SaoKernel::bestSpiralTurns(samples);
-      sampleSettings.push_back(settings);
-    }
-    const std::vector<PassTimes> sampleTimes = bench.measure("samples", builtin, w, h, sampleSettings);
-    for (size_t i = 0; i < sampleCounts.size(); ++i)
-      std::printf("%10d samples %9.2f ms\n", sampleCounts[i], at(sampleTimes[i], "sao"));
-
-    std::printf("\n4. Quality presets, built-in scene %dx%d\n", w, h);
-    printPassHeader();
-    std::vector<RenderSettings> presetSettings;
-    for (QualityPreset preset : allQualityPresets()) {
-      RenderSettings settings;
-      settings.applyPreset(preset);  // every effect's preset
-      presetSettings.push_back(settings);
-    }
-    const std::vector<PassTimes> presetTimes = bench.measure("presets", builtin, w, h, presetSettings);
-    for (size_t i = 0; i < presetTimes.size(); ++i)
-      printPassRow(presetName(allQualityPresets()[i]), w, h, presetTimes[i]);
-
-    std::printf("\n5. Ratios (this run, built-in scene %dx%d)\n", w, h);
-    const PassTimes base = bench.measure("ratios", builtin, w, h, saoDefaults);
-    const Camera& camera = builtin.camera;
-    const float distance = glm::length(camera.target - camera.eye);
-    const float disk = std::min(static_cast<float>(h) / (2.0f * std::tan(camera.fovyRadians() * 0.5f)) *
-                                    saoDefaults.radius / distance,
-                                saoDefaults.maxScreenRadius * static_cast<float>(h));
-    const auto [sao, floor] = bench.measureAgainstFloor(builtin, w, h, saoDefaults, disk);
-    const double saoMs = at(base, "sao"), gbufferMs = at(base, "gbuffer");
-    // Printed and written to DIR/ratios.csv, each with the two figures it divides.
-    std::ofstream ratios(options.outDir + "/ratios.csv");
-    ratios << "ratio,value,numerator_ms,denominator_ms\n";
-    auto ratio = [&](const char* label, const char* key, double numerator, double denominator, const char* note) {
-      std::printf("  %-48s %6.2f   (%.2f / %.2f ms)%s\n", label, numerator / denominator, numerator, denominator, note);
-      ratios << key << "," << numerator / denominator << "," << numerator << "," << denominator << "\n";
-    };
-    ratio("SAO / G-buffer", "sao_over_gbuffer", saoMs, gbufferMs, "");
-    ratio("SAO(r=4 m) / SAO(r=0.5 m), hierarchy (default)", "sao_r4_over_r05_hierarchy", saoAt[1][1], saoAt[1][0],
-          "   goal <= 1.15");
-    ratio("SAO(r=4 m) / SAO(r=0.5 m), no hierarchy", "sao_r4_over_r05_no_hierarchy", saoAt[0][1], saoAt[0][0], "");
-    ratio("SAO(r=4 m) / SAO(r=0.5 m), separate textures", "sao_r4_over_r05_separate_textures", storageAt[1].first,
-          storageAt[0].first, "");
-    ratio("SAO(r=4 m) / SAO(r=0.5 m), atlas", "sao_r4_over_r05_atlas", storageAt[1].second, storageAt[0].second, "");
-    const std::string floorLabel =
-        "SAO / fetch floor (" + std::to_string(saoDefaults.samples + 1) + " fetches, disk " +
-        std::to_string(static_cast<int>(std::lround(disk))) + " px)";
-    ratio(floorLabel.c_str(), "sao_over_fetch_floor", sao, floor, "");
-    estimatorSection(bench, builtin, w, h, options.outDir);
-    motionSection(options, context, w, h);
-    effectsSection(options, context, effectSizes);
-    finishSection(options, context, effectSizes);
-    stagesSection(options, context, effectSizes);
-    temporalAoSection(options, context, builtin);
-    resolutionSection(options, context, builtin);
-    hostSection(options, context);
-    sceneBoundsSection(options, context, scenes);
-    std::printf("\nobscura-bench: wrote %s/startup.csv, bench.csv, ratios.csv, radius_sweep.csv, radius_sweep.png, "
-                "estimators.csv, motion.csv, effects.csv, finish.csv, stages.csv, temporal_ao.csv, resolution.csv, "
-                "host.csv, scene_bounds.csv\n",
-                options.outDir.c_str());
+    std::string files;
+    for (const std::string& file : wrote) files += (files.empty() ? "" : ", ") + file;
+    std::printf("\nobscura-bench: wrote %s/%s\n", options.outDir.c_str(), files.c_str());
     return 0;
   } catch (const InputError& e) {
     std::fprintf(stderr, "obscura-bench: %s\n", e.what());
