@@ -9,16 +9,21 @@ export const chromiumFlags = ['--no-sandbox', '--disable-gpu', '--enable-unsafe-
 export const chromiumLaunchOptions = { executablePath: '/usr/bin/chromium', headless: true, args: chromiumFlags };
 
 // Command-line options of the form --name VALUE, for the small scripts: `handlers` maps each option to a function
-// that takes its value. An argument not starting with -- goes to `positional` where the script takes such arguments.
-// Throws on an unknown option, a missing value or an unexpected positional argument, naming `script` for its usage.
+// that takes its value, or, for a flag (--quick), a function of no parameter, which takes none. An argument not
+// starting with -- goes to `positional` where the script takes such arguments. Throws on an unknown option, a missing
+// value or an unexpected positional argument, naming `script` for its usage.
 export function parseOptions(argv, handlers, script, positional = null) {
   for (let i = 0; i < argv.length; ++i) {
     if (positional && !argv[i].startsWith('--')) {
       positional(argv[i]);
       continue;
     }
-    const handler = handlers[argv[i]];
+    const handler = Object.hasOwn(handlers, argv[i]) ? handlers[argv[i]] : null;
     if (!handler) throw new Error(`unknown option ${argv[i]} (see the header of ${script})`);
+    if (handler.length === 0) {
+      handler();
+      continue;
+    }
     if (i + 1 >= argv.length) throw new Error(`${argv[i]} needs a value`);
     handler(argv[++i]);
   }

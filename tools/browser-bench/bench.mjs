@@ -29,7 +29,9 @@ import { chromium } from 'playwright-core';
 import { glbBoundingSphere } from './glb-bounds.mjs';
 import { decodePng } from '../../tests/browser/png.mjs';
 import { startServer } from '../serve-web.mjs';
-import { chromiumFlags, chromiumLaunchOptions, expectFullScale, fixedScaleUrl } from '../headless-chromium.mjs';
+import {
+  chromiumFlags, chromiumLaunchOptions, expectFullScale, fixedScaleUrl, parseOptions,
+} from '../headless-chromium.mjs';
 import { installPassCounter } from './pass-counter.mjs';
 
 const benchDir = path.dirname(fileURLToPath(import.meta.url));
@@ -46,34 +48,24 @@ function parseArgs(argv) {
                     csv: path.join(sourceDir, 'bench-results', 'browser-bench.csv'),
                     shots: path.join(sourceDir, 'build', 'browser-bench') };
   const given = new Set();
-  for (let i = 0; i < argv.length; ++i) {
-    const arg = argv[i];
-    const value = () => {
-      if (i + 1 >= argv.length) throw new Error(`${arg} needs a value`);
-      return argv[++i];
-    };
-    const count = (name) => {
-      const n = Number(value());
-      if (!Number.isInteger(n) || n < 1) throw new Error(`${arg}: a whole number >= 1, please`);
-      options[name] = n;
-      given.add(name);
-    };
-    if (arg === '--frames') count('frames');
-    else if (arg === '--rounds') count('rounds');
-    else if (arg === '--warmup') count('warmup');
-    else if (arg === '--sizes') { options.sizes = value().split(','); given.add('sizes'); }
-    else if (arg === '--extras') { options.extras = true; given.add('extras'); }
-    else if (arg === '--no-extras') { options.extras = false; given.add('extras'); }
-    else if (arg === '--quick') options.quick = true;
-    else if (arg === '--csv') { options.csv = path.resolve(value()); given.add('csv'); }
-    else if (arg === '--shots') options.shots = path.resolve(value());
-    else if (arg === '--help' || arg === '-h') {
-      console.log('usage: bench.mjs [--frames N] [--rounds R] [--warmup W] [--sizes WxH,...] [--quick] ' +
-                  '[--extras | --no-extras] ' +
-                  '[--csv FILE] [--shots DIR]');
-      process.exit(0);
-    } else throw new Error(`unknown option ${arg} (--help lists them)`);
-  }
+  const count = (name) => (text) => {
+    const n = Number(text);
+    if (!Number.isInteger(n) || n < 1) throw new Error(`--${name}: a whole number >= 1, please`);
+    options[name] = n;
+    given.add(name);
+  };
+  const set = (name, value) => { options[name] = value; given.add(name); };
+  parseOptions(argv, {
+    '--frames': count('frames'),
+    '--rounds': count('rounds'),
+    '--warmup': count('warmup'),
+    '--sizes': (v) => set('sizes', v.split(',')),
+    '--extras': () => set('extras', true),
+    '--no-extras': () => set('extras', false),
+    '--quick': () => { options.quick = true; },
+    '--csv': (v) => set('csv', path.resolve(v)),
+    '--shots': (v) => { options.shots = path.resolve(v); },
+  }, path.basename(import.meta.url));
   if (options.quick) {
     // Smoke run: one size, a few frames; the figures are not meant to be read.
     if (!given.has('sizes')) options.sizes = ['640x360'];

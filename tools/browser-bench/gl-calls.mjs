@@ -5,10 +5,15 @@ import path from 'node:path';
 import { fileURLToPath } from 'node:url';
 import { chromium } from 'playwright-core';
 import { startServer } from '../serve-web.mjs';
-import { applyBenchmarkState, chromiumLaunchOptions, countWebGlCalls, parseSize } from '../headless-chromium.mjs';
+import {
+  applyBenchmarkState, chromiumLaunchOptions, countWebGlCalls, parseOptions, parseSize,
+} from '../headless-chromium.mjs';
 
 const root = path.resolve(path.dirname(fileURLToPath(import.meta.url)), '..', '..');
-const [size = '640x360', state = ''] = process.argv.slice(2);
+const positional = [];
+parseOptions(process.argv.slice(2), {}, path.basename(import.meta.url), (a) => positional.push(a));
+if (positional.length > 2) throw new Error('usage: gl-calls.mjs [WxH] [state | every]');
+const [size = '640x360', state = ''] = positional;
 const [width, height] = parseSize(size);
 const server = await startServer(process.env.OBSCURA_WEB_SITE ?? path.join(root, 'build-web', 'site'));
 const browser = await chromium.launch(chromiumLaunchOptions);

@@ -12,10 +12,15 @@ import path from 'node:path';
 import { fileURLToPath } from 'node:url';
 import { chromium } from 'playwright-core';
 import { startServer } from '../serve-web.mjs';
-import { applyBenchmarkState, chromiumLaunchOptions, openDemoPage, parseSize } from '../headless-chromium.mjs';
+import {
+  applyBenchmarkState, chromiumLaunchOptions, openDemoPage, parseOptions, parseSize,
+} from '../headless-chromium.mjs';
 
 const root = path.resolve(path.dirname(fileURLToPath(import.meta.url)), '..', '..');
-const [size = '1280x720', state = '', seconds = '5'] = process.argv.slice(2);
+const positional = [];
+parseOptions(process.argv.slice(2), {}, path.basename(import.meta.url), (a) => positional.push(a));
+if (positional.length > 3) throw new Error('usage: host-profile.mjs [WxH] [state] [seconds]');
+const [size = '1280x720', state = '', seconds = '5'] = positional;
 const [width, height] = parseSize(size);
 const server = await startServer(process.env.OBSCURA_WEB_SITE ?? path.join(root, 'build-web', 'site'), 0, {},
                                  { isolated: true });

@@ -6,11 +6,13 @@ import path from 'node:path';
 import { fileURLToPath } from 'node:url';
 import { chromium } from 'playwright-core';
 import { startServer } from '../serve-web.mjs';
-import { chromiumLaunchOptions, fixedScaleUrl, parseSize } from '../headless-chromium.mjs';
+import { chromiumLaunchOptions, fixedScaleUrl, parseOptions, parseSize } from '../headless-chromium.mjs';
 
 const root = path.resolve(path.dirname(fileURLToPath(import.meta.url)), '..', '..');
 const model = '/usr/share/assimp/models/glTF2/2CylinderEngine-glTF-Binary/2CylinderEngine.glb';
-const [size = '1280x720', ...states] = process.argv.slice(2);
+const positional = [];
+parseOptions(process.argv.slice(2), {}, path.basename(import.meta.url), (a) => positional.push(a));
+const [size = '1280x720', ...states] = positional;
 const [width, height] = parseSize(size);
 const server = await startServer(process.env.OBSCURA_WEB_SITE ?? path.join(root, 'build-web', 'site'));
 const browser = await chromium.launch(chromiumLaunchOptions);
