@@ -1,5 +1,6 @@
 // Per-pass GPU milliseconds of Obscura's page frame on 2CylinderEngine.glb, from EXT_disjoint_timer_query (SwiftShader
 // offers it): where the frame's time goes. Usage: node tools/browser-bench/profile-passes.mjs [WxH] [state ...]
+// Each state is applied over the defaults (AO radius 41.8, the engine's), not over the state before it.
 // A state `@unbatched` draws every instance alone from then on, `@batched` in static batches again (gpu/GpuScene.h).
 import fs from 'node:fs';
 import path from 'node:path';
@@ -26,7 +27,15 @@ for (const state of states.length ? states : ['']) {
   const result = await page.evaluate(async (s) => {
     const o = window.obscura;
     if (s.startsWith('@')) o.setStaticBatches(s === '@batched');
-    o.setState("ao=on&tonemap=on&fxaa=on&radius=41.8");
+    // Every parameter at its default (the presets follow their parameters), the fixed scale kept, then the state:
+    // each state is the defaults plus itself, whatever ran before it.
+    const defaults = new URLSearchParams();
+    for (const p of o.parameters)
+      if (p.name !== 'preset' && !p.name.endsWith('.preset')) defaults.set(p.name, p.default);
+    for (const fixed of ['resolution.dynamic', 'resolution.quick-start'])
+      if (o.parameters.some((p) => p.name === fixed)) defaults.set(fixed, 'off');
+    defaults.set('ao.radius', '41.8');
+    o.setState(defaults.toString());
     if (s && !s.startsWith('@')) o.setState(s);
     const sums = {};
     let n = 0;
