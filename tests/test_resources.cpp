@@ -279,8 +279,9 @@ TEST(Lod, DistantMeshesDrawCoarserLevelsThatLeaveTheImageAsItWas) {
   addDetailLevels(scene);  // as the loaders do
   ASSERT_FALSE(scene.meshes[0].levels.empty());
   renderer.setScene(scene);
-  RenderSettings lod, fullDetail;  // fullDetail: the default
+  RenderSettings lod, fullDetail;
   lod.set("gbuffer.lod", "0.5");
+  fullDetail.set("gbuffer.lod", "0");
   auto drawn = [&](const Camera& camera, const RenderSettings& settings) {
     test::render(renderer, camera, settings, View::Final);
     return renderer.gpuScene().lastDrawCounts();
@@ -318,12 +319,15 @@ TEST(Lod, DistantMeshesDrawCoarserLevelsThatLeaveTheImageAsItWas) {
   EXPECT_EQ(drawn(far, lod).triangles, static_cast<long>(everyOther.indices.size() / 3));
   renderer.setScene(test::sceneOf({sphere}));
   EXPECT_EQ(drawn(far, lod).triangles, full);
-  // The frame's preset low takes half a pixel; the others full detail.
+  // The frame's preset low takes half a pixel, medium (the default) a third, high and ultra full detail.
   RenderSettings low;
+  EXPECT_EQ(low.get("gbuffer.lod"), "0.35");
   low.set("preset", "low");
   EXPECT_EQ(low.get("gbuffer.lod"), "0.5");
   EXPECT_EQ(low.get("gbuffer.preset"), "low");
   low.set("preset", "medium");
+  EXPECT_EQ(low.get("gbuffer.lod"), "0.35");
+  low.set("preset", "high");
   EXPECT_EQ(low.get("gbuffer.lod"), "0");
 }
 

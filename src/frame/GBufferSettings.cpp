@@ -5,7 +5,8 @@ namespace obscura {
 const std::vector<Parameter<GBufferSettings>>& GBufferSettings::parameters() {
   using S = GBufferSettings;
   static const std::vector<Parameter<S>> table = {
-      presetParameter<S>("quality preset: the level of detail (low: gbuffer.lod 0.5, the others: 0, full detail)",
+      presetParameter<S>("quality preset: the level of detail (low: gbuffer.lod 0.5, medium: 0.35, high and ultra: 0, "
+                         "full detail)",
                          false),  // it sets a number the passes read each frame
       choiceParameter<S, GBufferNormals>(
           "normals", "the AO's surface normal: the G-buffer's, or reconstructed from its depth (docs/accuracy.md)",
@@ -19,7 +20,13 @@ const std::vector<Parameter<GBufferSettings>>& GBufferSettings::parameters() {
 }
 
 namespace {
-float lodOf(QualityPreset preset) { return preset == QualityPreset::Low ? GBufferSettings::kLowPresetLod : 0.0f; }
+float lodOf(QualityPreset preset) {
+  switch (preset) {
+    case QualityPreset::Low: return GBufferSettings::kLowPresetLod;
+    case QualityPreset::Medium: return GBufferSettings::kMediumPresetLod;
+    default: return 0.0f;
+  }
+}
 }  // namespace
 
 void GBufferSettings::applyPreset(QualityPreset which) {

@@ -17,15 +17,17 @@ enum class GBufferNormals {
 struct GBufferSettings : ParameterAccess<GBufferSettings> {
   GBufferNormals normals = GBufferNormals::Stored;
   // Level of detail (scene/MeshDetail.h): the largest error, in pixels of the frame, of the simplified meshes every
-  // geometry pass draws; 0 draws each mesh in full. Full detail by default: half a pixel leaves the image within
-  // 0.1 % (MAE) of the full one, but moves thin features' edges enough to cost the AO accuracy against the ray-traced
-  // reference (docs/benchmarks.md, "Levels of detail"); `preset low` takes it.
-  float lod = 0.0f;
+  // geometry pass draws; 0 draws each mesh in full. The presets (docs/benchmarks.md, "Levels of detail"): medium, the
+  // default, a third of a pixel (kMediumPresetLod), where the AO against the ray-traced reference is still the full
+  // meshes' (MAE +0.0001 over the 72 tuning cases; at half a pixel +0.0008, the thin features' edges moving) and
+  // 2CylinderEngine draws 55 % of its triangles at 640x360; low half a pixel (kLowPresetLod); high and ultra full
+  // detail.
+  float lod = kMediumPresetLod;
   QualityPreset preset = QualityPreset::Medium;  // the frame preset `lod` came from (applyPreset)
 
   static const std::vector<Parameter<GBufferSettings>>& parameters();
-  // The frame's preset: low draws the levels within half a pixel (kLowPresetLod), the others full detail.
   static constexpr float kLowPresetLod = 0.5f;
+  static constexpr float kMediumPresetLod = 0.35f;
   void applyPreset(QualityPreset which);
   bool matchesPreset(QualityPreset which) const;
   void validate() const { validateParameters("G-buffer"); }
