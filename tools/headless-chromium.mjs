@@ -29,6 +29,15 @@ export function parseOptions(argv, handlers, script, positional = null) {
   }
 }
 
+// The positional arguments of a script that takes no options (at most `most` of them), through parseOptions: a
+// mistyped --option fails instead of being read as an argument.
+export function parsePositional(argv, script, most) {
+  const positional = [];
+  parseOptions(argv, {}, script, (a) => positional.push(a));
+  if (positional.length > most) throw new Error(`${script}: at most ${most} arguments (see its header)`);
+  return positional;
+}
+
 // The scripts' figures: the median of the readings; a size ("640x360") as [width, height], and a --sizes list
 // ("640x360,1280x720") as such pairs.
 export function median(values) {

@@ -6,14 +6,11 @@ import { fileURLToPath } from 'node:url';
 import { chromium } from 'playwright-core';
 import { startServer } from '../serve-web.mjs';
 import {
-  applyBenchmarkState, chromiumLaunchOptions, countWebGlCalls, parseOptions, parseSize,
+  applyBenchmarkState, chromiumLaunchOptions, countWebGlCalls, parsePositional, parseSize,
 } from '../headless-chromium.mjs';
 
 const root = path.resolve(path.dirname(fileURLToPath(import.meta.url)), '..', '..');
-const positional = [];
-parseOptions(process.argv.slice(2), {}, path.basename(import.meta.url), (a) => positional.push(a));
-if (positional.length > 2) throw new Error('usage: gl-calls.mjs [WxH] [state | every]');
-const [size = '640x360', state = ''] = positional;
+const [size = '640x360', state = ''] = parsePositional(process.argv.slice(2), path.basename(import.meta.url), 2);
 const [width, height] = parseSize(size);
 const server = await startServer(process.env.OBSCURA_WEB_SITE ?? path.join(root, 'build-web', 'site'));
 const browser = await chromium.launch(chromiumLaunchOptions);

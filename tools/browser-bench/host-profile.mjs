@@ -13,14 +13,12 @@ import { fileURLToPath } from 'node:url';
 import { chromium } from 'playwright-core';
 import { startServer } from '../serve-web.mjs';
 import {
-  applyBenchmarkState, chromiumLaunchOptions, openDemoPage, parseOptions, parseSize,
+  applyBenchmarkState, chromiumLaunchOptions, openDemoPage, parsePositional, parseSize,
 } from '../headless-chromium.mjs';
 
 const root = path.resolve(path.dirname(fileURLToPath(import.meta.url)), '..', '..');
-const positional = [];
-parseOptions(process.argv.slice(2), {}, path.basename(import.meta.url), (a) => positional.push(a));
-if (positional.length > 3) throw new Error('usage: host-profile.mjs [WxH] [state] [seconds]');
-const [size = '1280x720', state = '', seconds = '5'] = positional;
+const [size = '1280x720', state = '', seconds = '5'] =
+  parsePositional(process.argv.slice(2), path.basename(import.meta.url), 3);
 const [width, height] = parseSize(size);
 const server = await startServer(process.env.OBSCURA_WEB_SITE ?? path.join(root, 'build-web', 'site'), 0, {},
                                  { isolated: true });

@@ -7,13 +7,13 @@ import path from 'node:path';
 import { fileURLToPath } from 'node:url';
 import { chromium } from 'playwright-core';
 import { startServer } from '../serve-web.mjs';
-import { chromiumLaunchOptions, fixedScaleUrl, parseOptions, parseSize } from '../headless-chromium.mjs';
+import {
+  applyBenchmarkState, chromiumLaunchOptions, fixedScaleUrl, parsePositional, parseSize,
+} from '../headless-chromium.mjs';
 
 const root = path.resolve(path.dirname(fileURLToPath(import.meta.url)), '..', '..');
 const model = '/usr/share/assimp/models/glTF2/2CylinderEngine-glTF-Binary/2CylinderEngine.glb';
-const positional = [];
-parseOptions(process.argv.slice(2), {}, path.basename(import.meta.url), (a) => positional.push(a));
-const [size = '1280x720', ...states] = positional;
+const [size = '1280x720', ...states] = parsePositional(process.argv.slice(2), path.basename(import.meta.url), Infinity);
 const [width, height] = parseSize(size);
 const server = await startServer(process.env.OBSCURA_WEB_SITE ?? path.join(root, 'build-web', 'site'));
 const browser = await chromium.launch(chromiumLaunchOptions);
@@ -24,19 +24,11 @@ await page.addStyleTag({ content: '#panel { display: none !important; }' });
 const bytes = [...fs.readFileSync(model)];
 await page.evaluate(async (data) => { await window.obscura.loadScene(new Uint8Array(data), 'engine.glb'); }, bytes);
 for (const state of states.length ? states : ['']) {
+  // The defaults (every parameter; the engine's AO radius), then the state: whatever ran before it.
+  await page.evaluate(applyBenchmarkState, `${state.startsWith('@') ? '' : state}&ao.radius=41.8`);
   const result = await page.evaluate(async (s) => {
     const o = window.obscura;
     if (s.startsWith('@')) o.setStaticBatches(s === '@batched');
-    // Every parameter at its default (the presets follow their parameters), the fixed scale kept, then the state:
-    // each state is the defaults plus itself, whatever ran before it.
-    const defaults = new URLSearchParams();
-    for (const p of o.parameters)
-      if (p.name !== 'preset' && !p.name.endsWith('.preset')) defaults.set(p.name, p.default);
-    for (const fixed of ['resolution.dynamic', 'resolution.quick-start'])
-      if (o.parameters.some((p) => p.name === fixed)) defaults.set(fixed, 'off');
-    defaults.set('ao.radius', '41.8');
-    o.setState(defaults.toString());
-    if (s && !s.startsWith('@')) o.setState(s);
     const sums = {};
     let n = 0;
     o.setContinuous(true);
