@@ -73,6 +73,8 @@ struct FrameContext {
   // The output framebuffer has a depth buffer of its own (the CLI's, the window's and the canvas's: platform/): a
   // pass that depth-tests, the forward lighting, may then draw straight into it when it is the frame's last.
   bool outputDepth = false;
+  // And a stencil buffer (FXAA's pass over the output skips the pixels with no edge by it).
+  bool outputStencil = false;
   bool upscaled() const { return outputWidth != camera.width || outputHeight != camera.height; }
 };
 

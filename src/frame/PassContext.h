@@ -80,8 +80,9 @@ class PassContext {
   }
   // For a pass whose result where nothing was drawn is one known value (the AO's white): clears `target`, bound for
   // writing, to `outside`, and scissors the pass's draws to the pixels the scene may cover (GpuScene::coveredRect,
-  // mapped to the target's size, widened by a pixel). A CPU rasteriser pays a full-screen pass's arithmetic at every
-  // pixel, the background's too: a branch runs both its sides (docs/benchmarks.md, issue 26).
+  // mapped to the target's size, widened by a pixel); neither where the scene may cover every pixel. A CPU
+  // rasteriser pays a full-screen pass's arithmetic at every pixel, the background's too: a branch runs both its
+  // sides (docs/benchmarks.md, issue 26).
   void limitToScene(const std::string& target, const glm::vec4& outside) const;
   // The pixels of `target` the scene may cover: FrameContext::sceneBounds mapped to the target's size and widened by
   // a pixel, within the output's region where `target` is the output; x, y, width, height in GL window coordinates.
@@ -117,8 +118,11 @@ class PassContext {
   const TargetVersion& writeVersion(const std::string& target) const;
   // `rect` clipped to the output's region where `target` is the output.
   glm::ivec4 withinOutputRegion(const std::string& target, const glm::ivec4& rect) const;
-  // Scissors this pass's draws into `target` to `rect` (within the output's region) until finish().
+  // Scissors this pass's draws into `target` to `rect` (within the output's region) until finish(); where that is
+  // all of the target, turns the test off instead.
   void scissor(const std::string& target, const glm::ivec4& rect) const;
+  // Whether `rect` holds every pixel of `target`.
+  bool coversTarget(const std::string& target, const glm::ivec4& rect) const;
 
   const FramePlan& plan_;
   int pass_;

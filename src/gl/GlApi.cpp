@@ -1,15 +1,17 @@
 #include "gl/GlApi.h"
 
 #if !OBSCURA_GL_DIRECT
-namespace obscura::gles {
+namespace obscura::gl::raw {
 #define OBSCURA_GL_FN(type, name) type name = nullptr;
+#define OBSCURA_GL_CACHED_FN(type, name) type name = nullptr;
 #include "gl/GlFunctionList.inl"
 #undef OBSCURA_GL_FN
+#undef OBSCURA_GL_CACHED_FN
 PFNGLDRAWBUFFERSEXTPROC glDrawBuffersEXT = nullptr;
 PFNGLGENVERTEXARRAYSOESPROC glGenVertexArraysOES = nullptr;
 PFNGLDELETEVERTEXARRAYSOESPROC glDeleteVertexArraysOES = nullptr;
 PFNGLBINDVERTEXARRAYOESPROC glBindVertexArrayOES = nullptr;
-}  // namespace obscura::gles
+}  // namespace obscura::gl::raw
 
 namespace {
 // Both spellings of the vertex array entry points, as loaded; selectVertexArrayEntryPoints picks one set.
@@ -30,14 +32,16 @@ bool loadGles2([[maybe_unused]] ProcLoader loader, [[maybe_unused]] std::string*
   return true;
 #else
 #define OBSCURA_GL_FN(type, name)                                 \
-  gles::name = reinterpret_cast<type>(loader(#name));             \
-  if (!gles::name) {                                              \
+  raw::name = reinterpret_cast<type>(loader(#name));              \
+  if (!raw::name) {                                               \
     if (missing) *missing = #name;                                \
     return false;                                                 \
   }
+#define OBSCURA_GL_CACHED_FN OBSCURA_GL_FN
 #include "gl/GlFunctionList.inl"
 #undef OBSCURA_GL_FN
-  gles::glDrawBuffersEXT = reinterpret_cast<PFNGLDRAWBUFFERSEXTPROC>(loader("glDrawBuffersEXT"));
+#undef OBSCURA_GL_CACHED_FN
+  raw::glDrawBuffersEXT = reinterpret_cast<PFNGLDRAWBUFFERSEXTPROC>(loader("glDrawBuffersEXT"));
   g_oesVertexArrays = {reinterpret_cast<PFNGLGENVERTEXARRAYSOESPROC>(loader("glGenVertexArraysOES")),
                        reinterpret_cast<PFNGLDELETEVERTEXARRAYSOESPROC>(loader("glDeleteVertexArraysOES")),
                        reinterpret_cast<PFNGLBINDVERTEXARRAYOESPROC>(loader("glBindVertexArrayOES"))};
@@ -54,9 +58,9 @@ bool selectVertexArrayEntryPoints([[maybe_unused]] bool desktopGl) {
   return true;
 #else
   const VertexArrayEntryPoints& chosen = desktopGl ? g_coreVertexArrays : g_oesVertexArrays;
-  gles::glGenVertexArraysOES = chosen.gen;
-  gles::glDeleteVertexArraysOES = chosen.del;
-  gles::glBindVertexArrayOES = chosen.bind;
+  raw::glGenVertexArraysOES = chosen.gen;
+  raw::glDeleteVertexArraysOES = chosen.del;
+  raw::glBindVertexArrayOES = chosen.bind;
   return chosen.complete();
 #endif
 }

@@ -54,7 +54,7 @@ GlCaps GlCaps::query() {
 #if OBSCURA_GL_DIRECT
   const bool entryPoint = true;  // linked from Emscripten's GL library
 #else
-  const bool entryPoint = glDrawBuffersEXT != nullptr;
+  const bool entryPoint = raw::glDrawBuffersEXT != nullptr;
 #endif
   caps.drawBuffers = (caps.has("GL_EXT_draw_buffers") || caps.has("GL_WEBGL_draw_buffers")) && entryPoint;
   if (caps.drawBuffers) glGetIntegerv(GL_MAX_DRAW_BUFFERS_EXT, &caps.maxDrawBuffers);

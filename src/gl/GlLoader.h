@@ -11,10 +11,10 @@ using ProcLoader = void* (*)(const char* name);
 // context lacks one. On the web (direct linking) this is a no-op.
 bool loadGles2(ProcLoader loader, std::string* missing);
 
-// Points the OES_vertex_array_object names of the dispatch table (gles::glBindVertexArrayOES, ...) at the entry points
-// the current context's kind has: the OES ones on GLES 2, the core ones (glBindVertexArray) on a desktop context,
-// whose dispatch may hand out a stub for an OES name it does not implement. True where all three loaded (always on
-// the web, where Emscripten links them). GlCaps::query calls it once it knows the context's kind.
+// Points the OES_vertex_array_object names of the dispatch table (gl::raw::glBindVertexArrayOES, ...) at the entry
+// points the current context's kind has: the OES ones on GLES 2, the core ones (glBindVertexArray) on a desktop
+// context, whose dispatch may hand out a stub for an OES name it does not implement. True where all three loaded
+// (always on the web, where Emscripten links them). GlCaps::query calls it once it knows the context's kind.
 bool selectVertexArrayEntryPoints(bool desktopGl);
 
 }  // namespace obscura::gl

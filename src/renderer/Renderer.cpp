@@ -220,6 +220,8 @@ void Renderer::dropHistory() {
 
 void Renderer::checkErrors(const std::string& after) const {
   if (!options_.checkGlErrors) return;
+  // The bindings the pass left to the cache (gl/BindingCache.h) made first: an error they raise is the pass's.
+  gl::bindings::make(gl::kUsesAll);
   const GLenum error = glGetError();
   if (error != GL_NO_ERROR) {
     char code[16];
@@ -241,18 +243,20 @@ bool Renderer::jitters(const RenderSettings& settings) {
   return false;
 }
 
-bool Renderer::outputHasDepth(const OutputTarget& output) {
+const Renderer::OutputBuffers& Renderer::outputBuffers(const OutputTarget& output) {
   const glm::ivec2 size(output.width, output.height);
-  if (!outputDepth_.known || outputDepth_.framebuffer != output.framebuffer || outputDepth_.size != size) {
+  OutputBuffers& known = outputBuffers_;
+  if (!known.known || known.framebuffer != output.framebuffer || known.size != size) {
     GLint bound = 0;
     glGetIntegerv(GL_FRAMEBUFFER_BINDING, &bound);
     glBindFramebuffer(GL_FRAMEBUFFER, output.framebuffer);
-    GLint bits = 0;
-    glGetIntegerv(GL_DEPTH_BITS, &bits);
+    GLint depthBits = 0, stencilBits = 0;
+    glGetIntegerv(GL_DEPTH_BITS, &depthBits);
+    glGetIntegerv(GL_STENCIL_BITS, &stencilBits);
     glBindFramebuffer(GL_FRAMEBUFFER, static_cast<GLuint>(bound));
-    outputDepth_ = {output.framebuffer, size, true, bits > 0};
+    known = {output.framebuffer, size, true, depthBits > 0, stencilBits > 0};
   }
-  return outputDepth_.depth;
+  return known;
 }
 
 FrameContext Renderer::sceneFrame(const OutputTarget& output) {
@@ -263,7 +267,9 @@ FrameContext Renderer::sceneFrame(const OutputTarget& output) {
   frame.forwardLighting = scene_.needsForwardLighting();
   frame.outputWidth = output.width;
   frame.outputHeight = output.height;
-  frame.outputDepth = outputHasDepth(output);
+  const OutputBuffers& buffers = outputBuffers(output);
+  frame.outputDepth = buffers.depth;
+  frame.outputStencil = buffers.stencil;
   return frame;
 }
 
@@ -527,6 +533,7 @@ void Renderer::warmPasses(const RenderSettings& settings, bool upscaled) {
 size_t Renderer::prepare(const Camera& camera, const RenderSettings& settings, const OutputTarget& output,
                          const FrameOptions& options) {
   settings.validate();
+  const gl::DeferredBindings deferredBindings;
   const glm::ivec2 size = frameSize(settings, output, options);
   const std::optional<RenderSettings> cheap = cheapFrameSettings(settings, View::Final, options);
   const RenderSettings& drawn = cheap ? *cheap : settings;
@@ -597,6 +604,8 @@ void Renderer::render(const Camera& camera, const RenderSettings& settings, cons
                       const OutputTarget& output, const FrameOptions& options) {
   checkErrors("");  // an error the application left pending is reported as such, not blamed on a pass
   settings.validate();
+  // The frame's bindings made only where a call needs them (gl/BindingCache.h); all of them made on return.
+  const gl::DeferredBindings deferredBindings;
   const glm::ivec2 size = frameSize(settings, output, options);
   // Quick start: the cheap frame, and after the first the next passes of the full one warmed.
   if (const std::optional<RenderSettings> cheap = cheapFrameSettings(settings, view, options)) {

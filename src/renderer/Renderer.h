@@ -300,13 +300,15 @@ class Renderer {
   static constexpr size_t kShapingIds = 1024;
   std::map<std::vector<std::string>, std::uint64_t> shapingIds_;
   gl::FramebufferHandle externalGBufferSource_;  // reads the caller's G-buffer texture (importGBuffer)
-  // Whether the output framebuffer has a depth buffer (GL_DEPTH_BITS), asked once per framebuffer and size.
-  struct OutputDepth {
+  // Whether the output framebuffer has a depth buffer and a stencil buffer (GL_DEPTH_BITS, GL_STENCIL_BITS), asked
+  // once per framebuffer and size: a query makes the bindings the cache held back (gl/BindingCache.h), and on the
+  // web may wait for the GPU process.
+  struct OutputBuffers {
     GLuint framebuffer = 0;
     glm::ivec2 size{0, 0};
-    bool known = false, depth = false;
-  } outputDepth_;
-  bool outputHasDepth(const OutputTarget& output);
+    bool known = false, depth = false, stencil = false;
+  } outputBuffers_;
+  const OutputBuffers& outputBuffers(const OutputTarget& output);
 
   // History: what the next frame's context calls "previous".
   FrameContext frame_;

@@ -219,9 +219,9 @@ std::function<void(PassContext&)> FxaaEffect::run(ProgramSpec full, ProgramSpec 
     // bilinearly, with no geometric edge to antialias: they are copied (upscaled) as they are, and FXAA runs within
     // the bounds, whose margin holds every pixel next to the scene's edges that FXAA moves.
     context.drawAroundScene(output, [&] { draw(passThrough); });
-    GLint stencilBits = 0;
-    glGetIntegerv(GL_STENCIL_BITS, &stencilBits);
-    if (stencilBits > 0 && resources_.options.allowFxaaStencil) {
+    // Only the output has a stencil buffer: the pooled display colour has no depth (the plan above).
+    const bool stencil = context.writesOutput(output) && context.frame().outputStencil;
+    if (stencil && resources_.options.allowFxaaStencil) {
       // Stencil 1 everywhere (within the output's region: the clear is scissored like the draws); the classifying
       // draw sets 0 where it writes, and discards the edge pixels, which keep 1.
       glEnable(GL_STENCIL_TEST);
