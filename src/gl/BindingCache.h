@@ -37,11 +37,12 @@ enum BindingUse : unsigned {
 
 namespace detail {
 // Calls that depend on none of the cached bindings: per-frame state of the framebuffer, rasteriser and blending, and
-// names made. A call missing from these lists counts as kUsesAll, which is always correct.
+// names made. A call missing from these lists counts as kUsesAll, which is always correct: glGetError among them, so
+// that an error a held-back binding raises is reported where it is asked for.
 inline constexpr std::string_view kCallsUsingNone[] = {
     "glBindFramebuffer", "glBindRenderbuffer", "glBlendColor", "glBlendEquation", "glBlendEquationSeparate",
     "glBlendFunc", "glBlendFuncSeparate", "glClear", "glClearColor", "glClearDepthf", "glClearStencil", "glColorMask",
-    "glCullFace", "glDepthFunc", "glDepthMask", "glDepthRangef", "glDisable", "glEnable", "glFrontFace", "glGetError",
+    "glCullFace", "glDepthFunc", "glDepthMask", "glDepthRangef", "glDisable", "glEnable", "glFrontFace",
     "glHint", "glLineWidth", "glPixelStorei", "glPolygonOffset", "glSampleCoverage", "glScissor", "glStencilFunc",
     "glStencilFuncSeparate", "glStencilMask", "glStencilMaskSeparate", "glStencilOp", "glStencilOpSeparate",
     "glGenBuffers", "glGenFramebuffers", "glGenRenderbuffers", "glGenTextures", "glGenVertexArraysOES",

@@ -220,8 +220,6 @@ void Renderer::dropHistory() {
 
 void Renderer::checkErrors(const std::string& after) const {
   if (!options_.checkGlErrors) return;
-  // The bindings the pass left to the cache (gl/BindingCache.h) made first: an error they raise is the pass's.
-  gl::bindings::make(gl::kUsesAll);
   const GLenum error = glGetError();
   if (error != GL_NO_ERROR) {
     char code[16];

@@ -219,7 +219,9 @@ std::function<void(PassContext&)> FxaaEffect::run(ProgramSpec full, ProgramSpec 
     // bilinearly, with no geometric edge to antialias: they are copied (upscaled) as they are, and FXAA runs within
     // the bounds, whose margin holds every pixel next to the scene's edges that FXAA moves.
     context.drawAroundScene(output, [&] { draw(passThrough); });
-    // Only the output has a stencil buffer: the pooled display colour has no depth (the plan above).
+    // Only the output has a stencil buffer: the pooled display colour has no depth (the plan above). The quick
+    // start's small output has none even so; there the stencil test passes everywhere (GLES 2.0 sec. 4.1.5) and the
+    // full draw covers the classifying one, which warms both programs.
     const bool stencil = context.writesOutput(output) && context.frame().outputStencil;
     if (stencil && resources_.options.allowFxaaStencil) {
       // Stencil 1 everywhere (within the output's region: the clear is scissored like the draws); the classifying
