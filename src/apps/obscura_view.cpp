@@ -18,6 +18,7 @@
 #include <GLFW/glfw3.h>
 
 #include "base/Error.h"
+#include "frame/Resolution.h"
 #include "gl/RenderTarget.h"
 #include "platform/GlfwWindow.h"
 #include "platform/GpuPassTimer.h"
@@ -278,7 +279,8 @@ int run(const Options& options) {
     int width = 0, height = 0;
     glfwGetFramebufferSize(window.handle(), &width, &height);
     if (width > 0 && height > 0) {  // 0 x 0 while minimised
-      timer.beginFrame(viewer.dynamicResolution().scale());
+      timer.beginFrame(viewer.dynamicResolution().scale(),
+                       viewer.state().settings.of<ResolutionSettings>().dynamic);
       viewer.render(0, width, height, timer.available() ? &timer : nullptr, glfwGetTime());
       timer.endFrame();
       lastScale = viewer.renderScale();

@@ -284,7 +284,9 @@ class WebApp {
     // Without timer queries, dynamic resolution measures the interval from the last frame to this one, when the two
     // were drawn back to back (the last frame's cost, drawing and presenting).
     if (!timer && lastFrameTime_ > 0.0) viewer_.frameMeasured(timeMs - lastFrameTime_, lastScale_);
-    if (timer) timer->beginFrame(settings().of<ResolutionSettings>().dynamic ? nextScale() : 1.0);
+    // The first frame after a pause is measured: a still view draws a change in a frame or a few.
+    const bool dynamic = settings().of<ResolutionSettings>().dynamic;
+    if (timer) timer->beginFrame(dynamic ? nextScale() : 1.0, dynamic || lastFrameTime_ == 0.0);
     const double start = emscripten_get_now();
     const bool drawn = draw(timer);
     lastScale_ = viewer_.renderScale();

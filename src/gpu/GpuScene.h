@@ -256,6 +256,7 @@ class GpuScene {
     bool mirrored = false;
     gl::TextureHandle texture;                      // the joint texture path
     glm::vec3 textureSize{0.0f};                    // width, height, texels per palette
+    bool uploaded = false;                          // the texture holds `joints` and `previousJoints`
   };
 
   // A static batch as drawn: an instance at the identity whose one piece holds its members in world space.

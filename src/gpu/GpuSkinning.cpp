@@ -82,13 +82,17 @@ std::vector<bool> GpuScene::poseSkins(const ScenePose& current, const ScenePose&
   for (size_t s = 0; s < skins_.size(); ++s) {
     SkinGpu& skin = skins_[s];
     if (current.skinJoints[s].empty()) continue;
+    // A pose that stands still (a paused or unanimated skin) leaves the texture as it is: each upload costs a browser
+    // the conversion of every texel.
+    const bool same = skin.joints == current.skinJoints[s] && skin.previousJoints == previous.skinJoints[s];
     skin.joints = current.skinJoints[s];
     skin.previousJoints = previous.skinJoints[s];
     skinMoving[s] = skin.joints != skin.previousJoints;
     int mirroring = 0;
     for (const glm::mat4& m : skin.joints) mirroring += glm::determinant(glm::mat3(m)) < 0.0f ? 1 : -1;
     skin.mirrored = mirroring > 0;
-    if (!skin.texture) continue;
+    if (!skin.texture || (skin.uploaded && same)) continue;
+    skin.uploaded = true;
     const auto texels = static_cast<size_t>(skin.textureSize.x * skin.textureSize.y);
     std::vector<float> data;
     data.reserve(texels * 4);

@@ -85,7 +85,7 @@ bool GpuPassTimer::collect(Frame& frame) {
 }
 
 void GpuPassTimer::collectResults() {
-  if (!available_) return;
+  if (!available_ || std::none_of(frames_.begin(), frames_.end(), [](const Frame& f) { return f.pending; })) return;
   // Reading GPU_DISJOINT_EXT also clears it; a disjoint event makes every result in flight meaningless.
   GLint disjoint = 0;
   glGetIntegerv(GL_GPU_DISJOINT_EXT, &disjoint);
@@ -97,13 +97,16 @@ void GpuPassTimer::collectResults() {
   }
 }
 
-void GpuPassTimer::beginFrame(double tag) {
+void GpuPassTimer::beginFrame(double tag, bool measure) {
   recording_ = false;
   if (!available_) return;
   collectResults();
-  current_ = (current_ + 1) % kFramesInFlight;
+  if (++unmeasured_ < kMeasureEvery && !measure) return;
+  const int next = (current_ + 1) % kFramesInFlight;
+  if (frames_[static_cast<size_t>(next)].pending) return;  // its results have not come back: the next frame tries
+  current_ = next;
+  unmeasured_ = 0;
   Frame& frame = frames_[static_cast<size_t>(current_)];
-  if (frame.pending) return;  // results of this slot have not come back yet: skip measuring this frame
   frame.used.assign(frame.used.size(), false);
   frame.tag = tag;
   recording_ = true;

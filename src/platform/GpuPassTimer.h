@@ -18,6 +18,10 @@ namespace obscura {
 class GpuPassTimer : public PassTimer {
  public:
   static constexpr int kFramesInFlight = 4;
+  // A measured frame costs a WebGL call at each end of every pass and two per pass to read it back (on the page's
+  // default frame about a sixth of the render call's host time in Chromium, docs/benchmarks.md, "Host time per
+  // frame"): the stats show times a few times a second, so one drawn frame in four is measured.
+  static constexpr int kMeasureEvery = 4;
 
   // `loader` resolves the extension's entry points in the current context (glfwGetProcAddress on the desktop,
   // emscripten_webgl1_get_proc_address on the web).
@@ -31,9 +35,11 @@ class GpuPassTimer : public PassTimer {
   // Reads the results that have come back (oldest frame first). A viewer that skips drawing while nothing changes
   // calls it on every tick anyway, so the last drawn frame's times still arrive.
   void collectResults();
-  // Around each drawn frame: beginFrame() collects results, then measures the frame's passes if its query slot is
-  // free again. `tag` comes back with the frame's results (lastResultTag: the render scale it was drawn at).
-  void beginFrame(double tag = 0.0);
+  // Around each drawn frame: beginFrame() collects results, then measures the frame's passes if kMeasureEvery frames
+  // have begun since the last measured one, or if `measure` says so (dynamic resolution steers by every frame's time;
+  // the page measures the first frame after a pause, so that the stats show what a change did), and if its query slot
+  // is free again. `tag` comes back with the frame's results (lastResultTag: the render scale it was drawn at).
+  void beginFrame(double tag = 0.0, bool measure = false);
   void endFrame();
   // A pass that runs twice in one frame (split screen runs the frame twice) is measured the first time.
   void begin(const std::string& pass) override;
@@ -63,6 +69,7 @@ class GpuPassTimer : public PassTimer {
   std::vector<Frame> frames_;
   int current_ = 0;  // the slot of the frame being recorded
   bool recording_ = false;
+  int unmeasured_ = kMeasureEvery - 1;  // frames begun since the last measured one (the first frame is measured)
   int measuring_ = -1;  // the pass whose query is open
   bool hasResult_ = false;
   std::vector<double> lastResult_;

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cstdio>
+#include <utility>
 
 #include "base/Error.h"
 #include "base/TimeSpent.h"
@@ -313,10 +314,13 @@ void Renderer::beginFrame(const Camera& camera, const RenderSettings& settings, 
   // The scene's pose now and at the previous time (the last frame's pose when that is the one asked for).
   if (options.timer) options.timer->begin("pose");
   const PoseOptions poseOptions{options.animation, options.loop};
-  const ScenePose current = evaluatePose(sceneData_, time, poseOptions);
+  ScenePose current = evaluatePose(sceneData_, time, poseOptions);
   const bool reuse = hasPrevious_ && !lastPose_.instanceWorld.empty() && frame_.previousTime == previousTime_ &&
                      poseOptions.animation == lastPoseOptions_.animation && poseOptions.loop == lastPoseOptions_.loop;
-  const ScenePose previous = reuse ? lastPose_ : evaluatePose(sceneData_, frame_.previousTime, poseOptions);
+  // The last frame's pose by reference (not copied: it is kept until `current` replaces it at the end).
+  ScenePose evaluatedPrevious;
+  if (!reuse) evaluatedPrevious = evaluatePose(sceneData_, frame_.previousTime, poseOptions);
+  const ScenePose& previous = reuse ? lastPose_ : evaluatedPrevious;
   scene_.setPose(current, previous);
   // The camera, where the pose puts a scene camera; the previous one is the previous frame's, or where the pose put
   // the scene camera at the previous time (the same when frames follow one another; the CLI's single frame has
@@ -342,7 +346,7 @@ void Renderer::beginFrame(const Camera& camera, const RenderSettings& settings, 
         size.y, glm::vec2(0.0f), glm::vec2(0.0f), aspect);
   else
     frame_.previousCamera = hasPrevious_ ? previousCamera_ : frame_.camera;
-  lastPose_ = current;
+  lastPose_ = std::move(current);
   lastPoseOptions_ = poseOptions;
   if (options.timer) options.timer->end("pose");
   checkErrors("pose");
