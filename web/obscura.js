@@ -411,8 +411,9 @@ export class Obscura extends EventTarget {
   //  frames drawn back to back, smoothed; 0 until there were such frames), cpuMs (time in the renderer, smoothed),
   //  lastCpuMs (time in the renderer of the last drawn frame), hostMs and lastHostMs (the same for the render call
   //  alone: the renderer's host time, without the page's canvas work), frames (drawn so far), timerQueries
-  //  (EXT_disjoint_timer_query in use), passMs ({gbuffer: ms, ...} of a recent frame, read a few animation frames
-  //  after it, drawn or not; null per pass not run; null without timer queries or before the first result),
+  //  (EXT_disjoint_timer_query in use), passMs ({gbuffer: ms, ...} of a recent measured frame (one drawn frame in
+  //  four: README, "Timer queries"), read a few animation frames after it, drawn or not; null per pass not run; null
+  //  without timer queries or before the first result),
   //  passesRun (the passes the last frame ran, in order), passesDoneBy ({tonemap: 'lighting'}: passes whose work
   //  another pass did in the last frame, so they did not run and have no time of their own), history ({frames:
   //  consecutive frames the history survived, drops: how often it was dropped (resize, scene change, a new render

@@ -156,7 +156,8 @@ export interface Stats {
   /** The last frame was quick start's cheap one (resolution.quick-start): the full frame follows by itself. */
   cheapFrame: boolean;
   timerQueries: boolean;
-  /** GPU milliseconds per pass of a recent frame (null: the pass did not run), or null without timer queries. */
+  /** GPU milliseconds per pass of a recent measured frame (one drawn frame in four, every frame under dynamic
+   *  resolution, and the first after a pause; null: the pass did not run), or null without timer queries. */
   passMs: Record<string, number | null> | null;
   passesRun: string[];
   /** Passes whose work another pass did: {tonemap: 'lighting'}. */
