@@ -19,8 +19,8 @@ class GpuPassTimer : public PassTimer {
  public:
   static constexpr int kFramesInFlight = 4;
   // A measured frame costs a WebGL call at each end of every pass and two per pass to read it back (on the page's
-  // default frame about a sixth of the render call's host time in Chromium, docs/benchmarks.md, "Host time per
-  // frame"): the stats show times a few times a second, so one drawn frame in four is measured.
+  // default frame about a sixth of the render call's host time in Chromium: docs/benchmarks.md, "The timer
+  // sampled"): the stats show times a few times a second, so one drawn frame in four is measured.
   static constexpr int kMeasureEvery = 4;
 
   // `loader` resolves the extension's entry points in the current context (glfwGetProcAddress on the desktop,
