@@ -240,17 +240,10 @@ TEST(Limits, RendersAtTheLargestSizeTheContextAllows) {
   settings.blur = false;
   const gl::RenderTarget output("largest", size, size, GL_NEAREST, gl::RenderTarget::Depth::Renderbuffer,
                                 test::context().caps().depth24);
-  struct PassesRun : PassTimer {
-    std::vector<std::string> names;
-    void begin(const std::string& pass) override { names.push_back(pass); }
-    void end(const std::string&) override {}
-  } passes;
-  FrameOptions options;
-  options.timer = &passes;
-  renderer.render(builtinSceneCamera(size, size), settings, View::AoRaw, {output.framebuffer(), size, size, {}},
-                  options);
+  renderer.render(builtinSceneCamera(size, size), settings, View::AoRaw, {output.framebuffer(), size, size, {}});
+  const std::vector<std::string> ran = test::livePasses(renderer);
   for (const char* pass : {"gbuffer", "hierarchy", "sao"})
-    EXPECT_NE(std::find(passes.names.begin(), passes.names.end(), pass), passes.names.end()) << pass;
+    EXPECT_NE(std::find(ran.begin(), ran.end(), pass), ran.end()) << pass;
   // Read a band across the middle, where the floor and walls are: geometry with AO in range, not background.
   std::vector<std::uint8_t> band(static_cast<size_t>(size) * 4);
   glBindFramebuffer(GL_FRAMEBUFFER, output.framebuffer());
