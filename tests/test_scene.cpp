@@ -260,6 +260,42 @@ TEST(CameraFit, FramesTheBoundsInsideTheFrustum) {
   }
 }
 
+// Frustum culling's test (GpuScene::cullToView): a box is outside only when all its corners lie beyond one clip
+// plane; one across a plane is kept.
+TEST(Bounds, OutsideClipOnlyWhenWhollyBeyondOnePlane) {
+  auto box = [](glm::vec3 centre, glm::vec3 half) {
+    Bounds b;
+    b.add(centre - half);
+    b.add(centre + half);
+    return b;
+  };
+  // The eye at the origin looking down -z, 60 degrees high, 16:9, from 0.1 to 100.
+  const glm::mat4 perspective =
+      glm::perspective(glm::radians(60.0f), 16.0f / 9.0f, 0.1f, 100.0f) * glm::lookAt(glm::vec3(0.0f),
+                                                                                     glm::vec3(0, 0, -1),
+                                                                                     glm::vec3(0, 1, 0));
+  const glm::vec3 unit(0.5f);
+  EXPECT_FALSE(box({0, 0, -5}, unit).outsideClip(perspective)) << "in front";
+  // At 5 in front, the view reaches 5 tan 30 degrees x 16/9 = 5.13 to either side.
+  EXPECT_FALSE(box({5.2f, 0, -5}, unit).outsideClip(perspective)) << "across the right edge";
+  EXPECT_TRUE(box({6.5f, 0, -5}, unit).outsideClip(perspective)) << "just past the right edge";
+  EXPECT_FALSE(box({0, 0, 0}, glm::vec3(1.0f)).outsideClip(perspective)) << "around the eye, across the near plane";
+  EXPECT_FALSE(box({0, 0, -100}, glm::vec3(1.0f)).outsideClip(perspective)) << "across the far plane";
+  EXPECT_TRUE(box({0, 0, 5}, unit).outsideClip(perspective)) << "behind the eye";
+  EXPECT_TRUE(box({-50, 0, -5}, unit).outsideClip(perspective)) << "left of the view";
+  EXPECT_TRUE(box({0, 20, -5}, unit).outsideClip(perspective)) << "above the view";
+  EXPECT_TRUE(box({0, 0, -200}, glm::vec3(1.0f)).outsideClip(perspective)) << "beyond the far plane";
+  // Moved by the model matrix too (toClip is model-view-projection).
+  const glm::mat4 moved = perspective * glm::translate(glm::mat4(1.0f), glm::vec3(0, 0, 10));
+  EXPECT_TRUE(box({0, 0, -5}, unit).outsideClip(moved)) << "placed behind the eye";
+
+  const glm::mat4 orthographic = glm::ortho(-2.0f, 2.0f, -2.0f, 2.0f, 0.1f, 10.0f);
+  EXPECT_TRUE(box({3, 0, -5}, unit).outsideClip(orthographic));
+  EXPECT_FALSE(box({2.2f, 0, -5}, unit).outsideClip(orthographic)) << "across the right edge";
+  EXPECT_TRUE(box({0, 0, 1}, unit).outsideClip(orthographic)) << "behind the near plane";
+  EXPECT_TRUE(Bounds{}.outsideClip(perspective)) << "an empty box";
+}
+
 // Unwelding (flat normals) and the 16-bit split move vertices around; each vertex's joints, weights and morph
 // displacements must move with it. Here every attribute of vertex v encodes v, so any mix-up shows.
 TEST(MeshProcessing, VertexAttributesOfSkinningAndMorphingFollowTheirVertex) {

@@ -6,6 +6,8 @@
 #include <algorithm>
 #include <cstdlib>
 
+#include <glm/gtc/matrix_transform.hpp>
+
 #include "TestSupport.h"
 #include "encoding/LinearDepthPacking.h"
 #include "scene/Primitives.h"
@@ -75,15 +77,22 @@ std::pair<test::RenderedImage, test::RenderedImage> limitedAndWhole(const Scene&
 const Camera kAfar = test::makeCamera(glm::vec3(0.5f, 1.0f, 9.0f), glm::vec3(0.5f, 0.0f, 0.0f), 160, 90);
 const Camera kNear = test::makeCamera(glm::vec3(0.5f, 0.5f, 2.5f), glm::vec3(0.5f, 0.0f, 0.0f), 160, 90);
 
+// A frame to compare: what it shows, its view and the settings it changes from the defaults.
+struct FrameCase {
+  const char* what;
+  View view;
+  std::vector<std::pair<const char*, const char*>> settings;
+  RenderSettings renderSettings() const {
+    RenderSettings made;
+    for (const auto& [name, value] : settings) made.set(name, value);
+    return made;
+  }
+};
+
 }  // namespace
 
 TEST(SceneBounds, PassesLimitedToTheScenesBoundsDrawTheFrameOfWholeFramePasses) {
-  struct Case {
-    const char* what;
-    View view;
-    std::vector<std::pair<const char*, const char*>> settings;
-  };
-  const std::vector<Case> cases = {
+  const std::vector<FrameCase> cases = {
       {"defaults", View::Final, {}},
       {"the AO view", View::Ao, {}},
       {"half-resolution AO", View::Final, {{"ao.half-res", "on"}}},
@@ -94,10 +103,8 @@ TEST(SceneBounds, PassesLimitedToTheScenesBoundsDrawTheFrameOfWholeFramePasses) 
   const Scene scene = twoObjects();
   // From afar the bounds are a part of the frame; from near they are all of it.
   for (const Camera* camera : {&kAfar, &kNear})
-    for (const Case& c : cases) {
-      RenderSettings settings;
-      for (const auto& [name, value] : c.settings) settings.set(name, value);
-      const auto [limited, whole] = limitedAndWhole(scene, *camera, settings, c.view);
+    for (const FrameCase& c : cases) {
+      const auto [limited, whole] = limitedAndWhole(scene, *camera, c.renderSettings(), c.view);
       EXPECT_EQ(test::worstByteDifference(limited, whole), 0) << c.what << (camera == &kNear ? ", near" : ", afar");
     }
 }
@@ -117,4 +124,74 @@ TEST(SceneBounds, BelowRenderScaleOneTheBackgroundIsUpscaledWithoutFxaa) {
   }
   EXPECT_LE(test::worstByteDifference(limited, whole), 16);
   EXPECT_LE(apart, limited.width * limited.height / 50) << "pixels more than a level apart";
+}
+
+namespace {
+
+// twoObjects, and what kAfar cannot see: a sphere behind the eye, a box far to the left, and a row of boxes sharing a
+// material (a static batch) from well inside the view to well outside it on both sides. With `outOfView` false, the
+// row's middle alone and nothing else out of view.
+Scene withObjectsOutOfView(bool outOfView) {
+  Scene scene = twoObjects();
+  auto place = [&](const glm::vec3& at) { scene.instances.back().world = glm::translate(glm::mat4(1.0f), at); };
+  if (outOfView) {
+    test::addStill(scene, makeSphere(1.0f, 24, 12), glm::vec3(0.3f, 0.6f, 0.9f));
+    place({0.5f, 1.0f, 15.0f});
+    test::addStill(scene, makeBox(glm::vec3(-1.0f), glm::vec3(1.0f)), glm::vec3(0.9f, 0.3f, 0.3f));
+    place({-40.0f, 0.0f, 0.0f});
+  }
+  Mesh block = makeBox(glm::vec3(-0.4f), glm::vec3(0.4f));
+  block.material = test::addMaterial(scene, glm::vec3(0.6f));
+  scene.meshes.push_back(std::move(block));
+  for (int k = -8; k <= 8; ++k) {
+    if (!outOfView && std::abs(k) > 1) continue;
+    scene.instances.push_back({static_cast<int>(scene.meshes.size()) - 1, glm::mat4(1.0f), -1, -1});
+    place({0.5f + 5.0f * static_cast<float>(k), -1.5f, 0.0f});
+  }
+  return scene;
+}
+
+}  // namespace
+
+// Frustum culling (GpuScene::cullToView): the instances the view cannot see are not drawn, and the frame is the same
+// bytes as with every instance drawn, through every pass that draws the scene.
+TEST(SceneBounds, InstancesOutOfViewAreNotDrawnAndTheFrameIsTheSame) {
+  const std::vector<FrameCase> cases = {
+      {"defaults", View::Final, {}},
+      {"the AO view, two depth layers", View::Ao, {{"ao.layers", "2"}}},
+      {"preset low", View::Final, {{"preset", "low"}}},
+      {"fog, bloom, depth of field and edges", View::Final, {{"fog", "on"}, {"bloom", "on"}, {"dof", "on"},
+                                                            {"edges", "on"}}},
+      {"motion blur and TAA", View::Final, {{"motion-blur", "on"}, {"taa", "on"}}},
+      {"split view", View::Split, {}},
+  };
+  const Scene scene = withObjectsOutOfView(true);
+  RendererOptions wholeScene;
+  wholeScene.cullToView = false;
+  Renderer culled = test::makeRenderer();
+  Renderer whole = test::makeRenderer(wholeScene);
+  culled.setScene(scene);
+  whole.setScene(scene);
+  for (const FrameCase& c : cases) {
+    const test::RenderedImage a = test::render(culled, kAfar, c.renderSettings(), c.view);
+    const test::RenderedImage b = test::render(whole, kAfar, c.renderSettings(), c.view);
+    EXPECT_EQ(test::worstByteDifference(a, b), 0) << c.what;
+  }
+
+  // The G-buffer's draws (the defaults' only geometry pass): culled, exactly the triangles of the instances in view.
+  const RenderSettings defaults;
+  test::render(culled, kAfar, defaults, View::Final);
+  test::render(whole, kAfar, defaults, View::Final);
+  Renderer inViewOnly = test::makeRenderer();
+  inViewOnly.setScene(withObjectsOutOfView(false));
+  test::render(inViewOnly, kAfar, defaults, View::Final);
+  const GpuScene::Counts culledCounts = culled.gpuScene().lastDrawCounts();
+  const GpuScene::Counts wholeCounts = whole.gpuScene().lastDrawCounts();
+  const GpuScene::Counts inViewCounts = inViewOnly.gpuScene().lastDrawCounts();
+  EXPECT_EQ(culledCounts.triangles, inViewCounts.triangles);
+  EXPECT_LT(culledCounts.triangles, wholeCounts.triangles);
+  EXPECT_EQ(culled.gpuScene().staticBatchCount(), 1) << "the row of boxes is one batch";
+  EXPECT_EQ(culledCounts.batchedInstances, 3) << "the row's three boxes in view";
+  EXPECT_EQ(wholeCounts.batchedInstances, 17);
+  EXPECT_LT(culledCounts.draws, wholeCounts.draws) << "the sphere behind the eye and the box to the left";
 }

@@ -61,6 +61,10 @@
 //      on screen (PassContext::sceneRect) against the same passes over the whole frame (RendererOptions::limitToScene
 //      off), the defaults, `preset low` and the AO off, taking turns frame by frame on the engine and the still room
 //      at 640x360 and 1280x720 (DIR/scene_bounds.csv)
+//  15. frustum culling (--culling-only; alone only): the frame with the instances outside the view left out
+//      (GpuScene::cullToView) against every instance drawn (RendererOptions::cullToView off), the same configurations
+//      taking turns, on the built-in room's columns view, the engine's detail view and the millimetre room's table
+//      view (tools/tuning-views.json) at 640x360 and 1280x720 (DIR/culling.csv)
 #include <time.h>
 
 #include <algorithm>
@@ -1225,25 +1229,36 @@ void hostSection(const Options& options, HeadlessContext& context) {
   }
 }
 
-// Section 14: what limiting the passes to the scene's bounds on screen saves, each configuration with the limit and
-// without it taking turns frame by frame.
-void sceneBoundsSection(const Options& options, HeadlessContext& context, const std::vector<BenchScene>& scenes) {
+// A renderer option turned on against off (sections 14 and 15): each configuration's frame with the option and
+// without it taking turns frame by frame, per scene and size; `quickScene` alone with --quick.
+struct OptionComparison {
+  const char* title;  // "14. The scene's bounds"
+  const char* what;   // what the option does, for the heading
+  const char* csv;    // the file in DIR
+  const char* onColumn;
+  const char* offColumn;
+  std::function<void(RendererOptions&, bool)> set;
+};
+
+void optionSection(const Options& options, HeadlessContext& context, const std::vector<BenchScene>& scenes,
+                   const OptionComparison& compared, const BenchScene* quickScene) {
   struct Configuration {
     std::string name;
     std::vector<std::pair<std::string, std::string>> set;
   };
   const std::vector<Configuration> configurations = {
       {"defaults", {}}, {"preset low", {{"preset", "low"}}}, {"AO off", {{"ao", "off"}}}};
-  // --quick: the engine alone (the room fills its frame), small.
   const Options::Sizes sizes = options.sizes({{640, 360}, {1280, 720}});
-  std::ofstream csv(options.outDir + "/scene_bounds.csv");
-  csv << "scene,configuration,width,height,limited_ms,whole_ms,ratio\n";
-  std::printf("\n14. The scene's bounds, %s: frame ms (glFinish-bounded, median of %d frames) with the passes limited "
-              "to the scene's bounds on screen and over the whole frame, taking turns\n",
-              context.caps().renderer.c_str(), options.frames);
-  std::printf("%-16s %-12s %-10s %12s %12s %8s\n", "scene", "frame", "size", "limited ms", "whole ms", "ratio");
+  std::ofstream csv(options.outDir + "/" + compared.csv);
+  csv << "scene,configuration,width,height," << compared.onColumn << "_ms," << compared.offColumn << "_ms,ratio,"
+      << compared.onColumn << "_triangles," << compared.offColumn << "_triangles\n";
+  std::printf("\n%s, %s: frame ms (glFinish-bounded, median of %d frames) %s, taking turns\n", compared.title,
+              context.caps().renderer.c_str(), options.frames, compared.what);
+  std::printf("%-16s %-12s %-10s %12s %12s %8s  %s\n", "scene", "frame", "size",
+              (std::string(compared.onColumn) + " ms").c_str(), (std::string(compared.offColumn) + " ms").c_str(),
+              "ratio", "triangles (the last geometry pass's)");
   for (const BenchScene& scene : scenes) {
-    if (options.quick && &scene != &scenes.back()) continue;
+    if (options.quick && &scene != quickScene) continue;
     for (auto [w, h] : sizes) {
       const gl::RenderTarget output("bench output", w, h, GL_NEAREST, gl::RenderTarget::Depth::Renderbuffer,
                                     context.caps().depth24, context.caps().packedDepthStencil);
@@ -1254,9 +1269,9 @@ void sceneBoundsSection(const Options& options, HeadlessContext& context, const 
       for (const Configuration& c : configurations) {
         const RenderSettings settings = settingsFrom(c.set);
         std::vector<std::unique_ptr<Renderer>> renderers;
-        for (const bool limit : {true, false}) {
+        for (const bool on : {true, false}) {
           RendererOptions rendererOptions;
-          rendererOptions.limitToScene = limit;
+          compared.set(rendererOptions, on);
           renderers.push_back(std::make_unique<Renderer>(context.caps(), rendererOptions));
           renderers.back()->setScene(scene.scene);
         }
@@ -1269,14 +1284,45 @@ void sceneBoundsSection(const Options& options, HeadlessContext& context, const 
             glFinish();
             if (f >= 0) ms[r].push_back(wallMs() - start);
           }
-        const double limited = median(ms[0]), whole = median(ms[1]);
-        std::printf("%-16s %-12s %-10s %12.2f %12.2f %8.3f\n", scene.name.c_str(), c.name.c_str(),
-                    (std::to_string(w) + "x" + std::to_string(h)).c_str(), limited, whole, limited / whole);
-        csv << scene.name << ",\"" << c.name << "\"," << w << "," << h << "," << limited << "," << whole << ","
-            << limited / whole << "\n";
+        const double on = median(ms[0]), off = median(ms[1]);
+        const long onTriangles = renderers[0]->gpuScene().lastDrawCounts().triangles;
+        const long offTriangles = renderers[1]->gpuScene().lastDrawCounts().triangles;
+        std::printf("%-16s %-12s %-10s %12.2f %12.2f %8.3f  %ld / %ld\n", scene.name.c_str(), c.name.c_str(),
+                    (std::to_string(w) + "x" + std::to_string(h)).c_str(), on, off, on / off, onTriangles,
+                    offTriangles);
+        csv << scene.name << ",\"" << c.name << "\"," << w << "," << h << "," << on << "," << off << "," << on / off
+            << "," << onTriangles << "," << offTriangles << "\n";
       }
     }
   }
+}
+
+// Section 14: what limiting the passes to the scene's bounds on screen saves (--quick: the engine alone; the room
+// fills its frame).
+void sceneBoundsSection(const Options& options, HeadlessContext& context, const std::vector<BenchScene>& scenes) {
+  optionSection(options, context, scenes,
+                {"14. The scene's bounds", "with the passes limited to the scene's bounds on screen and over the "
+                 "whole frame", "scene_bounds.csv", "limited", "whole",
+                 [](RendererOptions& o, bool on) { o.limitToScene = on; }},
+                &scenes.back());
+}
+
+// Section 15: what frustum culling saves (GpuScene::cullToView), on views of three tuning scenes that leave much of
+// their scene outside the frame (tools/tuning-views.json, at their files' units): the built-in room's columns, the
+// engine's detail and the millimetre room's table. --quick: the engine's detail alone.
+void cullingSection(const Options& options, HeadlessContext& context) {
+  const std::string assets = std::string(OBSCURA_SOURCE_DIR) + "/assets/";
+  std::vector<BenchScene> scenes;
+  scenes.push_back({"builtin-columns", makeBuiltinScene(BuiltinSceneOptions::still()),
+                    Camera::fromJsonFile(assets + "cameras/builtin-columns.json")});
+  scenes.push_back(
+      {"engine-detail", loadGltfFile(kEnginePath), Camera::fromJsonFile(assets + "cameras/engine-detail.json")});
+  scenes.push_back({"room-table", loadGltfFile(assets + "scenes/room-mm.glb"),
+                    Camera::fromJsonFile(assets + "cameras/room-mm-table.json")});
+  optionSection(options, context, scenes,
+                {"15. Frustum culling", "with the instances outside the view left out and with every instance drawn",
+                 "culling.csv", "culled", "whole", [](RendererOptions& o, bool on) { o.cullToView = on; }},
+                &scenes[1]);
 }
 
 // Section 8c: the camera's finish (issue 29), every configuration in the same frames.
@@ -1630,7 +1676,8 @@ const std::vector<Section>& sections() {
       {"host", {"host.csv"}, true, [](SectionInputs& in) { hostSection(in.options, in.context); }},
       {"scene-bounds", {"scene_bounds.csv"}, true,
        [](SectionInputs& in) { sceneBoundsSection(in.options, in.context, in.scenes()); }},
-      // Alone only: the full run has the transparent pass within section 8, and leaves out the two longest studies.
+      // Alone only: the full run has the transparent pass within section 8, and leaves out the two longest studies
+      // and the culling study (its views are not the other sections' scenes).
       {"transparency", {"transparency.csv"}, false,
        [](SectionInputs& in) {
          std::ofstream csv(in.options.outDir + "/transparency.csv");
@@ -1640,6 +1687,7 @@ const std::vector<Section>& sections() {
       {"lighting", {"lighting.csv"}, false, [](SectionInputs& in) { lightingSection(in.options, in.context); }},
       {"ao-layers", {"bench.csv", "ao_layers.csv"}, false,
        [](SectionInputs& in) { aoLayersSection(in.bench(), in.scenes(), in.effectSizes(), in.options.outDir); }},
+      {"culling", {"culling.csv"}, false, [](SectionInputs& in) { cullingSection(in.options, in.context); }},
   };
   return table;
 }

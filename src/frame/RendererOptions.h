@@ -31,6 +31,9 @@ struct RendererOptions {
   // false: the passes that limit their work to the scene's bounds on screen (PassContext::sceneRect: the AO's, the
   // deferred lighting's shading, FXAA) run over the whole frame (tests compare both; the benchmark measures both).
   bool limitToScene = true;
+  // false: every instance is drawn whatever the view, none left out by frustum culling (GpuScene::cullToView; tests
+  // compare both, the benchmark measures both).
+  bool cullToView = true;
   // false: per-pixel stages run as passes of their own instead of fusing into the pass before them (frame/Stage.h;
   // tests compare both, the benchmark measures what fusing saves).
   bool fuseStages = true;

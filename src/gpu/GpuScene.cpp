@@ -280,6 +280,23 @@ void GpuScene::chooseDetail(const glm::mat4& view, const glm::mat4& projection, 
   }
 }
 
+void GpuScene::cullToView(const glm::mat4& viewProjection) {
+  for (InstanceGpu& instance : instances_)
+    instance.inView = !withinRestBounds(instance) ||
+                      !Bounds{instance.localMin, instance.localMax}.outsideClip(viewProjection * instance.world);
+  for (StaticBatch& batch : batches_) {
+    const std::vector<Piece::Member>& members = pieces_[static_cast<size_t>(batch.drawn.firstPiece)].members;
+    batch.drawn.inView = std::any_of(members.begin(), members.end(), [&](const Piece::Member& member) {
+      return instances_[static_cast<size_t>(member.instance)].inView;
+    });
+  }
+}
+
+void GpuScene::drawWholeScene() {
+  for (InstanceGpu& instance : instances_) instance.inView = true;
+  for (StaticBatch& batch : batches_) batch.drawn.inView = true;
+}
+
 bool GpuScene::usesUint32Indices() const {
   return std::any_of(pieces_.begin(), pieces_.end(), [](const Piece& p) { return p.indexType == GL_UNSIGNED_INT; });
 }
@@ -403,7 +420,7 @@ std::vector<const GpuScene::InstanceGpu*> GpuScene::drawOrder(const glm::mat4& v
   std::vector<std::pair<float, const InstanceGpu*>> keyed;
   keyed.reserve(instances_.size() + batches_.size());
   auto add = [&](const InstanceGpu& instance) {
-    if (instance.transparent || (options.onlyMoving && !instance.moving)) return;
+    if (!instance.inView || instance.transparent || (options.onlyMoving && !instance.moving)) return;
     const bool masked = materials_[static_cast<size_t>(instance.material)].alphaCutoff >= 0.0f;
     keyed.emplace_back((masked ? 1e30f : 0.0f) - (view * glm::vec4(instance.centre, 1.0f)).z, &instance);
   };
@@ -460,18 +477,10 @@ void GpuScene::drawInstance(const InstanceGpu& instance, const glm::mat4& view, 
 // leave its rest bounds, and one reaching behind the eye cover the frame), widened by a pixel for rasterisation.
 glm::ivec4 GpuScene::screenRect(const InstanceGpu& instance, const glm::mat4& viewProjection, glm::ivec2 size) const {
   const glm::ivec4 frame(0, 0, size.x, size.y);
-  if (instance.skin >= 0 || instance.morphed) return frame;
+  if (!withinRestBounds(instance)) return frame;
+  const Bounds bounds{instance.localMin, instance.localMax};
   glm::vec2 low(1e30f), high(-1e30f);
-  // The corners in clip space from one matrix: the minimum corner's image plus, per axis, the matrix's column times
-  // the box's extent along it (two matrix products per corner before; the render's host time, docs/benchmarks.md).
-  const glm::mat4 toClip = viewProjection * instance.world;
-  const glm::vec4 origin = toClip * glm::vec4(instance.localMin, 1.0f);
-  const glm::vec3 extent = instance.localMax - instance.localMin;
-  const glm::vec4 steps[3] = {toClip[0] * extent.x, toClip[1] * extent.y, toClip[2] * extent.z};
-  for (int corner = 0; corner < 8; ++corner) {
-    glm::vec4 clip = origin;
-    for (int axis = 0; axis < 3; ++axis)
-      if (corner & (1 << axis)) clip += steps[axis];
+  for (const glm::vec4& clip : bounds.clipCorners(viewProjection * instance.world)) {
     if (clip.w <= 1e-6f) return frame;
     const glm::vec2 ndc = glm::vec2(clip) / clip.w;
     low = glm::min(low, ndc);
@@ -501,7 +510,7 @@ std::vector<GpuScene::TransparentBatch> GpuScene::transparentBatches(const glm::
   // Back to front: the view-space z of the bounds' centre, farthest (most negative) first.
   std::vector<std::pair<float, int>> order;
   for (size_t i = 0; i < instances_.size(); ++i)
-    if (instances_[i].transparent)
+    if (instances_[i].transparent && instances_[i].inView)
       order.emplace_back((view * glm::vec4(instances_[i].centre, 1.0f)).z, static_cast<int>(i));
   std::stable_sort(order.begin(), order.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
   const glm::mat4 viewProjection = projection * view;
@@ -608,7 +617,8 @@ void GpuScene::drawPiece(const InstanceGpu& instance, int p, const MaterialGpu& 
   }
   if (newProgram || p == instance.firstPiece) setInstanceUniforms(instance, material, modelView, vertexKind, state);
   ++counts_.draws;
-  counts_.batchedInstances += static_cast<int>(piece.members.size());
+  for (const Piece::Member& member : piece.members)
+    counts_.batchedInstances += instances_[static_cast<size_t>(member.instance)].inView ? 1 : 0;
   if (vertexKind.cpuDeformed) ++counts_.cpuDeformed;
   if (vertexKind.morphTargets > 0) ++counts_.gpuMorphed;
   if (vertexKind.skinning != VertexKind::None) ++counts_.skinned;

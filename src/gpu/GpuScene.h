@@ -93,6 +93,14 @@ class GpuScene {
   // `heightPixels` high; full detail where none is that fine, where the bounds reach the eye, and everywhere for 0.
   // Every draw until the next call draws the same triangles (the G-buffer, the lighting and the velocity agree).
   void chooseDetail(const glm::mat4& view, const glm::mat4& projection, int heightPixels, float maxPixelError);
+  // Frustum culling: every draw until the next call leaves out the instances whose bounds lie wholly outside the view
+  // of `viewProjection` (Bounds::outsideClip), and a static batch's members likewise (the G-buffer, the lighting, the
+  // velocity, the AO's second layer and the transparent layer agree). Skinned and morphed instances, whose pose may
+  // leave their rest bounds, are always drawn. Nothing outside the view reaches a pixel, so the frame is the same;
+  // what it saves is the vertex work and the draws of what lies outside (docs/benchmarks.md, "Frustum culling").
+  // drawWholeScene() undoes it (RendererOptions::cullToView off).
+  void cullToView(const glm::mat4& viewProjection);
+  void drawWholeScene();
 
   // Draws every instance of the opaque layer (every material but the transparent ones, Material::transparent, which
   // drawTransparent draws): opaque materials first, then masked ones, each group front to back (by the distance of
@@ -237,6 +245,7 @@ class GpuScene {
     int material = 0;
     int firstPiece = 0, pieceCount = 0;
     float localRadius = 0.0f;    // half its mesh's bounds' diagonal
+    bool inView = true;          // this frame's view may see it (cullToView); a batch's: one of its members
     int detail = 0;              // this frame's level of detail: 0 the full one, k its piece's levels[k - 1]
     int batch = -1;              // the static batch (into batches_) that draws it while the batch is intact
     int skin = -1;               // index into skins_ where drawn skinned
@@ -324,6 +333,8 @@ class GpuScene {
 
   // Draw.
   std::vector<const InstanceGpu*> drawOrder(const glm::mat4& view, const DrawOptions& options) const;
+  // Its pose keeps it within its mesh's rest bounds, placed by its world transform: not skinned, not morphed.
+  static bool withinRestBounds(const InstanceGpu& instance) { return instance.skin < 0 && !instance.morphed; }
   void drawInstance(const InstanceGpu& instance, const glm::mat4& view, DrawState& state) const;
   glm::ivec4 screenRect(const InstanceGpu& instance, const glm::mat4& viewProjection, glm::ivec2 size) const;
   VertexKind vertexKind(const InstanceGpu& instance, const Piece& piece) const;  // GpuSkinning.cpp

@@ -169,7 +169,9 @@ void GpuScene::drawBatchMembers(const Piece& batch) const {
     ++counts_.drawCalls;
   };
   for (const Piece::Member& member : batch.members) {
-    const int detail = instances_[static_cast<size_t>(member.instance)].detail;
+    const InstanceGpu& instance = instances_[static_cast<size_t>(member.instance)];
+    if (!instance.inView) continue;  // the next member in view starts a run of its own (its offset does not follow)
+    const int detail = instance.detail;
     const Piece::Level& level = detail > 0 ? member.levels[static_cast<size_t>(detail - 1)] : member.full;
     counts_.triangles += level.indexCount / 3;
     if (detail > 0) ++counts_.coarser;

@@ -427,6 +427,10 @@ void Renderer::run(const RenderSettings& settings, const View& view, const Outpu
   for (const std::unique_ptr<Effect>& effect : effects_) effect->prepare(settings);
   scene_.chooseDetail(frame_.camera.view, frame_.camera.projection, frame_.camera.height,
                       settings.of<GBufferSettings>().lod);
+  if (options_.cullToView)
+    scene_.cullToView(frame_.camera.projection * frame_.camera.view);
+  else
+    scene_.drawWholeScene();
   boundScene(options.externalGBuffer != 0);
   // What surfaces drawn after the lighting need (frame/SurfaceShading.h): the fog these settings apply; the light
   // comes from the lighting pass as it runs.
