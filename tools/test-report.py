@@ -2,10 +2,9 @@
 """The summary tools/test.sh prints at the end: each stage's seconds, the 10 slowest tests, and the failing tests by
 name.
 
-  tools/test-report.py STAGES [--junit FILE]... [--results DIR]... [--slowest N] [--wall SECONDS]
+  tools/test-report.py STAGES [--junit FILE]... [--results DIR]... [--slowest N]
 
 STAGES: lines "name<TAB>seconds<TAB>exit status" (tools/test.sh writes them as each stage ends).
---wall: the run's wall clock, printed beside the stages' sum (stages that run side by side overlap).
 --junit: ctest's --output-junit files (one per ctest run): every ctest entry's seconds and outcome.
 --results: folders of GoogleTest JSON reports (--gtest_output=json, one per ctest entry: tests/cmake/TestSuites.cmake).
 A GoogleTest entry (a suite run in one process) is ranked by its tests, each with its own seconds; the other entries
@@ -90,17 +89,14 @@ def main():
     parser.add_argument('--junit', action='append', default=[])
     parser.add_argument('--results', action='append', default=[])
     parser.add_argument('--slowest', type=int, default=10)
-    parser.add_argument('--wall', type=float, help='the run\'s wall-clock seconds (stages may overlap)')
     args = parser.parse_args()
 
     stages = read_stages(args.stages)
     print('\n== tools/test.sh: seconds per stage ==')
-    width = max([len(name) for name, _, _ in stages] + [len('sum of the stages')])
+    width = max([len(name) for name, _, _ in stages] + [5])
     for name, secs, status in stages:
         print('  %-*s %8.1f  %s' % (width, name, secs, 'ok' if status == 0 else 'FAILED (exit %d)' % status))
-    print('  %-*s %8.1f' % (width, 'sum of the stages', sum(secs for _, secs, _ in stages)))
-    if args.wall is not None:
-        print('  %-*s %8.1f  (the browser lane runs beside the stages after it)' % (width, 'wall clock', args.wall))
+    print('  %-*s %8.1f' % (width, 'total', sum(secs for _, secs, _ in stages)))
 
     tests, gtest_entries = read_gtest(args.results)
     others, outcomes = read_junit(args.junit, gtest_entries)

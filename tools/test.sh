@@ -5,12 +5,9 @@
 # files), then runs the whole suite: the glTF corpus against the Khronos glTF-Validator, CPU and GPU unit tests (the
 # GPU suites on EGL here, on OSMesa in the sanitizer leg), the command line, the desktop viewer under Xvfb, the
 # installed C++ package and its examples, the web page and the npm package in headless Chromium and the browser
-# benchmark's smoke run; then the sanitizer leg (tools/test-sanitizers.sh) and the fuzzer (tools/fuzz-gltf.sh). The
-# browser tests run as a lane of their own beside the native tests, the sanitizer leg and the fuzzer: they run one at
-# a time (one Chromium, RESOURCE_LOCK chromium) and leave a core mostly idle while the page waits on its frames, so
-# on two cores the other stages fill it. Ends with a table of each stage's seconds and the wall clock, the 10 slowest
-# tests and, when something failed, the failing tests by name (tools/test-report.py); a failing test stage does not
-# stop the others.
+# benchmark's smoke run; then the sanitizer leg (tools/test-sanitizers.sh) and the fuzzer (tools/fuzz-gltf.sh). Ends
+# with a table of each stage's seconds, the 10 slowest tests and, when something failed, the failing tests by name
+# (tools/test-report.py).
 # Compiles through ccache where it is installed (tools/install-deps.sh installs it): a warm cache makes the builds
 # a fraction of the run. While working, `ctest --test-dir build -L cpu` is the fast loop (README, "Tests").
 set -euo pipefail
@@ -18,26 +15,16 @@ cd "$(dirname "$0")/.."
 jobs=$(nproc 2>/dev/null || echo 2)
 
 stages=$(mktemp)
-browser_log=$(mktemp)
-started=$(date +%s.%N)
 results=build/test-results
 junit="$PWD/build/ctest-junit.xml"
-browser_junit="$PWD/build/ctest-junit-browser.xml"
-browser_lane=""
 report() {
   local status=$?
-  # Interrupted, or a build failed: the browser lane's ctest ends too (by its parent's PID: the lane alone).
-  if [ -n "$browser_lane" ] && kill -0 "$browser_lane" 2>/dev/null; then
-    pkill -TERM -P "$browser_lane" || true
-    wait "$browser_lane" || true
-  fi
-  python3 tools/test-report.py "$stages" --junit "$junit" --junit "$browser_junit" \
-    --junit "$PWD/build-asan/ctest-junit.xml" --results "$results" --results build-asan/test-results \
-    --wall "$(awk -v start="$started" -v end="$(date +%s.%N)" 'BEGIN { printf "%.1f", end - start }')" || true
+  python3 tools/test-report.py "$stages" --junit "$junit" --junit "$PWD/build-asan/ctest-junit.xml" \
+    --results "$results" --results build-asan/test-results || true
   # `times` in a command substitution would report the substitution's own subshell: it writes to a file instead.
   times > "$stages.times"
   echo "  (CPU time of everything run: $(tail -n 1 "$stages.times" | awk '{print "user " $1 ", system " $2}'))"
-  rm -f "$stages" "$stages.times" "$browser_log"
+  rm -f "$stages" "$stages.times"
   exit "$status"
 }
 trap report EXIT
@@ -60,13 +47,11 @@ npm_ci() {
   done
 }
 
-# Every entry but those labelled sanitized (the GPU suites on OSMesa: the sanitizer leg runs those, and this tree runs
-# the same suites on EGL; tests/CMakeLists.txt, the labels), in two ctest runs: the browser lane, and the rest.
-browser_tests() {
-  ctest --test-dir build -L browser -LE sanitized --output-on-failure --output-junit "$browser_junit" -j1
-}
+# Every entry but those labelled sanitized (the GPU suites on OSMesa): the sanitizer leg runs those, and this tree runs
+# the same suites on EGL (tests/CMakeLists.txt, the labels).
 native_tests() {
-  ctest --test-dir build -LE 'sanitized|browser' --output-on-failure --output-junit "$junit" -j"$jobs"
+  rm -rf "$results" "$junit" build/test-cache
+  ctest --test-dir build -LE sanitized --output-on-failure --output-junit "$junit" -j"$jobs"
 }
 
 stage "install-deps" tools/install-deps.sh
@@ -74,23 +59,8 @@ stage "install-deps" tools/install-deps.sh
 stage "native build" tools/build.sh -DOBSCURA_WERROR=ON
 stage "web build" tools/build-web.sh -DOBSCURA_WERROR=ON
 stage "npm ci" npm_ci
-rm -rf "$results" "$junit" "$browser_junit" build/test-cache
-# The browser lane, in the background; its output follows the other stages'.
-stage "ctest: browser lane (beside the next stages)" browser_tests > "$browser_log" 2>&1 &
-browser_lane=$!
-failed=0
-stage "ctest: the rest (native, CLI, viewer, install)" native_tests || failed=1
+stage "ctest (native, web)" native_tests
 # One sanitized tree (clang) for the sanitizer leg's tests and the fuzzer.
-if stage "sanitized build" tools/test-sanitizers.sh build; then
-  stage "sanitizer tests" tools/test-sanitizers.sh run || failed=1
-  stage "fuzzer" tools/fuzz-gltf.sh 60 || failed=1
-else
-  failed=1
-fi
-lane_status=0
-wait "$browser_lane" || lane_status=$?
-browser_lane=""
-echo "== test.sh: the browser lane's output"
-cat "$browser_log"
-[ "$lane_status" -eq 0 ] || failed=1
-exit "$failed"
+stage "sanitized build" tools/test-sanitizers.sh build
+stage "sanitizer tests" tools/test-sanitizers.sh run
+stage "fuzzer" tools/fuzz-gltf.sh 60
