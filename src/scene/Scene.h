@@ -260,10 +260,10 @@ struct Bounds {
   // The eight corners seen through `toClip` (model-view-projection), in clip space: corner k takes max along each
   // axis whose bit is set in k (x 1, y 2, z 4).
   std::array<glm::vec4, 8> clipCorners(const glm::mat4& toClip) const;
-  // The box seen through `toClip` lies wholly outside the clip volume: all eight corners
-  // beyond one of its six planes (-w <= x, y, z <= w), so that nothing of what the box holds can reach a pixel. A box
-  // that only straddles planes (around a frustum's corner, or across the near plane behind the eye) counts as inside:
-  // the test is conservative. An empty box is outside.
+  // The box seen through `toClip` lies wholly outside the clip volume: all eight corners beyond one of its six
+  // planes (-w <= x, y, z <= w), so that nothing of what the box holds can reach a pixel. A box that only straddles
+  // planes (around a frustum's corner, or across the near plane behind the eye) counts as inside: the test is
+  // conservative. An empty box is outside.
   bool outsideClip(const glm::mat4& toClip) const;
 };
 
