@@ -203,4 +203,18 @@ TEST(DepthLayers, TheWallBesideAThinPoleStaysNearTheReference) {
   std::printf("one layer, ao.thickness 0.1: band MAE %.4f (bias %+.4f)\n", bandError[2], bandBias[2]);
   EXPECT_LT(bandError[2], 0.5 * bandError[0]);
   EXPECT_EQ(images[3], images[0]);
+
+  // Two layers read through the depth hierarchy (ao.hierarchy on: the atlas folds both layers' depths into one texel
+  // a tap; the default reads the peel's target beside the G-buffer) bound the pole as well.
+  RenderSettings atlas;
+  atlas.set("ao.layers", "2");
+  atlas.set("ao.hierarchy", "on");
+  const test::RenderedImage atlasAo = test::render(renderer, camera, atlas, View::Ao);
+  const std::vector<std::string> ran = test::livePasses(renderer);
+  EXPECT_NE(std::find(ran.begin(), ran.end(), "hierarchy"), ran.end());
+  double atlasBandError = 0.0;
+  for (size_t i = 0; i < band.size(); ++i)
+    if (band[i]) atlasBandError += std::abs(atlasAo.rgba[i * 4] / 255.0 - truth.values[i]) / bandPixels;
+  std::printf("two layers through the hierarchy: band MAE %.4f\n", atlasBandError);
+  EXPECT_LT(atlasBandError, 0.03);
 }

@@ -50,9 +50,10 @@
 //      target (scale 0.5 + edge <= 0.35 x the full frame); and each upscale's error against the full-size frame
 //      (metrics/UpscaleMetrics.h: MAE, edge MAE; target: edge <= 0.8 x bilinear's) (DIR/resolution.csv)
 //  12. the AO's depth layers and normals (--ao-layers-only: this alone): the default AO against ao.layers 2 and
-//      gbuffer.normals reconstructed, with the depth hierarchy's atlas (the second layer folded into its texels) and
-//      without a hierarchy (the estimator reads the second layer's target beside the G-buffer), taking turns frame by
-//      frame at 640x360 and 1280x720 on the still room and the engine (DIR/ao_layers.csv)
+//      gbuffer.normals reconstructed, without the depth hierarchy (ao.hierarchy auto: the estimator reads the second
+//      layer's target beside the G-buffer), and each layer count with the hierarchy's atlas (ao.hierarchy on; with
+//      two layers both in one texel), taking turns frame by frame at 640x360 and 1280x720 on the still room and the
+//      engine (DIR/ao_layers.csv)
 //  13. host time per frame (--host-only: this alone): the renderer's own CPU time in Renderer::render (the calling
 //      thread's CPU clock: planning, GL calls and what the driver does on that thread; llvmpipe rasterises on threads
 //      of its own), median of 4 x N frames of the moving built-in scene, the defaults and every effect on, at
@@ -405,31 +406,31 @@ void estimatorSection(Bench& bench, const BenchScene& scene, int w, int h, const
   }
 }
 
-// Section 11: what the AO's second depth layer and its normals from depth cost (docs/accuracy.md has what they buy).
+// Section 12: what the AO's second depth layer and its normals from depth cost (docs/accuracy.md has what they buy).
 // GTAO at the medium preset, every configuration taking turns frame by frame: one layer and two, stored normals and
-// reconstructed ones, with the depth hierarchy's atlas (both layers in one texel per tap) and without a hierarchy
-// (every tap reads the G-buffer, and with two layers the second layer's target too: the per-tap cost of a second
-// layer kept apart). Per configuration, the G-buffer pass, the peel, the hierarchy, the estimator, the blur and the
-// AO effect in all.
+// reconstructed ones, with ao.hierarchy auto (no hierarchy: every tap reads the G-buffer, and with two layers the
+// second layer's target beside it), then each layer count with the hierarchy's atlas (ao.hierarchy on; with two
+// layers both in one texel per tap). Per configuration, the G-buffer pass, the peel, the hierarchy, the estimator,
+// the blur and the AO effect in all, and that over the default's.
 void aoLayersSection(Bench& bench, const std::vector<BenchScene>& scenes,
                      const std::vector<std::pair<int, int>>& sizes, const std::string& outDir) {
   struct Configuration {
     const char* name;
     int layers;
     const char* normals;
-    bool hierarchy;
+    DepthHierarchy hierarchy;
   };
-  const Configuration configurations[] = {{"default", 1, "stored", true},
-                                          {"layers 2", 2, "stored", true},
-                                          {"normals from depth", 1, "reconstructed", true},
-                                          {"layers 2, normals from depth", 2, "reconstructed", true},
-                                          {"no hierarchy", 1, "stored", false},
-                                          {"no hierarchy, layers 2", 2, "stored", false}};
+  const Configuration configurations[] = {{"default", 1, "stored", DepthHierarchy::Auto},
+                                          {"layers 2", 2, "stored", DepthHierarchy::Auto},
+                                          {"normals from depth", 1, "reconstructed", DepthHierarchy::Auto},
+                                          {"layers 2, normals from depth", 2, "reconstructed", DepthHierarchy::Auto},
+                                          {"hierarchy on", 1, "stored", DepthHierarchy::On},
+                                          {"layers 2, hierarchy on", 2, "stored", DepthHierarchy::On}};
   std::vector<RenderSettings> settings;
   for (const Configuration& c : configurations) {
     RenderSettings s;
     s.ao().layers = c.layers;
-    s.ao().depthHierarchy = c.hierarchy ? DepthHierarchy::On : DepthHierarchy::Off;
+    s.ao().depthHierarchy = c.hierarchy;
     s.set("gbuffer.normals", c.normals);
     settings.push_back(s);
   }
@@ -452,7 +453,7 @@ void aoLayersSection(Bench& bench, const std::vector<BenchScene>& scenes,
                     "x%.2f\n",
                     configurations[c].name, at(t, "gbuffer"), at(t, "peel"), at(t, "hierarchy"), at(t, "sao"), blur,
                     effect, effect / reference);
-        csv << scene.name << "," << w << "," << h << "," << configurations[c].name << "," << at(t, "gbuffer") << ","
+        csv << scene.name << "," << w << "," << h << ",\"" << configurations[c].name << "\"," << at(t, "gbuffer") << ","
             << at(t, "peel") << "," << at(t, "hierarchy") << "," << at(t, "sao") << "," << blur << "," << effect
             << "," << effect / reference << "\n";
       }

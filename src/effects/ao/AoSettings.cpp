@@ -54,7 +54,7 @@ const std::vector<Parameter<AoSettings>>& AoSettings::parameters() {
     t.push_back(numberParameter<S>("max-screen-radius", 0.01, 1, "fraction of height", "clamp of the projected radius",
                                    &S::maxScreenRadius));
     Parameter<S> hierarchy = choiceParameter<S, DepthHierarchy>(
-        "hierarchy", "depth hierarchy for far taps (auto: with two layers, where it folds them into one fetch)",
+        "hierarchy", "depth hierarchy for far taps (auto: none, the cheaper on every device measured)",
         &S::depthHierarchy, {{"auto", DepthHierarchy::Auto}, {"on", DepthHierarchy::On}, {"off", DepthHierarchy::Off}});
     hierarchy.effective = [](const S& s) { return std::string(s.usesDepthHierarchy() ? "on" : "off"); };
     t.push_back(std::move(hierarchy));

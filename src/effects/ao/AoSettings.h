@@ -128,12 +128,12 @@ struct AoSettings : ParameterAccess<AoSettings> {
   float layerSeparation = 0.01f;
 
   // --- Depth hierarchy and resolution ---
-  // SAO's depth MIP: far taps read coarser levels, so neighbouring pixels' far taps share texels. Auto builds it
-  // only where it pays: with two layers, whose depths its texels fold together (one fetch a tap instead of two). With
-  // one layer it costs more than it saves on every device measured (llvmpipe, SwiftShader, an H100: the estimator's
-  // level arithmetic against a cache that holds the frame; docs/benchmarks.md, sections 2 and "The depth hierarchy
-  // only where it pays"), and the AO is the same within 0.0004 MAE; on a GPU whose caches are small next to the
-  // G-buffer `on` may pay (the SAO paper's case).
+  // SAO's depth MIP: far taps read coarser levels, so neighbouring pixels' far taps share texels. Auto builds none:
+  // it costs more than it saves on every device measured (llvmpipe, SwiftShader, an H100 and an H200: the estimator's
+  // level arithmetic and the hierarchy's own pass against a cache that holds the frame; docs/benchmarks.md, section
+  // 2, "The depth hierarchy only where it pays" and "On a GPU: an NVIDIA H200"), with one layer and with two (whose
+  // depths its texels fold into one fetch a tap: two fetches a tap still cost less), and the AO is the same within
+  // 0.0004 MAE. On a GPU whose caches are small next to the G-buffer `on` may pay (the SAO paper's case).
   DepthHierarchy depthHierarchy = DepthHierarchy::Auto;
   bool halfResolution = false; // AO at half size, upsampled depth-aware to full size
 
@@ -171,9 +171,7 @@ struct AoSettings : ParameterAccess<AoSettings> {
   // The depth layers the estimator reads: `layers`, or 1 for an estimator that reads one alone.
   int layersRead() const { return estimatorReadsSecondLayer(estimator) ? layers : 1; }
   // Whether the passes build and read the depth hierarchy (depthHierarchy, auto resolved).
-  bool usesDepthHierarchy() const {
-    return depthHierarchy == DepthHierarchy::On || (depthHierarchy == DepthHierarchy::Auto && layersRead() == 2);
-  }
+  bool usesDepthHierarchy() const { return depthHierarchy == DepthHierarchy::On; }
   // Throws InputError if a field is out of range (for settings built in code).
   void validate() const;
 };
