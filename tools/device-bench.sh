@@ -13,8 +13,8 @@
 #                                   the full obscura-bench run, and its alone-only sections (lighting, culling,
 #                                   transparency). Writes OUT/log.txt (each step's time and status), OUT/<step>.txt
 #                                   (its output) and OUT/results.tar.gz (every CSV); OUT defaults to $OUT or
-#                                   /tmp/device-bench; FRAMES (default 30) frames a figure. About four minutes on an
-#                                   H200.
+#                                   /tmp/device-bench; FRAMES (default 30) frames a figure. About two minutes on an
+#                                   H200 (90 s at 30 frames, 115 s at 60).
 #
 # docs/benchmarks.md ("On a GPU") has the figures and what carries over from the CPU rasterisers.
 set -uo pipefail
