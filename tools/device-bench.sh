@@ -37,9 +37,13 @@ prepare() {
 #include <stddef.h>
 #include <stdio.h>
 static void *unavailable(void) { fprintf(stderr, "OSMesa is not on this machine: use --backend egl\n"); return NULL; }
-void *OSMesaCreateContextAttribs(const int *attributes, void *share) { (void)attributes; (void)share; return unavailable(); }
+void *OSMesaCreateContextAttribs(const int *attributes, void *share) {
+  (void)attributes; (void)share; return unavailable();
+}
 void OSMesaDestroyContext(void *context) { (void)context; }
-unsigned char OSMesaMakeCurrent(void *c, void *b, unsigned t, int w, int h) { (void)c; (void)b; (void)t; (void)w; (void)h; return 0; }
+unsigned char OSMesaMakeCurrent(void *c, void *b, unsigned t, int w, int h) {
+  (void)c; (void)b; (void)t; (void)w; (void)h; return 0;
+}
 void *OSMesaGetProcAddress(const char *name) { (void)name; return NULL; }
 EOF
   cc -shared -fPIC -O2 -Wl,-soname,libOSMesa.so.8 -o .device/lib/libOSMesa.so.8 .device/osmesa-stand-in.c
@@ -47,8 +51,10 @@ EOF
   grep -qx '/.device/' .git/info/exclude 2>/dev/null || echo '/.device/' >> .git/info/exclude
   # The binaries read the source tree (assets/) and the engine by the absolute paths they were built with.
   grep -m1 '^CMAKE_HOME_DIRECTORY' build/CMakeCache.txt | cut -d= -f2 > .device/source-dir
-  git rev-parse --short HEAD > .device/commit
-  [ -z "$(git status --porcelain --untracked-files=no)" ] || echo "+ uncommitted changes" >> .device/commit
+  local commit
+  commit=$(git rev-parse --short HEAD)
+  [ -z "$(git status --porcelain --untracked-files=no)" ] || commit="$commit with uncommitted changes"
+  echo "$commit" > .device/commit
   du -sh .device
 }
 
@@ -59,8 +65,9 @@ run() {
   local log=$out/log.txt
   local results=/tmp/device-bench-results
   rm -rf "$results" && mkdir -p "$results"
-  export LD_LIBRARY_PATH=$here/.device/lib:/usr/local/nvidia/lib64:/usr/local/nvidia/lib${LD_LIBRARY_PATH:+:$LD_LIBRARY_PATH}
-  local vendor=/usr/local/nvidia/share/glvnd/egl_vendor.d/10_nvidia.json
+  local nvidia=/usr/local/nvidia
+  export LD_LIBRARY_PATH=$here/.device/lib:$nvidia/lib64:$nvidia/lib${LD_LIBRARY_PATH:+:$LD_LIBRARY_PATH}
+  local vendor=$nvidia/share/glvnd/egl_vendor.d/10_nvidia.json
   [ -f "$vendor" ] && export __EGL_VENDOR_LIBRARY_FILENAMES=$vendor
   local source_dir
   source_dir=$(cat .device/source-dir)
@@ -68,7 +75,9 @@ run() {
     mkdir -p "$(dirname "$source_dir")" && ln -s "$here" "$source_dir"
   fi
   local engine_dir=/usr/share/assimp/models/glTF2/2CylinderEngine-glTF-Binary
-  [ -f "$engine_dir/2CylinderEngine.glb" ] || { mkdir -p "$engine_dir" && cp .device/models/2CylinderEngine.glb "$engine_dir/"; }
+  if [ ! -f "$engine_dir/2CylinderEngine.glb" ]; then
+    mkdir -p "$engine_dir" && cp .device/models/2CylinderEngine.glb "$engine_dir/"
+  fi
   {
     echo "device-bench: $(date -u +%Y-%m-%dT%H:%M:%SZ), binaries of $(cat .device/commit), $frames frames a figure"
     nvidia-smi --query-gpu=name,driver_version,clocks.sm,clocks.max.sm --format=csv,noheader 2>&1 | head -2
@@ -87,9 +96,10 @@ run() {
     return "$status"
   }
   # A GPU context, or stop at once (the device's time is short): one small frame, its renderer's name printed.
-  if ! step egl-check 60 "$bin/obscura-render" --backend egl --size 320x180 --bench 2 --out "$results/egl-check.png"; then
+  if ! step egl-check 60 "$bin/obscura-render" --backend egl --size 320x180 --bench 2 \
+      --out "$results/egl-check.png"; then
     { echo "no EGL context on the GPU:"; tail -5 "$out/egl-check.txt"
-      ls /usr/share/glvnd/egl_vendor.d /usr/local/nvidia/share/glvnd/egl_vendor.d /usr/local/nvidia/lib64 2>&1 | head -40
+      ls /usr/share/glvnd/egl_vendor.d "$nvidia/share/glvnd/egl_vendor.d" "$nvidia/lib64" 2>&1 | head -40
     } >> "$log"
     return 1
   fi
