@@ -714,3 +714,42 @@ TEST(Pipeline, TheForwardLightingDrawsIntoAnOutputWithDepth) {
   EXPECT_EQ(withAo.intoOutput == "lighting", withAo.deferred) << (withAo.deferred ? "deferred" : "forward");
   EXPECT_EQ(withAo.image.rgba, draw(ao, false).image.rgba);
 }
+
+// The output's depth is asked of the framebuffer each frame, not remembered by its name: a framebuffer object may lose
+// its depth buffer under the same name (here detached; a driver may also give a new framebuffer a deleted one's name,
+// as NVIDIA's does at once). Remembered, the forward lighting would draw into an output without depth as if it had
+// one, every face shaded over the last (found on an NVIDIA H200, where two outputs in turn got one name).
+TEST(Pipeline, AnOutputThatLosesItsDepthUnderTheSameNameIsSeenToHaveNone) {
+  Renderer renderer = test::makeRenderer();
+  renderer.setScene(makeBuiltinScene());
+  const Camera camera = builtinSceneCamera(160, 90);
+  RenderSettings settings;
+  settings.set("preset", "low");
+  settings.set("ao", "off");
+  settings.set("fxaa", "off");
+  settings.set("lighting.depth", "overdraw");
+  const gl::RenderTarget output("output", camera.width, camera.height, GL_NEAREST,
+                                gl::RenderTarget::Depth::Renderbuffer, test::context().caps().depth24, false);
+  const OutputTarget target{output.framebuffer(), camera.width, camera.height, {}};
+  auto writesOutput = [&]() {
+    renderer.render(camera, settings, View::Final, target);
+    const FramePlan& plan = renderer.lastPlan();
+    std::string writer;
+    for (const PlannedPass& pass : plan.passes())
+      if (pass.live)
+        for (const auto& [name, version] : pass.writes)
+          if (plan.versions()[static_cast<size_t>(version)].output) writer = pass.decl.name;
+    return writer;
+  };
+  EXPECT_EQ(writesOutput(), "lighting");
+  const std::vector<std::uint8_t> withDepth = output.readRgba();
+  glBindFramebuffer(GL_FRAMEBUFFER, output.framebuffer());
+  glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_RENDERBUFFER, 0);
+  glBindFramebuffer(GL_FRAMEBUFFER, 0);
+  EXPECT_NE(writesOutput(), "lighting");
+  // The same image, but for the few edge pixels TheForwardLightingDrawsIntoAnOutputWithDepth allows.
+  const std::vector<std::uint8_t> without = output.readRgba();
+  int differing = 0;
+  for (size_t i = 0; i < withDepth.size(); ++i) differing += std::abs(int(withDepth[i]) - int(without[i])) > 1;
+  EXPECT_LE(differing, static_cast<int>(withDepth.size() / 1000));
+}

@@ -71,11 +71,15 @@ TEST(Shaders, CompileFailureNamesTheProgramAndQuotesTheLog) {
 TEST(Shaders, LinkFailureNamesTheProgramAndQuotesTheLog) {
   test::context();
   try {
-    // Each stage compiles; the fragment stage reads a varying the vertex stage never declares: a link error.
+    // Each stage compiles; the fragment stage reads a varying the vertex stage never declares, and both use a uniform
+    // of one name and two types: link errors both (GLSL ES 1.00, 4.3.5 and 4.3.4). NVIDIA's driver (580) links the
+    // first alone.
     gl::Program("unlinkable[test]",
-                ShaderLibrary::composeText("void main() { gl_Position = vec4(0.0); }", {}, {}),
-                ShaderLibrary::composeText("precision mediump float;\nvarying vec3 v_missing;\n"
-                                           "void main() { gl_FragColor = vec4(v_missing, 1.0); }",
+                ShaderLibrary::composeText("uniform float u_shared;\n"
+                                           "void main() { gl_Position = vec4(u_shared); }",
+                                           {}, {}),
+                ShaderLibrary::composeText("precision mediump float;\nvarying vec3 v_missing;\nuniform vec2 u_shared;\n"
+                                           "void main() { gl_FragColor = vec4(v_missing, u_shared.x); }",
                                            {}, {}));
     FAIL() << "a program whose stages disagree linked";
   } catch (const GlError& e) {

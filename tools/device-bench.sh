@@ -5,7 +5,11 @@
 #   tools/device-bench.sh prepare   here (Debian, after tools/build.sh): gathers into .device/ (ignored by git) the
 #                                   release binaries, the shared libraries a bare machine lacks (draco, meshoptimizer,
 #                                   glvnd's EGL loader), a stand-in for libOSMesa (the binaries link it; on the GPU only
-#                                   --backend egl runs) and the engine model the benchmarks read.
+#                                   --backend egl runs) and Debian's glTF test models (the engine the benchmarks
+#                                   read, the files the GPU suite loads).
+#   tools/device-bench.sh tests [OUT]
+#                                   there: the GPU test suite (obscura_gpu_tests) on the GPU's EGL context, as ctest's
+#                                   gpu.egl entries run it on Mesa; OUT/gpu-tests.txt and OUT/gpu-tests.xml (JUnit).
 #   tools/device-bench.sh run [OUT] there, in the repository's root (.device carried): fails within seconds if EGL
 #                                   gives no GPU context, then runs, each under its own time limit, the AO layers' and
 #                                   normals' costs (obscura-bench section 12, issue 30), the browser benchmark's Obscura
@@ -24,10 +28,11 @@ mode=${1:-}
 
 prepare() {
   set -e
-  cmake --build build --target obscura-bench obscura-render -j"$(nproc)" >/dev/null
+  cmake --build build --target obscura-bench obscura-render obscura_gpu_tests -j"$(nproc)" >/dev/null
   rm -rf .device
   mkdir -p .device/bin .device/lib .device/models
-  cp build/obscura-bench build/obscura-render .device/bin/
+  # The test binaries that need no Embree (its library alone is 43 MB): the GPU suite.
+  cp build/obscura-bench build/obscura-render build/tests/obscura_gpu_tests .device/bin/
   strip .device/bin/*
   local lib=/lib/x86_64-linux-gnu
   cp -L "$lib/libdraco.so.7" "$lib/libmeshoptimizer.so.2d" "$lib/libEGL.so.1" "$lib/libGLdispatch.so.0" .device/lib/
@@ -47,7 +52,8 @@ unsigned char OSMesaMakeCurrent(void *c, void *b, unsigned t, int w, int h) {
 void *OSMesaGetProcAddress(const char *name) { (void)name; return NULL; }
 EOF
   cc -shared -fPIC -O2 -Wl,-soname,libOSMesa.so.8 -o .device/lib/libOSMesa.so.8 .device/osmesa-stand-in.c
-  cp /usr/share/assimp/models/glTF2/2CylinderEngine-glTF-Binary/2CylinderEngine.glb .device/models/
+  # Debian's glTF test models (3 MB): the engine the benchmarks read and the files the GPU suite loads.
+  cp -rL /usr/share/assimp/models/glTF2 .device/models/
   grep -qx '/.device/' .git/info/exclude 2>/dev/null || echo '/.device/' >> .git/info/exclude
   # The binaries read the source tree (assets/) and the engine by the absolute paths they were built with.
   grep -m1 '^CMAKE_HOME_DIRECTORY' build/CMakeCache.txt | cut -d= -f2 > .device/source-dir
@@ -58,13 +64,8 @@ EOF
   du -sh .device
 }
 
-run() {
-  local out=${1:-${OUT:-/tmp/device-bench}}
-  local frames=${FRAMES:-30}
-  mkdir -p "$out"
-  local log=$out/log.txt
-  local results=/tmp/device-bench-results
-  rm -rf "$results" && mkdir -p "$results"
+# The device machine's GPU through its EGL, the binaries' absolute paths made to resolve there.
+use_device_gpu() {
   local nvidia=/usr/local/nvidia
   export LD_LIBRARY_PATH=$here/.device/lib:$nvidia/lib64:$nvidia/lib${LD_LIBRARY_PATH:+:$LD_LIBRARY_PATH}
   local vendor=$nvidia/share/glvnd/egl_vendor.d/10_nvidia.json
@@ -74,10 +75,30 @@ run() {
   if [ "$source_dir" != "$here" ] && [ ! -e "$source_dir" ]; then
     mkdir -p "$(dirname "$source_dir")" && ln -s "$here" "$source_dir"
   fi
-  local engine_dir=/usr/share/assimp/models/glTF2/2CylinderEngine-glTF-Binary
-  if [ ! -f "$engine_dir/2CylinderEngine.glb" ]; then
-    mkdir -p "$engine_dir" && cp .device/models/2CylinderEngine.glb "$engine_dir/"
+  if [ ! -d /usr/share/assimp/models/glTF2 ]; then
+    mkdir -p /usr/share/assimp/models && cp -r .device/models/glTF2 /usr/share/assimp/models/
   fi
+}
+
+tests() {
+  local out=${1:-${OUT:-/tmp/device-bench}}
+  mkdir -p "$out"
+  use_device_gpu
+  OBSCURA_TEST_BACKEND=egl timeout 300 .device/bin/obscura_gpu_tests --gtest_output="xml:$out/gpu-tests.xml" \
+    > "$out/gpu-tests.txt" 2>&1
+  local status=$?
+  grep -E '^\[  (PASSED|FAILED) |tests? ran|^\[  SKIPPED \] [0-9]' "$out/gpu-tests.txt"
+  return "$status"
+}
+
+run() {
+  local out=${1:-${OUT:-/tmp/device-bench}}
+  local frames=${FRAMES:-30}
+  mkdir -p "$out"
+  local log=$out/log.txt
+  local results=/tmp/device-bench-results
+  rm -rf "$results" && mkdir -p "$results"
+  use_device_gpu
   {
     echo "device-bench: $(date -u +%Y-%m-%dT%H:%M:%SZ), binaries of $(cat .device/commit), $frames frames a figure"
     nvidia-smi --query-gpu=name,driver_version,clocks.sm,clocks.max.sm --format=csv,noheader 2>&1 | head -2
@@ -99,7 +120,7 @@ run() {
   if ! step egl-check 60 "$bin/obscura-render" --backend egl --size 320x180 --bench 2 \
       --out "$results/egl-check.png"; then
     { echo "no EGL context on the GPU:"; tail -5 "$out/egl-check.txt"
-      ls /usr/share/glvnd/egl_vendor.d "$nvidia/share/glvnd/egl_vendor.d" "$nvidia/lib64" 2>&1 | head -40
+      ls /usr/share/glvnd/egl_vendor.d /usr/local/nvidia/share/glvnd/egl_vendor.d /usr/local/nvidia/lib64 2>&1 | head -40
     } >> "$log"
     return 1
   fi
@@ -116,5 +137,6 @@ run() {
 case "$mode" in
   prepare) prepare ;;
   run) shift; run "$@" ;;
-  *) echo "usage: tools/device-bench.sh prepare | run [OUT]" >&2; exit 2 ;;
+  tests) shift; tests "$@" ;;
+  *) echo "usage: tools/device-bench.sh prepare | run [OUT] | tests [OUT]" >&2; exit 2 ;;
 esac

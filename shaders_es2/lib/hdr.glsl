@@ -34,10 +34,11 @@ float hdrMax3(vec3 v) { return max(v.r, max(v.g, v.b)); }
 // The shared-exponent encodings find their exponent by binary search over its bits, with products by powers of two
 // only, which are exact in binary32: no log2, which is an approximation (off by an ulp near powers of two) and, on
 // llvmpipe, dearer than the whole search. r = (n, 2^(lo + n), 2^-(lo + n)) for a lower bound 2^lo; one step takes the
-// bit k (up = 2^k, down = 2^-k) when x >= 2^(lo + n + k). mix with 0 or 1 returns one operand exactly.
+// bit k (up = 2^k, down = 2^-k) when x >= 2^(lo + n + k). A select, not mix(a, b, s): a driver may compute mix as
+// a + s (b - a), which loses b where |a| is far larger (NVIDIA's 580 driver did: RGBE's 2^32 against 1 gave 0, so
+// every RGBE mantissa came out 0; docs/robustness.md, "On an NVIDIA GPU").
 vec3 hdrExponentStep(vec3 r, float x, float k, float up, float down) {
-  float s = step(r.y * up, x);
-  return vec3(r.x + s * k, mix(r.y, r.y * up, s), mix(r.z, r.z * down, s));
+  return x >= r.y * up ? vec3(r.x + k, r.y * up, r.z * down) : r;
 }
 
 #if HDR_ENCODING == HDR_ENCODING_RGBM

@@ -245,7 +245,10 @@ bool Renderer::jitters(const RenderSettings& settings) {
 const Renderer::OutputBuffers& Renderer::outputBuffers(const OutputTarget& output) {
   const glm::ivec2 size(output.width, output.height);
   OutputBuffers& known = outputBuffers_;
-  if (!known.known || known.framebuffer != output.framebuffer || known.size != size) {
+  // The default framebuffer's buffers never change. A framebuffer object's can, under the same name: its owner may
+  // attach others, or delete it and make another, which GL may name alike (NVIDIA's driver reuses a name at once;
+  // Mesa's does not): those are asked every frame (two queries; the page and the viewer draw into the default one).
+  if (!known.known || known.framebuffer != output.framebuffer || known.size != size || output.framebuffer != 0) {
     GLint bound = 0;
     glGetIntegerv(GL_FRAMEBUFFER_BINDING, &bound);
     glBindFramebuffer(GL_FRAMEBUFFER, output.framebuffer);

@@ -300,9 +300,10 @@ class Renderer {
   static constexpr size_t kShapingIds = 1024;
   std::map<std::vector<std::string>, std::uint64_t> shapingIds_;
   gl::FramebufferHandle externalGBufferSource_;  // reads the caller's G-buffer texture (importGBuffer)
-  // Whether the output framebuffer has a depth buffer and a stencil buffer (GL_DEPTH_BITS, GL_STENCIL_BITS), asked
-  // once per framebuffer and size: a query makes the bindings the cache held back (gl/BindingCache.h), and on the
-  // web may wait for the GPU process.
+  // Whether the output framebuffer has a depth buffer and a stencil buffer (GL_DEPTH_BITS, GL_STENCIL_BITS): asked
+  // once per size for the default framebuffer (a query makes the bindings the cache held back, gl/BindingCache.h,
+  // and on the web may wait for the GPU process), every frame for a framebuffer object, whose buffers may change
+  // under the same name.
   struct OutputBuffers {
     GLuint framebuffer = 0;
     glm::ivec2 size{0, 0};
