@@ -101,6 +101,16 @@ std::vector<std::string> livePasses(const Renderer& renderer) {
   return names;
 }
 
+std::string passWritingOutput(const Renderer& renderer) {
+  const FramePlan& plan = renderer.lastPlan();
+  std::string writer;
+  for (const PlannedPass& pass : plan.passes())
+    if (pass.live)
+      for (const auto& [target, version] : pass.writes)
+        if (plan.versions()[static_cast<size_t>(version)].output) writer = pass.decl.name;
+  return writer;
+}
+
 long passCount(const std::vector<std::string>& livePassNames) {
   return std::count_if(livePassNames.begin(), livePassNames.end(),
                        [](const std::string& n) { return n.find(" (done by ") == std::string::npos; });

@@ -53,6 +53,8 @@ ColorDifference colorDifference(const RenderedImage& a, const RenderedImage& b);
 // The live passes of the renderer's last plan, by name, each followed by the stages it absorbed as
 // "NAME (done by PASS)".
 std::vector<std::string> livePasses(const Renderer& renderer);
+// The live pass of the last frame that drew the output ("" where none did).
+std::string passWritingOutput(const Renderer& renderer);
 // The passes among livePasses' names (the absorbed stages left out).
 long passCount(const std::vector<std::string>& livePassNames);
 // One frame of `scene` drawn by two Renderers: one fusing the per-pixel stages into the passes before them, one

@@ -671,14 +671,12 @@ TEST(Pipeline, TheForwardLightingDrawsIntoAnOutputWithDepth) {
     renderer.render(camera, settings, View::Final, OutputTarget{output.framebuffer(), camera.width, camera.height, {}});
     Drawn drawn;
     drawn.image = {camera.width, camera.height, output.readRgba()};
-    const FramePlan& plan = renderer.lastPlan();
-    for (const PlannedPass& pass : plan.passes()) {
+    for (const PlannedPass& pass : renderer.lastPlan().passes()) {
       if (!pass.live) continue;
       ++drawn.passes;
       if (pass.decl.name == "lighting") drawn.deferred = pass.reads.count("base-color") != 0;
-      for (const auto& [target, version] : pass.writes)
-        if (plan.versions()[static_cast<size_t>(version)].output) drawn.intoOutput = pass.decl.name;
     }
+    drawn.intoOutput = test::passWritingOutput(renderer);
     return drawn;
   };
   // The forward form (where a context has several render targets, auto shades this scene deferred, over the
@@ -733,13 +731,7 @@ TEST(Pipeline, AnOutputThatLosesItsDepthUnderTheSameNameIsSeenToHaveNone) {
   const OutputTarget target{output.framebuffer(), camera.width, camera.height, {}};
   auto writesOutput = [&]() {
     renderer.render(camera, settings, View::Final, target);
-    const FramePlan& plan = renderer.lastPlan();
-    std::string writer;
-    for (const PlannedPass& pass : plan.passes())
-      if (pass.live)
-        for (const auto& [name, version] : pass.writes)
-          if (plan.versions()[static_cast<size_t>(version)].output) writer = pass.decl.name;
-    return writer;
+    return test::passWritingOutput(renderer);
   };
   EXPECT_EQ(writesOutput(), "lighting");
   const std::vector<std::uint8_t> withDepth = output.readRgba();
