@@ -56,12 +56,18 @@ std::vector<AoSettings> everyEstimator() {
   return all;
 }
 
-float minOverGeometry(const test::RenderedImage& ao, const test::RenderedImage& depth) {
-  float lowest = 1.0f;
+// The darkest AO over the geometry, and where it is (for the failure's message).
+struct Darkest {
+  float ao = 1.0f;
+  int x = -1, y = -1;
+};
+
+Darkest darkestOverGeometry(const test::RenderedImage& ao, const test::RenderedImage& depth) {
+  Darkest darkest;
   for (int y = 0; y < ao.height; ++y)
     for (int x = 0; x < ao.width; ++x)
-      if (depth.channel(x, y, 0) < 255) lowest = std::min(lowest, ao.red(x, y));
-  return lowest;
+      if (depth.channel(x, y, 0) < 255 && ao.red(x, y) < darkest.ao) darkest = {ao.red(x, y), x, y};
+  return darkest;
 }
 
 // Mean AO over a small window.
@@ -89,7 +95,9 @@ TEST(Sao, FlatPlaneFacingTheCameraIsUnoccluded) {
   for (const auto& [name, settings] : defaultAndPaperEstimators()) {
     const auto ao = test::render(renderer, camera, settings, View::AoRaw);
     const auto depth = test::render(renderer, camera, settings, View::Depth);
-    EXPECT_GE(minOverGeometry(ao, depth), 0.98f) << name;
+    const Darkest darkest = darkestOverGeometry(ao, depth);
+    EXPECT_GE(darkest.ao, 0.98f) << name << ": at pixel " << darkest.x << ", " << darkest.y << " of " << ao.width
+                                 << " x " << ao.height;
   }
 }
 
@@ -126,7 +134,7 @@ TEST(Sao, PlaneAtAGrazingAngleIsUnoccluded) {
                                    << " pixels below 0.98";
         continue;
       }
-      EXPECT_GE(minOverGeometry(ao, depth), 0.98f) << name << ", " << falloffName(falloff);
+      EXPECT_GE(darkestOverGeometry(ao, depth).ao, 0.98f) << name << ", " << falloffName(falloff);
     }
   }
 }

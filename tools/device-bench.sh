@@ -9,7 +9,8 @@
 #                                   read, the files the GPU suite loads).
 #   tools/device-bench.sh tests [OUT]
 #                                   there: the GPU test suite (obscura_gpu_tests) on the GPU's EGL context, as ctest's
-#                                   gpu.egl entries run it on Mesa; OUT/gpu-tests.txt and OUT/gpu-tests.xml (JUnit).
+#                                   gpu.egl entries run it on Mesa; OUT/gpu-tests.txt, OUT/gpu-tests.xml (JUnit) and
+#                                   OUT/frames (the frames some tests compare).
 #   tools/device-bench.sh run [OUT] there, in the repository's root (.device carried): fails within seconds if EGL
 #                                   gives no GPU context, then runs, each under its own time limit, the AO layers' and
 #                                   normals' costs (obscura-bench section 12, issue 30), the browser benchmark's Obscura
@@ -84,7 +85,10 @@ tests() {
   local out=${1:-${OUT:-/tmp/device-bench}}
   mkdir -p "$out"
   use_device_gpu
-  OBSCURA_TEST_BACKEND=egl timeout 300 .device/bin/obscura_gpu_tests --gtest_output="xml:$out/gpu-tests.xml" \
+  # OBSCURA_TEST_DUMP: the tests that can write the frames they compare (depth of field, motion blur) do so, to look
+  # at here.
+  mkdir -p "$out/frames"
+  OBSCURA_TEST_DUMP=$out/frames OBSCURA_TEST_BACKEND=egl timeout 300 .device/bin/obscura_gpu_tests --gtest_output="xml:$out/gpu-tests.xml" \
     > "$out/gpu-tests.txt" 2>&1
   local status=$?
   grep -E '^\[  (PASSED|FAILED) |tests? ran|^\[  SKIPPED \] [0-9]' "$out/gpu-tests.txt"

@@ -131,11 +131,15 @@ vec4 tapTexel(vec2 tapPixel, float log2TapDistance, out vec2 pixel) {
   return texel;
 }
 
-// The surface point (view space) a tap reads: the first layer's.
-vec3 tapPoint(vec2 tapPixel, float log2TapDistance) {
-  vec2 pixel;
+// The surface point (view space) a tap reads: the first layer's; `pixel`: the G-buffer pixel whose depth it holds.
+vec3 tapPoint(vec2 tapPixel, float log2TapDistance, out vec2 pixel) {
   vec4 texel = tapTexel(tapPixel, log2TapDistance, pixel);
   return viewPositionOnRay(farPlaneRay((pixel + 0.5) / u_gbufferSize), unpackLinearDepth(texel.ba));
+}
+
+vec3 tapPoint(vec2 tapPixel, float log2TapDistance) {
+  vec2 pixel;
+  return tapPoint(tapPixel, log2TapDistance, pixel);
 }
 
 #if AO_LAYERS == 2

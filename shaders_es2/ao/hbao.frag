@@ -56,13 +56,13 @@ float directionOcclusion(AoCentre c, vec3 V, vec2 d, float jitter, float log2Dis
   for (int s = 0; s < HBAO_STEPS; s++) {
     float tapDistance = max((float(s) + jitter) * (1.0 / float(HBAO_STEPS)) * c.diskRadius, 1.0);
     vec2 tapPixel = clamp(floor(c.pixel + 0.5 + tapDistance * d), vec2(0.0), u_gbufferSize - 1.0);
-    vec3 q = tapPoint(tapPixel, log2(tapDistance));
+    vec2 readPixel;
+    vec3 q = tapPoint(tapPixel, log2(tapDistance), readPixel);
     vec3 w = (q - c.position) * u_invRadius;  // in units of r
     // The slice through the eye holding this tap: its screen direction X from the centre, and the unit tangent T
     // of that plane perpendicular to V (the tap lies in the plane spanned by T and V).
     vec2 screen = screenPosition(q) - centreTangent;
-    float screenLength = length(screen);
-    vec3 X = vec3(screen / max(screenLength, 1e-12), 0.0);
+    vec3 X = vec3(screen / max(length(screen), 1e-12), 0.0);
     vec3 T = normalize(X - dot(X, V) * V);
     float wT = dot(w, T), wV = dot(w, V);
     float nT = dot(c.normal, T), nV = dot(c.normal, V);
@@ -70,9 +70,11 @@ float directionOcclusion(AoCentre c, vec3 V, vec2 d, float jitter, float log2Dis
     float sinT = -nT * inversesqrt(max(nT * nT + nV * nV, 1e-12));
     float rise = sinH - sinT;
     float distanceSquared = dot(w, w);
-    // A tap counts within r (W > 0) when it raises the horizon; one that read the centre's own pixel (at the image
-    // edge) has no slice.
-    if (distanceSquared < 1.0 && rise > horizon && screenLength > 0.0) {
+    // A tap counts within r (W > 0) when it raises the horizon. One that read the centre's own pixel (at the image
+    // edge, or a hierarchy level's pick) has no slice: told by its pixel, not by its point, since a GPU may rebuild
+    // the centre's point with other roundings (contracted products) than the tap's, and a point a rounding away from
+    // the centre has a slice of any direction and a rise of up to 1 (NVIDIA, 2026-11-29: a flat plane at 0.63).
+    if (distanceSquared < 1.0 && rise > horizon && any(notEqual(readPixel, c.pixel))) {
       occlusion += (1.0 - distanceSquared) * (rise - horizon);
       horizon = rise;
     }
