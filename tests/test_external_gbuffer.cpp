@@ -222,20 +222,24 @@ void main() { gl_FragColor = obscuraGBuffer(normalize(v_first.xyz), v_second.x, 
     depths.emplace_back(near + (far - near) * float(i % 1021) / 1020.0f, near, far);
   }
   const std::vector<std::uint8_t> bytes = test::drawPoints(program, normals, depths);
-  int normalMismatches = 0, depthOffByOne = 0, depthMismatches = 0;
+  int normalMismatches = 0, depthTies = 0, depthMismatches = 0;
   for (size_t i = 0; i < normals.size(); ++i) {
     const auto n = encodeNormal(glm::normalize(glm::vec3(normals[i])));
     normalMismatches += bytes[4 * i] != n[0] || bytes[4 * i + 1] != n[1];
-    // The division by far - near happens on the GPU here, which may round it differently by an ulp: a code off by
-    // one is that, anything more a packing error.
     const int code = LinearDepthPacking::codeFromDepth((depths[i].x - near) / (far - near));
     const int drawn = LinearDepthPacking::codeFromBytes(bytes[4 * i + 2], bytes[4 * i + 3]);
-    depthOffByOne += std::abs(drawn - code) == 1;
-    depthMismatches += std::abs(drawn - code) > 1;
+    // A quarter of these depths sit on a tie between two codes (k / 1020 of the range is 64.25 k codes). The
+    // division by far - near happens on the GPU here, which may round it by an ulp (NVIDIA's driver multiplies by a
+    // reciprocal: 227 of the 4096 went the other way on the H200), so a depth within a twentieth of a step of a tie
+    // may take either code; any other difference is a packing error.
+    const double steps = (double(depths[i].x) - near) / (double(far) - near) * 65535.0;
+    const bool nearTie = std::abs(steps - std::floor(steps) - 0.5) < 0.05;
+    if (drawn != code && !(nearTie && std::abs(drawn - code) == 1)) ++depthMismatches;
+    depthTies += nearTie;
   }
   EXPECT_EQ(normalMismatches, 0);
   EXPECT_EQ(depthMismatches, 0);
-  EXPECT_LT(depthOffByOne, 41) << "of 4096";
+  EXPECT_GT(depthTies, 0) << "the depths include ties";
 }
 
 }  // namespace

@@ -145,10 +145,14 @@ void main() {
   int worst = 0;
   for (size_t i = 0; i < colours.size(); ++i)
     for (int c = 0; c < 3; ++c) worst = std::max(worst, std::abs(pixels[i * 4 + c] - 128));
-  // Exact where decoding is integers times powers of two, and in RGBM's and RGBD's float products (measured 0);
+  // Exact where decoding is integers times powers of two (RGB9E5, RGBE). RGBM's two products and RGBD's division
+  // are exact on Mesa; GLSL ES 1.00 does not hold a GPU to IEEE rounding there (NVIDIA's driver associates the
+  // products otherwise and divides by a reciprocal: 1 ulp on an H200, 2026-11-29), so each may round once more.
   // LogLuv's exp2, division and matrix differ by a few ulps (measured on llvmpipe: 15).
   if (e.kind == HdrEncodingKind::LogLuv) {
     EXPECT_LE(worst, 32);
+  } else if (e.kind == HdrEncodingKind::Rgbm || e.kind == HdrEncodingKind::Rgbd) {
+    EXPECT_LE(worst, 2);
   } else {
     EXPECT_EQ(worst, 0);
   }

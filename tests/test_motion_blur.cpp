@@ -161,7 +161,9 @@ std::function<bool(int, int)> moving(const Frames& frames) {
 void expectTowardsReference(const Frames& frames, const char* what) {
   // OBSCURA_TEST_DUMP=DIR writes the three frames and each one's difference from the reference (x 8), to look at.
   if (const char* dir = std::getenv("OBSCURA_TEST_DUMP")) {
-    const std::string base = std::string(dir) + "/" + what;
+    std::string name = what;
+    std::replace(name.begin(), name.end(), ' ', '-');
+    const std::string base = std::string(dir) + "/" + name;
     writePng(base + "-blurred.png", Image{frames.blurred.width, frames.blurred.height, frames.blurred.rgba});
     writePng(base + "-sharp.png", Image{frames.sharp.width, frames.sharp.height, frames.sharp.rgba});
     writePng(base + "-reference.png", frames.reference.toImage());

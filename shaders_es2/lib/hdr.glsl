@@ -41,11 +41,19 @@ vec3 hdrExponentStep(vec3 r, float x, float k, float up, float down) {
   return x >= r.y * up ? vec3(r.x + k, r.y * up, r.z * down) : r;
 }
 
+#if HDR_ENCODING == HDR_ENCODING_RGBM || HDR_ENCODING == HDR_ENCODING_RGBD
+// RGBM's multiplier and RGBD's divisor are whole numbers in exact arithmetic when a decoded texel is encoded again; a
+// GPU's inexact division (NVIDIA's driver: a reciprocal and a product) puts them a rounding above or below, where ceil
+// and floor would take the next code (RGBD's round trip on an H200, 2026-11-29: 255 255 255 160 -> 253 253 253 159).
+// They are taken within this slack of the whole number instead, as encoding/HdrEncoding.cpp does.
+const float HDR_MULTIPLIER_SLACK = 1e-3;
+#endif
+
 #if HDR_ENCODING == HDR_ENCODING_RGBM
 // Karis 2009 (three.js LinearToRGBM): multiplier quantised up, so every channel / (M R) <= 1.
 vec4 encodeHdr(vec3 linear) {
   vec3 c = clamp(linear, 0.0, HDR_RANGE);
-  float m = max(ceil(hdrMax3(c) * (255.0 / HDR_RANGE)), 1.0);
+  float m = max(ceil(hdrMax3(c) * (255.0 / HDR_RANGE) - HDR_MULTIPLIER_SLACK), 1.0);
   vec3 rgb = min(floor(c * (65025.0 / HDR_RANGE) / m + 0.5), 255.0);
   return hdrBytesToTexel(vec4(rgb, m));
 }
@@ -59,7 +67,7 @@ vec3 decodeHdr(vec4 texel) {
 // three.js LinearToRGBD: D = clamp(floor(R / max), 1, 255); max(.., R / 512) keeps the division finite for black.
 vec4 encodeHdr(vec3 linear) {
   vec3 c = clamp(linear, 0.0, HDR_RANGE);
-  float d = clamp(floor(HDR_RANGE / max(hdrMax3(c), HDR_RANGE / 512.0)), 1.0, 255.0);
+  float d = clamp(floor(HDR_RANGE / max(hdrMax3(c), HDR_RANGE / 512.0) + HDR_MULTIPLIER_SLACK), 1.0, 255.0);
   vec3 rgb = min(floor(c * d * (255.0 / HDR_RANGE) + 0.5), 255.0);
   return hdrBytesToTexel(vec4(rgb, d));
 }

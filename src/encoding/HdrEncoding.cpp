@@ -50,10 +50,14 @@ glm::vec3 exponentStep(const glm::vec3& r, float x, float k, float up, float dow
   return {r.x + s * k, s > 0.0f ? r.y * up : r.y, s > 0.0f ? r.z * down : r.z};
 }
 
+// lib/hdr.glsl's HDR_MULTIPLIER_SLACK: RGBM's multiplier and RGBD's divisor are taken within it of a whole number (a
+// decoded texel encoded again gives one exactly, which a GPU's inexact division puts a rounding off).
+constexpr float kMultiplierSlack = 1e-3f;
+
 // ---- RGBM ----
 HdrTexel encodeRgbm(const glm::vec3& linear, float range, Rounding& r) {
   const glm::vec3 c = glm::min(nonNegative(linear), glm::vec3(range));
-  const float m = std::max(r.ceil(max3(c) * (255.0f / range)), 1.0f);
+  const float m = std::max(r.ceil(max3(c) * (255.0f / range) - kMultiplierSlack), 1.0f);
   const float k = 65025.0f / range;
   HdrTexel t;
   for (int i = 0; i < 3; ++i) t[i] = byte(std::min(r.round(c[i] * k / m), 255.0f));
@@ -69,7 +73,7 @@ glm::vec3 decodeRgbm(const HdrTexel& t, float range) {
 HdrTexel encodeRgbd(const glm::vec3& linear, float range, Rounding& r) {
   const glm::vec3 c = glm::min(nonNegative(linear), glm::vec3(range));
   // max(.., range / 512) keeps the division finite for black; D clamps to 255 there anyway.
-  const float d = std::clamp(r.floor(range / std::max(max3(c), range / 512.0f)), 1.0f, 255.0f);
+  const float d = std::clamp(r.floor(range / std::max(max3(c), range / 512.0f) + kMultiplierSlack), 1.0f, 255.0f);
   const float k = 255.0f / range;
   HdrTexel t;
   for (int i = 0; i < 3; ++i) t[i] = byte(std::min(r.round(c[i] * d * k), 255.0f));
