@@ -412,8 +412,8 @@ TEST(Pipeline, TheToneMappingPassMatchesItsCpuMirror) {
         // Alpha holds the display colour's luma for FXAA.
         worst = std::max(worst, std::abs(int(std::lround(fxaaLuma(srgb) * 255.0f)) - int(display[i + 3])));
       }
-      // A step of rounding on each side; a GPU's pow and exp2, whose precision GLSL ES 1.00 leaves to the
-      // implementation, one more (NVIDIA's driver on an H200: 2 steps, 2026-11-29).
+      // A step of rounding on each side; a GPU's pow (the sRGB curve, the operators), whose precision GLSL ES 1.00
+      // leaves to the implementation, one more (NVIDIA's driver on an H200: 2 steps, 2026-11-29).
       EXPECT_LE(worst, 2) << toneMapOperatorName(op) << " at " << exposure << " EV";
     }
   }
