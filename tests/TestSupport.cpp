@@ -75,6 +75,13 @@ int worstByteDifference(const RenderedImage& a, const RenderedImage& b) {
   return worst;
 }
 
+size_t bytesDifferingBeyond(const std::vector<std::uint8_t>& a, const std::vector<std::uint8_t>& b, int tolerance) {
+  EXPECT_EQ(a.size(), b.size());
+  size_t differing = 0;
+  for (size_t i = 0; i < std::min(a.size(), b.size()); ++i) differing += std::abs(a[i] - b[i]) > tolerance;
+  return differing;
+}
+
 ColorDifference colorDifference(const RenderedImage& a, const RenderedImage& b) {
   EXPECT_EQ(a.rgba.size(), b.rgba.size());
   ColorDifference d;

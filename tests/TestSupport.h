@@ -43,6 +43,8 @@ RenderedImage render(Renderer& renderer, const Camera& camera, const RenderSetti
 FrameOptions retaining(std::vector<std::string> targets);
 // The largest difference of any byte between two images of one size.
 int worstByteDifference(const RenderedImage& a, const RenderedImage& b);
+// How many bytes of two byte arrays of one size differ by more than `tolerance`.
+size_t bytesDifferingBeyond(const std::vector<std::uint8_t>& a, const std::vector<std::uint8_t>& b, int tolerance);
 // Over the colour channels (alpha left out) of two images of one size: the largest difference and the mean, in
 // levels of 255.
 struct ColorDifference {

@@ -435,9 +435,9 @@ TEST(Edges, ASlantedPlaneIsNotAnEdge) {
         secondOrder = std::max(secondOrder, std::abs(detector.relativeSecondDifference(z, za, zb)));
       }
     // No pixel marked, and the image as without the lines (to one step: the two frames' AO may round apart).
-    int marked = 0, changed = 0;
+    int marked = 0;
     for (size_t i = 0; i < mask.size(); i += 4) marked += mask[i] > 127 || mask[i + 1] > 127 || mask[i + 2] > 127;
-    for (size_t i = 0; i < on.rgba.size(); ++i) changed += std::abs(on.rgba[i] - off.rgba[i]) > 1;
+    const int changed = static_cast<int>(test::bytesDifferingBeyond(on.rgba, off.rgba, 1));
     std::printf("edges, plane at %.0f degrees: first-order relative difference up to %.4f, second-order %.5f "
                 "(threshold %.3f); %d pixels marked, %d bytes changed\n",
                 degrees, firstOrder, secondOrder, detector.depthThreshold, marked, changed);

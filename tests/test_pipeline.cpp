@@ -696,10 +696,8 @@ TEST(Pipeline, TheForwardLightingDrawsIntoAnOutputWithDepth) {
     EXPECT_EQ(withDepth.passes, without.passes - 1) << preset;
     // Where the lighting's depth pre-pass has no stencil to shade each pixel once (the output's), an edge-on face may
     // shade a pixel twice, the visible surface last (LightingEffect::render): the images may differ at a few edges.
-    int differing = 0;
-    for (size_t i = 0; i < withDepth.image.rgba.size(); ++i)
-      differing += std::abs(int(withDepth.image.rgba[i]) - int(without.image.rgba[i])) > 1;
-    EXPECT_LE(differing, static_cast<int>(withDepth.image.rgba.size() / 1000))
+    EXPECT_LE(test::bytesDifferingBeyond(withDepth.image.rgba, without.image.rgba, 1),
+              withDepth.image.rgba.size() / 1000)
         << preset << ": worst byte difference " << test::worstByteDifference(withDepth.image, without.image);
   }
   // With FXAA on, FXAA reads the lit image and writes the output: the lighting draws into a texture as before.
@@ -742,8 +740,5 @@ TEST(Pipeline, AnOutputThatLosesItsDepthUnderTheSameNameIsSeenToHaveNone) {
   glBindFramebuffer(GL_FRAMEBUFFER, 0);
   EXPECT_NE(writesOutput(), "lighting");
   // The same image, but for the few edge pixels TheForwardLightingDrawsIntoAnOutputWithDepth allows.
-  const std::vector<std::uint8_t> without = output.readRgba();
-  int differing = 0;
-  for (size_t i = 0; i < withDepth.size(); ++i) differing += std::abs(int(withDepth[i]) - int(without[i])) > 1;
-  EXPECT_LE(differing, static_cast<int>(withDepth.size() / 1000));
+  EXPECT_LE(test::bytesDifferingBeyond(withDepth, output.readRgba(), 1), withDepth.size() / 1000);
 }
