@@ -1,7 +1,7 @@
 // View-space positions rebuilt from the packed G-buffer of a known plane match the true ones within the depth
-// quantisation (and the rasteriser's sub-pixel placement of the plane): by the CPU mirror (frame/ViewReconstruction.h) over the G-buffer the GPU wrote, and by the shaders'
-// own lib/reconstruct.glsl, with the far-plane ray interpolated by fullscreen.vert as the passes use it; through
-// perspective and orthographic cameras.
+// quantisation and the rasteriser's sub-pixel placement of the plane: by the CPU mirror (frame/ViewReconstruction.h)
+// over the G-buffer the GPU wrote, and by the shaders' own lib/reconstruct.glsl, with the far-plane ray interpolated by
+// fullscreen.vert as the passes use it; through perspective and orthographic cameras.
 #include <gtest/gtest.h>
 
 #include <algorithm>

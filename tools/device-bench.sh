@@ -86,10 +86,10 @@ tests() {
   mkdir -p "$out"
   use_device_gpu
   # OBSCURA_TEST_DUMP: the tests that can write the frames they compare (depth of field, motion blur) do so, to look
-  # at here.
+  # at here (a device call brings back a few files: keep those of the test in question).
   mkdir -p "$out/frames"
-  OBSCURA_TEST_DUMP=$out/frames OBSCURA_TEST_BACKEND=egl timeout 300 .device/bin/obscura_gpu_tests --gtest_output="xml:$out/gpu-tests.xml" \
-    > "$out/gpu-tests.txt" 2>&1
+  OBSCURA_TEST_DUMP=$out/frames OBSCURA_TEST_BACKEND=egl timeout 300 .device/bin/obscura_gpu_tests \
+    --gtest_output="xml:$out/gpu-tests.xml" > "$out/gpu-tests.txt" 2>&1
   local status=$?
   grep -E '^\[  (PASSED|FAILED) |tests? ran|^\[  SKIPPED \] [0-9]' "$out/gpu-tests.txt"
   return "$status"
