@@ -10,7 +10,8 @@
 #   tools/device-bench.sh tests [OUT]
 #                                   there: the GPU test suite (obscura_gpu_tests) on the GPU's EGL context, as ctest's
 #                                   gpu.egl entries run it on Mesa; OUT/gpu-tests.txt, OUT/gpu-tests.xml (JUnit) and
-#                                   OUT/frames (the frames some tests compare).
+#                                   OUT/frames (the frames some tests compare). About four minutes on an H200 (the
+#                                   shader test compiling every variant takes half); GTEST_FILTER=... runs a part.
 #   tools/device-bench.sh run [OUT] there, in the repository's root (.device carried): fails within seconds if EGL
 #                                   gives no GPU context, then runs, each under its own time limit, the AO layers' and
 #                                   normals' costs (obscura-bench section 12, issue 30), the browser benchmark's Obscura
